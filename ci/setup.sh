@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs every system package sao needs. Idempotent and quiet when all is present;
+# runs `apt-get update` only when something is missing.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  glslang-dev glslang-tools spirv-tools
+  libgtest-dev
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
+  libegl-dev libgl-dev libegl1-mesa-dev libgl1-mesa-dri libepoxy-dev
+  libglfw3-dev libglm-dev libopenexr-dev libimgui-dev
+  libembree-dev libtbb-dev libstb-dev nlohmann-json3-dev
+  xvfb xauth
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "ci/setup.sh: installing ${missing[*]}"
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "ci/setup.sh: done"

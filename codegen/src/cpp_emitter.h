@@ -1,0 +1,27 @@
+// Writes the generated C++ glue: settings + metadata, the parameter block struct, variants,
+// resources, the pass table and the embedded shader blobs.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "effect_model.h"
+#include "pass_builder.h"
+
+namespace sao::codegen {
+
+struct CompiledPassVariant {
+  PassVariant variant;
+  int glslBlob = 0;   // index into glslBlobs
+  int spirvBlob = 0;  // index into spirvBlobs
+};
+
+struct GeneratedCode {
+  std::string header;
+  std::string source;
+};
+
+GeneratedCode emitCpp(const Effect& effect, const std::vector<CompiledPassVariant>& passVariants,
+                      const std::vector<std::string>& glslBlobs, const std::vector<std::vector<uint32_t>>& spirvBlobs);
+
+}  // namespace sao::codegen

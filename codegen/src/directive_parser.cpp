@@ -1,0 +1,602 @@
+#include "directive_parser.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <regex>
+#include <set>
+
+#include "std140.h"
+
+namespace sao::codegen {
+namespace {
+
+const std::set<std::string> kFormats = {"r32f", "rg32f", "r16f", "rg16f", "rgba16f", "r8", "rgba8", "depth"};
+
+bool isIdentifier(const std::string& s) {
+  static const std::regex re("^[A-Za-z_][A-Za-z0-9_]*$");
+  return std::regex_match(s, re);
+}
+
+bool parseNumber(const std::string& s, double& out) {
+  if (s.empty()) return false;
+  char* end = nullptr;
+  out = std::strtod(s.c_str(), &end);
+  return end == s.c_str() + s.size() && std::isfinite(out);
+}
+
+bool parseInt(const std::string& s, int& out) {
+  static const std::regex re("^[+-]?[0-9]+$");
+  if (!std::regex_match(s, re) || s.size() > 10) return false;
+  out = std::stoi(s);
+  return true;
+}
+
+std::vector<std::string> splitList(const std::string& s, char sep = ',') {
+  std::vector<std::string> out;
+  std::string cur;
+  for (char c : s) {
+    if (c == sep) {
+      out.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  out.push_back(cur);
+  return out;
+}
+
+// One `#pragma sao` line: words, key=value attributes and an optional trailing doc string.
+struct Directive {
+  SourceLoc loc;
+  std::string kind;
+  std::vector<std::string> words;            // positional, after the kind
+  std::vector<std::pair<std::string, std::string>> attrs;  // in order
+  std::string doc;
+  bool hasDoc = false;
+};
+
+bool tokenize(const SourceLine& line, const std::string& rest, Directive& d, Diagnostics& diags) {
+  d.loc = line.loc;
+  size_t i = 0;
+  std::vector<std::string> tokens;
+  while (i < rest.size()) {
+    if (rest[i] == ' ' || rest[i] == '\t') {
+      ++i;
+      continue;
+    }
+    if (rest.compare(i, 2, "//") == 0) break;
+    if (rest[i] == '"') {
+      const size_t close = rest.find('"', i + 1);
+      if (close == std::string::npos) {
+        diags.error(line.loc, "unterminated string in directive");
+        return false;
+      }
+      d.doc = rest.substr(i + 1, close - i - 1);
+      d.hasDoc = true;
+      i = close + 1;
+      const size_t next = rest.find_first_not_of(" \t", i);
+      if (next != std::string::npos && rest.compare(next, 2, "//") != 0) {
+        diags.error(line.loc, "text after the doc string: the doc string must come last");
+        return false;
+      }
+      break;
+    }
+    const size_t end = rest.find_first_of(" \t\"", i);
+    tokens.push_back(rest.substr(i, end == std::string::npos ? std::string::npos : end - i));
+    i = end == std::string::npos ? rest.size() : end;
+  }
+  if (tokens.empty()) {
+    diags.error(line.loc, "empty '#pragma sao' directive");
+    return false;
+  }
+  d.kind = tokens[0];
+  for (size_t t = 1; t < tokens.size(); ++t) {
+    const size_t eq = tokens[t].find('=');
+    if (eq == std::string::npos) d.words.push_back(tokens[t]);
+    else d.attrs.emplace_back(tokens[t].substr(0, eq), tokens[t].substr(eq + 1));
+  }
+  return true;
+}
+
+class Parser {
+ public:
+  Parser(const LoadedSource& src, Diagnostics& diags) : src_(src), diags_(diags) {}
+
+  Effect run() {
+    static const std::regex pragmaRe(R"(^\s*#\s*pragma\s+sao\b(.*)$)");
+    Pass* open = nullptr;
+    for (size_t i = 0; i < src_.lines.size(); ++i) {
+      const SourceLine& line = src_.lines[i];
+      std::smatch m;
+      if (!std::regex_match(line.text, m, pragmaRe)) {
+        if (open) open->code.push_back(line);
+        else effect_.commonCode.push_back(line);
+        continue;
+      }
+      Directive d;
+      if (!tokenize(line, m[1].str(), d, diags_)) continue;
+      if (open && d.kind != "end") {
+        diags_.error(d.loc, "directive '" + d.kind + "' inside the section of pass '" + open->name +
+                                "' (close it with '#pragma sao end' first)");
+        continue;
+      }
+      if (!sawEffect_ && d.kind != "effect") {
+        diags_.error(d.loc, "the first directive must be '#pragma sao effect NAME version=N'");
+        sawEffect_ = true;  // report once
+      }
+      if (d.kind == "effect") parseEffectDirective(d);
+      else if (d.kind == "setting") parseSetting(d);
+      else if (d.kind == "constant") parseConstant(d);
+      else if (d.kind == "variant") parseVariant(d);
+      else if (d.kind == "exclude") pendingExcludes_.push_back(d);
+      else if (d.kind == "resource") parseResource(d);
+      else if (d.kind == "block") parseBlock(d, i + 1);
+      else if (d.kind == "pass") open = parsePass(d);
+      else if (d.kind == "end") {
+        if (!open) diags_.error(d.loc, "'#pragma sao end' without an open pass section");
+        open = nullptr;
+      } else {
+        diags_.error(d.loc, "unknown directive '" + d.kind + "'");
+      }
+    }
+    if (open) diags_.error(open->loc, "pass '" + open->name + "' is not closed by '#pragma sao end'");
+    const SourceLoc fileLoc{src_.files.empty() ? std::string() : src_.files.front(), 0};
+    if (!sawEffect_) diags_.error(fileLoc, "no '#pragma sao effect' directive: not an annotated effect");
+    for (const auto& d : pendingExcludes_) parseExclude(d);
+    for (const auto& [p, d] : pendingPasses_) resolvePass(effect_.passes[p], d);
+    if (sawEffect_ && !effect_.block) diags_.error(fileLoc, "no '#pragma sao block' parameter block declared");
+    if (sawEffect_ && effect_.passes.empty()) diags_.error(fileLoc, "no '#pragma sao pass' declared");
+    checkExplicitBindings();
+    return effect_;
+  }
+
+ private:
+  // Attribute access with "unknown attribute" checks.
+  std::map<std::string, std::string> attrs(const Directive& d, const std::set<std::string>& allowed) {
+    std::map<std::string, std::string> out;
+    for (const auto& [k, v] : d.attrs) {
+      if (!allowed.count(k)) {
+        diags_.error(d.loc, "unknown attribute '" + k + "' for '" + d.kind + "'");
+        continue;
+      }
+      if (out.count(k)) diags_.error(d.loc, "attribute '" + k + "' given twice");
+      out[k] = v;
+    }
+    return out;
+  }
+
+  bool nameIsNew(const Directive& d, const std::string& what, const std::string& name) {
+    if (!isIdentifier(name)) {
+      diags_.error(d.loc, what + " name '" + name + "' is not an identifier");
+      return false;
+    }
+    if (names_.count(name)) {
+      diags_.error(d.loc, "duplicate name '" + name + "' (first declared at line " +
+                              std::to_string(names_[name].line) + ")");
+      return false;
+    }
+    names_[name] = d.loc;
+    return true;
+  }
+
+  void parseEffectDirective(const Directive& d) {
+    if (sawEffectDirective_) {
+      diags_.error(d.loc, "second '#pragma sao effect' directive");
+      return;
+    }
+    sawEffect_ = sawEffectDirective_ = true;
+    auto a = attrs(d, {"version"});
+    effect_.loc = d.loc;
+    if (d.words.size() != 1 || !isIdentifier(d.words[0])) {
+      diags_.error(d.loc, "expected '#pragma sao effect NAME version=N'");
+      return;
+    }
+    effect_.name = d.words[0];
+    if (!a.count("version") || !parseInt(a["version"], effect_.version) || effect_.version < 1)
+      diags_.error(d.loc, "effect needs version=N with N >= 1");
+  }
+
+  void parseSetting(const Directive& d) {
+    auto a = attrs(d, {"default", "range", "unit"});
+    if (d.words.size() != 2) {
+      diags_.error(d.loc, "expected '#pragma sao setting TYPE NAME default=V range=[MIN,MAX] [unit=U] \"doc\"'");
+      return;
+    }
+    Setting s;
+    s.loc = d.loc;
+    s.name = d.words[1];
+    if (d.words[0] == "float") s.type = ScalarType::Float;
+    else if (d.words[0] == "int") s.type = ScalarType::Int;
+    else if (d.words[0] == "bool") s.type = ScalarType::Bool;
+    else {
+      diags_.error(d.loc, "unknown setting type '" + d.words[0] + "' (expected float, int or bool)");
+      return;
+    }
+    if (!nameIsNew(d, "setting", s.name)) return;
+    s.unit = a.count("unit") ? a["unit"] : "";
+    s.doc = d.doc;
+    if (!d.hasDoc || d.doc.empty()) diags_.error(d.loc, "setting '" + s.name + "' has no doc string");
+    if (!a.count("default")) {
+      diags_.error(d.loc, "setting '" + s.name + "' has no default");
+      return;
+    }
+    const std::string& def = a["default"];
+    if (s.type == ScalarType::Bool) {
+      if (a.count("range")) diags_.error(d.loc, "bool setting '" + s.name + "' takes no range");
+      if (def != "true" && def != "false") {
+        diags_.error(d.loc, "default '" + def + "' of bool setting '" + s.name + "' is not true or false");
+        return;
+      }
+      s.defaultValue = def == "true" ? 1 : 0;
+      s.minValue = 0;
+      s.maxValue = 1;
+      effect_.settings.push_back(s);
+      return;
+    }
+    if (!a.count("range")) {
+      diags_.error(d.loc, "setting '" + s.name + "' has no range=[MIN,MAX]");
+      return;
+    }
+    if (!readValue(d, s, def, s.defaultValue, "default")) return;
+    const std::string& r = a["range"];
+    const auto parts = r.size() >= 2 && r.front() == '[' && r.back() == ']' ? splitList(r.substr(1, r.size() - 2))
+                                                                          : std::vector<std::string>{};
+    if (parts.size() != 2) {
+      diags_.error(d.loc, "range of setting '" + s.name + "' must be [MIN,MAX], got '" + r + "'");
+      return;
+    }
+    if (!readValue(d, s, parts[0], s.minValue, "range minimum") || !readValue(d, s, parts[1], s.maxValue, "range maximum"))
+      return;
+    if (s.minValue > s.maxValue) {
+      diags_.error(d.loc, "range of setting '" + s.name + "' is empty: " + parts[0] + " > " + parts[1]);
+      return;
+    }
+    if (s.defaultValue < s.minValue || s.defaultValue > s.maxValue) {
+      diags_.error(d.loc, "default " + def + " of setting '" + s.name + "' is outside its range " + r);
+      return;
+    }
+    effect_.settings.push_back(s);
+  }
+
+  bool readValue(const Directive& d, const Setting& s, const std::string& text, double& out, const char* what) {
+    if (s.type == ScalarType::Int) {
+      int v = 0;
+      if (!parseInt(text, v)) {
+        diags_.error(d.loc, std::string(what) + " '" + text + "' of int setting '" + s.name + "' is not an integer");
+        return false;
+      }
+      out = v;
+      return true;
+    }
+    if (!parseNumber(text, out)) {
+      diags_.error(d.loc, std::string(what) + " '" + text + "' of setting '" + s.name + "' is not a finite number");
+      return false;
+    }
+    return true;
+  }
+
+  void parseConstant(const Directive& d) {
+    // Form: constant TYPE NAME=VALUE "doc" -> words {TYPE}, attrs {NAME: VALUE}
+    if (d.words.size() != 1 || d.attrs.size() != 1) {
+      diags_.error(d.loc, "expected '#pragma sao constant TYPE NAME=VALUE \"doc\"'");
+      return;
+    }
+    Constant c;
+    c.loc = d.loc;
+    c.type = d.words[0];
+    c.name = d.attrs[0].first;
+    c.value = d.attrs[0].second;
+    c.doc = d.doc;
+    double v = 0;
+    int iv = 0;
+    if (c.type == "int" || c.type == "uint") {
+      if (!parseInt(c.value, iv) || (c.type == "uint" && iv < 0)) {
+        diags_.error(d.loc, "value '" + c.value + "' of " + c.type + " constant '" + c.name + "' is not valid");
+        return;
+      }
+    } else if (c.type == "float") {
+      if (!parseNumber(c.value, v)) {
+        diags_.error(d.loc, "value '" + c.value + "' of float constant '" + c.name + "' is not a finite number");
+        return;
+      }
+    } else {
+      diags_.error(d.loc, "unknown constant type '" + c.type + "' (expected int, uint or float)");
+      return;
+    }
+    if (!nameIsNew(d, "constant", c.name)) return;
+    effect_.constants.push_back(c);
+  }
+
+  void parseVariant(const Directive& d) {
+    auto a = attrs(d, {"values", "default"});
+    if (d.words.size() != 1) {
+      diags_.error(d.loc, "expected '#pragma sao variant NAME values=[a,b,...] default=V \"doc\"'");
+      return;
+    }
+    Variant v;
+    v.loc = d.loc;
+    v.name = d.words[0];
+    v.doc = d.doc;
+    if (!nameIsNew(d, "variant", v.name)) return;
+    const std::string vals = a.count("values") ? a["values"] : "";
+    if (vals.size() < 2 || vals.front() != '[' || vals.back() != ']') {
+      diags_.error(d.loc, "variant '" + v.name + "' needs values=[a,b,...]");
+      return;
+    }
+    for (const auto& part : splitList(vals.substr(1, vals.size() - 2))) {
+      int x = 0;
+      if (!parseInt(part, x) || x < 0) {
+        diags_.error(d.loc, "value '" + part + "' of variant '" + v.name + "' is not a non-negative integer");
+        return;
+      }
+      for (int y : v.values)
+        if (y == x) {
+          diags_.error(d.loc, "value " + part + " of variant '" + v.name + "' listed twice");
+          return;
+        }
+      v.values.push_back(x);
+    }
+    if (v.values.size() < 2) {
+      diags_.error(d.loc, "variant '" + v.name + "' needs at least two values");
+      return;
+    }
+    v.defaultValue = v.values.front();
+    if (a.count("default")) {
+      if (!parseInt(a["default"], v.defaultValue) ||
+          std::find(v.values.begin(), v.values.end(), v.defaultValue) == v.values.end()) {
+        diags_.error(d.loc, "default '" + a["default"] + "' of variant '" + v.name + "' is not one of its values");
+        return;
+      }
+    }
+    effect_.variants.push_back(v);
+  }
+
+  int findVariant(const std::string& name) const {
+    for (size_t i = 0; i < effect_.variants.size(); ++i)
+      if (effect_.variants[i].name == name) return static_cast<int>(i);
+    return -1;
+  }
+
+  int findResource(const std::string& name) const {
+    for (size_t i = 0; i < effect_.resources.size(); ++i)
+      if (effect_.resources[i].name == name) return static_cast<int>(i);
+    return -1;
+  }
+
+  void parseExclude(const Directive& d) {
+    Exclusion e;
+    e.loc = d.loc;
+    e.reason = d.doc;
+    if (!d.hasDoc || d.doc.empty()) diags_.error(d.loc, "exclude needs a \"reason\"");
+    if (!d.words.empty() || d.attrs.size() < 2) {
+      diags_.error(d.loc, "expected '#pragma sao exclude VARIANT=v VARIANT=w ... \"reason\"' (two or more variants)");
+      return;
+    }
+    for (const auto& [name, value] : d.attrs) {
+      const int vi = findVariant(name);
+      int x = 0;
+      if (vi < 0) {
+        diags_.error(d.loc, "exclude names unknown variant '" + name + "'");
+        return;
+      }
+      const auto& vals = effect_.variants[vi].values;
+      if (!parseInt(value, x) || std::find(vals.begin(), vals.end(), x) == vals.end()) {
+        diags_.error(d.loc, "exclude gives variant '" + name + "' the value '" + value + "' it does not have");
+        return;
+      }
+      e.terms.emplace_back(vi, x);
+    }
+    effect_.exclusions.push_back(e);
+  }
+
+  void parseResource(const Directive& d) {
+    auto a = attrs(d, {"kind", "format", "mips", "scale", "when", "extent"});
+    if (d.words.size() != 1) {
+      diags_.error(d.loc, "expected '#pragma sao resource NAME kind=K format=F [mips=1|auto] [scale=1/N] [when=V] \"doc\"'");
+      return;
+    }
+    Resource r;
+    r.loc = d.loc;
+    r.name = d.words[0];
+    r.doc = d.doc;
+    if (!nameIsNew(d, "resource", r.name)) return;
+    const std::string kind = a.count("kind") ? a["kind"] : "";
+    if (kind == "input") r.kind = ResourceKind::Input;
+    else if (kind == "image") r.kind = ResourceKind::Image;
+    else if (kind == "output") r.kind = ResourceKind::Output;
+    else {
+      diags_.error(d.loc, "resource '" + r.name + "' needs kind=input|image|output");
+      return;
+    }
+    r.format = a.count("format") ? a["format"] : "";
+    if (!kFormats.count(r.format)) {
+      std::string list;
+      for (const auto& f : kFormats) list += (list.empty() ? "" : " ") + f;
+      diags_.error(d.loc, "unknown format '" + r.format + "' for resource '" + r.name + "' (expected one of: " + list + ")");
+      return;
+    }
+    if (r.format == "depth" && r.kind != ResourceKind::Input) {
+      diags_.error(d.loc, "format 'depth' is only for kind=input resources ('" + r.name + "')");
+      return;
+    }
+    const std::string mips = a.count("mips") ? a["mips"] : "1";
+    if (mips != "1" && mips != "auto") {
+      diags_.error(d.loc, "mips of resource '" + r.name + "' must be 1 or auto, got '" + mips + "'");
+      return;
+    }
+    r.fullMipChain = mips == "auto";
+    if (r.fullMipChain && r.kind != ResourceKind::Image) {
+      diags_.error(d.loc, "mips=auto is only for effect-owned images ('" + r.name + "')");
+      return;
+    }
+    const std::string scale = a.count("scale") ? a["scale"] : "1";
+    if (scale == "1") r.scaleDenominator = 1;
+    else if (scale == "1/2") r.scaleDenominator = 2;
+    else if (scale == "1/4") r.scaleDenominator = 4;
+    else {
+      diags_.error(d.loc, "scale of resource '" + r.name + "' must be 1, 1/2 or 1/4, got '" + scale + "'");
+      return;
+    }
+    const std::string extent = a.count("extent") ? a["extent"] : (r.kind == ResourceKind::Input ? "input" : "ao");
+    if (extent != "input" && extent != "ao") {
+      diags_.error(d.loc, "extent of resource '" + r.name + "' must be input or ao, got '" + extent + "'");
+      return;
+    }
+    if (r.kind == ResourceKind::Input && extent != "input") {
+      diags_.error(d.loc, "input resource '" + r.name + "' has the input's extent by definition");
+      return;
+    }
+    r.inputExtent = extent == "input";
+    if (a.count("when")) {
+      r.whenVariant = findVariant(a["when"]);
+      if (r.whenVariant < 0) {
+        diags_.error(d.loc, "resource '" + r.name + "' depends on unknown variant '" + a["when"] + "'");
+        return;
+      }
+    }
+    effect_.resources.push_back(r);
+  }
+
+  void parseBlock(const Directive& d, size_t next) {
+    attrs(d, {});
+    if (d.words.size() != 1 || !isIdentifier(d.words[0])) {
+      diags_.error(d.loc, "expected '#pragma sao block NAME'");
+      return;
+    }
+    if (effect_.block) {
+      diags_.error(d.loc, "second parameter block: an effect has exactly one");
+      return;
+    }
+    effect_.block = parseParamBlock(d.words[0], d.loc, src_.lines, next, diags_);
+  }
+
+  Pass* parsePass(const Directive& d) {
+    attrs(d, {"entry", "local", "reads", "writes", "variants", "per"});
+    Pass p;
+    p.loc = d.loc;
+    p.doc = d.doc;
+    if (d.words.size() != 1) {
+      diags_.error(d.loc, "expected '#pragma sao pass NAME entry=FUNC local=XxY reads=... writes=...'");
+      p.name = "?";
+    } else {
+      p.name = d.words[0];
+      nameIsNew(d, "pass", p.name);
+    }
+    effect_.passes.push_back(p);
+    pendingPasses_.emplace_back(effect_.passes.size() - 1, d);
+    return &effect_.passes.back();
+  }
+
+  std::vector<int> resolveList(const Pass& p, const Directive& d, const std::string& key, const std::string& verb) {
+    std::vector<int> out;
+    for (const auto& [k, v] : d.attrs) {
+      if (k != key) continue;
+      for (const auto& name : splitList(v)) {
+        const int r = findResource(name);
+        if (r < 0) {
+          diags_.error(d.loc, "pass '" + p.name + "' " + verb + " undeclared resource '" + name + "'");
+          continue;
+        }
+        if (std::find(out.begin(), out.end(), r) != out.end()) {
+          diags_.error(d.loc, "pass '" + p.name + "' lists resource '" + name + "' twice in " + key +
+                                  "= (duplicate binding)");
+          continue;
+        }
+        out.push_back(r);
+      }
+    }
+    return out;
+  }
+
+  void resolvePass(Pass& p, const Directive& d) {
+    std::map<std::string, std::string> a;
+    for (const auto& [k, v] : d.attrs) a[k] = v;
+    if (!a.count("entry") || !isIdentifier(a["entry"])) {
+      diags_.error(d.loc, "pass '" + p.name + "' needs entry=FUNCTION");
+    } else {
+      p.entry = a["entry"];
+    }
+    if (a.count("local")) {
+      static const std::regex localRe("^([0-9]{1,4})x([0-9]{1,4})$");
+      std::smatch m;
+      if (!std::regex_match(a["local"], m, localRe) || std::stoi(m[1]) < 1 || std::stoi(m[2]) < 1 ||
+          std::stoi(m[1]) * std::stoi(m[2]) > 1024) {
+        diags_.error(d.loc, "local size of pass '" + p.name + "' must be XxY with 1 <= X*Y <= 1024, got '" + a["local"] + "'");
+      } else {
+        p.localX = std::stoi(m[1]);
+        p.localY = std::stoi(m[2]);
+      }
+    }
+    if (a.count("per")) {
+      if (a["per"] != "mip") diags_.error(d.loc, "per= of pass '" + p.name + "' must be 'mip', got '" + a["per"] + "'");
+      p.perMip = true;
+    }
+    if (a.count("variants")) {
+      for (const auto& name : splitList(a["variants"])) {
+        const int v = findVariant(name);
+        if (v < 0) diags_.error(d.loc, "pass '" + p.name + "' lists unknown variant '" + name + "'");
+        else if (std::find(p.variants.begin(), p.variants.end(), v) == p.variants.end()) p.variants.push_back(v);
+      }
+      std::sort(p.variants.begin(), p.variants.end());
+    }
+    p.reads = resolveList(p, d, "reads", "reads");
+    p.writes = resolveList(p, d, "writes", "writes");
+    if (p.writes.empty()) diags_.error(d.loc, "pass '" + p.name + "' writes nothing");
+    for (int r : p.writes) {
+      const Resource& res = effect_.resources[r];
+      if (res.kind == ResourceKind::Input)
+        diags_.error(d.loc, "pass '" + p.name + "' writes input resource '" + res.name + "'");
+      if (p.perMip && !res.fullMipChain)
+        diags_.error(d.loc, "pass '" + p.name + "' runs per=mip but writes '" + res.name + "', which has no MIP chain");
+    }
+    for (int r : p.reads) {
+      if (effect_.resources[r].kind == ResourceKind::Output)
+        diags_.error(d.loc, "pass '" + p.name + "' reads output resource '" + effect_.resources[r].name + "'");
+    }
+    for (const auto* list : {&p.reads, &p.writes})
+      for (int r : *list) {
+        const Resource& res = effect_.resources[r];
+        if (res.whenVariant >= 0 &&
+            std::find(p.variants.begin(), p.variants.end(), res.whenVariant) == p.variants.end())
+          diags_.error(d.loc, "pass '" + p.name + "' uses '" + res.name + "', which exists only when " +
+                                  effect_.variants[res.whenVariant].name + " != 0, but does not list that variant in variants=");
+      }
+  }
+
+  // Bindings are assigned by the tool; an explicit one in effect code would collide.
+  void checkExplicitBindings() {
+    static const std::regex bindingRe(R"(\bbinding\s*=\s*([0-9]+))");
+    const SourceLoc* blockLoc = effect_.block ? &effect_.block->loc : nullptr;
+    auto check = [&](const std::vector<SourceLine>& lines) {
+      for (const auto& l : lines) {
+        std::smatch m;
+        const std::string code = l.text.substr(0, l.text.find("//"));
+        if (!std::regex_search(code, m, bindingRe)) continue;
+        if (blockLoc && l.text.find("std140") != std::string::npos && code.find("uniform " + effect_.block->name) != std::string::npos)
+          continue;
+        diags_.error(l.loc, "explicit 'binding = " + m[1].str() +
+                                "' in effect code: bindings are assigned by sao-shaderc (duplicate binding risk); "
+                                "declare a '#pragma sao resource' and list it in the pass's reads=/writes=");
+      }
+    };
+    check(effect_.commonCode);
+    for (const auto& p : effect_.passes) check(p.code);
+  }
+
+  const LoadedSource& src_;
+  Diagnostics& diags_;
+  Effect effect_;
+  bool sawEffect_ = false;
+  bool sawEffectDirective_ = false;
+  std::map<std::string, SourceLoc> names_;
+  std::vector<Directive> pendingExcludes_;
+  std::vector<std::pair<size_t, Directive>> pendingPasses_;
+};
+
+}  // namespace
+
+Effect parseEffect(const LoadedSource& source, Diagnostics& diags) { return Parser(source, diags).run(); }
+
+}  // namespace sao::codegen

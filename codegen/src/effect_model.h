@@ -1,0 +1,103 @@
+// The effect as declared by `#pragma sao` directives: the one source of truth.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "source_loader.h"
+
+namespace sao::codegen {
+
+enum class ScalarType { Float, Int, Bool };
+
+struct Setting {
+  SourceLoc loc;
+  ScalarType type = ScalarType::Float;
+  std::string name;
+  double defaultValue = 0;
+  double minValue = 0;
+  double maxValue = 1;
+  std::string unit;
+  std::string doc;
+};
+
+struct Constant {
+  SourceLoc loc;
+  std::string type;  // "int", "uint", "float"
+  std::string name;
+  std::string value;  // GLSL literal, validated for the type
+  std::string doc;
+};
+
+struct Variant {
+  SourceLoc loc;
+  std::string name;
+  std::vector<int> values;
+  int defaultValue = 0;
+  std::string doc;
+};
+
+struct Exclusion {
+  SourceLoc loc;
+  std::vector<std::pair<int, int>> terms;  // (variant index, value)
+  std::string reason;
+};
+
+enum class ResourceKind { Input, Image, Output };
+
+struct Resource {
+  SourceLoc loc;
+  std::string name;
+  ResourceKind kind = ResourceKind::Image;
+  std::string format;      // r32f, rg32f, r16f, rg16f, rgba16f, r8, rgba8, depth
+  bool fullMipChain = false;  // mips=auto
+  bool inputExtent = false;   // extent=input: the depth input's size (viewport + guard band)
+  int scaleDenominator = 1;   // scale=1/N of the base extent
+  int whenVariant = -1;       // exists only when this variant is non-zero
+  std::string doc;
+};
+
+struct BlockMember {
+  SourceLoc loc;
+  std::string glslType;
+  std::string name;
+  int arraySize = 0;  // 0 = not an array
+  int offset = 0;
+  int size = 0;       // bytes the member occupies (including array stride padding)
+};
+
+struct ParamBlock {
+  SourceLoc loc;  // the `#pragma sao block` line
+  std::string name;
+  std::vector<BlockMember> members;
+  int size = 0;  // rounded up to 16 bytes
+};
+
+struct Pass {
+  SourceLoc loc;
+  std::string name;
+  std::string entry;
+  int localX = 8, localY = 8;
+  std::vector<int> reads;    // resource indices
+  std::vector<int> writes;   // resource indices
+  std::vector<int> variants; // variant indices, effect order
+  bool perMip = false;
+  std::string doc;
+  std::vector<SourceLine> code;  // the pass section's GLSL
+};
+
+struct Effect {
+  SourceLoc loc;
+  std::string name;
+  int version = 0;
+  std::vector<Setting> settings;
+  std::vector<Constant> constants;
+  std::vector<Variant> variants;
+  std::vector<Exclusion> exclusions;
+  std::vector<Resource> resources;
+  std::optional<ParamBlock> block;
+  std::vector<Pass> passes;
+  std::vector<SourceLine> commonCode;  // GLSL outside pass sections, directives removed
+};
+
+}  // namespace sao::codegen

@@ -1,0 +1,114 @@
+// sao-shaderc: compiles an annotated SAO effect into GLSL 4.30, SPIR-V and C++ glue.
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cpp_emitter.h"
+#include "diagnostics.h"
+#include "directive_parser.h"
+#include "output_writer.h"
+#include "pass_builder.h"
+#include "shader_compiler.h"
+#include "source_loader.h"
+
+namespace {
+
+using namespace sao::codegen;
+
+constexpr const char* kUsage =
+    "usage: sao-shaderc <effect.glsl> -o <dir> [--depfile <file>]\n"
+    "  Writes <name>_effect.h, <name>_effect.cpp (C++ glue with embedded shaders), and for every\n"
+    "  pass and variant <stem>.glsl (GLSL 4.30, OpenGL) and <stem>.spv (SPIR-V 1.3, Vulkan 1.1).\n";
+
+std::string spirvBytes(const std::vector<uint32_t>& words) {
+  std::string out(words.size() * 4, '\0');
+  for (size_t i = 0; i < words.size(); ++i)
+    for (int b = 0; b < 4; ++b) out[i * 4 + b] = static_cast<char>((words[i] >> (8 * b)) & 0xffu);  // little endian
+  return out;
+}
+
+int fail(const Diagnostics& diags) {
+  for (const auto& d : diags.all()) std::fprintf(stderr, "%s\n", d.format().c_str());
+  return 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string input, outDir, depfile;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if ((a == "-o" || a == "--depfile") && i + 1 < argc) (a == "-o" ? outDir : depfile) = argv[++i];
+    else if (a == "-h" || a == "--help") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    } else if (!a.empty() && a[0] != '-' && input.empty()) input = a;
+    else {
+      std::fprintf(stderr, "sao-shaderc: error: unexpected argument '%s'\n%s", a.c_str(), kUsage);
+      return 2;
+    }
+  }
+  if (input.empty() || outDir.empty()) {
+    std::fprintf(stderr, "sao-shaderc: error: need an effect file and -o <dir>\n%s", kUsage);
+    return 2;
+  }
+
+  Diagnostics diags;
+  const LoadedSource source = loadSource(input, diags);
+  if (diags.hasErrors()) return fail(diags);
+  const Effect effect = parseEffect(source, diags);
+  if (diags.hasErrors()) return fail(diags);
+
+  GlslangProcess glslang;
+  OutputSet outputs;
+  std::vector<CompiledPassVariant> compiled;
+  std::vector<std::string> glslBlobs;
+  std::vector<std::vector<uint32_t>> spirvBlobs;
+  std::map<std::string, int> glslIndex;
+  std::map<std::vector<uint32_t>, int> spirvIndex;
+  for (const PassVariant& pv : buildPassVariants(effect)) {
+    const SourceLoc& passLoc = effect.passes[pv.pass].loc;
+    const auto glShader = composeShader(effect, pv, Target::OpenGL);
+    const auto vkShader = composeShader(effect, pv, Target::Vulkan);
+    std::vector<uint32_t> spirv;
+    const bool glOk = checkOpenGl(glShader, passLoc, &*effect.block, diags);
+    const bool vkOk = compileVulkan(vkShader, passLoc, spirv, diags);
+    if (!glOk || !vkOk) continue;
+    const std::string glsl = joinLines(glShader);
+    outputs.add(pv.stem + ".glsl", glsl);
+    outputs.add(pv.stem + ".spv", spirvBytes(spirv));
+    CompiledPassVariant c{pv, 0, 0};
+    c.glslBlob = glslIndex.emplace(glsl, static_cast<int>(glslBlobs.size())).first->second;
+    if (c.glslBlob == static_cast<int>(glslBlobs.size())) glslBlobs.push_back(glsl);
+    c.spirvBlob = spirvIndex.emplace(spirv, static_cast<int>(spirvBlobs.size())).first->second;
+    if (c.spirvBlob == static_cast<int>(spirvBlobs.size())) spirvBlobs.push_back(spirv);
+    compiled.push_back(c);
+  }
+  if (diags.hasErrors()) return fail(diags);
+
+  const GeneratedCode code = emitCpp(effect, compiled, glslBlobs, spirvBlobs);
+  const std::string headerName = effect.name + "_effect.h";
+  outputs.add(headerName, code.header);
+  outputs.add(effect.name + "_effect.cpp", code.source);
+  std::string manifest;
+  for (const auto& c : compiled) manifest += c.variant.stem + "\n";
+  outputs.add(effect.name + "_passes.txt", manifest);
+  for (const auto& d : diags.all()) std::fprintf(stderr, "%s\n", d.format().c_str());  // warnings
+  if (const std::string err = outputs.commit(outDir); !err.empty()) {
+    std::fprintf(stderr, "sao-shaderc: error: %s\n", err.c_str());
+    return 1;
+  }
+  if (!depfile.empty()) {
+    // Written last, only on success. Paths here are the build's business; the generated sources hold none.
+    OutputSet dep;
+    const std::filesystem::path depPath(depfile);
+    dep.add(depPath.filename().string(), makeDepfile((std::filesystem::path(outDir) / headerName).string(), source.files));
+    if (const std::string err = dep.commit(depPath.parent_path().empty() ? "." : depPath.parent_path().string()); !err.empty()) {
+      std::fprintf(stderr, "sao-shaderc: error: %s\n", err.c_str());
+      return 1;
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,37 @@
+// Expands every pass into its compiled variants: the variant combinations a pass needs, its
+// bindings, and the GLSL text for each target with a line map back to the annotated source.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "effect_model.h"
+
+namespace sao::codegen {
+
+enum class Target { OpenGL, Vulkan };
+
+struct Binding {
+  int binding = 0;
+  int resource = 0;
+  bool write = false;
+};
+
+struct PassVariant {
+  int pass = 0;
+  std::vector<int> values;  // one per effect variant; -1 where the pass does not depend on it
+  std::vector<Binding> bindings;
+  std::string stem;  // file name stem, e.g. "ao.NORMALS_SUPPLIED1.TWO_LAYER0"
+};
+
+// Every non-excluded combination of all variants, in mixed-radix order (first variant slowest).
+std::vector<std::vector<int>> allowedCombinations(const Effect& effect);
+
+// Each pass's distinct variant projections of the allowed combinations, in pass order.
+std::vector<PassVariant> buildPassVariants(const Effect& effect);
+
+// The compute shader text for one pass variant and target; line i came from lines[i].loc.
+std::vector<SourceLine> composeShader(const Effect& effect, const PassVariant& pv, Target target);
+
+std::string joinLines(const std::vector<SourceLine>& lines);
+
+}  // namespace sao::codegen

@@ -1,0 +1,244 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#pragma sao effect sao version=1
+
+// Scalable Ambient Obscurance (McGuire, Mara, Luebke, HPG 2012) as annotated compute shaders.
+// The format of the `#pragma sao` lines: docs/effect-format.md. Every formula, its order of
+// operations and how host code fills the parameter block: docs/effect-math.md.
+//
+// Passes: linear_z (eq. 2) -> mips (Table 1, rotated grid) -> ao_sample (eq. 3-10 + 2x2
+// reconstruction) -> blur_h -> blur_v (separable bilateral blur). Camera space is right-handed,
+// the camera looks down -z, so geometry has z < 0; +0.0 in csz marks sky / no geometry.
+
+// ---------------------------------------------------------------------------------------------
+// Settings (host side; the shaders only see block members computed from them)
+// ---------------------------------------------------------------------------------------------
+#pragma sao setting float radius              default=1.0   range=[0.01,100]       unit=m   "World-space radius r of the obscurance ball (eq. 1, 5)"
+#pragma sao setting float bias                default=0.01  range=[0,0.5]                   "Bias beta of eq. 1: the term v.n + z_C*beta, a unitless multiplier of |z_C|; raise to remove self-occlusion, lower if corners leak light"
+#pragma sao setting float intensity           default=1.0   range=[0,10]                    "Intensity sigma of eq. 1 (the sum is scaled by 2*sigma/s)"
+#pragma sao setting float contrast            default=1.0   range=[0.1,8]                   "Contrast exponent k of eq. 1"
+#pragma sao setting float epsilon             default=0.0001 range=[0.000001,0.01] unit=m^2 "Epsilon of eq. 1 added to v.v against division by zero"
+#pragma sao setting int   samples             default=11    range=[1,64]                    "Direct samples s per pixel (spiral taps)"
+#pragma sao setting int   mip_switch_log2     default=3     range=[0,5]            unit=px  "log2 of q', the tap distance in pixels at which taps move to the next coarser z MIP level (eq. 9)"
+#pragma sao setting bool  use_z_hierarchy     default=true                                  "Read taps from the z MIP hierarchy (false: always level 0, the no-MIP baseline)"
+#pragma sao setting int   blur_radius         default=4     range=[0,8]                     "Bilateral blur taps on each side of the centre (0: no blur)"
+#pragma sao setting int   blur_stride         default=2     range=[1,4]            unit=px  "Pixels between bilateral blur taps"
+#pragma sao setting float blur_edge_sharpness default=10.0  range=[0,1000]         unit=1/m "Bilateral blur depth weight max(0, 1 - sharpness*|dz|): taps 1/sharpness apart in z get weight 0"
+#pragma sao setting float quad_edge_threshold default=0.02  range=[0,10]           unit=m   "2x2 reconstruction: quad neighbours average only when their z differ by less than this"
+
+// ---------------------------------------------------------------------------------------------
+// Constants
+// ---------------------------------------------------------------------------------------------
+#pragma sao constant int  SAO_MAX_MIP_LEVELS=8 "Most csz MIP levels ever allocated (level 0 and 7 reduced ones); max_mip <= SAO_MAX_MIP_LEVELS-1"
+#pragma sao constant int  SAO_MAX_SAMPLES=64 "Upper bound of samples; the tap loop clamps to it"
+#pragma sao constant int  SAO_MAX_BLUR_RADIUS=8 "Upper bound of blur_radius; the blur loop clamps to it and the block holds Gaussian weights for taps 1..8"
+#pragma sao constant int  SAO_MAX_RADIUS_PX=65536 "Clamp of the projected radius r' in pixels (eq. 5), so that tap offsets never overflow an int"
+#pragma sao constant uint SAO_PHASE_MUL=1270342730 "Eq. 8 rotation: 2*SAO_PHASE_MUL/2^32 = frac(10/(2*pi)), turning the hash times 10 radians into 2^-32 turns"
+#pragma sao constant int  SAO_DEPTH_MODE_PERSPECTIVE=0 "depth_mode: hardware depth of a perspective projection, z = c0/(d*c1 + c2) (eq. 2)"
+#pragma sao constant int  SAO_DEPTH_MODE_ORTHOGRAPHIC=1 "depth_mode: hardware depth of an orthographic projection, z = d*c1 + c2"
+#pragma sao constant int  SAO_DEPTH_MODE_LINEAR=2 "depth_mode: the input already holds linear camera-space z (R32F), z = d*c1 + c2 (normally c1 = 1, c2 = 0)"
+
+// ---------------------------------------------------------------------------------------------
+// Variants
+// ---------------------------------------------------------------------------------------------
+#pragma sao variant NORMALS_SUPPLIED values=[0,1] default=0 "0: face normals rebuilt from csz level 0 (eq. 4, explicit neighbour fetches, smaller-|dz| side per axis); 1: read the normals input (camera space, components in [-1,1], e.g. rgba16f)"
+#pragma sao variant TWO_LAYER values=[0,1] default=0 "1: deep G-buffer, a second depth layer; each tap takes the larger obscurance of the two layers' points"
+#pragma sao variant Z_HIERARCHY values=[0,1] default=1 "1: taps read z MIP level clamp(findMSB(int(h)) - log_q, 0, max_mip) (eq. 9-10); 0: always level 0 (the AlchemyAO / no-MIP baseline)"
+#pragma sao exclude Z_HIERARCHY=0 TWO_LAYER=1 "the no-hierarchy baseline is a single-layer benchmark path"
+
+// ---------------------------------------------------------------------------------------------
+// Resources
+// ---------------------------------------------------------------------------------------------
+#pragma sao resource depth     kind=input  format=depth "The user's depth: hardware depth (D16/D24/D32F, standard or reversed) or R32F linear camera-space z; AO-buffer size plus the guard band"
+#pragma sao resource depth2    kind=input  format=depth when=TWO_LAYER "Second depth layer (deep G-buffer), same size and convention as depth"
+#pragma sao resource normals   kind=input  format=rgba16f when=NORMALS_SUPPLIED "Camera-space normals in .xyz (components in [-1,1]), same size as depth"
+#pragma sao resource csz       kind=image  format=r32f mips=auto extent=input "Camera-space z MIP chain (z < 0, +0.0 = sky), the depth input's size including the guard band"
+#pragma sao resource csz2      kind=image  format=r32f mips=auto extent=input when=TWO_LAYER "Camera-space z MIP chain of the second layer"
+#pragma sao resource ao_raw    kind=image  format=rg32f "x: visibility A after the 2x2 reconstruction, y: key = camera-space z (+0.0 = sky)"
+#pragma sao resource ao_blur_h kind=image  format=rg32f "x: A after the horizontal bilateral blur, y: key z"
+#pragma sao resource ao        kind=output format=r16f "Final ambient visibility A in [0,1] (1 = unoccluded), linear"
+
+// ---------------------------------------------------------------------------------------------
+// Shared library (pure functions; see each file)
+// ---------------------------------------------------------------------------------------------
+#include "include/sao_depth.glsl"
+#include "include/sao_position.glsl"
+#include "include/sao_normal.glsl"
+#include "include/sao_zmip.glsl"
+#include "include/sao_spiral.glsl"
+#include "include/sao_estimator.glsl"
+#include "include/sao_blur.glsl"
+
+// ---------------------------------------------------------------------------------------------
+// Parameter block: filled by host code from Settings + Camera + extents (docs/effect-math.md,
+// "Parameter block"). Lengths are camera-space (view) units: metres times metersToViewUnits.
+// std140 offsets in brackets; 160 bytes, no implicit padding.
+// ---------------------------------------------------------------------------------------------
+#pragma sao block SaoParams
+layout(std140, binding = 0) uniform SaoParams {
+    vec4  proj_info;            // [0]   eq. 3 (a_x, a_y, b_x, b_y): x_C = w*((x+0.5)*a_x + b_x), y_C = w*((y+0.5)*a_y + b_y), x,y = csz level-0 texel, w = z_C (perspective) or 1 (ortho); guard folded into b
+    vec4  clip_info;            // [16]  eq. 2 (c0, c1, c2, 0): perspective z = c0/(d*c1 + c2); ortho / linear z = d*c1 + c2
+    vec4  blur_weights_1_4;     // [32]  Gaussian blur weights w(1..4) (w(0) = 1 implicitly), 0 beyond blur_radius
+    vec4  blur_weights_5_8;     // [48]  Gaussian blur weights w(5..8)
+    float far_dir;              // [64]  sky test on the raw depth d: sky when d*far_dir >= far_lim (standard 1, reversed -1, linear 0)
+    float far_lim;              // [68]  (standard 1, reversed 0, linear 1)
+    int   depth_mode;           // [72]  SAO_DEPTH_MODE_PERSPECTIVE / _ORTHOGRAPHIC / _LINEAR
+    int   ortho;                // [76]  1: orthographic projection (eq. 3 without the factor z, eq. 5 without 1/-z); 0: perspective
+    float radius;               // [80]  r, view units
+    float radius2;              // [84]  r*r
+    float bias;                 // [88]  beta of eq. 1 (unitless)
+    float intensity_div_s;      // [92]  2*sigma/s
+    float epsilon;              // [96]  epsilon of eq. 1, view units squared
+    float contrast;             // [100] k of eq. 1
+    float proj_scale;           // [104] S' of eq. 5: pixels spanned by 1 view unit at z = -1 (perspective) or anywhere (ortho), > 0
+    float inv_samples;          // [108] 1/s
+    int   samples;              // [112] s, 1..SAO_MAX_SAMPLES
+    int   spiral_turns;         // [116] tau of eq. 6 (host table, docs/effect-math.md)
+    int   log_q;                // [120] log2 q' of eq. 9
+    int   max_mip;              // [124] highest csz level taps may read (levels allocated - 1)
+    float quad_edge_threshold;  // [128] 2x2 reconstruction z threshold, view units
+    float blur_edge_sharpness;  // [132] bilateral depth weight scale, 1/view units
+    int   blur_radius;          // [136] R, taps each side, 0..SAO_MAX_BLUR_RADIUS
+    int   blur_stride;          // [140] pixels between blur taps, >= 1
+    ivec2 ao_size;              // [144] AO buffer size (= size of ao_raw, ao_blur_h, ao)
+    ivec2 guard;                // [152] guard band: AO pixel p is csz / depth texel p + guard
+};
+
+// ---------------------------------------------------------------------------------------------
+// Pass 1: hardware depth -> camera-space z, MIP level 0 (eq. 2). One invocation per depth texel.
+// ---------------------------------------------------------------------------------------------
+#pragma sao pass linear_z entry=sao_linear_z_main local=8x8 reads=depth,depth2 writes=csz,csz2 variants=TWO_LAYER "Camera-space z (eq. 2) into csz level 0; sky and invalid depth become +0.0"
+void sao_linear_z_main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(out_csz))))
+        return;
+    float z = sao_z_from_depth(texelFetch(in_depth, p, 0).r, clip_info, depth_mode, far_dir, far_lim);
+    imageStore(out_csz, p, vec4(z, 0.0, 0.0, 0.0));
+#if TWO_LAYER
+    float z2 = sao_z_from_depth(texelFetch(in_depth2, p, 0).r, clip_info, depth_mode, far_dir, far_lim);
+    imageStore(out_csz2, p, vec4(z2, 0.0, 0.0, 0.0));
+#endif
+}
+#pragma sao end
+
+// ---------------------------------------------------------------------------------------------
+// Pass 2: csz level m from level m-1 by rotated-grid subsampling (Table 1). Runs once per level;
+// in_csz is a view of level m-1 only (read at lod 0), out_csz is level m.
+// ---------------------------------------------------------------------------------------------
+#pragma sao pass mips entry=sao_mips_main local=8x8 reads=csz,csz2 writes=csz,csz2 variants=TWO_LAYER per=mip "z MIP chain by rotated-grid subsampling (paper Table 1); sky stays sky"
+void sao_mips_main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(out_csz))))
+        return;
+    ivec2 src = sao_rotated_grid_source(p, textureSize(in_csz, 0));
+    imageStore(out_csz, p, vec4(texelFetch(in_csz, src, 0).r, 0.0, 0.0, 0.0));
+#if TWO_LAYER
+    imageStore(out_csz2, p, vec4(texelFetch(in_csz2, src, 0).r, 0.0, 0.0, 0.0));
+#endif
+}
+#pragma sao end
+
+// ---------------------------------------------------------------------------------------------
+// Pass 3: spiral taps (eq. 5-10) through the AlchemyAO estimator (eq. 1), then the 2x2
+// bilateral reconstruction through shared memory (no derivative instructions). One invocation
+// per AO pixel; invocations outside the AO buffer take part in the barriers as sky.
+// ---------------------------------------------------------------------------------------------
+#pragma sao pass ao_sample entry=sao_ao_main local=8x8 reads=csz,csz2,normals writes=ao_raw variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY "Obscurance from s spiral taps over the z hierarchy (eq. 1, 3-10), 2x2 bilateral reconstruction; writes (A, key z)"
+shared float sao_quad_a[gl_WorkGroupSize.x * gl_WorkGroupSize.y];  // A per invocation
+shared float sao_quad_h[gl_WorkGroupSize.x * gl_WorkGroupSize.y];  // A after the horizontal step
+shared float sao_quad_z[gl_WorkGroupSize.x * gl_WorkGroupSize.y];  // key z (+0.0 = sky / outside)
+
+void sao_ao_main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);  // AO pixel
+    bool inside = all(lessThan(p, min(ao_size, imageSize(out_ao_raw))));
+    ivec2 size0 = textureSize(in_csz, 0);
+    ivec2 c = clamp(p + guard, ivec2(0), size0 - 1);  // csz level-0 texel
+    float zc = texelFetch(in_csz, c, 0).r;
+
+    float A = 1.0;
+    float key = 0.0;
+    if (inside && !sao_is_sky(zc)) {
+        vec3 C = sao_position(vec2(c) + 0.5, zc, proj_info, ortho);
+#if NORMALS_SUPPLIED
+        vec3 n = sao_decode_normal(texelFetch(in_normals, c, 0).xyz);
+#else
+        vec3 n = sao_reconstruct_normal(in_csz, c, C, proj_info, ortho);
+#endif
+        float r_px = sao_screen_radius(radius, proj_scale, zc, ortho);
+        uint phase = sao_pixel_phase(uvec2(p));
+        int s = clamp(samples, 1, SAO_MAX_SAMPLES);
+        float sum = 0.0;
+        for (int i = 0; i < s; ++i) {
+            float h;
+            ivec2 tap = sao_spiral_tap(c, i, s, inv_samples, spiral_turns, phase, r_px, h);
+#if Z_HIERARCHY
+            int m = sao_mip_level(h, log_q, max_mip);
+#else
+            int m = 0;
+#endif
+            ivec2 t = sao_mip_texel(tap, m, size0);
+            vec2 q = vec2(tap) + 0.5;
+            float o = sao_tap_obscurance(C, n, q, texelFetch(in_csz, t, m).r, proj_info, ortho,
+                                         radius2, bias, epsilon);
+#if TWO_LAYER
+            o = max(o, sao_tap_obscurance(C, n, q, texelFetch(in_csz2, t, m).r, proj_info, ortho,
+                                          radius2, bias, epsilon));
+#endif
+            sum += o;
+        }
+        A = sao_visibility(sum, intensity_div_s, contrast);
+        key = zc;
+    }
+
+    // 2x2 bilateral reconstruction: quads are aligned to even pixels and lie inside one work
+    // group (even local size). Every invocation reaches both barriers.
+    uint li = gl_LocalInvocationIndex;
+    uvec2 l = gl_LocalInvocationID.xy;
+    uint lx = (l.y * gl_WorkGroupSize.x) + (l.x ^ 1u);  // quad neighbour along x
+    uint ly = ((l.y ^ 1u) * gl_WorkGroupSize.x) + l.x;  // quad neighbour along y
+    sao_quad_a[li] = A;
+    sao_quad_z[li] = key;
+    memoryBarrierShared();
+    barrier();
+    float a_h = sao_quad_mix(A, key, sao_quad_a[lx], sao_quad_z[lx], quad_edge_threshold);
+    sao_quad_h[li] = a_h;
+    memoryBarrierShared();
+    barrier();
+    float a_v = sao_quad_mix(a_h, key, sao_quad_h[ly], sao_quad_z[ly], quad_edge_threshold);
+    if (inside)
+        imageStore(out_ao_raw, p, vec4(a_v, key, 0.0, 0.0));
+}
+#pragma sao end
+
+// ---------------------------------------------------------------------------------------------
+// Pass 4: horizontal bilateral blur of (A, key).
+// ---------------------------------------------------------------------------------------------
+#pragma sao pass blur_h entry=sao_blur_h_main local=8x8 reads=ao_raw writes=ao_blur_h "Horizontal depth-aware Gaussian blur (float z key); with blur_radius 0 a copy"
+void sao_blur_h_main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(out_ao_blur_h))))
+        return;
+    vec2 r = sao_bilateral_blur(in_ao_raw, p, ivec2(1, 0), blur_radius, blur_stride,
+                                blur_edge_sharpness, blur_weights_1_4, blur_weights_5_8);
+    imageStore(out_ao_blur_h, p, vec4(r, 0.0, 0.0));
+}
+#pragma sao end
+
+// ---------------------------------------------------------------------------------------------
+// Pass 5: vertical bilateral blur; writes the final A.
+// ---------------------------------------------------------------------------------------------
+#pragma sao pass blur_v entry=sao_blur_v_main local=8x8 reads=ao_blur_h writes=ao "Vertical depth-aware Gaussian blur; writes the final visibility A, rounded to binary16 in the shader"
+void sao_blur_v_main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(out_ao))))
+        return;
+    vec2 r = sao_bilateral_blur(in_ao_blur_h, p, ivec2(0, 1), blur_radius, blur_stride,
+                                blur_edge_sharpness, blur_weights_1_4, blur_weights_5_8);
+    imageStore(out_ao, p, vec4(sao_round_to_half(r.x), 0.0, 0.0, 1.0));
+}
+#pragma sao end

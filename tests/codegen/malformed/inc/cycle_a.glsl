@@ -1,0 +1,2 @@
+// Includes cycle_b, which includes this file again.
+#include "cycle_b.glsl"

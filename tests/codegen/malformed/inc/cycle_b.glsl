@@ -1,0 +1,2 @@
+// Closes the cycle.
+#include "cycle_a.glsl"

@@ -1,0 +1,49 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// A small effect for the codegen's golden tests: two passes, one variant with an exclusion.
+#pragma sao effect mini version=2
+#pragma sao setting float strength default=0.5 range=[0,2] unit=m "How strong"
+#pragma sao setting int taps default=4 range=[1,16] "Taps per pixel"
+#pragma sao setting bool enabled default=true "Whether to run at all"
+#pragma sao constant int MINI_MAX_TAPS=16 "Upper bound of taps"
+#pragma sao variant FANCY values=[0,1] default=0 "Fancy path"
+#pragma sao variant EXTRA values=[0,1] "Extra input"
+#pragma sao exclude FANCY=1 EXTRA=1 "not both"
+#pragma sao resource src kind=input format=depth "Input depth"
+#pragma sao resource extra kind=input format=rgba16f when=EXTRA "Extra input"
+#pragma sao resource mid kind=image format=r32f mips=auto "Intermediate chain"
+#pragma sao resource dst kind=output format=r16f "Result"
+
+#include "include/mini_lib.glsl"
+
+#pragma sao block MiniParams
+layout(std140, binding = 0) uniform MiniParams {
+  vec4 scale;      // offset 0
+  float gain;      // offset 16
+  vec2 pair;       // offset 24
+  ivec4 counts;    // offset 32
+  mat4 xform;      // offset 48
+  vec4 table[2];   // offset 112
+};
+
+#pragma sao pass first entry=mini_first local=8x8 reads=src,extra writes=mid variants=EXTRA "Copy"
+void mini_first() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  float v = texelFetch(in_src, p, 0).r * gain;
+#if EXTRA
+  v += texelFetch(in_extra, p, 0).r;
+#endif
+  imageStore(out_mid, p, vec4(mini_twice(v)));
+}
+#pragma sao end
+
+#pragma sao pass second entry=mini_second local=16x4 reads=mid writes=dst variants=FANCY "Finish"
+void mini_second() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  float v = texelFetch(in_mid, p, 0).r;
+#if FANCY
+  v = sqrt(abs(v));
+#endif
+  imageStore(out_dst, p, vec4(v * scale.x));
+}
+#pragma sao end

@@ -1,0 +1,78 @@
+// The generated C++ glue of the small test effect compiles (its static_asserts hold) and its
+// tables say what the annotated source declares.
+#include <gtest/gtest.h>
+
+#include "mini_effect.h"
+
+namespace gen = sao::gen;
+
+TEST(MiniGlue, SettingsDefaultsAndMetadata) {
+  const gen::Settings s;
+  EXPECT_FLOAT_EQ(s.strength, 0.5f);
+  EXPECT_EQ(s.taps, 4);
+  EXPECT_TRUE(s.enabled);
+  ASSERT_EQ(gen::kSettings.size(), 3u);
+  EXPECT_EQ(gen::kSettings[0].name, "strength");
+  EXPECT_EQ(gen::kSettings[0].unit, "m");
+  EXPECT_EQ(gen::kSettings[0].minValue, 0.0);
+  EXPECT_EQ(gen::kSettings[0].maxValue, 2.0);
+  EXPECT_EQ(gen::kSettings[1].type, gen::SettingType::Int);
+  for (size_t i = 0; i < gen::kSettings.size(); ++i)
+    EXPECT_EQ(gen::settingValue(s, static_cast<gen::SettingId>(i)), gen::kSettings[i].defaultValue);
+}
+
+TEST(MiniGlue, SettingAccessorsRoundTrip) {
+  gen::Settings s;
+  gen::setSettingValue(s, gen::SettingId::taps, 9);
+  gen::setSettingValue(s, gen::SettingId::enabled, 0);
+  gen::setSettingValue(s, gen::SettingId::strength, 1.25);
+  EXPECT_EQ(s.taps, 9);
+  EXPECT_FALSE(s.enabled);
+  EXPECT_FLOAT_EQ(s.strength, 1.25f);
+}
+
+TEST(MiniGlue, ParamBlockLayoutIsStd140) {
+  EXPECT_EQ(offsetof(gen::MiniParams, gain), 16u);
+  EXPECT_EQ(offsetof(gen::MiniParams, pair), 24u);  // vec2 aligns to 8 after a float
+  EXPECT_EQ(offsetof(gen::MiniParams, table), 112u);
+  EXPECT_EQ(sizeof(gen::MiniParams), 144u);
+}
+
+TEST(MiniGlue, PassTableAndVariantLookup) {
+  ASSERT_EQ(gen::passes().size(), 2u);
+  const auto& first = gen::pass(gen::PassId::first);
+  EXPECT_EQ(first.entry, "mini_first");
+  EXPECT_EQ(first.localX, 8u);
+  const auto& second = gen::pass(gen::PassId::second);
+  EXPECT_EQ(second.localX, 16u);
+  EXPECT_EQ(second.localY, 4u);
+
+  // FANCY=0, EXTRA=1: the extra input is bound after src, then the written chain.
+  const auto* pv = gen::findPassVariant(gen::PassId::first, {0, 1});
+  ASSERT_NE(pv, nullptr);
+  ASSERT_EQ(pv->bindings.size(), 3u);
+  EXPECT_EQ(pv->bindings[0].binding, 1u);
+  EXPECT_EQ(pv->bindings[0].resource, gen::ResourceId::src);
+  EXPECT_EQ(pv->bindings[1].resource, gen::ResourceId::extra);
+  EXPECT_EQ(pv->bindings[2].resource, gen::ResourceId::mid);
+  EXPECT_TRUE(pv->bindings[2].write);
+  // EXTRA=0 drops the extra input's binding.
+  const auto* plain = gen::findPassVariant(gen::PassId::first, {0, 0});
+  ASSERT_NE(plain, nullptr);
+  EXPECT_EQ(plain->bindings.size(), 2u);
+
+  EXPECT_EQ(gen::findPassVariant(gen::PassId::second, {1, 1}), nullptr) << "excluded combination";
+  EXPECT_EQ(gen::exclusionReason({1, 1}), "not both");
+  EXPECT_TRUE(gen::exclusionReason({1, 0}).empty());
+}
+
+TEST(MiniGlue, EmbeddedBlobsArePresent) {
+  for (const auto& p : gen::passes())
+    for (const auto& c : p.compiled) {
+      EXPECT_EQ(gen::glslSource(c.glslBlob).substr(0, 12), "#version 430");
+      const auto spv = gen::spirvModule(c.spirvBlob);
+      ASSERT_GT(spv.size(), 5u);
+      EXPECT_EQ(spv[0], 0x07230203u);
+    }
+  EXPECT_TRUE(gen::glslSource(999).empty());
+}
