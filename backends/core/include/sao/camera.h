@@ -1,0 +1,58 @@
+// The camera the depth buffer was rendered with, and the conventions of that depth buffer.
+#pragma once
+#include <array>
+#include <cstdint>
+
+#include "sao/status.h"
+
+namespace sao {
+
+enum class ClipDepth : std::uint8_t {
+  NegativeOneToOne,  // OpenGL default: depth = 0.5 * ndc.z + 0.5
+  ZeroToOne,         // Vulkan, D3D, or GL with glClipControl(..., GL_ZERO_TO_ONE): depth = ndc.z
+};
+
+enum class ProjectionKind : std::uint8_t { Perspective, Orthographic };
+
+struct Camera {
+  // Column-major like GLM: element (row r, column c) is projection[c * 4 + r]. Right-handed view
+  // space looking down -z, as the paper assumes.
+  std::array<double, 16> projection{};
+  ProjectionKind kind = ProjectionKind::Perspective;
+  ClipDepth clipDepth = ClipDepth::NegativeOneToOne;
+  bool reversedZ = false;    // the near plane maps to depth 1, the far plane to 0
+  bool infiniteFar = false;  // the projection has no far plane
+  // Rows of the depth image are in the order the API stores them: row 0 at ndc.y = -1 (GL's bottom
+  // row, Vulkan's top row). Set when rendering with a flipped viewport (negative height in Vulkan).
+  bool flipY = false;
+  double metersToViewUnits = 1.0;  // settings are in metres; view space may use other units
+  std::uint32_t width = 0;         // visible viewport, pixels
+  std::uint32_t height = 0;
+  std::uint32_t guardBand = 0;     // extra pixels rendered on every side of the viewport
+};
+
+// What the projection says about itself, derived in double precision.
+struct DepthModel {
+  // Perspective: z = c0 / (d * c1 + c2). Orthographic: z = d * c1 + c2. d is the stored depth.
+  double c0 = 0, c1 = 0, c2 = 0;
+  double nearDistance = 0;    // > 0 for perspective
+  double farDistance = 0;     // +inf when infinite
+  double depthAtNear = 0;     // stored depth of the near plane (0 or 1)
+  double depthAtFar = 1;      // stored depth of the far plane (the clear value)
+};
+
+// Checks the camera and derives its depth model. Rejects matrices that are not a perspective or
+// orthographic projection of the declared kind, a declared reversed-Z or infinite far plane that
+// the matrix contradicts, near <= 0 for perspective, non-finite entries and bad sizes.
+Status analyze(const Camera& camera, DepthModel& out);
+
+// Camera-space z of a stored depth value, in double (the reference the shaders approximate).
+double linearZ(const DepthModel& model, ProjectionKind kind, double depth);
+
+// Builders for tests and samples: GLM-style matrices for each convention.
+Camera perspectiveCamera(double fovyRadians, std::uint32_t width, std::uint32_t height, double nearDistance,
+                         double farDistance /* inf for infinite */, ClipDepth clip, bool reversedZ);
+Camera orthographicCamera(double halfHeight, std::uint32_t width, std::uint32_t height, double nearDistance,
+                          double farDistance, ClipDepth clip, bool reversedZ);
+
+}  // namespace sao

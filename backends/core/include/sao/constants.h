@@ -1,0 +1,25 @@
+// Settings + camera -> the shaders' parameter block. Pure, computed in double, rounded once.
+#pragma once
+#include <cstdint>
+
+#include "sao/camera.h"
+#include "sao/settings.h"
+
+namespace sao {
+
+using ParamBlock = gen::SaoParams;
+
+// What the depth input holds.
+enum class DepthEncoding : std::uint8_t {
+  Hardware,  // window-space depth in [0, 1] (D16, D24, D32F), per the camera's conventions
+  LinearZ,   // R32F camera-space z (negative in front of the camera), view units
+};
+
+// The number of csz MIP levels the largest projected radius can select: 1 + clamp(floor(log2 r'max)
+// - log2 q', 0, ...), r'max = r S' / near (perspective) or r S' (orthographic); 1 without the hierarchy.
+std::uint32_t mipLevelsNeeded(const Settings& settings, const Camera& camera, const DepthModel& model);
+
+// Fills every member of the block (docs/effect-math.md, section 2). Validates settings and camera.
+Status computeConstants(const Settings& settings, const Camera& camera, DepthEncoding encoding, ParamBlock& out);
+
+}  // namespace sao

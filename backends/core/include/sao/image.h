@@ -1,0 +1,49 @@
+// Plain CPU images: the user's depth as it sits in a depth buffer, and float images for results.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "sao/plan.h"
+
+namespace sao {
+
+// How depth texels are stored. D16 and D24 are unsigned normalised integers (d = v / (2^n - 1)),
+// D32F is a float in [0, 1], LinearZ is R32F camera-space z (view units, negative in front).
+enum class DepthFormat : std::uint8_t { D16, D24, D32F, LinearZ };
+
+const char* toString(DepthFormat format);
+
+// One channel of depth as the GPU would hold it. `texels` holds the raw value per texel, row 0
+// first: the integer for D16/D24, the float's bits for D32F and LinearZ.
+struct DepthImage {
+  Extent extent;
+  DepthFormat format = DepthFormat::D32F;
+  std::vector<std::uint32_t> texels;
+
+  // The value a shader reads (texelFetch(...).r), computed in double.
+  double value(std::uint32_t x, std::uint32_t y) const;
+};
+
+// Quantises a window-space depth d in [0, 1] (or a linear z for LinearZ) to the format, as a GPU
+// depth write would (round to nearest for the integer formats).
+std::uint32_t encodeDepth(DepthFormat format, double d);
+double decodeDepth(DepthFormat format, std::uint32_t texel);
+
+// A float image with `channels` interleaved channels, row 0 first.
+struct FloatImage {
+  Extent extent;
+  std::uint32_t channels = 1;
+  std::vector<float> data;
+
+  FloatImage() = default;
+  FloatImage(Extent e, std::uint32_t c, float fill = 0.0f)
+      : extent(e), channels(c), data(std::size_t(e.width) * e.height * c, fill) {}
+  float& at(std::uint32_t x, std::uint32_t y, std::uint32_t c = 0) {
+    return data[(std::size_t(y) * extent.width + x) * channels + c];
+  }
+  float at(std::uint32_t x, std::uint32_t y, std::uint32_t c = 0) const {
+    return data[(std::size_t(y) * extent.width + x) * channels + c];
+  }
+};
+
+}  // namespace sao

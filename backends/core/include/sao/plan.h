@@ -1,0 +1,69 @@
+// plan(): only the passes, variants, MIP levels and images a configuration needs. Backends
+// allocate and dispatch from it; it is cheap and deterministic, so tests assert it.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sao/camera.h"
+#include "sao/constants.h"
+#include "sao/settings.h"
+
+namespace sao {
+
+struct Extent {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  bool operator==(const Extent&) const = default;
+};
+
+// The largest image side the plan accepts (backends also check their device's own limit).
+inline constexpr std::uint32_t kMaxImageSide = 16384;
+
+struct PlanInputs {
+  DepthEncoding depthEncoding = DepthEncoding::Hardware;
+  bool normals = false;      // the user supplies camera-space normals
+  bool secondLayer = false;  // the user supplies a second depth layer (deep G-buffer)
+  bool userOutput = false;   // the user supplies the output image (not counted in bytes)
+};
+
+struct PlannedImage {
+  gen::ResourceId resource;
+  gen::Format format;
+  Extent extent;              // level 0
+  std::uint32_t mipLevels = 1;
+  std::uint64_t bytes = 0;
+};
+
+struct PlannedPass {
+  gen::PassId pass;
+  const gen::PassVariantInfo* variant = nullptr;  // bindings and blobs
+  std::uint32_t dispatchCount = 1;  // per=mip passes: one dispatch per level 1..L-1
+  // Bindings whose declared resource is served by another image (a dropped pass's output).
+  std::vector<std::pair<gen::ResourceId, gen::ResourceId>> aliases;
+};
+
+struct Plan {
+  gen::VariantValues variants{};
+  Extent inputExtent;  // depth, normals, csz: viewport + 2 * guard band
+  Extent aoExtent;     // ao_raw, blurs, output: the viewport
+  std::uint32_t cszLevels = 1;
+  std::vector<PlannedPass> passes;
+  std::vector<PlannedImage> images;  // effect-owned images only (and the output unless userOutput)
+  std::uint64_t totalBytes = 0;
+
+  const PlannedImage* image(gen::ResourceId id) const;
+  // The image that serves `declared` in `pass` (itself unless aliased).
+  gen::ResourceId resolve(const PlannedPass& pass, gen::ResourceId declared) const;
+  std::string describe() const;  // a few lines for logs and the CLI summary
+};
+
+Status plan(const Settings& settings, const Camera& camera, const PlanInputs& inputs, Plan& out);
+
+// Bytes a naive implementation would allocate: every image, a full csz MIP chain, both layers'
+// chains only if asked, no dropped passes. For comparison in reports.
+std::uint64_t fullAllocationBytes(const Camera& camera, const PlanInputs& inputs);
+
+std::uint32_t bytesPerTexel(gen::Format format);
+
+}  // namespace sao

@@ -1,0 +1,32 @@
+// User settings: the struct and its metadata are generated from the annotated effect; this
+// header adds validation (no silent clamping), an explicit clamp for UIs, and text parsing.
+#pragma once
+#include <optional>
+#include <string_view>
+
+#include "sao/status.h"
+#include "sao_effect.h"
+
+namespace sao {
+
+using Settings = gen::Settings;
+using SettingInfo = gen::SettingInfo;
+using SettingId = gen::SettingId;
+
+// Ok, or InvalidSetting naming the first offending setting, its value and the allowed range.
+Status validate(const Settings& settings);
+
+// Every value pulled into its range (NaN becomes the default). For sliders, never implicit.
+Settings clamped(const Settings& settings);
+
+// The setting called `name`, or nullopt.
+std::optional<SettingId> findSetting(std::string_view name);
+
+// Parses `value` for the named setting ("true"/"false"/"1"/"0" for bools) and stores it if it is
+// valid; otherwise returns InvalidSetting and leaves `settings` unchanged.
+Status setFromText(Settings& settings, std::string_view name, std::string_view value);
+
+// "name=value" as the CLI's --set takes it.
+Status setFromAssignment(Settings& settings, std::string_view assignment);
+
+}  // namespace sao

@@ -1,0 +1,146 @@
+#include "sao/camera.h"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace sao {
+namespace {
+
+double at(const Camera& c, int row, int col) { return c.projection[col * 4 + row]; }
+
+Status bad(const std::string& m) { return Status::error(StatusCode::InvalidCamera, m); }
+
+// Stored depth d = scale * ndc.z + offset.
+void depthMapping(ClipDepth clip, double& scale, double& offset) {
+  scale = clip == ClipDepth::ZeroToOne ? 1.0 : 0.5;
+  offset = clip == ClipDepth::ZeroToOne ? 0.0 : 0.5;
+}
+
+}  // namespace
+
+Status analyze(const Camera& cam, DepthModel& m) {
+  for (double v : cam.projection)
+    if (!std::isfinite(v)) return bad("projection matrix has a non-finite element");
+  if (cam.width == 0 || cam.height == 0) return bad("viewport size is " + std::to_string(cam.width) + "x" +
+                                                    std::to_string(cam.height) + "; both must be > 0");
+  if (!std::isfinite(cam.metersToViewUnits) || cam.metersToViewUnits <= 0)
+    return bad("metersToViewUnits must be a finite number > 0");
+  if (at(cam, 0, 0) == 0 || at(cam, 1, 1) == 0) return bad("projection has a zero x or y scale (P00 or P11)");
+
+  double s = 0, o = 0;
+  depthMapping(cam.clipDepth, s, o);
+  const double C = at(cam, 2, 2), D = at(cam, 2, 3);
+  m.depthAtNear = cam.reversedZ ? 1.0 : 0.0;
+  m.depthAtFar = cam.reversedZ ? 0.0 : 1.0;
+
+  if (cam.kind == ProjectionKind::Perspective) {
+    if (at(cam, 3, 2) != -1.0 || at(cam, 3, 3) != 0.0 || at(cam, 3, 0) != 0.0 || at(cam, 3, 1) != 0.0)
+      return bad("declared perspective, but the bottom row of the projection is not (0, 0, -1, 0)");
+    if (at(cam, 2, 0) != 0.0 || at(cam, 2, 1) != 0.0) return bad("projection's depth row mixes in x or y");
+    // ndc.z = -C - D / z, so d = (o - s*C) - s*D / z  =>  z = -s*D / (d + s*C - o).
+    m.c0 = -s * D;
+    m.c1 = 1.0;
+    m.c2 = s * C - o;
+    if (m.c0 == 0) return bad("projection's depth row has no 1/z term (P23 == 0)");
+    const double zNear = m.c0 / (m.depthAtNear * m.c1 + m.c2);
+    const double farDen = m.depthAtFar * m.c1 + m.c2;
+    // An infinite far plane puts the clear depth exactly at the pole (C = -1 or 0 as the paper's
+    // c = [zn, -1, +1]); allow rounding of a matrix built in float.
+    const bool atPole = std::fabs(farDen) <= 1e-6 * std::fmax(1.0, std::fabs(m.c2));
+    if (!(zNear < 0) || !std::isfinite(zNear)) {
+      const double zOther = m.c0 / (m.depthAtFar * m.c1 + m.c2);
+      if (zOther < 0 && std::isfinite(zOther) && !atPole)
+        return bad(std::string("declared ") + (cam.reversedZ ? "reversed-Z" : "standard depth") +
+                   ", but the projection maps the near plane to depth " + (cam.reversedZ ? "0" : "1") +
+                   ": set reversedZ = " + (cam.reversedZ ? "false" : "true"));
+      return bad("projection puts the near plane at or behind the eye (near <= 0)");
+    }
+    m.nearDistance = -zNear;
+    if (cam.infiniteFar) {
+      if (!atPole)
+        return bad("declared an infinite far plane, but the projection has a far plane at " +
+                   std::to_string(-m.c0 / farDen) + " view units");
+      m.farDistance = std::numeric_limits<double>::infinity();
+    } else {
+      if (atPole) return bad("projection has an infinite far plane: set infiniteFar = true");
+      const double zFar = m.c0 / farDen;
+      if (!(zFar < 0) || -zFar <= m.nearDistance)
+        return bad("projection's far plane is not beyond its near plane (check reversedZ and clipDepth)");
+      m.farDistance = -zFar;
+    }
+    return Status::success();
+  }
+
+  if (at(cam, 3, 2) != 0.0 || at(cam, 3, 3) != 1.0 || at(cam, 3, 0) != 0.0 || at(cam, 3, 1) != 0.0)
+    return bad("declared orthographic, but the bottom row of the projection is not (0, 0, 0, 1)");
+  if (cam.infiniteFar) return bad("an orthographic projection cannot have an infinite far plane");
+  if (C == 0) return bad("orthographic projection has no depth scale (P22 == 0)");
+  // ndc.z = C*z + D, d = s*ndc.z + o  =>  z = d / (s*C) - (o + s*D) / (s*C).
+  m.c0 = 0;
+  m.c1 = 1.0 / (s * C);
+  m.c2 = -(o + s * D) / (s * C);
+  const double zNear = m.depthAtNear * m.c1 + m.c2, zFar = m.depthAtFar * m.c1 + m.c2;
+  if (!(zFar < zNear))
+    return bad(std::string("declared ") + (cam.reversedZ ? "reversed-Z" : "standard depth") +
+               ", but the orthographic projection maps the near plane to depth " + (cam.reversedZ ? "0" : "1"));
+  if (!(zFar < 0)) return bad("orthographic far plane is not in front of the eye");
+  m.nearDistance = -zNear;
+  m.farDistance = -zFar;
+  return Status::success();
+}
+
+double linearZ(const DepthModel& m, ProjectionKind kind, double d) {
+  if (kind == ProjectionKind::Orthographic) return d * m.c1 + m.c2;
+  return m.c0 / (d * m.c1 + m.c2);
+}
+
+Camera perspectiveCamera(double fovy, std::uint32_t width, std::uint32_t height, double n, double f, ClipDepth clip,
+                         bool reversedZ) {
+  Camera c;
+  c.width = width;
+  c.height = height;
+  c.clipDepth = clip;
+  c.reversedZ = reversedZ;
+  c.infiniteFar = std::isinf(f);
+  const double t = 1.0 / std::tan(fovy / 2.0);
+  auto P = [&](int row, int col) -> double& { return c.projection[col * 4 + row]; };
+  P(0, 0) = t * height / width;
+  P(1, 1) = t;
+  P(3, 2) = -1.0;
+  // Choose ndc.z(z) so that the near plane lands on the near end of the clip range.
+  const double ndcNear = reversedZ ? 1.0 : (clip == ClipDepth::ZeroToOne ? 0.0 : -1.0);
+  const double ndcFar = reversedZ ? (clip == ClipDepth::ZeroToOne ? 0.0 : -1.0) : 1.0;
+  // ndc.z = -C - D/z: at z=-n: -C + D/n = ndcNear; at z=-f: -C + D/f = ndcFar (D/f -> 0 when f = inf).
+  if (c.infiniteFar) {
+    P(2, 2) = -ndcFar;
+    P(2, 3) = (ndcNear - ndcFar) * n;
+  } else {
+    P(2, 3) = (ndcNear - ndcFar) / (1.0 / n - 1.0 / f);
+    P(2, 2) = -(ndcFar - P(2, 3) / f);
+  }
+  return c;
+}
+
+Camera orthographicCamera(double halfHeight, std::uint32_t width, std::uint32_t height, double n, double f,
+                          ClipDepth clip, bool reversedZ) {
+  Camera c;
+  c.kind = ProjectionKind::Orthographic;
+  c.width = width;
+  c.height = height;
+  c.clipDepth = clip;
+  c.reversedZ = reversedZ;
+  auto P = [&](int row, int col) -> double& { return c.projection[col * 4 + row]; };
+  const double halfWidth = halfHeight * width / height;
+  P(0, 0) = 1.0 / halfWidth;
+  P(1, 1) = 1.0 / halfHeight;
+  P(3, 3) = 1.0;
+  const double ndcNear = reversedZ ? 1.0 : (clip == ClipDepth::ZeroToOne ? 0.0 : -1.0);
+  const double ndcFar = reversedZ ? (clip == ClipDepth::ZeroToOne ? 0.0 : -1.0) : 1.0;
+  // ndc.z = C*z + D with z=-n -> ndcNear, z=-f -> ndcFar.
+  P(2, 2) = (ndcFar - ndcNear) / (n - f);
+  P(2, 3) = ndcNear + P(2, 2) * n;
+  return c;
+}
+
+}  // namespace sao

@@ -1,0 +1,103 @@
+#include "sao/constants.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sao/spiral.h"
+
+namespace sao {
+namespace {
+
+double at(const Camera& c, int row, int col) { return c.projection[col * 4 + row]; }
+
+// S' of eq. 5: pixels spanned by one view unit at distance 1 (perspective) or anywhere (ortho).
+double projScale(const Camera& c) { return 0.5 * c.height * std::fabs(at(c, 1, 1)); }
+
+float f(double v) { return static_cast<float>(v); }
+
+}  // namespace
+
+std::uint32_t mipLevelsNeeded(const Settings& s, const Camera& c, const DepthModel& m) {
+  if (!s.use_z_hierarchy) return 1;
+  const double r = s.radius * c.metersToViewUnits;
+  double rMax = r * projScale(c);
+  if (c.kind == ProjectionKind::Perspective) rMax /= m.nearDistance;
+  rMax = std::min(rMax, double(gen::SAO_MAX_RADIUS_PX));
+  if (!(rMax >= 1.0)) return 1;
+  const int msb = static_cast<int>(std::floor(std::log2(rMax)));
+  const std::uint32_t size0 = std::max(c.width, c.height) + 2 * c.guardBand;
+  const int chain = static_cast<int>(std::floor(std::log2(double(size0))));
+  const int top = std::min(gen::SAO_MAX_MIP_LEVELS - 1, chain);
+  return 1 + static_cast<std::uint32_t>(std::clamp(msb - s.mip_switch_log2, 0, top));
+}
+
+Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encoding, ParamBlock& p) {
+  if (Status st = validate(s); !st) return st;
+  DepthModel m;
+  if (Status st = analyze(c, m); !st) return st;
+  p = ParamBlock{};
+  const bool ortho = c.kind == ProjectionKind::Orthographic;
+  const double u = c.metersToViewUnits;
+  const double W = c.width, H = c.height, g = c.guardBand;
+  const double sy = c.flipY ? -1.0 : 1.0;
+
+  // eq. 3 in csz texel coordinates (guard folded into b).
+  double ax, ay, bx, by;
+  if (!ortho) {
+    ax = -2.0 / (W * at(c, 0, 0));
+    ay = -2.0 * sy / (H * at(c, 1, 1));
+    bx = (1.0 - at(c, 0, 2)) / at(c, 0, 0) - g * ax;
+    by = (sy - at(c, 1, 2)) / at(c, 1, 1) - g * ay;
+  } else {
+    ax = 2.0 / (W * at(c, 0, 0));
+    ay = 2.0 * sy / (H * at(c, 1, 1));
+    bx = -(1.0 + at(c, 0, 3)) / at(c, 0, 0) - g * ax;
+    by = -(sy + at(c, 1, 3)) / at(c, 1, 1) - g * ay;
+  }
+  p.proj_info = {f(ax), f(ay), f(bx), f(by)};
+
+  // eq. 2 and the far/clear test.
+  if (encoding == DepthEncoding::LinearZ) {
+    p.clip_info = {0.0f, 1.0f, 0.0f, 0.0f};
+    p.depth_mode = gen::SAO_DEPTH_MODE_LINEAR;
+    p.far_dir = 0.0f;
+    p.far_lim = 1.0f;
+  } else {
+    p.clip_info = {f(m.c0), f(m.c1), f(m.c2), 0.0f};
+    p.depth_mode = ortho ? gen::SAO_DEPTH_MODE_ORTHOGRAPHIC : gen::SAO_DEPTH_MODE_PERSPECTIVE;
+    p.far_dir = c.reversedZ ? -1.0f : 1.0f;
+    p.far_lim = c.reversedZ ? 0.0f : 1.0f;
+  }
+  p.ortho = ortho ? 1 : 0;
+
+  const double r = s.radius * u;
+  p.radius = f(r);
+  p.radius2 = f(r * r);
+  p.bias = s.bias;
+  p.intensity_div_s = f(2.0 * s.intensity / s.samples);
+  p.epsilon = f(double(s.epsilon) * u * u);
+  p.contrast = s.contrast;
+  p.proj_scale = f(projScale(c));
+  p.inv_samples = f(1.0 / s.samples);
+  p.samples = s.samples;
+  p.spiral_turns = spiralTurns(s.samples);
+  p.log_q = s.mip_switch_log2;
+  p.max_mip = static_cast<std::int32_t>(mipLevelsNeeded(s, c, m)) - 1;
+  p.quad_edge_threshold = f(s.quad_edge_threshold * u);
+  p.blur_edge_sharpness = f(s.blur_edge_sharpness / u);
+  p.blur_radius = s.blur_radius;
+  p.blur_stride = s.blur_stride;
+
+  // Gaussian in taps, sigma = R/2: w(t) = exp(-2 t^2 / R^2), w(0) = 1 implicit.
+  float w[8] = {};
+  for (int t = 1; t <= std::min(s.blur_radius, 8); ++t)
+    w[t - 1] = f(std::exp(-2.0 * t * t / (double(s.blur_radius) * s.blur_radius)));
+  p.blur_weights_1_4 = {w[0], w[1], w[2], w[3]};
+  p.blur_weights_5_8 = {w[4], w[5], w[6], w[7]};
+
+  p.ao_size = {static_cast<std::int32_t>(c.width), static_cast<std::int32_t>(c.height)};
+  p.guard = {static_cast<std::int32_t>(c.guardBand), static_cast<std::int32_t>(c.guardBand)};
+  return Status::success();
+}
+
+}  // namespace sao

@@ -1,0 +1,164 @@
+#include "sao/plan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace sao {
+namespace {
+
+Extent levelExtent(Extent e, std::uint32_t level) {
+  return {std::max(1u, e.width >> level), std::max(1u, e.height >> level)};
+}
+
+std::uint64_t imageBytes(gen::Format format, Extent e, std::uint32_t levels) {
+  std::uint64_t total = 0;
+  for (std::uint32_t m = 0; m < levels; ++m) {
+    const Extent l = levelExtent(e, m);
+    total += std::uint64_t(l.width) * l.height * bytesPerTexel(format);
+  }
+  return total;
+}
+
+std::uint32_t fullChainLevels(Extent e) {
+  return 1 + static_cast<std::uint32_t>(std::floor(std::log2(double(std::max(e.width, e.height)))));
+}
+
+Status checkExtents(const Camera& c, Extent& input, Extent& ao) {
+  const std::uint64_t w = std::uint64_t(c.width) + 2ull * c.guardBand;
+  const std::uint64_t h = std::uint64_t(c.height) + 2ull * c.guardBand;
+  if (c.width == 0 || c.height == 0)
+    return Status::error(StatusCode::InvalidExtent, "viewport " + std::to_string(c.width) + "x" +
+                                                        std::to_string(c.height) + " is empty");
+  if (w > kMaxImageSide || h > kMaxImageSide)
+    return Status::error(StatusCode::InvalidExtent,
+                         "depth input " + std::to_string(w) + "x" + std::to_string(h) + " (viewport " +
+                             std::to_string(c.width) + "x" + std::to_string(c.height) + " + guard band " +
+                             std::to_string(c.guardBand) + ") exceeds the largest supported side " +
+                             std::to_string(kMaxImageSide));
+  input = {static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)};
+  ao = {c.width, c.height};
+  return Status::success();
+}
+
+}  // namespace
+
+std::uint32_t bytesPerTexel(gen::Format format) {
+  switch (format) {
+    case gen::Format::R32F: return 4;
+    case gen::Format::RG32F: return 8;
+    case gen::Format::R16F: return 2;
+    case gen::Format::RG16F: return 4;
+    case gen::Format::RGBA16F: return 8;
+    case gen::Format::R8: return 1;
+    case gen::Format::RGBA8: return 4;
+    case gen::Format::Depth: return 4;
+  }
+  return 4;
+}
+
+const PlannedImage* Plan::image(gen::ResourceId id) const {
+  for (const auto& i : images)
+    if (i.resource == id) return &i;
+  return nullptr;
+}
+
+gen::ResourceId Plan::resolve(const PlannedPass& pass, gen::ResourceId declared) const {
+  for (const auto& [from, to] : pass.aliases)
+    if (from == declared) return to;
+  return declared;
+}
+
+std::string Plan::describe() const {
+  std::ostringstream s;
+  s << "input " << inputExtent.width << "x" << inputExtent.height << ", AO " << aoExtent.width << "x"
+    << aoExtent.height << ", csz levels " << cszLevels << "\n";
+  s << "variants:";
+  for (std::size_t v = 0; v < gen::kVariantCount; ++v) s << " " << gen::kVariants[v].name << "=" << variants[v];
+  s << "\npasses:";
+  for (const auto& p : passes) {
+    s << " " << gen::pass(p.pass).name;
+    if (p.dispatchCount != 1) s << "x" << p.dispatchCount;
+  }
+  s << "\nimages:";
+  for (const auto& i : images)
+    s << " " << gen::kResources[static_cast<std::size_t>(i.resource)].name << "(" << i.extent.width << "x"
+      << i.extent.height << (i.mipLevels > 1 ? ", " + std::to_string(i.mipLevels) + " levels" : "") << ")";
+  s << "\nbytes: " << totalBytes << "\n";
+  return s.str();
+}
+
+Status plan(const Settings& settings, const Camera& camera, const PlanInputs& inputs, Plan& out) {
+  out = Plan{};
+  if (Status st = validate(settings); !st) return st;
+  DepthModel model;
+  if (Status st = analyze(camera, model); !st) return st;
+  if (Status st = checkExtents(camera, out.inputExtent, out.aoExtent); !st) return st;
+  for (std::size_t v = 0; v < gen::kVariantCount; ++v) {
+    const std::string_view name = gen::kVariants[v].name;
+    if (name == "NORMALS_SUPPLIED") out.variants[v] = inputs.normals ? 1 : 0;
+    else if (name == "TWO_LAYER") out.variants[v] = inputs.secondLayer ? 1 : 0;
+    else if (name == "Z_HIERARCHY") out.variants[v] = settings.use_z_hierarchy ? 1 : 0;
+    else out.variants[v] = gen::kVariants[v].defaultValue;
+  }
+  if (const auto why = gen::exclusionReason(out.variants); !why.empty()) {
+    std::string combo;
+    for (std::size_t v = 0; v < gen::kVariantCount; ++v)
+      combo += " " + std::string(gen::kVariants[v].name) + "=" + std::to_string(out.variants[v]);
+    return Status::error(StatusCode::InvalidInput,
+                         "these inputs and settings select an excluded variant combination (" + combo.substr(1) +
+                             "): " + std::string(why));
+  }
+
+  out.cszLevels = mipLevelsNeeded(settings, camera, model);
+  const bool blur = settings.blur_radius > 0;
+
+  for (const auto& info : gen::passes()) {
+    const auto id = static_cast<gen::PassId>(&info - gen::passes().data());
+    PlannedPass p{id, gen::findPassVariant(id, out.variants), 1, {}};
+    if (!p.variant)
+      return Status::error(StatusCode::InvalidInput, "no compiled variant of pass '" + std::string(info.name) + "'");
+    if (info.perMip) {
+      if (out.cszLevels <= 1) continue;  // the hierarchy is not used: no MIP pass
+      p.dispatchCount = out.cszLevels - 1;
+    }
+    if (info.name == "blur_h" && !blur) continue;  // blur 0: blur_v copies ao_raw
+    if (info.name == "blur_v" && !blur) p.aliases.push_back({gen::ResourceId::ao_blur_h, gen::ResourceId::ao_raw});
+    out.passes.push_back(std::move(p));
+  }
+
+  // Images: every effect-owned or output resource some planned pass touches, after aliasing.
+  for (const auto& p : out.passes) {
+    for (const auto& b : p.variant->bindings) {
+      const gen::ResourceId id = out.resolve(p, b.resource);
+      const auto& r = gen::kResources[static_cast<std::size_t>(id)];
+      if (r.kind == gen::ResourceKind::Input || out.image(id)) continue;
+      if (r.kind == gen::ResourceKind::Output && inputs.userOutput) continue;
+      const Extent base = r.inputExtent ? out.inputExtent : out.aoExtent;
+      const Extent e{std::max(1u, base.width / r.scaleDenominator), std::max(1u, base.height / r.scaleDenominator)};
+      const std::uint32_t levels = r.fullMipChain ? out.cszLevels : 1;
+      out.images.push_back({id, r.format, e, levels, imageBytes(r.format, e, levels)});
+    }
+  }
+  for (const auto& i : out.images) out.totalBytes += i.bytes;
+  return Status::success();
+}
+
+std::uint64_t fullAllocationBytes(const Camera& camera, const PlanInputs& inputs) {
+  Extent input, ao;
+  if (!checkExtents(camera, input, ao)) return 0;
+  std::uint64_t total = 0;
+  for (const auto& r : gen::kResources) {
+    if (r.kind == gen::ResourceKind::Input) continue;
+    if (r.kind == gen::ResourceKind::Output && inputs.userOutput) continue;
+    if (r.whenVariant >= 0) {
+      const std::string_view v = gen::kVariants[static_cast<std::size_t>(r.whenVariant)].name;
+      if (v == "TWO_LAYER" && !inputs.secondLayer) continue;
+    }
+    const Extent base = r.inputExtent ? input : ao;
+    total += imageBytes(r.format, base, r.fullMipChain ? fullChainLevels(base) : 1);
+  }
+  return total;
+}
+
+}  // namespace sao

@@ -1,0 +1,105 @@
+#include "sao/settings.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+
+namespace sao {
+namespace {
+
+std::string describe(double v) {
+  std::ostringstream s;
+  s.precision(9);
+  s << v;
+  return s.str();
+}
+
+std::string rangeText(const SettingInfo& info) {
+  if (info.type == gen::SettingType::Bool) return "{false, true}";
+  return "[" + describe(info.minValue) + ", " + describe(info.maxValue) + "]";
+}
+
+Status checkValue(const SettingInfo& info, double v) {
+  const std::string where = "setting '" + std::string(info.name) + "' ";
+  if (std::isnan(v)) return Status::error(StatusCode::InvalidSetting, where + "is NaN; allowed range " + rangeText(info));
+  if (std::isinf(v))
+    return Status::error(StatusCode::InvalidSetting,
+                         where + "is " + (v > 0 ? "+inf" : "-inf") + "; allowed range " + rangeText(info));
+  if (info.type != gen::SettingType::Float && v != std::floor(v))
+    return Status::error(StatusCode::InvalidSetting, where + "= " + describe(v) + " is not a whole number");
+  if (v < info.minValue || v > info.maxValue)
+    return Status::error(StatusCode::InvalidSetting,
+                         where + "= " + describe(v) + " is outside its range " + rangeText(info) +
+                             (info.unit.empty() ? "" : " " + std::string(info.unit)));
+  return Status::success();
+}
+
+}  // namespace
+
+Status validate(const Settings& settings) {
+  for (size_t i = 0; i < gen::kSettings.size(); ++i) {
+    Status s = checkValue(gen::kSettings[i], gen::settingValue(settings, static_cast<SettingId>(i)));
+    if (!s) return s;
+  }
+  return Status::success();
+}
+
+Settings clamped(const Settings& settings) {
+  Settings out = settings;
+  for (size_t i = 0; i < gen::kSettings.size(); ++i) {
+    const auto id = static_cast<SettingId>(i);
+    const SettingInfo& info = gen::kSettings[i];
+    double v = gen::settingValue(settings, id);
+    if (std::isnan(v)) v = info.defaultValue;
+    v = std::fmin(std::fmax(v, info.minValue), info.maxValue);
+    if (info.type != gen::SettingType::Float) v = std::round(v);
+    gen::setSettingValue(out, id, v);
+  }
+  return out;
+}
+
+std::optional<SettingId> findSetting(std::string_view name) {
+  for (size_t i = 0; i < gen::kSettings.size(); ++i)
+    if (gen::kSettings[i].name == name) return static_cast<SettingId>(i);
+  return std::nullopt;
+}
+
+Status setFromText(Settings& settings, std::string_view name, std::string_view value) {
+  const auto id = findSetting(name);
+  if (!id) {
+    std::string known;
+    for (const auto& s : gen::kSettings) known += (known.empty() ? "" : ", ") + std::string(s.name);
+    return Status::error(StatusCode::InvalidSetting,
+                         "unknown setting '" + std::string(name) + "' (known: " + known + ")");
+  }
+  const SettingInfo& info = gen::kSettings[static_cast<size_t>(*id)];
+  const std::string text(value);
+  double v = 0;
+  if (info.type == gen::SettingType::Bool) {
+    if (text == "true" || text == "1") v = 1;
+    else if (text == "false" || text == "0") v = 0;
+    else
+      return Status::error(StatusCode::InvalidSetting,
+                           "setting '" + std::string(name) + "' is a bool: expected true or false, got '" + text + "'");
+  } else {
+    char* end = nullptr;
+    v = text.empty() ? 0 : std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size())
+      return Status::error(StatusCode::InvalidSetting,
+                           "setting '" + std::string(name) + "': '" + text + "' is not a number");
+  }
+  if (Status s = checkValue(info, v); !s) return s;
+  gen::setSettingValue(settings, *id, v);
+  return Status::success();
+}
+
+Status setFromAssignment(Settings& settings, std::string_view assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string_view::npos || eq == 0)
+    return Status::error(StatusCode::InvalidSetting,
+                         "expected name=value, got '" + std::string(assignment) + "'");
+  return setFromText(settings, assignment.substr(0, eq), assignment.substr(eq + 1));
+}
+
+}  // namespace sao
