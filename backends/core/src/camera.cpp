@@ -45,6 +45,14 @@ Status analyze(const Camera& cam, DepthModel& m) {
     if (m.c0 == 0) return bad("projection's depth row has no 1/z term (P23 == 0)");
     const double zNear = m.c0 / (m.depthAtNear * m.c1 + m.c2);
     const double farDen = m.depthAtFar * m.c1 + m.c2;
+    // The declared near end must be the end closer to the eye; otherwise reversedZ is wrong.
+    const double nearDen = m.depthAtNear * m.c1 + m.c2;
+    const bool poleAtNear = std::fabs(nearDen) <= 1e-6 * std::fmax(1.0, std::fabs(m.c2));
+    const double zAtFar = m.c0 / farDen;
+    if (poleAtNear || (zNear < 0 && zAtFar < 0 && std::isfinite(zAtFar) && -zAtFar < -zNear))
+      return bad(std::string("declared ") + (cam.reversedZ ? "reversed-Z" : "standard depth") +
+                 ", but the projection maps the near plane to depth " + (cam.reversedZ ? "0" : "1") +
+                 ": set reversedZ = " + (cam.reversedZ ? "false" : "true"));
     // An infinite far plane puts the clear depth exactly at the pole (C = -1 or 0 as the paper's
     // c = [zn, -1, +1]); allow rounding of a matrix built in float.
     const bool atPole = std::fabs(farDen) <= 1e-6 * std::fmax(1.0, std::fabs(m.c2));

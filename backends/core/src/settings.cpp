@@ -28,7 +28,12 @@ Status checkValue(const SettingInfo& info, double v) {
                          where + "is " + (v > 0 ? "+inf" : "-inf") + "; allowed range " + rangeText(info));
   if (info.type != gen::SettingType::Float && v != std::floor(v))
     return Status::error(StatusCode::InvalidSetting, where + "= " + describe(v) + " is not a whole number");
-  if (v < info.minValue || v > info.maxValue)
+  // Float settings live in a float: compare against the float nearest each bound, so a value
+  // written as the bound itself (e.g. 0.01f) is in range.
+  const bool isFloat = info.type == gen::SettingType::Float;
+  const double lo = isFloat ? double(float(info.minValue)) : info.minValue;
+  const double hi = isFloat ? double(float(info.maxValue)) : info.maxValue;
+  if (v < lo || v > hi)
     return Status::error(StatusCode::InvalidSetting,
                          where + "= " + describe(v) + " is outside its range " + rangeText(info) +
                              (info.unit.empty() ? "" : " " + std::string(info.unit)));

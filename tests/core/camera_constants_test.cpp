@@ -1,0 +1,241 @@
+// computeConstants against values derived by hand from the paper's eq. 2, 3 and 5, for every
+// convention; camera analysis rejects matrices that contradict their declared convention.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <numeric>
+
+#include "sao/constants.h"
+#include "sao/spiral.h"
+
+namespace {
+
+constexpr double kFovy = std::numbers::pi / 3.0;  // 60 degrees
+constexpr double kNear = 0.1, kFar = 100.0;
+
+double P(const sao::Camera& c, int row, int col) { return c.projection[col * 4 + row]; }
+
+// The paper's eq. 2 with its own constants (zn, zf negative), d re-mapped for reversed-Z.
+double paperZ(double d, bool reversed, bool infinite) {
+  const double zn = -kNear, zf = -kFar;
+  if (reversed) d = 1.0 - d;
+  if (infinite) return zn / (1.0 - d);                // c = [zn, -1, +1]
+  return (zn * zf) / (d * (zn - zf) + zf);            // c = [zn zf, zn - zf, zf]
+}
+
+struct Convention {
+  const char* name;
+  sao::ClipDepth clip;
+  bool reversed;
+  bool infinite;
+};
+
+const Convention kConventions[] = {
+    {"gl_standard", sao::ClipDepth::NegativeOneToOne, false, false},
+    {"gl_standard_infinite", sao::ClipDepth::NegativeOneToOne, false, true},
+    {"zero_one_standard", sao::ClipDepth::ZeroToOne, false, false},
+    {"zero_one_reversed", sao::ClipDepth::ZeroToOne, true, false},
+    {"zero_one_reversed_infinite", sao::ClipDepth::ZeroToOne, true, true},
+    {"gl_reversed_without_clip_control", sao::ClipDepth::NegativeOneToOne, true, false},
+};
+
+TEST(Constants, Eq2MatchesThePaperForEveryConvention) {
+  for (const auto& cv : kConventions) {
+    const auto cam = sao::perspectiveCamera(kFovy, 1280, 720, kNear, cv.infinite ? INFINITY : kFar, cv.clip, cv.reversed);
+    sao::DepthModel m;
+    ASSERT_TRUE(sao::analyze(cam, m).ok()) << cv.name;
+    EXPECT_NEAR(m.nearDistance, kNear, 1e-12) << cv.name;
+    if (cv.infinite) EXPECT_TRUE(std::isinf(m.farDistance)) << cv.name;
+    else EXPECT_NEAR(m.farDistance, kFar, 1e-9) << cv.name;
+
+    sao::ParamBlock p;
+    ASSERT_TRUE(sao::computeConstants(sao::Settings{}, cam, sao::DepthEncoding::Hardware, p).ok());
+    for (double d : {0.0, 0.25, 0.5, 0.9, 0.999, 0.999999}) {
+      if (cv.infinite && d == (cv.reversed ? 0.0 : 1.0)) continue;
+      const double expected = paperZ(d, cv.reversed, cv.infinite);
+      EXPECT_NEAR(sao::linearZ(m, cam.kind, d), expected, 1e-12 * std::fabs(expected)) << cv.name << " d=" << d;
+      // The float constants in the block reproduce it to float precision.
+      const double fromBlock = double(p.clip_info.x) / (d * double(p.clip_info.y) + double(p.clip_info.z));
+      EXPECT_NEAR(fromBlock, expected, 2e-6 * std::fabs(expected)) << cv.name << " d=" << d;
+    }
+    EXPECT_EQ(p.depth_mode, sao::gen::SAO_DEPTH_MODE_PERSPECTIVE);
+    EXPECT_EQ(p.far_dir, cv.reversed ? -1.0f : 1.0f);
+    EXPECT_EQ(p.far_lim, cv.reversed ? 0.0f : 1.0f);
+  }
+}
+
+TEST(Constants, InfiniteFarMatchesThePapersConstantsExactly) {
+  // Paper: c = [zn, -1, +1] for an infinite far plane, [0,1] standard clip.
+  const auto cam = sao::perspectiveCamera(kFovy, 640, 480, kNear, INFINITY, sao::ClipDepth::ZeroToOne, false);
+  sao::DepthModel m;
+  ASSERT_TRUE(sao::analyze(cam, m).ok());
+  // Ours is the paper's scaled by -1: (n, 1, -1).
+  EXPECT_DOUBLE_EQ(m.c0, kNear);
+  EXPECT_DOUBLE_EQ(m.c1, 1.0);
+  EXPECT_DOUBLE_EQ(m.c2, -1.0);
+}
+
+TEST(Constants, OrthographicDepthIsLinear) {
+  for (const auto& cv : kConventions) {
+    if (cv.infinite) continue;
+    const auto cam = sao::orthographicCamera(5.0, 800, 600, kNear, kFar, cv.clip, cv.reversed);
+    sao::DepthModel m;
+    ASSERT_TRUE(sao::analyze(cam, m).ok()) << cv.name;
+    for (double d : {0.0, 0.3, 1.0}) {
+      const double t = cv.reversed ? 1.0 - d : d;
+      EXPECT_NEAR(sao::linearZ(m, cam.kind, d), -(kNear + t * (kFar - kNear)), 1e-9) << cv.name << " d=" << d;
+    }
+    sao::ParamBlock p;
+    ASSERT_TRUE(sao::computeConstants(sao::Settings{}, cam, sao::DepthEncoding::Hardware, p).ok());
+    EXPECT_EQ(p.depth_mode, sao::gen::SAO_DEPTH_MODE_ORTHOGRAPHIC);
+    EXPECT_EQ(p.ortho, 1);
+    EXPECT_FLOAT_EQ(p.proj_scale, 0.5f * 600.0f / 5.0f) << "S' = pixels per view unit";
+  }
+}
+
+// Eq. 3: a csz texel centre with its z, reconstructed through proj_info, projects back through P
+// onto the same pixel centre. Covers guard bands, off-centre frusta, flipped rows and ortho.
+void expectEq3RoundTrip(sao::Camera cam, const char* what) {
+  sao::ParamBlock p;
+  ASSERT_TRUE(sao::computeConstants(sao::Settings{}, cam, sao::DepthEncoding::Hardware, p).ok()) << what;
+  const bool ortho = cam.kind == sao::ProjectionKind::Orthographic;
+  for (int x : {0, 17, int(cam.width) - 1})
+    for (int y : {0, 5, int(cam.height) - 1})
+      for (double z : {-0.5, -3.0, -40.0}) {
+        const double X = x + cam.guardBand + 0.5, Y = y + cam.guardBand + 0.5;
+        const double w = ortho ? 1.0 : z;
+        const double xc = w * (X * p.proj_info.x + p.proj_info.z), yc = w * (Y * p.proj_info.y + p.proj_info.w);
+        const double cx = P(cam, 0, 0) * xc + P(cam, 0, 2) * z + P(cam, 0, 3);
+        const double cy = P(cam, 1, 1) * yc + P(cam, 1, 2) * z + P(cam, 1, 3);
+        const double cw = ortho ? 1.0 : -z;
+        const double ndcX = 2.0 * (x + 0.5) / cam.width - 1.0;
+        const double ndcY = (cam.flipY ? -1.0 : 1.0) * (2.0 * (y + 0.5) / cam.height - 1.0);
+        EXPECT_NEAR(cx / cw, ndcX, 2e-5) << what << " x=" << x << " z=" << z;
+        EXPECT_NEAR(cy / cw, ndcY, 2e-5) << what << " y=" << y << " z=" << z;
+      }
+}
+
+TEST(Constants, Eq3ReconstructsPositionsThatProjectBackOntoTheirPixel) {
+  auto cam = sao::perspectiveCamera(kFovy, 1280, 720, kNear, kFar, sao::ClipDepth::NegativeOneToOne, false);
+  expectEq3RoundTrip(cam, "symmetric");
+  cam.guardBand = 32;
+  expectEq3RoundTrip(cam, "guard band");
+  cam.projection[2 * 4 + 0] = 0.1;   // P02: off-centre frustum
+  cam.projection[2 * 4 + 1] = -0.05; // P12
+  expectEq3RoundTrip(cam, "off-centre");
+  cam.flipY = true;
+  expectEq3RoundTrip(cam, "flipped rows");
+  auto ortho = sao::orthographicCamera(4.0, 641, 479, 0.5, 50.0, sao::ClipDepth::ZeroToOne, true);
+  ortho.guardBand = 8;
+  expectEq3RoundTrip(ortho, "orthographic");
+}
+
+TEST(Constants, Eq3MatchesThePapersFormula) {
+  // x_C = z ((1 - P02)/P00 - 2(x' + 1/2)/(w P00)) for x' an AO pixel; here with a guard band.
+  auto cam = sao::perspectiveCamera(kFovy, 1280, 720, kNear, kFar, sao::ClipDepth::NegativeOneToOne, false);
+  cam.guardBand = 10;
+  sao::ParamBlock p;
+  ASSERT_TRUE(sao::computeConstants(sao::Settings{}, cam, sao::DepthEncoding::Hardware, p).ok());
+  const double z = -7.0, xp = 100.0;
+  const double paper = z * ((1.0 - P(cam, 0, 2)) / P(cam, 0, 0) - 2.0 * (xp + 0.5) / (1280 * P(cam, 0, 0)));
+  const double ours = z * ((xp + cam.guardBand + 0.5) * p.proj_info.x + p.proj_info.z);
+  EXPECT_NEAR(ours, paper, 1e-5);
+}
+
+TEST(Constants, Eq5ProjectionScaleAndSettingScales) {
+  auto cam = sao::perspectiveCamera(kFovy, 1280, 720, kNear, kFar, sao::ClipDepth::ZeroToOne, false);
+  cam.metersToViewUnits = 100.0;  // centimetres
+  sao::Settings s;
+  s.radius = 1.5f;
+  s.intensity = 2.0f;
+  s.samples = 16;
+  s.epsilon = 1e-4f;
+  sao::ParamBlock p;
+  ASSERT_TRUE(sao::computeConstants(s, cam, sao::DepthEncoding::Hardware, p).ok());
+  // S': pixel size of a 1-unit object at distance 1: h / (2 tan(fovy / 2)).
+  EXPECT_NEAR(p.proj_scale, 720.0 / (2.0 * std::tan(kFovy / 2.0)), 1e-3);
+  EXPECT_FLOAT_EQ(p.radius, 150.0f);
+  EXPECT_FLOAT_EQ(p.radius2, 22500.0f);
+  EXPECT_FLOAT_EQ(p.intensity_div_s, 2.0f * 2.0f / 16.0f);
+  EXPECT_FLOAT_EQ(p.inv_samples, 1.0f / 16.0f);
+  EXPECT_NEAR(p.epsilon, 1e-4 * 1e4, 1e-6) << "epsilon is an area: scales with units squared";
+  EXPECT_EQ(p.spiral_turns, sao::spiralTurns(16));
+  EXPECT_FLOAT_EQ(p.quad_edge_threshold, s.quad_edge_threshold * 100.0f);
+  EXPECT_FLOAT_EQ(p.blur_edge_sharpness, s.blur_edge_sharpness / 100.0f);
+  EXPECT_EQ(p.ao_size.x, 1280);
+  EXPECT_EQ(p.ao_size.y, 720);
+}
+
+TEST(Constants, LinearZInputSkipsEq2) {
+  const auto cam = sao::perspectiveCamera(kFovy, 64, 64, kNear, kFar, sao::ClipDepth::ZeroToOne, false);
+  sao::ParamBlock p;
+  ASSERT_TRUE(sao::computeConstants(sao::Settings{}, cam, sao::DepthEncoding::LinearZ, p).ok());
+  EXPECT_EQ(p.depth_mode, sao::gen::SAO_DEPTH_MODE_LINEAR);
+  EXPECT_EQ(p.clip_info.y, 1.0f);
+  EXPECT_EQ(p.clip_info.z, 0.0f);
+}
+
+TEST(Constants, BlurWeightsAreGaussianInTaps) {
+  sao::Settings s;
+  s.blur_radius = 4;
+  sao::ParamBlock p;
+  const auto cam = sao::perspectiveCamera(kFovy, 64, 64, kNear, kFar, sao::ClipDepth::ZeroToOne, false);
+  ASSERT_TRUE(sao::computeConstants(s, cam, sao::DepthEncoding::Hardware, p).ok());
+  EXPECT_FLOAT_EQ(p.blur_weights_1_4.x, float(std::exp(-2.0 / 16.0)));
+  EXPECT_FLOAT_EQ(p.blur_weights_1_4.w, float(std::exp(-2.0)));
+  EXPECT_EQ(p.blur_weights_5_8.x, 0.0f) << "taps beyond R weigh nothing";
+}
+
+TEST(Spiral, TurnsAreCoprimeAndMatchKnownGoodValues) {
+  for (int s = 2; s <= 64; ++s) {
+    const int t = sao::spiralTurns(s);
+    EXPECT_GE(t, 1);
+    EXPECT_LT(t, s);
+    EXPECT_EQ(std::gcd(t, s), 1) << "s=" << s;
+  }
+  EXPECT_EQ(sao::spiralTurns(1), 1);
+  // The lattice criterion lands on the values G3D's table uses for these counts (design notes).
+  EXPECT_EQ(sao::spiralTurns(9), 2);
+}
+
+TEST(Camera, RejectsMatricesThatContradictTheirConvention) {
+  auto standard = sao::perspectiveCamera(kFovy, 640, 480, kNear, kFar, sao::ClipDepth::ZeroToOne, false);
+  sao::DepthModel m;
+  auto cam = standard;
+  cam.reversedZ = true;
+  sao::Status st = sao::analyze(cam, m);
+  EXPECT_EQ(st.code, sao::StatusCode::InvalidCamera);
+  EXPECT_NE(st.message.find("reversedZ = false"), std::string::npos) << st.message;
+
+  cam = standard;
+  cam.infiniteFar = true;
+  st = sao::analyze(cam, m);
+  EXPECT_NE(st.message.find("infinite far plane, but the projection has a far plane"), std::string::npos) << st.message;
+
+  cam = sao::perspectiveCamera(kFovy, 640, 480, kNear, INFINITY, sao::ClipDepth::ZeroToOne, false);
+  cam.infiniteFar = false;
+  EXPECT_NE(sao::analyze(cam, m).message.find("set infiniteFar = true"), std::string::npos);
+
+  cam = standard;
+  cam.projection[3 * 4 + 2] = -cam.projection[3 * 4 + 2];  // near plane behind the eye
+  EXPECT_EQ(sao::analyze(cam, m).code, sao::StatusCode::InvalidCamera);
+
+  cam = standard;
+  cam.projection[5] = std::nan("");
+  EXPECT_NE(sao::analyze(cam, m).message.find("non-finite"), std::string::npos);
+
+  cam = standard;
+  cam.kind = sao::ProjectionKind::Orthographic;
+  EXPECT_NE(sao::analyze(cam, m).message.find("declared orthographic"), std::string::npos);
+
+  cam = standard;
+  cam.width = 0;
+  EXPECT_EQ(sao::analyze(cam, m).code, sao::StatusCode::InvalidCamera);
+
+  cam = standard;
+  cam.metersToViewUnits = 0;
+  EXPECT_EQ(sao::analyze(cam, m).code, sao::StatusCode::InvalidCamera);
+}
+
+}  // namespace

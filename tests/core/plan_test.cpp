@@ -1,0 +1,135 @@
+// plan() models only what the scene needs: MIP levels from the largest projected radius,
+// variants from the inputs, images and bytes, dropped passes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "sao/plan.h"
+
+namespace {
+
+using sao::gen::PassId;
+using sao::gen::ResourceId;
+
+sao::Camera camera720() {
+  return sao::perspectiveCamera(std::numbers::pi / 3.0, 1280, 720, 0.1, INFINITY, sao::ClipDepth::ZeroToOne, true);
+}
+
+bool hasPass(const sao::Plan& p, PassId id) {
+  for (const auto& x : p.passes)
+    if (x.pass == id) return true;
+  return false;
+}
+
+TEST(Plan, DefaultSceneAt720p) {
+  sao::Plan p;
+  ASSERT_TRUE(sao::plan(sao::Settings{}, camera720(), {}, p).ok());
+  // r' max = r S' / n = 1 * 623.5 / 0.1 = 6235 px -> floor(log2) = 12; minus log q' 3 = 9,
+  // capped by SAO_MAX_MIP_LEVELS - 1 = 7 -> 8 levels.
+  EXPECT_EQ(p.cszLevels, 8u);
+  EXPECT_EQ(p.passes.size(), 5u);
+  EXPECT_EQ(p.passes[1].dispatchCount, 7u);
+  const auto* csz = p.image(ResourceId::csz);
+  ASSERT_NE(csz, nullptr);
+  EXPECT_EQ(csz->mipLevels, 8u);
+  EXPECT_EQ(p.image(ResourceId::csz2), nullptr) << "no second layer given";
+  EXPECT_LT(p.totalBytes, sao::fullAllocationBytes(camera720(), {}));
+  std::printf("default scene 1280x720: %s", p.describe().c_str());
+  std::printf("full allocation: %llu bytes\n", static_cast<unsigned long long>(sao::fullAllocationBytes(camera720(), {})));
+}
+
+TEST(Plan, SmallRadiusNeedsFewerLevels) {
+  sao::Settings s;
+  sao::Plan big, small;
+  ASSERT_TRUE(sao::plan(s, camera720(), {}, big).ok());
+  s.radius = 0.01f;  // r' max = 62 px -> 5 - 3 = 2 -> 3 levels
+  ASSERT_TRUE(sao::plan(s, camera720(), {}, small).ok());
+  EXPECT_EQ(small.cszLevels, 3u);
+  EXPECT_LT(small.cszLevels, big.cszLevels);
+  EXPECT_LT(small.totalBytes, big.totalBytes);
+  auto cam = camera720();
+  cam.projection[14] *= 100.0;  // near plane at 10 m: r' max = 62 px as well
+  ASSERT_TRUE(sao::plan(sao::Settings{}, cam, {}, small).ok());
+  EXPECT_EQ(small.cszLevels, 3u);
+}
+
+TEST(Plan, VariantsFollowTheInputs) {
+  sao::Plan p;
+  ASSERT_TRUE(sao::plan(sao::Settings{}, camera720(), {}, p).ok());
+  EXPECT_EQ(p.variants[static_cast<std::size_t>(sao::gen::VariantId::NORMALS_SUPPLIED)], 0);
+  sao::PlanInputs in;
+  in.normals = true;
+  ASSERT_TRUE(sao::plan(sao::Settings{}, camera720(), in, p).ok());
+  EXPECT_EQ(p.variants[static_cast<std::size_t>(sao::gen::VariantId::NORMALS_SUPPLIED)], 1)
+      << "supplying normals removes the reconstruction variant";
+  for (const auto& pass : p.passes) EXPECT_EQ(pass.variant, sao::gen::findPassVariant(pass.pass, p.variants));
+
+  in.secondLayer = true;
+  ASSERT_TRUE(sao::plan(sao::Settings{}, camera720(), in, p).ok());
+  ASSERT_NE(p.image(ResourceId::csz2), nullptr);
+  EXPECT_EQ(p.image(ResourceId::csz2)->mipLevels, p.cszLevels);
+
+  sao::Settings flat;
+  flat.use_z_hierarchy = false;
+  const sao::Status st = sao::plan(flat, camera720(), in, p);
+  EXPECT_EQ(st.code, sao::StatusCode::InvalidInput);
+  EXPECT_NE(st.message.find("single-layer"), std::string::npos) << st.message;
+}
+
+TEST(Plan, NoHierarchyMeansNoMipPassAndOneLevel) {
+  sao::Settings s;
+  s.use_z_hierarchy = false;
+  sao::Plan p;
+  ASSERT_TRUE(sao::plan(s, camera720(), {}, p).ok());
+  EXPECT_EQ(p.cszLevels, 1u);
+  EXPECT_FALSE(hasPass(p, PassId::mips));
+  EXPECT_EQ(p.variants[static_cast<std::size_t>(sao::gen::VariantId::Z_HIERARCHY)], 0);
+}
+
+TEST(Plan, BlurZeroDropsTheHorizontalPassAndItsImage) {
+  sao::Settings s;
+  s.blur_radius = 0;
+  sao::Plan p;
+  ASSERT_TRUE(sao::plan(s, camera720(), {}, p).ok());
+  EXPECT_FALSE(hasPass(p, PassId::blur_h));
+  ASSERT_TRUE(hasPass(p, PassId::blur_v));
+  EXPECT_EQ(p.image(ResourceId::ao_blur_h), nullptr);
+  const auto& last = p.passes.back();
+  EXPECT_EQ(p.resolve(last, ResourceId::ao_blur_h), ResourceId::ao_raw);
+}
+
+TEST(Plan, GuardBandSizesOnlyTheDepthSideImages) {
+  auto cam = camera720();
+  sao::Plan plain, guarded;
+  ASSERT_TRUE(sao::plan(sao::Settings{}, cam, {}, plain).ok());
+  cam.guardBand = 64;
+  ASSERT_TRUE(sao::plan(sao::Settings{}, cam, {}, guarded).ok());
+  EXPECT_EQ(guarded.inputExtent, (sao::Extent{1280 + 128, 720 + 128}));
+  EXPECT_EQ(guarded.image(ResourceId::csz)->extent, guarded.inputExtent);
+  EXPECT_EQ(guarded.image(ResourceId::ao_raw)->extent, (sao::Extent{1280, 720}));
+  EXPECT_EQ(plain.image(ResourceId::csz)->extent, (sao::Extent{1280, 720}));
+  EXPECT_GT(guarded.totalBytes, plain.totalBytes);
+}
+
+TEST(Plan, UserOutputIsNotAllocated) {
+  sao::PlanInputs in;
+  in.userOutput = true;
+  sao::Plan p;
+  ASSERT_TRUE(sao::plan(sao::Settings{}, camera720(), in, p).ok());
+  EXPECT_EQ(p.image(ResourceId::ao), nullptr);
+}
+
+TEST(Plan, RejectsBadExtentsAndIsDeterministic) {
+  auto cam = camera720();
+  cam.guardBand = 8000;
+  sao::Plan p;
+  EXPECT_EQ(sao::plan(sao::Settings{}, cam, {}, p).code, sao::StatusCode::InvalidExtent);
+  sao::Plan a, b;
+  ASSERT_TRUE(sao::plan(sao::Settings{}, camera720(), {}, a).ok());
+  ASSERT_TRUE(sao::plan(sao::Settings{}, camera720(), {}, b).ok());
+  EXPECT_EQ(a.describe(), b.describe());
+  EXPECT_EQ(a.totalBytes, b.totalBytes);
+}
+
+}  // namespace

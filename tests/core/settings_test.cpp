@@ -1,0 +1,115 @@
+// Every setting rejects below-min, above-max, NaN and infinite values with a message that names
+// the setting, the value and the range; --set parsing; presets are valid and ordered by cost.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "sao/presets.h"
+#include "sao/settings.h"
+
+namespace {
+
+using sao::StatusCode;
+
+TEST(Settings, DefaultsAreValid) { EXPECT_TRUE(sao::validate(sao::Settings{}).ok()); }
+
+TEST(Settings, EverySettingRejectsOutOfRangeAndNonFinite) {
+  for (std::size_t i = 0; i < sao::gen::kSettings.size(); ++i) {
+    const auto& info = sao::gen::kSettings[i];
+    const auto id = static_cast<sao::SettingId>(i);
+    const std::string name(info.name);
+    struct Case {
+      double value;
+      const char* shown;
+    };
+    std::vector<Case> cases = {{std::numeric_limits<double>::quiet_NaN(), "NaN"},
+                               {std::numeric_limits<double>::infinity(), "+inf"},
+                               {-std::numeric_limits<double>::infinity(), "-inf"}};
+    if (info.type != sao::gen::SettingType::Bool) {
+      const double step = info.type == sao::gen::SettingType::Int ? 1.0 : std::max(1e-3, (info.maxValue - info.minValue) * 1e-3);
+      cases.push_back({info.minValue - step, "outside its range"});
+      cases.push_back({info.maxValue + step, "outside its range"});
+    } else {
+      cases.push_back({2.0, "outside its range"});
+    }
+    for (const auto& c : cases) {
+      sao::Settings s;
+      if (info.type == sao::gen::SettingType::Bool || info.type == sao::gen::SettingType::Int) {
+        // Ints and bools cannot hold NaN/inf: test those through the text parser instead.
+        if (!std::isfinite(c.value)) {
+          const sao::Status st = sao::setFromText(s, name, std::isnan(c.value) ? "nan" : (c.value > 0 ? "inf" : "-inf"));
+          EXPECT_EQ(st.code, StatusCode::InvalidSetting) << name;
+          EXPECT_NE(st.message.find(name), std::string::npos) << st.message;
+          continue;
+        }
+        if (info.type == sao::gen::SettingType::Bool) {
+          const sao::Status st = sao::setFromText(s, name, "2");
+          EXPECT_EQ(st.code, StatusCode::InvalidSetting) << name;
+          continue;
+        }
+      }
+      sao::gen::setSettingValue(s, id, c.value);
+      const sao::Status st = sao::validate(s);
+      EXPECT_EQ(st.code, StatusCode::InvalidSetting) << name << " = " << c.value;
+      EXPECT_NE(st.message.find("'" + name + "'"), std::string::npos) << st.message;
+      EXPECT_NE(st.message.find(c.shown), std::string::npos) << st.message;
+      if (std::isfinite(c.value)) {
+        EXPECT_NE(st.message.find("["), std::string::npos) << "range missing: " << st.message;
+      }
+    }
+  }
+}
+
+TEST(Settings, MessageNamesValueAndRange) {
+  sao::Settings s;
+  s.radius = 500.0f;
+  const sao::Status st = sao::validate(s);
+  EXPECT_EQ(st.message, "setting 'radius' = 500 is outside its range [0.01, 100] m");
+}
+
+TEST(Settings, ClampedIsExplicitAndTotal) {
+  sao::Settings s;
+  s.radius = std::numeric_limits<float>::quiet_NaN();
+  s.samples = 1000;
+  s.bias = -3.0f;
+  const sao::Settings c = sao::clamped(s);
+  EXPECT_TRUE(sao::validate(c).ok());
+  EXPECT_EQ(c.radius, sao::Settings{}.radius) << "NaN becomes the default";
+  EXPECT_EQ(c.samples, 64);
+  EXPECT_EQ(c.bias, 0.0f);
+  EXPECT_FALSE(sao::validate(s).ok()) << "the original is untouched";
+}
+
+TEST(Settings, SetFromAssignment) {
+  sao::Settings s;
+  EXPECT_TRUE(sao::setFromAssignment(s, "radius=2.5").ok());
+  EXPECT_FLOAT_EQ(s.radius, 2.5f);
+  EXPECT_TRUE(sao::setFromAssignment(s, "use_z_hierarchy=false").ok());
+  EXPECT_FALSE(s.use_z_hierarchy);
+  EXPECT_TRUE(sao::setFromAssignment(s, "samples=16").ok());
+  EXPECT_EQ(s.samples, 16);
+
+  const sao::Settings before = s;
+  EXPECT_EQ(sao::setFromAssignment(s, "samples=16.5").message, "setting 'samples' = 16.5 is not a whole number");
+  EXPECT_EQ(sao::setFromAssignment(s, "samples=abc").message, "setting 'samples': 'abc' is not a number");
+  EXPECT_EQ(sao::setFromAssignment(s, "radius").code, StatusCode::InvalidSetting);
+  EXPECT_NE(sao::setFromAssignment(s, "radiuss=1").message.find("unknown setting 'radiuss'"), std::string::npos);
+  EXPECT_EQ(sao::setFromAssignment(s, "samples=65").message, "setting 'samples' = 65 is outside its range [1, 64]");
+  EXPECT_EQ(s, before) << "failed assignments leave the settings unchanged";
+}
+
+TEST(Presets, AllValidAndIncreasingInTaps) {
+  int lastSamples = 0;
+  for (const auto& p : sao::presets()) {
+    const sao::Settings s = sao::presetSettings(p.preset);
+    EXPECT_TRUE(sao::validate(s).ok()) << p.name;
+    EXPECT_GT(s.samples, lastSamples) << p.name;
+    lastSamples = s.samples;
+    EXPECT_EQ(sao::findPreset(p.name), p.preset);
+  }
+  EXPECT_FALSE(sao::findPreset("extreme").has_value());
+  EXPECT_FALSE(sao::presetSettings(sao::Preset::Reference).use_z_hierarchy);
+}
+
+}  // namespace
