@@ -1,4 +1,6 @@
 #include "sao/status.h"
+#include "sao/timing.h"
+#include "sao/version.h"
 
 namespace sao {
 
@@ -16,5 +18,17 @@ const char* toString(StatusCode code) {
   }
   return "unknown status";
 }
+
+const char* toString(TimingMethod method) {
+  switch (method) {
+    case TimingMethod::None: return "none";
+    case TimingMethod::GpuTimestamps: return "GPU timestamps";
+    case TimingMethod::FinishAndClock: return "finish + steady clock";
+    case TimingMethod::CpuClock: return "CPU steady clock";
+  }
+  return "?";
+}
+
+int libraryVersion() { return SAO_VERSION; }
 
 }  // namespace sao
