@@ -37,6 +37,9 @@ struct MalformedCase {
   std::string expected;
 };
 
+// Keeps test names short and stable (gtest would otherwise print the object's bytes).
+void PrintTo(const MalformedCase& c, std::ostream* os) { *os << c.file; }
+
 std::vector<MalformedCase> loadMalformedCases() {
   std::vector<MalformedCase> cases;
   std::ifstream in(kTestsDir + "/malformed/expected.txt");
