@@ -1,0 +1,110 @@
+// sao::cpu — the CPU reference backend: the five compute passes of effect/sao.glsl re-implemented
+// in C++, operation for operation (docs/effect-math.md), so that the OpenGL and Vulkan backends
+// can be compared with it pixel by pixel.
+//
+// Two precisions:
+//
+//  * Precision::Float mimics the GPU. Every `+ - * /` is one binary32 operation in the order the
+//    GLSL writes it (the library is compiled with -ffp-contract=off, so nothing is fused into an
+//    FMA), block members are used as the float values the shaders see, and the output is rounded
+//    to binary16 exactly like sao_round_to_half. csz (every level, both layers), ao_raw.y and the
+//    blur passes (given the same input) are expected to be bit-identical to a conforming GPU;
+//    ao_raw.x may differ by a few ulps where the GPU's own accuracy differs from ours:
+//      - cos / sin (GLSL: absolute error <= 2^-11 on [-pi, pi]; here std::cos/std::sin(float),
+//        glibc's correctly rounded-or-nearly results),
+//      - division (GLSL: 2.5 ulp; here IEEE division),
+//      - inversesqrt (GLSL: 2 ulp; here 1.0f / std::sqrt),
+//      - pow (only when contrast != 1; GLSL: as exp2(y * log2(x)); here std::pow),
+//      - FMA contraction the GPU compiler may apply to a*b + c (we never contract),
+//      - the unorm-to-float conversion of D16/D24 texels: here float(v) * float(1 / (2^n - 1)),
+//        which is what Mesa's llvmpipe and lavapipe do (checked bit for bit); a GPU that rounds
+//        v / (2^n - 1) correctly reads about half of the D24 texels one ulp differently, which
+//        moves csz by ~1e-6 relative and A by a few 1e-4 at most.
+//    A tap address int(h * u) can then flip by one pixel where h * u is within an ulp of an
+//    integer, which moves one term of one pixel.
+//    Measured against Mesa 22.3 llvmpipe (GL 4.5, the generated GLSL) on 16 configurations
+//    (perspective standard / reversed / infinite, y-flipped, orthographic, D16 / D24 / D32F /
+//    linear z, user normals uploaded as halfBits(), two layers, no hierarchy, odd sizes, s = 1 /
+//    7 / 64, contrast != 1, blur radius 0 / 3 / 8): csz, ao_raw.y and the final ao bit-identical,
+//    ao_raw.x within 4e-7.
+//
+//  * Precision::Double evaluates the same formulas in the same order in double, starting from the
+//    same block values (each float member widened to double) and the same texel values (depth
+//    decoded in double, normals rounded to binary16 as the rgba16f texture holds them). The hash
+//    and the spiral turns are integer and identical; the tap addresses int(h * u) and MIP levels
+//    findMSB(int(h)) may differ by one where the value is within float rounding of an integer. The
+//    intermediate images are kept in double and only rounded to float when stored into Result;
+//    the final binary16 rounding is skipped (Result::ao holds the unrounded A).
+//
+// Every pass runs in parallel over rows (ao_sample over rows of work groups); every output texel
+// is a pure function of its inputs, so results are bit-identical for any thread count.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "sao/camera.h"
+#include "sao/image.h"
+#include "sao/plan.h"
+#include "sao/settings.h"
+#include "sao/status.h"
+#include "sao/timing.h"
+
+namespace sao::cpu {
+
+enum class Precision { Double, Float };
+
+const char* toString(Precision precision);
+
+struct Inputs {
+  // Required. Hardware depth (D16 / D24 / D32F, per the camera's conventions) or LinearZ (R32F
+  // camera-space z, then DepthEncoding::LinearZ is used). Extent: the plan's input extent
+  // (viewport + 2 * guard band).
+  const DepthImage* depth = nullptr;
+  // Optional second depth layer (deep G-buffer, TWO_LAYER): same extent and format as depth.
+  const DepthImage* depth2 = nullptr;
+  // Optional camera-space normals (NORMALS_SUPPLIED): 4 channels (.xyz used, components in
+  // [-1, 1]), same extent as depth. They are read as the rgba16f texture would hold them: each
+  // component rounded to the nearest binary16 value (ties to even, see quantizeHalf() and
+  // halfBits()).
+  const FloatImage* normals = nullptr;
+};
+
+struct Options {
+  Precision precision = Precision::Double;
+  unsigned threads = 0;      // 0 = std::thread::hardware_concurrency()
+  bool measureTime = false;  // fill Result::timings with each pass's wall time (CpuClock)
+};
+
+struct Result {
+  Plan plan;              // what ran (passes, variants, csz levels, aliasing)
+  gen::SaoParams params;  // the block the passes used (as computeConstants filled it)
+  std::vector<FloatImage> csz, csz2;  // one image per level (1 channel); csz2 only with depth2
+  FloatImage aoRaw;    // 2 channels: A after the 2x2 reconstruction, key z (+0.0 = sky)
+  FloatImage aoBlurH;  // 2 channels: after blur_h; empty when the plan drops the pass
+  FloatImage ao;       // 1 channel: final A (Float: binary16 values; Double: unrounded)
+  Timings timings;     // method None unless Options::measureTime ("mips" covers all its levels)
+};
+
+// Validates the inputs against the settings and camera, fills the block with computeConstants,
+// builds the plan with PlanInputs{encoding, normals != nullptr, depth2 != nullptr} and runs exactly
+// the planned passes in order. On error `out` is left default-constructed and the Status names the
+// problem (InvalidInput for missing or mismatched inputs, UnsupportedFormat for unknown formats,
+// InvalidSetting / InvalidCamera / InvalidExtent from the core); bad input never asserts or crashes.
+Status run(const Settings& settings, const Camera& camera, const Inputs& inputs, const Options& options,
+           Result& out);
+
+// The float value of the binary16 nearest to x (round to nearest, ties to even; overflow to
+// +-Inf, subnormals kept, NaN stays NaN): what the reference reads from the rgba16f normals.
+float quantizeHalf(float x);
+
+// The binary16 bits of quantizeHalf(x) (NaN: a quiet NaN with x's sign). GPU backends and their
+// tests should upload normals as these bits (GL_HALF_FLOAT, VK_FORMAT_R16G16B16A16_SFLOAT data)
+// rather than let the driver convert floats: Mesa 22.3 truncates float -> half on upload, which
+// moves ao_raw by up to ~3e-4 against the reference.
+std::uint16_t halfBits(float x);
+
+// sao_round_to_half of sao_blur.glsl: x clamped to [0, 1] and rounded to the nearest binary16
+// value with ties away from zero, using only exact operations.
+float roundToHalfAsShader(float x);
+
+}  // namespace sao::cpu

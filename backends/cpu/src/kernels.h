@@ -1,0 +1,321 @@
+// The GLSL library functions of effect/include/*.glsl, one C++ function each, templated on the
+// scalar type T (float mimics the GPU, double is the high-precision reference). Every expression
+// keeps the GLSL's order of operations; this file must be compiled with -ffp-contract=off.
+// Names follow the shaders (sao_foo -> foo) so that the two can be read side by side.
+#pragma once
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "sao/cpu/reference.h"
+
+namespace sao::cpu::detail {
+
+// ---- sao_depth.glsl: bit tests, never std::isnan (which -ffast-math folds away).
+
+inline bool isFinite(float x) { return (std::bit_cast<std::uint32_t>(x) & 0x7F800000u) != 0x7F800000u; }
+inline bool isFinite(double x) {
+  return (std::bit_cast<std::uint64_t>(x) & 0x7FF0000000000000ull) != 0x7FF0000000000000ull;
+}
+
+// Geometry iff finite, negative and non-zero: -0.0 < bits < -Inf as unsigned integers.
+inline bool isSky(float z) {
+  const std::uint32_t b = std::bit_cast<std::uint32_t>(z);
+  return !(b > 0x80000000u && b < 0xFF800000u);
+}
+inline bool isSky(double z) {
+  const std::uint64_t b = std::bit_cast<std::uint64_t>(z);
+  return !(b > 0x8000000000000000ull && b < 0xFFF0000000000000ull);
+}
+
+// ---- The parameter block with its float members widened to T (ints unchanged).
+
+template <typename T>
+struct Block {
+  T proj[4];  // proj_info (a_x, a_y, b_x, b_y)
+  T clip[4];  // clip_info (c0, c1, c2, 0)
+  T w14[4], w58[4];
+  T far_dir, far_lim;
+  int depth_mode, ortho;
+  T radius, radius2, bias, intensity_div_s, epsilon, contrast, proj_scale, inv_samples;
+  int samples, spiral_turns, log_q, max_mip;
+  T quad_edge_threshold, blur_edge_sharpness;
+  int blur_radius, blur_stride;
+  int ao_w, ao_h, guard_x, guard_y;
+  T turn24_to_radians;  // SAO_TURN24_TO_RADIANS in T
+
+  explicit Block(const gen::SaoParams& p) {
+    auto v4 = [](T* d, const gen::Float4& s) { d[0] = T(s.x), d[1] = T(s.y), d[2] = T(s.z), d[3] = T(s.w); };
+    v4(proj, p.proj_info);
+    v4(clip, p.clip_info);
+    v4(w14, p.blur_weights_1_4);
+    v4(w58, p.blur_weights_5_8);
+    far_dir = T(p.far_dir), far_lim = T(p.far_lim);
+    depth_mode = p.depth_mode, ortho = p.ortho;
+    radius = T(p.radius), radius2 = T(p.radius2), bias = T(p.bias), intensity_div_s = T(p.intensity_div_s);
+    epsilon = T(p.epsilon), contrast = T(p.contrast), proj_scale = T(p.proj_scale), inv_samples = T(p.inv_samples);
+    samples = p.samples, spiral_turns = p.spiral_turns, log_q = p.log_q, max_mip = p.max_mip;
+    quad_edge_threshold = T(p.quad_edge_threshold), blur_edge_sharpness = T(p.blur_edge_sharpness);
+    blur_radius = p.blur_radius, blur_stride = p.blur_stride;
+    ao_w = p.ao_size.x, ao_h = p.ao_size.y, guard_x = p.guard.x, guard_y = p.guard.y;
+    // GLSL: `const float SAO_TURN24_TO_RADIANS = 6.28318530717958647692 / 16777216.0;` — float
+    // literals, so float(2*pi) / 2^24 (bits 0x34C90FDB). Double: 2*pi / 2^24 in double.
+    turn24_to_radians = T(6.28318530717958647692) / T(16777216.0);
+  }
+};
+
+// ---- Images: one mip level or one 1-/2-channel image, row 0 first.
+
+template <typename T>
+struct Image {
+  int w = 0, h = 0, ch = 1;
+  std::vector<T> v;
+  Image() = default;
+  Image(int w_, int h_, int ch_) : w(w_), h(h_), ch(ch_), v(std::size_t(w_) * std::size_t(h_) * ch_, T(0)) {}
+  T& at(int x, int y, int c = 0) { return v[(std::size_t(y) * w + x) * ch + c]; }
+  T at(int x, int y, int c = 0) const { return v[(std::size_t(y) * w + x) * ch + c]; }
+};
+
+template <typename T>
+struct Vec3 {
+  T x, y, z;
+};
+template <typename T>
+Vec3<T> operator-(Vec3<T> a, Vec3<T> b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+// dot(a, b) = (a.x*b.x + a.y*b.y) + a.z*b.z
+template <typename T>
+T dot(Vec3<T> a, Vec3<T> b) {
+  return (a.x * b.x + a.y * b.y) + a.z * b.z;
+}
+// cross(a, b) = (a.y*b.z - b.y*a.z, a.z*b.x - b.z*a.x, a.x*b.y - b.x*a.y)
+template <typename T>
+Vec3<T> cross(Vec3<T> a, Vec3<T> b) {
+  return {a.y * b.z - b.y * a.z, a.z * b.x - b.z * a.x, a.x * b.y - b.x * a.y};
+}
+
+template <typename T>
+T glslMax(T a, T b) {  // GLSL max(a, b) = (a < b) ? b : a
+  return (a < b) ? b : a;
+}
+template <typename T>
+T glslMin(T a, T b) {  // GLSL min(a, b) = (b < a) ? b : a
+  return (b < a) ? b : a;
+}
+
+// ---- sao_depth.glsl: sao_z_from_depth (eq. 2 and the sky rules).
+
+template <typename T>
+T zFromDepth(T d, const Block<T>& P) {
+  if (!isFinite(d) || d * P.far_dir >= P.far_lim) return T(0);
+  T z;
+  if (P.depth_mode == gen::SAO_DEPTH_MODE_PERSPECTIVE)
+    z = P.clip[0] / (d * P.clip[1] + P.clip[2]);
+  else
+    z = d * P.clip[1] + P.clip[2];
+  return isSky(z) ? T(0) : z;
+}
+
+// ---- sao_position.glsl
+
+// Eq. 3: pixel is a csz level-0 pixel centre.
+template <typename T>
+Vec3<T> position(T px, T py, T z, const Block<T>& P) {
+  const T w = (P.ortho != 0) ? T(1) : z;
+  return {w * (px * P.proj[0] + P.proj[2]), w * (py * P.proj[1] + P.proj[3]), z};
+}
+
+// Eq. 5, clamped to SAO_MAX_RADIUS_PX.
+template <typename T>
+T screenRadius(T z, const Block<T>& P) {
+  T r = P.radius * P.proj_scale;
+  if (P.ortho == 0) r = r / (-z);
+  return glslMin(r, T(gen::SAO_MAX_RADIUS_PX));
+}
+
+// ---- sao_normal.glsl
+
+template <typename T>
+T inverseSqrt(T x) {
+  return T(1) / std::sqrt(x);
+}
+
+template <typename T>
+Vec3<T> decodeNormal(Vec3<T> n) {
+  const T l2 = dot(n, n);
+  if (isFinite(l2) && l2 > T(0)) {
+    const T s = inverseSqrt(l2);
+    return {n.x * s, n.y * s, n.z * s};
+  }
+  return {T(0), T(0), T(0)};
+}
+
+// One axis of eq. 4 (sx, sy: the step (1,0) or (0,1)).
+template <typename T>
+Vec3<T> axisTangent(Vec3<T> C, T pcx, T pcy, T sx, T sy, T zm, T zp, const Block<T>& P) {
+  const bool okm = !isSky(zm);
+  const bool okp = !isSky(zp);
+  if (okp && (!okm || std::abs(zp - C.z) < std::abs(C.z - zm))) return position(pcx + sx, pcy + sy, zp, P) - C;
+  if (okm) return C - position(pcx - sx, pcy - sy, zm, P);
+  return position(pcx + sx, pcy + sy, C.z, P) - C;
+}
+
+// Eq. 4 face normal at csz level-0 texel (cx, cy).
+template <typename T>
+Vec3<T> reconstructNormal(const Image<T>& z0, int cx, int cy, Vec3<T> C, const Block<T>& P) {
+  const int lastX = z0.w - 1, lastY = z0.h - 1;
+  T zl = z0.at(std::max(cx - 1, 0), cy);
+  T zr = z0.at(std::min(cx + 1, lastX), cy);
+  T zd = z0.at(cx, std::max(cy - 1, 0));
+  T zu = z0.at(cx, std::min(cy + 1, lastY));
+  if (cx <= 0) zl = T(0);
+  if (cx >= lastX) zr = T(0);
+  if (cy <= 0) zd = T(0);
+  if (cy >= lastY) zu = T(0);
+  const T pcx = T(cx) + T(0.5), pcy = T(cy) + T(0.5);
+  const Vec3<T> dx = axisTangent(C, pcx, pcy, T(1), T(0), zl, zr, P);
+  const Vec3<T> dy = axisTangent(C, pcx, pcy, T(0), T(1), zd, zu, P);
+  Vec3<T> n = cross(dx, dy);
+  if (P.proj[0] * P.proj[1] < T(0)) n = {-n.x, -n.y, -n.z};
+  const T l2 = dot(n, n);
+  if (isFinite(l2) && l2 > T(0)) {
+    const T s = inverseSqrt(l2);
+    return {n.x * s, n.y * s, n.z * s};
+  }
+  return {T(0), T(0), T(1)};
+}
+
+// ---- sao_zmip.glsl
+
+// Table 1 rotated grid source texel of level-m texel (x, y) in the previous level.
+inline void rotatedGridSource(int x, int y, int prevW, int prevH, int& sx, int& sy) {
+  sx = std::min(2 * x + ((y & 1) ^ 1), prevW - 1);
+  sy = std::min(2 * y + ((x & 1) ^ 1), prevH - 1);
+}
+
+// GLSL findMSB(int) for a non-negative value: -1 for 0.
+inline int findMSB(std::int32_t v) { return v <= 0 ? -1 : std::bit_width(std::uint32_t(v)) - 1; }
+
+// Eq. 9.
+template <typename T>
+int mipLevel(T h, int log_q, int max_mip) {
+  return std::clamp(findMSB(static_cast<std::int32_t>(h)) - log_q, 0, max_mip);
+}
+
+// Eq. 10 (one axis): clamp(tap >> m, 0, max(size0 >> m, 1) - 1); >> is arithmetic on int32.
+inline int mipTexel(int tap, int m, int size0) {
+  const int levelSize = std::max(size0 >> m, 1);
+  return std::clamp(tap >> m, 0, levelSize - 1);
+}
+
+// ---- sao_spiral.glsl
+
+// Eq. 8: phi in 2^-32 turns, from the AO pixel.
+inline std::uint32_t pixelPhase(std::uint32_t x, std::uint32_t y) {
+  const std::uint32_t h = (3u * x) ^ (y + x * y);
+  return (h * std::uint32_t(gen::SAO_PHASE_MUL)) << 1u;
+}
+
+// Eq. 6: alpha_i * tau turns mod 1 in 2^-32 turns.
+inline std::uint32_t spiralPhase(int i, int s, int tau) {
+  const std::uint32_t k = (std::uint32_t(2 * i + 1) * std::uint32_t(tau)) % std::uint32_t(2 * s);
+  return ((k << 23u) / std::uint32_t(s)) << 8u;
+}
+
+// Eq. 7: theta in [-pi, pi) from the 24 high bits of the turn.
+template <typename T>
+void turnDirection(std::uint32_t turn, const Block<T>& P, T& ux, T& uy) {
+  const T theta = T(static_cast<std::int32_t>(turn) >> 8) * P.turn24_to_radians;
+  ux = std::cos(theta);
+  uy = std::sin(theta);
+}
+
+// Eq. 6-7: the tap pixel (tx, ty) and its distance h.
+template <typename T>
+void spiralTap(int cx, int cy, int i, int s, std::uint32_t phase, T r_px, const Block<T>& P, int& tx, int& ty,
+               T& h) {
+  const T alpha = (T(i) + T(0.5)) * P.inv_samples;
+  h = r_px * alpha;
+  T ux, uy;
+  turnDirection(spiralPhase(i, s, P.spiral_turns) + phase, P, ux, uy);
+  tx = cx + static_cast<int>(h * ux);  // conversion truncates toward zero
+  ty = cy + static_cast<int>(h * uy);
+}
+
+// ---- sao_estimator.glsl
+
+template <typename T>
+T tapObscurance(Vec3<T> C, Vec3<T> n, T qx, T qy, T zq, const Block<T>& P) {
+  if (isSky(zq)) return T(0);
+  const Vec3<T> v = position(qx, qy, zq, P) - C;
+  const T vv = dot(v, v);
+  if (vv > P.radius2) return T(0);
+  const T vn = dot(v, n);
+  return glslMax(T(0), vn + C.z * P.bias) / (vv + P.epsilon);
+}
+
+template <typename T>
+T visibility(T sum, const Block<T>& P) {
+  const T a = glslMax(T(0), T(1) - P.intensity_div_s * sum);
+  return (P.contrast == T(1)) ? a : std::pow(a, P.contrast);
+}
+
+template <typename T>
+T quadMix(T a, T z, T an, T zn, T threshold) {
+  const bool ok = !isSky(z) && !isSky(zn) && std::abs(z - zn) < threshold;
+  return ok ? T(0.5) * (a + an) : a;
+}
+
+// ---- sao_blur.glsl
+
+template <typename T>
+T blurGauss(int t, const Block<T>& P) {
+  const int a = std::abs(t);
+  if (a == 0) return T(1);
+  return (a <= 4) ? P.w14[std::clamp(a - 1, 0, 3)] : P.w58[std::clamp(a - 5, 0, 3)];
+}
+
+// Bilateral 1D blur of the 2-channel image src at (x, y) along (dx, dy); writes (A, key).
+template <typename T>
+void bilateralBlur(const Image<T>& src, int x, int y, int dx, int dy, const Block<T>& P, T& outA, T& outKey) {
+  const T centreA = src.at(x, y, 0), centreZ = src.at(x, y, 1);
+  if (isSky(centreZ)) {
+    outA = T(1);
+    outKey = T(0);
+    return;
+  }
+  const int R = std::clamp(P.blur_radius, 0, gen::SAO_MAX_BLUR_RADIUS);
+  T sum = T(0);
+  T wsum = T(0);
+  for (int t = -R; t <= R; ++t) {
+    T a = centreA, k = centreZ;
+    if (t != 0) {
+      const int qx = x + dx * (t * P.blur_stride);
+      const int qy = y + dy * (t * P.blur_stride);
+      if (qx < 0 || qy < 0 || qx >= src.w || qy >= src.h) continue;
+      a = src.at(qx, qy, 0);
+      k = src.at(qx, qy, 1);
+      if (isSky(k)) continue;
+    }
+    const T w = blurGauss(t, P) * glslMax(T(0), T(1) - P.blur_edge_sharpness * std::abs(k - centreZ));
+    sum += w * a;
+    wsum += w;
+  }
+  outA = sum / wsum;
+  outKey = centreZ;
+}
+
+// sao_round_to_half (float only: the shader's own rounding).
+inline float roundToHalf(float x) {
+  x = std::clamp(x, 0.0f, 1.0f);
+  if (x == 0.0f) return 0.0f;
+  int e = 0;
+  (void)std::frexp(x, &e);       // x = f * 2^e, f in [0.5, 1)
+  const int q = std::max(e - 11, -24);  // log2 of the binary16 spacing at x
+  return std::ldexp(std::floor(std::ldexp(x, -q) + 0.5f), q);
+}
+
+}  // namespace sao::cpu::detail
