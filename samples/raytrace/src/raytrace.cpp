@@ -1,0 +1,223 @@
+#include "sao/raytrace/raytrace.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <thread>
+#include <vector>
+
+namespace sao::raytrace {
+
+struct RayScene::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
+RayScene::~RayScene() = default;
+
+Status RayScene::create(const scenes::Mesh& mesh, std::unique_ptr<RayScene>& out) {
+  if (mesh.triangleCount() == 0) return Status::error(StatusCode::InvalidInput, "the scene has no triangles");
+  for (auto i : mesh.indices)
+    if (i >= mesh.positions.size())
+      return Status::error(StatusCode::InvalidInput, "mesh index " + std::to_string(i) + " is out of range");
+  std::unique_ptr<RayScene> rs(new RayScene());
+  rs->impl_ = std::make_unique<Impl>();
+  Impl& im = *rs->impl_;
+  im.device = rtcNewDevice(nullptr);
+  if (!im.device) return Status::error(StatusCode::DriverError, "Embree could not create a device");
+  im.scene = rtcNewScene(im.device);
+  RTCGeometry geom = rtcNewGeometry(im.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                        3 * sizeof(float), mesh.positions.size()));
+  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                             3 * sizeof(unsigned), mesh.triangleCount()));
+  if (!v || !idx) {
+    rtcReleaseGeometry(geom);
+    return Status::error(StatusCode::DriverError, "Embree could not allocate the mesh buffers");
+  }
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    v[3 * i] = mesh.positions[i].x;
+    v[3 * i + 1] = mesh.positions[i].y;
+    v[3 * i + 2] = mesh.positions[i].z;
+  }
+  std::copy(mesh.indices.begin(), mesh.indices.end(), idx);
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(im.scene, geom);
+  rtcReleaseGeometry(geom);
+  rtcSetSceneBuildQuality(im.scene, RTC_BUILD_QUALITY_HIGH);
+  rtcCommitScene(im.scene);
+  if (rtcGetDeviceError(im.device) != RTC_ERROR_NONE)
+    return Status::error(StatusCode::DriverError, "Embree failed to build the scene");
+  out = std::move(rs);
+  return Status::success();
+}
+
+RayScene::Hit RayScene::intersect(glm::dvec3 o, glm::dvec3 d, double tFar) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRayHit rh{};
+  rh.ray.org_x = float(o.x); rh.ray.org_y = float(o.y); rh.ray.org_z = float(o.z);
+  rh.ray.dir_x = float(d.x); rh.ray.dir_y = float(d.y); rh.ray.dir_z = float(d.z);
+  rh.ray.tnear = 0.0f;
+  rh.ray.tfar = float(tFar);
+  rh.ray.mask = 0xffffffffu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->scene, &ctx, &rh);
+  Hit h;
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
+  h.hit = true;
+  h.t = rh.ray.tfar;
+  h.normal = glm::normalize(glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
+  return h;
+}
+
+bool RayScene::occluded(glm::dvec3 o, glm::dvec3 d, double tFar) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRay r{};
+  r.org_x = float(o.x); r.org_y = float(o.y); r.org_z = float(o.z);
+  r.dir_x = float(d.x); r.dir_y = float(d.y); r.dir_z = float(d.z);
+  r.tnear = 0.0f;
+  r.tfar = float(tFar);
+  r.mask = 0xffffffffu;
+  rtcOccluded1(impl_->scene, &ctx, &r);
+  return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+namespace {
+
+template <class F>
+void parallelRows(std::uint32_t rows, unsigned threads, F&& f) {
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  std::atomic<std::uint32_t> next{0};
+  std::vector<std::thread> pool;
+  for (unsigned t = 0; t < threads; ++t)
+    pool.emplace_back([&] {
+      for (std::uint32_t y = next++; y < rows; y = next++) f(y);
+    });
+  for (auto& th : pool) th.join();
+}
+
+double P(const Camera& c, int row, int col) { return c.projection[col * 4 + row]; }
+
+// Camera-space direction (z = -1) through the centre of depth-input texel (x, y).
+glm::dvec3 cameraRay(const Camera& c, std::uint32_t x, std::uint32_t y) {
+  const double ndcX = 2.0 * (double(x) - c.guardBand + 0.5) / c.width - 1.0;
+  const double ndcY = (c.flipY ? -1.0 : 1.0) * (2.0 * (double(y) - c.guardBand + 0.5) / c.height - 1.0);
+  return {(ndcX + P(c, 0, 2)) / P(c, 0, 0), (ndcY + P(c, 1, 2)) / P(c, 1, 1), -1.0};
+}
+
+double windowDepth(const Camera& c, double z) {
+  const double ndc = (P(c, 2, 2) * z + P(c, 2, 3)) / (-z);
+  return c.clipDepth == ClipDepth::ZeroToOne ? ndc : 0.5 * ndc + 0.5;
+}
+
+std::uint64_t splitmix(std::uint64_t& s) {
+  std::uint64_t z = (s += 0x9e3779b97f4a7c15ull);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+double uniform01(std::uint64_t& s) { return double(splitmix(s) >> 11) * 0x1.0p-53; }
+
+}  // namespace
+
+Status castPrimary(const RayScene& scene, const scenes::View& view, const Camera& camera, DepthFormat format,
+                   Primary& out, unsigned threads) {
+  DepthModel model;
+  if (Status s = analyze(camera, model); !s) return s;
+  if (camera.kind != ProjectionKind::Perspective)
+    return Status::error(StatusCode::InvalidCamera, "castPrimary supports perspective cameras only");
+  const Extent e{camera.width + 2 * camera.guardBand, camera.height + 2 * camera.guardBand};
+  const glm::dmat4 toCamera = scenes::viewMatrix(view);
+  const glm::dmat4 toWorld = glm::inverse(toCamera);
+  const glm::dvec3 eye = view.eye;
+  const double clearDepth = camera.reversedZ ? 0.0 : 1.0;
+  const double farT = std::isinf(model.farDistance) ? std::numeric_limits<float>::max() : model.farDistance;
+
+  out.depth.extent = e;
+  out.depth.format = format;
+  out.depth.texels.assign(std::size_t(e.width) * e.height, encodeDepth(format, clearDepth));
+  if (format == DepthFormat::LinearZ) std::fill(out.depth.texels.begin(), out.depth.texels.end(), encodeDepth(format, 0.0));
+  out.position = FloatImage(e, 4, 0.0f);
+  out.normal = FloatImage(e, 4, 0.0f);
+  parallelRows(e.height, threads, [&](std::uint32_t y) {
+    for (std::uint32_t x = 0; x < e.width; ++x) {
+      const glm::dvec3 dirCam = cameraRay(camera, x, y);
+      const glm::dvec3 dirWorld = glm::dvec3(toWorld * glm::dvec4(dirCam, 0.0));
+      const auto hit = scene.intersect(eye, dirWorld, farT);
+      // Depth clipping as a rasteriser would: nothing nearer than the near plane or beyond the far.
+      if (!hit.hit || hit.t < model.nearDistance) continue;
+      const glm::dvec3 pc = dirCam * hit.t;
+      glm::dvec3 nc = glm::normalize(glm::dvec3(toCamera * glm::dvec4(hit.normal, 0.0)));
+      if (glm::dot(nc, pc) > 0) nc = -nc;  // face the camera
+      const std::size_t i = std::size_t(y) * e.width + x;
+      out.depth.texels[i] = format == DepthFormat::LinearZ ? encodeDepth(format, pc.z) : encodeDepth(format, windowDepth(camera, pc.z));
+      out.position.at(x, y, 0) = float(pc.x);
+      out.position.at(x, y, 1) = float(pc.y);
+      out.position.at(x, y, 2) = float(pc.z);
+      out.position.at(x, y, 3) = 1.0f;
+      out.normal.at(x, y, 0) = float(nc.x);
+      out.normal.at(x, y, 1) = float(nc.y);
+      out.normal.at(x, y, 2) = float(nc.z);
+    }
+  });
+  return Status::success();
+}
+
+double visibilityAt(const RayScene& scene, glm::dvec3 p, glm::dvec3 n, double radius, std::uint32_t rays,
+                    std::uint64_t seed, double offset) {
+  // Orthonormal basis around n.
+  const glm::dvec3 a = std::fabs(n.x) > 0.5 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+  const glm::dvec3 t = glm::normalize(glm::cross(a, n)), b = glm::cross(n, t);
+  const glm::dvec3 origin = p + n * offset;
+  std::uint64_t state = seed;
+  splitmix(state);
+  std::uint32_t open = 0;
+  for (std::uint32_t r = 0; r < rays; ++r) {
+    // Cosine-weighted: uniform on the disk, lifted to the hemisphere.
+    const double u1 = uniform01(state), u2 = uniform01(state);
+    const double rad = std::sqrt(u1), phi = 2.0 * std::numbers::pi * u2;
+    const glm::dvec3 dir = t * (rad * std::cos(phi)) + b * (rad * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1.0 - u1));
+    if (!scene.occluded(origin, dir, radius)) ++open;
+  }
+  return rays ? double(open) / rays : 1.0;
+}
+
+Status referenceAmbientOcclusion(const RayScene& scene, const Camera& camera, const Primary& primary,
+                                 const scenes::View& view, const ReferenceOptions& o, FloatImage& ao) {
+  if (!(o.radius > 0) || !std::isfinite(o.radius))
+    return Status::error(StatusCode::InvalidInput, "reference radius must be a finite number > 0");
+  if (o.rays == 0) return Status::error(StatusCode::InvalidInput, "reference needs at least one ray per pixel");
+  const Extent input{camera.width + 2 * camera.guardBand, camera.height + 2 * camera.guardBand};
+  if (primary.position.extent != input || primary.normal.extent != input)
+    return Status::error(StatusCode::InvalidInput, "primary images do not match the camera's depth extent");
+  const glm::dmat4 toWorld = glm::inverse(scenes::viewMatrix(view));
+  ao = FloatImage({camera.width, camera.height}, 1, 1.0f);
+  const std::uint32_t g = camera.guardBand;
+  parallelRows(camera.height, o.threads, [&](std::uint32_t y) {
+    for (std::uint32_t x = 0; x < camera.width; ++x) {
+      if (primary.position.at(x + g, y + g, 3) == 0.0f) continue;  // sky
+      const glm::dvec3 pc(primary.position.at(x + g, y + g, 0), primary.position.at(x + g, y + g, 1),
+                          primary.position.at(x + g, y + g, 2));
+      const glm::dvec3 ncam(primary.normal.at(x + g, y + g, 0), primary.normal.at(x + g, y + g, 1),
+                            primary.normal.at(x + g, y + g, 2));
+      const glm::dvec3 p = glm::dvec3(toWorld * glm::dvec4(pc, 1.0));
+      const glm::dvec3 n = glm::normalize(glm::dvec3(toWorld * glm::dvec4(ncam, 0.0)));
+      const std::uint64_t seed = o.seed ^ (std::uint64_t(y) << 32) ^ x;
+      ao.at(x, y) = float(visibilityAt(scene, p, n, o.radius, o.rays, seed, 1e-4 * std::max(1.0, glm::length(pc))));
+    }
+  });
+  return Status::success();
+}
+
+}  // namespace sao::raytrace
