@@ -1,0 +1,43 @@
+// One interface over the three backends for the samples: run the effect on a depth image that
+// lives on the CPU, get the AO and the intermediates back.
+#pragma once
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "sao/camera.h"
+#include "sao/image.h"
+#include "sao/plan.h"
+#include "sao/settings.h"
+#include "sao/timing.h"
+
+namespace sao::samples {
+
+struct RunInputs {
+  const DepthImage* depth = nullptr;
+  const FloatImage* normals = nullptr;  // optional, 4 channels, camera space
+  const DepthImage* depth2 = nullptr;   // optional second layer
+};
+
+struct RunOutputs {
+  Plan plan;
+  FloatImage ao;      // 1 channel
+  FloatImage aoRaw;   // 2 channels (A, key z), when the backend can read it back
+  Timings timings;
+  std::vector<std::pair<std::string, FloatImage>> intermediates;  // with dumpPasses
+};
+
+class BackendRunner {
+ public:
+  virtual ~BackendRunner() = default;
+  virtual std::string_view name() const = 0;
+  virtual std::string description() const = 0;  // device / driver in words
+  virtual Status run(const Settings& settings, const Camera& camera, const RunInputs& inputs, bool measureTime,
+                     bool dumpPasses, RunOutputs& out) = 0;
+};
+
+// "cpu", "gl", "vulkan" or "auto" (the first of gl, vulkan, cpu that starts). Backends not built
+// into this program give a clear error.
+Status createBackend(std::string_view name, std::unique_ptr<BackendRunner>& out);
+
+}  // namespace sao::samples

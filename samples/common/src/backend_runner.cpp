@@ -1,0 +1,37 @@
+#include "sao/samples/backend_runner.h"
+
+#include "runners.h"
+
+namespace sao::samples {
+
+Status createBackend(std::string_view name, std::unique_ptr<BackendRunner>& out) {
+  if (name == "cpu") {
+    out = makeCpuRunner();
+    return Status::success();
+  }
+  if (name == "gl") {
+#ifdef SAO_SAMPLES_HAVE_GL
+    return makeGlRunner(out);
+#else
+    return Status::error(StatusCode::DriverError, "this program was built without the OpenGL backend");
+#endif
+  }
+  if (name == "vulkan") {
+#ifdef SAO_SAMPLES_HAVE_VULKAN
+    return makeVulkanRunner(out);
+#else
+    return Status::error(StatusCode::DriverError, "this program was built without the Vulkan backend");
+#endif
+  }
+  if (name == "auto") {
+    for (const char* candidate : {"gl", "vulkan"}) {
+      if (createBackend(candidate, out).ok()) return Status::success();
+    }
+    out = makeCpuRunner();
+    return Status::success();
+  }
+  return Status::error(StatusCode::InvalidInput,
+                       "unknown backend '" + std::string(name) + "' (expected gl, vulkan, cpu or auto)");
+}
+
+}  // namespace sao::samples

@@ -1,0 +1,43 @@
+// The CPU reference as a sample backend (float mode: what a GPU computes).
+#include <thread>
+
+#include "runners.h"
+#include "sao/cpu/reference.h"
+
+namespace sao::samples {
+namespace {
+
+class CpuRunner final : public BackendRunner {
+ public:
+  std::string_view name() const override { return "cpu"; }
+  std::string description() const override {
+    return "CPU reference (float, " + std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " threads)";
+  }
+  Status run(const Settings& settings, const Camera& camera, const RunInputs& in, bool measureTime, bool dumpPasses,
+             RunOutputs& out) override {
+    cpu::Inputs inputs{in.depth, in.depth2, in.normals};
+    cpu::Options options;
+    options.precision = cpu::Precision::Float;
+    options.measureTime = measureTime;
+    cpu::Result r;
+    if (Status s = cpu::run(settings, camera, inputs, options, r); !s) return s;
+    out.plan = r.plan;
+    out.ao = std::move(r.ao);
+    out.timings = r.timings;
+    if (dumpPasses) {
+      for (std::size_t m = 0; m < r.csz.size(); ++m) out.intermediates.push_back({"csz_level" + std::to_string(m), r.csz[m]});
+      for (std::size_t m = 0; m < r.csz2.size(); ++m)
+        out.intermediates.push_back({"csz2_level" + std::to_string(m), r.csz2[m]});
+      out.intermediates.push_back({"ao_raw", r.aoRaw});
+      if (!r.aoBlurH.data.empty()) out.intermediates.push_back({"ao_blur_h", r.aoBlurH});
+    }
+    out.aoRaw = std::move(r.aoRaw);
+    return Status::success();
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<BackendRunner> makeCpuRunner() { return std::make_unique<CpuRunner>(); }
+
+}  // namespace sao::samples

@@ -1,0 +1,17 @@
+// Factories of the backends compiled into the samples (the GL and Vulkan ones only when built).
+#pragma once
+#include <memory>
+
+#include "sao/samples/backend_runner.h"
+
+namespace sao::samples {
+
+std::unique_ptr<BackendRunner> makeCpuRunner();
+#ifdef SAO_SAMPLES_HAVE_GL
+Status makeGlRunner(std::unique_ptr<BackendRunner>& out);
+#endif
+#ifdef SAO_SAMPLES_HAVE_VULKAN
+Status makeVulkanRunner(std::unique_ptr<BackendRunner>& out);
+#endif
+
+}  // namespace sao::samples

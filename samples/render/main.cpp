@@ -1,0 +1,252 @@
+// sao-render: the main job. Renders a scene's depth, runs SAO on a backend and writes the AO, a
+// lit image with and without it, and a summary. `sao-render --help` lists the options.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+#include "sao/io.h"
+#include "sao/presets.h"
+#include "sao/raytrace/raytrace.h"
+#include "sao/samples/backend_runner.h"
+#include "sao/samples/shading.h"
+#include "sao/scenes/scene.h"
+#include "summary.h"
+
+namespace fs = std::filesystem;
+using namespace sao;
+
+namespace {
+
+constexpr const char* kUsage = R"(usage: sao-render [options]
+Renders a scene's depth, runs Scalable Ambient Obscurance and writes into the output folder:
+ao.png (8-bit), ao.exr (float), lit.png and lit_no_ao.png (environment light with and without
+AO), summary.txt (per-pass times, the plan and its memory) and, with --json, summary.json.
+
+  --out DIR             output folder (default: out/render)
+  --backend NAME        gl | vulkan | cpu | auto (default auto: the first that starts)
+  --scene NAME          built-in scene: sponza-like (default), sphere-plane, crease, thin, gears
+  --view N              the scene's view number (default 0)
+  --size WxH            AO size in pixels (default 1280x720)
+  --guard N             guard band in pixels on each side (default 0)
+  --preset NAME         low | medium | high | ultra | reference (default: the settings' defaults)
+  --set NAME=VALUE      any setting (repeatable), checked against its range
+  --depth-format F      D16 | D24 | D32F (default D32F, reversed-Z, [0,1] clip, infinite far)
+  --depth FILE.exr      run on your own depth buffer; the camera comes from the file's sao.*
+                        attributes or from --fovy/--near/--far/--clip/--reversed-z
+  --fovy DEG --near M --far M|inf --clip gl|zero-one --reversed-z
+  --dump-passes DIR     every intermediate image as EXR
+  --reference           also the ray-traced reference (near-field AO within the radius) and the
+                        error metrics; --reference-rays N (default 256)
+  --json                write summary.json too
+  --help                this text
+Exit status: 0 on success, 1 when the run fails, 2 for bad options; errors are one line on stderr.
+)";
+
+struct Options {
+  std::string out = "out/render", backend = "auto", scene = std::string(scenes::kDefaultScene), depthPath, dumpDir;
+  std::uint32_t view = 0, width = 1280, height = 720, guard = 0, referenceRays = 256;
+  std::string preset, depthFormat = "D32F", clip = "zero-one", far = "inf";
+  double fovyDegrees = 60, nearDistance = 0.1;
+  bool reversedZ = false, reversedGiven = false, cameraFlags = false, reference = false, json = false;
+  std::vector<std::string> sets;
+};
+
+[[noreturn]] void usageError(const std::string& message) {
+  std::fprintf(stderr, "sao-render: %s (see --help)\n", message.c_str());
+  std::exit(2);
+}
+
+[[noreturn]] void runError(const Status& s) {
+  std::fprintf(stderr, "sao-render: %s: %s\n", toString(s.code), s.message.c_str());
+  std::exit(1);
+}
+
+std::uint32_t parseCount(const std::string& flag, const std::string& v, std::uint32_t lo, std::uint32_t hi) {
+  char* end = nullptr;
+  const long long n = std::strtoll(v.c_str(), &end, 10);
+  if (v.empty() || *end || n < lo || n > hi)
+    usageError(flag + " expects a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got '" + v + "'");
+  return static_cast<std::uint32_t>(n);
+}
+
+double parseNumber(const std::string& flag, const std::string& v) {
+  char* end = nullptr;
+  const double d = std::strtod(v.c_str(), &end);
+  if (v.empty() || *end || !std::isfinite(d)) usageError(flag + " expects a finite number, got '" + v + "'");
+  return d;
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) usageError(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--help" || a == "-h") {
+      std::fputs(kUsage, stdout);
+      std::exit(0);
+    } else if (a == "--out") o.out = value();
+    else if (a == "--backend") o.backend = value();
+    else if (a == "--scene") o.scene = value();
+    else if (a == "--view") o.view = parseCount(a, value(), 0, 1000);
+    else if (a == "--size") {
+      const std::string v = value();
+      const auto x = v.find('x');
+      if (x == std::string::npos) usageError("--size expects WxH, got '" + v + "'");
+      o.width = parseCount("--size width", v.substr(0, x), 1, kMaxImageSide);
+      o.height = parseCount("--size height", v.substr(x + 1), 1, kMaxImageSide);
+    } else if (a == "--guard") o.guard = parseCount(a, value(), 0, 4096);
+    else if (a == "--preset") o.preset = value();
+    else if (a == "--set") o.sets.push_back(value());
+    else if (a == "--depth-format") o.depthFormat = value();
+    else if (a == "--depth") o.depthPath = value();
+    else if (a == "--fovy") o.fovyDegrees = parseNumber(a, value()), o.cameraFlags = true;
+    else if (a == "--near") o.nearDistance = parseNumber(a, value()), o.cameraFlags = true;
+    else if (a == "--far") o.far = value(), o.cameraFlags = true;
+    else if (a == "--clip") o.clip = value(), o.cameraFlags = true;
+    else if (a == "--reversed-z") o.reversedZ = o.reversedGiven = o.cameraFlags = true;
+    else if (a == "--dump-passes") o.dumpDir = value();
+    else if (a == "--reference") o.reference = true;
+    else if (a == "--reference-rays") o.referenceRays = parseCount(a, value(), 1, 1u << 16);
+    else if (a == "--json") o.json = true;
+    else usageError("unknown option '" + a + "'");
+  }
+  return o;
+}
+
+DepthFormat parseDepthFormat(const std::string& f) {
+  if (f == "D16") return DepthFormat::D16;
+  if (f == "D24") return DepthFormat::D24;
+  if (f == "D32F") return DepthFormat::D32F;
+  usageError("--depth-format expects D16, D24 or D32F, got '" + f + "'");
+}
+
+Settings buildSettings(const Options& o) {
+  Settings s;
+  if (!o.preset.empty()) {
+    const auto p = findPreset(o.preset);
+    if (!p) usageError("unknown preset '" + o.preset + "' (low, medium, high, ultra, reference)");
+    s = presetSettings(*p);
+  }
+  for (const auto& set : o.sets)
+    if (Status st = setFromAssignment(s, set); !st) usageError(st.message);
+  return s;
+}
+
+Camera cameraFromFlags(const Options& o, Extent inputExtent) {
+  if (o.clip != "gl" && o.clip != "zero-one") usageError("--clip expects gl or zero-one, got '" + o.clip + "'");
+  const double far = o.far == "inf" ? INFINITY : parseNumber("--far", o.far);
+  if (!(o.fovyDegrees > 0 && o.fovyDegrees < 180)) usageError("--fovy must be in (0, 180) degrees");
+  Camera c = perspectiveCamera(o.fovyDegrees * std::numbers::pi / 180.0, inputExtent.width - 2 * o.guard,
+                               inputExtent.height - 2 * o.guard, o.nearDistance, far,
+                               o.clip == "gl" ? ClipDepth::NegativeOneToOne : ClipDepth::ZeroToOne, o.reversedZ);
+  c.guardBand = o.guard;
+  return c;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options o = parse(argc, argv);
+  const Settings settings = buildSettings(o);
+  if (Status s = validate(settings); !s) usageError(s.message);
+
+  std::unique_ptr<samples::BackendRunner> backend;
+  if (Status s = samples::createBackend(o.backend, backend); !s) runError(s);
+
+  std::error_code ec;
+  fs::create_directories(o.out, ec);
+  if (ec) runError(Status::error(StatusCode::IoError, "cannot create output folder '" + o.out + "': " + ec.message()));
+
+  samples::Summary summary;
+  summary.backend = backend->description();
+  Camera camera;
+  DepthImage depth;
+  raytrace::Primary primary;
+  bool havePrimary = false;
+  scenes::Scene scene;
+  std::unique_ptr<raytrace::RayScene> rayScene;
+  const auto t0 = std::chrono::steady_clock::now();
+
+  if (!o.depthPath.empty()) {
+    bool hasCamera = false;
+    if (Status s = readDepthExr(o.depthPath, depth, camera, hasCamera); !s) runError(s);
+    if (!hasCamera) {
+      if (!o.cameraFlags)
+        usageError("'" + o.depthPath + "' carries no sao.* camera: give --fovy, --near, --far, --clip (and --reversed-z)");
+      camera = cameraFromFlags(o, depth.extent);
+    }
+    summary.input = "depth file " + o.depthPath + " (" + toString(depth.format) + ")";
+  } else {
+    if (fs::exists(o.scene))
+      runError(Status::error(StatusCode::UnsupportedFormat,
+                             "mesh files are not supported yet ('" + o.scene + "'); use a built-in scene"));
+    if (Status s = scenes::makeBuiltinScene(o.scene, scene); !s) runError(s);
+    if (o.view >= scene.views.size())
+      usageError("scene '" + o.scene + "' has views 0.." + std::to_string(scene.views.size() - 1));
+    const scenes::View& view = scene.views[o.view];
+    camera = scenes::makeCamera(view, o.width, o.height, INFINITY, ClipDepth::ZeroToOne, true, o.guard);
+    if (Status s = raytrace::RayScene::create(scene.mesh, rayScene); !s) runError(s);
+    if (Status s = raytrace::castPrimary(*rayScene, view, camera, parseDepthFormat(o.depthFormat), primary); !s)
+      runError(s);
+    depth = primary.depth;
+    havePrimary = true;
+    summary.input = "scene " + o.scene + ", view " + std::to_string(o.view) + " '" + view.name + "', " +
+                    toString(depth.format) + " reversed-Z [0,1] infinite far, depth by ray casting";
+  }
+  summary.prepareSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  samples::RunInputs inputs{&depth, nullptr, nullptr};
+  samples::RunOutputs result;
+  if (Status s = backend->run(settings, camera, inputs, true, !o.dumpDir.empty(), result); !s) runError(s);
+
+  const std::string aoPng = (fs::path(o.out) / "ao.png").string();
+  if (Status s = writeAoPng(aoPng, result.ao); !s) runError(s);
+  if (Status s = writeFloatExr((fs::path(o.out) / "ao.exr").string(), result.ao, {"A"}); !s) runError(s);
+  if (havePrimary) {
+    const FloatImage lit = samples::shadeEnvironment(primary.normal, primary.position, &result.ao, camera.guardBand);
+    const FloatImage unlit = samples::shadeEnvironment(primary.normal, primary.position, nullptr, camera.guardBand);
+    if (Status s = samples::writeRgbPng((fs::path(o.out) / "lit.png").string(), lit); !s) runError(s);
+    if (Status s = samples::writeRgbPng((fs::path(o.out) / "lit_no_ao.png").string(), unlit); !s) runError(s);
+  }
+  if (!o.dumpDir.empty()) {
+    fs::create_directories(o.dumpDir, ec);
+    if (ec) runError(Status::error(StatusCode::IoError, "cannot create '" + o.dumpDir + "': " + ec.message()));
+    for (const auto& [name, image] : result.intermediates) {
+      std::vector<std::string> channels;
+      for (std::uint32_t c = 0; c < image.channels; ++c) channels.push_back(image.channels == 1 ? "Y" : std::string(1, "RGBA"[c]));
+      if (Status s = writeFloatExr((fs::path(o.dumpDir) / (name + ".exr")).string(), image, channels); !s) runError(s);
+    }
+  }
+  if (o.reference) {
+    if (!havePrimary) usageError("--reference needs a scene (the depth file has no geometry to trace)");
+    raytrace::ReferenceOptions ro;
+    ro.radius = settings.radius;
+    ro.rays = o.referenceRays;
+    FloatImage ref;
+    if (Status s = raytrace::referenceAmbientOcclusion(*rayScene, camera, primary, scene.views[o.view], ro, ref); !s)
+      runError(s);
+    if (Status s = writeAoPng((fs::path(o.out) / "reference.png").string(), ref); !s) runError(s);
+    summary.metrics = samples::compareToReference(result.ao, ref, primary.position, camera.guardBand);
+    summary.referenceRays = o.referenceRays;
+  }
+  summary.settings = settings;
+  summary.plan = result.plan;
+  summary.timings = result.timings;
+  summary.size = {camera.width, camera.height};
+  summary.guard = camera.guardBand;
+  const std::string text = summary.text();
+  std::ofstream((fs::path(o.out) / "summary.txt").string()) << text;
+  if (o.json) std::ofstream((fs::path(o.out) / "summary.json").string()) << summary.json();
+  std::fputs(text.c_str(), stdout);
+  std::printf("output: %s\n", fs::absolute(o.out).lexically_normal().string().c_str());
+  return 0;
+}
