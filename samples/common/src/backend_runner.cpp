@@ -5,8 +5,8 @@
 namespace sao::samples {
 
 Status createBackend(std::string_view name, std::unique_ptr<BackendRunner>& out) {
-  if (name == "cpu") {
-    out = makeCpuRunner();
+  if (name == "cpu" || name == "cpu-double") {
+    out = makeCpuRunner(name == "cpu-double");
     return Status::success();
   }
   if (name == "gl") {
@@ -27,11 +27,11 @@ Status createBackend(std::string_view name, std::unique_ptr<BackendRunner>& out)
     for (const char* candidate : {"gl", "vulkan"}) {
       if (createBackend(candidate, out).ok()) return Status::success();
     }
-    out = makeCpuRunner();
+    out = makeCpuRunner(false);
     return Status::success();
   }
   return Status::error(StatusCode::InvalidInput,
-                       "unknown backend '" + std::string(name) + "' (expected gl, vulkan, cpu or auto)");
+                       "unknown backend '" + std::string(name) + "' (expected gl, vulkan, cpu, cpu-double or auto)");
 }
 
 }  // namespace sao::samples

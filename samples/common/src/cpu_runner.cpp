@@ -9,15 +9,17 @@ namespace {
 
 class CpuRunner final : public BackendRunner {
  public:
-  std::string_view name() const override { return "cpu"; }
+  explicit CpuRunner(cpu::Precision precision) : precision_(precision) {}
+  std::string_view name() const override { return precision_ == cpu::Precision::Float ? "cpu" : "cpu-double"; }
   std::string description() const override {
-    return "CPU reference (float, " + std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " threads)";
+    return std::string("CPU reference (") + cpu::toString(precision_) + ", " +
+           std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " threads)";
   }
   Status run(const Settings& settings, const Camera& camera, const RunInputs& in, bool measureTime, bool dumpPasses,
              RunOutputs& out) override {
     cpu::Inputs inputs{in.depth, in.depth2, in.normals};
     cpu::Options options;
-    options.precision = cpu::Precision::Float;
+    options.precision = precision_;
     options.measureTime = measureTime;
     cpu::Result r;
     if (Status s = cpu::run(settings, camera, inputs, options, r); !s) return s;
@@ -34,10 +36,15 @@ class CpuRunner final : public BackendRunner {
     out.aoRaw = std::move(r.aoRaw);
     return Status::success();
   }
+
+ private:
+  cpu::Precision precision_;
 };
 
 }  // namespace
 
-std::unique_ptr<BackendRunner> makeCpuRunner() { return std::make_unique<CpuRunner>(); }
+std::unique_ptr<BackendRunner> makeCpuRunner(bool doublePrecision) {
+  return std::make_unique<CpuRunner>(doublePrecision ? cpu::Precision::Double : cpu::Precision::Float);
+}
 
 }  // namespace sao::samples

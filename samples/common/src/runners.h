@@ -6,7 +6,8 @@
 
 namespace sao::samples {
 
-std::unique_ptr<BackendRunner> makeCpuRunner();
+// Float mode mimics the GPU; double mode is the precision oracle.
+std::unique_ptr<BackendRunner> makeCpuRunner(bool doublePrecision);
 #ifdef SAO_SAMPLES_HAVE_GL
 Status makeGlRunner(std::unique_ptr<BackendRunner>& out);
 #endif

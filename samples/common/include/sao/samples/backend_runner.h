@@ -36,7 +36,7 @@ class BackendRunner {
                      bool dumpPasses, RunOutputs& out) = 0;
 };
 
-// "cpu", "gl", "vulkan" or "auto" (the first of gl, vulkan, cpu that starts). Backends not built
+// "cpu" (float, as a GPU computes), "cpu-double", "gl", "vulkan" or "auto" (the first of gl, vulkan, cpu that starts). Backends not built
 // into this program give a clear error.
 Status createBackend(std::string_view name, std::unique_ptr<BackendRunner>& out);
 
