@@ -235,7 +235,7 @@ int main(int argc, char** argv) {
     if (Status s = raytrace::referenceAmbientOcclusion(*rayScene, camera, primary, scene.views[o.view], ro, ref); !s)
       runError(s);
     if (Status s = writeAoPng((fs::path(o.out) / "reference.png").string(), ref); !s) runError(s);
-    summary.metrics = samples::compareToReference(result.ao, ref, primary.position, camera.guardBand);
+    summary.metrics = samples::compareToReference(result.ao, ref, samples::geometryMask(primary.position, camera.guardBand));
     summary.referenceRays = o.referenceRays;
   }
   summary.settings = settings;

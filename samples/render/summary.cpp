@@ -5,28 +5,6 @@
 
 namespace sao::samples {
 
-ErrorMetrics compareToReference(const FloatImage& ao, const FloatImage& ref, const FloatImage& positions,
-                                std::uint32_t g) {
-  ErrorMetrics m;
-  double sq = 0, bias = 0;
-  std::size_t over = 0;
-  for (std::uint32_t y = 0; y < ao.extent.height; ++y)
-    for (std::uint32_t x = 0; x < ao.extent.width; ++x) {
-      if (positions.at(x + g, y + g, 3) == 0.0f) continue;
-      const double d = double(ao.at(x, y)) - ref.at(x, y);
-      sq += d * d;
-      bias += d;
-      over += std::fabs(d) > 0.1;
-      ++m.pixels;
-    }
-  if (m.pixels) {
-    m.rmse = std::sqrt(sq / m.pixels);
-    m.meanBias = bias / m.pixels;
-    m.fractionOver01 = double(over) / m.pixels;
-  }
-  return m;
-}
-
 std::string Summary::text() const {
   std::ostringstream s;
   s.setf(std::ios::fixed);
@@ -43,9 +21,15 @@ std::string Summary::text() const {
   if (metrics) {
     s.precision(4);
     s << "vs ray-traced near-field AO (" << referenceRays << " rays/pixel, radius " << settings.radius
-      << " m; screen-space AO sees only the first depth layer and nothing off-screen): RMSE " << metrics->rmse
-      << ", mean bias " << metrics->meanBias << ", pixels off by > 0.1: " << 100.0 * metrics->fractionOver01
-      << " % of " << metrics->pixels << " (raw, no intensity fit)\n";
+      << " m; screen-space AO sees only the first depth layer and nothing off-screen), " << metrics->raw.pixels
+      << " pixels with geometry:\n";
+    auto row = [&](const char* what, const ErrorMetrics& m) {
+      s << "  " << what << ": RMSE " << m.rmse << ", mean bias " << m.meanBias << ", SSIM " << m.ssim
+        << ", off by > 0.1: " << 100.0 * m.fractionOver01 << " %\n";
+    };
+    row("raw", metrics->raw);
+    s << "  best-fit occlusion scale " << metrics->fittedIntensity << "\n";
+    row("fitted", metrics->fitted);
   }
   return s.str();
 }
@@ -77,10 +61,18 @@ std::string Summary::json() const {
   for (std::size_t i = 0; i < timings.passes.size(); ++i)
     s << (i ? ", " : "") << quote(timings.passes[i].pass) << ": " << timings.passes[i].milliseconds;
   s << "},\n  \"total_ms\": " << timings.totalMilliseconds();
-  if (metrics)
-    s << ",\n  \"reference\": {\"rays\": " << referenceRays << ", \"pixels\": " << metrics->pixels
-      << ", \"rmse\": " << metrics->rmse << ", \"mean_bias\": " << metrics->meanBias
-      << ", \"fraction_over_0_1\": " << metrics->fractionOver01 << "}";
+  if (metrics) {
+    auto obj = [&](const ErrorMetrics& m) {
+      std::ostringstream o;
+      o.precision(9);
+      o << "{\"rmse\": " << m.rmse << ", \"mean_bias\": " << m.meanBias << ", \"ssim\": " << m.ssim
+        << ", \"fraction_over_0_1\": " << m.fractionOver01 << "}";
+      return o.str();
+    };
+    s << ",\n  \"reference\": {\"rays\": " << referenceRays << ", \"pixels\": " << metrics->raw.pixels
+      << ", \"raw\": " << obj(metrics->raw) << ", \"fitted_intensity\": " << metrics->fittedIntensity
+      << ", \"fitted\": " << obj(metrics->fitted) << "}";
+  }
   s << "\n}\n";
   return s.str();
 }

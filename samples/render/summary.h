@@ -6,21 +6,11 @@
 
 #include "sao/image.h"
 #include "sao/plan.h"
+#include "sao/samples/metrics.h"
 #include "sao/settings.h"
 #include "sao/timing.h"
 
 namespace sao::samples {
-
-struct ErrorMetrics {
-  std::size_t pixels = 0;      // non-sky pixels compared
-  double rmse = 0;
-  double meanBias = 0;         // mean(ao - reference): negative = darker than the reference
-  double fractionOver01 = 0;   // share of pixels off by more than 0.1
-};
-
-// Over pixels whose position w (4th channel of `positions`, guard-band offset g) is non-zero.
-ErrorMetrics compareToReference(const FloatImage& ao, const FloatImage& reference, const FloatImage& positions,
-                                std::uint32_t guardBand);
 
 struct Summary {
   std::string backend, input;
@@ -30,7 +20,7 @@ struct Summary {
   Plan plan;
   Timings timings;
   double prepareSeconds = 0;
-  std::optional<ErrorMetrics> metrics;
+  std::optional<ReferenceComparison> metrics;
   std::uint32_t referenceRays = 0;
 
   std::string text() const;
