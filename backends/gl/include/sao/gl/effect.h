@@ -1,0 +1,138 @@
+// sao::gl — the OpenGL 4.3 backend: runs the generated GLSL 4.30 compute passes of the effect in
+// the caller's current GL context.
+//
+//   std::unique_ptr<sao::gl::Effect> effect;
+//   sao::Status st = sao::gl::Effect::create(glfwGetProcAddress, effect);  // or eglGetProcAddress, ...
+//   ...
+//   st = effect->render(camera, settings, {.depth = {depthTex, GL_DEPTH_COMPONENT24}});
+//   GLuint ao = effect->aoTexture();   // GL_R16F, viewport size, linear visibility A in [0, 1]
+//
+// Contract:
+//  - Every call (create, render, the destructor) needs the context the effect was created in to be
+//    current on the calling thread (timer queries are not shared between contexts). The library
+//    has no global GL symbols: it calls only entry points loaded through the getProcAddress given
+//    to create(). Errors come back as a Status; the library never calls glGetError (which would
+//    take the caller's pending errors away).
+//  - render() leaves the GL state as it found it: program, active texture unit, the 2D texture
+//    and sampler bindings of the units it uses, the image units it uses, the uniform-buffer
+//    bindings (generic and index 0), the query-buffer binding, and the parameters it sets on the
+//    caller's textures (base level, depth-stencil texture mode, red swizzle). It does not touch
+//    framebuffers, the viewport, pixel-store state, vertex state or capabilities.
+//  - The caller's texture parameters (compare mode, base/max level, depth-stencil texture mode,
+//    filters) do not change the result: the depth is read through the effect's own sampler
+//    (GL_NEAREST, compare mode GL_NONE) at level 0.
+//  - Synchronisation: render() issues glMemoryBarrier(texture fetch | image access) before its
+//    first pass (so depth written by the caller's own image stores is visible) and, after its
+//    last pass, the barriers needed to read the result by texture fetch, image load, framebuffer
+//    read, glGetTexImage or a copy. Depth written by rendering needs no barrier.
+//  - Textures are GL_TEXTURE_2D; level 0 is read and written.
+#pragma once
+#include <cstdint>
+#include <memory>
+
+#include "sao/camera.h"
+#include "sao/plan.h"
+#include "sao/settings.h"
+#include "sao/status.h"
+#include "sao/timing.h"
+#include "sao/version.h"
+
+#if defined(_WIN32)
+#  if defined(SAO_GL_BUILDING)
+#    define SAO_GL_API __declspec(dllexport)
+#  else
+#    define SAO_GL_API __declspec(dllimport)
+#  endif
+#  define SAO_GL_LOCAL
+#else
+#  define SAO_GL_API __attribute__((visibility("default")))
+#  define SAO_GL_LOCAL __attribute__((visibility("hidden")))
+#endif
+
+namespace sao::gl {
+
+// The loader the caller already has: eglGetProcAddress, glfwGetProcAddress, SDL_GL_GetProcAddress
+// (cast), wglGetProcAddress wrapped to fall back to opengl32.dll for GL 1.1 entry points, ...
+using ProcAddress = void (*)();
+using GetProcAddressFn = ProcAddress (*)(const char* name);
+
+// GL enums used below, spelled out so that this header needs no GL header.
+inline constexpr std::uint32_t kDepthComponent16 = 0x81A5;   // GL_DEPTH_COMPONENT16
+inline constexpr std::uint32_t kDepthComponent24 = 0x81A6;   // GL_DEPTH_COMPONENT24
+inline constexpr std::uint32_t kDepthComponent32F = 0x8CAC;  // GL_DEPTH_COMPONENT32F
+inline constexpr std::uint32_t kDepth24Stencil8 = 0x88F0;    // GL_DEPTH24_STENCIL8
+inline constexpr std::uint32_t kDepth32FStencil8 = 0x8CAD;   // GL_DEPTH32F_STENCIL8
+inline constexpr std::uint32_t kR32F = 0x822E;               // GL_R32F (linear camera-space z)
+inline constexpr std::uint32_t kR16F = 0x822D;               // GL_R16F (the AO output)
+
+struct DepthInput {
+  std::uint32_t texture = 0;  // GL_TEXTURE_2D name
+  // One of the k* depth formats above (hardware depth per the Camera's conventions) or kR32F
+  // (linear camera-space z, negative in front of the camera, view units). The effect queries the
+  // texture's real internal format and rejects a mismatch; 0 accepts whatever the texture holds.
+  std::uint32_t internalFormat = 0;
+};
+
+struct Inputs {
+  // Required. Level 0 must be (camera.width + 2 guardBand) x (camera.height + 2 guardBand).
+  DepthInput depth;
+  // Optional second depth layer (deep G-buffer): same size and format as depth.
+  DepthInput depth2;
+  // Optional camera-space normals in .xyz, components in [-1, 1] (GL_RGBA16F recommended; also
+  // GL_RGBA32F, GL_RGB16F, GL_RGB32F, GL_RGBA8_SNORM, GL_RGBA16_SNORM); same size as depth.
+  std::uint32_t normals = 0;
+  // Optional output: a GL_R16F texture of the viewport size whose level 0 receives A. 0: the
+  // effect writes into a texture it owns (aoTexture()). Must not be one of the inputs.
+  std::uint32_t output = 0;
+};
+
+struct RenderOptions {
+  bool measureTime = false;  // fill timings(): per-pass GPU time (see timing.h for the methods)
+};
+
+// Counters for tests and tools.
+struct Stats {
+  std::uint64_t renders = 0;
+  std::uint64_t textureAllocations = 0;  // effect-owned textures created so far (views excluded)
+  std::uint64_t programsCompiled = 0;
+};
+
+class SAO_GL_API Effect {
+ public:
+  // Loads the GL entry points, checks the context (GL 4.3 or newer, compute limits) and creates
+  // the effect's buffer and samplers. `headerVersion` is the SAO_VERSION of the headers the
+  // caller compiled against; a different library version gives VersionMismatch. Never throws.
+  static Status create(GetProcAddressFn getProcAddress, std::unique_ptr<Effect>& out,
+                       int headerVersion = SAO_VERSION);
+
+  ~Effect();  // deletes the effect's GL objects (the context must be current)
+  Effect(const Effect&) = delete;
+  Effect& operator=(const Effect&) = delete;
+
+  // Runs the planned passes. Resources follow plan(settings, camera, inputs); when the size or the
+  // plan changes only the images that changed are reallocated. Errors (bad settings or camera,
+  // texture 0, an unsupported or mismatched internal format, a size that is not the viewport plus
+  // twice the guard band, an input also passed as output, shader or driver failures) return a
+  // Status naming the problem and leave the GL state unchanged.
+  Status render(const Camera& camera, const Settings& settings, const Inputs& inputs,
+                const RenderOptions& options = {});
+
+  // The texture holding the result of the last successful render(): the caller's output or the
+  // effect-owned GL_R16F texture (valid until the next render or the effect's destruction).
+  std::uint32_t aoTexture() const;
+  // The GL texture serving a resource in the last render (intermediates for debugging and tests:
+  // csz is GL_R32F with plan().cszLevels levels, ao_raw and ao_blur_h GL_RG32F); 0 if not planned.
+  std::uint32_t texture(gen::ResourceId resource) const;
+  const Plan& plan() const;           // the plan of the last successful render()
+  const ParamBlock& params() const;   // the parameter block it used
+  const Timings& timings() const;     // method None unless the last render measured time
+  const Stats& stats() const;
+
+ private:
+  struct Impl;
+  SAO_GL_LOCAL explicit Effect(std::unique_ptr<Impl> impl);
+  SAO_GL_LOCAL static Status createImpl(GetProcAddressFn getProcAddress, std::unique_ptr<Effect>& out, int headerVersion);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sao::gl

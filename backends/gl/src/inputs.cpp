@@ -1,0 +1,151 @@
+#include "inputs.h"
+
+#include <string>
+
+namespace sao::gl::detail {
+namespace {
+
+std::string size(Extent e) { return std::to_string(e.width) + "x" + std::to_string(e.height); }
+
+Status inspect(const GlFunctions& gl, GLuint unit, GLuint texture, const char* role, TextureInfo& out) {
+  const std::string who = std::string("sao::gl: the ") + role + " texture " + std::to_string(texture);
+  if (texture == 0)
+    return Status::error(StatusCode::InvalidInput, std::string("sao::gl: the ") + role + " texture is 0");
+  if (!gl.IsTexture(texture))
+    return Status::error(StatusCode::InvalidInput, who + " is not a texture object (never bound, or deleted)");
+  if (gl.hasDsa) {
+    GLint target = 0;
+    gl.GetTextureParameteriv(texture, GL_TEXTURE_TARGET, &target);
+    if (target != GL_TEXTURE_2D)
+      return Status::error(StatusCode::InvalidInput, who + " is a " + glEnumName(GLenum(target)) +
+                                                         "; the effect reads and writes GL_TEXTURE_2D level 0");
+  }
+  // Without DSA (GL 4.3 / 4.4) the target cannot be queried without binding: a texture of another
+  // target then fails to bind (a GL error the caller's debug output shows) and reads as having no
+  // level 0 image below.
+  gl.ActiveTexture(GL_TEXTURE0 + unit);
+  gl.BindTexture(GL_TEXTURE_2D, texture);
+  GLint format = 0, w = 0, h = 0, stencil = 0;
+  gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+  gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &w);
+  gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &h);
+  gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_STENCIL_SIZE, &stencil);
+  gl.BindTexture(GL_TEXTURE_2D, 0);
+  if (w <= 0 || h <= 0) return Status::error(StatusCode::InvalidInput, who + " has no level 0 image");
+  out.texture = texture;
+  out.internalFormat = GLenum(format);
+  out.hasStencil = stencil > 0;
+  out.extent = {std::uint32_t(w), std::uint32_t(h)};
+  return Status::success();
+}
+
+bool isHardwareDepth(GLenum f) {
+  switch (f) {
+    case GL_DEPTH_COMPONENT16:
+    case GL_DEPTH_COMPONENT24:
+    case GL_DEPTH_COMPONENT32F:
+    case GL_DEPTH24_STENCIL8:
+    case GL_DEPTH32F_STENCIL8:
+    case GL_DEPTH_COMPONENT:  // unsized (glTexImage2D with GL_DEPTH_COMPONENT)
+    case GL_DEPTH_STENCIL: return true;
+    default: return false;
+  }
+}
+
+bool isNormalFormat(GLenum f) {
+  switch (f) {
+    case GL_RGBA16F:
+    case GL_RGBA32F:
+    case GL_RGB16F:
+    case GL_RGB32F:
+    case GL_RGBA8_SNORM:
+    case GL_RGBA16_SNORM: return true;
+    default: return false;
+  }
+}
+
+Status depthInput(const GlFunctions& gl, GLuint unit, const DepthInput& in, const char* role, TextureInfo& out,
+                  DepthEncoding& encoding) {
+  if (Status st = inspect(gl, unit, in.texture, role, out); !st) return st;
+  const std::string who = std::string("sao::gl: the ") + role + " texture " + std::to_string(in.texture);
+  const GLenum f = out.internalFormat;
+  if (!isHardwareDepth(f) && f != GL_R32F)
+    return Status::error(StatusCode::UnsupportedFormat,
+                         who + " is " + glEnumName(f) +
+                             "; depth must be GL_DEPTH_COMPONENT16/24/32F, GL_DEPTH24_STENCIL8, "
+                             "GL_DEPTH32F_STENCIL8 or GL_R32F (linear camera-space z)");
+  if (in.internalFormat != 0 && in.internalFormat != f)
+    return Status::error(StatusCode::InvalidInput, who + " was declared " + glEnumName(in.internalFormat) +
+                                                       " but its level 0 is " + glEnumName(f));
+  encoding = f == GL_R32F ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
+  return Status::success();
+}
+
+}  // namespace
+
+Status checkInputs(const GlFunctions& gl, GLuint unit, const Inputs& inputs, CheckedInputs& out) {
+  out = CheckedInputs{};
+  DepthEncoding encoding{};
+  if (Status st = depthInput(gl, unit, inputs.depth, "depth", out.depth, encoding); !st) return st;
+  out.planInputs.depthEncoding = encoding;
+  if (inputs.depth2.texture != 0) {
+    DepthEncoding encoding2{};
+    if (Status st = depthInput(gl, unit, inputs.depth2, "second-layer depth", out.depth2, encoding2); !st) return st;
+    if (encoding2 != encoding)
+      return Status::error(StatusCode::InvalidInput,
+                           std::string("sao::gl: the second depth layer is ") + glEnumName(out.depth2.internalFormat) +
+                               " but the first is " + glEnumName(out.depth.internalFormat) +
+                               "; both must be hardware depth or both linear z");
+    out.planInputs.secondLayer = true;
+  }
+  if (inputs.normals != 0) {
+    if (Status st = inspect(gl, unit, inputs.normals, "normals", out.normals); !st) return st;
+    if (!isNormalFormat(out.normals.internalFormat))
+      return Status::error(StatusCode::UnsupportedFormat,
+                           "sao::gl: the normals texture " + std::to_string(inputs.normals) + " is " +
+                               glEnumName(out.normals.internalFormat) +
+                               "; normals must be GL_RGBA16F, GL_RGBA32F, GL_RGB16F, GL_RGB32F, GL_RGBA8_SNORM or "
+                               "GL_RGBA16_SNORM");
+    out.planInputs.normals = true;
+  }
+  if (inputs.output != 0) {
+    const GLuint o = inputs.output;
+    const char* clash = o == inputs.depth.texture    ? "depth"
+                        : o == inputs.depth2.texture ? "second-layer depth"
+                        : o == inputs.normals        ? "normals"
+                                                     : nullptr;
+    if (clash)
+      return Status::error(StatusCode::InvalidInput, "sao::gl: texture " + std::to_string(o) +
+                                                         " is passed both as the output and as the " + clash +
+                                                         " input; the output must be a separate texture");
+    if (Status st = inspect(gl, unit, o, "output", out.output); !st) return st;
+    if (out.output.internalFormat != GL_R16F)
+      return Status::error(StatusCode::UnsupportedFormat, "sao::gl: the output texture " + std::to_string(o) + " is " +
+                                                              glEnumName(out.output.internalFormat) +
+                                                              "; the effect writes GL_R16F");
+    out.planInputs.userOutput = true;
+  }
+  return Status::success();
+}
+
+Status checkExtents(const CheckedInputs& in, const Plan& plan) {
+  const std::string expected = size(plan.inputExtent) + " (the viewport " + size(plan.aoExtent) +
+                               " plus twice the guard band " +
+                               std::to_string((plan.inputExtent.width - plan.aoExtent.width) / 2) + ")";
+  auto input = [&](const TextureInfo& t, const char* role) {
+    if (t.texture == 0 || t.extent == plan.inputExtent) return Status::success();
+    return Status::error(StatusCode::InvalidInput, std::string("sao::gl: the ") + role + " texture " +
+                                                       std::to_string(t.texture) + " is " + size(t.extent) +
+                                                       ", the camera needs " + expected);
+  };
+  if (Status st = input(in.depth, "depth"); !st) return st;
+  if (Status st = input(in.depth2, "second-layer depth"); !st) return st;
+  if (Status st = input(in.normals, "normals"); !st) return st;
+  if (in.output.texture != 0 && !(in.output.extent == plan.aoExtent))
+    return Status::error(StatusCode::InvalidInput, "sao::gl: the output texture " + std::to_string(in.output.texture) +
+                                                       " is " + size(in.output.extent) + ", the viewport is " +
+                                                       size(plan.aoExtent));
+  return Status::success();
+}
+
+}  // namespace sao::gl::detail

@@ -1,0 +1,29 @@
+// Checking the caller's textures: the real internal format and size are queried from the GL
+// (glGetTexLevelParameteriv on level 0), never taken on trust.
+#pragma once
+#include "gl_functions.h"
+#include "sao/plan.h"
+
+namespace sao::gl::detail {
+
+struct TextureInfo {
+  GLuint texture = 0;
+  GLenum internalFormat = 0;
+  bool hasStencil = false;
+  Extent extent;  // level 0
+};
+
+struct CheckedInputs {
+  TextureInfo depth, depth2, normals, output;  // texture 0 where absent
+  PlanInputs planInputs;
+};
+
+// Inspects every texture in `inputs` (binding each on `scratchUnit`, whose binding the caller
+// saves) and derives the plan inputs. InvalidInput / UnsupportedFormat naming the texture's role.
+Status checkInputs(const GlFunctions& gl, GLuint scratchUnit, const Inputs& inputs, CheckedInputs& out);
+
+// Sizes against the plan: depth, depth2 and normals must be the input extent (viewport + 2 guard
+// band), the output the AO extent.
+Status checkExtents(const CheckedInputs& in, const Plan& plan);
+
+}  // namespace sao::gl::detail

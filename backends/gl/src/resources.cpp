@@ -1,0 +1,102 @@
+#include "resources.h"
+
+#include <string>
+
+namespace sao::gl::detail {
+
+GLenum glFormat(gen::Format format) {
+  switch (format) {
+    case gen::Format::R32F: return GL_R32F;
+    case gen::Format::RG32F: return GL_RG32F;
+    case gen::Format::R16F: return GL_R16F;
+    case gen::Format::RG16F: return GL_RG16F;
+    case gen::Format::RGBA16F: return GL_RGBA16F;
+    case gen::Format::R8: return GL_R8;
+    case gen::Format::RGBA8: return GL_RGBA8;
+    case gen::Format::Depth: return 0;
+  }
+  return 0;
+}
+
+GLuint Resources::levelView(gen::ResourceId id, std::uint32_t level) const {
+  const Slot& s = slot(id);
+  return level < s.views.size() ? s.views[level] : 0;
+}
+
+void Resources::release(Slot& s) {
+  if (!s.views.empty()) gl_.DeleteTextures(GLsizei(s.views.size()), s.views.data());
+  if (s.texture) gl_.DeleteTextures(1, &s.texture);
+  s = Slot{};
+}
+
+void Resources::releaseAll() {
+  for (Slot& s : slots_) release(s);
+}
+
+Status Resources::update(const Plan& plan, GLuint scratchUnit, GLint maxTextureSize, std::uint64_t& allocations) {
+  std::array<const PlannedImage*, gen::kResources.size()> wanted{};
+  for (const PlannedImage& img : plan.images) wanted[static_cast<std::size_t>(img.resource)] = &img;
+
+  for (std::size_t r = 0; r < slots_.size(); ++r) {
+    Slot& s = slots_[r];
+    const PlannedImage* img = wanted[r];
+    if (!img) {
+      release(s);
+      continue;
+    }
+    const GLenum format = glFormat(img->format);
+    if (s.texture && s.format == format && s.extent == img->extent && s.levels == img->mipLevels) continue;
+    release(s);
+    const std::string name = std::string(gen::kResources[r].name);
+    if (format == 0)
+      return Status::error(StatusCode::UnsupportedFormat, "sao::gl: image '" + name + "' has no GL format");
+    if (img->extent.width > std::uint32_t(maxTextureSize) || img->extent.height > std::uint32_t(maxTextureSize))
+      return Status::error(StatusCode::InvalidExtent,
+                           "sao::gl: image '" + name + "' is " + std::to_string(img->extent.width) + "x" +
+                               std::to_string(img->extent.height) + ", above GL_MAX_TEXTURE_SIZE " +
+                               std::to_string(maxTextureSize));
+    gl_.GenTextures(1, &s.texture);
+    gl_.ActiveTexture(GL_TEXTURE0 + scratchUnit);
+    gl_.BindTexture(GL_TEXTURE_2D, s.texture);
+    gl_.TexStorage2D(GL_TEXTURE_2D, GLsizei(img->mipLevels), format, GLsizei(img->extent.width),
+                     GLsizei(img->extent.height));
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, img->mipLevels > 1 ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    // Allocation failures are detected without glGetError (which would swallow the caller's errors):
+    // a texture whose storage could not be allocated is not immutable.
+    GLint immutable = 0;
+    gl_.GetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
+    gl_.BindTexture(GL_TEXTURE_2D, 0);
+    const std::string label = "sao " + name;
+    gl_.ObjectLabel(GL_TEXTURE, s.texture, GLsizei(label.size()), label.c_str());
+    // Views of single levels: the per=mip pass reads level m-1 as "lod 0" of a view.
+    for (std::uint32_t m = 0; m + 1 < img->mipLevels; ++m) {
+      GLuint view = 0;
+      gl_.GenTextures(1, &view);
+      gl_.TextureView(view, GL_TEXTURE_2D, s.texture, format, m, 1, 0, 1);
+      s.views.push_back(view);
+      GLint viewOk = 0;
+      gl_.BindTexture(GL_TEXTURE_2D, view);
+      gl_.GetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_FORMAT, &viewOk);
+      gl_.BindTexture(GL_TEXTURE_2D, 0);
+      immutable = immutable && viewOk;
+    }
+    ++allocations;
+    if (!immutable) {
+      release(s);
+      return Status::error(StatusCode::DriverError, "sao::gl: allocating image '" + name + "' (" +
+                                                        std::to_string(img->extent.width) + "x" +
+                                                        std::to_string(img->extent.height) + ", " +
+                                                        std::to_string(img->mipLevels) +
+                                                        " levels) or its level views failed (out of memory?)");
+    }
+    s.format = format;
+    s.extent = img->extent;
+    s.levels = img->mipLevels;
+  }
+  return Status::success();
+}
+
+}  // namespace sao::gl::detail

@@ -1,0 +1,47 @@
+// The effect-owned textures, allocated from the plan: one immutable GL_TEXTURE_2D per planned
+// image (csz with its MIP levels) plus single-level views of the MIP chains for the per=mip pass.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "gl_functions.h"
+#include "sao/plan.h"
+
+namespace sao::gl::detail {
+
+GLenum glFormat(gen::Format format);  // GL internal format of an effect image (0 for Depth)
+
+class Resources {
+ public:
+  explicit Resources(const GlFunctions& gl) : gl_(gl) {}
+  ~Resources() { releaseAll(); }
+  Resources(const Resources&) = delete;
+  Resources& operator=(const Resources&) = delete;
+
+  // Makes the owned images match plan.images: images whose format, extent or level count is
+  // unchanged keep their texture; changed ones are recreated, unplanned ones deleted. Textures are
+  // bound on `scratchUnit` while they are created (its binding must be saved by the caller).
+  // InvalidExtent when a size exceeds maxTextureSize; DriverError when allocation fails.
+  Status update(const Plan& plan, GLuint scratchUnit, GLint maxTextureSize, std::uint64_t& allocations);
+
+  GLuint texture(gen::ResourceId id) const { return slot(id).texture; }
+  GLuint levelView(gen::ResourceId id, std::uint32_t level) const;  // single-level view, 0 if none
+  void releaseAll();
+
+ private:
+  struct Slot {
+    GLuint texture = 0;
+    GLenum format = 0;
+    Extent extent;
+    std::uint32_t levels = 0;
+    std::vector<GLuint> views;  // views[m]: level m alone (m = 0 .. levels - 2)
+  };
+  const Slot& slot(gen::ResourceId id) const { return slots_[static_cast<std::size_t>(id)]; }
+  void release(Slot& s);
+
+  const GlFunctions& gl_;
+  std::array<Slot, gen::kResources.size()> slots_{};
+};
+
+}  // namespace sao::gl::detail

@@ -1,0 +1,90 @@
+#include "state.h"
+
+namespace sao::gl::detail {
+
+StateGuard::StateGuard(const GlFunctions& gl, const std::vector<GLuint>& textureUnits,
+                       const std::vector<GLuint>& imageUnits)
+    : gl_(gl) {
+  gl.GetIntegerv(GL_CURRENT_PROGRAM, &program_);
+  gl.GetIntegerv(GL_ACTIVE_TEXTURE, &activeTexture_);
+  gl.GetIntegerv(GL_UNIFORM_BUFFER_BINDING, &uniformBuffer_);
+  gl.GetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, 0, &uniformBuffer0_);
+  gl.GetInteger64i_v(GL_UNIFORM_BUFFER_START, 0, &uniformStart0_);
+  gl.GetInteger64i_v(GL_UNIFORM_BUFFER_SIZE, 0, &uniformSize0_);
+  textures_.reserve(textureUnits.size());
+  for (GLuint u : textureUnits) {
+    TextureUnit t{u, 0, 0};
+    gl.ActiveTexture(GL_TEXTURE0 + u);
+    gl.GetIntegerv(GL_TEXTURE_BINDING_2D, &t.texture2D);
+    gl.GetIntegerv(GL_SAMPLER_BINDING, &t.sampler);
+    textures_.push_back(t);
+  }
+  images_.reserve(imageUnits.size());
+  for (GLuint u : imageUnits) {
+    ImageUnit i{u, 0, 0, 0, 0, GL_READ_ONLY, GL_R8};
+    gl.GetIntegeri_v(GL_IMAGE_BINDING_NAME, u, &i.name);
+    gl.GetIntegeri_v(GL_IMAGE_BINDING_LEVEL, u, &i.level);
+    gl.GetIntegeri_v(GL_IMAGE_BINDING_LAYERED, u, &i.layered);
+    gl.GetIntegeri_v(GL_IMAGE_BINDING_LAYER, u, &i.layer);
+    gl.GetIntegeri_v(GL_IMAGE_BINDING_ACCESS, u, &i.access);
+    gl.GetIntegeri_v(GL_IMAGE_BINDING_FORMAT, u, &i.format);
+    images_.push_back(i);
+  }
+}
+
+StateGuard::~StateGuard() {
+  const GlFunctions& gl = gl_;
+  for (const ImageUnit& i : images_)
+    gl.BindImageTexture(i.unit, GLuint(i.name), i.level, i.layered ? GL_TRUE : GL_FALSE, i.layer, GLenum(i.access),
+                        GLenum(i.format));
+  for (const TextureUnit& t : textures_) {
+    gl.ActiveTexture(GL_TEXTURE0 + t.unit);
+    gl.BindTexture(GL_TEXTURE_2D, GLuint(t.texture2D));
+    gl.BindSampler(t.unit, GLuint(t.sampler));
+  }
+  gl.ActiveTexture(GLenum(activeTexture_));
+  // Indexed binds also set the generic binding point, so the generic one goes last.
+  if (uniformBuffer0_ != 0 && (uniformStart0_ != 0 || uniformSize0_ != 0))
+    gl.BindBufferRange(GL_UNIFORM_BUFFER, 0, GLuint(uniformBuffer0_), GLintptr(uniformStart0_),
+                       GLsizeiptr(uniformSize0_));
+  else
+    gl.BindBufferBase(GL_UNIFORM_BUFFER, 0, GLuint(uniformBuffer0_));
+  gl.BindBuffer(GL_UNIFORM_BUFFER, GLuint(uniformBuffer_));
+  gl.UseProgram(GLuint(program_));
+}
+
+void TextureParamGuard::apply(const GlFunctions& gl, GLuint unit, GLuint texture, bool depthInput, bool hasStencil) {
+  restore();
+  gl_ = &gl;
+  unit_ = unit;
+  texture_ = texture;
+  gl.ActiveTexture(GL_TEXTURE0 + unit);
+  gl.BindTexture(GL_TEXTURE_2D, texture);
+  auto set = [&](GLenum pname, GLint wanted) {
+    GLint current = 0;
+    gl.GetTexParameteriv(GL_TEXTURE_2D, pname, &current);
+    if (current == wanted) return;
+    changed_.push_back({pname, current});
+    gl.TexParameteri(GL_TEXTURE_2D, pname, wanted);
+  };
+  // texelFetch's lod is relative to the base level: read level 0 whatever the caller set.
+  set(GL_TEXTURE_BASE_LEVEL, 0);
+  if (depthInput) {
+    set(GL_TEXTURE_SWIZZLE_R, GL_RED);
+    if (hasStencil) set(GL_DEPTH_STENCIL_TEXTURE_MODE, GL_DEPTH_COMPONENT);
+  }
+}
+
+void TextureParamGuard::restore() {
+  if (!gl_ || changed_.empty()) {
+    changed_.clear();
+    return;
+  }
+  const GlFunctions& gl = *gl_;
+  gl.ActiveTexture(GL_TEXTURE0 + unit_);
+  gl.BindTexture(GL_TEXTURE_2D, texture_);
+  for (auto it = changed_.rbegin(); it != changed_.rend(); ++it) gl.TexParameteri(GL_TEXTURE_2D, it->pname, it->saved);
+  changed_.clear();
+}
+
+}  // namespace sao::gl::detail

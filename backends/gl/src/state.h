@@ -1,0 +1,63 @@
+// Saving and restoring the caller's GL state around everything the effect does.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "gl_functions.h"
+
+namespace sao::gl::detail {
+
+// Saves, on construction, the state render() may change and restores it on destruction:
+// the current program, the active texture unit, GL_TEXTURE_BINDING_2D and the sampler binding of
+// each listed texture unit, every field of each listed image unit, and the uniform-buffer bindings
+// (generic and index 0, with its range).
+class StateGuard {
+ public:
+  StateGuard(const GlFunctions& gl, const std::vector<GLuint>& textureUnits, const std::vector<GLuint>& imageUnits);
+  ~StateGuard();
+  StateGuard(const StateGuard&) = delete;
+  StateGuard& operator=(const StateGuard&) = delete;
+
+ private:
+  struct TextureUnit {
+    GLuint unit;
+    GLint texture2D, sampler;
+  };
+  struct ImageUnit {
+    GLuint unit;
+    GLint name, level, layered, layer, access, format;
+  };
+  const GlFunctions& gl_;
+  GLint program_ = 0, activeTexture_ = GL_TEXTURE0;
+  GLint uniformBuffer_ = 0, uniformBuffer0_ = 0;
+  GLint64 uniformStart0_ = 0, uniformSize0_ = 0;
+  std::vector<TextureUnit> textures_;
+  std::vector<ImageUnit> images_;
+};
+
+// Saves the texture parameters the effect sets on a caller's GL_TEXTURE_2D (base level, the
+// depth-stencil texture mode of combined formats, the red swizzle) and puts them back. The
+// texture is bound on `unit` for that, whose binding a StateGuard must cover.
+class TextureParamGuard {
+ public:
+  TextureParamGuard() = default;
+  ~TextureParamGuard() { restore(); }
+  TextureParamGuard(const TextureParamGuard&) = delete;
+  TextureParamGuard& operator=(const TextureParamGuard&) = delete;
+
+  // Sets base level 0, and for depth inputs swizzle R = GL_RED and, when the texture has a stencil
+  // part, GL_DEPTH_STENCIL_TEXTURE_MODE = GL_DEPTH_COMPONENT. Only values that differ are written.
+  void apply(const GlFunctions& gl, GLuint unit, GLuint texture, bool depthInput, bool hasStencil);
+  void restore();
+
+ private:
+  struct Param {
+    GLenum pname;
+    GLint saved;
+  };
+  const GlFunctions* gl_ = nullptr;
+  GLuint unit_ = 0, texture_ = 0;
+  std::vector<Param> changed_;
+};
+
+}  // namespace sao::gl::detail

@@ -1,0 +1,156 @@
+// sao-gl-timing: per-pass time of the OpenGL backend at 1280x720 and 1920x1080 (or the sizes
+// given), median of N runs per preset, on a headless EGL context. A measurement tool, not a test.
+//
+//   sao-gl-timing [--runs N] [--preset NAME|all] [--size WxH]... [--guard G]
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "sao/gl/effect.h"
+#include "sao/gl/headless.h"
+#include "sao/presets.h"
+
+namespace {
+
+// A floor, a back wall and a row of spheres: enough depth variety for every MIP level to be used.
+float sceneDepth(const sao::Camera& cam, const sao::DepthModel& model, std::uint32_t x, std::uint32_t y) {
+  const double W = cam.width, H = cam.height, g = cam.guardBand;
+  const double nx = 2.0 * (x - g + 0.5) / W - 1.0, ny = 2.0 * (y - g + 0.5) / H - 1.0;
+  const double dx = nx / cam.projection[0], dy = ny / cam.projection[5], dz = -1.0;  // view ray (eye at 0)
+  double best = 1e30;
+  if (dy < 0) best = std::min(best, -1.0 / dy);           // floor y = -1
+  best = std::min(best, 12.0);                            // wall z = -12
+  for (int i = -3; i <= 3; ++i) {                         // spheres r 0.6 at (1.5 i, -0.4, -5)
+    const double c[3] = {1.5 * i, -0.4, -5.0}, r = 0.6;
+    const double b = dx * c[0] + dy * c[1] + dz * c[2], a = dx * dx + dy * dy + dz * dz;
+    const double cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2] - r * r, disc = b * b - a * cc;
+    if (disc > 0) best = std::min(best, (b - std::sqrt(disc)) / a);
+  }
+  const double z = -best;  // t with dz = -1 is the distance along -z
+  // Standard OpenGL depth: d = (c0 / z - c2) / c1 from z = c0 / (d c1 + c2).
+  return float((model.c0 / z - model.c2) / model.c1);
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+int usage() {
+  std::fprintf(stderr, "usage: sao-gl-timing [--runs N>=5] [--preset NAME|all] [--size WxH]... [--guard G]\n");
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int runs = 7;
+  std::uint32_t guard = 16;
+  std::string presetName = "all";
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> sizes;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--runs" && i + 1 < argc) runs = std::atoi(argv[++i]);
+    else if (a == "--preset" && i + 1 < argc) presetName = argv[++i];
+    else if (a == "--guard" && i + 1 < argc) guard = std::uint32_t(std::atoi(argv[++i]));
+    else if (a == "--size" && i + 1 < argc) {
+      unsigned w = 0, h = 0;
+      if (std::sscanf(argv[++i], "%ux%u", &w, &h) != 2 || !w || !h) return usage();
+      sizes.push_back({w, h});
+    } else return usage();
+  }
+  if (runs < 5) runs = 5;
+  if (sizes.empty()) sizes = {{1280, 720}, {1920, 1080}};
+  std::vector<sao::Preset> presets;
+  for (const auto& p : sao::presets())
+    if (presetName == "all" || p.name == presetName) presets.push_back(p.preset);
+  if (presets.empty()) return usage();
+
+  std::unique_ptr<sao::gl::HeadlessContext> ctx;
+  sao::gl::HeadlessOptions ho;
+  ho.debug = false;
+  if (sao::Status st = sao::gl::HeadlessContext::create(ctx, ho); !st) {
+    std::fprintf(stderr, "sao-gl-timing: %s\n", st.message.c_str());
+    return 1;
+  }
+  std::unique_ptr<sao::gl::Effect> effect;
+  if (sao::Status st = sao::gl::Effect::create(sao::gl::HeadlessContext::getProcAddress(), effect); !st) {
+    std::fprintf(stderr, "sao-gl-timing: %s\n", st.message.c_str());
+    return 1;
+  }
+  std::printf("context: %s\nruns per configuration: %d (median reported), depth GL_DEPTH_COMPONENT32F, guard band %u\n",
+              ctx->description().c_str(), runs, guard);
+
+  for (const auto& [w, h] : sizes) {
+    sao::Camera cam = sao::perspectiveCamera(std::numbers::pi / 3.0, w, h, 0.1, 100.0,
+                                             sao::ClipDepth::NegativeOneToOne, false);
+    cam.guardBand = guard;
+    sao::DepthModel model;
+    if (sao::Status st = sao::analyze(cam, model); !st) {
+      std::fprintf(stderr, "sao-gl-timing: %s\n", st.message.c_str());
+      return 1;
+    }
+    const std::uint32_t dw = w + 2 * guard, dh = h + 2 * guard;
+    std::vector<float> depth(std::size_t(dw) * dh);
+    for (std::uint32_t y = 0; y < dh; ++y)
+      for (std::uint32_t x = 0; x < dw; ++x) depth[std::size_t(y) * dw + x] = sceneDepth(cam, model, x, y);
+    GLuint tex = 0;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH_COMPONENT32F, GLsizei(dw), GLsizei(dh));
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, GLsizei(dw), GLsizei(dh), GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+    glBindTexture(GL_TEXTURE_2D, 0);
+
+    for (sao::Preset preset : presets) {
+      const sao::Settings settings = sao::presetSettings(preset);
+      sao::gl::Inputs in;
+      in.depth = {tex, sao::gl::kDepthComponent32F};
+      // Warm-up: compiles the programs and allocates the images.
+      if (sao::Status st = effect->render(cam, settings, in, {true}); !st) {
+        std::fprintf(stderr, "sao-gl-timing: %s\n", st.message.c_str());
+        return 1;
+      }
+      std::map<std::string, std::vector<double>> perPass;
+      std::vector<std::string> order;
+      std::vector<double> totals;
+      sao::TimingMethod method = sao::TimingMethod::None;
+      for (int r = 0; r < runs; ++r) {
+        if (sao::Status st = effect->render(cam, settings, in, {true}); !st) {
+          std::fprintf(stderr, "sao-gl-timing: %s\n", st.message.c_str());
+          return 1;
+        }
+        const sao::Timings& t = effect->timings();
+        method = t.method;
+        for (const auto& p : t.passes) {
+          if (!perPass.count(p.pass)) order.push_back(p.pass);
+          perPass[p.pass].push_back(p.milliseconds);
+        }
+        totals.push_back(t.totalMilliseconds());
+      }
+      std::string name;
+      for (const auto& p : sao::presets())
+        if (p.preset == preset) name = std::string(p.name);
+      std::printf("\n%ux%u preset %-9s (%d taps, blur radius %d, csz levels %u) method: %s\n", w, h, name.c_str(),
+                  settings.samples, settings.blur_radius, effect->plan().cszLevels, sao::toString(method));
+      for (const auto& pass : order) {
+        const auto& v = perPass[pass];
+        std::printf("  %-10s median %9.3f ms   min %9.3f ms\n", pass.c_str(), median(v),
+                    *std::min_element(v.begin(), v.end()));
+      }
+      std::printf("  %-10s median %9.3f ms   min %9.3f ms\n", "total", median(totals),
+                  *std::min_element(totals.begin(), totals.end()));
+    }
+    glDeleteTextures(1, &tex);
+  }
+  return 0;
+}
