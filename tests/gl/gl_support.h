@@ -11,6 +11,7 @@
 #include "sao/camera.h"
 #include "sao/gl/effect.h"
 #include "sao/gl/headless.h"
+#include "sao/gl/texture_io.h"
 #include "sao/image.h"
 
 namespace sao::gltest {
@@ -26,21 +27,18 @@ class GlTest : public ::testing::Test {
   std::unique_ptr<gl::Effect> makeEffect();
 };
 
-// GL internal format and upload of each depth representation.
-enum class GlDepth { D16, D24, D32F, D24S8, D32FS8, R32F };
-const char* toString(GlDepth f);
-std::uint32_t internalFormat(GlDepth f);
-DepthFormat cpuFormat(GlDepth f);  // the DepthImage format holding the same texels
-
-// A GL_TEXTURE_2D (immutable storage) holding `depth` exactly (checked by reading it back).
+// Upload and readback live in sao_gl_headless (sao/gl/texture_io.h); these wrappers fail the
+// test when an upload does not hold exactly the given texels.
+using gl::cpuFormat;
+using gl::deleteTexture;
+using gl::GlDepth;
+using gl::internalFormat;
+using gl::makeTexture;
+using gl::readTexture;
+using gl::readTextureLevel;
+using gl::toString;
 std::uint32_t uploadDepth(const DepthImage& depth, GlDepth format);
-std::uint32_t uploadNormals(const FloatImage& normals);  // GL_RGBA16F
-std::uint32_t makeTexture(std::uint32_t internalFormat, Extent extent);
-void deleteTexture(std::uint32_t texture);
-// Level 0 as floats (1, 2 or 4 channels).
-FloatImage readTexture(std::uint32_t texture, std::uint32_t channels);
-// Level `level` of a single-channel float texture.
-FloatImage readTextureLevel(std::uint32_t texture, std::uint32_t level);
+std::uint32_t uploadNormals(const FloatImage& normals);  // GL_RGBA16F, nearest-even halves
 
 // A 60-degree perspective camera, near 0.1, far `farDistance` (inf: infinite), OpenGL depth.
 Camera camera(std::uint32_t width, std::uint32_t height, std::uint32_t guard, double farDistance = 1000.0,

@@ -369,33 +369,6 @@ Status run(const Settings& settings, const Camera& camera, const Inputs& inputs,
   return Status::success();
 }
 
-float quantizeHalf(float x) {
-  if (!isFinite(x) || x == 0.0f) return x;
-  const float a = std::fabs(x);
-  int e = 0;
-  (void)std::frexp(a, &e);              // a = f * 2^e, f in [0.5, 1)
-  const int q = std::max(e - 11, -24);  // log2 of the binary16 spacing at a
-  const float t = std::ldexp(a, -q);    // exact: a power-of-two scaling
-  float r = std::floor(t);
-  const float frac = t - r;             // exact
-  if (frac > 0.5f || (frac == 0.5f && std::fmod(r, 2.0f) != 0.0f)) r += 1.0f;
-  float v = std::ldexp(r, q);
-  if (v > 65504.0f) v = std::numeric_limits<float>::infinity();
-  return std::copysign(v, x);
-}
-
-std::uint16_t halfBits(float x) {
-  const std::uint16_t sign = std::uint16_t((std::bit_cast<std::uint32_t>(x) >> 16) & 0x8000u);
-  if (std::isnan(x)) return std::uint16_t(sign | 0x7E00u);
-  const float a = std::fabs(quantizeHalf(x));
-  if (std::isinf(a)) return std::uint16_t(sign | 0x7C00u);
-  if (a < 0x1p-14f) return std::uint16_t(sign | std::uint16_t(a * 0x1p24f));  // subnormal: a / 2^-24, exact
-  int e = 0;
-  const float f = std::frexp(a, &e);  // a = f * 2^e = (2f) * 2^(e-1), f in [0.5, 1)
-  const auto mantissa = std::uint32_t(f * 2048.0f) - 1024u;  // exact: a has at most 11 significant bits
-  return std::uint16_t(sign | (std::uint32_t(e - 1 + 15) << 10) | mantissa);
-}
-
 float roundToHalfAsShader(float x) { return roundToHalf(x); }
 
 }  // namespace sao::cpu

@@ -29,6 +29,15 @@ struct DepthImage {
 std::uint32_t encodeDepth(DepthFormat format, double d);
 double decodeDepth(DepthFormat format, std::uint32_t texel);
 
+// The float value of the binary16 nearest to x (round to nearest, ties to even; overflow to
+// +-Inf, subnormals kept, NaN stays NaN): what an rgba16f texture holds for x.
+float quantizeHalf(float x);
+
+// The binary16 bits of quantizeHalf(x) (NaN: a quiet NaN with x's sign). Upload half-float data
+// as these bits (GL_HALF_FLOAT, VK_FORMAT_R16G16B16A16_SFLOAT) rather than let the driver convert
+// floats: Mesa 22.3 truncates float -> half on upload.
+std::uint16_t halfBits(float x);
+
 // A float image with `channels` interleaved channels, row 0 first.
 struct FloatImage {
   Extent extent;

@@ -93,15 +93,9 @@ struct Result {
 Status run(const Settings& settings, const Camera& camera, const Inputs& inputs, const Options& options,
            Result& out);
 
-// The float value of the binary16 nearest to x (round to nearest, ties to even; overflow to
-// +-Inf, subnormals kept, NaN stays NaN): what the reference reads from the rgba16f normals.
-float quantizeHalf(float x);
-
-// The binary16 bits of quantizeHalf(x) (NaN: a quiet NaN with x's sign). GPU backends and their
-// tests should upload normals as these bits (GL_HALF_FLOAT, VK_FORMAT_R16G16B16A16_SFLOAT data)
-// rather than let the driver convert floats: Mesa 22.3 truncates float -> half on upload, which
-// moves ao_raw by up to ~3e-4 against the reference.
-std::uint16_t halfBits(float x);
+// Half-float helpers live in core (sao/image.h); kept here under their first names.
+using sao::halfBits;
+using sao::quantizeHalf;
 
 // sao_round_to_half of sao_blur.glsl: x clamped to [0, 1] and rounded to the nearest binary16
 // value with ties away from zero, using only exact operations.
