@@ -1,0 +1,349 @@
+// Uploads (depth through vkCmdCopyBufferToImage, colour images) and read-backs of the headless
+// helper.
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+
+#include "sao/vulkan/headless.h"
+
+namespace sao::vk::headless {
+namespace {
+
+Status vkFail(const std::string& what, VkResult r) {
+  return Status::error(StatusCode::DriverError, what + " failed: VkResult " + std::to_string(static_cast<int>(r)));
+}
+
+bool hasStencil(VkFormat f) { return f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT; }
+bool isDepth(VkFormat f) {
+  return f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_X8_D24_UNORM_PACK32 || f == VK_FORMAT_D32_SFLOAT || hasStencil(f);
+}
+
+float halfToFloat(std::uint16_t h) {
+  const std::uint32_t sign = (h & 0x8000u) << 16;
+  std::uint32_t exp = (h >> 10) & 0x1f, mant = h & 0x3ffu;
+  std::uint32_t bits;
+  if (exp == 0) {
+    if (mant == 0) bits = sign;
+    else {  // subnormal: normalise
+      int e = -1;
+      do {
+        ++e;
+        mant <<= 1;
+      } while (!(mant & 0x400u));
+      bits = sign | std::uint32_t(127 - 15 - e) << 23 | (mant & 0x3ffu) << 13;
+    }
+  } else if (exp == 31) {
+    bits = sign | 0x7f800000u | mant << 13;
+  } else {
+    bits = sign | (exp + 112) << 23 | mant << 13;
+  }
+  return std::bit_cast<float>(bits);
+}
+
+std::uint16_t floatToHalf(float f) {  // round to nearest even; for uploads of normals
+  const std::uint32_t x = std::bit_cast<std::uint32_t>(f);
+  const std::uint32_t sign = (x >> 16) & 0x8000u;
+  const std::uint32_t absx = x & 0x7fffffffu;
+  if (absx >= 0x7f800000u) return static_cast<std::uint16_t>(sign | 0x7c00u | (absx > 0x7f800000u ? 0x200u : 0));
+  if (absx >= 0x477ff000u) return static_cast<std::uint16_t>(sign | 0x7c00u);  // overflow
+  if (absx < 0x38800000u) {  // subnormal half
+    const float a = std::bit_cast<float>(absx);
+    const float scaled = a * 16777216.0f;  // 2^24: the half subnormal unit
+    const auto m = static_cast<std::uint32_t>(std::nearbyint(scaled));
+    return static_cast<std::uint16_t>(sign | m);
+  }
+  std::uint32_t mant = absx & 0x7fffffu;
+  std::uint32_t exp = (absx >> 23) - 112;
+  std::uint32_t h = exp << 10 | mant >> 13;
+  const std::uint32_t rest = mant & 0x1fffu;
+  if (rest > 0x1000u || (rest == 0x1000u && (h & 1u))) ++h;
+  return static_cast<std::uint16_t>(sign | h);
+}
+
+std::uint32_t channelsOf(VkFormat f, std::uint32_t& bytes) {
+  switch (f) {
+    case VK_FORMAT_R16_SFLOAT: bytes = 2; return 1;
+    case VK_FORMAT_R32_SFLOAT: bytes = 4; return 1;
+    case VK_FORMAT_R32G32_SFLOAT: bytes = 8; return 2;
+    case VK_FORMAT_R16G16B16A16_SFLOAT: bytes = 8; return 4;
+    case VK_FORMAT_R32G32B32A32_SFLOAT: bytes = 16; return 4;
+    default: bytes = 0; return 0;
+  }
+}
+
+VkImageMemoryBarrier barrier(VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
+                             VkAccessFlags src, VkAccessFlags dst, std::uint32_t level = 0, std::uint32_t levels = 1) {
+  VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+  b.srcAccessMask = src;
+  b.dstAccessMask = dst;
+  b.oldLayout = from;
+  b.newLayout = to;
+  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = image;
+  b.subresourceRange = {aspect, level, levels, 0, 1};
+  return b;
+}
+
+}  // namespace
+
+int Context::memoryType(std::uint32_t bits, VkMemoryPropertyFlags flags) const {
+  for (std::uint32_t i = 0; i < memory_.memoryTypeCount; ++i)
+    if ((bits & (1u << i)) && (memory_.memoryTypes[i].propertyFlags & flags) == flags) return static_cast<int>(i);
+  return -1;
+}
+
+Status Context::createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, VkBuffer& buffer, VkDeviceMemory& memory) {
+  VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  bi.size = size;
+  bi.usage = usage;
+  bi.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  if (VkResult r = vkCreateBuffer(device_, &bi, nullptr, &buffer); r != VK_SUCCESS) return vkFail("vkCreateBuffer", r);
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(device_, buffer, &req);
+  const int type = memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  if (type < 0) return Status::error(StatusCode::DriverError, "no host-visible coherent memory for a staging buffer");
+  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size, static_cast<std::uint32_t>(type)};
+  if (VkResult r = vkAllocateMemory(device_, &ai, nullptr, &memory); r != VK_SUCCESS) return vkFail("vkAllocateMemory", r);
+  if (VkResult r = vkBindBufferMemory(device_, buffer, memory, 0); r != VK_SUCCESS) return vkFail("vkBindBufferMemory", r);
+  return Status::success();
+}
+
+Status Context::createImage(VkFormat format, Extent extent, VkImageUsageFlags usage, VkImageAspectFlags viewAspect,
+                            Image& out) {
+  out = Image{};
+  out.format = format;
+  out.extent = extent;
+  VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  ci.imageType = VK_IMAGE_TYPE_2D;
+  ci.format = format;
+  ci.extent = {extent.width, extent.height, 1};
+  ci.mipLevels = 1;
+  ci.arrayLayers = 1;
+  ci.samples = VK_SAMPLE_COUNT_1_BIT;
+  ci.tiling = VK_IMAGE_TILING_OPTIMAL;
+  ci.usage = usage;
+  ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  if (VkResult r = vkCreateImage(device_, &ci, nullptr, &out.image); r != VK_SUCCESS) return vkFail("vkCreateImage", r);
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(device_, out.image, &req);
+  int type = memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  if (type < 0) type = memoryType(req.memoryTypeBits, 0);
+  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size, static_cast<std::uint32_t>(type)};
+  if (VkResult r = vkAllocateMemory(device_, &ai, nullptr, &out.memory); r != VK_SUCCESS) {
+    destroy(out);
+    return vkFail("vkAllocateMemory", r);
+  }
+  vkBindImageMemory(device_, out.image, out.memory, 0);
+  VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  vi.image = out.image;
+  vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  vi.format = format;
+  vi.subresourceRange = {viewAspect, 0, 1, 0, 1};
+  if (VkResult r = vkCreateImageView(device_, &vi, nullptr, &out.view); r != VK_SUCCESS) {
+    destroy(out);
+    return vkFail("vkCreateImageView", r);
+  }
+  return Status::success();
+}
+
+void Context::destroy(Image& image) {
+  if (image.view) vkDestroyImageView(device_, image.view, nullptr);
+  if (image.image) vkDestroyImage(device_, image.image, nullptr);
+  if (image.memory) vkFreeMemory(device_, image.memory, nullptr);
+  image = Image{};
+}
+
+Status Context::uploadDepth(const DepthImage& depth, VkFormat format, VkImageLayout layout, Image& out) {
+  const std::size_t n = std::size_t(depth.extent.width) * depth.extent.height;
+  if (n == 0 || depth.texels.size() != n)
+    return Status::error(StatusCode::InvalidInput, "uploadDepth: the texels do not match the extent");
+  bool match = false;
+  switch (depth.format) {
+    case DepthFormat::D16: match = format == VK_FORMAT_D16_UNORM; break;
+    case DepthFormat::D24: match = format == VK_FORMAT_X8_D24_UNORM_PACK32 || format == VK_FORMAT_D24_UNORM_S8_UINT; break;
+    case DepthFormat::D32F: match = format == VK_FORMAT_D32_SFLOAT || format == VK_FORMAT_D32_SFLOAT_S8_UINT; break;
+    case DepthFormat::LinearZ: match = format == VK_FORMAT_R32_SFLOAT; break;
+  }
+  if (!match)
+    return Status::error(StatusCode::InvalidInput, std::string("uploadDepth: a ") + sao::toString(depth.format) +
+                                                       " image cannot go into VkFormat " + std::to_string(format));
+  const bool depthFormat = isDepth(format);
+  const VkImageAspectFlags viewAspect = depthFormat ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
+  const VkImageAspectFlags allAspects = hasStencil(format) ? (VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT) : viewAspect;
+  const std::size_t texelBytes = format == VK_FORMAT_D16_UNORM ? 2 : 4;
+
+  VkBuffer staging = VK_NULL_HANDLE;
+  VkDeviceMemory stagingMemory = VK_NULL_HANDLE;
+  auto cleanup = [&] {
+    if (staging) vkDestroyBuffer(device_, staging, nullptr);
+    if (stagingMemory) vkFreeMemory(device_, stagingMemory, nullptr);
+  };
+  if (Status st = createBuffer(n * texelBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, staging, stagingMemory); !st) {
+    cleanup();
+    return st;
+  }
+  void* mapped = nullptr;
+  vkMapMemory(device_, stagingMemory, 0, VK_WHOLE_SIZE, 0, &mapped);
+  if (texelBytes == 2) {
+    auto* p = static_cast<std::uint16_t*>(mapped);
+    for (std::size_t i = 0; i < n; ++i) p[i] = static_cast<std::uint16_t>(depth.texels[i]);
+  } else {
+    auto* p = static_cast<std::uint32_t*>(mapped);
+    const std::uint32_t mask = depth.format == DepthFormat::D24 ? 0xffffffu : 0xffffffffu;
+    for (std::size_t i = 0; i < n; ++i) p[i] = depth.texels[i] & mask;
+  }
+  vkUnmapMemory(device_, stagingMemory);
+
+  const VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                                  VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                  (depthFormat ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT : 0);
+  if (Status st = createImage(format, depth.extent, usage, viewAspect, out); !st) {
+    cleanup();
+    return st;
+  }
+  Status st = submit([&](VkCommandBuffer cmd) {
+    auto toDst = barrier(out.image, allAspects, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+                         VK_ACCESS_TRANSFER_WRITE_BIT);
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
+                         nullptr, 1, &toDst);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {viewAspect, 0, 0, 1};
+    copy.imageExtent = {depth.extent.width, depth.extent.height, 1};
+    vkCmdCopyBufferToImage(cmd, staging, out.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+    auto toRead = barrier(out.image, allAspects, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, layout,
+                          VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT);
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0,
+                         nullptr, 1, &toRead);
+  });
+  cleanup();
+  if (!st) {
+    destroy(out);
+    return st;
+  }
+  out.layout = layout;
+  return Status::success();
+}
+
+Status Context::uploadColor(const FloatImage& image, VkFormat format, VkImageLayout layout, Image& out) {
+  std::uint32_t bytes = 0;
+  const std::uint32_t channels = channelsOf(format, bytes);
+  const std::size_t n = std::size_t(image.extent.width) * image.extent.height;
+  if (channels == 0 || image.channels != channels || image.data.size() != n * channels || n == 0)
+    return Status::error(StatusCode::InvalidInput, "uploadColor: the image does not match the format's channels");
+  VkBuffer staging = VK_NULL_HANDLE;
+  VkDeviceMemory stagingMemory = VK_NULL_HANDLE;
+  auto cleanup = [&] {
+    if (staging) vkDestroyBuffer(device_, staging, nullptr);
+    if (stagingMemory) vkFreeMemory(device_, stagingMemory, nullptr);
+  };
+  if (Status st = createBuffer(n * bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, staging, stagingMemory); !st) {
+    cleanup();
+    return st;
+  }
+  void* mapped = nullptr;
+  vkMapMemory(device_, stagingMemory, 0, VK_WHOLE_SIZE, 0, &mapped);
+  const bool half = bytes / channels == 2;
+  for (std::size_t i = 0; i < n * channels; ++i) {
+    if (half) static_cast<std::uint16_t*>(mapped)[i] = floatToHalf(image.data[i]);
+    else static_cast<float*>(mapped)[i] = image.data[i];
+  }
+  vkUnmapMemory(device_, stagingMemory);
+  if (Status st = createImage(format, image.extent,
+                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                              VK_IMAGE_ASPECT_COLOR_BIT, out);
+      !st) {
+    cleanup();
+    return st;
+  }
+  Status st = submit([&](VkCommandBuffer cmd) {
+    auto toDst = barrier(out.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0, VK_ACCESS_TRANSFER_WRITE_BIT);
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
+                         nullptr, 1, &toDst);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {image.extent.width, image.extent.height, 1};
+    vkCmdCopyBufferToImage(cmd, staging, out.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+    auto toRead = barrier(out.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, layout,
+                          VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT);
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0,
+                         nullptr, 1, &toRead);
+  });
+  cleanup();
+  if (!st) {
+    destroy(out);
+    return st;
+  }
+  out.layout = layout;
+  return Status::success();
+}
+
+Status Context::createStorageImage(VkFormat format, Extent extent, Image& out) {
+  return createImage(format, extent,
+                     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                         VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                     VK_IMAGE_ASPECT_COLOR_BIT, out);
+}
+
+Status Context::readback(VkImage image, VkFormat format, Extent levelZero, std::uint32_t level, VkImageLayout layout,
+                         VkPipelineStageFlags srcStages, VkAccessFlags srcAccess, FloatImage& out) {
+  std::uint32_t bytes = 0;
+  const std::uint32_t channels = channelsOf(format, bytes);
+  if (channels == 0 || image == VK_NULL_HANDLE)
+    return Status::error(StatusCode::UnsupportedFormat, "readback: unsupported format or null image");
+  const Extent e{std::max(1u, levelZero.width >> level), std::max(1u, levelZero.height >> level)};
+  const std::size_t n = std::size_t(e.width) * e.height;
+  VkBuffer staging = VK_NULL_HANDLE;
+  VkDeviceMemory stagingMemory = VK_NULL_HANDLE;
+  auto cleanup = [&] {
+    if (staging) vkDestroyBuffer(device_, staging, nullptr);
+    if (stagingMemory) vkFreeMemory(device_, stagingMemory, nullptr);
+  };
+  if (Status st = createBuffer(n * bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, staging, stagingMemory); !st) {
+    cleanup();
+    return st;
+  }
+  // Always through TRANSFER_SRC_OPTIMAL (copies from GENERAL draw a performance warning).
+  const VkImageLayout copyLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  Status st = submit([&](VkCommandBuffer cmd) {
+    auto pre = barrier(image, VK_IMAGE_ASPECT_COLOR_BIT, layout, copyLayout, srcAccess, VK_ACCESS_TRANSFER_READ_BIT,
+                       level, 1);
+    vkCmdPipelineBarrier(cmd, srcStages, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1, &pre);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1};
+    copy.imageExtent = {e.width, e.height, 1};
+    vkCmdCopyImageToBuffer(cmd, image, copyLayout, staging, 1, &copy);
+    // Back to the caller's layout; later work of any stage comes after the copy.
+    auto post = barrier(image, VK_IMAGE_ASPECT_COLOR_BIT, copyLayout, layout, 0,
+                        VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT, level, 1);
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0,
+                         nullptr, 1, &post);
+    VkBufferMemoryBarrier host{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+    host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    host.srcQueueFamilyIndex = host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    host.buffer = staging;
+    host.size = VK_WHOLE_SIZE;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &host, 0,
+                         nullptr);
+  });
+  if (!st) {
+    cleanup();
+    return st;
+  }
+  out = FloatImage(e, channels);
+  void* mapped = nullptr;
+  vkMapMemory(device_, stagingMemory, 0, VK_WHOLE_SIZE, 0, &mapped);
+  const bool half = bytes / channels == 2;
+  for (std::size_t i = 0; i < n * channels; ++i)
+    out.data[i] = half ? halfToFloat(static_cast<const std::uint16_t*>(mapped)[i]) : static_cast<const float*>(mapped)[i];
+  vkUnmapMemory(device_, stagingMemory);
+  cleanup();
+  return Status::success();
+}
+
+}  // namespace sao::vk::headless

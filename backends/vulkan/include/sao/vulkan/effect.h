@@ -1,0 +1,221 @@
+// sao::vk — the Vulkan backend: the effect recorded into your command buffer.
+//
+// Everything goes through the vkGetInstanceProcAddr / vkGetDeviceProcAddr you pass in: the
+// library exports no vk* symbol and does not link the Vulkan loader. The compute pipelines come
+// from the SPIR-V embedded at build time (SPIR-V 1.3, Vulkan 1.1), one per pass variant the plan
+// needs; images and memory come from plan() through a small allocator of the library's own.
+//
+//   sao::vk::DeviceContext ctx{instance, physicalDevice, device, vkGetInstanceProcAddr,
+//                              vkGetDeviceProcAddr, queueFamily};
+//   sao::vk::Config config;            // settings, camera, depth format, output layout, ...
+//   config.camera = camera;
+//   config.depthFormat = VK_FORMAT_D32_SFLOAT;
+//   std::unique_ptr<sao::vk::Effect> effect;
+//   sao::Status st = sao::vk::Effect::create(ctx, config, effect);
+//   ...
+//   sao::vk::Inputs in;
+//   in.depth = {depthView, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, effect->plan().inputExtent};
+//   st = effect->record(cmd, in);      // every pass and barrier, into your command buffer
+//   sao::vk::OutputImage ao = effect->output();  // R16_SFLOAT, in config.outputLayout
+//
+// Requirements on your device: Vulkan 1.1 or later, the feature shaderStorageImageExtendedFormats
+// enabled (the intermediates are rg32f and the output r16f storage images), and a queue family with
+// compute. Command buffers recorded by record() must be submitted to a queue of the family named
+// in DeviceContext::queueFamilyIndex (one queue: the effect's own images are reused every frame
+// and ordered by pipeline barriers in submission order).
+//
+// Synchronisation contract (checked by the tests under synchronization validation):
+//  * Inputs (depth, depth2, normals): you make your writes available and visible to
+//    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT / VK_ACCESS_SHADER_READ_BIT and put the image in the
+//    layout you name in InputImage::layout before the recorded commands run. The effect never
+//    transitions or writes your inputs; before writing them again, wait for the compute stage.
+//  * Output: record() discards the output's previous contents (a transition from UNDEFINED after
+//    Config::outputDstStages of earlier commands), writes it in VK_IMAGE_LAYOUT_GENERAL and leaves
+//    it in Config::outputLayout (GENERAL or SHADER_READ_ONLY_OPTIMAL), made visible to
+//    Config::outputDstStages / outputDstAccess. Earlier accesses of your own output image in other
+//    stages must be ordered before outputDstStages by you.
+//  * Effect-owned intermediates stay in VK_IMAGE_LAYOUT_GENERAL after record().
+//  * Frames in flight: record() uses the next of Config::framesInFlight ring slots, each with its
+//    own descriptor sets and its own copy of the parameter block (gen::SaoParams memcpy'd as is
+//    into host-coherent memory, made visible by vkQueueSubmit). At most framesInFlight command
+//    buffers recorded by one Effect may be pending (recorded and not completed) at a time. A slot
+//    is rewritten only when its views or parameters changed, so with unchanged inputs and settings
+//    more may be pending. The effect's images are shared by all slots; the barriers order them in
+//    submission order on the one queue.
+//  * create(), update() and the destructor must not run while a command buffer recorded by the
+//    effect is pending (wait for its fence, or vkDeviceWaitIdle).
+#pragma once
+#include <vulkan/vulkan_core.h>
+
+#include <cstdint>
+#include <memory>
+
+#include "sao/camera.h"
+#include "sao/constants.h"
+#include "sao/image.h"
+#include "sao/plan.h"
+#include "sao/settings.h"
+#include "sao/status.h"
+#include "sao/timing.h"
+#include "sao/version.h"
+
+#if defined(_WIN32)
+#define SAO_VK_API
+#else
+#define SAO_VK_API __attribute__((visibility("default")))
+#endif
+
+namespace sao::vk {
+
+// Your Vulkan objects. The effect keeps the handles, never destroys them.
+struct DeviceContext {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  PFN_vkGetInstanceProcAddr getInstanceProcAddr = nullptr;  // required
+  PFN_vkGetDeviceProcAddr getDeviceProcAddr = nullptr;      // optional: taken from getInstanceProcAddr
+  std::uint32_t queueFamilyIndex = 0;                       // where the recorded commands are submitted
+  VkPipelineCache pipelineCache = VK_NULL_HANDLE;           // optional, used for every pipeline
+  const VkAllocationCallbacks* allocator = nullptr;         // optional, used for every object
+  // Set when the instance enabled VK_EXT_debug_utils: each pass is recorded inside a
+  // vkCmdBeginDebugUtilsLabelEXT / End pair named "sao <pass>" (for captures and validation).
+  bool debugUtilsEnabled = false;
+};
+
+// What the images, pipelines and the parameter block depend on.
+struct Config {
+  Settings settings;
+  Camera camera;
+  // The depth input: VK_FORMAT_D16_UNORM, X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT, D32_SFLOAT,
+  // D32_SFLOAT_S8_UINT (hardware depth per the camera's conventions; views of the combined
+  // formats must select VK_IMAGE_ASPECT_DEPTH_BIT only) or VK_FORMAT_R32_SFLOAT (linear
+  // camera-space z, DepthEncoding::LinearZ). depth2 (secondLayer) has the same format.
+  VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;
+  // Camera-space normals in .xyz (components in [-1,1]), any sampled colour format, e.g.
+  // VK_FORMAT_R16G16B16A16_SFLOAT; VK_FORMAT_UNDEFINED: no normals (rebuilt from depth).
+  VkFormat normalsFormat = VK_FORMAT_UNDEFINED;
+  bool secondLayer = false;  // a second depth layer (deep G-buffer)
+  bool userOutput = false;   // you pass the output image to record(); otherwise the effect owns one
+  // Layout of the output after record(): VK_IMAGE_LAYOUT_GENERAL or SHADER_READ_ONLY_OPTIMAL.
+  VkImageLayout outputLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  // Where you read the output afterwards (the final barrier's destination scope). On a queue family
+  // without graphics, leave out the graphics stages (create() says so otherwise).
+  VkPipelineStageFlags outputDstStages = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+  VkAccessFlags outputDstAccess = VK_ACCESS_SHADER_READ_BIT;
+  std::uint32_t framesInFlight = 2;  // descriptor-set ring size, 1..16 (see the contract above)
+  bool timestamps = false;  // record() writes per-pass timestamps where the queue family has them
+};
+
+// One of your sampled inputs: a view of one mip level, in `layout` (SHADER_READ_ONLY_OPTIMAL,
+// DEPTH_STENCIL_READ_ONLY_OPTIMAL, DEPTH_READ_ONLY_OPTIMAL, DEPTH_READ_ONLY_STENCIL_ATTACHMENT_OPTIMAL,
+// READ_ONLY_OPTIMAL or GENERAL), created with VK_IMAGE_USAGE_SAMPLED_BIT. `extent` must equal
+// plan().inputExtent (viewport + 2 * guard band). `format`, when given, must be the one Config
+// names (Config::depthFormat for depth and depth2, Config::normalsFormat for normals).
+struct InputImage {
+  VkImageView view = VK_NULL_HANDLE;
+  VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  Extent extent;
+  VkFormat format = VK_FORMAT_UNDEFINED;  // optional, checked against Config
+};
+
+struct Inputs {
+  InputImage depth;    // required
+  InputImage depth2;   // when Config::secondLayer
+  InputImage normals;  // when Config::normalsFormat != VK_FORMAT_UNDEFINED
+};
+
+// The output: VK_FORMAT_R16_SFLOAT, the viewport's extent (plan().aoExtent), one level, usage
+// STORAGE (plus whatever you read it with). As returned by Effect::output(), `layout` is where
+// record() leaves it.
+struct OutputImage {
+  VkImage image = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;  // a single-level colour view
+  VkFormat format = VK_FORMAT_R16_SFLOAT;
+  Extent extent;
+  VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+};
+
+// An effect-owned image (for debugging and tests): VK_IMAGE_LAYOUT_GENERAL after record(), usage
+// includes TRANSFER_SRC. `image` is VK_NULL_HANDLE when the plan has no such image.
+struct OwnedImageInfo {
+  VkImage image = VK_NULL_HANDLE;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  Extent extent;  // level 0
+  std::uint32_t mipLevels = 0;
+  VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL;
+};
+
+// Device memory held through the library's allocator.
+struct MemoryStats {
+  std::uint64_t liveAllocations = 0;  // VkDeviceMemory objects alive
+  std::uint64_t liveBytes = 0;
+  std::uint64_t totalAllocations = 0;  // ever made
+};
+
+// Every effect of the process together.
+SAO_VK_API MemoryStats processMemoryStats();
+
+enum class MeasureMethod {
+  Auto,        // timestamps where the queue family has them, else the fence fallback
+  FenceClock,  // one submission per pass, a fence wait and a steady clock around each
+};
+
+class SAO_VK_API Effect {
+ public:
+  // Checks the version (VersionMismatch when the header you compiled against differs from the
+  // library), loads the functions, validates config against the device (formats, limits,
+  // features), plans, allocates the images and builds the pipelines. On error `out` is reset and
+  // the Status says what is wrong; nothing is left allocated.
+  static Status create(const DeviceContext& context, const Config& config, std::unique_ptr<Effect>& out,
+                       int headerVersion = SAO_VERSION);
+  ~Effect();
+  Effect(const Effect&) = delete;
+  Effect& operator=(const Effect&) = delete;
+
+  // New settings, camera (a resize) or inputs. Images are rebuilt only when the plan's images
+  // change, pipelines only for variants not built yet. On error the effect keeps its previous
+  // configuration. Not while a recorded command buffer is pending.
+  Status update(const Config& config);
+
+  // Records every planned pass (with its barriers) into `cmd`, which must be in the recording
+  // state, outside a render pass, on a queue of DeviceContext::queueFamilyIndex's family.
+  // `userOutput` is required with Config::userOutput and must be null otherwise. Nothing is
+  // recorded when the Status is not Ok.
+  Status record(VkCommandBuffer cmd, const Inputs& inputs, const OutputImage* userOutput = nullptr);
+
+  // Per-pass times of the last record() with Config::timestamps, once its submission completed
+  // (DriverError with "not ready" before). "mips" covers all its levels.
+  Status timings(Timings& out) const;
+
+  // Runs the effect once on `queue` (of the context's family) on its own command buffers and
+  // waits: per-pass times by timestamps (GpuTimestamps) or, where the family has none or when
+  // asked, one fenced submission per pass timed by a steady clock (FinishAndClock). Uses the next
+  // ring slot like record().
+  Status measure(VkQueue queue, const Inputs& inputs, const OutputImage* userOutput, Timings& out,
+                 MeasureMethod method = MeasureMethod::Auto);
+
+  // Whether record() can write timestamps on the context's queue family.
+  bool timestampsSupported() const;
+
+  const Config& config() const;
+  const Plan& plan() const;
+  const ParamBlock& params() const;
+  // The effect-owned output (VK_NULL_HANDLE with userOutput); `layout` is where record() leaves it
+  // (undefined contents before the first submitted record()).
+  OutputImage output() const;
+  OwnedImageInfo ownedImage(gen::ResourceId id) const;
+  MemoryStats memoryStats() const;  // this effect's device memory
+  std::uint32_t pipelineCount() const;  // pipelines built so far (one per pass variant used)
+
+  struct Impl;
+
+ private:
+  explicit Effect(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+// The VkFormat of the depth texels a DepthFormat describes (D16 -> D16_UNORM, D24 ->
+// X8_D24_UNORM_PACK32, D32F -> D32_SFLOAT, LinearZ -> R32_SFLOAT).
+SAO_VK_API VkFormat depthVkFormat(DepthFormat format);
+
+}  // namespace sao::vk

@@ -1,0 +1,286 @@
+// Effect: creation (version, functions, device checks), configuration checks, update, teardown.
+#include <string>
+
+#include "effect_impl.h"
+
+namespace sao::vk {
+namespace {
+
+std::string versionText(int v) {
+  return std::to_string((v >> 16) & 0xff) + "." + std::to_string((v >> 8) & 0xff) + "." + std::to_string(v & 0xff);
+}
+
+const char* formatName(VkFormat f) {
+  switch (f) {
+    case VK_FORMAT_D16_UNORM: return "VK_FORMAT_D16_UNORM";
+    case VK_FORMAT_X8_D24_UNORM_PACK32: return "VK_FORMAT_X8_D24_UNORM_PACK32";
+    case VK_FORMAT_D24_UNORM_S8_UINT: return "VK_FORMAT_D24_UNORM_S8_UINT";
+    case VK_FORMAT_D32_SFLOAT: return "VK_FORMAT_D32_SFLOAT";
+    case VK_FORMAT_D32_SFLOAT_S8_UINT: return "VK_FORMAT_D32_SFLOAT_S8_UINT";
+    case VK_FORMAT_R32_SFLOAT: return "VK_FORMAT_R32_SFLOAT";
+    case VK_FORMAT_S8_UINT: return "VK_FORMAT_S8_UINT";
+    case VK_FORMAT_D16_UNORM_S8_UINT: return "VK_FORMAT_D16_UNORM_S8_UINT";
+    default: return nullptr;
+  }
+}
+
+std::string formatText(VkFormat f) {
+  const char* n = formatName(f);
+  return n ? std::string(n) : "VkFormat " + std::to_string(static_cast<int>(f));
+}
+
+bool isDepthStencilFormat(VkFormat f) {
+  switch (f) {
+    case VK_FORMAT_D16_UNORM:
+    case VK_FORMAT_X8_D24_UNORM_PACK32:
+    case VK_FORMAT_D32_SFLOAT:
+    case VK_FORMAT_S8_UINT:
+    case VK_FORMAT_D16_UNORM_S8_UINT:
+    case VK_FORMAT_D24_UNORM_S8_UINT:
+    case VK_FORMAT_D32_SFLOAT_S8_UINT: return true;
+    default: return false;
+  }
+}
+
+Status checkSampled(const Effect::Impl& e, VkFormat format, const char* what) {
+  VkFormatProperties fp{};
+  e.d.vkGetPhysicalDeviceFormatProperties(e.ctx.physicalDevice, format, &fp);
+  if (!(fp.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT))
+    return Status::error(StatusCode::UnsupportedFormat, std::string(what) + " format " + formatText(format) +
+                                                            " cannot be sampled on this device (optimal tiling)");
+  return Status::success();
+}
+
+// Everything a configuration needs that does not allocate: format and layout checks, the plan, the
+// parameter block, device limits.
+Status checkConfig(const Effect::Impl& e, const Config& c, Plan& plan, ParamBlock& params) {
+  if (c.framesInFlight < 1 || c.framesInFlight > kMaxFramesInFlight)
+    return Status::error(StatusCode::InvalidInput, "Config::framesInFlight is " + std::to_string(c.framesInFlight) +
+                                                       "; allowed 1.." + std::to_string(kMaxFramesInFlight));
+  switch (c.depthFormat) {
+    case VK_FORMAT_D16_UNORM:
+    case VK_FORMAT_X8_D24_UNORM_PACK32:
+    case VK_FORMAT_D24_UNORM_S8_UINT:
+    case VK_FORMAT_D32_SFLOAT:
+    case VK_FORMAT_D32_SFLOAT_S8_UINT:
+    case VK_FORMAT_R32_SFLOAT: break;
+    default:
+      return Status::error(StatusCode::UnsupportedFormat,
+                           "Config::depthFormat " + formatText(c.depthFormat) +
+                               " is not a depth format the effect reads (D16_UNORM, X8_D24_UNORM_PACK32, "
+                               "D24_UNORM_S8_UINT, D32_SFLOAT, D32_SFLOAT_S8_UINT, or R32_SFLOAT linear z)");
+  }
+  if (Status st = checkSampled(e, c.depthFormat, "the depth"); !st) return st;
+  if (c.normalsFormat != VK_FORMAT_UNDEFINED) {
+    if (isDepthStencilFormat(c.normalsFormat))
+      return Status::error(StatusCode::UnsupportedFormat,
+                           "Config::normalsFormat " + formatText(c.normalsFormat) + " is a depth/stencil format");
+    if (Status st = checkSampled(e, c.normalsFormat, "the normals"); !st) return st;
+  }
+  if (c.outputLayout != VK_IMAGE_LAYOUT_GENERAL && c.outputLayout != VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+    return Status::error(StatusCode::InvalidInput, "Config::outputLayout must be VK_IMAGE_LAYOUT_GENERAL or "
+                                                   "VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, got " +
+                                                       std::to_string(c.outputLayout));
+  if (c.outputDstStages == 0)
+    return Status::error(StatusCode::InvalidInput, "Config::outputDstStages is empty");
+  constexpr VkPipelineStageFlags graphicsStages =
+      VK_PIPELINE_STAGE_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
+      VK_PIPELINE_STAGE_TESSELLATION_CONTROL_SHADER_BIT | VK_PIPELINE_STAGE_TESSELLATION_EVALUATION_SHADER_BIT |
+      VK_PIPELINE_STAGE_GEOMETRY_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
+      VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT |
+      VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_ALL_GRAPHICS_BIT;
+  if ((c.outputDstStages & graphicsStages) && !(e.family.queueFlags & VK_QUEUE_GRAPHICS_BIT))
+    return Status::error(StatusCode::InvalidInput,
+                         "Config::outputDstStages names graphics stages but queue family " +
+                             std::to_string(e.ctx.queueFamilyIndex) +
+                             " has no graphics (use VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT / TRANSFER_BIT)");
+
+  const DepthEncoding encoding = c.depthFormat == VK_FORMAT_R32_SFLOAT ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
+  PlanInputs pi{encoding, c.normalsFormat != VK_FORMAT_UNDEFINED, c.secondLayer, c.userOutput};
+  if (Status st = sao::plan(c.settings, c.camera, pi, plan); !st) return st;
+  if (Status st = computeConstants(c.settings, c.camera, encoding, params); !st) return st;
+  const std::uint32_t maxSide = e.props.limits.maxImageDimension2D;
+  const Extent ie = plan.inputExtent;
+  if (ie.width > maxSide || ie.height > maxSide)
+    return Status::error(StatusCode::InvalidExtent,
+                         "the input extent " + std::to_string(ie.width) + "x" + std::to_string(ie.height) +
+                             " exceeds this device's maxImageDimension2D " + std::to_string(maxSide));
+  return Status::success();
+}
+
+bool samePasses(const Plan& a, const Plan& b) {
+  if (a.passes.size() != b.passes.size()) return false;
+  for (std::size_t i = 0; i < a.passes.size(); ++i) {
+    const auto &x = a.passes[i], &y = b.passes[i];
+    if (x.pass != y.pass || x.variant != y.variant || x.dispatchCount != y.dispatchCount || x.aliases != y.aliases)
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+VkFormat depthVkFormat(DepthFormat format) {
+  switch (format) {
+    case DepthFormat::D16: return VK_FORMAT_D16_UNORM;
+    case DepthFormat::D24: return VK_FORMAT_X8_D24_UNORM_PACK32;
+    case DepthFormat::D32F: return VK_FORMAT_D32_SFLOAT;
+    case DepthFormat::LinearZ: return VK_FORMAT_R32_SFLOAT;
+  }
+  return VK_FORMAT_UNDEFINED;
+}
+
+Effect::Impl::~Impl() { destroyAll(); }
+
+void Effect::Impl::destroyAll() {
+  if (!d.vkDestroyImage) return;  // functions never loaded: nothing was created
+  destroyDescriptors(*this, desc);
+  destroyResources(*this, res);
+  destroyParamBuffer(*this, ubo);
+  destroyPipelines(*this);
+  if (queryPool) d.vkDestroyQueryPool(ctx.device, queryPool, ctx.allocator);
+  queryPool = VK_NULL_HANDLE;
+  if (sampler) d.vkDestroySampler(ctx.device, sampler, ctx.allocator);
+  sampler = VK_NULL_HANDLE;
+}
+
+Effect::Effect(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Effect::~Effect() = default;
+
+Status Effect::create(const DeviceContext& context, const Config& config, std::unique_ptr<Effect>& out,
+                      int headerVersion) {
+  out.reset();
+  if (headerVersion != SAO_VERSION)
+    return Status::error(StatusCode::VersionMismatch, "sao::vk::Effect::create(): the header is version " +
+                                                          versionText(headerVersion) + " but the library is " +
+                                                          versionText(SAO_VERSION) + "; rebuild against one version");
+  auto e = std::make_unique<Impl>();
+  e->ctx = context;
+  if (Status st = e->d.load(context); !st) {
+    e->d = Dispatch{};
+    return st;
+  }
+  e->d.vkGetPhysicalDeviceProperties(context.physicalDevice, &e->props);
+  e->d.vkGetPhysicalDeviceFeatures(context.physicalDevice, &e->features);
+  e->d.vkGetPhysicalDeviceMemoryProperties(context.physicalDevice, &e->memoryProps);
+  std::uint32_t families = 0;
+  e->d.vkGetPhysicalDeviceQueueFamilyProperties(context.physicalDevice, &families, nullptr);
+  std::vector<VkQueueFamilyProperties> fams(families);
+  e->d.vkGetPhysicalDeviceQueueFamilyProperties(context.physicalDevice, &families, fams.data());
+  if (context.queueFamilyIndex >= families)
+    return Status::error(StatusCode::InvalidInput, "DeviceContext::queueFamilyIndex " +
+                                                       std::to_string(context.queueFamilyIndex) + " but the device has " +
+                                                       std::to_string(families) + " queue families");
+  e->family = fams[context.queueFamilyIndex];
+  if (!(e->family.queueFlags & VK_QUEUE_COMPUTE_BIT))
+    return Status::error(StatusCode::InvalidInput, "queue family " + std::to_string(context.queueFamilyIndex) +
+                                                       " has no compute: the effect is compute passes");
+  if (e->props.apiVersion < VK_API_VERSION_1_1)
+    return Status::error(StatusCode::DriverError, std::string("the device ('") + e->props.deviceName +
+                                                      "') is Vulkan " + std::to_string(VK_API_VERSION_MAJOR(e->props.apiVersion)) +
+                                                      "." + std::to_string(VK_API_VERSION_MINOR(e->props.apiVersion)) +
+                                                      "; the effect's SPIR-V 1.3 needs Vulkan 1.1");
+  if (!e->features.shaderStorageImageExtendedFormats)
+    return Status::error(StatusCode::DriverError,
+                         "the device lacks shaderStorageImageExtendedFormats (rg32f / r16f storage images)");
+
+  Plan plan;
+  ParamBlock params{};
+  if (Status st = checkConfig(*e, config, plan, params); !st) return st;
+  e->config = config;
+  e->plan = std::move(plan);
+  e->params = params;
+  e->allocator.init(&e->d, context.device, e->memoryProps, e->props.limits.bufferImageGranularity, context.allocator);
+  if (Status st = createSampler(*e); !st) return st;
+  if (Status st = ensurePipelines(*e, e->plan); !st) return st;
+  if (Status st = createResources(*e, e->plan, e->res); !st) return st;
+  if (Status st = createParamBuffer(*e, config.framesInFlight, e->ubo); !st) return st;
+  if (Status st = createDescriptors(*e, e->plan, config.framesInFlight, e->desc); !st) return st;
+  if (Status st = ensureQueryPool(*e); !st) return st;
+  out.reset(new Effect(std::move(e)));
+  return Status::success();
+}
+
+Status Effect::update(const Config& config) {
+  Impl& e = *impl_;
+  Plan plan;
+  ParamBlock params{};
+  if (Status st = checkConfig(e, config, plan, params); !st) return st;
+  if (Status st = ensurePipelines(e, plan); !st) return st;  // a cache: kept even if a later step fails
+  const bool newImages = !sameImages(e.plan, plan);
+  const bool newFrames = config.framesInFlight != e.config.framesInFlight;
+  const bool newSets = newImages || newFrames || !samePasses(e.plan, plan);
+
+  Resources res;
+  ParamBuffer ubo;
+  Descriptors desc;
+  auto undo = [&] {
+    destroyDescriptors(e, desc);
+    destroyParamBuffer(e, ubo);
+    destroyResources(e, res);
+  };
+  if (newImages) {
+    if (Status st = createResources(e, plan, res); !st) {
+      undo();
+      return st;
+    }
+  }
+  if (newFrames) {
+    if (Status st = createParamBuffer(e, config.framesInFlight, ubo); !st) {
+      undo();
+      return st;
+    }
+  }
+  if (newSets) {
+    if (Status st = createDescriptors(e, plan, config.framesInFlight, desc); !st) {
+      undo();
+      return st;
+    }
+  }
+  // Commit.
+  if (newSets) {
+    destroyDescriptors(e, e.desc);
+    e.desc = std::move(desc);
+    e.nextSlot = 0;
+    e.lastTimedRegion = -1;
+  }
+  if (newImages) {
+    destroyResources(e, e.res);
+    e.res = std::move(res);
+  }
+  if (newFrames) {
+    destroyParamBuffer(e, e.ubo);
+    e.ubo = std::move(ubo);
+  }
+  e.config = config;
+  e.plan = std::move(plan);
+  e.params = params;
+  if (newFrames) {
+    if (e.queryPool) e.d.vkDestroyQueryPool(e.ctx.device, e.queryPool, e.ctx.allocator);
+    e.queryPool = VK_NULL_HANDLE;
+    if (Status st = ensureQueryPool(e); !st) return st;
+  }
+  return Status::success();
+}
+
+const Config& Effect::config() const { return impl_->config; }
+const Plan& Effect::plan() const { return impl_->plan; }
+const ParamBlock& Effect::params() const { return impl_->params; }
+MemoryStats Effect::memoryStats() const { return impl_->allocator.stats(); }
+std::uint32_t Effect::pipelineCount() const { return static_cast<std::uint32_t>(impl_->pipelines.size()); }
+
+OutputImage Effect::output() const {
+  const OwnedImage* ao = impl_->res.find(gen::ResourceId::ao);
+  if (!ao) return {};
+  return {ao->image, ao->levelViews[0], ao->format, ao->extent, impl_->config.outputLayout};
+}
+
+OwnedImageInfo Effect::ownedImage(gen::ResourceId id) const {
+  const OwnedImage* img = impl_->res.find(id);
+  if (!img) return {};
+  const bool isOutput = id == gen::ResourceId::ao;
+  return {img->image, img->format, img->extent, img->levels,
+          isOutput ? impl_->config.outputLayout : VK_IMAGE_LAYOUT_GENERAL};
+}
+
+}  // namespace sao::vk

@@ -1,0 +1,131 @@
+// Effect-owned images, their views and the parameter buffer, exactly as plan() lists them.
+#include <algorithm>
+#include <string>
+
+#include "effect_impl.h"
+
+namespace sao::vk {
+
+VkFormat vkFormat(gen::Format format) {
+  switch (format) {
+    case gen::Format::R32F: return VK_FORMAT_R32_SFLOAT;
+    case gen::Format::RG32F: return VK_FORMAT_R32G32_SFLOAT;
+    case gen::Format::R16F: return VK_FORMAT_R16_SFLOAT;
+    case gen::Format::RG16F: return VK_FORMAT_R16G16_SFLOAT;
+    case gen::Format::RGBA16F: return VK_FORMAT_R16G16B16A16_SFLOAT;
+    case gen::Format::R8: return VK_FORMAT_R8_UNORM;
+    case gen::Format::RGBA8: return VK_FORMAT_R8G8B8A8_UNORM;
+    case gen::Format::Depth: return VK_FORMAT_D32_SFLOAT;
+  }
+  return VK_FORMAT_UNDEFINED;
+}
+
+bool sameImages(const Plan& a, const Plan& b) {
+  if (a.images.size() != b.images.size()) return false;
+  for (std::size_t i = 0; i < a.images.size(); ++i) {
+    const auto &x = a.images[i], &y = b.images[i];
+    if (x.resource != y.resource || x.format != y.format || !(x.extent == y.extent) || x.mipLevels != y.mipLevels)
+      return false;
+  }
+  return true;
+}
+
+namespace {
+
+Status createView(Effect::Impl& e, VkImage image, VkFormat format, std::uint32_t baseLevel, std::uint32_t levels,
+                  VkImageView& out) {
+  VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  info.image = image;
+  info.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  info.format = format;
+  info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, baseLevel, levels, 0, 1};
+  if (VkResult r = e.d.vkCreateImageView(e.ctx.device, &info, e.ctx.allocator, &out); r != VK_SUCCESS)
+    return vkError("vkCreateImageView", r);
+  return Status::success();
+}
+
+}  // namespace
+
+Status createResources(Effect::Impl& e, const Plan& plan, Resources& res) {
+  std::vector<Allocator::Request> requests;
+  for (const auto& planned : plan.images) {
+    const auto& info = gen::kResources[static_cast<std::size_t>(planned.resource)];
+    OwnedImage img;
+    img.id = planned.resource;
+    img.format = vkFormat(planned.format);
+    img.extent = planned.extent;
+    img.levels = planned.mipLevels;
+
+    VkFormatProperties fp{};
+    e.d.vkGetPhysicalDeviceFormatProperties(e.ctx.physicalDevice, img.format, &fp);
+    constexpr VkFormatFeatureFlags need = VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
+    if ((fp.optimalTilingFeatures & need) != need)
+      return Status::error(StatusCode::UnsupportedFormat,
+                           "the device cannot use format " + std::to_string(img.format) + " of image '" +
+                               std::string(info.name) + "' as an optimal-tiling storage and sampled image");
+
+    VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    ci.imageType = VK_IMAGE_TYPE_2D;
+    ci.format = img.format;
+    ci.extent = {img.extent.width, img.extent.height, 1};
+    ci.mipLevels = img.levels;
+    ci.arrayLayers = 1;
+    ci.samples = VK_SAMPLE_COUNT_1_BIT;
+    ci.tiling = VK_IMAGE_TILING_OPTIMAL;
+    ci.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    if (VkResult r = e.d.vkCreateImage(e.ctx.device, &ci, e.ctx.allocator, &img.image); r != VK_SUCCESS)
+      return vkError(("vkCreateImage('" + std::string(info.name) + "')").c_str(), r);
+    res.images.push_back(std::move(img));
+    requests.push_back({res.images.back().image, VK_NULL_HANDLE});
+  }
+
+  if (Status st = e.allocator.allocateAndBind(requests, res.memory); !st) return st;
+
+  for (auto& img : res.images) {
+    if (Status st = createView(e, img.image, img.format, 0, img.levels, img.fullView); !st) return st;
+    for (std::uint32_t m = 0; m < img.levels; ++m) {
+      VkImageView v = VK_NULL_HANDLE;
+      if (Status st = createView(e, img.image, img.format, m, 1, v); !st) return st;
+      img.levelViews.push_back(v);
+    }
+  }
+  return Status::success();
+}
+
+void destroyResources(Effect::Impl& e, Resources& res) {
+  for (auto& img : res.images) {
+    for (VkImageView v : img.levelViews) e.d.vkDestroyImageView(e.ctx.device, v, e.ctx.allocator);
+    if (img.fullView) e.d.vkDestroyImageView(e.ctx.device, img.fullView, e.ctx.allocator);
+    if (img.image) e.d.vkDestroyImage(e.ctx.device, img.image, e.ctx.allocator);
+  }
+  res.images.clear();
+  e.allocator.free(res.memory);
+}
+
+Status createParamBuffer(Effect::Impl& e, std::uint32_t slots, ParamBuffer& ubo) {
+  const VkDeviceSize align = std::max<VkDeviceSize>(1, e.props.limits.minUniformBufferOffsetAlignment);
+  ubo.stride = (sizeof(ParamBlock) + align - 1) / align * align;
+  VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  bi.size = ubo.stride * slots;
+  bi.usage = VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
+  bi.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  if (VkResult r = e.d.vkCreateBuffer(e.ctx.device, &bi, e.ctx.allocator, &ubo.buffer); r != VK_SUCCESS)
+    return vkError("vkCreateBuffer(parameter block)", r);
+  void* mapped = nullptr;
+  const Allocator::Request request{VK_NULL_HANDLE, ubo.buffer, &mapped};
+  if (Status st = e.allocator.allocateAndBind({&request, 1}, ubo.memory); !st) return st;
+  ubo.mapped = static_cast<char*>(mapped);
+  ubo.written.assign(slots, ParamBlock{});
+  ubo.valid.assign(slots, false);
+  return Status::success();
+}
+
+void destroyParamBuffer(Effect::Impl& e, ParamBuffer& ubo) {
+  if (ubo.buffer) e.d.vkDestroyBuffer(e.ctx.device, ubo.buffer, e.ctx.allocator);
+  e.allocator.free(ubo.memory);
+  ubo = ParamBuffer{};
+}
+
+}  // namespace sao::vk

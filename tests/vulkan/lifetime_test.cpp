@@ -1,0 +1,435 @@
+// 200 create -> record -> submit -> destroy cycles and 200 resizes (validation and synchronization
+// validation on, as everywhere in this suite). Checked:
+//  * device memory: the library allocator's counters come back exactly (per effect and for the
+//    process) and each size always holds the same bytes;
+//  * host memory of every Vulkan object the effect creates: counted through the
+//    VkAllocationCallbacks passed in DeviceContext::allocator, back to the baseline after every
+//    destroy and the same for each size;
+//  * the process RSS after a warm-up. Mesa's lavapipe (22.3) itself retains host memory for every
+//    dispatch of the ao_sample shader (about 20 KB per work group, released only with the
+//    VkDevice; reproduced below without sao::vk), so the RSS growth is compared with that of
+//    plain-Vulkan dispatches of the same shader, the same number of times at the same sizes,
+//    measured in this process: the library may add at most kAllowedGrowth on top.
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <mutex>
+
+#include "analytic_scenes.h"
+#include "vk_support.h"
+
+namespace sao::vktest {
+namespace {
+
+using vk::headless::Image;
+
+constexpr int kCycles = 200;
+constexpr int kWarmup = 40;  // caches of the driver, the layer and the allocator settle first
+// RSS bytes beyond the driver's own over the 160 measured iterations (about 26 KB per iteration: far
+// below any image or pipeline; device memory and the objects' host memory are checked exactly).
+constexpr std::uint64_t kAllowedGrowth = 4ull << 20;
+
+// ---- VkAllocationCallbacks that count live host bytes and allocations.
+struct HostCounter {
+  std::mutex m;
+  std::map<void*, std::size_t> live;
+  std::uint64_t bytes = 0, total = 0;
+  std::pair<std::uint64_t, std::size_t> snapshot() {
+    std::lock_guard l(m);
+    return {bytes, live.size()};
+  }
+};
+HostCounter gHost;
+
+void* VKAPI_CALL countedAlloc(void*, std::size_t size, std::size_t align, VkSystemAllocationScope) {
+  if (size == 0) return nullptr;
+  void* p = std::aligned_alloc(std::max<std::size_t>(align, 16), (size + align - 1) / align * align);
+  if (!p) return nullptr;
+  std::lock_guard l(gHost.m);
+  gHost.live[p] = size;
+  gHost.bytes += size;
+  ++gHost.total;
+  return p;
+}
+void VKAPI_CALL countedFree(void*, void* p) {
+  if (!p) return;
+  {
+    std::lock_guard l(gHost.m);
+    auto it = gHost.live.find(p);
+    if (it != gHost.live.end()) {
+      gHost.bytes -= it->second;
+      gHost.live.erase(it);
+    }
+  }
+  std::free(p);
+}
+void* VKAPI_CALL countedRealloc(void* user, void* old, std::size_t size, std::size_t align, VkSystemAllocationScope s) {
+  if (!old) return countedAlloc(user, size, align, s);
+  if (size == 0) {
+    countedFree(user, old);
+    return nullptr;
+  }
+  std::size_t oldSize = 0;
+  {
+    std::lock_guard l(gHost.m);
+    oldSize = gHost.live[old];
+  }
+  void* p = countedAlloc(user, size, align, s);
+  if (p) {
+    std::memcpy(p, old, std::min(oldSize, size));
+    countedFree(user, old);
+  }
+  return p;
+}
+const VkAllocationCallbacks kCounted{nullptr, &countedAlloc, &countedRealloc, &countedFree, nullptr, nullptr};
+
+vk::DeviceContext countedContext() {
+  vk::DeviceContext c = context().deviceContext();
+  c.allocator = &kCounted;
+  return c;
+}
+
+// ---- The effect's ao_sample shader dispatched with plain Vulkan (no sao::vk): the driver's own
+// host-memory behaviour for the same work.
+class RawAoSample {
+ public:
+  RawAoSample(const Settings& settings, const Camera& camera) {
+    Plan plan;
+    EXPECT_TRUE(sao::plan(settings, camera, {}, plan).ok());
+    EXPECT_TRUE(computeConstants(settings, camera, DepthEncoding::Hardware, params_).ok());
+    for (const auto& p : plan.passes)
+      if (p.pass == gen::PassId::ao_sample) variant_ = p.variant;
+    input_ = plan.inputExtent;
+    ao_ = plan.aoExtent;
+    levels_ = plan.cszLevels;
+    const VkDevice d = context().device();
+    VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    si.maxLod = VK_LOD_CLAMP_NONE;
+    vkCreateSampler(d, &si, nullptr, &sampler_);
+    std::vector<VkDescriptorSetLayoutBinding> b{{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
+    for (const auto& x : variant_->bindings) {
+      EXPECT_TRUE(x.resource == gen::ResourceId::csz || x.resource == gen::ResourceId::ao_raw);
+      b.push_back({x.binding, x.write ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+                   VK_SHADER_STAGE_COMPUTE_BIT, x.write ? nullptr : &sampler_});
+    }
+    VkDescriptorSetLayoutCreateInfo dl{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, nullptr, 0,
+                                       std::uint32_t(b.size()), b.data()};
+    vkCreateDescriptorSetLayout(d, &dl, nullptr, &setLayout_);
+    VkPipelineLayoutCreateInfo pl{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, nullptr, 0, 1, &setLayout_};
+    vkCreatePipelineLayout(d, &pl, nullptr, &layout_);
+    makePipeline();
+    EXPECT_TRUE(context().createStorageImage(VK_FORMAT_R32G32_SFLOAT, ao_, aoRaw_).ok());
+    csz_ = makeImage(VK_FORMAT_R32_SFLOAT, input_, levels_);
+    VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    bi.size = sizeof(ParamBlock);
+    bi.usage = VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
+    vkCreateBuffer(d, &bi, nullptr, &ubo_);
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(d, ubo_, &req);
+    uboMemory_ = allocate(req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    vkBindBufferMemory(d, ubo_, uboMemory_, 0);
+    void* mapped = nullptr;
+    vkMapMemory(d, uboMemory_, 0, VK_WHOLE_SIZE, 0, &mapped);
+    std::memcpy(mapped, &params_, sizeof(ParamBlock));
+    vkUnmapMemory(d, uboMemory_);
+    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
+                                          {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}};
+    VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, nullptr, 0, 1, 3, sizes};
+    vkCreateDescriptorPool(d, &pi, nullptr, &pool_);
+    VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, nullptr, pool_, 1, &setLayout_};
+    vkAllocateDescriptorSets(d, &ai, &set_);
+    const VkDescriptorBufferInfo ub{ubo_, 0, sizeof(ParamBlock)};
+    std::vector<VkDescriptorImageInfo> infos;
+    infos.reserve(variant_->bindings.size());
+    std::vector<VkWriteDescriptorSet> w{{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, set_, 0, 0, 1,
+                                         VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, nullptr, &ub, nullptr}};
+    for (const auto& x : variant_->bindings) {
+      infos.push_back({VK_NULL_HANDLE, x.write ? aoRaw_.view : cszView_, VK_IMAGE_LAYOUT_GENERAL});
+      w.push_back({VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, set_, x.binding, 0, 1,
+                   x.write ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                   &infos.back(), nullptr, nullptr});
+    }
+    vkUpdateDescriptorSets(d, std::uint32_t(w.size()), w.data(), 0, nullptr);
+    EXPECT_TRUE(context()
+                    .submit([&](VkCommandBuffer cmd) {
+                      VkImageMemoryBarrier bar{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+                      bar.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+                      bar.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+                      bar.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+                      bar.srcQueueFamilyIndex = bar.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+                      bar.image = csz_;
+                      bar.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, levels_, 0, 1};
+                      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
+                                           0, nullptr, 0, nullptr, 1, &bar);
+                    })
+                    .ok());
+  }
+  ~RawAoSample() {
+    const VkDevice d = context().device();
+    vkDestroyDescriptorPool(d, pool_, nullptr);
+    vkDestroyBuffer(d, ubo_, nullptr);
+    vkFreeMemory(d, uboMemory_, nullptr);
+    vkDestroyImageView(d, cszView_, nullptr);
+    vkDestroyImage(d, csz_, nullptr);
+    vkFreeMemory(d, cszMemory_, nullptr);
+    context().destroy(aoRaw_);
+    vkDestroyPipeline(d, pipeline_, nullptr);
+    vkDestroyPipelineLayout(d, layout_, nullptr);
+    vkDestroyDescriptorSetLayout(d, setLayout_, nullptr);
+    vkDestroySampler(d, sampler_, nullptr);
+  }
+  void recreatePipeline() {
+    vkDestroyPipeline(context().device(), pipeline_, nullptr);
+    makePipeline();
+  }
+  void dispatch() {
+    EXPECT_TRUE(context()
+                    .submit([&](VkCommandBuffer cmd) {
+                      VkImageMemoryBarrier bar{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+                      bar.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+                      bar.dstAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+                      bar.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+                      bar.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+                      bar.srcQueueFamilyIndex = bar.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+                      bar.image = aoRaw_.image;
+                      bar.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+                      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr, 1, &bar);
+                      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+                      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+                      vkCmdDispatch(cmd, (ao_.width + 7) / 8, (ao_.height + 7) / 8, 1);
+                    })
+                    .ok());
+  }
+
+ private:
+  void makePipeline() {
+    const auto code = gen::spirvModule(variant_->spirvBlob);
+    VkShaderModuleCreateInfo sm{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, nullptr, 0, code.size_bytes(), code.data()};
+    VkShaderModule module = VK_NULL_HANDLE;
+    vkCreateShaderModule(context().device(), &sm, nullptr, &module);
+    VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module, "main", nullptr};
+    ci.layout = layout_;
+    vkCreateComputePipelines(context().device(), VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline_);
+    vkDestroyShaderModule(context().device(), module, nullptr);
+  }
+  VkDeviceMemory allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags) {
+    VkPhysicalDeviceMemoryProperties mp;
+    vkGetPhysicalDeviceMemoryProperties(context().physicalDevice(), &mp);
+    std::uint32_t type = 0;
+    for (std::uint32_t i = 0; i < mp.memoryTypeCount; ++i)
+      if ((req.memoryTypeBits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & flags) == flags) {
+        type = i;
+        break;
+      }
+    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size, type};
+    VkDeviceMemory m = VK_NULL_HANDLE;
+    vkAllocateMemory(context().device(), &ai, nullptr, &m);
+    return m;
+  }
+  VkImage makeImage(VkFormat format, Extent e, std::uint32_t levels) {
+    VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    ci.imageType = VK_IMAGE_TYPE_2D;
+    ci.format = format;
+    ci.extent = {e.width, e.height, 1};
+    ci.mipLevels = levels;
+    ci.arrayLayers = 1;
+    ci.samples = VK_SAMPLE_COUNT_1_BIT;
+    ci.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
+    VkImage img = VK_NULL_HANDLE;
+    vkCreateImage(context().device(), &ci, nullptr, &img);
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(context().device(), img, &req);
+    cszMemory_ = allocate(req, 0);
+    vkBindImageMemory(context().device(), img, cszMemory_, 0);
+    VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    vi.image = img;
+    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vi.format = format;
+    vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, levels, 0, 1};
+    vkCreateImageView(context().device(), &vi, nullptr, &cszView_);
+    return img;
+  }
+
+  const gen::PassVariantInfo* variant_ = nullptr;
+  ParamBlock params_{};
+  Extent input_, ao_;
+  std::uint32_t levels_ = 1;
+  VkSampler sampler_ = VK_NULL_HANDLE;
+  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+  VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  VkPipeline pipeline_ = VK_NULL_HANDLE;
+  Image aoRaw_;
+  VkImage csz_ = VK_NULL_HANDLE;
+  VkImageView cszView_ = VK_NULL_HANDLE;
+  VkDeviceMemory cszMemory_ = VK_NULL_HANDLE, uboMemory_ = VK_NULL_HANDLE;
+  VkBuffer ubo_ = VK_NULL_HANDLE;
+  VkDescriptorPool pool_ = VK_NULL_HANDLE;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+};
+
+struct Uploaded {
+  Camera camera;
+  DepthImage depth;
+  Image image;
+};
+
+Uploaded upload(std::uint32_t w, std::uint32_t h) {
+  Uploaded u;
+  u.camera = vulkanCamera(w, h, 4);
+  u.depth = test::renderDepth(test::sphereOnPlaneScene(), u.camera, DepthFormat::D24);
+  const Status st = context().uploadDepth(u.depth, VK_FORMAT_X8_D24_UNORM_PACK32,
+                                          VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, u.image);
+  EXPECT_TRUE(st.ok()) << st.message;
+  return u;
+}
+
+vk::Inputs inputsOf(const Uploaded& u) {
+  vk::Inputs in;
+  in.depth = {u.image.view, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, u.depth.extent};
+  return in;
+}
+
+double mib(double bytes) { return bytes / 1048576.0; }
+
+class VkLifetime : public VkTest {};
+
+TEST_F(VkLifetime, CreateRecordSubmitDestroy200Times) {
+  Uploaded u = upload(48, 27);
+  vk::Config config;
+  config.camera = u.camera;
+  config.depthFormat = VK_FORMAT_X8_D24_UNORM_PACK32;
+  config.timestamps = true;
+
+  // The driver alone: a new ao_sample pipeline and one dispatch per iteration.
+  std::uint64_t rawWarm = 0, rawEnd = 0;
+  {
+    RawAoSample raw(config.settings, config.camera);
+    for (int i = 0; i < kCycles; ++i) {
+      raw.recreatePipeline();
+      raw.dispatch();
+      if (i == kWarmup - 1) rawWarm = residentBytes();
+    }
+    rawEnd = residentBytes();
+  }
+  const double rawGrowth = double(rawEnd) - double(rawWarm);
+  expectNoMessages("in the plain-Vulkan baseline");
+
+  const vk::MemoryStats before = vk::processMemoryStats();
+  const auto hostBefore = gHost.snapshot();
+  std::uint64_t rssWarm = 0, peakBytes = 0, peakHost = 0;
+  for (int i = 0; i < kCycles; ++i) {
+    {
+      std::unique_ptr<vk::Effect> effect;
+      const Status st = vk::Effect::create(countedContext(), config, effect);
+      ASSERT_TRUE(st.ok()) << st.message;
+      peakBytes = std::max(peakBytes, vk::processMemoryStats().liveBytes);
+      peakHost = std::max(peakHost, gHost.snapshot().first);
+      Status recorded;
+      ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, inputsOf(u)); }).ok());
+      ASSERT_TRUE(recorded.ok()) << recorded.message;
+    }
+    const vk::MemoryStats now = vk::processMemoryStats();
+    ASSERT_EQ(now.liveAllocations, before.liveAllocations) << "cycle " << i;
+    ASSERT_EQ(now.liveBytes, before.liveBytes) << "cycle " << i;
+    ASSERT_EQ(gHost.snapshot(), hostBefore) << "host memory of the effect's Vulkan objects, cycle " << i;
+    if (i == kWarmup - 1) rssWarm = residentBytes();
+    if (i % 50 == 49) expectNoMessages(("by cycle " + std::to_string(i)).c_str());
+  }
+  const std::uint64_t rssEnd = residentBytes();
+  const vk::MemoryStats after = vk::processMemoryStats();
+  const double growth = double(rssEnd) - double(rssWarm);
+  EXPECT_GE(after.totalAllocations - before.totalAllocations, std::uint64_t(kCycles));
+  std::printf("%d create/record/submit/destroy cycles: device memory live %llu -> %llu bytes (peak %llu, %llu "
+              "allocations made); host memory of the effect's Vulkan objects %llu -> %llu bytes (peak %llu); RSS "
+              "growth over cycles %d..%d %+.3f MiB, plain-Vulkan baseline (same pipeline + dispatch per cycle) "
+              "%+.3f MiB\n",
+              kCycles, (unsigned long long)before.liveBytes, (unsigned long long)after.liveBytes,
+              (unsigned long long)peakBytes, (unsigned long long)(after.totalAllocations - before.totalAllocations),
+              (unsigned long long)hostBefore.first, (unsigned long long)gHost.snapshot().first,
+              (unsigned long long)peakHost, kWarmup, kCycles, mib(growth), mib(rawGrowth));
+  EXPECT_LE(growth, std::max(0.0, rawGrowth) + double(kAllowedGrowth))
+      << "host memory grows with create/destroy cycles beyond what the driver itself retains";
+  context().destroy(u.image);
+}
+
+TEST_F(VkLifetime, Resize200Times) {
+  // Eight sizes visited in a scrambled order: every update() is a resize.
+  const Extent sizes[] = {{32, 18}, {48, 27}, {64, 36}, {40, 30}, {80, 45}, {56, 20}, {24, 40}, {72, 50}};
+  std::vector<Uploaded> frames;
+  for (const auto& s : sizes) frames.push_back(upload(s.width, s.height));
+  std::vector<std::size_t> order;
+  std::size_t current = 0;
+  for (int i = 0; i < kCycles; ++i) {
+    std::size_t next = (current + 3 + std::size_t(i % 3)) % frames.size();
+    if (next == current) next = (next + 1) % frames.size();
+    order.push_back(current = next);
+  }
+
+  vk::Config config;
+  config.camera = frames[0].camera;
+  config.depthFormat = VK_FORMAT_X8_D24_UNORM_PACK32;
+
+  // The driver alone: ao_sample dispatched at the same sizes in the same order.
+  std::uint64_t rawWarm = 0, rawEnd = 0;
+  {
+    std::vector<std::unique_ptr<RawAoSample>> raws;
+    for (const auto& f : frames) raws.push_back(std::make_unique<RawAoSample>(config.settings, f.camera));
+    for (int i = 0; i < kCycles; ++i) {
+      raws[order[i]]->dispatch();
+      if (i == kWarmup - 1) rawWarm = residentBytes();
+    }
+    rawEnd = residentBytes();
+  }
+  const double rawGrowth = double(rawEnd) - double(rawWarm);
+  expectNoMessages("in the plain-Vulkan baseline");
+
+  const vk::MemoryStats before = vk::processMemoryStats();
+  const auto hostBefore = gHost.snapshot();
+  std::unique_ptr<vk::Effect> effect;
+  ASSERT_TRUE(vk::Effect::create(countedContext(), config, effect).ok());
+  std::map<std::size_t, std::pair<std::uint64_t, std::uint64_t>> perSize;  // device, host bytes when first seen
+  std::uint64_t rssWarm = 0;
+  for (int i = 0; i < kCycles; ++i) {
+    const std::size_t k = order[i];
+    config.camera = frames[k].camera;
+    const Status st = effect->update(config);
+    ASSERT_TRUE(st.ok()) << st.message;
+    ASSERT_EQ(effect->output().extent, sizes[k]);
+    Status recorded;
+    ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, inputsOf(frames[k])); }).ok());
+    ASSERT_TRUE(recorded.ok()) << recorded.message;
+    const vk::MemoryStats mine = effect->memoryStats();
+    const vk::MemoryStats all = vk::processMemoryStats();
+    const std::uint64_t host = gHost.snapshot().first;
+    const auto [it, first] = perSize.emplace(k, std::make_pair(mine.liveBytes, host));
+    ASSERT_EQ(mine.liveBytes, it->second.first) << "device memory, resize " << i << " to size #" << k;
+    ASSERT_EQ(host, it->second.second) << "host memory of the Vulkan objects, resize " << i << " to size #" << k;
+    ASSERT_GE(mine.liveBytes, effect->plan().totalBytes);
+    ASSERT_EQ(all.liveAllocations, before.liveAllocations + mine.liveAllocations) << "resize " << i;
+    ASSERT_EQ(all.liveBytes, before.liveBytes + mine.liveBytes) << "resize " << i;
+    if (i == kWarmup - 1) rssWarm = residentBytes();
+    if (i % 50 == 49) expectNoMessages(("by resize " + std::to_string(i)).c_str());
+  }
+  const std::uint64_t rssEnd = residentBytes();
+  const double growth = double(rssEnd) - double(rssWarm);
+  const vk::MemoryStats mine = effect->memoryStats();
+  std::printf("%d resizes over %zu sizes: the effect holds %llu bytes of device memory in %llu allocations at the "
+              "end, the same bytes every time a size comes back, and the same host memory for its Vulkan objects; "
+              "RSS growth over resizes %d..%d %+.3f MiB, plain-Vulkan baseline (ao_sample at the same sizes) %+.3f "
+              "MiB\n",
+              kCycles, frames.size(), (unsigned long long)mine.liveBytes, (unsigned long long)mine.liveAllocations,
+              kWarmup, kCycles, mib(growth), mib(rawGrowth));
+  EXPECT_LE(growth, std::max(0.0, rawGrowth) + double(kAllowedGrowth))
+      << "host memory grows with resizes beyond what the driver itself retains";
+  effect.reset();
+  EXPECT_EQ(vk::processMemoryStats().liveBytes, before.liveBytes);
+  EXPECT_EQ(vk::processMemoryStats().liveAllocations, before.liveAllocations);
+  EXPECT_EQ(gHost.snapshot(), hostBefore);
+  for (auto& f : frames) context().destroy(f.image);
+}
+
+}  // namespace
+}  // namespace sao::vktest

@@ -1,0 +1,225 @@
+#include "vk_support.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <malloc.h>
+#include <unistd.h>
+
+#include "sao/io.h"
+
+namespace sao::vktest {
+
+vk::headless::Context& context() {
+  static std::unique_ptr<vk::headless::Context> ctx = [] {
+    vk::headless::Options o;
+    // SAO_VK_TEST_VALIDATION=0 turns the layer off (diagnostics only: e.g. to tell the layer's own
+    // memory from the library's in the lifetime test).
+    const char* val = std::getenv("SAO_VK_TEST_VALIDATION");
+    o.validation = !(val && std::string(val) == "0");
+    o.synchronizationValidation = o.validation;
+    const char* dev = std::getenv("SAO_VK_TEST_DEVICE");
+    if (dev && std::string(dev) == "cpu") o.device = vk::headless::DevicePreference::Cpu;
+    std::unique_ptr<vk::headless::Context> c;
+    const Status st = vk::headless::Context::create(o, c);
+    if (!st) {
+      std::fprintf(stderr, "no headless Vulkan device: %s\n", st.message.c_str());
+      std::abort();
+    }
+    std::printf("Vulkan device: %s, %s\n", c->description().c_str(),
+                o.validation ? "validation + synchronization validation" : "NO validation layer");
+    std::string status = c->layerStatus();
+    std::replace(status.begin(), status.end(), '\n', ' ');
+    if (!status.empty()) std::printf("validation layer: %s\n", status.c_str());
+    return c;
+  }();
+  return *ctx;
+}
+
+void expectNoMessages(const char* where) {
+  const auto messages = context().takeMessages();
+  EXPECT_TRUE(messages.empty()) << messages.size() << " validation message(s) " << where << ":\n"
+                                << vk::headless::toString(messages);
+}
+
+void VkTest::SetUp() {
+  context();
+  expectNoMessages("before the test (context creation or an earlier test)");
+}
+
+void VkTest::TearDown() { expectNoMessages("during the test"); }
+
+const char* toString(VkDepth f) {
+  switch (f) {
+    case VkDepth::D16: return "D16";
+    case VkDepth::X8D24: return "X8D24";
+    case VkDepth::D24S8: return "D24S8";
+    case VkDepth::D32F: return "D32F";
+    case VkDepth::D32FS8: return "D32FS8";
+    case VkDepth::R32F: return "R32F";
+  }
+  return "?";
+}
+
+VkFormat vkFormat(VkDepth f) {
+  switch (f) {
+    case VkDepth::D16: return VK_FORMAT_D16_UNORM;
+    case VkDepth::X8D24: return VK_FORMAT_X8_D24_UNORM_PACK32;
+    case VkDepth::D24S8: return VK_FORMAT_D24_UNORM_S8_UINT;
+    case VkDepth::D32F: return VK_FORMAT_D32_SFLOAT;
+    case VkDepth::D32FS8: return VK_FORMAT_D32_SFLOAT_S8_UINT;
+    case VkDepth::R32F: return VK_FORMAT_R32_SFLOAT;
+  }
+  return VK_FORMAT_UNDEFINED;
+}
+
+DepthFormat cpuFormat(VkDepth f) {
+  switch (f) {
+    case VkDepth::D16: return DepthFormat::D16;
+    case VkDepth::X8D24:
+    case VkDepth::D24S8: return DepthFormat::D24;
+    case VkDepth::D32F:
+    case VkDepth::D32FS8: return DepthFormat::D32F;
+    case VkDepth::R32F: return DepthFormat::LinearZ;
+  }
+  return DepthFormat::D32F;
+}
+
+Status runEffect(const Settings& settings, const Camera& camera, const DepthImage& depth, VkDepth format,
+                 RunResult& out, const RunOptions& options) {
+  auto& ctx = context();
+  out = RunResult{};
+  vk::headless::Image depthImage, depth2Image, normalsImage;
+  struct Cleanup {
+    vk::headless::Context& c;
+    vk::headless::Image* images[3];
+    ~Cleanup() {
+      for (auto* i : images) c.destroy(*i);
+    }
+  } cleanup{ctx, {&depthImage, &depth2Image, &normalsImage}};
+
+  if (Status st = ctx.uploadDepth(depth, vkFormat(format), options.depthLayout, depthImage); !st) return st;
+  vk::Config config;
+  config.settings = settings;
+  config.camera = camera;
+  config.depthFormat = vkFormat(format);
+  vk::Inputs in;
+  in.depth = {depthImage.view, options.depthLayout, depth.extent};
+  if (options.depth2) {
+    if (Status st = ctx.uploadDepth(*options.depth2, vkFormat(format), options.depthLayout, depth2Image); !st) return st;
+    config.secondLayer = true;
+    in.depth2 = {depth2Image.view, options.depthLayout, options.depth2->extent};
+  }
+  if (options.normals) {
+    if (Status st = ctx.uploadColor(*options.normals, VK_FORMAT_R16G16B16A16_SFLOAT,
+                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, normalsImage);
+        !st)
+      return st;
+    config.normalsFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+    in.normals = {normalsImage.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, options.normals->extent};
+  }
+  std::unique_ptr<vk::Effect> effect;
+  if (Status st = vk::Effect::create(ctx.deviceContext(), config, effect); !st) return st;
+  Status recorded;
+  if (Status st = ctx.submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, in); }); !st) return st;
+  if (!recorded) return recorded;
+  out.plan = effect->plan();
+  out.params = effect->params();
+  const vk::OutputImage o = effect->output();
+  if (Status st = ctx.readback(o.image, o.format, o.extent, 0, o.layout, effect->config().outputDstStages,
+                               effect->config().outputDstAccess, out.ao);
+      !st)
+    return st;
+  if (options.readIntermediates) {
+    const auto raw = effect->ownedImage(gen::ResourceId::ao_raw);
+    if (Status st = ctx.readback(raw.image, raw.format, raw.extent, 0, raw.layout, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                                 VK_ACCESS_SHADER_WRITE_BIT, out.aoRaw);
+        !st)
+      return st;
+    const auto csz = effect->ownedImage(gen::ResourceId::csz);
+    if (Status st = ctx.readback(csz.image, csz.format, csz.extent, 0, csz.layout, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                                 VK_ACCESS_SHADER_WRITE_BIT, out.csz0);
+        !st)
+      return st;
+  }
+  return Status::success();
+}
+
+Camera vulkanCamera(std::uint32_t width, std::uint32_t height, std::uint32_t guard, double farDistance, bool reversedZ,
+                    bool flipY) {
+  Camera c = perspectiveCamera(std::numbers::pi / 3.0, width, height, 0.1, farDistance, ClipDepth::ZeroToOne, reversedZ);
+  c.guardBand = guard;
+  c.flipY = flipY;
+  return c;
+}
+
+Camera openglCamera(std::uint32_t width, std::uint32_t height, std::uint32_t guard, double farDistance, bool reversedZ) {
+  Camera c = perspectiveCamera(std::numbers::pi / 3.0, width, height, 0.1, farDistance, ClipDepth::NegativeOneToOne,
+                               reversedZ);
+  c.guardBand = guard;
+  return c;
+}
+
+std::string failureDir() { return SAO_VK_TEST_FAILURE_DIR; }
+
+bool acceptable(const Agreement& a) { return a.fractionWithin >= 0.999 && a.beyond == 0 && a.nonFinite == 0; }
+
+Agreement compare(const FloatImage& actual, const FloatImage& expected, std::uint32_t channel, double within,
+                  double never, const std::string& name, std::string* note) {
+  Agreement a;
+  if (actual.extent != expected.extent || channel >= actual.channels || channel >= expected.channels) {
+    ADD_FAILURE() << name << ": images differ in size or channels";
+    a.beyond = 1;
+    return a;
+  }
+  const Extent e = actual.extent;
+  const std::size_t n = std::size_t(e.width) * e.height;
+  std::vector<double> diffs(n);
+  FloatImage a1(e, 1), b1(e, 1), d1(e, 1);
+  std::size_t ok = 0;
+  for (std::uint32_t y = 0; y < e.height; ++y)
+    for (std::uint32_t x = 0; x < e.width; ++x) {
+      const float u = actual.at(x, y, channel), v = expected.at(x, y, channel);
+      const double d = std::isfinite(u) ? std::fabs(double(u) - double(v)) : INFINITY;
+      if (!std::isfinite(u)) ++a.nonFinite;
+      diffs[std::size_t(y) * e.width + x] = d;
+      a.maxAbs = std::max(a.maxAbs, d);
+      ok += d <= within;
+      a.beyond += d > never;
+      a1.at(x, y) = std::isfinite(u) ? u : 0.0f;
+      b1.at(x, y) = v;
+      d1.at(x, y) = float(std::min(1.0, d / never));
+    }
+  a.fractionWithin = double(ok) / double(n);
+  std::vector<double> sorted = diffs;
+  const std::size_t k = std::min(n - 1, std::size_t(std::ceil(0.999 * double(n))) - 1);
+  std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(k), sorted.end());
+  a.p999 = sorted[k];
+  if (!acceptable(a)) {
+    std::error_code ec;
+    std::filesystem::create_directories(failureDir(), ec);
+    const std::string base = failureDir() + "/" + name;
+    (void)writeAoPng(base + "_actual.png", a1);
+    (void)writeAoPng(base + "_expected.png", b1);
+    (void)writeAoPng(base + "_diff.png", d1);
+    (void)writeFloatExr(base + "_actual.exr", a1, {"A"});
+    (void)writeFloatExr(base + "_expected.exr", b1, {"A"});
+    if (note)
+      *note = "images written to " + base + "_{actual,expected,diff}.png (diff: white = " + std::to_string(never) + ")";
+  }
+  return a;
+}
+
+std::uint64_t residentBytes() {
+  malloc_trim(0);  // return freed heap pages first: count live memory, not the allocator's free lists
+  std::ifstream f("/proc/self/statm");
+  std::uint64_t size = 0, resident = 0;
+  f >> size >> resident;
+  return resident * static_cast<std::uint64_t>(sysconf(_SC_PAGESIZE));
+}
+
+}  // namespace sao::vktest

@@ -1,0 +1,83 @@
+// Shared by the Vulkan backend tests: one headless context per test process with the validation
+// layer and synchronization validation on (any message fails the running test), a one-call "run
+// the effect on this depth and read everything back", and image comparison with failure images.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sao/camera.h"
+#include "sao/image.h"
+#include "sao/vulkan/effect.h"
+#include "sao/vulkan/headless.h"
+
+namespace sao::vktest {
+
+// The process-wide context: validation + synchronization validation, the helper's usual device
+// choice (a GPU when one exists, else lavapipe); SAO_VK_TEST_DEVICE=cpu forces the CPU device.
+vk::headless::Context& context();
+
+// Every test fails on a validation message raised while it ran.
+class VkTest : public ::testing::Test {
+ protected:
+  void SetUp() override;
+  void TearDown() override;
+};
+
+// Fails the current test with the messages collected so far (and clears them).
+void expectNoMessages(const char* where);
+
+// The depth representations the tests upload.
+enum class VkDepth { D16, X8D24, D24S8, D32F, D32FS8, R32F };
+const char* toString(VkDepth f);
+VkFormat vkFormat(VkDepth f);
+DepthFormat cpuFormat(VkDepth f);
+
+struct RunOptions {
+  VkImageLayout depthLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  const FloatImage* normals = nullptr;  // uploaded as R16G16B16A16_SFLOAT
+  const DepthImage* depth2 = nullptr;
+  bool readIntermediates = true;        // ao_raw (and csz level 0)
+};
+
+struct RunResult {
+  Plan plan;
+  ParamBlock params{};
+  FloatImage ao;      // 1 channel
+  FloatImage aoRaw;   // 2 channels (A, key z)
+  FloatImage csz0;    // csz level 0
+};
+
+// Uploads `depth` in `format`, creates an effect, records it once, submits, waits and reads back.
+Status runEffect(const Settings& settings, const Camera& camera, const DepthImage& depth, VkDepth format,
+                 RunResult& out, const RunOptions& options = {});
+
+// Cameras: 60 degree vertical field of view, near 0.1.
+Camera vulkanCamera(std::uint32_t width, std::uint32_t height, std::uint32_t guard, double farDistance = 100.0,
+                    bool reversedZ = false, bool flipY = false);  // ClipDepth::ZeroToOne
+Camera openglCamera(std::uint32_t width, std::uint32_t height, std::uint32_t guard, double farDistance = 1000.0,
+                    bool reversedZ = false);  // ClipDepth::NegativeOneToOne
+
+struct Agreement {
+  double maxAbs = 0;          // largest |actual - expected|
+  double p999 = 0;            // 99.9th percentile of |actual - expected|
+  double fractionWithin = 0;  // share of pixels within `within`
+  std::size_t beyond = 0;     // pixels beyond `never`
+  std::size_t nonFinite = 0;  // NaN / Inf in actual
+};
+
+// Compares channel `channel`. When the comparison is not acceptable (fractionWithin < 0.999,
+// anything beyond `never` or non-finite), writes <failureDir>/<name>_{actual,expected,diff}.png
+// (diff: white = `never`) and float EXRs, and says where in `note`.
+Agreement compare(const FloatImage& actual, const FloatImage& expected, std::uint32_t channel, double within,
+                  double never, const std::string& name, std::string* note = nullptr);
+bool acceptable(const Agreement& a);
+std::string failureDir();
+
+// Resident set size of this process, bytes (/proc/self/statm).
+std::uint64_t residentBytes();
+
+}  // namespace sao::vktest
