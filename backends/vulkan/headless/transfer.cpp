@@ -19,48 +19,6 @@ bool isDepth(VkFormat f) {
   return f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_X8_D24_UNORM_PACK32 || f == VK_FORMAT_D32_SFLOAT || hasStencil(f);
 }
 
-float halfToFloat(std::uint16_t h) {
-  const std::uint32_t sign = (h & 0x8000u) << 16;
-  std::uint32_t exp = (h >> 10) & 0x1f, mant = h & 0x3ffu;
-  std::uint32_t bits;
-  if (exp == 0) {
-    if (mant == 0) bits = sign;
-    else {  // subnormal: normalise
-      int e = -1;
-      do {
-        ++e;
-        mant <<= 1;
-      } while (!(mant & 0x400u));
-      bits = sign | std::uint32_t(127 - 15 - e) << 23 | (mant & 0x3ffu) << 13;
-    }
-  } else if (exp == 31) {
-    bits = sign | 0x7f800000u | mant << 13;
-  } else {
-    bits = sign | (exp + 112) << 23 | mant << 13;
-  }
-  return std::bit_cast<float>(bits);
-}
-
-std::uint16_t floatToHalf(float f) {  // round to nearest even; for uploads of normals
-  const std::uint32_t x = std::bit_cast<std::uint32_t>(f);
-  const std::uint32_t sign = (x >> 16) & 0x8000u;
-  const std::uint32_t absx = x & 0x7fffffffu;
-  if (absx >= 0x7f800000u) return static_cast<std::uint16_t>(sign | 0x7c00u | (absx > 0x7f800000u ? 0x200u : 0));
-  if (absx >= 0x477ff000u) return static_cast<std::uint16_t>(sign | 0x7c00u);  // overflow
-  if (absx < 0x38800000u) {  // subnormal half
-    const float a = std::bit_cast<float>(absx);
-    const float scaled = a * 16777216.0f;  // 2^24: the half subnormal unit
-    const auto m = static_cast<std::uint32_t>(std::nearbyint(scaled));
-    return static_cast<std::uint16_t>(sign | m);
-  }
-  std::uint32_t mant = absx & 0x7fffffu;
-  std::uint32_t exp = (absx >> 23) - 112;
-  std::uint32_t h = exp << 10 | mant >> 13;
-  const std::uint32_t rest = mant & 0x1fffu;
-  if (rest > 0x1000u || (rest == 0x1000u && (h & 1u))) ++h;
-  return static_cast<std::uint16_t>(sign | h);
-}
-
 std::uint32_t channelsOf(VkFormat f, std::uint32_t& bytes) {
   switch (f) {
     case VK_FORMAT_R16_SFLOAT: bytes = 2; return 1;
@@ -247,7 +205,7 @@ Status Context::uploadColor(const FloatImage& image, VkFormat format, VkImageLay
   vkMapMemory(device_, stagingMemory, 0, VK_WHOLE_SIZE, 0, &mapped);
   const bool half = bytes / channels == 2;
   for (std::size_t i = 0; i < n * channels; ++i) {
-    if (half) static_cast<std::uint16_t*>(mapped)[i] = floatToHalf(image.data[i]);
+    if (half) static_cast<std::uint16_t*>(mapped)[i] = sao::halfBits(image.data[i]);
     else static_cast<float*>(mapped)[i] = image.data[i];
   }
   vkUnmapMemory(device_, stagingMemory);
@@ -340,7 +298,7 @@ Status Context::readback(VkImage image, VkFormat format, Extent levelZero, std::
   vkMapMemory(device_, stagingMemory, 0, VK_WHOLE_SIZE, 0, &mapped);
   const bool half = bytes / channels == 2;
   for (std::size_t i = 0; i < n * channels; ++i)
-    out.data[i] = half ? halfToFloat(static_cast<const std::uint16_t*>(mapped)[i]) : static_cast<const float*>(mapped)[i];
+    out.data[i] = half ? sao::halfToFloat(static_cast<const std::uint16_t*>(mapped)[i]) : static_cast<const float*>(mapped)[i];
   vkUnmapMemory(device_, stagingMemory);
   cleanup();
   return Status::success();

@@ -38,6 +38,9 @@ float quantizeHalf(float x);
 // floats: Mesa 22.3 truncates float -> half on upload.
 std::uint16_t halfBits(float x);
 
+// The float value of binary16 bits (exact; subnormals, infinities and NaNs kept).
+float halfToFloat(std::uint16_t bits);
+
 // A float image with `channels` interleaved channels, row 0 first.
 struct FloatImage {
   Extent extent;
