@@ -1,0 +1,102 @@
+// The Vulkan backend as a sample backend: a headless instance and device of its own (a real GPU
+// when there is one, else lavapipe), the depth uploaded as the matching format, results read back.
+#include "runners.h"
+#include "sao/vulkan/effect.h"
+#include "sao/vulkan/headless.h"
+
+namespace sao::samples {
+namespace {
+
+class VulkanRunner final : public BackendRunner {
+ public:
+  explicit VulkanRunner(std::unique_ptr<vk::headless::Context> context) : context_(std::move(context)) {}
+  std::string_view name() const override { return "vulkan"; }
+  std::string description() const override { return "Vulkan: " + context_->description(); }
+
+  Status run(const Settings& settings, const Camera& camera, const RunInputs& in, bool measureTime, bool dumpPasses,
+             RunOutputs& out) override {
+    if (!in.depth) return Status::error(StatusCode::InvalidInput, "no depth image");
+    auto& ctx = *context_;
+    vk::headless::Image depth, depth2, normals;
+    struct Cleanup {
+      vk::headless::Context& c;
+      vk::headless::Image* images[3];
+      ~Cleanup() {
+        for (auto* i : images) c.destroy(*i);
+      }
+    } cleanup{ctx, {&depth, &depth2, &normals}};
+    const VkImageLayout readLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    vk::Config config;
+    config.settings = settings;
+    config.camera = camera;
+    config.depthFormat = vk::depthVkFormat(in.depth->format);
+    config.timestamps = measureTime;
+    vk::Inputs inputs;
+    if (Status s = ctx.uploadDepth(*in.depth, config.depthFormat, readLayout, depth); !s) return s;
+    inputs.depth = {depth.view, readLayout, in.depth->extent};
+    if (in.depth2) {
+      if (Status s = ctx.uploadDepth(*in.depth2, vk::depthVkFormat(in.depth2->format), readLayout, depth2); !s) return s;
+      config.secondLayer = true;
+      inputs.depth2 = {depth2.view, readLayout, in.depth2->extent};
+    }
+    if (in.normals) {
+      config.normalsFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+      if (Status s = ctx.uploadColor(*in.normals, config.normalsFormat, readLayout, normals); !s) return s;
+      inputs.normals = {normals.view, readLayout, in.normals->extent};
+    }
+    if (!effect_) {
+      if (Status s = vk::Effect::create(ctx.deviceContext(), config, effect_); !s) return s;
+    } else if (Status s = effect_->update(config); !s) {
+      return s;
+    }
+    if (measureTime) {
+      if (Status s = effect_->measure(ctx.queue(), inputs, nullptr, out.timings); !s) return s;
+    } else {
+      Status recorded;
+      if (Status s = ctx.submit([&](VkCommandBuffer cmd) { recorded = effect_->record(cmd, inputs); }); !s) return s;
+      if (!recorded) return recorded;
+    }
+    out.plan = effect_->plan();
+    const vk::OutputImage o = effect_->output();
+    if (Status s = ctx.readback(o.image, o.format, o.extent, 0, o.layout, config.outputDstStages, config.outputDstAccess,
+                                out.ao);
+        !s)
+      return s;
+    auto readOwned = [&](gen::ResourceId id, std::uint32_t level, FloatImage& image) {
+      const auto info = effect_->ownedImage(id);
+      return ctx.readback(info.image, info.format, info.extent, level, info.layout, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                          VK_ACCESS_SHADER_WRITE_BIT, image);
+    };
+    if (Status s = readOwned(gen::ResourceId::ao_raw, 0, out.aoRaw); !s) return s;
+    if (dumpPasses) {
+      if (const auto* csz = out.plan.image(gen::ResourceId::csz))
+        for (std::uint32_t m = 0; m < csz->mipLevels; ++m) {
+          FloatImage level;
+          if (Status s = readOwned(gen::ResourceId::csz, m, level); !s) return s;
+          out.intermediates.push_back({"csz_level" + std::to_string(m), std::move(level)});
+        }
+      out.intermediates.push_back({"ao_raw", out.aoRaw});
+      if (out.plan.image(gen::ResourceId::ao_blur_h)) {
+        FloatImage blur;
+        if (Status s = readOwned(gen::ResourceId::ao_blur_h, 0, blur); !s) return s;
+        out.intermediates.push_back({"ao_blur_h", std::move(blur)});
+      }
+    }
+    return Status::success();
+  }
+
+ private:
+  std::unique_ptr<vk::headless::Context> context_;
+  std::unique_ptr<vk::Effect> effect_;  // destroyed before the context (declared after it)
+};
+
+}  // namespace
+
+Status makeVulkanRunner(std::unique_ptr<BackendRunner>& out) {
+  std::unique_ptr<vk::headless::Context> context;
+  if (Status s = vk::headless::Context::create({}, context); !s) return s;
+  out = std::make_unique<VulkanRunner>(std::move(context));
+  return Status::success();
+}
+
+}  // namespace sao::samples
