@@ -1,0 +1,21 @@
+# cmake -DSOURCE=file.cpp -DTAG=readme-gl -DREADME=README.md -P readme_snippet.cmake
+# Fails unless README holds the source's `// [TAG]` ... `// [/TAG]` block verbatim (less the
+# two-space indent of the function body).
+file(READ "${SOURCE}" src)
+file(READ "${README}" readme)
+string(FIND "${src}" "// [${TAG}]\n" begin)
+string(FIND "${src}" "  // [/${TAG}]" end)
+if(begin EQUAL -1 OR end EQUAL -1)
+  message(FATAL_ERROR "${SOURCE} has no [${TAG}] block")
+endif()
+string(LENGTH "// [${TAG}]\n" marker)
+math(EXPR begin "${begin} + ${marker}")
+math(EXPR length "${end} - ${begin}")
+string(SUBSTRING "${src}" ${begin} ${length} block)
+string(REPLACE "\n  " "\n" block "\n${block}")
+string(SUBSTRING "${block}" 1 -1 block)
+string(FIND "${readme}" "${block}" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "README.md does not quote the [${TAG}] block of ${SOURCE} verbatim:\n${block}")
+endif()
+message(STATUS "README quotes the [${TAG}] block of ${SOURCE}")
