@@ -57,19 +57,11 @@ struct PipelineEntry {
 };
 
 // What a ring slot's descriptor sets were last written with.
-struct SlotKey {
-  bool valid = false;
-  VkImageView depth = VK_NULL_HANDLE, depth2 = VK_NULL_HANDLE, normals = VK_NULL_HANDLE, output = VK_NULL_HANDLE;
-  VkImageLayout depthLayout{}, depth2Layout{}, normalsLayout{};
-  bool operator==(const SlotKey&) const = default;
-};
-
 // One descriptor set per dispatch of every planned pass (mips: one per level), per ring slot.
 struct Descriptors {
   VkDescriptorPool pool = VK_NULL_HANDLE;
   std::uint32_t setsPerSlot = 0;
   std::vector<VkDescriptorSet> sets;  // [slot * setsPerSlot + k], k in plan order
-  std::vector<SlotKey> keys;          // per slot
 };
 
 // The output record() writes this time: the effect's own or the user's.

@@ -123,7 +123,6 @@ Status createDescriptors(Effect::Impl& e, const Plan& plan, std::uint32_t slots,
   ai.pSetLayouts = layouts.data();
   if (VkResult r = e.d.vkAllocateDescriptorSets(e.ctx.device, &ai, ds.sets.data()); r != VK_SUCCESS)
     return vkError("vkAllocateDescriptorSets", r);
-  ds.keys.assign(slots, SlotKey{});
   return Status::success();
 }
 

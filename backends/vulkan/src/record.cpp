@@ -113,21 +113,13 @@ Status checkInputs(const Effect::Impl& e, const Inputs& in, const OutputImage* u
 }
 
 std::uint32_t acquireSlot(Effect::Impl& e, const Inputs& in, const OutputTarget& output) {
-  SlotKey key;
-  key.valid = true;
-  key.depth = in.depth.view;
-  key.depthLayout = in.depth.layout;
-  key.depth2 = in.depth2.view;
-  key.depth2Layout = in.depth2.layout;
-  key.normals = in.normals.view;
-  key.normalsLayout = in.normals.layout;
-  key.output = output.view;
   const std::uint32_t slot = e.nextSlot;
   e.nextSlot = (slot + 1) % e.config.framesInFlight;
-  if (!(e.desc.keys[slot] == key)) {
-    writeDescriptors(e, slot, in, output);
-    e.desc.keys[slot] = key;
-  }
+  // Always rewritten: a caller may destroy a view and create another that gets the same handle
+  // value, so comparing handles cannot tell whether a set is still valid (lavapipe crashed on the
+  // stale set). The slot's previous command buffer has completed (the ring contract), and a few
+  // dozen descriptor writes per record cost next to nothing.
+  writeDescriptors(e, slot, in, output);
   // The slot's copy of the parameter block (its previous command buffer has completed: the ring
   // contract), written only when it changed.
   if (!e.ubo.valid[slot] || std::memcmp(&e.ubo.written[slot], &e.params, sizeof(ParamBlock)) != 0) {

@@ -1,5 +1,8 @@
 // The Vulkan backend as a sample backend: a headless instance and device of its own (a real GPU
 // when there is one, else lavapipe), the depth uploaded as the matching format, results read back.
+#include <cstdlib>
+#include <string>
+
 #include "runners.h"
 #include "sao/vulkan/effect.h"
 #include "sao/vulkan/headless.h"
@@ -82,6 +85,8 @@ class VulkanRunner final : public BackendRunner {
         out.intermediates.push_back({"ao_blur_h", std::move(blur)});
       }
     }
+    if (context_->messageCount())
+      return Status::error(StatusCode::DriverError, "Vulkan validation: " + vk::headless::toString(context_->takeMessages()));
     return Status::success();
   }
 
@@ -94,7 +99,11 @@ class VulkanRunner final : public BackendRunner {
 
 Status makeVulkanRunner(std::unique_ptr<BackendRunner>& out) {
   std::unique_ptr<vk::headless::Context> context;
-  if (Status s = vk::headless::Context::create({}, context); !s) return s;
+  vk::headless::Options options;
+  // SAO_VK_VALIDATION=1 turns on the validation layers (with synchronization validation).
+  const char* validation = std::getenv("SAO_VK_VALIDATION");
+  options.synchronizationValidation = options.validation = validation && std::string(validation) == "1";
+  if (Status s = vk::headless::Context::create(options, context); !s) return s;
   out = std::make_unique<VulkanRunner>(std::move(context));
   return Status::success();
 }

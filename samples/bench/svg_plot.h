@@ -1,0 +1,23 @@
+// Minimal SVG charts for the bench report: lines or points over linear or log axes.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace sao::bench {
+
+struct Series {
+  std::string label;
+  std::vector<double> x, y;
+  bool lines = true;  // false: points only (a scatter)
+  std::vector<std::string> pointLabels;  // optional, one per point
+};
+
+struct Chart {
+  std::string title, xLabel, yLabel;
+  bool logX = false, logY = false;
+  std::vector<Series> series;
+};
+
+std::string renderSvg(const Chart& chart, int width = 720, int height = 440);
+
+}  // namespace sao::bench
