@@ -274,6 +274,7 @@ TEST_F(VkEffect, UserOutputInEitherLayoutMatchesTheOwnedOne) {
 // every reuse of the effect's images (synchronization validation checks the hazards).
 TEST_F(VkEffect, RepeatedRecordsAreHazardFree) {
   Frame f(48, 27, VkDepth::D32F, test::rodsScene());
+  f.config.framesInFlight = 3;  // three records in one command buffer use three ring slots
   auto effect = makeEffect(f.config);
   ASSERT_TRUE(effect);
   const FloatImage once = runOnce(*effect, f.inputs());

@@ -38,10 +38,11 @@
 //  * Frames in flight: record() uses the next of Config::framesInFlight ring slots, each with its
 //    own descriptor sets and its own copy of the parameter block (gen::SaoParams memcpy'd as is
 //    into host-coherent memory, made visible by vkQueueSubmit). At most framesInFlight command
-//    buffers recorded by one Effect may be pending (recorded and not completed) at a time. A slot
-//    is rewritten only when its views or parameters changed, so with unchanged inputs and settings
-//    more may be pending. The effect's images are shared by all slots; the barriers order them in
-//    submission order on the one queue.
+//    buffers recorded by one Effect may be pending (recorded and not completed) at a time, and one
+//    command buffer may hold at most framesInFlight records: every record() rewrites its slot's
+//    descriptor sets (a destroyed view's handle value can come back for a new view, so handles
+//    cannot tell a set is still valid). The effect's images are shared by all slots; the barriers
+//    order them in submission order on the one queue.
 //  * create(), update() and the destructor must not run while a command buffer recorded by the
 //    effect is pending (wait for its fence, or vkDeviceWaitIdle).
 #pragma once
