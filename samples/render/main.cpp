@@ -40,6 +40,7 @@ AO), summary.txt (per-pass times, the plan and its memory) and, with --json, sum
   --depth FILE.exr      run on your own depth buffer; the camera comes from the file's sao.*
                         attributes or from --fovy/--near/--far/--clip/--reversed-z
   --fovy DEG --near M --far M|inf --clip gl|zero-one --reversed-z
+  --save-depth FILE.exr write the depth input with its camera (a file --depth reads back)
   --dump-passes DIR     every intermediate image as EXR
   --reference           also the ray-traced reference (near-field AO within the radius) and the
                         error metrics; --reference-rays N (default 256)
@@ -49,7 +50,8 @@ Exit status: 0 on success, 1 when the run fails, 2 for bad options; errors are o
 )";
 
 struct Options {
-  std::string out = "out/render", backend = "auto", scene = std::string(scenes::kDefaultScene), depthPath, dumpDir;
+  std::string out = "out/render", backend = "auto", scene = std::string(scenes::kDefaultScene), depthPath, dumpDir,
+              saveDepth;
   std::uint32_t view = 0, width = 1280, height = 720, guard = 0, referenceRays = 256;
   std::string preset, depthFormat = "D32F", clip = "zero-one", far = "inf";
   double fovyDegrees = 60, nearDistance = 0.1;
@@ -114,6 +116,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--clip") o.clip = value(), o.cameraFlags = true;
     else if (a == "--reversed-z") o.reversedZ = o.reversedGiven = o.cameraFlags = true;
     else if (a == "--dump-passes") o.dumpDir = value();
+    else if (a == "--save-depth") o.saveDepth = value();
     else if (a == "--reference") o.reference = true;
     else if (a == "--reference-rays") o.referenceRays = parseCount(a, value(), 1, 1u << 16);
     else if (a == "--json") o.json = true;
@@ -203,6 +206,8 @@ int main(int argc, char** argv) {
                     toString(depth.format) + " reversed-Z [0,1] infinite far, depth by ray casting";
   }
   summary.prepareSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!o.saveDepth.empty())
+    if (Status s = writeDepthExr(o.saveDepth, depth, camera); !s) runError(s);
 
   samples::RunInputs inputs{&depth, nullptr, nullptr};
   samples::RunOutputs result;
