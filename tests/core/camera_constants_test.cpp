@@ -157,7 +157,7 @@ TEST(Constants, Eq5ProjectionScaleAndSettingScales) {
   EXPECT_NEAR(p.proj_scale, 720.0 / (2.0 * std::tan(kFovy / 2.0)), 1e-3);
   EXPECT_FLOAT_EQ(p.radius, 150.0f);
   EXPECT_FLOAT_EQ(p.radius2, 22500.0f);
-  EXPECT_FLOAT_EQ(p.intensity_div_s, 2.0f * 2.0f / 16.0f);
+  EXPECT_FLOAT_EQ(p.intensity_div_s, 2.0f * 2.0f * 100.0f / 16.0f) << "eq. 1 is 1/length: sigma scales with units";
   EXPECT_FLOAT_EQ(p.inv_samples, 1.0f / 16.0f);
   EXPECT_NEAR(p.epsilon, 1e-4 * 1e4, 1e-6) << "epsilon is an area: scales with units squared";
   EXPECT_EQ(p.spiral_turns, sao::spiralTurns(16));
@@ -236,6 +236,13 @@ TEST(Camera, RejectsMatricesThatContradictTheirConvention) {
   cam = standard;
   cam.metersToViewUnits = 0;
   EXPECT_EQ(sao::analyze(cam, m).code, sao::StatusCode::InvalidCamera);
+  cam.metersToViewUnits = 1e7;
+  EXPECT_NE(sao::analyze(cam, m).message.find("outside the supported range"), std::string::npos);
+
+  // A finite far plane 1e8 times the near distance is finite, not "infinite".
+  cam = sao::perspectiveCamera(kFovy, 640, 480, 1e-4, 1e4, sao::ClipDepth::ZeroToOne, false);
+  ASSERT_TRUE(sao::analyze(cam, m).ok()) << sao::analyze(cam, m).message;
+  EXPECT_NEAR(m.farDistance, 1e4, 1e-2);
 }
 
 }  // namespace

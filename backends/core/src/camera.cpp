@@ -1,6 +1,7 @@
 #include "sao/camera.h"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -10,6 +11,8 @@ namespace {
 double at(const Camera& c, int row, int col) { return c.projection[col * 4 + row]; }
 
 Status bad(const std::string& m) { return Status::error(StatusCode::InvalidCamera, m); }
+
+constexpr double kPoleTolerance = 1e-12;
 
 // Stored depth d = scale * ndc.z + offset.
 void depthMapping(ClipDepth clip, double& scale, double& offset) {
@@ -24,8 +27,14 @@ Status analyze(const Camera& cam, DepthModel& m) {
     if (!std::isfinite(v)) return bad("projection matrix has a non-finite element");
   if (cam.width == 0 || cam.height == 0) return bad("viewport size is " + std::to_string(cam.width) + "x" +
                                                     std::to_string(cam.height) + "; both must be > 0");
-  if (!std::isfinite(cam.metersToViewUnits) || cam.metersToViewUnits <= 0)
-    return bad("metersToViewUnits must be a finite number > 0");
+  // Outside this range float view-space positions lose the precision the effect needs (normals
+  // reconstructed from pixel spans underflow below ~1e-10): docs/STABILITY.md.
+  if (!std::isfinite(cam.metersToViewUnits) || cam.metersToViewUnits < 1e-6 || cam.metersToViewUnits > 1e6)
+  {
+    char value[32];
+    std::snprintf(value, sizeof value, "%g", cam.metersToViewUnits);
+    return bad(std::string("metersToViewUnits = ") + value + " is outside the supported range [1e-6, 1e6]");
+  }
   if (at(cam, 0, 0) == 0 || at(cam, 1, 1) == 0) return bad("projection has a zero x or y scale (P00 or P11)");
 
   double s = 0, o = 0;
@@ -47,15 +56,16 @@ Status analyze(const Camera& cam, DepthModel& m) {
     const double farDen = m.depthAtFar * m.c1 + m.c2;
     // The declared near end must be the end closer to the eye; otherwise reversedZ is wrong.
     const double nearDen = m.depthAtNear * m.c1 + m.c2;
-    const bool poleAtNear = std::fabs(nearDen) <= 1e-6 * std::fmax(1.0, std::fabs(m.c2));
+    const bool poleAtNear = std::fabs(nearDen) <= kPoleTolerance * std::fmax(1.0, std::fabs(m.c2));
     const double zAtFar = m.c0 / farDen;
     if (poleAtNear || (zNear < 0 && zAtFar < 0 && std::isfinite(zAtFar) && -zAtFar < -zNear))
       return bad(std::string("declared ") + (cam.reversedZ ? "reversed-Z" : "standard depth") +
                  ", but the projection maps the near plane to depth " + (cam.reversedZ ? "0" : "1") +
                  ": set reversedZ = " + (cam.reversedZ ? "false" : "true"));
     // An infinite far plane puts the clear depth exactly at the pole (C = -1 or 0 as the paper's
-    // c = [zn, -1, +1]); allow rounding of a matrix built in float.
-    const bool atPole = std::fabs(farDen) <= 1e-6 * std::fmax(1.0, std::fabs(m.c2));
+    // c = [zn, -1, +1]). The tolerance is relative rounding of a double computation; a finite far
+    // plane even 1e10 times the near distance is still finite.
+    const bool atPole = std::fabs(farDen) <= kPoleTolerance * std::fmax(1.0, std::fabs(m.c2));
     if (!(zNear < 0) || !std::isfinite(zNear)) {
       const double zOther = m.c0 / (m.depthAtFar * m.c1 + m.c2);
       if (zOther < 0 && std::isfinite(zOther) && !atPole)

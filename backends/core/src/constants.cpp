@@ -25,10 +25,11 @@ std::uint32_t mipLevelsNeeded(const Settings& s, const Camera& c, const DepthMod
   rMax = std::min(rMax, double(gen::SAO_MAX_RADIUS_PX));
   if (!(rMax >= 1.0)) return 1;
   const int msb = static_cast<int>(std::floor(std::log2(rMax)));
-  const std::uint32_t size0 = std::max(c.width, c.height) + 2 * c.guardBand;
-  const int chain = static_cast<int>(std::floor(std::log2(double(size0))));
+  // In 64 bits: a camera that plan() would reject must not wrap around to 0 here (log2(0) = -inf).
+  const std::uint64_t size0 = std::uint64_t(std::max(c.width, c.height)) + 2ull * c.guardBand;
+  const int chain = size0 == 0 ? 0 : static_cast<int>(std::floor(std::log2(double(size0))));
   const int top = std::min(gen::SAO_MAX_MIP_LEVELS - 1, chain);
-  return 1 + static_cast<std::uint32_t>(std::clamp(msb - s.mip_switch_log2, 0, top));
+  return 1 + static_cast<std::uint32_t>(std::clamp<std::int64_t>(std::int64_t(msb) - s.mip_switch_log2, 0, top));
 }
 
 Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encoding, ParamBlock& p) {
@@ -74,7 +75,9 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
   p.radius = f(r);
   p.radius2 = f(r * r);
   p.bias = s.bias;
-  p.intensity_div_s = f(2.0 * s.intensity / s.samples);
+  // Eq. 1's term max(0, v.n + z beta) / (v.v + eps) has the unit 1/length: scaling sigma by the
+  // view units keeps A independent of the unit system (settings are in metres).
+  p.intensity_div_s = f(2.0 * s.intensity * u / s.samples);
   p.epsilon = f(double(s.epsilon) * u * u);
   p.contrast = s.contrast;
   p.proj_scale = f(projScale(c));

@@ -26,6 +26,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -99,6 +100,9 @@ Status checkReadable(const std::string& path) {
   if (st.type() == fs::file_type::not_found) return fail(StatusCode::IoError, path, "no such file");
   if (ec) return fail(StatusCode::IoError, path, "cannot access: " + ec.message());
   if (st.type() == fs::file_type::directory) return fail(StatusCode::IoError, path, "is a directory, not a file");
+  // A FIFO would block the open until someone writes, a device may never end: regular files only.
+  if (st.type() != fs::file_type::regular)
+    return fail(StatusCode::IoError, path, "is not a regular file (a FIFO, socket or device)");
   errno = 0;
   if (!std::ifstream(path, std::ios::binary).is_open())
     return fail(StatusCode::IoError, path, std::string("cannot open: ") + (errno ? std::strerror(errno) : "unknown error"));
@@ -145,9 +149,45 @@ struct OpenedExr {
   Extent extent;
 };
 
+// OpenEXR (3.1) allocates an attribute's value at the size the header declares before reading it:
+// a few hundred bytes declaring a 2 GiB string make it allocate and clear 2 GiB (found by
+// fuzz_exr_depth). The first header's declared sizes are checked against the file first; anything
+// else malformed is left to OpenEXR, which throws. Throws std::runtime_error like OpenEXR does.
+void checkAttributeSizes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::error_code ec;
+  const std::uintmax_t fileSize = fs::file_size(path, ec);
+  if (!in || ec) return;
+  in.seekg(8);  // magic number and version
+  auto readString = [&](std::string& s) {
+    s.clear();
+    for (char c; in.get(c);) {
+      if (c == '\0') return true;
+      if (s.size() == 255) return false;
+      s += c;
+    }
+    return false;
+  };
+  std::string name, type;
+  for (int attribute = 0; attribute < 100000; ++attribute) {
+    if (!readString(name) || name.empty() || !readString(type)) return;  // end of header, or OpenEXR's problem
+    unsigned char b[4];
+    if (!in.read(reinterpret_cast<char*>(b), 4)) return;
+    const std::uint32_t size = std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 |
+                               std::uint32_t(b[3]) << 24;
+    const std::uintmax_t at = static_cast<std::uintmax_t>(in.tellg());
+    if (size > fileSize - std::min(at, fileSize))
+      throw std::runtime_error("corrupt header: attribute \"" + name + "\" (" + type + ") declares " +
+                               std::to_string(size) + " bytes but the file has " + std::to_string(fileSize - at) +
+                               " left");
+    in.seekg(static_cast<std::streamoff>(size), std::ios::cur);
+  }
+}
+
 Status openExr(const std::string& path, OpenedExr& out) {
   if (Status s = checkReadable(path); !s) return s;
   if (!Imf::isOpenExrFile(path.c_str())) return fail(StatusCode::IoError, path, "not an OpenEXR file (bad magic number)");
+  checkAttributeSizes(path);
   out.file = std::make_unique<Imf::InputFile>(path.c_str());
   const Imf::Header& h = out.file->header();
   out.dataWindow = h.dataWindow();

@@ -55,9 +55,10 @@ Status writeDepthExr(const std::string& path, const DepthImage& depth, const Cam
 // HALF (hasCamera = false, camera left untouched, depth read as D32F). The depth channel is "Z"
 // when present, otherwise the file's only channel; several channels without a "Z" are rejected.
 // A file with sao.version must carry every attribute above with the right type.
-// Errors: IoError for missing files, directories, files that are not EXR, truncated or corrupt
-// files, wrong channel counts, missing or mistyped attributes, non-finite camera values, an extent
-// that contradicts width/height/guardBand, data windows larger than kMaxImageSide; UnsupportedFormat
+// Errors: IoError for missing files, directories and other non-regular files (FIFOs, devices),
+// files that are not EXR, truncated or corrupt files, wrong channel counts, missing or mistyped
+// attributes, non-finite camera values, an extent that contradicts width/height/guardBand, data
+// windows larger than kMaxImageSide; UnsupportedFormat
 // for an unknown sao.version, format, kind or clipDepth string, subsampled channels and UINT
 // channels. On error `depth`, `camera` and `hasCamera` are left unchanged.
 Status readDepthExr(const std::string& path, DepthImage& depth, Camera& camera, bool& hasCamera);
