@@ -12,6 +12,8 @@ packages=(
   libglfw3-dev libglm-dev libopenexr-dev libimgui-dev
   libembree-dev libtbb-dev libstb-dev nlohmann-json3-dev
   xvfb xauth
+  # ci/fuzz.sh: clang with libFuzzer and the sanitizer runtimes; llvm-symbolizer for the reports
+  clang-14 libclang-rt-14-dev llvm-14
 )
 
 missing=()

@@ -1,5 +1,6 @@
 #include "directive_parser.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -27,8 +28,14 @@ bool parseNumber(const std::string& s, double& out) {
 
 bool parseInt(const std::string& s, int& out) {
   static const std::regex re("^[+-]?[0-9]+$");
-  if (!std::regex_match(s, re) || s.size() > 10) return false;
-  out = std::stoi(s);
+  if (!std::regex_match(s, re) || s.size() > 11) return false;
+  // from_chars, not stoi: a value beyond int (e.g. 2540685460) is an error, not an exception
+  // (found by fuzz_codegen_parser).
+  const char* first = s.data() + (s[0] == '+' ? 1 : 0);
+  int v = 0;
+  const auto [end, ec] = std::from_chars(first, s.data() + s.size(), v);
+  if (ec != std::errc() || end != s.data() + s.size()) return false;
+  out = v;
   return true;
 }
 
@@ -340,6 +347,16 @@ class Parser {
     }
     if (v.values.size() < 2) {
       diags_.error(d.loc, "variant '" + v.name + "' needs at least two values");
+      return;
+    }
+    // Every combination of the variants is enumerated (and each pass's projection compiled): keep
+    // the product small, so that a long list of variants cannot make the tool run for ever.
+    constexpr std::size_t kMaxCombinations = 256;
+    std::size_t combinations = v.values.size();
+    for (const Variant& other : effect_.variants) combinations *= other.values.size();
+    if (v.values.size() > kMaxCombinations || combinations > kMaxCombinations) {
+      diags_.error(d.loc, "variant '" + v.name + "' makes more than " + std::to_string(kMaxCombinations) +
+                              " variant combinations; every combination is compiled");
       return;
     }
     v.defaultValue = v.values.front();

@@ -24,8 +24,14 @@ class Loader {
       return;
     }
     std::error_code ec;
-    if (fs::is_directory(path, ec)) {
+    const fs::file_type type = fs::status(path, ec).type();
+    if (type == fs::file_type::directory) {
       diags_.error(includedFrom, "'" + path + "' is a directory, not a source file");
+      return;
+    }
+    // A FIFO or a device (an include of "/dev/zero", "/dev/stdin") would block or never end.
+    if (type != fs::file_type::regular && type != fs::file_type::not_found && type != fs::file_type::none) {
+      diags_.error(includedFrom, "'" + path + "' is not a regular file");
       return;
     }
     std::ifstream in(path, std::ios::binary);

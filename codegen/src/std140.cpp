@@ -1,5 +1,6 @@
 #include "std140.h"
 
+#include <charconv>
 #include <regex>
 
 namespace sao::codegen {
@@ -94,7 +95,21 @@ ParamBlock parseParamBlock(const std::string& name, const SourceLoc& directiveLo
     member.loc = lines[i].loc;
     member.glslType = m[1].str();
     member.name = m[2].str();
-    member.arraySize = m[4].matched ? std::stoi(m[4].str()) : 0;
+    // At most the 16 KiB every GL implementation gives a uniform block (GL_MAX_UNIFORM_BLOCK_SIZE),
+    // checked before any arithmetic: a huge N must be an error, not an exception or an overflow.
+    constexpr long long kMaxBlockBytes = 16384;
+    if (m[4].matched) {
+      long long n = 0;
+      const std::string digits = m[4].str();
+      const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
+      if (ec != std::errc() || end != digits.data() + digits.size() || n > kMaxBlockBytes / 16) {
+        diags.error(lines[i].loc, "array size of block member '" + member.name + "' is " + digits + "; the block must fit " +
+                                      std::to_string(kMaxBlockBytes) + " bytes (at most " +
+                                      std::to_string(kMaxBlockBytes / 16) + " elements)");
+        continue;
+      }
+      member.arraySize = int(n);
+    }
     const std::string why = unsafeReason(member.glslType);
     TypeLayout layout{};
     if (!why.empty()) {
@@ -116,6 +131,11 @@ ParamBlock parseParamBlock(const std::string& name, const SourceLoc& directiveLo
     offset = (offset + layout.align - 1) / layout.align * layout.align;
     member.offset = offset;
     member.size = layout.size * (member.arraySize > 0 ? member.arraySize : 1);
+    if (offset + member.size > kMaxBlockBytes) {
+      diags.error(member.loc, "block member '" + member.name + "' ends at byte " + std::to_string(offset + member.size) +
+                                  "; the block must fit " + std::to_string(kMaxBlockBytes) + " bytes");
+      continue;
+    }
     offset += member.size;
     block.members.push_back(member);
   }

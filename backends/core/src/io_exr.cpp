@@ -12,6 +12,7 @@
 #include <ImfStringAttribute.h>
 #include <ImfStringVectorAttribute.h>
 #include <ImfTestFile.h>
+#include <openexr.h>
 
 #include <algorithm>
 #include <bit>
@@ -149,45 +150,92 @@ struct OpenedExr {
   Extent extent;
 };
 
-// OpenEXR (3.1) allocates an attribute's value at the size the header declares before reading it:
-// a few hundred bytes declaring a 2 GiB string make it allocate and clear 2 GiB (found by
-// fuzz_exr_depth). The first header's declared sizes are checked against the file first; anything
-// else malformed is left to OpenEXR, which throws. Throws std::runtime_error like OpenEXR does.
-void checkAttributeSizes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+// OpenEXR's C++ reader (3.1) sizes its allocations from the header before it checks them against
+// the file: an attribute's value at its declared size, the chunk offset table at the chunk count,
+// the decompression buffers at the width (or tile size) times the lines of a chunk times the
+// channels. A few hundred bytes could make it allocate gigabytes (found by fuzz_exr_depth). So the
+// header is parsed first by OpenEXR's own C core library (OpenEXRCore), which checks every
+// attribute's size against its type and the file. Any problem it reports rejects the file (it
+// reports some and reads on with its own guess, which the C++ reader would not share), and the
+// sizes it reads must fit: the data window and tiles in kMaxImageSide, the chunk offset table
+// (8 bytes a chunk) in the file, one decoded chunk in 512 MiB.
+thread_local std::string tCoreError;
+
+Status precheckHeader(const std::string& path) {
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = [](exr_const_context_t, exr_result_t, const char* message) {
+    if (tCoreError.empty()) tCoreError = message && *message ? message : "unknown error";
+  };
+  tCoreError.clear();
+  exr_context_t ctxt = nullptr;
+  const exr_result_t started = exr_start_read(&ctxt, path.c_str(), &init);
+  struct Finish {
+    exr_context_t& c;
+    ~Finish() {
+      if (c) exr_finish(&c);
+    }
+  } finish{ctxt};
+  if (started != EXR_ERR_SUCCESS || !tCoreError.empty())
+    return fail(StatusCode::IoError, path,
+                "corrupt header: " + (tCoreError.empty() ? std::string(exr_get_error_code_as_string(started)) : tCoreError));
+  exr_storage_t storage = EXR_STORAGE_LAST_TYPE;
+  exr_attr_box2i_t window{};
+  int32_t chunks = 0;
+  const exr_attr_chlist_t* channels = nullptr;
+  if (exr_get_storage(ctxt, 0, &storage) != EXR_ERR_SUCCESS || exr_get_data_window(ctxt, 0, &window) != EXR_ERR_SUCCESS ||
+      exr_get_chunk_count(ctxt, 0, &chunks) != EXR_ERR_SUCCESS || exr_get_channels(ctxt, 0, &channels) != EXR_ERR_SUCCESS ||
+      !channels)
+    return fail(StatusCode::IoError, path, "corrupt header: " + tCoreError);
+  if (storage == EXR_STORAGE_DEEP_SCANLINE || storage == EXR_STORAGE_DEEP_TILED)
+    return fail(StatusCode::UnsupportedFormat, path, "holds deep data; only flat images are read");
+  const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
+  const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
+  if (width <= 0 || height <= 0) return fail(StatusCode::IoError, path, "empty data window");
+  if (width > kMaxImageSide || height > kMaxImageSide)
+    return fail(StatusCode::IoError, path,
+                "data window is " + std::to_string(width) + "x" + std::to_string(height) +
+                    "; the largest side read is " + std::to_string(kMaxImageSide));
+  std::uint64_t chunkCols = std::uint64_t(width), chunkLines = 1;
+  if (storage == EXR_STORAGE_TILED) {
+    uint32_t tileX = 0, tileY = 0;
+    exr_tile_level_mode_t levels{};
+    exr_tile_round_mode_t round{};
+    if (exr_get_tile_descriptor(ctxt, 0, &tileX, &tileY, &levels, &round) != EXR_ERR_SUCCESS)
+      return fail(StatusCode::IoError, path, "corrupt header: " + tCoreError);
+    if (tileX == 0 || tileY == 0 || tileX > kMaxImageSide || tileY > kMaxImageSide)
+      return fail(StatusCode::IoError, path,
+                  "tiles are " + std::to_string(tileX) + "x" + std::to_string(tileY) + "; the largest side read is " +
+                      std::to_string(kMaxImageSide));
+    chunkCols = tileX;
+    chunkLines = tileY;
+  } else {
+    int32_t lines = 0;
+    if (exr_get_scanlines_per_chunk(ctxt, 0, &lines) != EXR_ERR_SUCCESS || lines <= 0)
+      return fail(StatusCode::IoError, path, "corrupt header: " + tCoreError);
+    chunkLines = std::uint64_t(lines);
+  }
   std::error_code ec;
   const std::uintmax_t fileSize = fs::file_size(path, ec);
-  if (!in || ec) return;
-  in.seekg(8);  // magic number and version
-  auto readString = [&](std::string& s) {
-    s.clear();
-    for (char c; in.get(c);) {
-      if (c == '\0') return true;
-      if (s.size() == 255) return false;
-      s += c;
-    }
-    return false;
-  };
-  std::string name, type;
-  for (int attribute = 0; attribute < 100000; ++attribute) {
-    if (!readString(name) || name.empty() || !readString(type)) return;  // end of header, or OpenEXR's problem
-    unsigned char b[4];
-    if (!in.read(reinterpret_cast<char*>(b), 4)) return;
-    const std::uint32_t size = std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 |
-                               std::uint32_t(b[3]) << 24;
-    const std::uintmax_t at = static_cast<std::uintmax_t>(in.tellg());
-    if (size > fileSize - std::min(at, fileSize))
-      throw std::runtime_error("corrupt header: attribute \"" + name + "\" (" + type + ") declares " +
-                               std::to_string(size) + " bytes but the file has " + std::to_string(fileSize - at) +
-                               " left");
-    in.seekg(static_cast<std::streamoff>(size), std::ios::cur);
-  }
+  if (!ec && std::uint64_t(std::max(chunks, 0)) * 8 > fileSize)
+    return fail(StatusCode::IoError, path,
+                "is truncated or corrupt: its " + std::to_string(width) + "x" + std::to_string(height) +
+                    " data window needs " + std::to_string(chunks) + " chunks, whose offset table alone (" +
+                    std::to_string(std::uint64_t(chunks) * 8) + " bytes) exceeds the file's " +
+                    std::to_string(fileSize) + " bytes");
+  std::uint64_t pixelBytes = 0;  // all channels of one pixel
+  for (int c = 0; c < channels->num_channels; ++c) pixelBytes += channels->entries[c].pixel_type == EXR_PIXEL_HALF ? 2 : 4;
+  const std::uint64_t chunkBytes = chunkCols * chunkLines * pixelBytes;
+  if (chunkBytes > (std::uint64_t(512) << 20))
+    return fail(StatusCode::IoError, path,
+                "one chunk would decode to " + std::to_string(chunkBytes) + " bytes (" + std::to_string(pixelBytes) +
+                    " bytes a pixel); the largest read is 512 MiB");
+  return Status::success();
 }
 
 Status openExr(const std::string& path, OpenedExr& out) {
   if (Status s = checkReadable(path); !s) return s;
   if (!Imf::isOpenExrFile(path.c_str())) return fail(StatusCode::IoError, path, "not an OpenEXR file (bad magic number)");
-  checkAttributeSizes(path);
+  if (Status s = precheckHeader(path); !s) return s;
   out.file = std::make_unique<Imf::InputFile>(path.c_str());
   const Imf::Header& h = out.file->header();
   out.dataWindow = h.dataWindow();
@@ -221,15 +269,28 @@ Status checkChannel(const std::string& path, const std::string& name, const Imf:
 // Reads the named channels as float into `data` (interleaved, image row 0 = the file's bottom
 // scanline). Channels were checked by the caller.
 Status readChannels(const std::string& path, OpenedExr& exr, const std::vector<std::string>& names, std::vector<float>& data) {
-  const std::size_t w = exr.extent.width, h = exr.extent.height, n = names.size();
-  std::vector<float> fileOrder(w * h * n);  // top scanline first, as in the file
-  Imf::FrameBuffer fb;
-  for (std::size_t c = 0; c < n; ++c)
-    fb.insert(names[c], Imf::Slice::Make(Imf::FLOAT, fileOrder.data() + c, exr.dataWindow, sizeof(float) * n,
-                                         sizeof(float) * n * w));
-  exr.file->setFrameBuffer(fb);
+  // Before the allocation: a truncated file that declares a large data window fails cheaply.
   if (!exr.file->isComplete()) return fail(StatusCode::IoError, path, "file is incomplete (truncated): some scanlines are missing");
-  exr.file->readPixels(exr.dataWindow.min.y, exr.dataWindow.max.y);
+  const std::size_t w = exr.extent.width, h = exr.extent.height, n = names.size();
+  // Read in bands of rows, the whole image allocated only once the first band decoded: a corrupt
+  // file that declares a large image (up to 16384 x 16384) fails at its first band, not after the
+  // image was allocated and cleared (found by fuzz_exr_depth).
+  constexpr std::size_t kBandRows = 256;
+  std::vector<float> fileOrder;  // top scanline first, as in the file
+  std::vector<float> band;
+  for (std::size_t y0 = 0; y0 < h; y0 += kBandRows) {
+    const std::size_t rows = std::min(kBandRows, h - y0);
+    band.assign(w * rows * n, 0.0f);
+    const int top = exr.dataWindow.min.y + int(y0), bottom = top + int(rows) - 1;
+    const Imath::Box2i window(Imath::V2i(exr.dataWindow.min.x, top), Imath::V2i(exr.dataWindow.max.x, bottom));
+    Imf::FrameBuffer fb;
+    for (std::size_t c = 0; c < n; ++c)
+      fb.insert(names[c], Imf::Slice::Make(Imf::FLOAT, band.data() + c, window, sizeof(float) * n, sizeof(float) * n * w));
+    exr.file->setFrameBuffer(fb);
+    exr.file->readPixels(top, bottom);
+    if (y0 == 0) fileOrder.reserve(w * h * n);  // the first band decoded: the file is plausible
+    fileOrder.insert(fileOrder.end(), band.begin(), band.end());
+  }
   data.resize(fileOrder.size());
   const std::size_t row = w * n;
   for (std::size_t y = 0; y < h; ++y)

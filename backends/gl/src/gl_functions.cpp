@@ -69,6 +69,8 @@ const char* glEnumName(GLenum e) {
     case GL_TEXTURE_CUBE_MAP: return "GL_TEXTURE_CUBE_MAP";
     case GL_TEXTURE_RECTANGLE: return "GL_TEXTURE_RECTANGLE";
     case GL_TEXTURE_2D_MULTISAMPLE: return "GL_TEXTURE_2D_MULTISAMPLE";
+    case GL_TEXTURE_2D_MULTISAMPLE_ARRAY: return "GL_TEXTURE_2D_MULTISAMPLE_ARRAY";
+    case GL_STENCIL_INDEX8: return "GL_STENCIL_INDEX8";
     case GL_TEXTURE_1D: return "GL_TEXTURE_1D";
     default: break;
   }

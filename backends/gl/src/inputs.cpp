@@ -16,15 +16,27 @@ Status inspect(const GlFunctions& gl, GLuint unit, GLuint texture, const char* r
   if (gl.hasDsa) {
     GLint target = 0;
     gl.GetTextureParameteriv(texture, GL_TEXTURE_TARGET, &target);
+    if (target == GL_TEXTURE_2D_MULTISAMPLE || target == GL_TEXTURE_2D_MULTISAMPLE_ARRAY)
+      return Status::error(StatusCode::UnsupportedFormat, who + " is multisampled (" + glEnumName(GLenum(target)) +
+                                                              "); resolve it to a single-sample GL_TEXTURE_2D first "
+                                                              "(glBlitFramebuffer of GL_DEPTH_BUFFER_BIT, GL_NEAREST)");
     if (target != GL_TEXTURE_2D)
       return Status::error(StatusCode::InvalidInput, who + " is a " + glEnumName(GLenum(target)) +
                                                          "; the effect reads and writes GL_TEXTURE_2D level 0");
   }
   // Without DSA (GL 4.3 / 4.4) the target cannot be queried without binding: a texture of another
-  // target then fails to bind (a GL error the caller's debug output shows) and reads as having no
-  // level 0 image below.
+  // target (multisampled, array, 3D, ...) fails to bind (a GL error the caller's debug output
+  // shows) and leaves the binding unchanged, which is checked below. The unit is cleared first so
+  // that a failed bind cannot leave the caller's own texture there to be inspected instead.
   gl.ActiveTexture(GL_TEXTURE0 + unit);
+  gl.BindTexture(GL_TEXTURE_2D, 0);
   gl.BindTexture(GL_TEXTURE_2D, texture);
+  GLint bound = 0;
+  gl.GetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+  if (GLuint(bound) != texture)
+    return Status::error(StatusCode::InvalidInput,
+                         who + " cannot be bound as GL_TEXTURE_2D (multisampled, an array, 3D or a cube map?); the "
+                               "effect reads and writes GL_TEXTURE_2D level 0 (resolve multisampled depth first)");
   GLint format = 0, w = 0, h = 0, stencil = 0;
   gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
   gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &w);

@@ -71,6 +71,11 @@ Status checkConfig(const Effect::Impl& e, const Config& c, Plan& plan, ParamBloc
                                "D24_UNORM_S8_UINT, D32_SFLOAT, D32_SFLOAT_S8_UINT, or R32_SFLOAT linear z)");
   }
   if (Status st = checkSampled(e, c.depthFormat, "the depth"); !st) return st;
+  if (c.depthSamples != VK_SAMPLE_COUNT_1_BIT)
+    return Status::error(StatusCode::UnsupportedFormat,
+                         "Config::depthSamples is " + std::to_string(static_cast<int>(c.depthSamples)) +
+                             "; the effect reads single-sample depth: resolve multisampled depth first (e.g. "
+                             "VK_KHR_depth_stencil_resolve with VK_RESOLVE_MODE_SAMPLE_ZERO_BIT)");
   if (c.normalsFormat != VK_FORMAT_UNDEFINED) {
     if (isDepthStencilFormat(c.normalsFormat))
       return Status::error(StatusCode::UnsupportedFormat,

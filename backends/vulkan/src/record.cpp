@@ -104,6 +104,11 @@ Status checkInputs(const Effect::Impl& e, const Inputs& in, const OutputImage* u
   if (userOutput->format != VK_FORMAT_R16_SFLOAT)
     return Status::error(StatusCode::UnsupportedFormat, "the output must be VK_FORMAT_R16_SFLOAT (the shader writes r16f), got format " +
                                                             std::to_string(userOutput->format));
+  for (const auto& [input, name] : {std::pair{in.depth.view, "depth"}, std::pair{in.depth2.view, "depth2"},
+                                     std::pair{in.normals.view, "normals"}})
+    if (input != VK_NULL_HANDLE && input == userOutput->view)
+      return Status::error(StatusCode::InvalidInput, std::string("the output view is also Inputs::") + name +
+                                                         ".view; the output must be a separate image");
   if (!(userOutput->extent == e.plan.aoExtent))
     return Status::error(StatusCode::InvalidInput, "the output is " + extentText(userOutput->extent) +
                                                        " but the plan's AO extent (the viewport) is " +

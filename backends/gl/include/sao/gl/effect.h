@@ -25,7 +25,9 @@
 //    first pass (so depth written by the caller's own image stores is visible) and, after its
 //    last pass, the barriers needed to read the result by texture fetch, image load, framebuffer
 //    read, glGetTexImage or a copy. Depth written by rendering needs no barrier.
-//  - Textures are GL_TEXTURE_2D; level 0 is read and written.
+//  - Textures are GL_TEXTURE_2D; level 0 is read and written. Multisampled depth
+//    (GL_TEXTURE_2D_MULTISAMPLE) is rejected with UnsupportedFormat: resolve it first (a
+//    glBlitFramebuffer of GL_DEPTH_BUFFER_BIT with GL_NEAREST into a single-sample texture).
 #pragma once
 #include <cstdint>
 #include <memory>

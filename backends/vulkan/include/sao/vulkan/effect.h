@@ -105,6 +105,12 @@ struct Config {
   VkAccessFlags outputDstAccess = VK_ACCESS_SHADER_READ_BIT;
   std::uint32_t framesInFlight = 2;  // descriptor-set ring size, 1..16 (see the contract above)
   bool timestamps = false;  // record() writes per-pass timestamps where the queue family has them
+  // Samples of the depth (and depth2) images. Only VK_SAMPLE_COUNT_1_BIT is read: create() and
+  // update() reject anything else with UnsupportedFormat. Resolve multisampled depth first (e.g.
+  // VK_KHR_depth_stencil_resolve with VK_RESOLVE_MODE_SAMPLE_ZERO_BIT, or a copy of sample 0 in a
+  // shader of your own). A VkImageView does not tell its sample count, so a multisampled view
+  // passed while this says 1 is not detected by the library (the validation layer reports it).
+  VkSampleCountFlagBits depthSamples = VK_SAMPLE_COUNT_1_BIT;
 };
 
 // One of your sampled inputs: a view of one mip level, in `layout` (SHADER_READ_ONLY_OPTIMAL,

@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# Stage "fuzz": builds the libFuzzer targets (tests/fuzz) with clang, AddressSanitizer and
+# UndefinedBehaviorSanitizer into build-fuzz/ and runs each for a bounded time from the committed
+# seed corpus (tests/fuzz/corpus/<target>, tests/fuzz/regressions/<target>, plus the codegen
+# test sources for the parser). Prints executions per target. A crash, a sanitizer report, a
+# leak, a timeout (> 10 s on one input) or an out-of-memory fails the stage; the input is saved
+# under build-fuzz/artifacts/<target>/ - fix the bug and commit the input to
+# tests/fuzz/regressions/<target>/, where the ctest test fuzz.replay.<target> replays it.
+# usage: ci/fuzz.sh [SECONDS_PER_TARGET]   (default 60; SAO_FUZZ_SECONDS also works)
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+seconds="${1:-${SAO_FUZZ_SECONDS:-60}}"
+build="${SAO_FUZZ_BUILD_DIR:-build-fuzz}"
+targets=(settings exr_depth codegen_parser)
+
+cxx="$(command -v clang++-14 || command -v clang++ || true)"
+cc="$(command -v clang-14 || command -v clang || true)"
+if [ -z "$cxx" ]; then echo "ci/fuzz.sh: clang++ not found (ci/setup.sh installs clang-14)" >&2; exit 1; fi
+symbolizer="$(command -v llvm-symbolizer-14 || command -v llvm-symbolizer || true)"
+generator=()
+if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
+
+# -fno-sanitize=vptr: glslang (Debian) is built without RTTI, the vptr check needs its typeinfo.
+flags="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined,fuzzer-no-link -fno-sanitize=vptr -fno-sanitize-recover=all"
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  mkdir -p "$build"
+  cmake -S . -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=None \
+    -DCMAKE_C_COMPILER="$cc" -DCMAKE_CXX_COMPILER="$cxx" \
+    -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
+    -DSAO_BUILD_FUZZERS=ON -DSAO_BUILD_TESTS=OFF -DSAO_BUILD_SAMPLES=OFF -DSAO_BUILD_GL=OFF -DSAO_BUILD_VULKAN=OFF \
+    >"$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
+fi
+# sao-shaderc runs during the build (instrumented too): its leaks are not what is fuzzed here.
+ASAN_OPTIONS=detect_leaks=0 cmake --build "$build" --parallel "$(nproc)" \
+  --target "${targets[@]/#/fuzz_}"
+
+export ASAN_OPTIONS="abort_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+if [ -n "$symbolizer" ]; then export ASAN_SYMBOLIZER_PATH="$symbolizer"; fi
+
+summary=()
+status=0
+for t in "${targets[@]}"; do
+  work="$build/corpus/$t"
+  artifacts="$build/artifacts/$t"
+  rm -rf "$work" "$artifacts"
+  mkdir -p "$work" "$artifacts"
+  seeds=("tests/fuzz/corpus/$t" "tests/fuzz/regressions/$t")
+  if [ "$t" = codegen_parser ]; then
+    extra="$build/seeds/$t"
+    rm -rf "$extra"
+    mkdir -p "$extra"
+    cp effect/sao.glsl tests/codegen/mini/mini.glsl "$extra/"
+    cp tests/codegen/malformed/*.glsl "$extra/"
+    seeds+=("$extra")
+  fi
+  echo "== fuzz_$t: ${seconds} s from ${seeds[*]}"
+  log="$build/fuzz_$t.log"
+  set +e
+  "$build/bin/fuzz_$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2560 -malloc_limit_mb=2048 \
+    -print_final_stats=1 -artifact_prefix="$artifacts/" "$work" "${seeds[@]}" >"$log" 2>&1
+  rc=$?
+  set -e
+  execs=$(grep -E '^stat::number_of_executed_units' "$log" | awk '{print $2}' | tail -1)
+  rate=$(grep -E '^stat::average_exec_per_sec' "$log" | awk '{print $2}' | tail -1)
+  cov=$(grep -E '^#[0-9]+' "$log" | tail -1 | grep -oE 'cov: [0-9]+' | awk '{print $2}')
+  units=$(find "$work" -type f | wc -l)
+  if [ $rc -ne 0 ]; then
+    status=1
+    echo "fuzz_$t FAILED (exit $rc); the input is in $artifacts:"
+    ls -l "$artifacts"
+    grep -E 'ERROR|SUMMARY|invariant broken|runtime error' "$log" | head -20 || true
+    echo "(full log: $log)"
+  fi
+  summary+=("$(printf '%-16s %8s s %12s execs %8s execs/s %6s edges %6s corpus  %s' "$t" "$seconds" "${execs:-?}" \
+    "${rate:-?}" "${cov:-?}" "$units" "$([ $rc -eq 0 ] && echo ok || echo FAILED)")")
+done
+# A crashed target leaves its scratch folder (fuzz_support.h) behind: remove those of dead processes.
+for d in /dev/shm/sao_fuzz_* "${TMPDIR:-/tmp}"/sao_fuzz_*; do
+  [ -d "$d" ] || continue
+  kill -0 "${d##*_}" 2>/dev/null || rm -rf "$d"
+done
+echo "== fuzz summary (clang $("$cxx" -dumpversion), address + undefined, libFuzzer)"
+printf '%s\n' "${summary[@]}"
+exit $status

@@ -1,0 +1,1 @@
+#pragma sao constant int =2540685460

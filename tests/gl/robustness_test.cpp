@@ -1,0 +1,268 @@
+// sao::gl::Effect on bad input (docs/ROBUSTNESS.md), the cases effect_test.cpp does not already
+// cover: other header versions, deleted and storage-less textures, multisampled depth (with and
+// without GL 4.5 direct state access), stencil-only and integer textures, every input also passed
+// as the output, sizes beyond GL_MAX_TEXTURE_SIZE, empty viewports, every setting NaN / +-inf / out
+// of range, non-finite cameras. Every case must return the documented code with a message, raise
+// no GL error (the fixture fails on any GL_DEBUG_TYPE_ERROR), allocate nothing, and leave the
+// context and the effect usable: the same effect then renders what a fresh one renders.
+#include <epoxy/gl.h>
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "analytic_scenes.h"
+#include "gl_support.h"
+
+namespace sao::gltest {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+bool sameBits(const FloatImage& a, const FloatImage& b) {
+  if (a.extent != b.extent || a.channels != b.channels || a.data.size() != b.data.size()) return false;
+  return std::memcmp(a.data.data(), b.data.data(), a.data.size() * sizeof(float)) == 0;
+}
+
+// A loader that hides glGetTextureParameteriv: the effect takes its GL 4.3 path (no DSA).
+gl::ProcAddress noDsaLoader(const char* name) {
+  if (std::strcmp(name, "glGetTextureParameteriv") == 0) return nullptr;
+  return gl::HeadlessContext::getProcAddress()(name);
+}
+
+class Robustness : public GlTest {
+ protected:
+  void SetUp() override {
+    GlTest::SetUp();
+    effect = makeEffect();
+    camera = gltest::camera(64, 36, 8);
+    depth = test::renderDepth(test::sphereOnPlaneScene(), camera, cpuFormat(GlDepth::D24));
+    texture = uploadDepth(depth, GlDepth::D24);
+  }
+  void TearDown() override {
+    // Whatever came before, the effect still renders what a fresh effect renders.
+    if (effect && !HasFatalFailure()) {
+      const Status st = render(good());
+      EXPECT_TRUE(st.ok()) << "the effect is not usable after the bad calls: " << st.message;
+      auto fresh = makeEffect();
+      ASSERT_TRUE(fresh->render(camera, Settings{}, good()).ok());
+      EXPECT_TRUE(sameBits(readTexture(effect->aoTexture(), 1), readTexture(fresh->aoTexture(), 1)));
+    }
+    deleteTexture(texture);
+    effect.reset();
+    GlTest::TearDown();
+  }
+  gl::Inputs good() const {
+    gl::Inputs in;
+    in.depth = {texture, gl::kDepthComponent24};
+    return in;
+  }
+  Status render(const gl::Inputs& in, const Settings& s = {}) { return effect->render(camera, s, in); }
+  // The call fails with `code`, names `needle`, and allocates nothing.
+  void expectRejected(const Status& st, StatusCode code, const std::string& needle, std::uint64_t allocationsBefore) {
+    EXPECT_EQ(st.code, code) << toString(st.code) << ": " << st.message;
+    EXPECT_NE(st.message.find(needle), std::string::npos) << "expected \"" << needle << "\" in: " << st.message;
+    EXPECT_EQ(effect->stats().textureAllocations, allocationsBefore) << st.message;
+  }
+
+  std::unique_ptr<gl::Effect> effect;
+  Camera camera;
+  DepthImage depth;
+  GLuint texture = 0;
+};
+
+TEST_F(Robustness, OtherHeaderVersionsAreRejected) {
+  for (int version : {SAO_VERSION - 1, SAO_VERSION + (1 << 8), SAO_VERSION + (1 << 16), 0, -1}) {
+    std::unique_ptr<gl::Effect> e;
+    const Status st = gl::Effect::create(gl::HeadlessContext::getProcAddress(), e, version);
+    EXPECT_EQ(st.code, StatusCode::VersionMismatch) << version << ": " << st.message;
+    EXPECT_FALSE(e);
+  }
+}
+
+TEST_F(Robustness, DeletedAndStoragelessTextures) {
+  GLuint t = 0;
+  glGenTextures(1, &t);
+  glBindTexture(GL_TEXTURE_2D, t);  // a texture object now, but without any image
+  glBindTexture(GL_TEXTURE_2D, 0);
+  gl::Inputs in;
+  in.depth = {t, 0};
+  expectRejected(render(in), StatusCode::InvalidInput, "has no level 0 image", 0);
+  glDeleteTextures(1, &t);
+  expectRejected(render(in), StatusCode::InvalidInput, "is not a texture object", 0);
+  in = good();
+  in.normals = 0xFFFFFFFFu;
+  expectRejected(render(in), StatusCode::InvalidInput, "normals texture 4294967295 is not a texture", 0);
+}
+
+GLuint multisampleDepth(Extent e) {
+  GLuint t = 0;
+  glGenTextures(1, &t);
+  glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, t);
+  glTexStorage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, 4, GL_DEPTH_COMPONENT24, GLsizei(e.width), GLsizei(e.height),
+                            GL_TRUE);
+  glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
+  return t;
+}
+
+// Multisampled depth is rejected with a clear error (documented: resolve it first).
+TEST_F(Robustness, MultisampledDepthIsRejected) {
+  const GLuint ms = multisampleDepth(depth.extent);
+  gl::Inputs in;
+  in.depth = {ms, gl::kDepthComponent24};
+  expectRejected(render(in), StatusCode::UnsupportedFormat, "is multisampled (GL_TEXTURE_2D_MULTISAMPLE); resolve", 0);
+  in = good();
+  in.depth2 = {ms, 0};
+  expectRejected(render(in), StatusCode::UnsupportedFormat, "second-layer depth texture", 0);
+  glDeleteTextures(1, &ms);
+}
+
+// Without GL 4.5 the target cannot be queried: the failed bind is detected (and not mistaken for
+// the caller's own texture still bound on that unit). The bind's GL_INVALID_OPERATION is expected.
+TEST_F(Robustness, MultisampledDepthWithoutDirectStateAccess) {
+  std::unique_ptr<gl::Effect> e;
+  ASSERT_TRUE(gl::Effect::create(&noDsaLoader, e).ok());
+  ASSERT_TRUE(e->render(camera, Settings{}, good()).ok()) << "the GL 4.3 path renders";
+  const GLuint ms = multisampleDepth(depth.extent);
+  // The caller's own 2D texture of the right size and format bound on every unit the effect uses.
+  const GLuint decoy = uploadDepth(depth, GlDepth::D24);
+  for (GLuint unit = 0; unit < 8; ++unit) {
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_2D, decoy);
+  }
+  glActiveTexture(GL_TEXTURE0);
+  gl::Inputs in;
+  in.depth = {ms, 0};
+  const Status st = e->render(camera, Settings{}, in);
+  EXPECT_EQ(st.code, StatusCode::InvalidInput) << st.message;
+  EXPECT_NE(st.message.find("cannot be bound as GL_TEXTURE_2D"), std::string::npos) << st.message;
+  const auto errors = context().errors();
+  EXPECT_EQ(errors.size(), 1u) << "the one failed glBindTexture";
+  context().clearMessages();
+  for (GLuint unit = 0; unit < 8; ++unit) {
+    GLint bound = 0;
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+    EXPECT_EQ(GLuint(bound), decoy) << "unit " << unit << " restored";
+    glBindTexture(GL_TEXTURE_2D, 0);
+  }
+  glActiveTexture(GL_TEXTURE0);
+  deleteTexture(decoy);
+  glDeleteTextures(1, &ms);
+  e.reset();
+}
+
+TEST_F(Robustness, StencilOnlyAndIntegerTexturesAreUnsupported) {
+  for (GLenum format : {GLenum(GL_STENCIL_INDEX8), GLenum(GL_R32UI), GLenum(GL_RGBA16F), GLenum(GL_R16F)}) {
+    const GLuint t = makeTexture(format, depth.extent);
+    gl::Inputs in;
+    in.depth = {t, 0};
+    expectRejected(render(in), StatusCode::UnsupportedFormat, "depth must be", 0);
+    deleteTexture(t);
+  }
+}
+
+// Every input also passed as the output (a feedback loop: the passes would read what they write).
+TEST_F(Robustness, EveryInputAlsoPassedAsTheOutput) {
+  const GLuint normals = makeTexture(GL_RGBA16F, depth.extent);
+  const GLuint second = uploadDepth(depth, GlDepth::D24);
+  gl::Inputs in = good();
+  in.normals = normals;
+  in.depth2 = {second, 0};
+  for (const auto& [output, role] : {std::pair{texture, "depth"}, std::pair{second, "second-layer depth"},
+                                     std::pair{normals, "normals"}}) {
+    gl::Inputs bad = in;
+    bad.output = output;
+    expectRejected(render(bad), StatusCode::InvalidInput,
+                   std::string("is passed both as the output and as the ") + role + " input", 0);
+  }
+  deleteTexture(normals);
+  deleteTexture(second);
+}
+
+// Sizes beyond GL_MAX_TEXTURE_SIZE (and the plan's kMaxImageSide) are refused before anything is
+// allocated; no texture of that size is ever created.
+TEST_F(Robustness, HugeAndEmptySizes) {
+  GLint maxSize = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  ASSERT_GT(maxSize, 0);
+  ASSERT_TRUE(render(good()).ok());
+  const std::uint64_t allocations = effect->stats().textureAllocations;
+  const std::uint32_t beyond = std::uint32_t(maxSize) + 1;
+  struct Case {
+    std::uint32_t w, h, guard;
+    StatusCode code;
+    const char* needle;
+  };
+  const Case cases[] = {
+      {beyond, 36, 0, StatusCode::InvalidExtent, "exceeds"},
+      {64, beyond, 0, StatusCode::InvalidExtent, "exceeds"},
+      {std::uint32_t(maxSize) - 8, 36, 8, StatusCode::InvalidExtent, "exceeds"},  // the guard band pushes it over
+      {0xFFFFFFFFu, 0xFFFFFFFFu, 0xFFFFFFFFu, StatusCode::InvalidExtent, "exceeds"},  // no 32-bit wrap-around
+      {64, 36, 0x80000000u, StatusCode::InvalidExtent, "exceeds"},
+      {0, 36, 8, StatusCode::InvalidCamera, "viewport size is 0x36"},
+      {64, 0, 8, StatusCode::InvalidCamera, "viewport size is 64x0"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(std::to_string(c.w) + "x" + std::to_string(c.h) + " guard " + std::to_string(c.guard));
+    Camera big = camera;
+    big.width = c.w;
+    big.height = c.h;
+    big.guardBand = c.guard;
+    // The projection stays that of 64x36 (a valid perspective); only the sizes are wrong.
+    expectRejected(effect->render(big, Settings{}, good()), c.code, c.needle, allocations);
+  }
+  // A depth texture larger than the camera's extent (the caller's mistake, not a huge allocation).
+  const GLuint large = makeTexture(GL_DEPTH_COMPONENT24, {4096, 4096});
+  gl::Inputs in;
+  in.depth = {large, 0};
+  expectRejected(render(in), StatusCode::InvalidInput, "is 4096x4096, the camera needs 80x52", allocations);
+  deleteTexture(large);
+}
+
+// Every setting NaN, +inf, -inf and just outside its range: InvalidSetting naming the setting.
+TEST_F(Robustness, EverySettingNonFiniteOrOutOfRange) {
+  ASSERT_TRUE(render(good()).ok());
+  const std::uint64_t allocations = effect->stats().textureAllocations;
+  int cases = 0;
+  for (std::size_t i = 0; i < gen::kSettings.size(); ++i) {
+    const SettingInfo& info = gen::kSettings[i];
+    const auto id = static_cast<SettingId>(i);
+    std::vector<double> values;
+    if (info.type == gen::SettingType::Float) values = {kNaN, kInf, -kInf};
+    if (info.type != gen::SettingType::Bool) values.insert(values.end(), {info.minValue - 1, info.maxValue + 1});
+    for (double v : values) {
+      Settings s;
+      gen::setSettingValue(s, id, v);
+      SCOPED_TRACE(std::string(info.name) + " = " + std::to_string(v));
+      expectRejected(render(good(), s), StatusCode::InvalidSetting, std::string(info.name), allocations);
+      ++cases;
+    }
+  }
+  EXPECT_GE(cases, 40);
+}
+
+TEST_F(Robustness, NonFiniteAndDegenerateCameras) {
+  ASSERT_TRUE(render(good()).ok());
+  const std::uint64_t allocations = effect->stats().textureAllocations;
+  for (int element : {0, 5, 10, 11, 14}) {
+    for (double v : {kNaN, kInf}) {
+      Camera c = camera;
+      c.projection[std::size_t(element)] = v;
+      expectRejected(effect->render(c, Settings{}, good()), StatusCode::InvalidCamera, "", allocations);
+    }
+  }
+  for (double m : {kNaN, kInf, 0.0, -1.0, 1e-9, 1e9}) {
+    Camera c = camera;
+    c.metersToViewUnits = m;
+    expectRejected(effect->render(c, Settings{}, good()), StatusCode::InvalidCamera, "metersToViewUnits", allocations);
+  }
+  Camera zero = camera;
+  zero.projection.fill(0.0);
+  expectRejected(effect->render(zero, Settings{}, good()), StatusCode::InvalidCamera, "", allocations);
+}
+
+}  // namespace
+}  // namespace sao::gltest

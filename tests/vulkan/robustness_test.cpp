@@ -1,0 +1,242 @@
+// sao::vk::Effect on bad input (docs/ROBUSTNESS.md), the cases effect_test.cpp does not already
+// cover: other header versions, a VkInstance or VkPhysicalDevice of VK_NULL_HANDLE, multisampled
+// depth, a depth format of VK_FORMAT_UNDEFINED, framesInFlight above the ring, empty destination
+// stages, sizes beyond maxImageDimension2D, every setting NaN / +-inf / out of range, non-finite
+// cameras, update() with a bad configuration (the effect keeps its previous one), an input view
+// also passed as the output view, a null output view, measure() on a null queue. Every case must
+// return the documented code with a message, raise no validation message (the fixture fails on
+// any), allocate no device memory, and leave the device and the effect usable.
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "analytic_scenes.h"
+#include "vk_support.h"
+
+namespace sao::vktest {
+namespace {
+
+using vk::headless::Image;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+bool sameBits(const FloatImage& a, const FloatImage& b) {
+  if (a.extent != b.extent || a.channels != b.channels || a.data.size() != b.data.size()) return false;
+  return std::memcmp(a.data.data(), b.data.data(), a.data.size() * sizeof(float)) == 0;
+}
+
+class VkRobustness : public VkTest {
+ protected:
+  void SetUp() override {
+    VkTest::SetUp();
+    camera = vulkanCamera(48, 27, 4);
+    depth = test::renderDepth(test::sphereOnPlaneScene(), camera, DepthFormat::D32F);
+    ASSERT_TRUE(context().uploadDepth(depth, VK_FORMAT_D32_SFLOAT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, image).ok());
+    config.camera = camera;
+    config.depthFormat = VK_FORMAT_D32_SFLOAT;
+  }
+  void TearDown() override {
+    context().destroy(image);
+    VkTest::TearDown();
+  }
+  vk::Inputs inputs() const {
+    vk::Inputs in;
+    in.depth = {image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth.extent, VK_FORMAT_D32_SFLOAT};
+    return in;
+  }
+  // create() fails with `code`, names `needle`, leaves `out` empty and no device memory behind.
+  void expectCreateFails(const vk::DeviceContext& ctx, const vk::Config& c, StatusCode code, const std::string& needle) {
+    const vk::MemoryStats before = vk::processMemoryStats();
+    std::unique_ptr<vk::Effect> e;
+    const Status st = vk::Effect::create(ctx, c, e);
+    EXPECT_EQ(st.code, code) << toString(st.code) << ": " << st.message;
+    EXPECT_NE(st.message.find(needle), std::string::npos) << "expected \"" << needle << "\" in: " << st.message;
+    EXPECT_FALSE(e);
+    EXPECT_EQ(vk::processMemoryStats().liveAllocations, before.liveAllocations) << st.message;
+  }
+  FloatImage run(vk::Effect& e, const vk::OutputImage* userOutput = nullptr) {
+    Status recorded;
+    EXPECT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = e.record(cmd, inputs(), userOutput); }).ok());
+    EXPECT_TRUE(recorded.ok()) << recorded.message;
+    const vk::OutputImage o = userOutput ? *userOutput : e.output();
+    FloatImage ao;
+    EXPECT_TRUE(context()
+                    .readback(o.image, o.format, o.extent, 0, e.config().outputLayout, e.config().outputDstStages,
+                              e.config().outputDstAccess, ao)
+                    .ok());
+    return ao;
+  }
+
+  Camera camera;
+  DepthImage depth;
+  Image image;
+  vk::Config config;
+};
+
+TEST_F(VkRobustness, OtherHeaderVersionsAreRejected) {
+  for (int version : {SAO_VERSION - 1, SAO_VERSION + (1 << 8), SAO_VERSION + (1 << 16), 0, -1}) {
+    SCOPED_TRACE(version);
+    std::unique_ptr<vk::Effect> e;
+    const Status st = vk::Effect::create(context().deviceContext(), config, e, version);
+    EXPECT_EQ(st.code, StatusCode::VersionMismatch) << st.message;
+    EXPECT_FALSE(e);
+  }
+}
+
+TEST_F(VkRobustness, NullInstanceOrPhysicalDevice) {
+  vk::DeviceContext c = context().deviceContext();
+  c.instance = VK_NULL_HANDLE;
+  expectCreateFails(c, config, StatusCode::InvalidInput, "VK_NULL_HANDLE");
+  c = context().deviceContext();
+  c.physicalDevice = VK_NULL_HANDLE;
+  expectCreateFails(c, config, StatusCode::InvalidInput, "VK_NULL_HANDLE");
+}
+
+// Multisampled depth is rejected with a clear error (documented: resolve it first).
+TEST_F(VkRobustness, MultisampledDepthIsRejected) {
+  for (VkSampleCountFlagBits samples : {VK_SAMPLE_COUNT_2_BIT, VK_SAMPLE_COUNT_4_BIT, VK_SAMPLE_COUNT_64_BIT}) {
+    vk::Config c = config;
+    c.depthSamples = samples;
+    expectCreateFails(context().deviceContext(), c, StatusCode::UnsupportedFormat, "resolve multisampled depth first");
+  }
+}
+
+TEST_F(VkRobustness, BadConfigurationValues) {
+  vk::Config c = config;
+  c.depthFormat = VK_FORMAT_UNDEFINED;
+  expectCreateFails(context().deviceContext(), c, StatusCode::UnsupportedFormat, "Config::depthFormat");
+  c = config;
+  c.framesInFlight = 17;
+  expectCreateFails(context().deviceContext(), c, StatusCode::InvalidInput, "framesInFlight is 17");
+  c = config;
+  c.outputDstStages = 0;
+  expectCreateFails(context().deviceContext(), c, StatusCode::InvalidInput, "outputDstStages is empty");
+  c = config;
+  c.outputLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  expectCreateFails(context().deviceContext(), c, StatusCode::InvalidInput, "outputLayout");
+}
+
+// Sizes beyond maxImageDimension2D (and the plan's kMaxImageSide) are refused before anything is
+// allocated.
+TEST_F(VkRobustness, HugeAndEmptySizes) {
+  const VkPhysicalDeviceProperties& props = context().properties();
+  const std::uint32_t beyond = props.limits.maxImageDimension2D + 1;
+  struct Case {
+    std::uint32_t w, h, guard;
+    StatusCode code;
+    const char* needle;
+  };
+  const Case cases[] = {
+      {beyond, 27, 0, StatusCode::InvalidExtent, "exceeds"},
+      {48, beyond, 0, StatusCode::InvalidExtent, "exceeds"},
+      {props.limits.maxImageDimension2D - 4, 27, 4, StatusCode::InvalidExtent, "exceeds"},
+      {0xFFFFFFFFu, 0xFFFFFFFFu, 0xFFFFFFFFu, StatusCode::InvalidExtent, "exceeds"},
+      {48, 27, 0x80000000u, StatusCode::InvalidExtent, "exceeds"},
+      {0, 27, 4, StatusCode::InvalidCamera, "viewport size is 0x27"},
+  };
+  for (const Case& k : cases) {
+    SCOPED_TRACE(std::to_string(k.w) + "x" + std::to_string(k.h) + " guard " + std::to_string(k.guard));
+    vk::Config c = config;
+    c.camera.width = k.w;
+    c.camera.height = k.h;
+    c.camera.guardBand = k.guard;
+    expectCreateFails(context().deviceContext(), c, k.code, k.needle);
+  }
+}
+
+TEST_F(VkRobustness, EverySettingNonFiniteOrOutOfRange) {
+  int cases = 0;
+  for (std::size_t i = 0; i < gen::kSettings.size(); ++i) {
+    const SettingInfo& info = gen::kSettings[i];
+    std::vector<double> values;
+    if (info.type == gen::SettingType::Float) values = {kNaN, kInf, -kInf};
+    if (info.type != gen::SettingType::Bool) values.insert(values.end(), {info.minValue - 1, info.maxValue + 1});
+    for (double v : values) {
+      SCOPED_TRACE(std::string(info.name) + " = " + std::to_string(v));
+      vk::Config c = config;
+      gen::setSettingValue(c.settings, static_cast<SettingId>(i), v);
+      expectCreateFails(context().deviceContext(), c, StatusCode::InvalidSetting, std::string(info.name));
+      ++cases;
+    }
+  }
+  EXPECT_GE(cases, 40);
+}
+
+TEST_F(VkRobustness, NonFiniteCameras) {
+  for (int element : {0, 5, 10, 11, 14}) {
+    vk::Config c = config;
+    c.camera.projection[std::size_t(element)] = kNaN;
+    expectCreateFails(context().deviceContext(), c, StatusCode::InvalidCamera, "non-finite");
+  }
+  vk::Config c = config;
+  c.camera.metersToViewUnits = kInf;
+  expectCreateFails(context().deviceContext(), c, StatusCode::InvalidCamera, "metersToViewUnits");
+}
+
+// update() with any bad configuration returns the error and keeps the previous configuration: the
+// images, the memory and the result stay what they were.
+TEST_F(VkRobustness, FailedUpdateKeepsThePreviousConfiguration) {
+  std::unique_ptr<vk::Effect> e;
+  ASSERT_TRUE(vk::Effect::create(context().deviceContext(), config, e).ok());
+  const FloatImage before = run(*e);
+  const vk::MemoryStats memory = e->memoryStats();
+  std::vector<vk::Config> bad(6, config);
+  bad[0].settings.radius = float(kNaN);
+  bad[1].camera.width = 0xFFFFFFFFu;
+  bad[2].depthSamples = VK_SAMPLE_COUNT_8_BIT;
+  bad[3].framesInFlight = 0;
+  bad[4].camera.projection[0] = kInf;
+  bad[5].depthFormat = VK_FORMAT_R8G8B8A8_UNORM;
+  for (const vk::Config& c : bad) {
+    const Status st = e->update(c);
+    EXPECT_FALSE(st.ok());
+    EXPECT_FALSE(st.message.empty());
+    EXPECT_EQ(e->config().camera.width, config.camera.width);
+    EXPECT_EQ(e->config().depthSamples, VK_SAMPLE_COUNT_1_BIT);
+    EXPECT_EQ(e->memoryStats().liveBytes, memory.liveBytes);
+  }
+  EXPECT_TRUE(sameBits(run(*e), before)) << "the effect renders as before the failed updates";
+}
+
+// A feedback loop (an input's view passed as the output view) and null output handles are refused
+// and nothing is recorded; a good record in the same command buffer then works.
+TEST_F(VkRobustness, OutputAlsoAnInputAndNullOutputHandles) {
+  vk::Config c = config;
+  c.userOutput = true;
+  std::unique_ptr<vk::Effect> e;
+  ASSERT_TRUE(vk::Effect::create(context().deviceContext(), c, e).ok());
+  Image out;
+  ASSERT_TRUE(context().createStorageImage(VK_FORMAT_R16_SFLOAT, {48, 27}, out).ok());
+  const vk::OutputImage good{out.image, out.view, VK_FORMAT_R16_SFLOAT, {48, 27}};
+  std::vector<std::pair<std::string, Status>> results;
+  Status fine;
+  ASSERT_TRUE(context()
+                  .submit([&](VkCommandBuffer cmd) {
+                    vk::OutputImage o = good;
+                    o.view = image.view;  // the depth view
+                    results.push_back({"depth view as output", e->record(cmd, inputs(), &o)});
+                    o = good;
+                    o.view = VK_NULL_HANDLE;
+                    results.push_back({"null output view", e->record(cmd, inputs(), &o)});
+                    o = good;
+                    o.image = VK_NULL_HANDLE;
+                    results.push_back({"null output image", e->record(cmd, inputs(), &o)});
+                    fine = e->record(cmd, inputs(), &good);
+                  })
+                  .ok());
+  for (const auto& [what, st] : results) {
+    EXPECT_EQ(st.code, StatusCode::InvalidInput) << what << ": " << st.message;
+    EXPECT_FALSE(st.message.empty()) << what;
+  }
+  EXPECT_NE(results[0].second.message.find("also Inputs::depth.view"), std::string::npos) << results[0].second.message;
+  EXPECT_TRUE(fine.ok()) << fine.message;
+  Timings t;
+  const Status measured = e->measure(VK_NULL_HANDLE, inputs(), &good, t);
+  EXPECT_EQ(measured.code, StatusCode::InvalidInput) << measured.message;
+  EXPECT_TRUE(context().submit([&](VkCommandBuffer) {}).ok()) << "the device is still usable";
+  context().destroy(out);
+}
+
+}  // namespace
+}  // namespace sao::vktest
