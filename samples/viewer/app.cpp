@@ -1,0 +1,301 @@
+#include "app.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+
+#include "backend.h"
+#include "camera_control.h"
+#include "reference.h"
+#include "screenshot.h"
+#include "ui_panel.h"
+
+namespace sao::viewer {
+namespace {
+
+// Owns the ImGui context (created before the backends' ImGui init, destroyed after their shutdown).
+struct ImGuiContextOwner {
+  ImGuiContextOwner() {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to the user's files
+    ImGui::StyleColorsDark();
+  }
+  ~ImGuiContextOwner() { ImGui::DestroyContext(); }
+};
+
+class App {
+ public:
+  explicit App(const Options& options) : options_(options) {}
+  int run();
+
+ private:
+  Status start();
+  Status loadScene(int index);
+  void handleKeys();
+  Status handleRequests(const FrameDesc& frame);
+  FrameDesc buildFrame(glm::ivec2 size) const;
+  void updateMetrics(const FrameDesc& frame);
+  PanelInfo panelInfo() const;
+
+  Options options_;
+  std::unique_ptr<Window> window_;
+  std::unique_ptr<ImGuiContextOwner> imgui_;
+  std::unique_ptr<Backend> backend_;  // destroyed before the ImGui context and the window
+  scenes::Scene scene_;
+  glm::dvec3 boundsMin_{0}, boundsMax_{0};
+  CameraController camera_;
+  UiState ui_;
+  Reference reference_;
+  FrameStats stats_;
+  bool haveStats_ = false, haveMetrics_ = false, referenceRequested_ = false;
+  samples::ReferenceComparison metrics_;
+  Settings metricsSettings_;
+  std::string message_;
+  double frameMs_ = 0;
+};
+
+Status App::start() {
+  const Api api = options_.backend == "vulkan" ? Api::Vulkan : Api::OpenGL;
+  const std::string title = "sao-viewer (" + options_.backend + ")";
+  if (Status s = Window::create(api, options_.width, options_.height, title, window_); !s) return s;
+  imgui_ = std::make_unique<ImGuiContextOwner>();
+  BackendOptions bo;
+  bo.vsync = options_.vsync;
+  bo.validation = options_.validation;
+  bo.standardDepth = options_.standardDepth;
+  if (Status s = api == Api::Vulkan ? createVulkanBackend(*window_, bo, backend_) : createGlBackend(*window_, bo, backend_);
+      !s)
+    return s;
+  ui_.settings = options_.settings;
+  ui_.mode = options_.mode;
+  ui_.cszLevel = options_.zLevel;
+  ui_.showUi = !options_.hideUi;
+  ui_.referenceRays = int(options_.referenceRays);
+  referenceRequested_ = options_.reference;
+  const std::string name = options_.scene.empty() ? std::string(scenes::kDefaultScene) : options_.scene;
+  if (std::filesystem::exists(name))
+    return Status::error(StatusCode::UnsupportedFormat,
+                         "mesh files are not supported yet ('" + name + "'); use a built-in scene");
+  const auto names = scenes::builtinSceneNames();
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it == names.end()) {
+    scenes::Scene unused;
+    return scenes::makeBuiltinScene(name, unused);  // the library's message lists the scenes
+  }
+  if (Status s = loadScene(int(it - names.begin())); !s) return s;
+  if (options_.view >= scene_.views.size())
+    return Status::error(StatusCode::InvalidInput, "scene '" + name + "' has views 0.." +
+                                                       std::to_string(scene_.views.size() - 1));
+  ui_.view = int(options_.view);
+  camera_.reset(scene_.views[options_.view]);
+  return Status::success();
+}
+
+Status App::loadScene(int index) {
+  scenes::Scene scene;
+  if (Status s = scenes::makeBuiltinScene(scenes::builtinSceneNames()[std::size_t(index)], scene); !s) return s;
+  scene_ = std::move(scene);
+  boundsMin_ = glm::dvec3(std::numeric_limits<double>::max());
+  boundsMax_ = -boundsMin_;
+  for (const auto& p : scene_.mesh.positions) {
+    boundsMin_ = glm::min(boundsMin_, glm::dvec3(p));
+    boundsMax_ = glm::max(boundsMax_, glm::dvec3(p));
+  }
+  ui_.scene = index;
+  ui_.view = 0;
+  camera_.reset(scene_.views[0]);
+  reference_.setScene(&scene_);
+  haveMetrics_ = false;
+  if (Status s = backend_->setReference(nullptr); !s) return s;
+  return backend_->setMesh(scene_.mesh);
+}
+
+void App::handleKeys() {
+  if (ImGui::GetIO().WantCaptureKeyboard) return;
+  const Window& w = *window_;
+  if (w.keyPressed(GLFW_KEY_ESCAPE)) window_->requestClose();
+  if (w.keyPressed(GLFW_KEY_F12)) ui_.screenshot = true;
+  if (w.keyPressed(GLFW_KEY_R)) ui_.computeReference = true;
+  if (w.keyPressed(GLFW_KEY_H)) ui_.showUi = !ui_.showUi;
+  if (w.keyPressed(GLFW_KEY_HOME)) ui_.resetCamera = true;
+  if (w.keyPressed(GLFW_KEY_TAB))
+    camera_.mode = camera_.mode == CameraController::Mode::Orbit ? CameraController::Mode::Fly
+                                                                  : CameraController::Mode::Orbit;
+  for (const auto& m : viewModes()) {
+    const int key = GLFW_KEY_1 + static_cast<int>(m.mode);
+    if (w.keyPressed(key)) ui_.mode = m.mode;
+  }
+}
+
+FrameDesc App::buildFrame(glm::ivec2 size) const {
+  FrameDesc f;
+  const scenes::View v = camera_.view();
+  f.view = scenes::viewMatrix(v);
+  // Camera-space depth range of the scene's bounding box: the csz view's grey ramp and, without
+  // reversed-Z, the far plane.
+  double zMin = std::numeric_limits<double>::max(), zMax = 0;
+  for (int i = 0; i < 8; ++i) {
+    const glm::dvec3 corner(i & 1 ? boundsMax_.x : boundsMin_.x, i & 2 ? boundsMax_.y : boundsMin_.y,
+                            i & 4 ? boundsMax_.z : boundsMin_.z);
+    const double z = -(f.view * glm::dvec4(corner, 1.0)).z;
+    zMin = std::min(zMin, z);
+    zMax = std::max(zMax, z);
+  }
+  // The grey ramp starts at a third of the distance to the orbit target (log scale).
+  f.zNear = std::max({zMin, v.nearDistance, glm::length(v.target - v.eye) / 3.0});
+  f.zFar = std::max(zMax, f.zNear * 2);
+  const double far = backend_->reversedZ() ? INFINITY : f.zFar * 1.5 + 1.0;
+  f.camera = scenes::makeCamera(v, std::uint32_t(size.x), std::uint32_t(size.y), far, backend_->clipDepth(),
+                                backend_->reversedZ());
+  f.settings = ui_.settings;
+  f.mode = ui_.mode;
+  f.cszLevel = ui_.cszLevel;
+  f.splitFraction = ui_.split;
+  f.errorScale = ui_.errorScale;
+  f.measureTime = ui_.measureTime;
+  f.referenceValid = reference_.matches(v, f.camera, ui_.settings.radius);
+  return f;
+}
+
+Status App::handleRequests(const FrameDesc& frame) {
+  if (ui_.sceneChanged) {
+    ui_.sceneChanged = false;
+    if (Status s = loadScene(ui_.scene); !s) return s;
+  }
+  if (ui_.resetCamera) {
+    ui_.resetCamera = false;
+    camera_.reset(scene_.views[std::size_t(std::clamp(ui_.view, 0, int(scene_.views.size()) - 1))]);
+  }
+  if (ui_.computeReference || referenceRequested_) {
+    ui_.computeReference = referenceRequested_ = false;
+    std::printf("sao-viewer: tracing the reference (%d rays per pixel)...\n", ui_.referenceRays);
+    std::fflush(stdout);
+    if (Status s = reference_.compute(camera_.view(), frame.camera, ui_.settings.radius,
+                                      std::uint32_t(ui_.referenceRays));
+        !s)
+      return s;
+    std::printf("sao-viewer: reference done in %.2f s\n", reference_.seconds());
+    haveMetrics_ = false;
+    return backend_->setReference(&reference_.image());
+  }
+  return Status::success();
+}
+
+void App::updateMetrics(const FrameDesc& frame) {
+  if (frame.mode != ViewMode::Error || !frame.referenceValid || !stats_.effect.ok()) return;
+  if (haveMetrics_ && metricsSettings_ == frame.settings) return;
+  FloatImage ao;
+  if (Status s = backend_->readAo(ao); !s) {
+    message_ = "cannot read the AO back: " + s.message;
+    return;
+  }
+  metrics_ = reference_.compare(ao);
+  metricsSettings_ = frame.settings;
+  haveMetrics_ = true;
+  std::printf("sao-viewer: error vs reference: RMSE %.4f, bias %+.4f\n", metrics_.raw.rmse, metrics_.raw.meanBias);
+}
+
+PanelInfo App::panelInfo() const {
+  PanelInfo p;
+  p.backend = backend_->description();
+  p.frameMs = frameMs_;
+  p.stats = haveStats_ ? &stats_ : nullptr;
+  if (haveStats_) {
+    Camera c = scenes::makeCamera(camera_.view(), stats_.plan.aoExtent.width, stats_.plan.aoExtent.height, INFINITY,
+                                  ClipDepth::ZeroToOne, true);
+    if (c.width > 0) p.fullBytes = fullAllocationBytes(c, {});
+  }
+  p.scene = &scene_;
+  const scenes::View v = camera_.view();
+  if (!reference_.available()) {
+    p.referenceStatus = "no reference yet: press R (blocks for a few seconds)";
+  } else {
+    const glm::ivec2 fb = window_->framebufferSize();
+    Camera c = scenes::makeCamera(v, std::uint32_t(fb.x), std::uint32_t(fb.y), INFINITY, ClipDepth::ZeroToOne, true);
+    char text[160];
+    if (reference_.matches(v, c, ui_.settings.radius))
+      std::snprintf(text, sizeof text, "reference of this view: %u rays per pixel, %.2f s", reference_.rays(),
+                    reference_.seconds());
+    else
+      std::snprintf(text, sizeof text, "the reference is stale (camera, size or radius changed): press R");
+    p.referenceStatus = text;
+    p.haveMetrics = haveMetrics_ && ui_.mode == ViewMode::Error && reference_.matches(v, c, ui_.settings.radius);
+  }
+  p.metrics = metrics_;
+  p.message = message_;
+  return p;
+}
+
+int App::run() {
+  if (Status s = start(); !s) {
+    std::fprintf(stderr, "sao-viewer: %s: %s\n", toString(s.code), s.message.c_str());
+    return 1;
+  }
+  std::printf("sao-viewer: %s\n", backend_->description().c_str());
+  double last = glfwGetTime();
+  std::uint32_t frames = 0;
+  while (!window_->shouldClose()) {
+    window_->pollEvents();
+    const glm::ivec2 fb = window_->framebufferSize();
+    if (fb.x <= 0 || fb.y <= 0) {
+      window_->waitEvents();
+      continue;
+    }
+    const double now = glfwGetTime(), dt = now - last;
+    last = now;
+    frameMs_ = frameMs_ == 0 ? dt * 1000 : frameMs_ * 0.9 + dt * 100;
+    handleKeys();
+    const ImGuiIO& io = ImGui::GetIO();
+    camera_.update(io.WantCaptureMouse ? Input{} : window_->input(), *window_, !io.WantCaptureKeyboard, dt);
+    backend_->newImGuiFrame();
+    ImGui::NewFrame();
+    if (ui_.showUi) drawPanel(ui_, panelInfo(), camera_);
+    drawOverlay(ui_);
+    ImGui::Render();
+    if (Status s = handleRequests(buildFrame(fb)); !s) {
+      message_ = s.message;
+      std::fprintf(stderr, "sao-viewer: %s\n", s.message.c_str());
+    }
+    FrameDesc frame = buildFrame(fb);
+    const bool lastFrame = options_.frames > 0 && frames + 1 >= options_.frames;
+    if (lastFrame && !options_.screenshot.empty()) frame.screenshotPath = options_.screenshot;
+    if (ui_.screenshot) {
+      ui_.screenshot = false;
+      if (frame.screenshotPath.empty()) frame.screenshotPath = defaultScreenshotName();
+    }
+    if (Status s = backend_->renderFrame(frame, stats_); !s) {
+      std::fprintf(stderr, "sao-viewer: %s: %s\n", toString(s.code), s.message.c_str());
+      return 1;
+    }
+    haveStats_ = true;
+    if (!frame.screenshotPath.empty()) {
+      message_ = "saved " + frame.screenshotPath;
+      std::printf("sao-viewer: screenshot %s\n", frame.screenshotPath.c_str());
+    }
+    updateMetrics(frame);
+    if (++frames >= options_.frames && options_.frames > 0) break;
+  }
+  std::printf("sao-viewer: %u frames; effect: %s\n", frames, stats_.effect.ok() ? "ok" : stats_.effect.message.c_str());
+  if (stats_.timings.method != TimingMethod::None)
+    std::printf("sao-viewer: last frame %.3f ms in the effect (%s)\n", stats_.timings.totalMilliseconds(),
+                toString(stats_.timings.method));
+  if (!stats_.effect.ok()) return 1;
+  if (const std::size_t n = backend_->validationErrors(); n > 0) {
+    std::fprintf(stderr, "sao-viewer: the graphics API reported %zu error(s)\n", n);
+    return 3;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int runViewer(const Options& options) { return App(options).run(); }
+
+}  // namespace sao::viewer

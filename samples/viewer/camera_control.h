@@ -1,0 +1,32 @@
+// Orbit and fly camera over a scenes::View: drag to rotate (orbit about the target, or look
+// around in fly mode), right/middle drag to pan, wheel to dolly, WASD to move, Q/E down/up, Shift
+// to go faster.
+#pragma once
+#include <glm/glm.hpp>
+
+#include "sao/scenes/scene.h"
+#include "window.h"
+
+namespace sao::viewer {
+
+class CameraController {
+ public:
+  enum class Mode { Orbit, Fly };
+
+  void reset(const scenes::View& view);  // eye, target, field of view and near plane of the view
+  // Applies this frame's input (pass an empty Input and keys=false while the UI has the mouse).
+  void update(const Input& input, const Window& window, bool keys, double seconds);
+  scenes::View view() const;             // the current view (y up)
+  bool changedSince(const scenes::View& v) const;
+
+  Mode mode = Mode::Orbit;
+  double speed = 2.0;  // metres per second for WASD (Shift: 4x)
+
+ private:
+  glm::dvec3 forward() const;
+  scenes::View base_;
+  glm::dvec3 eye_{0, 1, 5};
+  double yaw_ = 0, pitch_ = 0, distance_ = 5;
+};
+
+}  // namespace sao::viewer

@@ -1,0 +1,32 @@
+// sao-viewer's command line.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "viewer_types.h"
+
+namespace sao::viewer {
+
+struct Options {
+  std::string backend = "gl";
+  std::string scene;  // empty: the default built-in scene
+  std::uint32_t view = 0;
+  int width = 1280, height = 720;
+  std::string preset;
+  std::vector<std::string> sets;
+  ViewMode mode = ViewMode::Lit;
+  int zLevel = 1;
+  bool reference = false;
+  std::uint32_t referenceRays = 32;
+  std::string screenshot;  // with --frames: save after the last frame and exit
+  std::uint32_t frames = 0;  // 0: run until the window closes
+  bool hideUi = false, standardDepth = false, validation = false, vsync = true;
+  Settings settings;  // from --preset and --set, validated
+};
+
+// Parses argv; prints --help and exits 0, or prints a one-line error and exits 2 (bad options,
+// unknown presets, settings out of range).
+Options parseOptions(int argc, char** argv);
+
+}  // namespace sao::viewer

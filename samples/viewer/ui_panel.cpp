@@ -1,0 +1,170 @@
+#include "ui_panel.h"
+
+#include <imgui.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace sao::viewer {
+namespace {
+
+void sceneSection(UiState& s, const PanelInfo& info, CameraController& camera) {
+  const auto names = scenes::builtinSceneNames();
+  const std::string current(names[std::size_t(s.scene)]);
+  if (ImGui::BeginCombo("scene", current.c_str())) {
+    for (int i = 0; i < int(names.size()); ++i) {
+      const std::string name(names[std::size_t(i)]);
+      if (ImGui::Selectable(name.c_str(), i == s.scene) && i != s.scene) {
+        s.scene = i;
+        s.view = 0;
+        s.sceneChanged = true;
+      }
+    }
+    ImGui::EndCombo();
+  }
+  if (info.scene && !info.scene->views.empty()) {
+    const auto& views = info.scene->views;
+    if (ImGui::BeginCombo("view", views[std::size_t(s.view)].name.c_str())) {
+      for (int i = 0; i < int(views.size()); ++i)
+        if (ImGui::Selectable(views[std::size_t(i)].name.c_str(), i == s.view)) {
+          s.view = i;
+          s.resetCamera = true;
+        }
+      ImGui::EndCombo();
+    }
+  }
+  int mode = camera.mode == CameraController::Mode::Orbit ? 0 : 1;
+  ImGui::RadioButton("orbit", &mode, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("fly (Tab)", &mode, 1);
+  camera.mode = mode == 0 ? CameraController::Mode::Orbit : CameraController::Mode::Fly;
+  ImGui::SameLine();
+  if (ImGui::Button("reset camera")) s.resetCamera = true;
+  float speed = float(camera.speed);
+  if (ImGui::SliderFloat("move speed [m/s]", &speed, 0.1f, 50.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
+    camera.speed = speed;
+  ImGui::TextDisabled("drag: rotate, right drag: pan, wheel: dolly, WASD QE: move");
+}
+
+void viewSection(UiState& s, const FrameStats* stats) {
+  const auto modes = viewModes();
+  const std::string current(modes[std::size_t(s.mode)].label);
+  if (ImGui::BeginCombo("view mode", current.c_str())) {
+    for (const auto& m : modes) {
+      const std::string label(m.label);
+      if (ImGui::Selectable(label.c_str(), m.mode == s.mode)) s.mode = m.mode;
+    }
+    ImGui::EndCombo();
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("keys 1-8");
+  if (s.mode == ViewMode::Split) ImGui::SliderFloat("split", &s.split, 0.0f, 1.0f, "%.2f");
+  if (s.mode == ViewMode::ZMip) {
+    const int levels = stats && stats->effect.ok() ? int(stats->plan.cszLevels) : 1;
+    ImGui::SliderInt("z MIP level", &s.cszLevel, 0, std::max(levels - 1, 0));
+  }
+  if (s.mode == ViewMode::Error) ImGui::SliderFloat("error at full heat", &s.errorScale, 0.01f, 1.0f, "%.2f");
+}
+
+void referenceSection(UiState& s, const PanelInfo& info) {
+  ImGui::SliderInt("rays per pixel", &s.referenceRays, 4, 512, "%d", ImGuiSliderFlags_Logarithmic);
+  if (ImGui::Button("Compute reference (R)")) s.computeReference = true;
+  ImGui::TextWrapped("%s", info.referenceStatus.c_str());
+  if (info.haveMetrics) {
+    const auto& m = info.metrics.raw;
+    ImGui::Text("RMSE %.4f  bias %+.4f  SSIM %.3f", m.rmse, m.meanBias, m.ssim);
+    ImGui::Text("fitted intensity %.3f -> RMSE %.4f", info.metrics.fittedIntensity, info.metrics.fitted.rmse);
+  }
+}
+
+void timingSection(UiState& s, const FrameStats& stats) {
+  ImGui::Checkbox("measure per-pass time", &s.measureTime);
+  if (!stats.timingNote.empty()) ImGui::TextDisabled("%s", stats.timingNote.c_str());
+  if (stats.timings.method == TimingMethod::None) return;
+  ImGui::TextDisabled("method: %s", toString(stats.timings.method));
+  if (ImGui::BeginTable("timings", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
+    for (const auto& p : stats.timings.passes) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(p.pass.c_str());
+      ImGui::TableNextColumn();
+      ImGui::Text("%8.3f ms", p.milliseconds);
+    }
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted("total");
+    ImGui::TableNextColumn();
+    ImGui::Text("%8.3f ms", stats.timings.totalMilliseconds());
+    ImGui::EndTable();
+  }
+}
+
+void planSection(const FrameStats& stats, std::uint64_t fullBytes) {
+  const Plan& p = stats.plan;
+  std::ostringstream passes;
+  for (const auto& pass : p.passes) {
+    passes << (passes.tellp() > 0 ? " " : "") << gen::pass(pass.pass).name;
+    if (pass.dispatchCount != 1) passes << "x" << pass.dispatchCount;
+  }
+  ImGui::TextWrapped("passes: %s", passes.str().c_str());
+  ImGui::Text("input %ux%u, AO %ux%u, z MIP levels %u", p.inputExtent.width, p.inputExtent.height, p.aoExtent.width,
+              p.aoExtent.height, p.cszLevels);
+  if (ImGui::BeginTable("images", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
+    for (const auto& image : p.images) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      const auto name = gen::kResources[std::size_t(image.resource)].name;
+      ImGui::Text("%.*s", int(name.size()), name.data());
+      ImGui::TableNextColumn();
+      ImGui::Text("%ux%u x%u", image.extent.width, image.extent.height, image.mipLevels);
+      ImGui::TableNextColumn();
+      ImGui::Text("%.1f KiB", double(image.bytes) / 1024.0);
+    }
+    ImGui::EndTable();
+  }
+  ImGui::Text("%.2f MiB (a naive allocation: %.2f MiB)", double(p.totalBytes) / 1048576.0, double(fullBytes) / 1048576.0);
+}
+
+}  // namespace
+
+void drawPanel(UiState& s, const PanelInfo& info, CameraController& camera) {
+  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(440, ImGui::GetIO().DisplaySize.y - 16), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowBgAlpha(0.82f);
+  if (!ImGui::Begin("sao-viewer (H hides)")) {
+    ImGui::End();
+    return;
+  }
+  ImGui::PushItemWidth(-190.0f);
+  ImGui::TextWrapped("%s", info.backend.c_str());
+  ImGui::Text("%.2f ms/frame (%.1f fps)", info.frameMs, info.frameMs > 0 ? 1000.0 / info.frameMs : 0.0);
+  if (ImGui::Button("Screenshot (F12)")) s.screenshot = true;
+  if (!info.message.empty()) ImGui::TextWrapped("%s", info.message.c_str());
+  if (info.stats && !info.stats->effect.ok())
+    ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "effect: %s", info.stats->effect.message.c_str());
+  if (ImGui::CollapsingHeader("Scene and camera", ImGuiTreeNodeFlags_DefaultOpen)) sceneSection(s, info, camera);
+  if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) viewSection(s, info.stats);
+  if (ImGui::CollapsingHeader("Settings", ImGuiTreeNodeFlags_DefaultOpen)) drawSettingsPanel(s.settings, s.settingsPanel);
+  if (s.mode == ViewMode::Error) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
+  if (ImGui::CollapsingHeader("Reference (error view)")) referenceSection(s, info);
+  if (info.stats && ImGui::CollapsingHeader("Per-pass timings", ImGuiTreeNodeFlags_DefaultOpen))
+    timingSection(s, *info.stats);
+  if (info.stats && info.stats->effect.ok() && ImGui::CollapsingHeader("Plan", ImGuiTreeNodeFlags_DefaultOpen)) planSection(*info.stats, info.fullBytes);
+  ImGui::PopItemWidth();
+  ImGui::End();
+}
+
+void drawOverlay(const UiState& s) {
+  if (s.mode != ViewMode::Split) return;
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  const ImVec2 size = ImGui::GetIO().DisplaySize;
+  const float x = std::floor(s.split * size.x), y = size.y - ImGui::GetFontSize() - 8.0f;
+  const char* left = "without AO";
+  const ImU32 color = IM_COL32(255, 255, 255, 230), shadow = IM_COL32(0, 0, 0, 160);
+  const float w = ImGui::CalcTextSize(left).x;
+  for (auto [text, px] : {std::pair{left, x - w - 8.0f}, std::pair{"with AO", x + 8.0f}}) {
+    draw->AddText(ImVec2(px + 1, y + 1), shadow, text);
+    draw->AddText(ImVec2(px, y), color, text);
+  }
+}
+
+}  // namespace sao::viewer

@@ -1,0 +1,49 @@
+// The viewer's ImGui panel: scene and camera, view mode, the generated settings, the reference,
+// live per-pass timings and the plan.
+#pragma once
+#include <string>
+
+#include "camera_control.h"
+#include "sao/samples/metrics.h"
+#include "sao/scenes/scene.h"
+#include "settings_panel.h"
+#include "viewer_types.h"
+
+namespace sao::viewer {
+
+// What the panel edits, and the requests it raises for the app to carry out.
+struct UiState {
+  Settings settings;
+  SettingsPanelState settingsPanel;
+  ViewMode mode = ViewMode::Lit;
+  int cszLevel = 1;
+  float split = 0.5f;
+  float errorScale = 0.5f;
+  int scene = 0;  // index into scenes::builtinSceneNames()
+  int view = 0;   // index into the scene's views
+  int referenceRays = 32;
+  bool measureTime = true;
+  bool showUi = true;
+  // Requests, cleared by the app once handled.
+  bool sceneChanged = false, resetCamera = false, computeReference = false, screenshot = false;
+};
+
+// What the panel shows.
+struct PanelInfo {
+  std::string backend;
+  double frameMs = 0;
+  const FrameStats* stats = nullptr;
+  std::uint64_t fullBytes = 0;  // a naive allocation, for comparison with the plan
+  const scenes::Scene* scene = nullptr;
+  std::string referenceStatus;
+  bool haveMetrics = false;
+  samples::ReferenceComparison metrics;
+  std::string message;  // the last screenshot, a failed scene load, ...
+};
+
+void drawPanel(UiState& state, const PanelInfo& info, CameraController& camera);
+
+// Labels drawn over the scene, under the panel (the split view's "without AO | with AO").
+void drawOverlay(const UiState& state);
+
+}  // namespace sao::viewer

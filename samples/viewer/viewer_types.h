@@ -1,0 +1,69 @@
+// Types shared by the viewer's parts: the view modes, the composite's parameter block and what
+// one frame asks of a backend and gets back.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include <glm/glm.hpp>
+
+#include "sao/camera.h"
+#include "sao/plan.h"
+#include "sao/settings.h"
+#include "sao/status.h"
+#include "sao/timing.h"
+
+namespace sao::viewer {
+
+// The order matches the constants in shaders/composite.frag.
+enum class ViewMode : std::int32_t { Ao, Lit, LitNoAo, Split, RawAo, ZMip, Normals, Error };
+
+struct ViewModeInfo {
+  ViewMode mode;
+  std::string_view name;   // for --view-mode
+  std::string_view label;  // for the panel
+};
+std::span<const ViewModeInfo> viewModes();
+std::optional<ViewMode> findViewMode(std::string_view name);
+std::string viewModeNames();  // "ao, lit, ..." for messages
+
+// The std140 block of composite.frag (binding 0), the same for OpenGL and Vulkan.
+struct CompositeParams {
+  float projInfo[4];
+  float depthModel[4];
+  float worldUp[4];
+  float display[4];
+  std::int32_t modes[4];
+  std::int32_t extra[4];
+};
+static_assert(sizeof(CompositeParams) == 96);
+
+// What the viewer shows this frame, independent of the backend.
+struct FrameDesc {
+  Camera camera;               // the projection and conventions the prepass renders with
+  glm::dmat4 view{1.0};        // world -> camera
+  Settings settings;           // always valid (the panel only stores validated values)
+  ViewMode mode = ViewMode::Lit;
+  int cszLevel = 0;
+  double splitFraction = 0.5;  // split view: x of the divider, share of the width
+  double errorScale = 0.5;     // |AO - reference| shown at full heat
+  double zNear = 0.1, zFar = 100;  // distances mapped to white and black in the csz view
+  bool referenceValid = false;     // the backend's reference image belongs to this view
+  bool measureTime = true;
+  std::string screenshotPath;      // non-empty: save the window (with the panel) after this frame
+};
+
+struct FrameStats {
+  Status effect;         // what the effect said this frame
+  Plan plan;             // of the last successful run
+  Timings timings;       // per-pass times, method None when not measured or not ready
+  std::string timingNote;
+};
+
+// The composite's block for a frame. `topDown`: the framebuffer's row 0 is the top of the window
+// (Vulkan); `rawAo` / `cszLevels` describe the intermediates the backend could bind.
+CompositeParams makeCompositeParams(const FrameDesc& frame, bool topDown, bool rawAo, std::uint32_t cszLevels);
+
+}  // namespace sao::viewer

@@ -1,0 +1,387 @@
+// The Vulkan path: a real Vulkan window. Each frame, in one command buffer: the depth-only
+// prepass pipeline renders the scene into a D32_SFLOAT image, sao::vk::Effect::record adds the
+// effect's compute passes, and a render pass on the acquired swapchain image runs the composite
+// and ImGui (imgui_impl_vulkan); the image is presented with vkQueuePresentKHR. One frame in
+// flight: the frame's fence is waited before the next one is recorded.
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_vulkan.h>
+#include <imgui.h>
+
+#include <cstring>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "backend.h"
+#include "sao/vulkan/effect.h"
+#include "screenshot.h"
+#include "vk_composite.h"
+#include "vk_context.h"
+#include "vk_prepass.h"
+#include "vk_swapchain.h"
+
+namespace sao::viewer {
+namespace {
+
+bool sameCamera(const Camera& a, const Camera& b) {
+  return a.projection == b.projection && a.kind == b.kind && a.clipDepth == b.clipDepth && a.reversedZ == b.reversedZ &&
+         a.infiniteFar == b.infiniteFar && a.flipY == b.flipY && a.metersToViewUnits == b.metersToViewUnits &&
+         a.width == b.width && a.height == b.height && a.guardBand == b.guardBand;
+}
+
+class VkBackend final : public Backend {
+ public:
+  VkBackend(Window& window, const BackendOptions& options) : window_(window), options_(options) {}
+  ~VkBackend() override;
+  Status init();
+
+  std::string description() const override { return ctx_->description; }
+  ClipDepth clipDepth() const override { return ClipDepth::ZeroToOne; }
+  bool reversedZ() const override { return true; }
+  std::size_t validationErrors() const override { return ctx_ ? ctx_->validationMessages.load() : 0; }
+  Status setMesh(const scenes::Mesh& mesh) override {
+    vkDeviceWaitIdle(ctx_->device);
+    return prepass_.setMesh(mesh);
+  }
+  Status setReference(const FloatImage* reference) override {
+    vkDeviceWaitIdle(ctx_->device);
+    return composite_.setReference(reference);
+  }
+  void newImGuiFrame() override {
+    ImGui_ImplVulkan_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+  }
+  Status renderFrame(const FrameDesc& frame, FrameStats& stats) override;
+  Status readAo(FloatImage& out) override;
+
+ private:
+  Status initImGui();
+  Status updateEffect(const FrameDesc& frame, FrameStats& stats);
+  Status createEffectViews();
+  void destroyEffectViews();
+  void recordScreenshot(VkCommandBuffer cmd, VkImage image);
+
+  Window& window_;
+  BackendOptions options_;
+  std::unique_ptr<VkContext> ctx_;
+  VkSwapchain swapchain_;
+  VkPrepass prepass_;
+  VkComposite composite_;
+  VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  VkSemaphore acquired_ = VK_NULL_HANDLE;
+  VkDescriptorPool imguiPool_ = VK_NULL_HANDLE;
+  bool imgui_ = false, recreate_ = false, pendingTimings_ = false;
+  std::unique_ptr<vk::Effect> effect_;
+  vk::Config config_;
+  bool effectConfigured_ = false;  // effect_ matches config_ (its last create/update succeeded)
+  VkImageView aoRawView_ = VK_NULL_HANDLE, cszView_ = VK_NULL_HANDLE;
+  std::uint32_t cszLevels_ = 0;
+  vkx::Buffer shot_;
+  Timings lastTimings_;
+  std::string timingNote_;
+};
+
+VkBackend::~VkBackend() {
+  if (!ctx_) return;
+  vkDeviceWaitIdle(ctx_->device);
+  if (imgui_) {
+    ImGui_ImplVulkan_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+  }
+  destroyEffectViews();
+  effect_.reset();
+  composite_.destroy();
+  prepass_.destroy();
+  swapchain_.destroy();
+  ctx_->destroy(shot_);
+  VkDevice d = ctx_->device;
+  if (imguiPool_) vkDestroyDescriptorPool(d, imguiPool_, nullptr);
+  if (fence_) vkDestroyFence(d, fence_, nullptr);
+  if (acquired_) vkDestroySemaphore(d, acquired_, nullptr);
+}
+
+Status VkBackend::init() {
+  if (Status s = VkContext::create(window_.handle(), options_.validation, ctx_); !s) return s;
+  const glm::ivec2 fb = window_.framebufferSize();
+  if (Status s = swapchain_.create(*ctx_, std::uint32_t(fb.x), std::uint32_t(fb.y), options_.vsync); !s) return s;
+  if (Status s = prepass_.init(*ctx_); !s) return s;
+  if (Status s = composite_.init(*ctx_, swapchain_.renderPass); !s) return s;
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  ai.commandPool = ctx_->commandPool();
+  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  ai.commandBufferCount = 1;
+  SAO_VIEWER_VK(vkAllocateCommandBuffers(ctx_->device, &ai, &cmd_));
+  VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  fi.flags = VK_FENCE_CREATE_SIGNALED_BIT;
+  SAO_VIEWER_VK(vkCreateFence(ctx_->device, &fi, nullptr, &fence_));
+  VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+  SAO_VIEWER_VK(vkCreateSemaphore(ctx_->device, &si, nullptr, &acquired_));
+  return initImGui();
+}
+
+Status VkBackend::initImGui() {
+  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 16};
+  VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pi.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+  pi.maxSets = 16;
+  pi.poolSizeCount = 1;
+  pi.pPoolSizes = &size;
+  SAO_VIEWER_VK(vkCreateDescriptorPool(ctx_->device, &pi, nullptr, &imguiPool_));
+  if (!ImGui_ImplGlfw_InitForVulkan(window_.handle(), true))
+    return Status::error(StatusCode::DriverError, "cannot initialise ImGui's GLFW backend");
+  ImGui_ImplVulkan_InitInfo info{};
+  info.Instance = ctx_->instance;
+  info.PhysicalDevice = ctx_->physical;
+  info.Device = ctx_->device;
+  info.QueueFamily = ctx_->family;
+  info.Queue = ctx_->queue;
+  info.DescriptorPool = imguiPool_;
+  info.MinImageCount = swapchain_.minImageCount;
+  info.ImageCount = std::uint32_t(swapchain_.images.size());
+  info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
+  if (!ImGui_ImplVulkan_Init(&info, swapchain_.renderPass)) {
+    ImGui_ImplGlfw_Shutdown();
+    return Status::error(StatusCode::DriverError, "cannot initialise ImGui's Vulkan backend");
+  }
+  imgui_ = true;
+  Status s = ctx_->oneShot([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
+  ImGui_ImplVulkan_DestroyFontUploadObjects();
+  return s;
+}
+
+void VkBackend::destroyEffectViews() {
+  for (VkImageView* v : {&aoRawView_, &cszView_})
+    if (*v) {
+      vkDestroyImageView(ctx_->device, *v, nullptr);
+      *v = VK_NULL_HANDLE;
+    }
+  cszLevels_ = 0;
+}
+
+// The composite reads ao_raw and every csz level through views of the effect's own images.
+Status VkBackend::createEffectViews() {
+  for (auto [id, view] : {std::pair{gen::ResourceId::ao_raw, &aoRawView_}, std::pair{gen::ResourceId::csz, &cszView_}}) {
+    const vk::OwnedImageInfo info = effect_->ownedImage(id);
+    if (!info.image) continue;
+    VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    vi.image = info.image;
+    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vi.format = info.format;
+    vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, info.mipLevels, 0, 1};
+    SAO_VIEWER_VK(vkCreateImageView(ctx_->device, &vi, nullptr, view));
+    if (id == gen::ResourceId::csz) cszLevels_ = info.mipLevels;
+  }
+  return Status::success();
+}
+
+// Create or update the effect when the settings, the camera's projection or size, or the timing
+// choice changed (never per camera move: the view matrix is not part of the effect's input).
+Status VkBackend::updateEffect(const FrameDesc& frame, FrameStats& stats) {
+  vk::Config c;
+  c.settings = frame.settings;
+  c.camera = frame.camera;
+  c.depthFormat = VkPrepass::kDepthFormat;
+  c.outputLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  c.framesInFlight = 1;
+  c.timestamps = frame.measureTime;
+  if (effect_ && effectConfigured_ && c.settings == config_.settings && sameCamera(c.camera, config_.camera) &&
+      c.timestamps == config_.timestamps)
+    return stats.effect;
+  destroyEffectViews();
+  Status s = effect_ ? effect_->update(c) : vk::Effect::create(ctx_->deviceContext(), c, effect_);
+  effectConfigured_ = s.ok();
+  if (s) config_ = c;
+  if (effect_)
+    if (Status v = createEffectViews(); !v) return v;
+  stats.effect = s;
+  return Status::success();
+}
+
+void VkBackend::recordScreenshot(VkCommandBuffer cmd, VkImage image) {
+  auto b = vkx::imageBarrier(image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+                             VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                             VK_ACCESS_TRANSFER_READ_BIT);
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
+                       nullptr, 0, nullptr, 1, &b);
+  VkBufferImageCopy copy{};
+  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  copy.imageExtent = {swapchain_.extent.width, swapchain_.extent.height, 1};
+  vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, shot_.buffer, 1, &copy);
+  b = vkx::imageBarrier(image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                        VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, 0, 0);
+  VkBufferMemoryBarrier hb{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+  hb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  hb.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  hb.srcQueueFamilyIndex = hb.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  hb.buffer = shot_.buffer;
+  hb.size = VK_WHOLE_SIZE;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT | VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &hb, 1, &b);
+}
+
+Status VkBackend::renderFrame(const FrameDesc& frame, FrameStats& stats) {
+  VkDevice d = ctx_->device;
+  SAO_VIEWER_VK(vkWaitForFences(d, 1, &fence_, VK_TRUE, UINT64_MAX));
+  if (pendingTimings_) {  // the previous frame has completed: its timestamps are readable
+    pendingTimings_ = false;
+    Timings t;
+    if (Status s = effect_->timings(t); s) lastTimings_ = t, timingNote_.clear();
+    else lastTimings_ = {}, timingNote_ = s.message;
+  }
+  if (!frame.measureTime) lastTimings_ = {}, timingNote_.clear();
+  const glm::ivec2 fb = window_.framebufferSize();
+  if (recreate_ || swapchain_.extent.width != std::uint32_t(fb.x) || swapchain_.extent.height != std::uint32_t(fb.y)) {
+    vkDeviceWaitIdle(d);
+    if (Status s = swapchain_.create(*ctx_, std::uint32_t(fb.x), std::uint32_t(fb.y), options_.vsync); !s) return s;
+    ImGui_ImplVulkan_SetMinImageCount(swapchain_.minImageCount);
+    recreate_ = false;
+  }
+  const Camera& cam = frame.camera;
+  if (Status s = prepass_.resize({cam.width + 2 * cam.guardBand, cam.height + 2 * cam.guardBand}); !s) return s;
+  if (Status s = updateEffect(frame, stats); !s) return s;
+  const bool screenshot = !frame.screenshotPath.empty() && swapchain_.transferSrc;
+  const VkDeviceSize shotBytes = VkDeviceSize(swapchain_.extent.width) * swapchain_.extent.height * 4;
+  if (screenshot && shot_.size != shotBytes) {
+    ctx_->destroy(shot_);
+    if (Status s = ctx_->createBuffer(shotBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, shot_); !s) return s;
+  }
+
+  std::uint32_t imageIndex = 0;
+  VkResult r = vkAcquireNextImageKHR(d, swapchain_.handle, UINT64_MAX, acquired_, VK_NULL_HANDLE, &imageIndex);
+  if (r == VK_ERROR_OUT_OF_DATE_KHR) {
+    recreate_ = true;
+    return Status::success();  // skip this frame
+  }
+  SAO_VIEWER_VK(r);
+
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  SAO_VIEWER_VK(vkResetCommandBuffer(cmd_, 0));
+  SAO_VIEWER_VK(vkBeginCommandBuffer(cmd_, &bi));
+  // The previous frame's composite read the effect's intermediates: order before their rewrite.
+  vkCmdPipelineBarrier(cmd_, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr,
+                       0, nullptr, 0, nullptr);
+  const glm::dmat4 projection = glm::make_mat4(cam.projection.data());
+  prepass_.record(cmd_, projection * frame.view);
+  bool recorded = false;
+  if (effect_ && effectConfigured_) {
+    vk::Inputs in;
+    in.depth = {prepass_.depthView(), VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, effect_->plan().inputExtent,
+                VkPrepass::kDepthFormat};
+    stats.effect = effect_->record(cmd_, in);
+    recorded = stats.effect.ok();
+  }
+  // ao_raw and csz are read by the composite too (the effect's final barrier covers its output).
+  VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  mb.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  mb.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+  vkCmdPipelineBarrier(cmd_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 1, &mb, 0,
+                       nullptr, 0, nullptr);
+  VkCompositeInputs inputs;
+  inputs.depth = prepass_.depthView();
+  if (recorded) {
+    inputs.ao = effect_->output().view;
+    inputs.aoRaw = aoRawView_;
+    inputs.csz = cszView_;
+  }
+  composite_.setInputs(inputs);  // before the set is bound in this command buffer
+
+  VkClearValue clear{};
+  VkRenderPassBeginInfo rb{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  rb.renderPass = swapchain_.renderPass;
+  rb.framebuffer = swapchain_.framebuffers[imageIndex];
+  rb.renderArea = {{0, 0}, swapchain_.extent};
+  rb.clearValueCount = 1;
+  rb.pClearValues = &clear;
+  vkCmdBeginRenderPass(cmd_, &rb, VK_SUBPASS_CONTENTS_INLINE);
+  composite_.record(cmd_, makeCompositeParams(frame, true, recorded && aoRawView_, recorded ? cszLevels_ : 0),
+                    swapchain_.extent);
+  ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd_);
+  vkCmdEndRenderPass(cmd_);
+  if (screenshot) recordScreenshot(cmd_, swapchain_.images[imageIndex]);
+  SAO_VIEWER_VK(vkEndCommandBuffer(cmd_));
+
+  const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  si.waitSemaphoreCount = 1;
+  si.pWaitSemaphores = &acquired_;
+  si.pWaitDstStageMask = &waitStage;
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cmd_;
+  si.signalSemaphoreCount = 1;
+  si.pSignalSemaphores = &swapchain_.renderFinished[imageIndex];
+  SAO_VIEWER_VK(vkResetFences(d, 1, &fence_));
+  SAO_VIEWER_VK(vkQueueSubmit(ctx_->queue, 1, &si, fence_));
+  VkPresentInfoKHR pi{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
+  pi.waitSemaphoreCount = 1;
+  pi.pWaitSemaphores = &swapchain_.renderFinished[imageIndex];
+  pi.swapchainCount = 1;
+  pi.pSwapchains = &swapchain_.handle;
+  pi.pImageIndices = &imageIndex;
+  r = vkQueuePresentKHR(ctx_->queue, &pi);
+  if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR) recreate_ = true;
+  else SAO_VIEWER_VK(r);
+
+  pendingTimings_ = recorded && config_.timestamps;
+  if (effect_ && effectConfigured_) stats.plan = effect_->plan();
+  stats.timings = lastTimings_;
+  stats.timingNote = timingNote_;
+  if (!frame.screenshotPath.empty()) {
+    if (!swapchain_.transferSrc)
+      return Status::error(StatusCode::UnsupportedFormat, "the swapchain images cannot be copied (no TRANSFER_SRC usage)");
+    SAO_VIEWER_VK(vkWaitForFences(d, 1, &fence_, VK_TRUE, UINT64_MAX));
+    return writeScreenshot(frame.screenshotPath, int(swapchain_.extent.width), int(swapchain_.extent.height),
+                           static_cast<const std::uint8_t*>(shot_.mapped), {.bottomUp = false, .bgra = swapchain_.bgra});
+  }
+  return Status::success();
+}
+
+Status VkBackend::readAo(FloatImage& out) {
+  if (!effect_ || !effectConfigured_) return Status::error(StatusCode::InvalidInput, "no AO rendered yet");
+  SAO_VIEWER_VK(vkWaitForFences(ctx_->device, 1, &fence_, VK_TRUE, UINT64_MAX));
+  const vk::OutputImage ao = effect_->output();
+  vkx::Buffer buffer;
+  if (Status s = ctx_->createBuffer(VkDeviceSize(ao.extent.width) * ao.extent.height * 2,
+                                    VK_BUFFER_USAGE_TRANSFER_DST_BIT, buffer);
+      !s)
+    return s;
+  const VkPipelineStageFlags readers = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+  Status s = ctx_->oneShot([&](VkCommandBuffer cmd) {
+    auto b = vkx::imageBarrier(ao.image, VK_IMAGE_ASPECT_COLOR_BIT, ao.layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                               VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    vkCmdPipelineBarrier(cmd, readers, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1, &b);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {ao.extent.width, ao.extent.height, 1};
+    vkCmdCopyImageToBuffer(cmd, ao.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.buffer, 1, &copy);
+    b = vkx::imageBarrier(ao.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, ao.layout, 0,
+                          VK_ACCESS_SHADER_READ_BIT);
+    VkBufferMemoryBarrier hb{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+    hb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    hb.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    hb.srcQueueFamilyIndex = hb.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    hb.buffer = buffer.buffer;
+    hb.size = VK_WHOLE_SIZE;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, readers | VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1,
+                         &hb, 1, &b);
+  });
+  if (s) {
+    out = FloatImage({ao.extent.width, ao.extent.height}, 1);
+    const auto* half = static_cast<const std::uint16_t*>(buffer.mapped);
+    for (std::size_t i = 0; i < out.data.size(); ++i) out.data[i] = halfToFloat(half[i]);
+  }
+  ctx_->destroy(buffer);
+  return s;
+}
+
+}  // namespace
+
+Status createVulkanBackend(Window& window, const BackendOptions& options, std::unique_ptr<Backend>& out) {
+  auto backend = std::make_unique<VkBackend>(window, options);
+  if (Status s = backend->init(); !s) return s;
+  out = std::move(backend);
+  return Status::success();
+}
+
+}  // namespace sao::viewer
