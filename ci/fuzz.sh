@@ -12,7 +12,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 seconds="${1:-${SAO_FUZZ_SECONDS:-60}}"
 build="${SAO_FUZZ_BUILD_DIR:-build-fuzz}"
-targets=(settings exr_depth codegen_parser)
+targets=(settings exr_depth codegen_parser scene_file)
 
 cxx="$(command -v clang++-14 || command -v clang++ || true)"
 cc="$(command -v clang-14 || command -v clang || true)"

@@ -11,6 +11,8 @@ packages=(
   libegl-dev libgl-dev libegl1-mesa-dev libgl1-mesa-dri libepoxy-dev
   libglfw3-dev libglm-dev libopenexr-dev libimgui-dev
   libembree-dev libtbb-dev libstb-dev nlohmann-json3-dev
+  # samples/scenes: mesh files through assimp; tests/scenes reads the malformed and real models
+  libassimp-dev assimp-testmodels
   xvfb xauth
   # ci/fuzz.sh: clang with libFuzzer and the sanitizer runtimes; llvm-symbolizer for the reports
   clang-14 libclang-rt-14-dev llvm-14

@@ -1,5 +1,5 @@
 // Scenes: a world-space mesh and named camera views. Built-in scenes are generated in code,
-// deterministically.
+// deterministically; others are read from mesh and scene files (loadScene).
 #pragma once
 #include <span>
 #include <string>
@@ -34,6 +34,16 @@ std::span<const std::string_view> builtinSceneNames();
 inline constexpr std::string_view kDefaultScene = "sponza-like";
 
 Status makeBuiltinScene(std::string_view name, Scene& out);
+
+// The entry point of the programs' --scene: a built-in scene's name goes to makeBuiltinScene;
+// otherwise nameOrPath is a file (src/load_scene.cpp):
+//   .scene                   a scene file (scene_file.h, docs/scene-format.md)
+//   .gltf .glb .obj .ply     a mesh file (mesh_file.h) in file units taken as metres, with one
+//                            view, "default" (default_view.h)
+// Errors: the built-in scenes' "unknown built-in scene" for a name that is no file either,
+// UnsupportedFormat for another extension, and the file readers' errors, each naming the file.
+// out is left untouched on error.
+Status loadScene(std::string_view nameOrPath, Scene& out);
 
 // World -> camera (right-handed, looking down -z), built in double.
 glm::dmat4 viewMatrix(const View& view);

@@ -1,0 +1,54 @@
+// Triangle meshes from files: .gltf and .glb (glTF 2.0) through assimp (Debian's libassimp),
+// .obj and .ply through sao's own readers (src/obj_reader.cpp, src/ply_reader.cpp): fuzzing found
+// assimp 5.2's OBJ and PLY readers reading out of bounds on malformed files (docs/ROBUSTNESS.md
+// section 4.8).
+//
+// The mesh is in world space (a glTF's node hierarchy is applied) and triangulated (polygons:
+// assimp triangulates them, the own readers split them into fans); only positions and indices are
+// kept, points and lines are left out. assimp joins identical vertices; OBJ and PLY keep the
+// file's vertex list. Units are the file's (sao treats them as metres; a glTF is in metres).
+// Before assimp sees a glTF, its JSON must be valid and a .glb's chunks must fit the file.
+//
+// No exception escapes these functions: every problem is a Status whose message starts with the
+// file's name. Files a glTF refers to (its .bin buffers) are opened only when they are regular
+// files; from memory, never. An OBJ's material libraries are not opened. assimp's internal
+// assertions fail the read instead of aborting the program (src/assimp_assert.cpp).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "sao/scenes/mesh.h"
+#include "sao/status.h"
+
+namespace sao::scenes {
+
+// The most triangles a mesh (or a scene file's meshes together) may have.
+inline constexpr std::size_t kMaxMeshTriangles = 50'000'000;
+// The largest .ply, .obj or .gltf file read (they are read into memory first).
+inline constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t(2) << 30;
+
+// True for the extensions loadMeshFile reads (case-insensitive): .gltf .glb .obj .ply.
+bool isMeshFileExtension(std::string_view path);
+
+// Reads a mesh file. Errors (out is left untouched):
+//   IoError            missing file, a directory or another non-regular file, assimp's own error
+//                      for a malformed file ("assimp: ..."), a file that cannot be read
+//   UnsupportedFormat  an extension other than the four above
+//   InvalidInput       a mesh that fails validateMesh
+Status loadMeshFile(const std::string& path, Mesh& out);
+
+// The same from bytes in memory; `formatHint` is an extension without the dot ("gltf", "glb",
+// "obj", "ply") and `name` names the data in error messages. Files the data refers to are not
+// opened (a glTF with an external buffer fails).
+Status loadMeshFromMemory(std::span<const std::uint8_t> bytes, std::string_view formatHint, std::string_view name,
+                          Mesh& out);
+
+// InvalidInput "NAME: PROBLEM" unless the mesh has at least one and at most maxTriangles
+// triangles, a whole number of triangles, finite positions, indices below the vertex count and
+// triangles that are not all at one point.
+Status validateMesh(const Mesh& mesh, std::string_view name, std::size_t maxTriangles = kMaxMeshTriangles);
+
+}  // namespace sao::scenes

@@ -1,0 +1,33 @@
+// Private to sao_scenes: checks made before assimp sees a glTF, for what Debian's assimp 5.2 does
+// not survive (found by tests/fuzz/fuzz_scene_file): a binary glTF chunk declaring more bytes than
+// the file has is allocated before it is read (2.9 GB for a 600-byte file), invalid JSON can
+// leave assimp's half-built objects leaked, a line-loop primitive whose first segment it drops
+// makes it dereference a null pointer, and a data URI with a long header makes it read outside the
+// string.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+
+#include "sao/status.h"
+
+namespace sao::scenes::detail {
+
+// Reads `count` bytes at `offset` into `out`; false if they are not there.
+using ReadBytes = std::function<bool(std::uint64_t offset, std::size_t count, std::string& out)>;
+
+// A binary glTF (.glb) of `size` bytes: when it starts with the "glTF" magic, it must be version 2,
+// the header's length and each chunk's length must fit the file (a JSON chunk first, then
+// optionally a BIN chunk), and the JSON chunk must pass checkGltfJson. IoError "NAME: binary
+// glTF: ..." otherwise.
+// Data without the magic is left to assimp (which refuses it).
+Status checkGlb(std::uint64_t size, const ReadBytes& read, std::string_view name);
+
+// The text of a .gltf file (or a GLB's JSON chunk), IoError "NAME: ..." unless: it is valid JSON
+// ("not valid JSON (at byte N)"), every buffer or image data URI has its comma within its first
+// 127 characters, and every mesh primitive has a POSITION attribute ("glTF: mesh M primitive P
+// has no POSITION attribute") and is not a line loop (mode 2).
+Status checkGltfJson(std::string_view text, std::string_view name);
+
+}  // namespace sao::scenes::detail

@@ -1,0 +1,43 @@
+// loadScene: a built-in scene's name, a mesh file or a scene file.
+#include <algorithm>
+#include <filesystem>
+#include <string>
+
+#include "file_checks.h"
+#include "sao/scenes/default_view.h"
+#include "sao/scenes/mesh_file.h"
+#include "sao/scenes/scene.h"
+#include "sao/scenes/scene_file.h"
+
+namespace sao::scenes {
+
+Status loadScene(std::string_view nameOrPath, Scene& out) {
+  const auto names = builtinSceneNames();
+  if (std::find(names.begin(), names.end(), nameOrPath) != names.end()) return makeBuiltinScene(nameOrPath, out);
+
+  const std::string path(nameOrPath);
+  const std::string ext = detail::lowerExtension(path);
+  if (ext == ".scene") return loadSceneFile(path, out);
+  if (isMeshFileExtension(path)) {
+    Scene scene;
+    if (Status s = loadMeshFile(path, scene.mesh); !s) return s;
+    scene.name = std::filesystem::path(path).filename().string();
+    scene.views.push_back(defaultView(scene.mesh));
+    out = std::move(scene);
+    return Status::success();
+  }
+  std::error_code ec;
+  const bool exists = std::filesystem::exists(path, ec);
+  if (!exists && ext.empty() && path.find('/') == std::string::npos) {
+    Status s = makeBuiltinScene(nameOrPath, out);  // its message lists the built-in scenes
+    s.message += ", and no file of that name either";
+    return s;
+  }
+  if (exists && std::filesystem::is_directory(path, ec))
+    return detail::fileError(StatusCode::IoError, path, "is a directory, not a scene or mesh file");
+  return detail::fileError(StatusCode::UnsupportedFormat, path,
+                           (ext.empty() ? std::string("has no extension") : "unknown extension '" + ext + "'") +
+                               " (scene files: .scene; mesh files: .gltf, .glb, .obj, .ply)");
+}
+
+}  // namespace sao::scenes
