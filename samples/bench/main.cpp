@@ -1,20 +1,27 @@
-// sao-bench: what each preset costs and how far it is from the ray-traced truth, plus the sweeps
-// of the paper (radius: Figure 5; resolution: Table 3). Writes CSV, JSON and SVG plots.
+// sao-bench: what each preset costs and how far it is from two ray-traced truths, plus the sweeps
+// of the paper (radius: Figure 5, with the AlchemyAO-style baseline; resolution: Table 3) and the
+// two-layer variant. Writes CSV, JSON and SVG plots.
 // `sao-bench --help` lists the options; `--quick` is the small run the tests use.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <memory>
+#include <optional>
+#include <set>
 #include <sstream>
+#include <tuple>
 
 #include "measure.h"
+#include "precision_report.h"
+#include "report.h"
+#include "sao/prepass/precision.h"
+#include "sao/prepass/prepass.h"
 #include "sao/presets.h"
 #include "sao/raytrace/raytrace.h"
 #include "sao/scenes/scene.h"
-#include "svg_plot.h"
 
 namespace fs = std::filesystem;
 using namespace sao;
@@ -23,19 +30,36 @@ namespace {
 
 constexpr const char* kUsage = R"(usage: sao-bench [options]
 Measures every preset on every scene and backend (median per-pass time of --runs runs, and the
-error against a ray-traced near-field AO reference), then the sweeps: samples, MIP and blur on/off,
-radius (paper Fig. 5) and resolution (paper Table 3). Writes results.csv, results.json and SVG plots.
+error against two ray-traced references: (a) near-field AO, (b) the AlchemyAO obscurance integral),
+then the sweeps: samples, MIP and blur on/off, radius (paper Fig. 5: SAO with and without the z
+hierarchy and an AlchemyAO-style baseline), resolution (paper Table 3) and the two-layer variant.
+Writes results.csv, results.json and SVG plots.
   --out DIR        output folder (default out/bench)
   --backends LIST  comma-separated: cpu,gl,vulkan (default: gl,vulkan,cpu, those that start)
+  --sections LIST  comma-separated parts to run (default: all):
+                   presets,samples,mip_blur,radius,resolution,two_layer,precision
   --runs N         measured runs per point, after one warm-up (default 5)
   --rays N         reference rays per pixel (default 256)
-  --size WxH       size of the preset matrix and sweeps (default 1280x720)
+  --size WxH       size of the preset matrix and sweeps (default 1280x720; the radius sweep
+                   always runs at 1920x1080 unless --quick)
+  --depth-source S raster (default): the scene's depth, positions, normals and peeled second
+                   layer from the rasterising prepass (GL, else Vulkan; D32F, reversed-Z, [0,1],
+                   infinite far); raytrace: from Embree primary rays (raytrace::castPrimary)
   --quick          the smoke run: 160x90, 3 runs, 16 rays, two scenes, short sweeps
   --help
 )";
 
+// The parts of the run, in the order they run (--sections picks some).
+const std::vector<std::string> kSections = {"presets",    "samples",   "mip_blur", "radius",
+                                            "resolution", "two_layer", "precision"};
+
+// The two_layer section's second depth layer: the first surface at least this far (metres, in
+// camera-space z) behind the first (depth peeling, or raytrace::castSecondLayer).
+constexpr double kSecondLayerSeparation = 0.5;
+
 struct Options {
-  std::string out = "out/bench", backends = "gl,vulkan,cpu";
+  std::string out = "out/bench", backends = "gl,vulkan,cpu", depthSource = "raster";
+  std::set<std::string> sections{kSections.begin(), kSections.end()};
   int runs = 5;
   std::uint32_t rays = 256, width = 1280, height = 720;
   bool quick = false;
@@ -44,6 +68,22 @@ struct Options {
 [[noreturn]] void fail(const std::string& m, int code = 1) {
   std::fprintf(stderr, "\nsao-bench: %s\n", m.c_str());
   std::exit(code);
+}
+
+std::set<std::string> parseSections(const std::string& list) {
+  std::set<std::string> out;
+  std::stringstream in(list);
+  std::string name;
+  while (std::getline(in, name, ',')) {
+    if (std::find(kSections.begin(), kSections.end(), name) == kSections.end()) {
+      std::string valid;
+      for (const auto& s : kSections) valid += (valid.empty() ? "" : ",") + s;
+      fail("--sections: unknown section '" + name + "' (expected some of " + valid + ")", 2);
+    }
+    out.insert(name);
+  }
+  if (out.empty()) fail("--sections needs at least one section", 2);
+  return out;
 }
 
 Options parse(int argc, char** argv) {
@@ -65,6 +105,11 @@ Options parse(int argc, char** argv) {
       std::exit(0);
     } else if (a == "--out") o.out = value();
     else if (a == "--backends") o.backends = value();
+    else if (a == "--sections") o.sections = parseSections(value());
+    else if (a == "--depth-source") {
+      o.depthSource = value();
+      if (o.depthSource != "raster" && o.depthSource != "raytrace") fail("--depth-source expects raster or raytrace", 2);
+    }
     else if (a == "--runs") o.runs = int(count(value(), 1, 1000));
     else if (a == "--rays") o.rays = std::uint32_t(count(value(), 1, 65536));
     else if (a == "--size") {
@@ -80,25 +125,50 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-// A scene at one size: its ray caster, primary rays and references per radius.
+// The settings the obscurance reference depends on: radius, intensity, bias, epsilon, contrast.
+using ObscuranceKey = std::tuple<float, float, float, float, float>;
+
+// A scene at one size: its ray caster, primary rays, second layer and references.
 struct Prepared {
   scenes::Scene scene;
   std::unique_ptr<raytrace::RayScene> rays;
   Camera camera;
   raytrace::Primary primary;
   std::vector<unsigned char> mask;
-  std::map<double, FloatImage> references;
+  std::map<double, FloatImage> references;  // (a) near-field AO per radius
+  std::map<ObscuranceKey, FloatImage> obscurance;  // (b) per obscurance settings
+  std::optional<raytrace::Primary> secondLayer;
 };
 
-Prepared& prepare(std::map<std::string, Prepared>& cache, const std::string& name, std::uint32_t w, std::uint32_t h) {
+// `prepass` null: the depth comes from Embree primary rays. Otherwise the rasterised depth (and the
+// peeled second layer) of that prepass; the references still trace rays from its visible points.
+Prepared& prepare(std::map<std::string, Prepared>& cache, prepass::Prepass* prepass, const std::string& name,
+                  std::uint32_t w, std::uint32_t h) {
   const std::string key = name + "@" + std::to_string(w) + "x" + std::to_string(h);
   auto it = cache.find(key);
   if (it != cache.end()) return it->second;
   Prepared& p = cache[key];
-  if (Status s = scenes::makeBuiltinScene(name, p.scene); !s) fail(s.message);
+  if (Status s = scenes::loadScene(name, p.scene); !s) fail(s.message);
   if (Status s = raytrace::RayScene::create(p.scene.mesh, p.rays); !s) fail(s.message);
   p.camera = scenes::makeCamera(p.scene.views[0], w, h, INFINITY, ClipDepth::ZeroToOne, true);
-  if (Status s = raytrace::castPrimary(*p.rays, p.scene.views[0], p.camera, DepthFormat::D32F, p.primary); !s) fail(s.message);
+  if (prepass) {
+    prepass::PrepassOptions po;
+    po.format = DepthFormat::D32F;
+    po.secondLayer = true;
+    po.minSeparation = kSecondLayerSeparation;
+    prepass::PrepassResult r;
+    if (Status s = prepass->render(p.scene.mesh, p.scene.views[0], p.camera, po, r); !s)
+      fail(std::string(prepass->name()) + " prepass of " + name + ": " + s.message);
+    p.primary.depth = std::move(r.depth);
+    p.primary.position = std::move(r.position);
+    p.primary.normal = std::move(r.normal);
+    p.secondLayer.emplace();
+    p.secondLayer->depth = std::move(r.depth2);
+    p.secondLayer->position = std::move(r.position2);
+    p.secondLayer->normal = std::move(r.normal2);
+  } else if (Status s = raytrace::castPrimary(*p.rays, p.scene.views[0], p.camera, DepthFormat::D32F, p.primary); !s) {
+    fail(s.message);
+  }
   p.mask = samples::geometryMask(p.primary.position, 0);
   return p;
 }
@@ -115,68 +185,68 @@ const FloatImage& reference(Prepared& p, double radius, std::uint32_t rays) {
   return ref;
 }
 
-struct Row {
-  std::string section, scene, backend, preset, variant;
-  Extent size;
-  Settings settings;
-  bench::Measurement m;
-};
-
-double passMs(const bench::Measurement& m, const char* name) {
-  for (const auto& p : m.passes)
-    if (p.pass == name) return p.milliseconds;
-  return 0;
+const FloatImage& obscuranceReference(Prepared& p, const Settings& s, std::uint32_t rays) {
+  const ObscuranceKey key{s.radius, s.intensity, s.bias, s.epsilon, s.contrast};
+  auto it = p.obscurance.find(key);
+  if (it != p.obscurance.end()) return it->second;
+  FloatImage& ref = p.obscurance[key];
+  if (Status st = raytrace::referenceObscurance(*p.rays, p.camera, p.primary, p.scene.views[0],
+                                                raytrace::obscuranceOptions(s, rays), ref);
+      !st)
+    fail(st.message);
+  return ref;
 }
 
-void writeCsv(const std::string& path, const std::vector<Row>& rows) {
-  std::ofstream f(path);
-  f << "section,scene,backend,preset,variant,width,height,radius_m,samples,use_z_hierarchy,blur_radius,runs,"
-       "timing_method,linear_z_ms,mips_ms,ao_sample_ms,blur_h_ms,blur_v_ms,total_ms,ns_per_pixel,plan_bytes,"
-       "csz_levels,rmse_raw,bias_raw,ssim_raw,over_0_1_raw,fitted_scale,rmse_fitted,bias_fitted,ssim_fitted,"
-       "over_0_1_fitted\n";
-  for (const auto& r : rows) {
-    const auto& m = r.m;
-    f << r.section << "," << r.scene << "," << r.backend << "," << r.preset << "," << r.variant << "," << r.size.width
-      << "," << r.size.height << "," << r.settings.radius << "," << r.settings.samples << ","
-      << r.settings.use_z_hierarchy << "," << r.settings.blur_radius << "," << m.runs << ",\"" << toString(m.method)
-      << "\"," << passMs(m, "linear_z") << "," << passMs(m, "mips") << "," << passMs(m, "ao_sample") << ","
-      << passMs(m, "blur_h") << "," << passMs(m, "blur_v") << "," << m.totalMs << ","
-      << m.totalMs * 1e6 / (double(r.size.width) * r.size.height) << "," << m.planBytes << "," << m.cszLevels;
-    if (m.error) {
-      const auto& e = *m.error;
-      f << "," << e.raw.rmse << "," << e.raw.meanBias << "," << e.raw.ssim << "," << e.raw.fractionOver01 << ","
-        << e.fittedIntensity << "," << e.fitted.rmse << "," << e.fitted.meanBias << "," << e.fitted.ssim << ","
-        << e.fitted.fractionOver01;
-    } else {
-      f << ",,,,,,,,,";
-    }
-    f << "\n";
+const raytrace::Primary& secondLayer(Prepared& p) {
+  if (!p.secondLayer) {
+    p.secondLayer.emplace();
+    if (Status s = raytrace::castSecondLayer(*p.rays, p.scene.views[0], p.camera, DepthFormat::D32F,
+                                             kSecondLayerSeparation * p.camera.metersToViewUnits, *p.secondLayer);
+        !s)
+      fail(s.message);
   }
+  return *p.secondLayer;
 }
 
-void writeJson(const std::string& path, const std::vector<Row>& rows, const std::string& machine) {
-  std::ofstream f(path);
-  f << "{\n  \"machine\": \"" << machine << "\",\n  \"rows\": [\n";
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const auto& r = rows[i];
-    f << "    {\"section\": \"" << r.section << "\", \"scene\": \"" << r.scene << "\", \"backend\": \"" << r.backend
-      << "\", \"preset\": \"" << r.preset << "\", \"variant\": \"" << r.variant << "\", \"width\": " << r.size.width
-      << ", \"height\": " << r.size.height << ", \"radius_m\": " << r.settings.radius
-      << ", \"samples\": " << r.settings.samples << ", \"timing_method\": \"" << toString(r.m.method)
-      << "\", \"runs\": " << r.m.runs << ", \"total_ms\": " << r.m.totalMs << ", \"pass_ms\": {";
-    for (std::size_t k = 0; k < r.m.passes.size(); ++k)
-      f << (k ? ", " : "") << "\"" << r.m.passes[k].pass << "\": " << r.m.passes[k].milliseconds;
-    f << "}";
-    if (r.m.error)
-      f << ", \"rmse_raw\": " << r.m.error->raw.rmse << ", \"bias_raw\": " << r.m.error->raw.meanBias
-        << ", \"ssim_raw\": " << r.m.error->raw.ssim << ", \"fitted_scale\": " << r.m.error->fittedIntensity
-        << ", \"rmse_fitted\": " << r.m.error->fitted.rmse;
-    f << "}" << (i + 1 < rows.size() ? "," : "") << "\n";
-  }
-  f << "  ]\n}\n";
-}
+// What the effect is given besides depth; the inputs select the shader variant (NORMALS_SUPPLIED,
+// TWO_LAYER), as in every backend.
+enum class Extra { None, Normals, SecondLayer };
 
-void writeSvg(const std::string& path, const bench::Chart& chart) { std::ofstream(path) << bench::renderSvg(chart); }
+// What the outputs mean, in results.json ("notes") and on stdout.
+std::vector<std::pair<std::string, std::string>> notes(const std::string& depthSource) {
+  char separation[32];
+  std::snprintf(separation, sizeof separation, "%g", kSecondLayerSeparation);
+  return {
+      {"depth", depthSource},
+      {"ao_*", "error against reference (a), near-field ambient occlusion: the fraction of cosine-weighted rays from "
+               "the visible point (geometric normal) that travel the radius r without a hit "
+               "(raytrace::referenceAmbientOcclusion). No falloff; intensity, bias and epsilon play no part."},
+      {"obscurance_*", "error against reference (b), AlchemyAO obscurance: clamp(1 - O, 0, 1)^k with O = (sigma/pi) "
+                       "times the integral over the hemisphere of H(r - t) max(0, t cos + z_C beta) / (t^2 + eps), t the "
+                       "first hit along each direction, with the run's radius, intensity, bias, epsilon and contrast "
+                       "(raytrace::referenceObscurance, docs/reference.md): the integral the effect's estimator "
+                       "(AlchemyAO eq. 10) approximates."},
+      {"raw / fitted", "raw: the effect's output against the reference over the pixels with geometry; fitted: after "
+                       "scaling the effect's occlusion 1 - A by the least-squares factor fitted_scale."},
+      {"radius: SAO (z hierarchy)", "the effect as shipped: z MIP hierarchy (Z_HIERARCHY=1), normals rebuilt from depth."},
+      {"radius: SAO (no hierarchy)", "Z_HIERARCHY=0: every tap reads full-resolution z; normals rebuilt from depth "
+                                    "(NORMALS_SUPPLIED=0)."},
+      {"radius: AlchemyAO-style", "the AlchemyAO baseline: full-resolution z (Z_HIERARCHY=0) and a supplied normal "
+                                  "buffer (NORMALS_SUPPLIED=1, the ray-cast camera-space geometric normals as rgba16f), "
+                                  "same sample count, taps and estimator as SAO. It is not AlchemyAO itself: its taps "
+                                  "read r32f z and rebuild positions, where AlchemyAO read float3 camera-space "
+                                  "positions (3x the bytes per tap); taps follow SAO's spiral; the 2x2 and bilateral "
+                                  "blur passes are SAO's."},
+      {"two_layer", std::string("medium settings with and without TWO_LAYER; depth2 is the nearest surface at least ") +
+                        separation +
+                        " m behind the first layer in camera-space z, D32F like depth: with the raster depth source "
+                        "the prepass's depth peeling (front faces only, so the floor behind a closed object), with "
+                        "raytrace the primary ray continued (raytrace::castSecondLayer, front or back face)."},
+      {"precision", "precision.csv / precision.txt: camera-space z and face-normal error of the rasterised depth per "
+                    "format x far plane x convention, binned at 1, 10, 100 m (prepass::measurePrecision: three "
+                    "45-degree panels with analytic truth; z rebuilt as linear_z does, normals as ao_sample does)."},
+  };
+}
 
 }  // namespace
 
@@ -200,96 +270,143 @@ int main(int argc, char** argv) {
   }
   if (backends.empty()) fail("no backend could start");
 
+  // The depth every backend is given: rasterised once by a prepass (the same bits on GL and
+  // Vulkan, tests/prepass), or ray-cast.
+  std::unique_ptr<prepass::Prepass> depthPrepass;
+  std::string depthSource = "Embree primary rays (raytrace::castPrimary), D32F reversed-Z [0,1] infinite far";
+  if (o.depthSource == "raster") {
+    if (Status s = prepass::createPrepass("auto", depthPrepass); !s) fail(s.message + " (--depth-source raytrace works without one)");
+    depthSource = "rasterised by the " + std::string(depthPrepass->name()) + " prepass (" + depthPrepass->description() +
+                  "), D32F reversed-Z [0,1] infinite far";
+  }
+
   const std::vector<std::string> sceneNames =
       o.quick ? std::vector<std::string>{"crease", "sphere-plane"}
               : std::vector<std::string>{"sponza-like", "sphere-plane", "crease", "thin", "gears"};
   const std::string mainScene = o.quick ? "sphere-plane" : std::string(scenes::kDefaultScene);
   std::map<std::string, Prepared> cache;
-  std::vector<Row> rows;
+  std::vector<bench::Row> rows;
   int step = 0;
   auto progress = [&](const std::string& what) {
     std::fprintf(stderr, "\r\033[K[%d] %s", ++step, what.c_str());
     std::fflush(stderr);
   };
+  // withError: compare with both references (a) and (b).
   auto run = [&](const std::string& section, const std::string& scene, samples::BackendRunner& b,
-                 const std::string& preset, const std::string& variant, const Settings& s, Extent size, bool withError) {
+                 const std::string& preset, const std::string& variant, const Settings& s, Extent size,
+                 bool withError, Extra extra = Extra::None) {
     progress(section + ": " + scene + " " + std::string(b.name()) + " " + preset + " " + variant + " " +
              std::to_string(size.width) + "x" + std::to_string(size.height));
-    Prepared& p = prepare(cache, scene, size.width, size.height);
-    const FloatImage* ref = withError ? &reference(p, s.radius, o.rays) : nullptr;
-    Row r{section, scene, std::string(b.name()), preset, variant, size, s, {}};
-    if (Status st = bench::measure(b, s, p.camera, p.primary.depth, o.runs, ref, &p.mask, r.m); !st)
-      fail(section + " " + scene + ": " + st.message);
+    Prepared& p = prepare(cache, depthPrepass.get(), scene, size.width, size.height);
+    samples::RunInputs inputs{&p.primary.depth, nullptr, nullptr};
+    std::string what = "depth";
+    if (extra == Extra::Normals) inputs.normals = &p.primary.normal, what = "depth+normals";
+    if (extra == Extra::SecondLayer) inputs.depth2 = &secondLayer(p).depth, what = "depth+depth2";
+    bench::References refs;
+    if (withError) {
+      refs.nearFieldAo = &reference(p, s.radius, o.rays);
+      refs.obscurance = &obscuranceReference(p, s, o.rays);
+      refs.mask = &p.mask;
+    }
+    bench::Row r{section, scene, std::string(b.name()), preset, variant, what, size, s, {}};
+    if (Status st = bench::measure(b, s, p.camera, inputs, o.runs, refs, r.m); !st)
+      fail(section + " " + scene + " " + variant + ": " + st.message);
     rows.push_back(std::move(r));
   };
+  auto want = [&](const char* section) { return o.sections.count(section) > 0; };
   const Extent size{o.width, o.height};
-
-  // 1. Every preset on every scene and backend: the speed/accuracy trade.
-  for (const auto& scene : sceneNames)
-    for (auto& b : backends)
-      for (const auto& p : presets()) run("presets", scene, *b, std::string(p.name), "", presetSettings(p.preset), size, true);
-
-  // 2. Sweeps on the main scene and the first backend.
   auto& first = *backends.front();
   const Settings base = presetSettings(Preset::Medium);
-  for (int s : o.quick ? std::vector<int>{4, 16} : std::vector<int>{4, 8, 11, 16, 24, 32, 48, 64}) {
-    Settings t = base;
-    t.samples = s;
-    run("samples", mainScene, first, "medium", "samples=" + std::to_string(s), t, size, true);
+
+  // presets: every preset on every scene and backend, the speed/accuracy trade.
+  if (want("presets"))
+    for (const auto& scene : sceneNames)
+      for (auto& b : backends)
+        for (const auto& p : presets()) run("presets", scene, *b, std::string(p.name), "", presetSettings(p.preset), size, true);
+
+  // samples, mip_blur: sweeps on the main scene and the first backend.
+  if (want("samples"))
+    for (int s : o.quick ? std::vector<int>{4, 16} : std::vector<int>{4, 8, 11, 16, 24, 32, 48, 64}) {
+      Settings t = base;
+      t.samples = s;
+      run("samples", mainScene, first, "medium", "samples=" + std::to_string(s), t, size, true);
+    }
+  if (want("mip_blur"))
+    for (bool mips : {true, false})
+      for (bool blur : {true, false}) {
+        Settings t = base;
+        t.use_z_hierarchy = mips;
+        t.blur_radius = blur ? base.blur_radius : 0;
+        run("mip_blur", mainScene, first, "medium", std::string("mips=") + (mips ? "on" : "off") + " blur=" + (blur ? "on" : "off"), t, size, true);
+      }
+
+  // radius (paper Fig. 5): three curves on the same scene, backend and size. Timing only (a
+  // reference per radius at 1920x1080 would dominate the run).
+  if (want("radius")) {
+    const Extent radiusSize = o.quick ? size : Extent{1920, 1080};
+    struct Curve {
+      const char* label;
+      bool hierarchy;
+      Extra extra;
+    };
+    const Curve curves[] = {{"SAO (z hierarchy)", true, Extra::None},
+                            {"SAO (no hierarchy)", false, Extra::None},
+                            {"AlchemyAO-style", false, Extra::Normals}};
+    for (double r : o.quick ? std::vector<double>{0.1, 1.5} : std::vector<double>{0.1, 0.25, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0})
+      for (const Curve& c : curves) {
+        Settings t = base;
+        t.radius = float(r);
+        t.use_z_hierarchy = c.hierarchy;
+        run("radius", mainScene, first, "medium", c.label, t, radiusSize, false, c.extra);
+      }
   }
-  for (bool mips : {true, false})
-    for (bool blur : {true, false}) {
-      Settings t = base;
-      t.use_z_hierarchy = mips;
-      t.blur_radius = blur ? base.blur_radius : 0;
-      run("mip_blur", mainScene, first, "medium", std::string("mips=") + (mips ? "on" : "off") + " blur=" + (blur ? "on" : "off"), t, size, true);
+
+  // resolution (paper Table 3): every backend.
+  if (want("resolution"))
+    for (Extent e : o.quick ? std::vector<Extent>{{160, 90}, {320, 180}}
+                            : std::vector<Extent>{{1280, 720}, {1920, 1080}, {2560, 1600}})
+      for (auto& b : backends) run("resolution", mainScene, *b, "medium", "", base, e, false);
+
+  // two_layer: the default scene with and without the second depth layer, every backend.
+  if (want("two_layer"))
+    for (auto& b : backends) {
+      run("two_layer", mainScene, *b, "medium", "one layer", base, size, true);
+      run("two_layer", mainScene, *b, "medium", "two layers", base, size, true, Extra::SecondLayer);
     }
-  const Extent radiusSize = o.quick ? size : Extent{1920, 1080};
-  for (double r : o.quick ? std::vector<double>{0.1, 1.5} : std::vector<double>{0.1, 0.25, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0})
-    for (bool mips : {true, false}) {
-      Settings t = base;
-      t.radius = float(r);
-      t.use_z_hierarchy = mips;
-      run("radius", mainScene, first, "medium", mips ? "z hierarchy" : "no hierarchy (full-res z)", t, radiusSize, false);
+
+  // precision (paper Figures 3 and 4): every prepass that starts, on the dedicated panel scene.
+  std::vector<std::pair<std::string, std::vector<prepass::PrecisionRow>>> precision;
+  if (want("precision"))
+    for (const char* api : {"gl", "vulkan"}) {
+      std::unique_ptr<prepass::Prepass> pp;
+      if (Status s = prepass::createPrepass(api, pp); !s) {
+        std::fprintf(stderr, "\nsao-bench: precision: skipping the %s prepass: %s\n", api, s.message.c_str());
+        continue;
+      }
+      progress(std::string("precision: ") + api + " prepass");
+      prepass::PrecisionOptions po;
+      if (o.quick) po.width = 320, po.height = 180;
+      else po.width = o.width, po.height = o.height;
+      std::vector<prepass::PrecisionRow> rowsOut;
+      if (Status s = prepass::measurePrecision(*pp, po, rowsOut); !s) fail(std::string("precision on ") + api + ": " + s.message);
+      precision.emplace_back(api, std::move(rowsOut));
     }
-  for (Extent e : o.quick ? std::vector<Extent>{{160, 90}, {320, 180}}
-                          : std::vector<Extent>{{1280, 720}, {1920, 1080}, {2560, 1600}})
-    for (auto& b : backends) run("resolution", mainScene, *b, "medium", "", base, e, false);
+
   std::fprintf(stderr, "\n");
 
   // Reports.
-  writeCsv((fs::path(o.out) / "results.csv").string(), rows);
-  writeJson((fs::path(o.out) / "results.json").string(), rows, machine);
-  bench::Chart pareto{"Error vs time per preset (" + mainScene + ")", "total time, ms", "RMSE vs reference (raw)", true, false, {}};
-  bench::Chart radius{"Time vs radius (" + mainScene + ", " + std::string(first.name()) + ")", "radius, m", "ao_sample time, ms", false, false, {}};
-  bench::Chart resolution{"Time vs resolution (" + mainScene + ", medium)", "pixels", "total time, ms", true, false, {}};
-  std::map<std::string, bench::Series> paretoSeries, radiusSeries, resolutionSeries;
-  for (const auto& r : rows) {
-    if (r.section == "presets" && r.scene == mainScene && r.m.error) {
-      auto& s = paretoSeries[r.backend];
-      s.label = r.backend;
-      s.x.push_back(r.m.totalMs);
-      s.y.push_back(r.m.error->raw.rmse);
-      s.pointLabels.push_back(r.preset);
-    } else if (r.section == "radius") {
-      auto& s = radiusSeries[r.variant];
-      s.label = r.variant;
-      s.x.push_back(r.settings.radius);
-      s.y.push_back(passMs(r.m, "ao_sample"));
-    } else if (r.section == "resolution") {
-      auto& s = resolutionSeries[r.backend];
-      s.label = r.backend;
-      s.x.push_back(double(r.size.width) * r.size.height);
-      s.y.push_back(r.m.totalMs);
-    }
+  const auto legend = notes(depthSource);
+  bench::writeCsv((fs::path(o.out) / "results.csv").string(), rows);
+  bench::writeJson((fs::path(o.out) / "results.json").string(), rows, machine, legend);
+  const auto charts = bench::writeCharts(o.out, rows, mainScene, std::string(first.name()));
+  std::string files = "results.csv,results.json";
+  for (const auto& c : charts) files += "," + c;
+  if (!precision.empty()) {
+    bench::writePrecision(o.out, precision);
+    files += ",precision.csv,precision.txt";
   }
-  for (auto& [k, s] : paretoSeries) pareto.series.push_back(s);
-  for (auto& [k, s] : radiusSeries) radius.series.push_back(s);
-  for (auto& [k, s] : resolutionSeries) resolution.series.push_back(s);
-  writeSvg((fs::path(o.out) / "pareto.svg").string(), pareto);
-  writeSvg((fs::path(o.out) / "radius.svg").string(), radius);
-  writeSvg((fs::path(o.out) / "resolution.svg").string(), resolution);
-  std::printf("sao-bench: %zu measurements on %s\nwrote %s/{results.csv,results.json,pareto.svg,radius.svg,resolution.svg}\n",
-              rows.size(), machine.c_str(), fs::absolute(o.out).lexically_normal().string().c_str());
+  std::printf("sao-bench: %zu measurements on %s\nwrote %s/{%s}\n", rows.size(), machine.c_str(),
+              fs::absolute(o.out).lexically_normal().string().c_str(), files.c_str());
+  for (const auto& [key, text] : legend) std::printf("  %s: %s\n", key.c_str(), text.c_str());
   return 0;
 }

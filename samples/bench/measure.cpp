@@ -16,16 +16,16 @@ double median(std::vector<double> v) {
 }  // namespace
 
 Status measure(samples::BackendRunner& backend, const Settings& settings, const Camera& camera,
-               const DepthImage& depth, int runs, const FloatImage* reference,
-               const std::vector<unsigned char>* mask, Measurement& out) {
+               const samples::RunInputs& inputs, int runs, const References& references, Measurement& out) {
   out = Measurement{};
+  if (!inputs.depth) return Status::error(StatusCode::InvalidInput, "bench::measure needs a depth image");
   std::vector<std::string> order;
   std::map<std::string, std::vector<double>> perPass;
   std::vector<double> totals;
   // One warm-up run (pipelines, allocations), then the measured ones.
   for (int r = -1; r < runs; ++r) {
     samples::RunOutputs o;
-    if (Status s = backend.run(settings, camera, {&depth, nullptr, nullptr}, true, false, o); !s) return s;
+    if (Status s = backend.run(settings, camera, inputs, true, false, o); !s) return s;
     if (r < 0) continue;
     for (const auto& p : o.timings.passes) {
       if (!perPass.count(p.pass)) order.push_back(p.pass);
@@ -35,12 +35,20 @@ Status measure(samples::BackendRunner& backend, const Settings& settings, const 
     out.method = o.timings.method;
     out.planBytes = o.plan.totalBytes;
     out.cszLevels = o.plan.cszLevels;
+    out.shaderVariant.clear();
+    for (std::size_t v = 0; v < gen::kVariantCount; ++v) {
+      if (v) out.shaderVariant += ' ';
+      out.shaderVariant.append(gen::kVariants[v].name).append("=").append(std::to_string(o.plan.variants[v]));
+    }
     if (r == runs - 1) out.ao = std::move(o.ao);
   }
   for (const auto& name : order) out.passes.push_back({name, median(perPass[name])});
   out.totalMs = median(totals);
   out.runs = runs;
-  if (reference && mask) out.error = samples::compareToReference(out.ao, *reference, *mask);
+  if (const auto* mask = references.mask) {
+    if (references.nearFieldAo) out.aoError = samples::compareToReference(out.ao, *references.nearFieldAo, *mask);
+    if (references.obscurance) out.obscuranceError = samples::compareToReference(out.ao, *references.obscurance, *mask);
+  }
   return Status::success();
 }
 

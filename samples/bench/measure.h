@@ -1,5 +1,5 @@
 // One bench measurement: run a backend several times on prepared inputs and keep the median of
-// each pass, plus the error against the ray-traced reference when one is given.
+// each pass, plus the error against each ray-traced reference that is given.
 #pragma once
 #include <optional>
 #include <string>
@@ -10,6 +10,14 @@
 
 namespace sao::bench {
 
+// The truths a measurement is compared with, over the pixels where `mask` is non-zero. Either
+// reference may be absent (no error is computed for it); without a mask none is.
+struct References {
+  const FloatImage* nearFieldAo = nullptr;  // (a) raytrace::referenceAmbientOcclusion at the run's radius
+  const FloatImage* obscurance = nullptr;   // (b) raytrace::referenceObscurance with the run's settings
+  const std::vector<unsigned char>* mask = nullptr;
+};
+
 struct Measurement {
   std::vector<PassTiming> passes;  // median per pass over the runs
   double totalMs = 0;              // median of the per-run totals
@@ -17,12 +25,15 @@ struct Measurement {
   int runs = 0;
   std::uint64_t planBytes = 0;
   std::uint32_t cszLevels = 0;
-  std::optional<samples::ReferenceComparison> error;
+  std::string shaderVariant;  // the ao_sample variant the plan chose, e.g. "NORMALS_SUPPLIED=1 TWO_LAYER=0 Z_HIERARCHY=0"
+  std::optional<samples::ReferenceComparison> aoError;          // against (a)
+  std::optional<samples::ReferenceComparison> obscuranceError;  // against (b)
   FloatImage ao;
 };
 
+// `inputs` select the variant as the backends do: normals -> NORMALS_SUPPLIED, depth2 -> TWO_LAYER;
+// settings.use_z_hierarchy -> Z_HIERARCHY.
 Status measure(samples::BackendRunner& backend, const Settings& settings, const Camera& camera,
-               const DepthImage& depth, int runs, const FloatImage* reference,
-               const std::vector<unsigned char>* mask, Measurement& out);
+               const samples::RunInputs& inputs, int runs, const References& references, Measurement& out);
 
 }  // namespace sao::bench

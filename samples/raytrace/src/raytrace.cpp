@@ -3,12 +3,10 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
-#include <numbers>
-#include <thread>
-#include <vector>
+
+#include "sampling.h"
 
 namespace sao::raytrace {
 
@@ -60,13 +58,13 @@ Status RayScene::create(const scenes::Mesh& mesh, std::unique_ptr<RayScene>& out
   return Status::success();
 }
 
-RayScene::Hit RayScene::intersect(glm::dvec3 o, glm::dvec3 d, double tFar) const {
+RayScene::Hit RayScene::intersect(glm::dvec3 o, glm::dvec3 d, double tFar, double tNear) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRayHit rh{};
   rh.ray.org_x = float(o.x); rh.ray.org_y = float(o.y); rh.ray.org_z = float(o.z);
   rh.ray.dir_x = float(d.x); rh.ray.dir_y = float(d.y); rh.ray.dir_z = float(d.z);
-  rh.ray.tnear = 0.0f;
+  rh.ray.tnear = float(tNear);
   rh.ray.tfar = float(tFar);
   rh.ray.mask = 0xffffffffu;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -94,17 +92,7 @@ bool RayScene::occluded(glm::dvec3 o, glm::dvec3 d, double tFar) const {
 
 namespace {
 
-template <class F>
-void parallelRows(std::uint32_t rows, unsigned threads, F&& f) {
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-  std::atomic<std::uint32_t> next{0};
-  std::vector<std::thread> pool;
-  for (unsigned t = 0; t < threads; ++t)
-    pool.emplace_back([&] {
-      for (std::uint32_t y = next++; y < rows; y = next++) f(y);
-    });
-  for (auto& th : pool) th.join();
-}
+using detail::parallelRows;
 
 double P(const Camera& c, int row, int col) { return c.projection[col * 4 + row]; }
 
@@ -120,23 +108,16 @@ double windowDepth(const Camera& c, double z) {
   return c.clipDepth == ClipDepth::ZeroToOne ? ndc : 0.5 * ndc + 0.5;
 }
 
-std::uint64_t splitmix(std::uint64_t& s) {
-  std::uint64_t z = (s += 0x9e3779b97f4a7c15ull);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
-
-double uniform01(std::uint64_t& s) { return double(splitmix(s) >> 11) * 0x1.0p-53; }
-
-}  // namespace
-
-Status castPrimary(const RayScene& scene, const scenes::View& view, const Camera& camera, DepthFormat format,
-                   Primary& out, unsigned threads) {
+// The layers a rasteriser's depth prepass (layer 1) and a depth-peeling prepass with a minimum
+// separation (layer 2) would produce. `minSeparation` < 0 casts layer 1; otherwise layer 2: per
+// texel, the first hit whose camera-space z lies at least minSeparation behind layer 1's (the
+// ray's parameter t is -z, since the camera-space direction has z = -1).
+Status castLayer(const RayScene& scene, const scenes::View& view, const Camera& camera, DepthFormat format,
+                 double minSeparation, Primary& out, unsigned threads) {
   DepthModel model;
   if (Status s = analyze(camera, model); !s) return s;
   if (camera.kind != ProjectionKind::Perspective)
-    return Status::error(StatusCode::InvalidCamera, "castPrimary supports perspective cameras only");
+    return Status::error(StatusCode::InvalidCamera, "castPrimary and castSecondLayer support perspective cameras only");
   const Extent e{camera.width + 2 * camera.guardBand, camera.height + 2 * camera.guardBand};
   const glm::dmat4 toCamera = scenes::viewMatrix(view);
   const glm::dmat4 toWorld = glm::inverse(toCamera);
@@ -154,9 +135,15 @@ Status castPrimary(const RayScene& scene, const scenes::View& view, const Camera
     for (std::uint32_t x = 0; x < e.width; ++x) {
       const glm::dvec3 dirCam = cameraRay(camera, x, y);
       const glm::dvec3 dirWorld = glm::dvec3(toWorld * glm::dvec4(dirCam, 0.0));
-      const auto hit = scene.intersect(eye, dirWorld, farT);
+      auto hit = scene.intersect(eye, dirWorld, farT);
       // Depth clipping as a rasteriser would: nothing nearer than the near plane or beyond the far.
       if (!hit.hit || hit.t < model.nearDistance) continue;
+      if (minSeparation >= 0) {
+        const double tNear = hit.t + minSeparation;
+        if (!(tNear < farT)) continue;
+        hit = scene.intersect(eye, dirWorld, farT, tNear);
+        if (!hit.hit) continue;
+      }
       const glm::dvec3 pc = dirCam * hit.t;
       glm::dvec3 nc = glm::normalize(glm::dvec3(toCamera * glm::dvec4(hit.normal, 0.0)));
       if (glm::dot(nc, pc) > 0) nc = -nc;  // face the camera
@@ -174,20 +161,31 @@ Status castPrimary(const RayScene& scene, const scenes::View& view, const Camera
   return Status::success();
 }
 
+}  // namespace
+
+Status castPrimary(const RayScene& scene, const scenes::View& view, const Camera& camera, DepthFormat format,
+                   Primary& out, unsigned threads) {
+  return castLayer(scene, view, camera, format, -1.0, out, threads);
+}
+
+Status castSecondLayer(const RayScene& scene, const scenes::View& view, const Camera& camera, DepthFormat format,
+                       double minSeparation, Primary& out, unsigned threads) {
+  if (!(minSeparation > 0) || !std::isfinite(minSeparation))
+    return Status::error(StatusCode::InvalidInput, "castSecondLayer: the minimum separation must be a finite number > 0, not " +
+                                                       std::to_string(minSeparation));
+  return castLayer(scene, view, camera, format, minSeparation, out, threads);
+}
+
 double visibilityAt(const RayScene& scene, glm::dvec3 p, glm::dvec3 n, double radius, std::uint32_t rays,
                     std::uint64_t seed, double offset) {
-  // Orthonormal basis around n.
-  const glm::dvec3 a = std::fabs(n.x) > 0.5 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
-  const glm::dvec3 t = glm::normalize(glm::cross(a, n)), b = glm::cross(n, t);
+  const detail::Frame frame(n);
   const glm::dvec3 origin = p + n * offset;
   std::uint64_t state = seed;
-  splitmix(state);
+  detail::splitmix(state);
   std::uint32_t open = 0;
   for (std::uint32_t r = 0; r < rays; ++r) {
-    // Cosine-weighted: uniform on the disk, lifted to the hemisphere.
-    const double u1 = uniform01(state), u2 = uniform01(state);
-    const double rad = std::sqrt(u1), phi = 2.0 * std::numbers::pi * u2;
-    const glm::dvec3 dir = t * (rad * std::cos(phi)) + b * (rad * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1.0 - u1));
+    double cosTheta = 0;
+    const glm::dvec3 dir = detail::cosineDirection(frame, state, cosTheta);
     if (!scene.occluded(origin, dir, radius)) ++open;
   }
   return rays ? double(open) / rays : 1.0;
@@ -213,7 +211,7 @@ Status referenceAmbientOcclusion(const RayScene& scene, const Camera& camera, co
                             primary.normal.at(x + g, y + g, 2));
       const glm::dvec3 p = glm::dvec3(toWorld * glm::dvec4(pc, 1.0));
       const glm::dvec3 n = glm::normalize(glm::dvec3(toWorld * glm::dvec4(ncam, 0.0)));
-      const std::uint64_t seed = o.seed ^ (std::uint64_t(y) << 32) ^ x;
+      const std::uint64_t seed = detail::pixelSeed(o.seed, x, y);
       ao.at(x, y) = float(visibilityAt(scene, p, n, o.radius, o.rays, seed, 1e-4 * std::max(1.0, glm::length(pc))));
     }
   });

@@ -18,6 +18,7 @@
 //    times Camera::metersToViewUnits.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -74,5 +75,9 @@ class Prepass {
   virtual Status render(const scenes::Mesh& mesh, const scenes::View& view, const Camera& camera,
                         const PrepassOptions& options, PrepassResult& out) = 0;
 };
+
+// "gl", "vulkan" or "auto" (the first of gl, vulkan that starts): a prepass on its own headless
+// context or device. DriverError when the API is missing or not built into this program.
+Status createPrepass(std::string_view name, std::unique_ptr<Prepass>& out);
 
 }  // namespace sao::prepass

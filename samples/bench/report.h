@@ -1,0 +1,38 @@
+// The bench's outputs: one row per measurement, written as results.csv and results.json, and the
+// SVG charts (pareto, radius, resolution).
+#pragma once
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "measure.h"
+
+namespace sao::bench {
+
+struct Row {
+  std::string section, scene, backend, preset, variant;
+  std::string inputs;  // what the effect was given: "depth", "depth+normals" or "depth+depth2"
+  Extent size;
+  Settings settings;
+  Measurement m;
+};
+
+// Median time of one pass, 0 when the pass did not run.
+double passMs(const Measurement& m, const char* pass);
+
+// Error columns come in two groups, named by their reference: ao_* against (a) the near-field AO,
+// obscurance_* against (b) the AlchemyAO obscurance; empty where that reference was not computed.
+void writeCsv(const std::string& path, const std::vector<Row>& rows);
+
+// `notes`: (key, text) pairs written as the "notes" object: what the references, the radius-sweep
+// baseline and the second layer are.
+void writeJson(const std::string& path, const std::vector<Row>& rows, const std::string& machine,
+               const std::vector<std::pair<std::string, std::string>>& notes);
+
+// pareto.svg (error against both references vs time, presets on `mainScene`), radius.svg (ao_sample
+// time vs radius, one curve per radius-section variant) and resolution.svg, in `dir`; a chart whose
+// section did not run is not written. Returns the names of the files written.
+std::vector<std::string> writeCharts(const std::string& dir, const std::vector<Row>& rows,
+                                     const std::string& mainScene, const std::string& radiusBackend);
+
+}  // namespace sao::bench

@@ -1,0 +1,66 @@
+#!/bin/sh
+# The sao-bench smoke test: a --quick run on the cpu backend writes every output, one row per
+# measurement; the preset and two_layer rows carry the errors against both references (ao_* and
+# obscurance_*); the radius sweep has its three curves (with the variants they claim); --sections
+# runs one part only and rejects an unknown one.
+# usage: bench_smoke.sh SAO_BENCH OUT_DIR
+set -eu
+bench=$1
+out=$2
+rm -rf "$out"
+die() { echo "bench smoke: $*" >&2; exit 1; }
+
+"$bench" --quick --backends cpu --out "$out/all" >/dev/null 2>"$out.stderr" || die "sao-bench --quick failed: $(tail -2 "$out.stderr")"
+for f in results.csv results.json pareto.svg radius.svg resolution.svg precision.csv precision.txt; do
+  test -s "$out/all/$f" || die "missing $f"
+done
+csv=$out/all/results.csv
+col() { head -1 "$csv" | tr ',' '\n' | grep -nx "$1" | cut -d: -f1; }
+for c in ao_rmse_raw ao_rmse_fitted obscurance_rmse_raw obscurance_bias_raw obscurance_fitted_scale obscurance_rmse_fitted; do
+  test -n "$(col $c)" || die "results.csv has no column $c"
+done
+count() { awk -F, "$1" "$csv" | wc -l; }
+# Rows with a section and one field that must be (non-)empty: $1 section, $2 column, $3 == or !=.
+rows() { count "\$1==\"$1\" && \$$(col "$2") $3 \"\""; }
+
+[ "$(rows presets section !=)" -eq 10 ] || die "expected 10 preset rows (2 scenes x 5 presets)"
+for c in ao_rmse_raw ao_rmse_fitted obscurance_rmse_raw obscurance_rmse_fitted; do
+  [ "$(rows presets $c ==)" -eq 0 ] || die "a preset row has no $c"
+  [ "$(rows two_layer $c ==)" -eq 0 ] || die "a two_layer row has no $c"
+done
+
+# radius: three curves with two radii each, each curve the variant it says it is.
+v=$(col variant) s=$(col shader_variant) i=$(col inputs)
+curve() { count "\$1==\"radius\" && \$$v==\"$1\" && \$$s==\"$2\" && \$$i==\"$3\""; }
+[ "$(curve 'SAO (z hierarchy)' 'NORMALS_SUPPLIED=0 TWO_LAYER=0 Z_HIERARCHY=1' depth)" -eq 2 ] || die "radius: SAO (z hierarchy) curve"
+[ "$(curve 'SAO (no hierarchy)' 'NORMALS_SUPPLIED=0 TWO_LAYER=0 Z_HIERARCHY=0' depth)" -eq 2 ] || die "radius: SAO (no hierarchy) curve"
+[ "$(curve 'AlchemyAO-style' 'NORMALS_SUPPLIED=1 TWO_LAYER=0 Z_HIERARCHY=0' depth+normals)" -eq 2 ] || die "radius: AlchemyAO-style curve"
+[ "$(rows radius section !=)" -eq 6 ] || die "expected 6 radius rows"
+for label in 'SAO (z hierarchy)' 'SAO (no hierarchy)' 'AlchemyAO-style'; do
+  grep -qF ">$label<" "$out/all/radius.svg" || die "radius.svg has no curve '$label'"
+done
+
+# two_layer: one row without and one with the second layer.
+[ "$(count "\$1==\"two_layer\" && \$$v==\"one layer\" && \$$s ~ /TWO_LAYER=0/")" -eq 1 ] || die "two_layer: one-layer row"
+[ "$(count "\$1==\"two_layer\" && \$$v==\"two layers\" && \$$s ~ /TWO_LAYER=1/ && \$$i==\"depth+depth2\"")" -eq 1 ] ||
+  die "two_layer: two-layer row"
+
+# precision: D16, D24 and D32F rows from at least one prepass, D32F reversed-Z better than D16 at 10 m.
+[ "$(awk -F, '$2 == "D16"' "$out/all/precision.csv" | wc -l)" -gt 0 ] || die "precision.csv has no D16 rows"
+awk -F, '$3 ~ /^inf$/ && $6 == 10 && (($2 == "D16" && $4 == "standard") || ($2 == "D32F" && $4 == "reversed")) {z[$1 $2] = $7}
+  END { n = 0; for (k in z) if (k ~ /D32F/) { b = k; sub(/D32F/, "D16", b); if (!(b in z) || z[k] * 100 > z[b]) exit 1; n++ } exit n == 0 }' \
+  "$out/all/precision.csv" || die "precision.csv: D32F reversed-Z is not 100x better than D16 at 10 m"
+
+grep -q '"error_vs_obscurance": {' "$out/all/results.json" || die "results.json has no error_vs_obscurance"
+grep -q '"error_vs_ao": {' "$out/all/results.json" || die "results.json has no error_vs_ao"
+grep -q '"radius: AlchemyAO-style": ' "$out/all/results.json" || die "results.json does not say what the baseline is"
+grep -q '<svg' "$out/all/pareto.svg" || die "pareto.svg is not an SVG"
+
+# --sections: one part only; an unknown name is an error.
+"$bench" --quick --backends cpu --sections two_layer --out "$out/one" >/dev/null 2>"$out.stderr" || die "--sections two_layer failed"
+[ "$(awk -F, 'NR > 1 && $1 != "two_layer"' "$out/one/results.csv" | wc -l)" -eq 0 ] || die "--sections two_layer ran other sections"
+[ "$(awk -F, '$1 == "two_layer"' "$out/one/results.csv" | wc -l)" -eq 2 ] || die "--sections two_layer: expected 2 rows"
+test ! -e "$out/one/radius.svg" || die "--sections two_layer wrote radius.svg"
+if "$bench" --quick --sections presets,nope --out "$out/bad" >/dev/null 2>"$out.stderr"; then die "--sections nope was accepted"; fi
+grep -q "unknown section 'nope'" "$out.stderr" || die "--sections nope: unclear error: $(cat "$out.stderr")"
+echo "bench smoke: ok"
