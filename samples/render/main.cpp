@@ -12,6 +12,7 @@
 
 #include "sao/io.h"
 #include "sao/presets.h"
+#include "sao/prepass/prepass.h"
 #include "sao/raytrace/raytrace.h"
 #include "sao/samples/backend_runner.h"
 #include "sao/samples/shading.h"
@@ -30,13 +31,19 @@ AO), summary.txt (per-pass times, the plan and its memory) and, with --json, sum
 
   --out DIR             output folder (default: out/render)
   --backend NAME        gl | vulkan | cpu | auto (default auto: the first that starts)
-  --scene NAME          built-in scene: sponza-like (default), sphere-plane, crease, thin, gears
+  --scene NAME|PATH     built-in scene: sponza-like (default), sphere-plane, crease, thin, gears;
+                        or a mesh file (.gltf .glb .obj .ply; file units as metres, one view
+                        looking at the whole mesh) or a scene file (.scene, docs/scene-format.md)
   --view N              the scene's view number (default 0)
   --size WxH            AO size in pixels (default 1280x720)
   --guard N             guard band in pixels on each side (default 0)
   --preset NAME         low | medium | high | ultra | reference (default: the settings' defaults)
   --set NAME=VALUE      any setting (repeatable), checked against its range
   --depth-format F      D16 | D24 | D32F (default D32F, reversed-Z, [0,1] clip, infinite far)
+  --depth-source S      how a scene's depth is made: raster (the rasterising prepass of the
+                        backend's API; cpu uses GL, else Vulkan), raytrace (Embree primary rays),
+                        auto (default: raster when a prepass starts, else raytrace; the summary
+                        says which)
   --depth FILE.exr      run on your own depth buffer; the camera comes from the file's sao.*
                         attributes or from --fovy/--near/--far/--clip/--reversed-z
   --fovy DEG --near M --far M|inf --clip gl|zero-one --reversed-z
@@ -51,7 +58,7 @@ Exit status: 0 on success, 1 when the run fails, 2 for bad options; errors are o
 
 struct Options {
   std::string out = "out/render", backend = "auto", scene = std::string(scenes::kDefaultScene), depthPath, dumpDir,
-              saveDepth;
+              saveDepth, depthSource = "auto";
   std::uint32_t view = 0, width = 1280, height = 720, guard = 0, referenceRays = 256;
   std::string preset, depthFormat = "D32F", clip = "zero-one", far = "inf";
   double fovyDegrees = 60, nearDistance = 0.1;
@@ -98,7 +105,11 @@ Options parse(int argc, char** argv) {
     } else if (a == "--out") o.out = value();
     else if (a == "--backend") o.backend = value();
     else if (a == "--scene") o.scene = value();
-    else if (a == "--view") o.view = parseCount(a, value(), 0, 1000);
+    else if (a == "--depth-source") {
+      o.depthSource = value();
+      if (o.depthSource != "auto" && o.depthSource != "raster" && o.depthSource != "raytrace")
+        usageError("--depth-source expects raster, raytrace or auto");
+    } else if (a == "--view") o.view = parseCount(a, value(), 0, 1000);
     else if (a == "--size") {
       const std::string v = value();
       const auto x = v.find('x');
@@ -155,6 +166,35 @@ Camera cameraFromFlags(const Options& o, Extent inputExtent) {
   return c;
 }
 
+// The depth of a scene view: rasterised by a prepass (the backend's own API where it has one), or
+// ray-cast. `how` says which, for the summary.
+Status makeSceneDepth(const Options& o, const samples::BackendRunner& backend, const scenes::Scene& scene,
+                      const scenes::View& view, const Camera& camera, const raytrace::RayScene& rays,
+                      raytrace::Primary& primary, std::string& how) {
+  std::string whyNot;
+  if (o.depthSource != "raytrace") {
+    const std::string api = backend.name() == "gl" || backend.name() == "vulkan" ? std::string(backend.name()) : "auto";
+    std::unique_ptr<prepass::Prepass> prepass;
+    Status started = prepass::createPrepass(api, prepass);
+    if (started) {
+      prepass::PrepassOptions po;
+      po.format = parseDepthFormat(o.depthFormat);
+      prepass::PrepassResult r;
+      if (Status s = prepass->render(scene.mesh, view, camera, po, r); !s) return s;
+      primary.depth = std::move(r.depth);
+      primary.position = std::move(r.position);
+      primary.normal = std::move(r.normal);
+      how = "rasterised by the " + std::string(prepass->name()) + " prepass";
+      return Status::success();
+    }
+    if (o.depthSource == "raster") return started;
+    whyNot = " (no rasterising prepass: " + started.message + ")";
+  }
+  if (Status s = raytrace::castPrimary(rays, view, camera, parseDepthFormat(o.depthFormat), primary); !s) return s;
+  how = "by ray casting" + whyNot;
+  return Status::success();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -189,21 +229,18 @@ int main(int argc, char** argv) {
     }
     summary.input = "depth file " + o.depthPath + " (" + toString(depth.format) + ")";
   } else {
-    if (fs::exists(o.scene))
-      runError(Status::error(StatusCode::UnsupportedFormat,
-                             "mesh files are not supported yet ('" + o.scene + "'); use a built-in scene"));
-    if (Status s = scenes::makeBuiltinScene(o.scene, scene); !s) runError(s);
+    if (Status s = scenes::loadScene(o.scene, scene); !s) runError(s);
     if (o.view >= scene.views.size())
       usageError("scene '" + o.scene + "' has views 0.." + std::to_string(scene.views.size() - 1));
     const scenes::View& view = scene.views[o.view];
     camera = scenes::makeCamera(view, o.width, o.height, INFINITY, ClipDepth::ZeroToOne, true, o.guard);
     if (Status s = raytrace::RayScene::create(scene.mesh, rayScene); !s) runError(s);
-    if (Status s = raytrace::castPrimary(*rayScene, view, camera, parseDepthFormat(o.depthFormat), primary); !s)
-      runError(s);
+    std::string how;
+    if (Status s = makeSceneDepth(o, *backend, scene, view, camera, *rayScene, primary, how); !s) runError(s);
     depth = primary.depth;
     havePrimary = true;
     summary.input = "scene " + o.scene + ", view " + std::to_string(o.view) + " '" + view.name + "', " +
-                    toString(depth.format) + " reversed-Z [0,1] infinite far, depth by ray casting";
+                    toString(depth.format) + " reversed-Z [0,1] infinite far, depth " + how;
   }
   summary.prepareSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!o.saveDepth.empty())
