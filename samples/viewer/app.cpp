@@ -37,7 +37,8 @@ class App {
 
  private:
   Status start();
-  Status loadScene(int index);
+  Status loadScene(int index);                          // a built-in scene
+  Status adoptScene(scenes::Scene&& scene, int index);  // index -1: the file ui_.sceneFile
   void handleKeys();
   Status handleRequests(const FrameDesc& frame);
   FrameDesc buildFrame(glm::ivec2 size) const;
@@ -80,16 +81,17 @@ Status App::start() {
   ui_.referenceRays = int(options_.referenceRays);
   referenceRequested_ = options_.reference;
   const std::string name = options_.scene.empty() ? std::string(scenes::kDefaultScene) : options_.scene;
-  if (std::filesystem::exists(name))
-    return Status::error(StatusCode::UnsupportedFormat,
-                         "mesh files are not supported yet ('" + name + "'); use a built-in scene");
   const auto names = scenes::builtinSceneNames();
   const auto it = std::find(names.begin(), names.end(), name);
   if (it == names.end()) {
-    scenes::Scene unused;
-    return scenes::makeBuiltinScene(name, unused);  // the library's message lists the scenes
+    // A mesh or scene file (scenes::loadScene; its errors name the file and list the built-ins).
+    scenes::Scene scene;
+    if (Status s = scenes::loadScene(name, scene); !s) return s;
+    ui_.sceneFile = name;
+    if (Status s = adoptScene(std::move(scene), -1); !s) return s;
+  } else if (Status s = loadScene(int(it - names.begin())); !s) {
+    return s;
   }
-  if (Status s = loadScene(int(it - names.begin())); !s) return s;
   if (options_.view >= scene_.views.size())
     return Status::error(StatusCode::InvalidInput, "scene '" + name + "' has views 0.." +
                                                        std::to_string(scene_.views.size() - 1));
@@ -101,6 +103,10 @@ Status App::start() {
 Status App::loadScene(int index) {
   scenes::Scene scene;
   if (Status s = scenes::makeBuiltinScene(scenes::builtinSceneNames()[std::size_t(index)], scene); !s) return s;
+  return adoptScene(std::move(scene), index);
+}
+
+Status App::adoptScene(scenes::Scene&& scene, int index) {
   scene_ = std::move(scene);
   boundsMin_ = glm::dvec3(std::numeric_limits<double>::max());
   boundsMax_ = -boundsMin_;

@@ -19,8 +19,8 @@ effect's settings metadata, live per-pass timings and the plan.
                         depth-only prepass pipeline, sao::vk::Effect recorded into the frame's
                         command buffer, the composite and ImGui (imgui_impl_vulkan) presented
                         through the swapchain.
-  --scene NAME          built-in scene: sponza-like (default), sphere-plane, crease, thin, gears
-                        (mesh files are not supported yet)
+  --scene NAME|PATH     built-in scene: sponza-like (default), sphere-plane, crease, thin, gears;
+                        or a mesh file (.gltf .glb .obj .ply) or a scene file (.scene)
   --view N              the scene's view number (default 0)
   --size WxH            window size (default 1280x720)
   --preset NAME         low | medium | high | ultra | reference

@@ -10,7 +10,7 @@ namespace {
 
 void sceneSection(UiState& s, const PanelInfo& info, CameraController& camera) {
   const auto names = scenes::builtinSceneNames();
-  const std::string current(names[std::size_t(s.scene)]);
+  const std::string current = s.scene >= 0 ? std::string(names[std::size_t(s.scene)]) : s.sceneFile;
   if (ImGui::BeginCombo("scene", current.c_str())) {
     for (int i = 0; i < int(names.size()); ++i) {
       const std::string name(names[std::size_t(i)]);

@@ -19,7 +19,8 @@ struct UiState {
   int cszLevel = 1;
   float split = 0.5f;
   float errorScale = 0.5f;
-  int scene = 0;  // index into scenes::builtinSceneNames()
+  int scene = 0;  // index into scenes::builtinSceneNames(), or -1 for sceneFile
+  std::string sceneFile;  // the mesh or scene file given with --scene
   int view = 0;   // index into the scene's views
   int referenceRays = 32;
   bool measureTime = true;
