@@ -10,6 +10,7 @@
 #include <ImfMatrixAttribute.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
+#include <ImfStdIO.h>
 #include <ImfStringVectorAttribute.h>
 #include <ImfTestFile.h>
 #include <openexr.h>
@@ -232,10 +233,44 @@ Status precheckHeader(const std::string& path) {
   return Status::success();
 }
 
+// OpenEXRCore and the C++ reader can read a malformed header differently (an attribute whose
+// declared size is not its type's: Core skips the declared size, the C++ reader reads the type's
+// and goes on from there), so the C++ reader's own view is checked as well before InputFile sizes
+// its buffers from it (found by fuzz_exr_depth: a 16,711,426-wide data window that Core never saw
+// made InputFile allocate 2 GiB). Throws like OpenEXR does on a header it cannot parse.
+Status checkCppHeader(const std::string& path) {
+  Imf::StdIFStream in(path.c_str());
+  char head[8];
+  in.read(head, 8);
+  int version = int(std::uint32_t(std::uint8_t(head[4])) | std::uint32_t(std::uint8_t(head[5])) << 8 |
+                          std::uint32_t(std::uint8_t(head[6])) << 16 | std::uint32_t(std::uint8_t(head[7])) << 24);
+  Imf::Header h;
+  h.readFrom(in, version);
+  const Imath::Box2i window = h.dataWindow();
+  const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
+  const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
+  if (width <= 0 || height <= 0) return fail(StatusCode::IoError, path, "empty data window");
+  if (width > kMaxImageSide || height > kMaxImageSide)
+    return fail(StatusCode::IoError, path,
+                "data window is " + std::to_string(width) + "x" + std::to_string(height) +
+                    "; the largest side read is " + std::to_string(kMaxImageSide));
+  if (h.hasTileDescription()) {
+    const Imf::TileDescription& t = h.tileDescription();
+    if (t.xSize == 0 || t.ySize == 0 || t.xSize > kMaxImageSide || t.ySize > kMaxImageSide)
+      return fail(StatusCode::IoError, path,
+                  "tiles are " + std::to_string(t.xSize) + "x" + std::to_string(t.ySize) +
+                      "; the largest side read is " + std::to_string(kMaxImageSide));
+  }
+  if (int(h.compression()) < 0 || int(h.compression()) >= int(Imf::NUM_COMPRESSION_METHODS))
+    return fail(StatusCode::IoError, path, "corrupt header: unknown compression " + std::to_string(int(h.compression())));
+  return Status::success();
+}
+
 Status openExr(const std::string& path, OpenedExr& out) {
   if (Status s = checkReadable(path); !s) return s;
   if (!Imf::isOpenExrFile(path.c_str())) return fail(StatusCode::IoError, path, "not an OpenEXR file (bad magic number)");
   if (Status s = precheckHeader(path); !s) return s;
+  if (Status s = checkCppHeader(path); !s) return s;
   out.file = std::make_unique<Imf::InputFile>(path.c_str());
   const Imf::Header& h = out.file->header();
   out.dataWindow = h.dataWindow();
