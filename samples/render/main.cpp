@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -35,6 +36,9 @@ AO), summary.txt (per-pass times, the plan and its memory) and, with --json, sum
                         or a mesh file (.gltf .glb .obj .ply; file units as metres, one view
                         looking at the whole mesh) or a scene file (.scene, docs/scene-format.md)
   --view N              the scene's view number (default 0)
+  --eye X,Y,Z --target X,Y,Z
+                        an explicit camera for the scene (metres, y up; both together), with
+                        --fovy (default 60) and --near (default 0.1); replaces --view
   --size WxH            AO size in pixels (default 1280x720)
   --guard N             guard band in pixels on each side (default 0)
   --preset NAME         low | medium | high | ultra | reference (default: the settings' defaults)
@@ -62,6 +66,7 @@ struct Options {
   std::uint32_t view = 0, width = 1280, height = 720, guard = 0, referenceRays = 256;
   std::string preset, depthFormat = "D32F", clip = "zero-one", far = "inf";
   double fovyDegrees = 60, nearDistance = 0.1;
+  std::optional<glm::dvec3> eye, target;
   bool reversedZ = false, reversedGiven = false, cameraFlags = false, reference = false, json = false;
   std::vector<std::string> sets;
 };
@@ -89,6 +94,18 @@ double parseNumber(const std::string& flag, const std::string& v) {
   const double d = std::strtod(v.c_str(), &end);
   if (v.empty() || *end || !std::isfinite(d)) usageError(flag + " expects a finite number, got '" + v + "'");
   return d;
+}
+
+glm::dvec3 parsePoint(const std::string& flag, const std::string& v) {
+  glm::dvec3 p;
+  std::size_t start = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::size_t comma = v.find(',', start);
+    if ((i < 2) != (comma != std::string::npos)) usageError(flag + " expects X,Y,Z, got '" + v + "'");
+    p[i] = parseNumber(flag, v.substr(start, i < 2 ? comma - start : std::string::npos));
+    start = comma + 1;
+  }
+  return p;
 }
 
 Options parse(int argc, char** argv) {
@@ -121,6 +138,8 @@ Options parse(int argc, char** argv) {
     else if (a == "--set") o.sets.push_back(value());
     else if (a == "--depth-format") o.depthFormat = value();
     else if (a == "--depth") o.depthPath = value();
+    else if (a == "--eye") o.eye = parsePoint(a, value());
+    else if (a == "--target") o.target = parsePoint(a, value());
     else if (a == "--fovy") o.fovyDegrees = parseNumber(a, value()), o.cameraFlags = true;
     else if (a == "--near") o.nearDistance = parseNumber(a, value()), o.cameraFlags = true;
     else if (a == "--far") o.far = value(), o.cameraFlags = true;
@@ -133,6 +152,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--json") o.json = true;
     else usageError("unknown option '" + a + "'");
   }
+  if (o.eye.has_value() != o.target.has_value()) usageError("--eye and --target go together");
   return o;
 }
 
@@ -216,6 +236,7 @@ int main(int argc, char** argv) {
   raytrace::Primary primary;
   bool havePrimary = false;
   scenes::Scene scene;
+  std::uint32_t viewIndex = o.view;  // or the explicit --eye/--target view, appended
   std::unique_ptr<raytrace::RayScene> rayScene;
   const auto t0 = std::chrono::steady_clock::now();
 
@@ -232,14 +253,29 @@ int main(int argc, char** argv) {
     if (Status s = scenes::loadScene(o.scene, scene); !s) runError(s);
     if (o.view >= scene.views.size())
       usageError("scene '" + o.scene + "' has views 0.." + std::to_string(scene.views.size() - 1));
-    const scenes::View& view = scene.views[o.view];
+    if (o.eye) {
+      const glm::dvec3 forward = *o.target - *o.eye;
+      if (glm::length(glm::cross(forward, glm::dvec3(0, 1, 0))) <= 1e-9 * glm::length(forward))
+        usageError("--eye and --target must differ and not look straight up or down (y is up)");
+      if (!(o.fovyDegrees > 0 && o.fovyDegrees < 180)) usageError("--fovy must be in (0, 180) degrees");
+      if (!(o.nearDistance > 0)) usageError("--near must be > 0");
+      scenes::View v;
+      v.name = "explicit";
+      v.eye = *o.eye;
+      v.target = *o.target;
+      v.fovyRadians = o.fovyDegrees * std::numbers::pi / 180.0;
+      v.nearDistance = o.nearDistance;
+      scene.views.push_back(v);
+      viewIndex = std::uint32_t(scene.views.size() - 1);
+    }
+    const scenes::View& view = scene.views[viewIndex];
     camera = scenes::makeCamera(view, o.width, o.height, INFINITY, ClipDepth::ZeroToOne, true, o.guard);
     if (Status s = raytrace::RayScene::create(scene.mesh, rayScene); !s) runError(s);
     std::string how;
     if (Status s = makeSceneDepth(o, *backend, scene, view, camera, *rayScene, primary, how); !s) runError(s);
     depth = primary.depth;
     havePrimary = true;
-    summary.input = "scene " + o.scene + ", view " + std::to_string(o.view) + " '" + view.name + "', " +
+    summary.input = "scene " + o.scene + ", view " + std::to_string(viewIndex) + " '" + view.name + "', " +
                     toString(depth.format) + " reversed-Z [0,1] infinite far, depth " + how;
   }
   summary.prepareSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -274,7 +310,7 @@ int main(int argc, char** argv) {
     ro.radius = settings.radius;
     ro.rays = o.referenceRays;
     FloatImage ref;
-    if (Status s = raytrace::referenceAmbientOcclusion(*rayScene, camera, primary, scene.views[o.view], ro, ref); !s)
+    if (Status s = raytrace::referenceAmbientOcclusion(*rayScene, camera, primary, scene.views[viewIndex], ro, ref); !s)
       runError(s);
     if (Status s = writeAoPng((fs::path(o.out) / "reference.png").string(), ref); !s) runError(s);
     summary.metrics = samples::compareToReference(result.ao, ref, samples::geometryMask(primary.position, camera.guardBand));
