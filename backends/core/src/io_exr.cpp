@@ -162,6 +162,16 @@ struct OpenedExr {
 // (8 bytes a chunk) in the file, one decoded chunk in 512 MiB.
 thread_local std::string tCoreError;
 
+// A data window (as either reader sees it) must be non-empty and at most kMaxImageSide a side.
+Status checkDataWindow(const std::string& path, std::int64_t width, std::int64_t height) {
+  if (width <= 0 || height <= 0) return fail(StatusCode::IoError, path, "empty data window");
+  if (width > kMaxImageSide || height > kMaxImageSide)
+    return fail(StatusCode::IoError, path,
+                "data window is " + std::to_string(width) + "x" + std::to_string(height) +
+                    "; the largest side read is " + std::to_string(kMaxImageSide));
+  return Status::success();
+}
+
 Status precheckHeader(const std::string& path) {
   exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
   init.error_handler_fn = [](exr_const_context_t, exr_result_t, const char* message) {
@@ -191,11 +201,7 @@ Status precheckHeader(const std::string& path) {
     return fail(StatusCode::UnsupportedFormat, path, "holds deep data; only flat images are read");
   const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
   const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
-  if (width <= 0 || height <= 0) return fail(StatusCode::IoError, path, "empty data window");
-  if (width > kMaxImageSide || height > kMaxImageSide)
-    return fail(StatusCode::IoError, path,
-                "data window is " + std::to_string(width) + "x" + std::to_string(height) +
-                    "; the largest side read is " + std::to_string(kMaxImageSide));
+  if (Status s = checkDataWindow(path, width, height); !s) return s;
   std::uint64_t chunkCols = std::uint64_t(width), chunkLines = 1;
   if (storage == EXR_STORAGE_TILED) {
     uint32_t tileX = 0, tileY = 0;
@@ -249,11 +255,7 @@ Status checkCppHeader(const std::string& path) {
   const Imath::Box2i window = h.dataWindow();
   const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
   const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
-  if (width <= 0 || height <= 0) return fail(StatusCode::IoError, path, "empty data window");
-  if (width > kMaxImageSide || height > kMaxImageSide)
-    return fail(StatusCode::IoError, path,
-                "data window is " + std::to_string(width) + "x" + std::to_string(height) +
-                    "; the largest side read is " + std::to_string(kMaxImageSide));
+  if (Status s = checkDataWindow(path, width, height); !s) return s;
   if (h.hasTileDescription()) {
     const Imf::TileDescription& t = h.tileDescription();
     if (t.xSize == 0 || t.ySize == 0 || t.xSize > kMaxImageSide || t.ySize > kMaxImageSide)
