@@ -76,6 +76,51 @@ std::string glslLiteral(const std::string& text) {
   return out.empty() ? "\"\"" : out;
 }
 
+// Float components widened to T, integer members unchanged: the same block for C++ code that
+// evaluates the shaders' math in another precision (the CPU reference's double path), so no
+// hand-written copy of the block exists anywhere.
+const char* widenedType(const std::string& glsl) {
+  if (glsl == "float") return "T";
+  if (glsl == "vec2") return "Vec2Of<T>";
+  if (glsl == "vec4") return "Vec4Of<T>";
+  if (glsl == "mat4") return "Mat4Of<T>";
+  return cppType(glsl);  // int, uint and their vectors stay as they are
+}
+
+std::string widenedValue(const std::string& glsl, const std::string& src) {
+  if (glsl == "float") return "T(" + src + ")";
+  if (glsl == "vec2") return "Vec2Of<T>{T(" + src + ".x), T(" + src + ".y)}";
+  if (glsl == "vec4") return "Vec4Of<T>{T(" + src + ".x), T(" + src + ".y), T(" + src + ".z), T(" + src + ".w)}";
+  if (glsl == "mat4") return "widenMat4<T>(" + src + ")";
+  return src;
+}
+
+void emitWidenedBlock(std::ostringstream& h, const ParamBlock& b) {
+  h << "// ---- '" << b.name << "' with its float components widened to T (T = float: the same values).\n"
+    << "template <typename T> struct Vec2Of { T x, y; };\n"
+    << "template <typename T> struct Vec4Of {\n  T x, y, z, w;\n"
+    << "  T operator[](int i) const { return i == 0 ? x : i == 1 ? y : i == 2 ? z : w; }\n};\n"
+    << "template <typename T> struct Mat4Of { T m[16]; };  // column-major\n"
+    << "template <typename T> Mat4Of<T> widenMat4(const Float4x4& f) {\n"
+    << "  Mat4Of<T> r{};\n  for (int i = 0; i < 16; ++i) r.m[i] = T(f.m[i]);\n  return r;\n}\n"
+    << "template <typename T>\nstruct " << b.name << "As {\n";
+  for (const auto& m : b.members) {
+    h << "  " << widenedType(m.glslType) << " " << m.name;
+    if (m.arraySize > 0) h << "[" << m.arraySize << "]";
+    h << ";\n";
+  }
+  h << "  explicit " << b.name << "As(const " << b.name << "& p) {\n";
+  for (const auto& m : b.members) {
+    if (m.arraySize > 0)
+      h << "    for (int i = 0; i < " << m.arraySize << "; ++i) " << m.name << "[i] = "
+        << widenedValue(m.glslType, "p." + m.name + "[i]") << ";\n";
+    else
+      h << "    " << m.name << " = " << widenedValue(m.glslType, "p." + m.name) << ";\n";
+  }
+  h << "  }\n};\n"
+    << "template <typename T>\nusing ParamBlockAs = " << b.name << "As<T>;\n\n";
+}
+
 }  // namespace
 
 GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& pvs,
@@ -144,6 +189,7 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     h << "static_assert(offsetof(" << b.name << ", " << m.name << ") == " << m.offset << ");\n";
   h << "static_assert(sizeof(" << b.name << ") == " << b.size << ");\n"
     << "using ParamBlock = " << b.name << ";\n\n";
+  emitWidenedBlock(h, b);
 
   // --- variants
   h << "// ---- Variants: compile-time switches; a key holds one value per variant.\n"

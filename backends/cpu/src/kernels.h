@@ -30,41 +30,18 @@ inline bool isSky(double z) {
   return !(b > 0x8000000000000000ull && b < 0xFFF0000000000000ull);
 }
 
-// ---- The parameter block with its float members widened to T (ints unchanged).
+// ---- The parameter block with its float components widened to T (ints unchanged), generated
+// from the effect's block declaration.
 
 template <typename T>
-struct Block {
-  T proj[4];  // proj_info (a_x, a_y, b_x, b_y)
-  T clip[4];  // clip_info (c0, c1, c2, 0)
-  T w14[4], w58[4];
-  T far_dir, far_lim;
-  int depth_mode, ortho;
-  T radius, radius2, bias, intensity_div_s, epsilon, contrast, proj_scale, inv_samples;
-  int samples, spiral_turns, log_q, max_mip;
-  T quad_edge_threshold, blur_edge_sharpness;
-  int blur_radius, blur_stride;
-  int ao_w, ao_h, guard_x, guard_y;
-  T turn24_to_radians;  // SAO_TURN24_TO_RADIANS in T
+using Block = gen::ParamBlockAs<T>;
 
-  explicit Block(const gen::SaoParams& p) {
-    auto v4 = [](T* d, const gen::Float4& s) { d[0] = T(s.x), d[1] = T(s.y), d[2] = T(s.z), d[3] = T(s.w); };
-    v4(proj, p.proj_info);
-    v4(clip, p.clip_info);
-    v4(w14, p.blur_weights_1_4);
-    v4(w58, p.blur_weights_5_8);
-    far_dir = T(p.far_dir), far_lim = T(p.far_lim);
-    depth_mode = p.depth_mode, ortho = p.ortho;
-    radius = T(p.radius), radius2 = T(p.radius2), bias = T(p.bias), intensity_div_s = T(p.intensity_div_s);
-    epsilon = T(p.epsilon), contrast = T(p.contrast), proj_scale = T(p.proj_scale), inv_samples = T(p.inv_samples);
-    samples = p.samples, spiral_turns = p.spiral_turns, log_q = p.log_q, max_mip = p.max_mip;
-    quad_edge_threshold = T(p.quad_edge_threshold), blur_edge_sharpness = T(p.blur_edge_sharpness);
-    blur_radius = p.blur_radius, blur_stride = p.blur_stride;
-    ao_w = p.ao_size.x, ao_h = p.ao_size.y, guard_x = p.guard.x, guard_y = p.guard.y;
-    // GLSL: `const float SAO_TURN24_TO_RADIANS = 6.28318530717958647692 / 16777216.0;` — float
-    // literals, so float(2*pi) / 2^24 (bits 0x34C90FDB). Double: 2*pi / 2^24 in double.
-    turn24_to_radians = T(6.28318530717958647692) / T(16777216.0);
-  }
-};
+// GLSL: `const float SAO_TURN24_TO_RADIANS = 6.28318530717958647692 / 16777216.0;` -- float
+// literals, so float(2*pi) / 2^24 (bits 0x34C90FDB). Double: 2*pi / 2^24 in double.
+template <typename T>
+constexpr T turn24ToRadians() {
+  return T(6.28318530717958647692) / T(16777216.0);
+}
 
 // ---- Images: one mip level or one 1-/2-channel image, row 0 first.
 
@@ -113,9 +90,9 @@ T zFromDepth(T d, const Block<T>& P) {
   if (!isFinite(d) || d * P.far_dir >= P.far_lim) return T(0);
   T z;
   if (P.depth_mode == gen::SAO_DEPTH_MODE_PERSPECTIVE)
-    z = P.clip[0] / (d * P.clip[1] + P.clip[2]);
+    z = P.clip_info.x / (d * P.clip_info.y + P.clip_info.z);
   else
-    z = d * P.clip[1] + P.clip[2];
+    z = d * P.clip_info.y + P.clip_info.z;
   return isSky(z) ? T(0) : z;
 }
 
@@ -125,7 +102,7 @@ T zFromDepth(T d, const Block<T>& P) {
 template <typename T>
 Vec3<T> position(T px, T py, T z, const Block<T>& P) {
   const T w = (P.ortho != 0) ? T(1) : z;
-  return {w * (px * P.proj[0] + P.proj[2]), w * (py * P.proj[1] + P.proj[3]), z};
+  return {w * (px * P.proj_info.x + P.proj_info.z), w * (py * P.proj_info.y + P.proj_info.w), z};
 }
 
 // Eq. 5, clamped to SAO_MAX_RADIUS_PX.
@@ -179,7 +156,7 @@ Vec3<T> reconstructNormal(const Image<T>& z0, int cx, int cy, Vec3<T> C, const B
   const Vec3<T> dx = axisTangent(C, pcx, pcy, T(1), T(0), zl, zr, P);
   const Vec3<T> dy = axisTangent(C, pcx, pcy, T(0), T(1), zd, zu, P);
   Vec3<T> n = cross(dx, dy);
-  if (P.proj[0] * P.proj[1] < T(0)) n = {-n.x, -n.y, -n.z};
+  if (P.proj_info.x * P.proj_info.y < T(0)) n = {-n.x, -n.y, -n.z};
   const T l2 = dot(n, n);
   if (isFinite(l2) && l2 > T(0)) {
     const T s = inverseSqrt(l2);
@@ -227,8 +204,8 @@ inline std::uint32_t spiralPhase(int i, int s, int tau) {
 
 // Eq. 7: theta in [-pi, pi) from the 24 high bits of the turn.
 template <typename T>
-void turnDirection(std::uint32_t turn, const Block<T>& P, T& ux, T& uy) {
-  const T theta = T(static_cast<std::int32_t>(turn) >> 8) * P.turn24_to_radians;
+void turnDirection(std::uint32_t turn, T& ux, T& uy) {
+  const T theta = T(static_cast<std::int32_t>(turn) >> 8) * turn24ToRadians<T>();
   ux = std::cos(theta);
   uy = std::sin(theta);
 }
@@ -240,7 +217,7 @@ void spiralTap(int cx, int cy, int i, int s, std::uint32_t phase, T r_px, const 
   const T alpha = (T(i) + T(0.5)) * P.inv_samples;
   h = r_px * alpha;
   T ux, uy;
-  turnDirection(spiralPhase(i, s, P.spiral_turns) + phase, P, ux, uy);
+  turnDirection<T>(spiralPhase(i, s, P.spiral_turns) + phase, ux, uy);
   tx = cx + static_cast<int>(h * ux);  // conversion truncates toward zero
   ty = cy + static_cast<int>(h * uy);
 }
@@ -275,7 +252,7 @@ template <typename T>
 T blurGauss(int t, const Block<T>& P) {
   const int a = std::abs(t);
   if (a == 0) return T(1);
-  return (a <= 4) ? P.w14[std::clamp(a - 1, 0, 3)] : P.w58[std::clamp(a - 5, 0, 3)];
+  return (a <= 4) ? P.blur_weights_1_4[std::clamp(a - 1, 0, 3)] : P.blur_weights_5_8[std::clamp(a - 5, 0, 3)];
 }
 
 // Bilateral 1D blur of the 2-channel image src at (x, y) along (dx, dy); writes (A, key).

@@ -189,9 +189,9 @@ class Pipeline {
   // Pass ao_sample: the body of sao_ao_main up to the shared-memory exchange, for one invocation.
   void sampleInvocation(int px, int py, T& A, T& key) const {
     const Image<T>& z0 = csz_[0];
-    const bool inside = px < std::min(P_.ao_w, aoRaw_.w) && py < std::min(P_.ao_h, aoRaw_.h);
-    const int cx = std::clamp(px + P_.guard_x, 0, z0.w - 1);
-    const int cy = std::clamp(py + P_.guard_y, 0, z0.h - 1);
+    const bool inside = px < std::min(P_.ao_size.x, aoRaw_.w) && py < std::min(P_.ao_size.y, aoRaw_.h);
+    const int cx = std::clamp(px + P_.guard.x, 0, z0.w - 1);
+    const int cy = std::clamp(py + P_.guard.y, 0, z0.h - 1);
     const T zc = z0.at(cx, cy);
     A = T(1);
     key = T(0);
@@ -265,7 +265,7 @@ class Pipeline {
             const std::size_t ny = std::size_t(ly ^ 1) * LX + lx;
             const T av = quadMix(quadH[li], quadZ[li], quadH[ny], quadZ[ny], threshold);
             const int px = gx * LX + lx, py = gy * LY + ly;
-            if (px < std::min(P_.ao_w, W) && py < std::min(P_.ao_h, H)) {
+            if (px < std::min(P_.ao_size.x, W) && py < std::min(P_.ao_size.y, H)) {
               aoRaw_.at(px, py, 0) = av;
               aoRaw_.at(px, py, 1) = quadZ[li];
             }

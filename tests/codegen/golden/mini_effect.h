@@ -73,6 +73,38 @@ static_assert(offsetof(MiniParams, table) == 112);
 static_assert(sizeof(MiniParams) == 144);
 using ParamBlock = MiniParams;
 
+// ---- 'MiniParams' with its float components widened to T (T = float: the same values).
+template <typename T> struct Vec2Of { T x, y; };
+template <typename T> struct Vec4Of {
+  T x, y, z, w;
+  T operator[](int i) const { return i == 0 ? x : i == 1 ? y : i == 2 ? z : w; }
+};
+template <typename T> struct Mat4Of { T m[16]; };  // column-major
+template <typename T> Mat4Of<T> widenMat4(const Float4x4& f) {
+  Mat4Of<T> r{};
+  for (int i = 0; i < 16; ++i) r.m[i] = T(f.m[i]);
+  return r;
+}
+template <typename T>
+struct MiniParamsAs {
+  Vec4Of<T> scale;
+  T gain;
+  Vec2Of<T> pair;
+  Int4 counts;
+  Mat4Of<T> xform;
+  Vec4Of<T> table[2];
+  explicit MiniParamsAs(const MiniParams& p) {
+    scale = Vec4Of<T>{T(p.scale.x), T(p.scale.y), T(p.scale.z), T(p.scale.w)};
+    gain = T(p.gain);
+    pair = Vec2Of<T>{T(p.pair.x), T(p.pair.y)};
+    counts = p.counts;
+    xform = widenMat4<T>(p.xform);
+    for (int i = 0; i < 2; ++i) table[i] = Vec4Of<T>{T(p.table[i].x), T(p.table[i].y), T(p.table[i].z), T(p.table[i].w)};
+  }
+};
+template <typename T>
+using ParamBlockAs = MiniParamsAs<T>;
+
 // ---- Variants: compile-time switches; a key holds one value per variant.
 inline constexpr std::size_t kVariantCount = 2;
 using VariantValues = std::array<std::int32_t, kVariantCount>;  // -1 in tables: any value
