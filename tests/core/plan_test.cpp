@@ -34,9 +34,34 @@ TEST(Plan, DefaultSceneAt720p) {
   ASSERT_NE(csz, nullptr);
   EXPECT_EQ(csz->mipLevels, 8u);
   EXPECT_EQ(p.image(ResourceId::csz2), nullptr) << "no second layer given";
-  EXPECT_LT(p.totalBytes, sao::fullAllocationBytes(camera720(), {}));
+  // Bytes by hand: csz r32f, levels 1280x720 ... 10x5 = 1,228,750 texels x 4 = 4,915,000;
+  // ao_raw and ao_blur_h rg32f 1280x720 x 8 = 7,372,800 each; ao r16f x 2 = 1,843,200.
+  EXPECT_EQ(csz->bytes, 4915000u);
+  EXPECT_EQ(p.image(ResourceId::ao_raw)->bytes, 7372800u);
+  EXPECT_EQ(p.image(ResourceId::ao_blur_h)->bytes, 7372800u);
+  EXPECT_EQ(p.image(ResourceId::ao)->bytes, 1843200u);
+  EXPECT_EQ(p.totalBytes, 21503800u);
+  // Without a plan: both layers' chains down to 1x1 (11 levels, 1,228,763 texels each) and every
+  // image: 2 x 4,915,052 + 2 x 7,372,800 + 1,843,200.
+  const std::uint64_t full = sao::fullAllocationBytes(camera720(), {});
+  EXPECT_EQ(full, 26418904u);
   std::printf("default scene 1280x720: %s", p.describe().c_str());
-  std::printf("full allocation: %llu bytes\n", static_cast<unsigned long long>(sao::fullAllocationBytes(camera720(), {})));
+  std::printf("full allocation: %llu bytes (plan %.1f%% of it)\n", static_cast<unsigned long long>(full),
+              100.0 * double(p.totalBytes) / double(full));
+}
+
+TEST(Plan, SmallRadiusWithoutBlurAllocatesLittle) {
+  sao::Settings s;
+  s.radius = 0.01f;  // r' max 62 px: 3 csz levels
+  s.blur_radius = 0;  // no blur_h, no ao_blur_h
+  sao::Plan p;
+  ASSERT_TRUE(sao::plan(s, camera720(), {}, p).ok());
+  EXPECT_EQ(p.cszLevels, 3u);
+  // csz (921,600 + 230,400 + 57,600) x 4 + ao_raw 7,372,800 + ao 1,843,200.
+  EXPECT_EQ(p.totalBytes, 4838400u + 7372800u + 1843200u);
+  std::printf("radius 0.01 m, blur 0, 1280x720: %llu bytes (%.1f%% of the full allocation)\n",
+              static_cast<unsigned long long>(p.totalBytes),
+              100.0 * double(p.totalBytes) / double(sao::fullAllocationBytes(camera720(), {})));
 }
 
 TEST(Plan, SmallRadiusNeedsFewerLevels) {

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "sao/presets.h"
+#include "sao/spiral.h"
 #include "sao/settings.h"
 
 namespace {
@@ -110,6 +111,27 @@ TEST(Presets, AllValidAndIncreasingInTaps) {
   }
   EXPECT_FALSE(sao::findPreset("extreme").has_value());
   EXPECT_FALSE(sao::presetSettings(sao::Preset::Reference).use_z_hierarchy);
+}
+
+// The presets trade speed for accuracy along every knob the issue names: taps (and with them the
+// derived spiral turns), blur taps and MIP use (switch distance q', or no hierarchy at all).
+TEST(Presets, ChangeTapsSpiralBlurAndMipUse) {
+  const sao::Settings low = sao::presetSettings(sao::Preset::Low);
+  const sao::Settings medium = sao::presetSettings(sao::Preset::Medium);
+  const sao::Settings ultra = sao::presetSettings(sao::Preset::Ultra);
+  const sao::Settings reference = sao::presetSettings(sao::Preset::Reference);
+  EXPECT_NE(sao::spiralTurns(low.samples), sao::spiralTurns(medium.samples));
+  EXPECT_NE(sao::spiralTurns(medium.samples), sao::spiralTurns(ultra.samples));
+  int lastBlur = 0;
+  for (auto preset : {sao::Preset::Low, sao::Preset::Medium, sao::Preset::High, sao::Preset::Ultra}) {
+    const sao::Settings s = sao::presetSettings(preset);
+    EXPECT_GT(s.blur_radius, lastBlur);
+    lastBlur = s.blur_radius;
+    EXPECT_TRUE(s.use_z_hierarchy);
+  }
+  EXPECT_LT(low.mip_switch_log2, medium.mip_switch_log2);
+  EXPECT_LT(medium.mip_switch_log2, ultra.mip_switch_log2);
+  EXPECT_FALSE(reference.use_z_hierarchy);
 }
 
 }  // namespace

@@ -27,7 +27,7 @@ TEST_P(FlatPlane, IsUnoccludedEverywhere) {
   const PlaneCase pc = GetParam();
   const Camera camera = testCamera(8);
   const DepthImage depth = renderDepth(planeScene(pc.distance), camera, pc.format);
-  const Settings settings;  // defaults: bias 0.01 > 0, radius 1 m
+  const Settings settings;  // defaults: bias 0.02 > 0, radius 1 m
   ASSERT_GT(settings.bias, 0.0f);
   for (Precision precision : {Precision::Float, Precision::Double}) {
     SCOPED_TRACE(cpu::toString(precision));

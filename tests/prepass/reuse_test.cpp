@@ -170,7 +170,9 @@ TEST_P(Reuse, ManyCyclesDoNotGrow) {
   const std::uint64_t after = residentBytes();
   std::printf("%s: resident %.1f MB -> %.1f MB over 300 renders\n", GetParam().c_str(), double(before) / 1e6,
               double(after) / 1e6);
-  if (!sanitized()) EXPECT_LT(after, before + 16u * 1024 * 1024);
+  if (!sanitized()) {
+    EXPECT_LT(after, before + 16u * 1024 * 1024);
+  }
 }
 
 TEST_P(Reuse, CreateAndDestroyCycles) {
@@ -204,7 +206,9 @@ TEST_P(Reuse, CreateAndDestroyCycles) {
   const std::uint64_t after = residentBytes();
   std::printf("%s: resident %.1f MB -> %.1f MB over 40 create/render/destroy cycles\n", GetParam().c_str(),
               double(before) / 1e6, double(after) / 1e6);
-  if (!sanitized()) EXPECT_LT(after, before + 16u * 1024 * 1024);
+  if (!sanitized()) {
+    EXPECT_LT(after, before + 16u * 1024 * 1024);
+  }
 }
 
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(Reuse);  // a build without GL and Vulkan

@@ -151,10 +151,6 @@ std::uint64_t fullAllocationBytes(const Camera& camera, const PlanInputs& inputs
   for (const auto& r : gen::kResources) {
     if (r.kind == gen::ResourceKind::Input) continue;
     if (r.kind == gen::ResourceKind::Output && inputs.userOutput) continue;
-    if (r.whenVariant >= 0) {
-      const std::string_view v = gen::kVariants[static_cast<std::size_t>(r.whenVariant)].name;
-      if (v == "TWO_LAYER" && !inputs.secondLayer) continue;
-    }
     const Extent base = r.inputExtent ? input : ao;
     total += imageBytes(r.format, base, r.fullMipChain ? fullChainLevels(base) : 1);
   }

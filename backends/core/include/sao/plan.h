@@ -60,8 +60,9 @@ struct Plan {
 
 Status plan(const Settings& settings, const Camera& camera, const PlanInputs& inputs, Plan& out);
 
-// Bytes a naive implementation would allocate: every image, a full csz MIP chain, both layers'
-// chains only if asked, no dropped passes. For comparison in reports.
+// Bytes an implementation without a plan would allocate up front: every image the effect declares
+// (the second layer's chain and the blur intermediate included, whatever the inputs and settings),
+// each csz chain down to 1x1; only a user-supplied output is not counted. For comparison in reports.
 std::uint64_t fullAllocationBytes(const Camera& camera, const PlanInputs& inputs);
 
 std::uint32_t bytesPerTexel(gen::Format format);
