@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <numeric>
 
@@ -197,6 +198,52 @@ TEST(Spiral, TurnsAreCoprimeAndMatchKnownGoodValues) {
   EXPECT_EQ(sao::spiralTurns(1), 1);
   // The lattice criterion lands on the values G3D's table uses for these counts (design notes).
   EXPECT_EQ(sao::spiralTurns(9), 2);
+}
+
+// The matrix alone cannot tell [-1,1] from [0,1]: a standard GL matrix read as [0,1] is a valid
+// projection whose near plane is 2fn/(f+n) (2n with an infinite far plane); a reversed one keeps
+// its near plane and moves its far plane. expectedNear / expectedFar catch the mix-up.
+TEST(Camera, ExpectedPlanesCatchAClipRangeThatContradictsTheMatrix) {
+  for (double far : {kFar, double(INFINITY)}) {
+    auto gl = sao::perspectiveCamera(kFovy, 640, 480, kNear, far, sao::ClipDepth::NegativeOneToOne, false);
+    sao::DepthModel m;
+    auto wrong = gl;
+    wrong.clipDepth = sao::ClipDepth::ZeroToOne;
+    ASSERT_TRUE(sao::analyze(wrong, m).ok()) << "without expectedNear the mix-up is undetectable";
+    const double misread = std::isinf(far) ? 2 * kNear : 2 * far * kNear / (far + kNear);
+    EXPECT_NEAR(m.nearDistance, misread, 1e-12);
+    wrong.expectedNear = kNear;
+    const sao::Status st = sao::analyze(wrong, m);
+    EXPECT_EQ(st.code, sao::StatusCode::InvalidCamera);
+    char expectedText[64];
+    std::snprintf(expectedText, sizeof expectedText, "has its near plane at %g,", misread);
+    EXPECT_NE(st.message.find(expectedText), std::string::npos) << st.message;
+    EXPECT_NE(st.message.find("check clipDepth"), std::string::npos) << st.message;
+    gl.expectedNear = kNear;
+    gl.expectedFar = far;
+    EXPECT_TRUE(sao::analyze(gl, m).ok()) << "the right convention passes";
+    gl.expectedNear = kNear * (1 + 1e-5);  // a matrix built in float still passes
+    EXPECT_TRUE(sao::analyze(gl, m).ok());
+    gl.expectedNear = -1;
+    EXPECT_NE(sao::analyze(gl, m).message.find("expectedNear must be >= 0"), std::string::npos);
+  }
+  // Reversed-Z, finite far, GL [-1,1] read as [0,1]: the near plane survives the misreading, the
+  // far plane moves to 2fn/(f+n) (ndc 0 is halfway in 1/z); only expectedFar tells.
+  auto reversed = sao::perspectiveCamera(kFovy, 640, 480, kNear, kFar, sao::ClipDepth::NegativeOneToOne, true);
+  reversed.clipDepth = sao::ClipDepth::ZeroToOne;
+  reversed.expectedNear = kNear;
+  sao::DepthModel m;
+  ASSERT_TRUE(sao::analyze(reversed, m).ok()) << sao::analyze(reversed, m).message;
+  EXPECT_NEAR(m.farDistance, 2 * kFar * kNear / (kFar + kNear), 1e-9);
+  reversed.expectedFar = kFar;
+  EXPECT_NE(sao::analyze(reversed, m).message.find("has its far plane at"), std::string::npos);
+
+  auto ortho = sao::orthographicCamera(2.0, 640, 480, kNear, kFar, sao::ClipDepth::ZeroToOne, false);
+  ortho.expectedNear = kNear;
+  ortho.expectedFar = kFar;
+  EXPECT_TRUE(sao::analyze(ortho, m).ok());
+  ortho.clipDepth = sao::ClipDepth::NegativeOneToOne;
+  EXPECT_EQ(sao::analyze(ortho, m).code, sao::StatusCode::InvalidCamera);
 }
 
 TEST(Camera, RejectsMatricesThatContradictTheirConvention) {

@@ -22,7 +22,28 @@ void depthMapping(ClipDepth clip, double& scale, double& offset) {
 
 }  // namespace
 
+// Declared near/far planes that the matrix, read with the declared clip range, does not reproduce.
+// 1e-3 relative: a matrix built in float still passes, a [-1,1] / [0,1] mix-up (about 2x) does not.
+static Status checkExpected(const Camera& cam, const char* what, const char* plane, double expected, double actual) {
+  if (expected == 0) return Status::success();
+  if (std::isnan(expected) || expected < 0)
+    return bad(std::string("expected") + what + " must be >= 0 (0: not checked)");
+  if (expected == actual || std::fabs(actual - expected) <= 1e-3 * expected) return Status::success();
+  char text[200];
+  std::snprintf(text, sizeof text, "the projection read with clipDepth = %s has its %s plane at %g, not at expected%s = %g",
+                cam.clipDepth == ClipDepth::ZeroToOne ? "[0,1]" : "[-1,1]", plane, actual, what, expected);
+  return bad(std::string(text) + ": check clipDepth");
+}
+
+static Status analyzeMatrix(const Camera& cam, DepthModel& m);
+
 Status analyze(const Camera& cam, DepthModel& m) {
+  if (Status st = analyzeMatrix(cam, m); !st.ok()) return st;
+  if (Status st = checkExpected(cam, "Near", "near", cam.expectedNear, m.nearDistance); !st.ok()) return st;
+  return checkExpected(cam, "Far", "far", cam.expectedFar, m.farDistance);
+}
+
+static Status analyzeMatrix(const Camera& cam, DepthModel& m) {
   for (double v : cam.projection)
     if (!std::isfinite(v)) return bad("projection matrix has a non-finite element");
   if (cam.width == 0 || cam.height == 0) return bad("viewport size is " + std::to_string(cam.width) + "x" +

@@ -29,6 +29,13 @@ struct Camera {
   std::uint32_t width = 0;         // visible viewport, pixels
   std::uint32_t height = 0;
   std::uint32_t guardBand = 0;     // extra pixels rendered on every side of the viewport
+  // Optional: the near and far distances (view units; far may be +inf) the matrix was built with.
+  // The matrix alone cannot tell GL's [-1,1] clip range from [0,1] (a standard GL matrix is also a
+  // valid [0,1] projection whose near plane lies at 2fn/(f+n); a reversed one keeps its near plane
+  // and moves its far plane), so a wrong clipDepth would silently shift every z. When > 0,
+  // analyze() rejects a camera whose matrix, read with the declared conventions, disagrees.
+  double expectedNear = 0;
+  double expectedFar = 0;
 };
 
 // What the projection says about itself, derived in double precision.
@@ -43,13 +50,15 @@ struct DepthModel {
 
 // Checks the camera and derives its depth model. Rejects matrices that are not a perspective or
 // orthographic projection of the declared kind, a declared reversed-Z or infinite far plane that
-// the matrix contradicts, near <= 0 for perspective, non-finite entries and bad sizes.
+// the matrix contradicts, near/far planes other than expectedNear/expectedFar (when set: a wrong
+// clipDepth),
+// near <= 0 for perspective, non-finite entries and bad sizes.
 Status analyze(const Camera& camera, DepthModel& out);
 
 // Camera-space z of a stored depth value, in double (the reference the shaders approximate).
 double linearZ(const DepthModel& model, ProjectionKind kind, double depth);
 
-// Builders for tests and samples: GLM-style matrices for each convention.
+// Builders for tests and samples: GLM-style matrices for each convention (expectedNear left 0).
 Camera perspectiveCamera(double fovyRadians, std::uint32_t width, std::uint32_t height, double nearDistance,
                          double farDistance /* inf for infinite */, ClipDepth clip, bool reversedZ);
 Camera orthographicCamera(double halfHeight, std::uint32_t width, std::uint32_t height, double nearDistance,
