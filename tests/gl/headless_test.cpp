@@ -3,6 +3,7 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include <cstdlib>
 #include <cstring>
 
 #include "gl_support.h"
@@ -24,6 +25,11 @@ TEST_F(Headless, IsACore43DebugContext) {
   EXPECT_TRUE(profile & GL_CONTEXT_CORE_PROFILE_BIT);
   EXPECT_TRUE(glIsEnabled(GL_DEBUG_OUTPUT));
   EXPECT_NE(c.platform(), gl::EglPlatform::Auto);
+  // SAO_EGL_PLATFORM forces the platform: nothing else may be tried.
+  if (const char* env = std::getenv("SAO_EGL_PLATFORM")) {
+    if (std::strcmp(env, "device") == 0) EXPECT_EQ(c.platform(), gl::EglPlatform::Device) << c.description();
+    if (std::strcmp(env, "surfaceless") == 0) EXPECT_EQ(c.platform(), gl::EglPlatform::Surfaceless) << c.description();
+  }
   std::printf("%s\n", c.description().c_str());
 }
 
@@ -57,10 +63,17 @@ TEST_F(Headless, GetProcAddressLoadsTheEffect) {
 }
 
 // The fallback path: an EGL device display (EGL_EXT_platform_device), as on an NVIDIA machine
-// without a display. Mesa offers a software device too, so the same code is exercised here.
+// without a display. Mesa offers a software device too (EGL_MESA_device_software), so the same
+// code is exercised here. SAO_REQUIRE_EGL_DEVICE=1 (the gl.egl_device.* ctests, where the
+// device is known to work) turns a missing device into a failure instead of a skip.
 TEST(HeadlessDevice, EglDevicePlatform) {
+  const char* require = std::getenv("SAO_REQUIRE_EGL_DEVICE");
+  const bool required = require && std::strcmp(require, "1") == 0;
   const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  if (!client || !std::strstr(client, "EGL_EXT_platform_device")) GTEST_SKIP() << "no EGL_EXT_platform_device";
+  if (!client || !std::strstr(client, "EGL_EXT_platform_device")) {
+    if (required) FAIL() << "SAO_REQUIRE_EGL_DEVICE=1 but EGL has no EGL_EXT_platform_device";
+    GTEST_SKIP() << "no EGL_EXT_platform_device";
+  }
   gl::HeadlessContext& main = context();  // made current again at the end
   std::unique_ptr<gl::HeadlessContext> c;
   gl::HeadlessOptions o;
@@ -68,6 +81,7 @@ TEST(HeadlessDevice, EglDevicePlatform) {
   const Status st = gl::HeadlessContext::create(c, o);
   if (!st) {
     ASSERT_TRUE(main.makeCurrent().ok());
+    if (required) FAIL() << "SAO_REQUIRE_EGL_DEVICE=1 but no EGL device gives a GL 4.3 core context: " << st.message;
     GTEST_SKIP() << "EGL devices present but none gives a GL 4.3 core context: " << st.message;
   }
   EXPECT_EQ(c->platform(), gl::EglPlatform::Device);
