@@ -407,17 +407,24 @@ TEST_F(Timing, ReportsEveryPlannedPassAndTheMethod) {
   EXPECT_EQ(e->timings().method, TimingMethod::None);
   EXPECT_TRUE(e->timings().passes.empty());
   const FloatImage untimed = readTexture(e->aoTexture(), 1);
+  // llvmpipe's GL_TIME_ELAPSED does not see compute work (it reports ~1 ns): the effect must
+  // notice and time by glFinish + clock. Elsewhere either method may be reported.
+  const std::string renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const bool llvmpipe = renderer.find("llvmpipe") != std::string::npos;
 
   for (int frame = 0; frame < 3; ++frame) {
     ASSERT_TRUE(e->render(f.camera, Settings{}, in, {true}).ok());
     const Timings& t = e->timings();
-    EXPECT_TRUE(t.method == TimingMethod::GpuTimestamps || t.method == TimingMethod::FinishAndClock);
+    if (llvmpipe) EXPECT_EQ(t.method, TimingMethod::FinishAndClock) << renderer;
+    else EXPECT_TRUE(t.method == TimingMethod::GpuTimestamps || t.method == TimingMethod::FinishAndClock);
     ASSERT_EQ(t.passes.size(), e->plan().passes.size());
     for (std::size_t i = 0; i < t.passes.size(); ++i) {
       EXPECT_EQ(t.passes[i].pass, gen::pass(e->plan().passes[i].pass).name);
-      EXPECT_GT(t.passes[i].milliseconds, 0.0) << t.passes[i].pass;
+      // Either method: a real duration (timer-query results are at least the 100 ns plausibility floor).
+      EXPECT_GT(t.passes[i].milliseconds, 0.0) << t.passes[i].pass << " by " << toString(t.method);
+      if (t.method == TimingMethod::GpuTimestamps) EXPECT_GE(t.passes[i].milliseconds, 1e-4) << t.passes[i].pass;
     }
-    std::printf("frame %d, method %s:", frame, toString(t.method));
+    std::printf("frame %d, %s, method %s:", frame, renderer.c_str(), toString(t.method));
     for (const auto& p : t.passes) std::printf(" %s %.3f ms", p.pass.c_str(), p.milliseconds);
     std::printf("\n");
   }
