@@ -4,26 +4,26 @@
 #include <cmath>
 #include <numbers>
 
+#include "sao/raytrace/analytic.h"
 #include "sao/raytrace/raytrace.h"
 
 namespace {
 
 using namespace sao;
 
-// A sphere of radius R whose centre is at distance D from a point on a plane, fully above the
-// horizon, occludes cos(theta) (R/D)^2 of the cosine-weighted hemisphere.
+// The analytic sphere case (raytrace::traceAnalyticSphere): cos(theta) (R/D)^2 of the
+// cosine-weighted hemisphere. sao-bench runs the same check every run (reference_check.csv).
 TEST(Reference, MatchesTheAnalyticSphere) {
-  const double R = 1.0, D = 3.0;
-  for (double theta : {0.0, std::numbers::pi / 4, std::numbers::pi / 3}) {
-    scenes::MeshBuilder b;
-    b.sphere({D * std::sin(theta), D * std::cos(theta), 0.0}, R, 96, 192);
-    std::unique_ptr<raytrace::RayScene> scene;
-    ASSERT_TRUE(raytrace::RayScene::create(b.build(), scene).ok());
-    const double visibility = raytrace::visibilityAt(*scene, {0, 0, 0}, {0, 1, 0}, 1e6, 40000, 7, 0.0);
-    const double expected = 1.0 - std::cos(theta) * (R / D) * (R / D);
-    EXPECT_NEAR(visibility, expected, 0.01) << "theta " << theta;
-    std::printf("theta %.3f: reference %.4f analytic %.4f\n", theta, visibility, expected);
+  for (double theta : {0.0, 45.0, 60.0}) {
+    raytrace::SphereCheck c;
+    ASSERT_TRUE(raytrace::traceAnalyticSphere({theta, 1.0, 3.0}, 40000, 7, c).ok());
+    EXPECT_NEAR(c.analytic, std::cos(theta * std::numbers::pi / 180) / 9.0, 1e-12);
+    EXPECT_NEAR(c.traced, c.analytic, 0.01) << "theta " << theta;
+    std::printf("theta %.0f: reference %.4f analytic %.4f\n", theta, c.traced, c.analytic);
   }
+  raytrace::SphereCheck c;
+  EXPECT_EQ(raytrace::traceAnalyticSphere({80.0, 1.0, 3.0}, 100, 7, c).code, StatusCode::InvalidInput)
+      << "partly below the horizon: the formula does not hold";
 }
 
 TEST(Reference, RadiusLimitsTheOcclusion) {
