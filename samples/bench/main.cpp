@@ -16,6 +16,7 @@
 
 #include "measure.h"
 #include "precision_report.h"
+#include "reference_check.h"
 #include "report.h"
 #include "sao/prepass/precision.h"
 #include "sao/prepass/prepass.h"
@@ -33,6 +34,7 @@ Measures every preset on every scene and backend (median per-pass time of --runs
 error against two ray-traced references: (a) near-field AO, (b) the AlchemyAO obscurance integral),
 then the sweeps: samples, MIP and blur on/off, radius (paper Fig. 5: SAO with and without the z
 hierarchy and an AlchemyAO-style baseline), resolution (paper Table 3) and the two-layer variant.
+Every run first checks reference (a) against the analytic sphere case (reference_check.csv).
 Writes results.csv, results.json and SVG plots.
   --out DIR        output folder (default out/bench)
   --backends LIST  comma-separated: cpu,gl,vulkan (default: gl,vulkan,cpu, those that start)
@@ -256,6 +258,20 @@ int main(int argc, char** argv) {
   fs::create_directories(o.out, ec);
   if (ec) fail("cannot create '" + o.out + "': " + ec.message());
 
+  // Reference (a) against the analytic sphere first: every figure below leans on it.
+  std::vector<raytrace::SphereCheck> checks;
+  if (Status s = bench::checkReference(checks); !s) fail("reference check: " + s.message);
+  bench::writeReferenceCheck((fs::path(o.out) / "reference_check.csv").string(), checks);
+  double worst = 0;
+  std::string angles;
+  for (const auto& c : checks) {
+    worst = std::max(worst, c.absError());
+    angles += (angles.empty() ? "" : "/") + std::to_string(int(c.sphere.thetaDegrees));
+  }
+  std::printf("reference check: analytic sphere (R %g, D %g) at %s deg, max |traced - analytic| %.4f (%s %g)\n",
+              checks[0].sphere.radius, checks[0].sphere.distance, angles.c_str(), worst,
+              worst <= bench::kReferenceTolerance ? "within" : "BEYOND", bench::kReferenceTolerance);
+
   std::vector<std::unique_ptr<samples::BackendRunner>> backends;
   std::stringstream list(o.backends);
   std::string name, machine;
@@ -399,7 +415,7 @@ int main(int argc, char** argv) {
   bench::writeCsv((fs::path(o.out) / "results.csv").string(), rows);
   bench::writeJson((fs::path(o.out) / "results.json").string(), rows, machine, legend);
   const auto charts = bench::writeCharts(o.out, rows, mainScene, std::string(first.name()));
-  std::string files = "results.csv,results.json";
+  std::string files = "reference_check.csv,results.csv,results.json";
   for (const auto& c : charts) files += "," + c;
   if (!precision.empty()) {
     bench::writePrecision(o.out, precision);

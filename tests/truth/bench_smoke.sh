@@ -2,7 +2,8 @@
 # The sao-bench smoke test: a --quick run on the cpu backend writes every output, one row per
 # measurement; the preset and two_layer rows carry the errors against both references (ao_* and
 # obscurance_*); the radius sweep has its three curves (with the variants they claim); --sections
-# runs one part only and rejects an unknown one.
+# runs one part only and rejects an unknown one. Every run writes reference_check.csv: reference (a)
+# against the analytic sphere (cos(theta) (R/D)^2 at 0, 45 and 60 degrees), each within 0.01.
 # usage: bench_smoke.sh SAO_BENCH OUT_DIR
 set -eu
 bench=$1
@@ -14,6 +15,22 @@ die() { echo "bench smoke: $*" >&2; exit 1; }
 for f in results.csv results.json pareto.svg radius.svg resolution.svg precision.csv precision.txt; do
   test -s "$out/all/$f" || die "missing $f"
 done
+# reference_check.csv: the header, the three angles, analytic = cos(theta) (R/D)^2, abs_error =
+# |traced - analytic| and every abs_error <= 0.01.
+refcheck() {
+  f=$1/reference_check.csv
+  test -s "$f" || die "missing $f"
+  [ "$(head -1 "$f")" = "theta_deg,R,D,analytic,traced,abs_error" ] || die "$f: unexpected header $(head -1 "$f")"
+  [ "$(awk -F, 'NR > 1 {print $1}' "$f" | tr '\n' ' ')" = "0 45 60 " ] || die "$f: expected theta 0, 45, 60"
+  awk -F, 'function abs(x) { return x < 0 ? -x : x }
+    NR > 1 { a = cos($1 * atan2(0, -1) / 180) * ($2 / $3) ^ 2; n++
+             if (abs($4 - a) > 1e-5 || abs(abs($5 - $4) - $6) > 1e-5) bad = 1 }
+    END { exit bad || n != 3 }' "$f" || die "$f: analytic or abs_error column is wrong: $(cat "$f")"
+  awk -F, 'NR > 1 && !($6 <= 0.01) { bad = 1 } END { exit bad }' "$f" ||
+    die "$f: reference (a) is more than 0.01 from the analytic sphere: $(cat "$f")"
+}
+refcheck "$out/all"
+
 csv=$out/all/results.csv
 col() { head -1 "$csv" | tr ',' '\n' | grep -nx "$1" | cut -d: -f1; }
 for c in ao_rmse_raw ao_rmse_fitted obscurance_rmse_raw obscurance_bias_raw obscurance_fitted_scale obscurance_rmse_fitted; do
@@ -61,6 +78,7 @@ grep -q '<svg' "$out/all/pareto.svg" || die "pareto.svg is not an SVG"
 [ "$(awk -F, 'NR > 1 && $1 != "two_layer"' "$out/one/results.csv" | wc -l)" -eq 0 ] || die "--sections two_layer ran other sections"
 [ "$(awk -F, '$1 == "two_layer"' "$out/one/results.csv" | wc -l)" -eq 2 ] || die "--sections two_layer: expected 2 rows"
 test ! -e "$out/one/radius.svg" || die "--sections two_layer wrote radius.svg"
+refcheck "$out/one"
 if "$bench" --quick --sections presets,nope --out "$out/bad" >/dev/null 2>"$out.stderr"; then die "--sections nope was accepted"; fi
 grep -q "unknown section 'nope'" "$out.stderr" || die "--sections nope: unclear error: $(cat "$out.stderr")"
 echo "bench smoke: ok"
