@@ -1,7 +1,10 @@
-// The ray-traced reference against the analytic case, and primary rays against the camera.
+// The ray-traced reference against the analytic case, its determinism, and primary rays against
+// the camera.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 #include "sao/raytrace/analytic.h"
@@ -32,6 +35,41 @@ TEST(Reference, RadiusLimitsTheOcclusion) {
   std::unique_ptr<raytrace::RayScene> scene;
   ASSERT_TRUE(raytrace::RayScene::create(b.build(), scene).ok());
   EXPECT_EQ(raytrace::visibilityAt(*scene, {0, 0, 0}, {0, 1, 0}, 1.5, 2000, 1, 0.0), 1.0) << "sphere beyond r";
+}
+
+// The near-field AO image is a pure function of (scene, view, options): the same seed gives the
+// same bits, and so does any thread count (rows run in any order, each pixel has its own seed).
+TEST(Reference, IsDeterministicAndIndependentOfThreads) {
+  scenes::MeshBuilder b;
+  b.box({-20, -0.1, -20}, {20, 0, 20});  // floor, top at y = 0
+  b.box({-0.1, 0, -20}, {0, 20, 20});    // wall x = 0 facing +x: a crease along z
+  scenes::Scene s{"crease", b.build(), {{"corner", {2.0, 1.5, 1.0}, {0, 0, 0}, {0, 1, 0}, 1.0, 0.1}}};
+  std::unique_ptr<raytrace::RayScene> scene;
+  ASSERT_TRUE(raytrace::RayScene::create(s.mesh, scene).ok());
+  const Camera cam = scenes::makeCamera(s.views[0], 48, 32, INFINITY, ClipDepth::ZeroToOne, true, 3);
+  raytrace::Primary primary;
+  ASSERT_TRUE(raytrace::castPrimary(*scene, s.views[0], cam, DepthFormat::D32F, primary).ok());
+  raytrace::ReferenceOptions o;
+  o.rays = 48;
+  auto image = [&](unsigned threads, std::uint64_t seed) {
+    o.threads = threads;
+    o.seed = seed;
+    FloatImage ao;
+    EXPECT_TRUE(raytrace::referenceAmbientOcclusion(*scene, cam, primary, s.views[0], o, ao).ok());
+    return ao;
+  };
+  const FloatImage one = image(1, 1);
+  ASSERT_EQ(one.extent, (Extent{48, 32}));
+  float darkest = 1;
+  for (float v : one.data) darkest = std::min(darkest, v);
+  EXPECT_LT(darkest, 0.8f) << "the corner is occluded";
+  auto same = [&](const FloatImage& a) {
+    return a.data.size() == one.data.size() &&
+           std::memcmp(a.data.data(), one.data.data(), one.data.size() * sizeof(float)) == 0;
+  };
+  EXPECT_TRUE(same(image(1, 1))) << "same seed, one thread";
+  for (unsigned threads : {2u, 5u}) EXPECT_TRUE(same(image(threads, 1))) << threads << " threads";
+  EXPECT_FALSE(same(image(2, 2))) << "the seed matters";
 }
 
 TEST(Primary, DepthOfAFacingWallRoundTripsThroughTheCamera) {
