@@ -29,11 +29,13 @@ def main(folder):
     sec = lambda name: [r for r in rows if r["section"] == name]
 
     print("### Presets: time and error (raw RMSE vs (a) near-field AO and (b) AlchemyAO obscurance)\n")
+    print("\"off > 0.1 (b)\": the fraction of pixels with geometry whose raw output is more than 0.1 from (b).\n")
     print(table(["scene", "backend", "preset", "total ms", "ao_sample ms", "RMSE (a)", "bias (a)", "SSIM (a)",
-                 "RMSE (b)", "bias (b)", "fitted RMSE (b)", "scale (b)"],
+                 "RMSE (b)", "bias (b)", "off > 0.1 (b)", "fitted RMSE (b)", "scale (b)"],
                 [[r["scene"], r["backend"], r["preset"], f(r["total_ms"]), f(r["ao_sample_ms"]), g(r["ao_rmse_raw"]),
                   g(r["ao_bias_raw"], 2), g(r["ao_ssim_raw"]), g(r["obscurance_rmse_raw"]),
-                  g(r["obscurance_bias_raw"], 2), g(r["obscurance_rmse_fitted"]), g(r["obscurance_fitted_scale"])]
+                  g(r["obscurance_bias_raw"], 2), g(r["obscurance_over_0_1_raw"], 2), g(r["obscurance_rmse_fitted"]),
+                  g(r["obscurance_fitted_scale"])]
                  for r in sec("presets")]))
 
     for name, title in (("samples", "Sample count"), ("mip_blur", "z hierarchy and blur on/off")):
