@@ -54,7 +54,7 @@ AO), summary.txt (per-pass times, the plan and its memory) and, with --json, sum
   --save-depth FILE.exr write the depth input with its camera (a file --depth reads back)
   --dump-passes DIR     every intermediate image as EXR
   --reference           also the ray-traced reference (near-field AO within the radius) and the
-                        error metrics; --reference-rays N (default 256)
+                        error metrics, for a scene (not --depth); --reference-rays N (default 256)
   --json                write summary.json too
   --help                this text
 Exit status: 0 on success, 1 when the run fails, 2 for bad options; errors are one line on stderr.
@@ -64,8 +64,9 @@ struct Options {
   std::string out = "out/render", backend = "auto", scene = std::string(scenes::kDefaultScene), depthPath, dumpDir,
               saveDepth, depthSource = "auto";
   std::uint32_t view = 0, width = 1280, height = 720, guard = 0, referenceRays = 256;
-  std::string preset, depthFormat = "D32F", clip = "zero-one", far = "inf";
-  double fovyDegrees = 60, nearDistance = 0.1;
+  std::string preset, clip = "zero-one";
+  DepthFormat depthFormat = DepthFormat::D32F;
+  double fovyDegrees = 60, nearDistance = 0.1, far = INFINITY;
   std::optional<glm::dvec3> eye, target;
   bool reversedZ = false, reversedGiven = false, cameraFlags = false, reference = false, json = false;
   std::vector<std::string> sets;
@@ -108,6 +109,13 @@ glm::dvec3 parsePoint(const std::string& flag, const std::string& v) {
   return p;
 }
 
+DepthFormat parseDepthFormat(const std::string& f) {
+  if (f == "D16") return DepthFormat::D16;
+  if (f == "D24") return DepthFormat::D24;
+  if (f == "D32F") return DepthFormat::D32F;
+  usageError("--depth-format expects D16, D24 or D32F, got '" + f + "'");
+}
+
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
@@ -136,14 +144,21 @@ Options parse(int argc, char** argv) {
     } else if (a == "--guard") o.guard = parseCount(a, value(), 0, 4096);
     else if (a == "--preset") o.preset = value();
     else if (a == "--set") o.sets.push_back(value());
-    else if (a == "--depth-format") o.depthFormat = value();
+    else if (a == "--depth-format") o.depthFormat = parseDepthFormat(value());
     else if (a == "--depth") o.depthPath = value();
     else if (a == "--eye") o.eye = parsePoint(a, value());
     else if (a == "--target") o.target = parsePoint(a, value());
     else if (a == "--fovy") o.fovyDegrees = parseNumber(a, value()), o.cameraFlags = true;
     else if (a == "--near") o.nearDistance = parseNumber(a, value()), o.cameraFlags = true;
-    else if (a == "--far") o.far = value(), o.cameraFlags = true;
-    else if (a == "--clip") o.clip = value(), o.cameraFlags = true;
+    else if (a == "--far") {
+      const std::string v = value();
+      o.far = v == "inf" ? INFINITY : parseNumber(a, v);
+      o.cameraFlags = true;
+    } else if (a == "--clip") {
+      o.clip = value();
+      o.cameraFlags = true;
+      if (o.clip != "gl" && o.clip != "zero-one") usageError("--clip expects gl or zero-one, got '" + o.clip + "'");
+    }
     else if (a == "--reversed-z") o.reversedZ = o.reversedGiven = o.cameraFlags = true;
     else if (a == "--dump-passes") o.dumpDir = value();
     else if (a == "--save-depth") o.saveDepth = value();
@@ -153,14 +168,9 @@ Options parse(int argc, char** argv) {
     else usageError("unknown option '" + a + "'");
   }
   if (o.eye.has_value() != o.target.has_value()) usageError("--eye and --target go together");
+  // Refused here, not after the AO was written: a depth file has no geometry to trace.
+  if (o.reference && !o.depthPath.empty()) usageError("--reference needs a scene, not a --depth file (no geometry to trace)");
   return o;
-}
-
-DepthFormat parseDepthFormat(const std::string& f) {
-  if (f == "D16") return DepthFormat::D16;
-  if (f == "D24") return DepthFormat::D24;
-  if (f == "D32F") return DepthFormat::D32F;
-  usageError("--depth-format expects D16, D24 or D32F, got '" + f + "'");
 }
 
 Settings buildSettings(const Options& o) {
@@ -176,11 +186,9 @@ Settings buildSettings(const Options& o) {
 }
 
 Camera cameraFromFlags(const Options& o, Extent inputExtent) {
-  if (o.clip != "gl" && o.clip != "zero-one") usageError("--clip expects gl or zero-one, got '" + o.clip + "'");
-  const double far = o.far == "inf" ? INFINITY : parseNumber("--far", o.far);
   if (!(o.fovyDegrees > 0 && o.fovyDegrees < 180)) usageError("--fovy must be in (0, 180) degrees");
   Camera c = perspectiveCamera(o.fovyDegrees * std::numbers::pi / 180.0, inputExtent.width - 2 * o.guard,
-                               inputExtent.height - 2 * o.guard, o.nearDistance, far,
+                               inputExtent.height - 2 * o.guard, o.nearDistance, o.far,
                                o.clip == "gl" ? ClipDepth::NegativeOneToOne : ClipDepth::ZeroToOne, o.reversedZ);
   c.guardBand = o.guard;
   return c;
@@ -198,7 +206,7 @@ Status makeSceneDepth(const Options& o, const samples::BackendRunner& backend, c
     Status started = prepass::createPrepass(api, prepass);
     if (started) {
       prepass::PrepassOptions po;
-      po.format = parseDepthFormat(o.depthFormat);
+      po.format = o.depthFormat;
       prepass::PrepassResult r;
       if (Status s = prepass->render(scene.mesh, view, camera, po, r); !s) return s;
       primary.depth = std::move(r.depth);
@@ -210,7 +218,7 @@ Status makeSceneDepth(const Options& o, const samples::BackendRunner& backend, c
     if (o.depthSource == "raster") return started;
     whyNot = " (no rasterising prepass: " + started.message + ")";
   }
-  if (Status s = raytrace::castPrimary(rays, view, camera, parseDepthFormat(o.depthFormat), primary); !s) return s;
+  if (Status s = raytrace::castPrimary(rays, view, camera, o.depthFormat, primary); !s) return s;
   how = "by ray casting" + whyNot;
   return Status::success();
 }
@@ -223,11 +231,10 @@ int main(int argc, char** argv) {
   if (Status s = validate(settings); !s) usageError(s.message);
 
   std::unique_ptr<samples::BackendRunner> backend;
-  if (Status s = samples::createBackend(o.backend, backend); !s) runError(s);
-
-  std::error_code ec;
-  fs::create_directories(o.out, ec);
-  if (ec) runError(Status::error(StatusCode::IoError, "cannot create output folder '" + o.out + "': " + ec.message()));
+  if (Status s = samples::createBackend(o.backend, backend); !s) {
+    if (s.code == StatusCode::InvalidInput) usageError(s.message);  // an unknown name is a bad option
+    runError(s);
+  }
 
   samples::Summary summary;
   summary.backend = backend->description();
@@ -252,7 +259,8 @@ int main(int argc, char** argv) {
   } else {
     if (Status s = scenes::loadScene(o.scene, scene); !s) runError(s);
     if (o.view >= scene.views.size())
-      usageError("scene '" + o.scene + "' has views 0.." + std::to_string(scene.views.size() - 1));
+      usageError("--view " + std::to_string(o.view) + " is out of range: scene '" + o.scene + "' has views 0.." +
+                 std::to_string(scene.views.size() - 1));
     if (o.eye) {
       const glm::dvec3 forward = *o.target - *o.eye;
       if (glm::length(glm::cross(forward, glm::dvec3(0, 1, 0))) <= 1e-9 * glm::length(forward))
@@ -279,6 +287,10 @@ int main(int argc, char** argv) {
                     toString(depth.format) + " reversed-Z [0,1] infinite far, depth " + how;
   }
   summary.prepareSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  // Only once the input is known good, so a refused run leaves no output folder behind.
+  std::error_code ec;
+  fs::create_directories(o.out, ec);
+  if (ec) runError(Status::error(StatusCode::IoError, "cannot create output folder '" + o.out + "': " + ec.message()));
   if (!o.saveDepth.empty())
     if (Status s = writeDepthExr(o.saveDepth, depth, camera); !s) runError(s);
 
@@ -305,7 +317,6 @@ int main(int argc, char** argv) {
     }
   }
   if (o.reference) {
-    if (!havePrimary) usageError("--reference needs a scene (the depth file has no geometry to trace)");
     raytrace::ReferenceOptions ro;
     ro.radius = settings.radius;
     ro.rays = o.referenceRays;
