@@ -2,7 +2,7 @@
 # Stage "fuzz": builds the libFuzzer targets (tests/fuzz) with clang, AddressSanitizer and
 # UndefinedBehaviorSanitizer into build-fuzz/ and runs each for a bounded time from the committed
 # seed corpus (tests/fuzz/corpus/<target>, tests/fuzz/regressions/<target>, plus the codegen
-# test sources for the parser). Prints executions per target. A crash, a sanitizer report, a
+# test sources for the parser). Prints executions per target (also to build-fuzz/fuzz_summary.txt). A crash, a sanitizer report, a
 # leak, a timeout (> 10 s on one input) or an out-of-memory fails the stage; the input is saved
 # under build-fuzz/artifacts/<target>/ - fix the bug and commit the input to
 # tests/fuzz/regressions/<target>/, where the ctest test fuzz.replay.<target> replays it.
@@ -81,6 +81,9 @@ for d in /dev/shm/sao_fuzz_* "${TMPDIR:-/tmp}"/sao_fuzz_*; do
   [ -d "$d" ] || continue
   kill -0 "${d##*_}" 2>/dev/null || rm -rf "$d"
 done
-echo "== fuzz summary (clang $("$cxx" -dumpversion), address + undefined, libFuzzer)"
-printf '%s\n' "${summary[@]}"
+# Kept in $build/fuzz_summary.txt too, for the figures in docs/ROBUSTNESS.md.
+{
+  echo "== fuzz summary (clang $("$cxx" -dumpversion), address + undefined, libFuzzer)"
+  printf '%s\n' "${summary[@]}"
+} | tee "$build/fuzz_summary.txt"
 exit $status

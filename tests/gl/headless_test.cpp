@@ -27,8 +27,12 @@ TEST_F(Headless, IsACore43DebugContext) {
   EXPECT_NE(c.platform(), gl::EglPlatform::Auto);
   // SAO_EGL_PLATFORM forces the platform: nothing else may be tried.
   if (const char* env = std::getenv("SAO_EGL_PLATFORM")) {
-    if (std::strcmp(env, "device") == 0) EXPECT_EQ(c.platform(), gl::EglPlatform::Device) << c.description();
-    if (std::strcmp(env, "surfaceless") == 0) EXPECT_EQ(c.platform(), gl::EglPlatform::Surfaceless) << c.description();
+    if (std::strcmp(env, "device") == 0) {
+      EXPECT_EQ(c.platform(), gl::EglPlatform::Device) << c.description();
+    }
+    if (std::strcmp(env, "surfaceless") == 0) {
+      EXPECT_EQ(c.platform(), gl::EglPlatform::Surfaceless) << c.description();
+    }
   }
   std::printf("%s\n", c.description().c_str());
 }
