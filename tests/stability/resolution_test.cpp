@@ -1,4 +1,5 @@
-// Resolutions from 1x1 to 8K, the largest-side limit, and repeated runs on one runner.
+// Resolutions from 1x1 to 8K, the largest-side limit, repeated runs on one runner, and which
+// backends the suite runs on.
 // 8K (7680x4320) runs on the float CPU reference only, at reduced work (8 taps, no blur), and
 // checks that the per-pixel rotation (eq. 8, an integer hash turned into 2^-32 turns) keeps full
 // precision out to the far corner: no banding, the same statistics as near the origin, and the
@@ -223,6 +224,41 @@ TEST(Resolution, EightKRotationKeepsFullPrecision) {
              100 * missNear, 100 * missCorner, 100 * missFloatHash, seconds));
 }
 
+// ---- The backends the suite runs on
+
+TEST(Backends, EveryBuiltBackendStartsUnlessExcluded) {
+  // A built backend that cannot start fails the suite (here and in every test that asks for it):
+  // otherwise a broken GL or Vulkan would pass on the CPU alone, and the GL = Vulkan check would
+  // never run. Only SAO_STABILITY_BACKENDS or SAO_STABILITY_ALLOW_MISSING_BACKENDS=1 skip it.
+  if (const char* only = std::getenv("SAO_STABILITY_BACKENDS")) {
+    // A misspelt name would exclude the backend it was meant to name.
+    std::string list = only;
+    for (std::size_t start = 0; start <= list.size();) {
+      const std::size_t end = std::min(list.find(',', start), list.size());
+      const std::string item = list.substr(start, end - start);
+      EXPECT_NE(std::find(kBackendNames.begin(), kBackendNames.end(), item), kBackendNames.end())
+          << "SAO_STABILITY_BACKENDS names an unknown backend '" << item << "' (expected cpu-double, cpu, gl, vulkan)";
+      start = end + 1;
+    }
+  }
+  std::string measured;
+  std::size_t started = 0;
+  for (std::string_view name : kBackendNames) {
+    std::string reason;
+    const BackendState st = backendState(name, &reason);  // a Failed backend has added its failure
+    started += st == BackendState::Started;
+    const char* what = st == BackendState::Started         ? "started"
+                       : st == BackendState::Excluded      ? "excluded"
+                       : st == BackendState::NotBuilt      ? "not built"
+                       : st == BackendState::FailedAllowed ? "failed to start, allowed"
+                                                           : "FAILED to start";
+    measured += fmt("%s%.*s: %s (%s)", measured.empty() ? "" : "; ", int(name.size()), name.data(), what, reason.c_str());
+  }
+  EXPECT_GT(started, 0u) << "no backend ran: every case would pass vacuously";
+  report("backends", "every built backend starts unless excluded (SAO_STABILITY_BACKENDS) or allowed to be missing",
+         measured);
+}
+
 // ---- Repeated runs on one runner (finding F5, fixed upstream in 6f366b2)
 
 TEST(Backends, RepeatedRunsReuseOneRunner) {
@@ -233,7 +269,7 @@ TEST(Backends, RepeatedRunsReuseOneRunner) {
   // that a crash is reported as a failure of this test instead of taking the suite down.
   if (const char* child = std::getenv("SAO_STABILITY_CHILD_BACKEND")) {
     std::unique_ptr<samples::BackendRunner> runner;
-    if (!samples::createBackend(child, runner).ok()) std::_Exit(0);
+    if (!samples::createBackend(child, runner).ok()) std::_Exit(4);  // the parent started it: this is a failure
     // The configuration that first showed the crash: a plane, GL standard depth, far 1e4.
     const Camera cam = camera(40, 30, 0.1, 1e4, ClipDepth::NegativeOneToOne, false, 2);
     DepthImage depth = renderGpuDepth(test::planeScene(2.0), cam, DepthFormat::D32F);
@@ -265,7 +301,11 @@ TEST(Backends, RepeatedRunsReuseOneRunner) {
     std::string outcome;
     if (WIFEXITED(status)) {
       const int rc = WEXITSTATUS(status);
-      outcome = rc == 0 ? "6 identical runs" : rc == 2 ? "a run failed" : rc == 3 ? "runs differ" : fmt("exit %d", rc);
+      outcome = rc == 0   ? "6 identical runs"
+                : rc == 2 ? "a run failed"
+                : rc == 3 ? "runs differ"
+                : rc == 4 ? "did not start in the child"
+                          : fmt("exit %d", rc);
       EXPECT_EQ(rc, 0) << name << ": " << outcome;
     } else {
       outcome = fmt("killed by signal %d", WIFSIGNALED(status) ? WTERMSIG(status) : -1);

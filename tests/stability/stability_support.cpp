@@ -15,6 +15,9 @@ namespace {
 struct Slot {
   std::unique_ptr<samples::BackendRunner> runner;
   bool tried = false;
+  BackendState state = BackendState::Started;
+  std::string reason;          // why it did not start (or its description when it did)
+  std::string lastFailedTest;  // a backend that failed to start fails each test that asks for it once
 };
 
 std::map<std::string, Slot, std::less<>>& slots() {
@@ -59,31 +62,66 @@ class Summary : public ::testing::Environment {
 };
 const bool kSummaryRegistered = (::testing::AddGlobalTestEnvironment(new Summary), true);
 
+bool allowMissingBackends() {
+  const char* v = std::getenv("SAO_STABILITY_ALLOW_MISSING_BACKENDS");
+  return v && std::string_view(v) == "1";
+}
+
 }  // namespace
 
 samples::BackendRunner* backend(std::string_view name) {
   Slot& slot = slots()[std::string(name)];
+  const std::string shown(name);
   if (!slot.tried) {
     slot.tried = true;
     // SAO_STABILITY_BACKENDS=cpu,gl restricts the suite to those backends (for diagnosis).
     if (const char* only = std::getenv("SAO_STABILITY_BACKENDS")) {
       const std::string list = std::string(",") + only + ",";
-      if (list.find("," + std::string(name) + ",") == std::string::npos) {
-        std::printf("[stability] backend '%.*s' skipped: not in SAO_STABILITY_BACKENDS\n", int(name.size()), name.data());
+      if (list.find("," + shown + ",") == std::string::npos) {
+        slot.state = BackendState::Excluded;
+        slot.reason = "not in SAO_STABILITY_BACKENDS";
+        std::printf("[stability] backend '%s' skipped: %s\n", shown.c_str(), slot.reason.c_str());
         return nullptr;
       }
+    }
+    // A backend this build left out (SAO_BUILD_GL / SAO_BUILD_VULKAN off) is not a failure.
+    if (!samples::isBackendBuiltIn(name)) {
+      slot.state = BackendState::NotBuilt;
+      slot.reason = "not built into this program";
+      std::printf("[stability] backend '%s' skipped: %s\n", shown.c_str(), slot.reason.c_str());
+      return nullptr;
     }
     const Status st = samples::createBackend(name, slot.runner);
     if (!st) {
       slot.runner.reset();
-      std::printf("[stability] backend '%.*s' skipped: %s (%s)\n", int(name.size()), name.data(),
-                  st.message.c_str(), toString(st.code));
+      slot.reason = st.message + " (" + toString(st.code) + ")";
+      slot.state = allowMissingBackends() ? BackendState::FailedAllowed : BackendState::Failed;
+      std::printf("[stability] backend '%s' failed to start: %s%s\n", shown.c_str(), slot.reason.c_str(),
+                  slot.state == BackendState::FailedAllowed ? "; skipped (SAO_STABILITY_ALLOW_MISSING_BACKENDS=1)" : "");
     } else {
-      std::printf("[stability] backend '%.*s': %s\n", int(name.size()), name.data(),
-                  slot.runner->description().c_str());
+      slot.state = BackendState::Started;
+      slot.reason = slot.runner->description();
+      std::printf("[stability] backend '%s': %s\n", shown.c_str(), slot.reason.c_str());
+    }
+  }
+  // Otherwise a broken GL or Vulkan would leave the suite passing on the CPU alone.
+  if (slot.state == BackendState::Failed) {
+    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    const std::string test = info ? std::string(info->test_suite_name()) + "." + info->name() : std::string();
+    if (test.empty() || test != slot.lastFailedTest) {
+      slot.lastFailedTest = test;
+      ADD_FAILURE() << "backend '" << shown << "' failed to start: " << slot.reason
+                    << ". Exclude it with SAO_STABILITY_BACKENDS or set SAO_STABILITY_ALLOW_MISSING_BACKENDS=1 to skip it.";
     }
   }
   return slot.runner.get();
+}
+
+BackendState backendState(std::string_view name, std::string* reason) {
+  backend(name);
+  const Slot& slot = slots().find(name)->second;
+  if (reason) *reason = slot.reason;
+  return slot.state;
 }
 
 const FloatImage* BackendRun::intermediate(std::string_view passName) const {

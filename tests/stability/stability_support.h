@@ -1,10 +1,10 @@
 // The numerical-stability suite's shared machinery: every case runs on every backend the samples'
-// runner knows ("cpu-double", "cpu", "gl", "vulkan"), skipping the ones this build or machine
-// cannot start, with the same checks everywhere (finite, in [0, 1], the AO extent, sky = 1) and a
-// GL-vs-Vulkan agreement check (<= 1/255) whenever both ran. Also: the depth a GPU writes,
-// modelled operation by operation in float (docs/STABILITY.md, "The GPU depth model"), scene
-// helpers built on the sao_test_scenes library, and the "[stability]" report lines that
-// docs/STABILITY.md quotes.
+// runner knows ("cpu-double", "cpu", "gl", "vulkan"), skipping the ones this build leaves out or
+// SAO_STABILITY_BACKENDS excludes (one that fails to start is a test failure), with the same
+// checks everywhere (finite, in [0, 1], the AO extent, sky = 1) and a GL-vs-Vulkan agreement
+// check (<= 1/255) whenever both ran. Also: the depth a GPU writes, modelled operation by
+// operation in float (docs/STABILITY.md, "The GPU depth model"), scene helpers built on the
+// sao_test_scenes library, and the "[stability]" report lines that docs/STABILITY.md quotes.
 #pragma once
 #include <gtest/gtest.h>
 
@@ -32,9 +32,16 @@ inline constexpr std::array<std::string_view, 4> kBackendNames = {"cpu-double", 
 // The one agreement bound between the GPU backends (design-notes §6: "aim at <= 1/255").
 inline constexpr double kGpuAgreement = 1.0 / 255.0;
 
-// A started runner for `name`, created once per process and kept; nullptr when createBackend
-// fails (the reason is printed once, as a logged skip).
+// A started runner for `name`, created once per process and kept, or nullptr. A backend excluded
+// by SAO_STABILITY_BACKENDS or not built into this program is a logged skip. One that is built
+// but fails to start fails every test that asks for it (once per test), unless
+// SAO_STABILITY_ALLOW_MISSING_BACKENDS=1, which turns that into a logged skip too.
 samples::BackendRunner* backend(std::string_view name);
+
+enum class BackendState { Started, Excluded, NotBuilt, FailedAllowed, Failed };
+// What backend(name) found (starting it if not tried yet); `reason` gets the runner's
+// description or why it did not start.
+BackendState backendState(std::string_view name, std::string* reason = nullptr);
 
 // ---- Running one case on every backend
 

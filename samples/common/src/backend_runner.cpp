@@ -34,4 +34,15 @@ Status createBackend(std::string_view name, std::unique_ptr<BackendRunner>& out)
                        "unknown backend '" + std::string(name) + "' (expected gl, vulkan, cpu, cpu-double or auto)");
 }
 
+bool isBackendBuiltIn(std::string_view name) {
+  if (name == "cpu" || name == "cpu-double") return true;
+#ifdef SAO_SAMPLES_HAVE_GL
+  if (name == "gl") return true;
+#endif
+#ifdef SAO_SAMPLES_HAVE_VULKAN
+  if (name == "vulkan") return true;
+#endif
+  return false;
+}
+
 }  // namespace sao::samples

@@ -40,4 +40,9 @@ class BackendRunner {
 // into this program give a clear error.
 Status createBackend(std::string_view name, std::unique_ptr<BackendRunner>& out);
 
+// Whether `name` is compiled into this program ("cpu" and "cpu-double" always are; "gl" and
+// "vulkan" only when their backend was built). Lets a caller tell "not built" from "failed to
+// start", which createBackend reports alike (DriverError).
+bool isBackendBuiltIn(std::string_view name);
+
 }  // namespace sao::samples
