@@ -212,45 +212,41 @@ const std::vector<double> kCentres = {1.0, 10.0, 100.0, 1000.0};
 TEST(DepthPrecision, NearFarGridRoundTripWithinDerivedBound) {
   const double nears[] = {1e-4, 1e-2, 1.0, 10.0};
   const double fars[] = {10.0, 1e4, kInf};
-  double worstRatio = 0;
-  std::string worstWhere;
-  std::size_t combos = 0, rejected = 0;
+  double worstRatio = 0, worstRatioWide = 0;
+  std::string worstWhere, worstWhereWide;
+  std::size_t combos = 0, wide = 0;
   for (double n : nears)
     for (double f : fars) {
       if (!(f > n)) continue;  // the rejection of far <= near is its own test
       for (const Convention& cv : kConventions)
         for (DepthFormat fm : kFormats) {
-          Camera cam = camera(64, 48, n, f, cv.clip, cv.reversed);
+          const Camera cam = camera(64, 48, n, f, cv.clip, cv.reversed);
           ++combos;
+          // Finite far/near >= 1e6 (near 1e-4 and 1e-2 with far 1e4) must run as a finite far
+          // plane: finding F1 (a 1e-6 pole tolerance rejected them) is fixed in camera.cpp.
+          const bool isWide = std::isfinite(f) && f / n >= 0.999e6;
+          wide += isWide;
           DepthModel model;
-          if (const Status st = analyze(cam, model); !st) {
-            // The camera analysis takes a far plane within a relative 1e-6 of the pole for an
-            // infinite one (camera.cpp, "allow rounding of a matrix built in float"), so a finite
-            // far/near ratio above ~1e6 is rejected with a clear error; declaring the far plane
-            // infinite is the documented way through (open finding F1 in docs/STABILITY.md).
-            EXPECT_GE(f / n, 0.999e6) << describe(cam) << ": rejected although far/near < 1e6: " << st.message;
-            EXPECT_EQ(st.code, StatusCode::InvalidCamera);
-            DepthImage probe;
-            probe.extent = {64, 48};
-            probe.format = fm;
-            probe.texels.assign(64 * 48, storeDepth(fm, 0.5f));
-            const std::string msg = expectRejected("far/near " + fmt("%g", f / n), Settings{}, cam, {&probe, nullptr, nullptr},
-                                                   StatusCode::InvalidCamera);
-            if (fm == DepthFormat::D16)
-              report(fmt("near %g, far %g (%s): finite far/near = %g", n, f, cv.name, f / n),
-                     "runs, or is rejected with a clear error",
-                     "rejected: '" + msg + "'; with infiniteFar = true it runs (round trip below)");
-            ++rejected;
-            cam.infiniteFar = true;
-            ASSERT_TRUE(analyze(cam, model).ok()) << describe(cam) << " with infiniteFar = true";
+          const Status st = analyze(cam, model);
+          ASSERT_TRUE(st.ok()) << describe(cam) << " " << toString(fm) << " rejected: " << st.message;
+          if (isWide) {
+            EXPECT_TRUE(std::isfinite(model.farDistance)) << describe(cam) << ": far plane taken as infinite";
+            EXPECT_NEAR(model.farDistance, f, 1e-6 * f) << describe(cam);
           }
           const auto rts = roundTrip(cam, fm, kCentres);
+          // near 1 m / far 10 m has no distance bin strictly inside its range.
+          const bool hasBin = std::any_of(kCentres.begin(), kCentres.end(), [&](double c) {
+            return 0.9 * c > model.nearDistance * (1 + 1e-6) && 1.1 * c < model.farDistance * (1 - 1e-6);
+          });
+          if (hasBin) {
+            EXPECT_FALSE(rts.empty()) << describe(cam) << " " << toString(fm) << ": no backend gave a round trip";
+          }
           for (const RoundTrip& rt : rts) {
-            for (const BinStats& b : rt.bins)
-              if (b.worstRatio > worstRatio) {
-                worstRatio = b.worstRatio;
-                worstWhere = describe(cam) + " " + toString(fm) + " at " + fmt("%g", b.centre) + " m on " + rt.backend;
-              }
+            for (const BinStats& b : rt.bins) {
+              const std::string where = describe(cam) + " " + toString(fm) + " at " + fmt("%g", b.centre) + " m on " + rt.backend;
+              if (b.worstRatio > worstRatio) worstRatio = b.worstRatio, worstWhere = where;
+              if (isWide && b.worstRatio > worstRatioWide) worstRatioWide = b.worstRatio, worstWhereWide = where;
+            }
           }
           const RoundTrip* cpu = on(rts, "cpu");
           std::printf("[stability] grid n=%-6g f=%-6g %-38s %-4s cpu: 1m %-12s 10m %-12s 100m %-12s 1000m %s\n", n, f,
@@ -258,11 +254,13 @@ TEST(DepthPrecision, NearFarGridRoundTripWithinDerivedBound) {
                       cell(cpu, 1000).c_str());
         }
     }
+  // roundTrip asserts each sample against its bound; these are the figures docs/STABILITY.md quotes.
   report("z round trip, near {1e-4,1e-2,1,10} x far {10,1e4,inf} x D16/D24/D32F x 4 conventions (" +
              std::to_string(combos) + " cameras)",
          "every sample within its derived bound (quantum + float transform + float eq. 2, through dz/dd); finite",
-         fmt("worst error/bound %.3f (%s); %zu cameras with far/near >= 1e6 rejected and run as infinite far", worstRatio,
-             worstWhere.c_str(), rejected));
+         fmt("worst error/bound %.3f (%s); the %zu cameras with finite far/near >= 1e6 accepted as finite, worst "
+             "error/bound %.3f (%s)",
+             worstRatio, worstWhere.c_str(), wide, worstRatioWide, worstWhereWide.c_str()));
 }
 
 TEST(DepthPrecision, FarNotBeyondNearIsRejected) {
