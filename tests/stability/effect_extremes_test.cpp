@@ -334,10 +334,9 @@ Camera scaleCamera(const ScaleSetup& su, double u) {
   return c;
 }
 
-// Open finding F2 (docs/STABILITY.md): eq. 1's term max(0, v·n + z_C·β) / (v·v + ε) has the unit
-// 1/length, so A is unit-free only if σ is a length too, i.e. if the block holds
-// intensity_div_s = 2·σ·u/s. computeConstants writes 2·σ/s (docs/effect-math.md §2 says the same),
-// so A depends on metersToViewUnits. True when the block scales σ with the units.
+// Finding F2 (docs/STABILITY.md, fixed): eq. 1's term max(0, v·n + z_C·β) / (v·v + ε) has the
+// unit 1/length, so A is unit-free only if σ is a length too, i.e. if the block holds
+// intensity_div_s = 2·σ·u/s. True when the block scales σ with the units.
 bool intensityScalesWithUnits() {
   Camera c1 = camera(16, 16, 0.1, kInf, ClipDepth::ZeroToOne, true), c2 = c1;
   c2.metersToViewUnits = 1000.0;
@@ -349,51 +348,34 @@ bool intensityScalesWithUnits() {
 
 TEST(WorldScale, MilliAndKiloUnitsLeaveAUnchanged) {
   // The same scene in metres (u = 1), in km (u = 1e-3: 1 m = 0.001 view units) and in mm
-  // (u = 1e3): geometry, near and far in view units, the settings in metres as always. With the
-  // radius, ε (m²), the quad threshold and the blur sharpness converted by the block, A should not
-  // change. While F2 is open, the intensity is given as σ·u (the conversion the block lacks) so that
-  // the rest of the conversion is still tested; the plain run is measured and reported.
-  const bool fixed = intensityScalesWithUnits();
-  std::string measured, plain;
+  // (u = 1e3): geometry, near and far in view units, the settings (defaults) in metres as always.
+  // The block converts the radius, ε (m²), the quad threshold, the blur sharpness and σ, so A must
+  // not change. The same settings at both scales: no compensation in the test, so that an F2
+  // regression fails here.
+  EXPECT_TRUE(intensityScalesWithUnits()) << "intensity_div_s does not scale with metersToViewUnits (finding F2)";
+  std::string measured;
   for (const ScaleSetup& su : kScaleSetups) {
     // Orthographic views along -z see the floor edge-on: they look at the 90° crease instead.
     const test::Scene scene = su.ortho ? test::creaseScene(5.0) : test::sphereOnPlaneScene();
+    const SceneRun r1 = runScene(fmt("world scale 1, %s", su.name), Settings{}, scaleCamera(su, 1.0), scene, su.fm);
     for (double u : {1e-3, 1e3}) {
-      // sigma0 such that sigma0·u is a valid intensity ([0, 10]).
-      Settings base;
-      base.intensity = float(std::min(1.0, 10.0 / u));
-      const SceneRun r1 = runScene(fmt("world scale 1, %s, sigma %g", su.name, double(base.intensity)), base, scaleCamera(su, 1.0),
-                                   scene, su.fm);
-      Settings scaled = base;
-      if (!fixed) scaled.intensity = float(double(base.intensity) * u);
-      const Camera cu = scaleCamera(su, u);
-      const test::Scene su_scene = scaledScene(scene, u);
-      const SceneRun ru = runScene(fmt("world scale %g, %s", u, su.name), scaled, cu, su_scene, su.fm);
-      // The plain run: sigma = 1 at both scales.
-      const SceneRun p1 = runScene(fmt("world scale 1, %s, sigma 1", su.name), Settings{}, scaleCamera(su, 1.0), scene, su.fm);
-      const SceneRun rp = runScene(fmt("world scale %g, %s, sigma 1", u, su.name), Settings{}, cu, su_scene, su.fm);
-      double worst = 0, worstPlain = 0;
+      const SceneRun ru = runScene(fmt("world scale %g, %s", u, su.name), Settings{}, scaleCamera(su, u),
+                                   scaledScene(scene, u), su.fm);
+      double worst = 0;
+      std::size_t compared = 0;
       for (const BackendRun& b : ru.runs.runs)
         if (const BackendRun* b1 = r1.runs.find(b.name)) {
           const double d = maxAbsDiff(b.out.ao, b1->out.ao);
           EXPECT_LE(d, k255) << su.name << " u = " << u << " on " << b.name;
           worst = std::max(worst, d);
-          const BackendRun* bp = rp.runs.find(b.name);
-          const BackendRun* bp1 = p1.runs.find(b.name);
-          if (bp && bp1) worstPlain = std::max(worstPlain, maxAbsDiff(bp->out.ao, bp1->out.ao));
+          ++compared;
         }
+      EXPECT_GT(compared, 0u) << su.name << " u = " << u << ": no backend ran both scales";
       measured += fmt("%s%s u=%g: %.2g", measured.empty() ? "" : "; ", su.name, u, worst);
-      plain += fmt("%s%s u=%g: %.2g", plain.empty() ? "" : "; ", su.name, u, worstPlain);
     }
   }
-  report("world scale x1e-3 / x1e3 (metersToViewUnits; D24 std, D32F rev, R32F, ortho D24)",
-         "max |A(u) - A(1)| <= 1/255 on every backend",
-         (fixed ? "" : "with sigma given as sigma·u (F2 open): ") + measured);
-  if (!fixed) {
-    report("world scale x1e-3 / x1e3 with the same sigma (open finding F2)", "max |A(u) - A(1)| <= 1/255",
-           "NOT MET: " + plain);
-    std::printf("[stability] OPEN FINDING F2: intensity_div_s does not scale with metersToViewUnits\n");
-  }
+  report("world scale x1e-3 / x1e3 (metersToViewUnits; D24 std, D32F rev, R32F, ortho D24; default settings)",
+         "max |A(u) - A(1)| <= 1/255 on every backend", measured);
 }
 
 TEST(WorldScale, PhysicalScaleNeedsTheIntensityScaledAlike) {
@@ -429,44 +411,46 @@ TEST(WorldScale, PhysicalScaleNeedsTheIntensityScaledAlike) {
 
 TEST(WorldScale, UnitsSweepFindsTheRangeThatHolds) {
   // metersToViewUnits = 10^k, k = -20 .. 20, on the float and double references, compared with
-  // u = 1. Sigma compensated while F2 is open (where sigma·u is still a valid intensity; the other
-  // u are reported as untestable through the settings).
+  // u = 1 (default settings: the block converts them, finding F2). The supported range is
+  // [1e-6, 1e6] (camera.cpp; below it the normal reconstruction underflows in float, finding F3):
+  // A must hold to 1/255 at every u inside it, and every u outside must be rejected with
+  // InvalidCamera naming the range.
+  EXPECT_TRUE(intensityScalesWithUnits()) << "finding F2 regressed";
   const test::Scene scene = test::sphereOnPlaneScene();
   const ScaleSetup& su = kScaleSetups[1];
-  const bool fixed = intensityScalesWithUnits();
+  constexpr double kLo = 1e-6, kHi = 1e6;
+  const char* kRangeText = "[1e-6, 1e6]";
   std::string measured;
-  double okLo = 1, okHi = 1;
+  double okLo = 1, okHi = 1, dALo = -1, dAHi = -1;
   bool lowBroken = false, highBroken = false;
+  std::size_t rejected = 0;
   CaseOptions refs;
   refs.only = {"cpu-double", "cpu"};
+  const SceneRun b1 = runScene("units sweep base", Settings{}, scaleCamera(su, 1.0), scene, su.fm, refs);
   for (int sign : {-1, 1})
     for (int e = 1; e <= 20; ++e) {
       const int k = sign * e;
       const double u = std::pow(10.0, k);
-      Settings base;
-      base.intensity = fixed ? 1.0f : float(std::min(1.0, 10.0 / u));
-      if (base.intensity < 1e-3f) {
-        measured += fmt("%s1e%d: untestable (F2)", measured.empty() ? "" : "; ", k);
-        continue;
-      }
-      Settings scaled = base;
-      if (!fixed) scaled.intensity = float(double(base.intensity) * u);
-      const SceneRun b1 = runScene(fmt("units sweep base sigma %g", double(base.intensity)), base, scaleCamera(su, 1.0), scene, su.fm, refs);
-      Camera cu = scaleCamera(su, u);
+      const bool supported = u >= kLo * (1 - 1e-12) && u <= kHi * (1 + 1e-12);
+      const Camera cu = scaleCamera(su, u);
       DepthModel m;
       const Status ast = analyze(cu, m);
-      if (!ast) {
-        measured += fmt("%s1e%d: camera rejected ('%s')", measured.empty() ? "" : "; ", k, ast.message.c_str());
+      if (!supported) {
+        EXPECT_EQ(ast.code, StatusCode::InvalidCamera) << "u = 1e" << k << ": '" << ast.message << "'";
+        EXPECT_NE(ast.message.find(kRangeText), std::string::npos) << "u = 1e" << k << ": '" << ast.message << "'";
+        rejected += ast.code == StatusCode::InvalidCamera;
         (sign < 0 ? lowBroken : highBroken) = true;
         continue;
       }
-      CaseOptions ro = refs;
-      ro.excludeFromSummary = u < 1e-9;  // beyond the range that holds (finding F3)
-      const SceneRun r = runScene(fmt("units sweep u=1e%d", k), scaled, cu, scaledScene(scene, u), su.fm, ro);
+      ASSERT_TRUE(ast.ok()) << "u = 1e" << k << " is inside " << kRangeText << " but rejected: " << ast.message;
+      const SceneRun r = runScene(fmt("units sweep u=1e%d", k), Settings{}, cu, scaledScene(scene, u), su.fm, refs);
       double worst = 0;
       for (const BackendRun& b : r.runs.runs)
         if (const BackendRun* x = b1.runs.find(b.name)) worst = std::max(worst, maxAbsDiff(b.out.ao, x->out.ao));
+      EXPECT_LE(worst, k255) << "u = 1e" << k;
       measured += fmt("%s1e%d: %.2g", measured.empty() ? "" : "; ", k, worst);
+      if (k == -6) dALo = worst;
+      if (k == 6) dAHi = worst;
       if (worst <= k255) {
         if (sign < 0 && !lowBroken) okLo = u;
         if (sign > 0 && !highBroken) okHi = u;
@@ -474,10 +458,27 @@ TEST(WorldScale, UnitsSweepFindsTheRangeThatHolds) {
         (sign < 0 ? lowBroken : highBroken) = true;
       }
     }
-  EXPECT_LE(okLo, 1e-6);
+  EXPECT_LE(okLo, kLo);
+  EXPECT_GE(okHi, kHi);
+  // Both ends measured (a dA of -1 means the end was never run).
+  EXPECT_GE(dALo, 0.0);
+  EXPECT_LE(dALo, k255);
+  EXPECT_GE(dAHi, 0.0);
+  EXPECT_LE(dAHi, k255);
+  EXPECT_EQ(rejected, 28u) << "1e-20 .. 1e-7 and 1e7 .. 1e20 must all be rejected";
+  // Just outside, through every backend's own validation, not only analyze().
+  const DepthImage probe = renderGpuDepth(scene, scaleCamera(su, 1.0), su.fm);
+  std::string messages;
+  for (double u : {1e-7, 1e7}) {
+    const std::string msg = expectRejected(fmt("metersToViewUnits %g", u), Settings{}, scaleCamera(su, u),
+                                           {&probe, nullptr, nullptr}, StatusCode::InvalidCamera);
+    EXPECT_NE(msg.find(kRangeText), std::string::npos) << "u = " << u << ": '" << msg << "'";
+    messages += fmt("%s'%s'", messages.empty() ? "" : "; ", msg.c_str());
+  }
   report("world scale sweep metersToViewUnits = 1e-20 .. 1e20 (D32F reversed, cpu and cpu-double)",
-         "A within 1/255 of u = 1 over at least 1e-6 .. 1 (and up to 1e6 once F2 is fixed)",
-         fmt("holds for %g .. %g; per u: %s", okLo, okHi, measured.c_str()));
+         "A within 1/255 of u = 1 over [1e-6, 1e6]; every u outside rejected with InvalidCamera naming the range",
+         fmt("holds for %g .. %g (max dA %.2g at 1e-6, %.2g at 1e6); %zu u outside rejected (%s); per u: %s", okLo, okHi,
+             dALo, dAHi, rejected, messages.c_str(), measured.c_str()));
 }
 
 // ================================================================================================
