@@ -122,7 +122,9 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
       if (out.cszLevels <= 1) continue;  // the hierarchy is not used: no MIP pass
       p.dispatchCount = out.cszLevels - 1;
     }
-    if (info.name == "blur_h" && !blur) continue;  // blur 0: blur_v copies ao_raw
+    // blur 0: blur_h and ao_blur_h go; blur_v stays as the copy of ao_raw into the r16f output
+    // (docs/effect-math.md §2.5).
+    if (info.name == "blur_h" && !blur) continue;
     if (info.name == "blur_v" && !blur) p.aliases.push_back({gen::ResourceId::ao_blur_h, gen::ResourceId::ao_raw});
     out.passes.push_back(std::move(p));
   }
