@@ -84,7 +84,7 @@ void compareWithCpu(gl::Effect& effect, const Camera& cam, const Settings& setti
     occluded += v < 0.99f;
   }
   meanA /= double(ref.ao.data.size());
-  std::printf("AGREEMENT %-30s final max %.2f/255 p99.9 %.2f/255 within2 %.4f | raw max %.2f/255 p99.9 %.2f/255 "
+  std::printf("AGREEMENT %-30s final max %.4f/255 p99.9 %.4f/255 within2 %.4f | raw max %.4f/255 p99.9 %.4f/255 "
               "within2 %.4f | CPU A mean %.3f min %.3f, %.1f%% of pixels < 0.99\n",
               name.c_str(), f.maxAbs * 255, f.p999 * 255, f.fractionWithin, r.maxAbs * 255, r.p999 * 255,
               r.fractionWithin, meanA, minA, 100.0 * double(occluded) / double(ref.ao.data.size()));
