@@ -11,8 +11,15 @@ std::string Summary::text() const {
   s.precision(3);
   s << "backend: " << backend << "\ninput: " << input << "\nsize: " << size.width << "x" << size.height
     << " (guard band " << guard << ")\nsettings:";
-  for (std::size_t i = 0; i < gen::kSettings.size(); ++i)
-    s << " " << gen::kSettings[i].name << "=" << gen::settingValue(settings, static_cast<SettingId>(i));
+  for (std::size_t i = 0; i < gen::kSettings.size(); ++i) {
+    // As the metadata types them: ints and bools as integers, floats to 6 significant digits
+    // (epsilon 0.0001 must not read as 0.000).
+    const double v = gen::settingValue(settings, static_cast<SettingId>(i));
+    std::ostringstream value;
+    if (gen::kSettings[i].type == gen::SettingType::Float) value << v;
+    else value << static_cast<long long>(v);
+    s << " " << gen::kSettings[i].name << "=" << value.str();
+  }
   s << "\nplan: " << plan.describe();
   s << "timing (" << toString(timings.method) << "):";
   for (const auto& p : timings.passes) s << " " << p.pass << " " << p.milliseconds << " ms;";
