@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include "sao/presets.h"
 #include "sao/spiral.h"
@@ -14,6 +15,15 @@ namespace {
 using sao::StatusCode;
 
 TEST(Settings, DefaultsAreValid) { EXPECT_TRUE(sao::validate(sao::Settings{}).ok()); }
+
+// The allowed range as the messages print it: "[min, max]" (9 significant digits) or "{false, true}".
+std::string rangeOf(const sao::gen::SettingInfo& info) {
+  if (info.type == sao::gen::SettingType::Bool) return "{false, true}";
+  std::ostringstream r;
+  r.precision(9);
+  r << "[" << info.minValue << ", " << info.maxValue << "]";
+  return r.str();
+}
 
 TEST(Settings, EverySettingRejectsOutOfRangeAndNonFinite) {
   for (std::size_t i = 0; i < sao::gen::kSettings.size(); ++i) {
@@ -27,37 +37,40 @@ TEST(Settings, EverySettingRejectsOutOfRangeAndNonFinite) {
     std::vector<Case> cases = {{std::numeric_limits<double>::quiet_NaN(), "NaN"},
                                {std::numeric_limits<double>::infinity(), "+inf"},
                                {-std::numeric_limits<double>::infinity(), "-inf"}};
-    if (info.type != sao::gen::SettingType::Bool) {
-      const double step = info.type == sao::gen::SettingType::Int ? 1.0 : std::max(1e-3, (info.maxValue - info.minValue) * 1e-3);
-      cases.push_back({info.minValue - step, "outside its range"});
-      cases.push_back({info.maxValue + step, "outside its range"});
-    } else {
-      cases.push_back({2.0, "outside its range"});
+    if (info.type == sao::gen::SettingType::Bool) {
+      // A bool cannot hold anything but true/false: every bad value arrives as text (--set).
+      for (const char* text : {"nan", "inf", "-inf", "-1", "2", "yes"}) {
+        sao::Settings s;
+        const sao::Settings untouched = s;
+        const sao::Status st = sao::setFromText(s, name, text);
+        EXPECT_EQ(st.code, StatusCode::InvalidSetting) << name << " = " << text;
+        EXPECT_TRUE(s == untouched) << name << ": a rejected text must change nothing";
+        EXPECT_NE(st.message.find("'" + name + "'"), std::string::npos) << st.message;
+        EXPECT_NE(st.message.find(std::string("'") + text + "'"), std::string::npos) << st.message;
+        EXPECT_NE(st.message.find("true or false"), std::string::npos) << st.message;
+      }
+      continue;
     }
+    const double step = info.type == sao::gen::SettingType::Int ? 1.0 : std::max(1e-3, (info.maxValue - info.minValue) * 1e-3);
+    cases.push_back({info.minValue - step, "outside its range"});
+    cases.push_back({info.maxValue + step, "outside its range"});
     for (const auto& c : cases) {
       sao::Settings s;
-      if (info.type == sao::gen::SettingType::Bool || info.type == sao::gen::SettingType::Int) {
-        // Ints and bools cannot hold NaN/inf: test those through the text parser instead.
-        if (!std::isfinite(c.value)) {
-          const sao::Status st = sao::setFromText(s, name, std::isnan(c.value) ? "nan" : (c.value > 0 ? "inf" : "-inf"));
-          EXPECT_EQ(st.code, StatusCode::InvalidSetting) << name;
-          EXPECT_NE(st.message.find(name), std::string::npos) << st.message;
-          continue;
-        }
-        if (info.type == sao::gen::SettingType::Bool) {
-          const sao::Status st = sao::setFromText(s, name, "2");
-          EXPECT_EQ(st.code, StatusCode::InvalidSetting) << name;
-          continue;
-        }
+      const sao::Settings untouched = s;
+      sao::Status st;
+      if (info.type == sao::gen::SettingType::Int && !std::isfinite(c.value)) {
+        // An int cannot hold NaN/inf: those arrive as text (the CLI's --set).
+        st = sao::setFromText(s, name, std::isnan(c.value) ? "nan" : (c.value > 0 ? "inf" : "-inf"));
+        EXPECT_TRUE(s == untouched) << name << ": a rejected text must change nothing";
+      } else {
+        sao::gen::setSettingValue(s, id, c.value);
+        st = sao::validate(s);
       }
-      sao::gen::setSettingValue(s, id, c.value);
-      const sao::Status st = sao::validate(s);
       EXPECT_EQ(st.code, StatusCode::InvalidSetting) << name << " = " << c.value;
+      // Every message names the setting, what is wrong with the value and the allowed range.
       EXPECT_NE(st.message.find("'" + name + "'"), std::string::npos) << st.message;
       EXPECT_NE(st.message.find(c.shown), std::string::npos) << st.message;
-      if (std::isfinite(c.value)) {
-        EXPECT_NE(st.message.find("["), std::string::npos) << "range missing: " << st.message;
-      }
+      EXPECT_NE(st.message.find(rangeOf(info)), std::string::npos) << "range missing: " << st.message;
     }
   }
 }
