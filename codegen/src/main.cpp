@@ -92,8 +92,20 @@ int main(int argc, char** argv) {
   const std::string headerName = effect.name + "_effect.h";
   outputs.add(headerName, code.header);
   outputs.add(effect.name + "_effect.cpp", code.source);
+  // The pass table in words (one line per compiled pass variant): what the generated tables say,
+  // readable in a diff and kept as a golden file by the tests.
   std::string manifest;
-  for (const auto& c : compiled) manifest += c.variant.stem + "\n";
+  for (const auto& c : compiled) {
+    const Pass& pass = effect.passes[c.variant.pass];
+    manifest += c.variant.stem + " local=" + std::to_string(pass.localX) + "x" + std::to_string(pass.localY) +
+                (pass.perMip ? " per=mip" : "") + " glsl=#" + std::to_string(c.glslBlob) + " spirv=#" +
+                std::to_string(c.spirvBlob) + " | 0 block " + effect.block->name;
+    for (const auto& b : c.variant.bindings) {
+      const Resource& r = effect.resources[b.resource];
+      manifest += ", " + std::to_string(b.binding) + (b.write ? " out " : " in ") + r.name + " " + r.format;
+    }
+    manifest += "\n";
+  }
   outputs.add(effect.name + "_passes.txt", manifest);
   for (const auto& d : diags.all()) std::fprintf(stderr, "%s\n", d.format().c_str());  // warnings
   if (const std::string err = outputs.commit(outDir); !err.empty()) {
