@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "sao/raytrace/raytrace.h"
+#include "traced_view.h"
 
 namespace {
 
@@ -69,17 +70,15 @@ TEST(Obscurance, IsExactlyZeroWithNothingWithinTheRadius) {
 TEST(Obscurance, ImageOfAnOpenPlaneIsExactlyOne) {
   scenes::MeshBuilder b;
   b.box({-500, -0.1, -500}, {500, 0, 500});
-  scenes::Scene s{"plane", b.build(), {{"down", {0, 3, 2}, {0, 0, -1}, {0, 1, 0}, 1.0, 0.1}}};
-  std::unique_ptr<raytrace::RayScene> scene;
-  ASSERT_TRUE(raytrace::RayScene::create(s.mesh, scene).ok());
-  const Camera cam = scenes::makeCamera(s.views[0], 40, 30, INFINITY, ClipDepth::ZeroToOne, true, 2);
-  raytrace::Primary primary;
-  ASSERT_TRUE(raytrace::castPrimary(*scene, s.views[0], cam, DepthFormat::D32F, primary).ok());
+  truthtest::TracedView t;
+  truthtest::traceFirstView({"plane", b.build(), {{"down", {0, 3, 2}, {0, 0, -1}, {0, 1, 0}, 1.0, 0.1}}}, 40, 30, 2,
+                            1.0, t);
+  if (HasFatalFailure()) return;
   raytrace::ObscuranceOptions o;
   o.radius = 2.0;
   o.rays = 64;
   FloatImage ao;
-  ASSERT_TRUE(raytrace::referenceObscurance(*scene, cam, primary, s.views[0], o, ao).ok());
+  ASSERT_TRUE(raytrace::referenceObscurance(*t.rays, t.camera, t.primary, t.scene.views[0], o, ao).ok());
   ASSERT_EQ(ao.extent, (Extent{40, 30}));
   for (float v : ao.data) ASSERT_EQ(v, 1.0f);
 }
@@ -108,20 +107,13 @@ TEST(Obscurance, CreaseMatchesAnIndependentQuadrature) {
               2.0 * raytrace::obscuranceAt(*scene, {0, 0, 0}, {0, 1, 0}, zC, r, 1.0, 0.02, eps, 5000, 4, 1e-5), 1e-12);
 }
 
-struct CreaseImage {
-  scenes::Scene scene;
-  std::unique_ptr<raytrace::RayScene> rays;
-  Camera camera;
-  raytrace::Primary primary;
-};
+using CreaseImage = truthtest::TracedView;
 
 void makeCreaseImage(double scale, CreaseImage& out) {
   auto b = crease(0.0, scale);
-  out.scene = {"crease", b.build(), {{"corner", glm::dvec3(2.0, 1.5, 1.0) * scale, glm::dvec3(0, 0, 0), {0, 1, 0}, 1.0, 0.1 * scale}}};
-  ASSERT_TRUE(raytrace::RayScene::create(out.scene.mesh, out.rays).ok());
-  out.camera = scenes::makeCamera(out.scene.views[0], 48, 32, INFINITY, ClipDepth::ZeroToOne, true, 3);
-  out.camera.metersToViewUnits = scale;
-  ASSERT_TRUE(raytrace::castPrimary(*out.rays, out.scene.views[0], out.camera, DepthFormat::D32F, out.primary).ok());
+  truthtest::traceFirstView(
+      {"crease", b.build(), {{"corner", glm::dvec3(2.0, 1.5, 1.0) * scale, glm::dvec3(0, 0, 0), {0, 1, 0}, 1.0, 0.1 * scale}}},
+      48, 32, 3, scale, out);
 }
 
 FloatImage obscuranceImage(const CreaseImage& c, raytrace::ObscuranceOptions o) {

@@ -9,6 +9,7 @@
 
 #include "sao/raytrace/analytic.h"
 #include "sao/raytrace/raytrace.h"
+#include "traced_view.h"
 
 namespace {
 
@@ -43,19 +44,17 @@ TEST(Reference, IsDeterministicAndIndependentOfThreads) {
   scenes::MeshBuilder b;
   b.box({-20, -0.1, -20}, {20, 0, 20});  // floor, top at y = 0
   b.box({-0.1, 0, -20}, {0, 20, 20});    // wall x = 0 facing +x: a crease along z
-  scenes::Scene s{"crease", b.build(), {{"corner", {2.0, 1.5, 1.0}, {0, 0, 0}, {0, 1, 0}, 1.0, 0.1}}};
-  std::unique_ptr<raytrace::RayScene> scene;
-  ASSERT_TRUE(raytrace::RayScene::create(s.mesh, scene).ok());
-  const Camera cam = scenes::makeCamera(s.views[0], 48, 32, INFINITY, ClipDepth::ZeroToOne, true, 3);
-  raytrace::Primary primary;
-  ASSERT_TRUE(raytrace::castPrimary(*scene, s.views[0], cam, DepthFormat::D32F, primary).ok());
+  truthtest::TracedView t;
+  truthtest::traceFirstView({"crease", b.build(), {{"corner", {2.0, 1.5, 1.0}, {0, 0, 0}, {0, 1, 0}, 1.0, 0.1}}}, 48,
+                            32, 3, 1.0, t);
+  if (HasFatalFailure()) return;
   raytrace::ReferenceOptions o;
   o.rays = 48;
   auto image = [&](unsigned threads, std::uint64_t seed) {
     o.threads = threads;
     o.seed = seed;
     FloatImage ao;
-    EXPECT_TRUE(raytrace::referenceAmbientOcclusion(*scene, cam, primary, s.views[0], o, ao).ok());
+    EXPECT_TRUE(raytrace::referenceAmbientOcclusion(*t.rays, t.camera, t.primary, t.scene.views[0], o, ao).ok());
     return ao;
   };
   const FloatImage one = image(1, 1);
