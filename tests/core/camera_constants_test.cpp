@@ -237,6 +237,11 @@ TEST(Camera, ExpectedPlanesCatchAClipRangeThatContradictsTheMatrix) {
   EXPECT_NEAR(m.farDistance, 2 * kFar * kNear / (kFar + kNear), 1e-9);
   reversed.expectedFar = kFar;
   EXPECT_NE(sao::analyze(reversed, m).message.find("has its far plane at"), std::string::npos);
+  // An infinite expected far plane is not met by any finite one.
+  auto finite = sao::perspectiveCamera(kFovy, 640, 480, kNear, kFar, sao::ClipDepth::ZeroToOne, false);
+  finite.expectedFar = INFINITY;
+  EXPECT_NE(sao::analyze(finite, m).message.find("has its far plane at 100, not at expectedFar = inf"), std::string::npos)
+      << sao::analyze(finite, m).message;
 
   auto ortho = sao::orthographicCamera(2.0, 640, 480, kNear, kFar, sao::ClipDepth::ZeroToOne, false);
   ortho.expectedNear = kNear;

@@ -51,8 +51,7 @@ struct DepthModel {
 // Checks the camera and derives its depth model. Rejects matrices that are not a perspective or
 // orthographic projection of the declared kind, a declared reversed-Z or infinite far plane that
 // the matrix contradicts, near/far planes other than expectedNear/expectedFar (when set: a wrong
-// clipDepth),
-// near <= 0 for perspective, non-finite entries and bad sizes.
+// clipDepth), near <= 0 for perspective, non-finite entries and bad sizes.
 Status analyze(const Camera& camera, DepthModel& out);
 
 // Camera-space z of a stored depth value, in double (the reference the shaders approximate).
