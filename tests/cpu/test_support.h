@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 
+#include "image_compare.h"
 #include "analytic_scenes.h"
 #include "sao/cpu/reference.h"
 
@@ -32,12 +33,6 @@ inline cpu::Result runOrFail(const Settings& settings, const Camera& camera, con
   return r;
 }
 
-inline bool sameBits(const FloatImage& a, const FloatImage& b) {
-  if (a.extent != b.extent || a.channels != b.channels || a.data.size() != b.data.size()) return false;
-  for (std::size_t i = 0; i < a.data.size(); ++i)
-    if (std::bit_cast<std::uint32_t>(a.data[i]) != std::bit_cast<std::uint32_t>(b.data[i])) return false;
-  return true;
-}
 
 inline bool allFinite(const FloatImage& img) {
   for (float v : img.data)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "image_compare.h"
 #include "analytic_scenes.h"
 #include <ostream>
 
@@ -18,12 +19,7 @@ using test::renderDepth;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-bool sameBits(const FloatImage& a, const FloatImage& b) {
-  if (a.extent != b.extent || a.channels != b.channels) return false;
-  for (std::size_t i = 0; i < a.data.size(); ++i)
-    if (std::bit_cast<std::uint32_t>(a.data[i]) != std::bit_cast<std::uint32_t>(b.data[i])) return false;
-  return true;
-}
+using test::sameBits;
 
 std::size_t countNonFinite(const FloatImage& img) {
   std::size_t n = 0;

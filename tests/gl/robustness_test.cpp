@@ -12,6 +12,7 @@
 #include <cstring>
 #include <limits>
 
+#include "image_compare.h"
 #include "analytic_scenes.h"
 #include "gl_support.h"
 
@@ -21,10 +22,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-bool sameBits(const FloatImage& a, const FloatImage& b) {
-  if (a.extent != b.extent || a.channels != b.channels || a.data.size() != b.data.size()) return false;
-  return std::memcmp(a.data.data(), b.data.data(), a.data.size() * sizeof(float)) == 0;
-}
+using test::sameBits;
 
 // A loader that hides glGetTextureParameteriv: the effect takes its GL 4.3 path (no DSA).
 gl::ProcAddress noDsaLoader(const char* name) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 
+#include "image_compare.h"
 #include "analytic_scenes.h"
 #include "sao/presets.h"
 #include "vk_support.h"
@@ -61,12 +62,7 @@ FloatImage runOnce(vk::Effect& effect, const vk::Inputs& in, const vk::OutputIma
   return ao;
 }
 
-bool sameBits(const FloatImage& a, const FloatImage& b) {
-  if (a.extent != b.extent || a.channels != b.channels || a.data.size() != b.data.size()) return false;
-  for (std::size_t i = 0; i < a.data.size(); ++i)
-    if (std::bit_cast<std::uint32_t>(a.data[i]) != std::bit_cast<std::uint32_t>(b.data[i])) return false;
-  return true;
-}
+using test::sameBits;
 
 class VkEffect : public VkTest {};
 

@@ -7,18 +7,14 @@
 #include <cstring>
 #include <string>
 
+#include "image_compare.h"
 #include "analytic_scenes.h"
 #include "vk_support.h"
 
 namespace sao::vktest {
 namespace {
 
-bool sameBits(const FloatImage& a, const FloatImage& b) {
-  if (a.extent != b.extent || a.channels != b.channels || a.data.size() != b.data.size()) return false;
-  for (std::size_t i = 0; i < a.data.size(); ++i)
-    if (std::bit_cast<std::uint32_t>(a.data[i]) != std::bit_cast<std::uint32_t>(b.data[i])) return false;
-  return true;
-}
+using test::sameBits;
 
 std::vector<std::uint8_t> cacheData(VkPipelineCache cache) {
   std::size_t size = 0;

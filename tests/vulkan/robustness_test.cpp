@@ -10,6 +10,7 @@
 #include <cstring>
 #include <limits>
 
+#include "image_compare.h"
 #include "analytic_scenes.h"
 #include "vk_support.h"
 
@@ -21,10 +22,7 @@ using vk::headless::Image;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-bool sameBits(const FloatImage& a, const FloatImage& b) {
-  if (a.extent != b.extent || a.channels != b.channels || a.data.size() != b.data.size()) return false;
-  return std::memcmp(a.data.data(), b.data.data(), a.data.size() * sizeof(float)) == 0;
-}
+using test::sameBits;
 
 class VkRobustness : public VkTest {
  protected:
