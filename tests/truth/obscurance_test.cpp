@@ -21,13 +21,7 @@ std::unique_ptr<raytrace::RayScene> build(scenes::MeshBuilder& b) {
   return scene;
 }
 
-// Floor top at y = 0 and a wall whose face is the plane x = -d (facing +x): the crease runs along z.
-scenes::MeshBuilder crease(double d, double scale = 1.0) {
-  scenes::MeshBuilder b;
-  b.box(glm::dvec3(-20, -0.1, -20) * scale, glm::dvec3(20, 0, 20) * scale);
-  b.box(glm::dvec3(-d - 0.1, 0, -20) * scale, glm::dvec3(-d, 20, 20) * scale);
-  return b;
-}
+using truthtest::creaseMesh;
 
 struct Quadrature {
   double mean = 0;      // the integral O
@@ -87,7 +81,7 @@ TEST(Obscurance, ImageOfAnOpenPlaneIsExactlyOne) {
 // 5 standard errors (from the quadrature's own variance) plus the quadrature's discretisation.
 TEST(Obscurance, CreaseMatchesAnIndependentQuadrature) {
   const double d = 0.25, r = 1.0, eps = 1e-4, zC = -3.0;
-  auto b = crease(d);
+  auto b = creaseMesh(d);
   auto scene = build(b);
   const std::uint32_t rays = 200000;
   for (double sigma : {1.0, 0.5})
@@ -108,13 +102,7 @@ TEST(Obscurance, CreaseMatchesAnIndependentQuadrature) {
 }
 
 using CreaseImage = truthtest::TracedView;
-
-void makeCreaseImage(double scale, CreaseImage& out) {
-  auto b = crease(0.0, scale);
-  truthtest::traceFirstView(
-      {"crease", b.build(), {{"corner", glm::dvec3(2.0, 1.5, 1.0) * scale, glm::dvec3(0, 0, 0), {0, 1, 0}, 1.0, 0.1 * scale}}},
-      48, 32, 3, scale, out);
-}
+using truthtest::traceCrease;
 
 FloatImage obscuranceImage(const CreaseImage& c, raytrace::ObscuranceOptions o) {
   FloatImage ao;
@@ -124,7 +112,7 @@ FloatImage obscuranceImage(const CreaseImage& c, raytrace::ObscuranceOptions o) 
 
 TEST(Obscurance, IsDeterministicAndIndependentOfThreads) {
   CreaseImage c;
-  makeCreaseImage(1.0, c);
+  traceCrease(1.0, c);
   raytrace::ObscuranceOptions o;
   o.rays = 48;
   o.threads = 1;
@@ -147,8 +135,8 @@ TEST(Obscurance, IsDeterministicAndIndependentOfThreads) {
 // metersToViewUnits = 2 gives the same image (up to the float rounding of the hits).
 TEST(Obscurance, UsesTheEffectsUnits) {
   CreaseImage metres, halfMetres;
-  makeCreaseImage(1.0, metres);
-  makeCreaseImage(2.0, halfMetres);
+  traceCrease(1.0, metres);
+  traceCrease(2.0, halfMetres);
   raytrace::ObscuranceOptions o;
   o.rays = 32;
   o.radius = 0.8;
@@ -160,7 +148,7 @@ TEST(Obscurance, UsesTheEffectsUnits) {
 
 TEST(Obscurance, ClampsTheMeanAndAppliesContrast) {
   CreaseImage c;
-  makeCreaseImage(1.0, c);
+  traceCrease(1.0, c);
   raytrace::ObscuranceOptions o;
   o.rays = 32;
   const FloatImage base = obscuranceImage(c, o);
@@ -182,7 +170,7 @@ TEST(Obscurance, ClampsTheMeanAndAppliesContrast) {
 
 TEST(Obscurance, RejectsBadOptions) {
   CreaseImage c;
-  makeCreaseImage(1.0, c);
+  traceCrease(1.0, c);
   FloatImage ao;
   auto code = [&](auto edit) {
     raytrace::ObscuranceOptions o;
