@@ -1,16 +1,32 @@
 #!/usr/bin/env bash
 # Stage "fuzz": builds the libFuzzer targets (tests/fuzz) with clang, AddressSanitizer and
-# UndefinedBehaviorSanitizer into build-fuzz/ and runs each for a bounded time from the committed
-# seed corpus (tests/fuzz/corpus/<target>, tests/fuzz/regressions/<target>, plus the codegen
-# test sources for the parser). Prints executions per target (also to build-fuzz/fuzz_summary.txt). A crash, a sanitizer report, a
-# leak, a timeout (> 10 s on one input) or an out-of-memory fails the stage; the input is saved
-# under build-fuzz/artifacts/<target>/ - fix the bug and commit the input to
+# UndefinedBehaviorSanitizer into build-fuzz/ and runs each from the committed seed corpus
+# (tests/fuzz/corpus/<target>, tests/fuzz/regressions/<target>, plus the codegen test sources for
+# the parser). Prints executions per target (also to build-fuzz/fuzz_summary.txt).
+#
+# By default the run is deterministic, so that CI's verdict depends on the commit alone: each
+# target runs a fixed number of inputs (-runs, sized to about a minute each on a 2-core machine)
+# from a fixed -seed, a fresh working corpus, -timeout far above any honest input and fixed memory
+# limits. A crash, a sanitizer report, a leak, a broken invariant, an input over the timeout or an
+# out-of-memory fails the stage and prints the input (hex) and its path under
+# build-fuzz/artifacts/<target>/ - fix the bug and commit the input to
 # tests/fuzz/regressions/<target>/, where the ctest test fuzz.replay.<target> replays it.
-# usage: ci/fuzz.sh [SECONDS_PER_TARGET]   (default 60; SAO_FUZZ_SECONDS also works)
+#
+# usage: ci/fuzz.sh                    deterministic (CI)
+#        ci/fuzz.sh --explore SECONDS  exploratory: SECONDS a target, a time-based seed, a 10 s timeout
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
-seconds="${1:-${SAO_FUZZ_SECONDS:-60}}"
+explore=""
+case "${1:-}" in
+  "") ;;
+  --explore)
+    explore="${2:-}"
+    if ! [[ "$explore" =~ ^[1-9][0-9]*$ ]]; then echo "ci/fuzz.sh: --explore needs a number of seconds" >&2; exit 2; fi ;;
+  *) echo "usage: ci/fuzz.sh [--explore SECONDS]" >&2; exit 2 ;;
+esac
+# Inputs a target runs in the deterministic mode (about a minute each here; see docs/ROBUSTNESS.md).
+declare -A runs=([settings]=400000 [exr_depth]=200000 [codegen_parser]=8000 [scene_file]=350000)
 build="${SAO_FUZZ_BUILD_DIR:-build-fuzz}"
 targets=(settings exr_depth codegen_parser scene_file)
 
@@ -55,13 +71,22 @@ for t in "${targets[@]}"; do
     cp tests/codegen/malformed/*.glsl "$extra/"
     seeds+=("$extra")
   fi
-  echo "== fuzz_$t: ${seconds} s from ${seeds[*]}"
+  if [ -n "$explore" ]; then
+    budget=(-max_total_time="$explore" -timeout=10)
+    what="${explore} s"
+  else
+    budget=(-runs="${runs[$t]}" -seed=1 -timeout=120)
+    what="${runs[$t]} runs, seed 1"
+  fi
+  echo "== fuzz_$t: $what from ${seeds[*]}"
   log="$build/fuzz_$t.log"
+  start=$SECONDS
   set +e
-  "$build/bin/fuzz_$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2560 -malloc_limit_mb=2048 \
+  "$build/bin/fuzz_$t" "${budget[@]}" -rss_limit_mb=2560 -malloc_limit_mb=2048 \
     -print_final_stats=1 -artifact_prefix="$artifacts/" "$work" "${seeds[@]}" >"$log" 2>&1
   rc=$?
   set -e
+  took=$((SECONDS - start))
   execs=$(grep -E '^stat::number_of_executed_units' "$log" | awk '{print $2}' | tail -1)
   rate=$(grep -E '^stat::average_exec_per_sec' "$log" | awk '{print $2}' | tail -1)
   cov=$(grep -E '^#[0-9]+' "$log" | tail -1 | grep -oE 'cov: [0-9]+' | awk '{print $2}')
@@ -71,9 +96,14 @@ for t in "${targets[@]}"; do
     echo "fuzz_$t FAILED (exit $rc); the input is in $artifacts:"
     ls -l "$artifacts"
     grep -E 'ERROR|SUMMARY|invariant broken|runtime error' "$log" | head -20 || true
+    for a in "$artifacts"/*; do
+      [ -f "$a" ] || continue
+      echo "-- $a ($(stat -c %s "$a") bytes), first 4 KiB:"
+      head -c 4096 "$a" | od -A d -t x1 | head -64
+    done
     echo "(full log: $log)"
   fi
-  summary+=("$(printf '%-16s %8s s %12s execs %8s execs/s %6s edges %6s corpus  %s' "$t" "$seconds" "${execs:-?}" \
+  summary+=("$(printf '%-16s %5s s %12s execs %8s execs/s %6s edges %6s corpus  %s' "$t" "$took" "${execs:-?}" \
     "${rate:-?}" "${cov:-?}" "$units" "$([ $rc -eq 0 ] && echo ok || echo FAILED)")")
 done
 # A crashed target leaves its scratch folder (fuzz_support.h) behind: remove those of dead processes.
@@ -83,7 +113,9 @@ for d in /dev/shm/sao_fuzz_* "${TMPDIR:-/tmp}"/sao_fuzz_*; do
 done
 # Kept in $build/fuzz_summary.txt too, for the figures in docs/ROBUSTNESS.md.
 {
-  echo "== fuzz summary (clang $("$cxx" -dumpversion), address + undefined, libFuzzer)"
+  mode="deterministic: fixed runs, seed 1"
+  if [ -n "$explore" ]; then mode="exploratory: $explore s a target"; fi
+  echo "== fuzz summary (clang $("$cxx" -dumpversion), address + undefined, libFuzzer; $mode)"
   printf '%s\n' "${summary[@]}"
 } | tee "$build/fuzz_summary.txt"
 exit $status

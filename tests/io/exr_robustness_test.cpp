@@ -7,7 +7,6 @@
 #include <sys/resource.h>
 #include <sys/stat.h>
 
-#include <chrono>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -41,9 +40,9 @@ std::uint64_t peakRss() {
   return std::uint64_t(u.ru_maxrss) * 1024;
 }
 
-// Both readers fail with IoError naming the path and `problem`, within a second.
+// Both readers fail with IoError naming the path and `problem` (their memory is bounded by
+// exr_memory_test.cpp; no timing here, a loaded machine must not change the verdict).
 void expectBothFail(const std::string& path, const std::string& problem) {
-  const auto start = std::chrono::steady_clock::now();
   DepthImage depth;
   Camera camera;
   bool hasCamera = false;
@@ -56,7 +55,6 @@ void expectBothFail(const std::string& path, const std::string& problem) {
   const Status f = readFloatExr(path, image, names);
   EXPECT_EQ(f.code, StatusCode::IoError) << f.message;
   EXPECT_NE(f.message.find(problem), std::string::npos) << "expected \"" << problem << "\" in: " << f.message;
-  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1)) << path;
 }
 
 // Little-endian builders for hand-made headers.
@@ -158,13 +156,16 @@ TEST_F(ExrRobustness, DataWindowsBeyondTheFileOrTheLimit) {
   expectBothFail(file("wide.exr"), "data window is 100001x2; the largest side read is 16384");
   writeBytes(file("empty.exr"), handMadeExr(1, 0, 5, 0, 64));
   expectBothFail(file("empty.exr"), "corrupt header: Invalid");
-  // 16384 x 256 lines (DWAB's chunk) x 200 FLOAT channels: a 671 MB decode buffer per chunk.
-  writeBytes(file("channels.exr"), handMadeExr(200, 16384, 1, 9, 64));
+  // 16384 x 256 lines (DWAB's chunk) x 200 FLOAT channels: a 3.3 GB decode buffer per chunk.
+  writeBytes(file("channels.exr"), handMadeExr(200, 16384, 256, 9, 64));
   expectBothFail(file("channels.exr"), "one chunk would decode to");
   writeBytes(file("tiles.exr"), handMadeExr(1, 64, 64, 0, 64, true, 100000));
   expectBothFail(file("tiles.exr"), "tiles are 100000x100000");
   writeBytes(file("tinytiles.exr"), handMadeExr(1, 16384, 16384, 0, 64, true, 1));
   expectBothFail(file("tinytiles.exr"), "offset table alone");
+  // Every side allowed, a complete offset table (8192 one-line chunks), too many pixels in all.
+  writeBytes(file("pixels.exr"), handMadeExr(1, 16384, 8192, 0, 8 * 8192));
+  expectBothFail(file("pixels.exr"), "data window is 16384x8192 = 134217728 pixels; the most read is 67108864");
   EXPECT_LT(peakRss() - before, std::uint64_t(64) << 20) << "no allocation at the declared sizes";
 }
 

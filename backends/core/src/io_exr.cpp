@@ -1,31 +1,22 @@
 // OpenEXR files: depth with its camera, float intermediates. See sao/io.h for the file layout.
-#include <ImathBox.h>
 #include <ImathMatrix.h>
 #include <ImfChannelList.h>
 #include <ImfDoubleAttribute.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
-#include <ImfInputFile.h>
 #include <ImfIntAttribute.h>
 #include <ImfMatrixAttribute.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
-#include <ImfStdIO.h>
 #include <ImfStringVectorAttribute.h>
-#include <ImfTestFile.h>
-#include <openexr.h>
 
 #include <algorithm>
 #include <bit>
-#include <cerrno>
 #include <climits>
 #include <cmath>
 #include <cstring>
 #include <cstdint>
-#include <exception>
 #include <filesystem>
-#include <fstream>
-#include <memory>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -33,6 +24,7 @@
 #include <system_error>
 #include <vector>
 
+#include "exr_reader.h"
 #include "sao/io.h"
 
 namespace sao {
@@ -93,23 +85,7 @@ std::uint32_t integerMax(DepthFormat f) {
   }
 }
 
-// ---- paths --------------------------------------------------------------------------------------
-
-Status checkReadable(const std::string& path) {
-  if (path.empty()) return Status::error(StatusCode::IoError, "empty path");
-  std::error_code ec;
-  const fs::file_status st = fs::status(path, ec);
-  if (st.type() == fs::file_type::not_found) return fail(StatusCode::IoError, path, "no such file");
-  if (ec) return fail(StatusCode::IoError, path, "cannot access: " + ec.message());
-  if (st.type() == fs::file_type::directory) return fail(StatusCode::IoError, path, "is a directory, not a file");
-  // A FIFO would block the open until someone writes, a device may never end: regular files only.
-  if (st.type() != fs::file_type::regular)
-    return fail(StatusCode::IoError, path, "is not a regular file (a FIFO, socket or device)");
-  errno = 0;
-  if (!std::ifstream(path, std::ios::binary).is_open())
-    return fail(StatusCode::IoError, path, std::string("cannot open: ") + (errno ? std::strerror(errno) : "unknown error"));
-  return Status::success();
-}
+// ---- paths ----------------------------------------------------------------------------------------
 
 Status checkWritable(const std::string& path) {
   if (path.empty()) return Status::error(StatusCode::IoError, "empty path");
@@ -144,212 +120,30 @@ std::string extentMismatch(Extent e, std::uint64_t width, std::uint64_t height, 
 
 // ---- reading ------------------------------------------------------------------------------------
 
-// An open EXR file with a checked data window.
-struct OpenedExr {
-  std::unique_ptr<Imf::InputFile> file;
-  Imath::Box2i dataWindow;
-  Extent extent;
-};
-
-// OpenEXR's C++ reader (3.1) sizes its allocations from the header before it checks them against
-// the file: an attribute's value at its declared size, the chunk offset table at the chunk count,
-// the decompression buffers at the width (or tile size) times the lines of a chunk times the
-// channels. A few hundred bytes could make it allocate gigabytes (found by fuzz_exr_depth). So the
-// header is parsed first by OpenEXR's own C core library (OpenEXRCore), which checks every
-// attribute's size against its type and the file. Any problem it reports rejects the file (it
-// reports some and reads on with its own guess, which the C++ reader would not share), and the
-// sizes it reads must fit: the data window and tiles in kMaxImageSide, the chunk offset table
-// (8 bytes a chunk) in the file, one decoded chunk in 512 MiB.
-thread_local std::string tCoreError;
-
-// A data window (as either reader sees it) must be non-empty and at most kMaxImageSide a side.
-Status checkDataWindow(const std::string& path, std::int64_t width, std::int64_t height) {
-  if (width <= 0 || height <= 0) return fail(StatusCode::IoError, path, "empty data window");
-  if (width > kMaxImageSide || height > kMaxImageSide)
-    return fail(StatusCode::IoError, path,
-                "data window is " + std::to_string(width) + "x" + std::to_string(height) +
-                    "; the largest side read is " + std::to_string(kMaxImageSide));
+Status checkChannel(const std::string& path, const exr::ChannelInfo& c) {
+  if (c.pixelType != EXR_PIXEL_FLOAT && c.pixelType != EXR_PIXEL_HALF)
+    return fail(StatusCode::UnsupportedFormat, path,
+                "channel \"" + c.name + "\" is " + (c.pixelType == EXR_PIXEL_UINT ? "UINT" : "of an unknown pixel type") +
+                    "; only FLOAT and HALF channels are read");
+  if (c.xSampling != 1 || c.ySampling != 1)
+    return fail(StatusCode::UnsupportedFormat, path, "channel \"" + c.name + "\" is subsampled; only full-resolution channels are read");
   return Status::success();
 }
 
-Status precheckHeader(const std::string& path) {
-  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-  init.error_handler_fn = [](exr_const_context_t, exr_result_t, const char* message) {
-    if (tCoreError.empty()) tCoreError = message && *message ? message : "unknown error";
-  };
-  tCoreError.clear();
-  exr_context_t ctxt = nullptr;
-  const exr_result_t started = exr_start_read(&ctxt, path.c_str(), &init);
-  struct Finish {
-    exr_context_t& c;
-    ~Finish() {
-      if (c) exr_finish(&c);
-    }
-  } finish{ctxt};
-  if (started != EXR_ERR_SUCCESS || !tCoreError.empty())
-    return fail(StatusCode::IoError, path,
-                "corrupt header: " + (tCoreError.empty() ? std::string(exr_get_error_code_as_string(started)) : tCoreError));
-  exr_storage_t storage = EXR_STORAGE_LAST_TYPE;
-  exr_attr_box2i_t window{};
-  int32_t chunks = 0;
-  const exr_attr_chlist_t* channels = nullptr;
-  if (exr_get_storage(ctxt, 0, &storage) != EXR_ERR_SUCCESS || exr_get_data_window(ctxt, 0, &window) != EXR_ERR_SUCCESS ||
-      exr_get_chunk_count(ctxt, 0, &chunks) != EXR_ERR_SUCCESS || exr_get_channels(ctxt, 0, &channels) != EXR_ERR_SUCCESS ||
-      !channels)
-    return fail(StatusCode::IoError, path, "corrupt header: " + tCoreError);
-  if (storage == EXR_STORAGE_DEEP_SCANLINE || storage == EXR_STORAGE_DEEP_TILED)
-    return fail(StatusCode::UnsupportedFormat, path, "holds deep data; only flat images are read");
-  const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
-  const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
-  if (Status s = checkDataWindow(path, width, height); !s) return s;
-  std::uint64_t chunkCols = std::uint64_t(width), chunkLines = 1;
-  if (storage == EXR_STORAGE_TILED) {
-    uint32_t tileX = 0, tileY = 0;
-    exr_tile_level_mode_t levels{};
-    exr_tile_round_mode_t round{};
-    if (exr_get_tile_descriptor(ctxt, 0, &tileX, &tileY, &levels, &round) != EXR_ERR_SUCCESS)
-      return fail(StatusCode::IoError, path, "corrupt header: " + tCoreError);
-    if (tileX == 0 || tileY == 0 || tileX > kMaxImageSide || tileY > kMaxImageSide)
-      return fail(StatusCode::IoError, path,
-                  "tiles are " + std::to_string(tileX) + "x" + std::to_string(tileY) + "; the largest side read is " +
-                      std::to_string(kMaxImageSide));
-    chunkCols = tileX;
-    chunkLines = tileY;
-  } else {
-    int32_t lines = 0;
-    if (exr_get_scanlines_per_chunk(ctxt, 0, &lines) != EXR_ERR_SUCCESS || lines <= 0)
-      return fail(StatusCode::IoError, path, "corrupt header: " + tCoreError);
-    chunkLines = std::uint64_t(lines);
-  }
-  std::error_code ec;
-  const std::uintmax_t fileSize = fs::file_size(path, ec);
-  if (!ec && std::uint64_t(std::max(chunks, 0)) * 8 > fileSize)
-    return fail(StatusCode::IoError, path,
-                "is truncated or corrupt: its " + std::to_string(width) + "x" + std::to_string(height) +
-                    " data window needs " + std::to_string(chunks) + " chunks, whose offset table alone (" +
-                    std::to_string(std::uint64_t(chunks) * 8) + " bytes) exceeds the file's " +
-                    std::to_string(fileSize) + " bytes");
-  std::uint64_t pixelBytes = 0;  // all channels of one pixel
-  for (int c = 0; c < channels->num_channels; ++c) pixelBytes += channels->entries[c].pixel_type == EXR_PIXEL_HALF ? 2 : 4;
-  const std::uint64_t chunkBytes = chunkCols * chunkLines * pixelBytes;
-  if (chunkBytes > (std::uint64_t(512) << 20))
-    return fail(StatusCode::IoError, path,
-                "one chunk would decode to " + std::to_string(chunkBytes) + " bytes (" + std::to_string(pixelBytes) +
-                    " bytes a pixel); the largest read is 512 MiB");
-  return Status::success();
-}
-
-// OpenEXRCore and the C++ reader can read a malformed header differently (an attribute whose
-// declared size is not its type's: Core skips the declared size, the C++ reader reads the type's
-// and goes on from there), so the C++ reader's own view is checked as well before InputFile sizes
-// its buffers from it (found by fuzz_exr_depth: a 16,711,426-wide data window that Core never saw
-// made InputFile allocate 2 GiB). Throws like OpenEXR does on a header it cannot parse.
-Status checkCppHeader(const std::string& path) {
-  Imf::StdIFStream in(path.c_str());
-  char head[8];
-  in.read(head, 8);
-  int version = int(std::uint32_t(std::uint8_t(head[4])) | std::uint32_t(std::uint8_t(head[5])) << 8 |
-                          std::uint32_t(std::uint8_t(head[6])) << 16 | std::uint32_t(std::uint8_t(head[7])) << 24);
-  Imf::Header h;
-  h.readFrom(in, version);
-  const Imath::Box2i window = h.dataWindow();
-  const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
-  const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
-  if (Status s = checkDataWindow(path, width, height); !s) return s;
-  if (h.hasTileDescription()) {
-    const Imf::TileDescription& t = h.tileDescription();
-    if (t.xSize == 0 || t.ySize == 0 || t.xSize > kMaxImageSide || t.ySize > kMaxImageSide)
-      return fail(StatusCode::IoError, path,
-                  "tiles are " + std::to_string(t.xSize) + "x" + std::to_string(t.ySize) +
-                      "; the largest side read is " + std::to_string(kMaxImageSide));
-  }
-  if (int(h.compression()) < 0 || int(h.compression()) >= int(Imf::NUM_COMPRESSION_METHODS))
-    return fail(StatusCode::IoError, path, "corrupt header: unknown compression " + std::to_string(int(h.compression())));
-  return Status::success();
-}
-
-Status openExr(const std::string& path, OpenedExr& out) {
-  if (Status s = checkReadable(path); !s) return s;
-  if (!Imf::isOpenExrFile(path.c_str())) return fail(StatusCode::IoError, path, "not an OpenEXR file (bad magic number)");
-  if (Status s = precheckHeader(path); !s) return s;
-  if (Status s = checkCppHeader(path); !s) return s;
-  out.file = std::make_unique<Imf::InputFile>(path.c_str());
-  const Imf::Header& h = out.file->header();
-  out.dataWindow = h.dataWindow();
-  const std::int64_t w = std::int64_t(out.dataWindow.max.x) - out.dataWindow.min.x + 1;
-  const std::int64_t ht = std::int64_t(out.dataWindow.max.y) - out.dataWindow.min.y + 1;
-  if (w <= 0 || ht <= 0) return fail(StatusCode::IoError, path, "empty data window");
-  if (w > kMaxImageSide || ht > kMaxImageSide)
-    return fail(StatusCode::IoError, path,
-                "data window is " + std::to_string(w) + "x" + std::to_string(ht) + "; the largest side read is " +
-                    std::to_string(kMaxImageSide));
-  out.extent = {std::uint32_t(w), std::uint32_t(ht)};
-  return Status::success();
-}
-
-std::string channelList(const Imf::ChannelList& channels) {
+std::string channelList(const std::vector<exr::ChannelInfo>& channels) {
   std::string s;
-  for (auto it = channels.begin(); it != channels.end(); ++it) s += std::string(s.empty() ? "" : ", ") + it.name();
+  for (const exr::ChannelInfo& c : channels) s += std::string(s.empty() ? "" : ", ") + c.name;
   return s.empty() ? "none" : s;
 }
 
-Status checkChannel(const std::string& path, const std::string& name, const Imf::Channel& c) {
-  if (c.type != Imf::FLOAT && c.type != Imf::HALF)
-    return fail(StatusCode::UnsupportedFormat, path,
-                "channel \"" + name + "\" is " + (c.type == Imf::UINT ? "UINT" : "of an unknown pixel type") +
-                    "; only FLOAT and HALF channels are read");
-  if (c.xSampling != 1 || c.ySampling != 1)
-    return fail(StatusCode::UnsupportedFormat, path, "channel \"" + name + "\" is subsampled; only full-resolution channels are read");
-  return Status::success();
+Status missing(const std::string& path, const char* name) {
+  return fail(StatusCode::IoError, path, std::string("has sao.version but no ") + name + " attribute");
 }
 
-// Reads the named channels as float into `data` (interleaved, image row 0 = the file's bottom
-// scanline). Channels were checked by the caller.
-Status readChannels(const std::string& path, OpenedExr& exr, const std::vector<std::string>& names, std::vector<float>& data) {
-  // Before the allocation: a truncated file that declares a large data window fails cheaply.
-  if (!exr.file->isComplete()) return fail(StatusCode::IoError, path, "file is incomplete (truncated): some scanlines are missing");
-  const std::size_t w = exr.extent.width, h = exr.extent.height, n = names.size();
-  // Read in bands of rows, the whole image allocated only once the first band decoded: a corrupt
-  // file that declares a large image (up to 16384 x 16384) fails at its first band, not after the
-  // image was allocated and cleared (found by fuzz_exr_depth).
-  constexpr std::size_t kBandRows = 256;
-  std::vector<float> fileOrder;  // top scanline first, as in the file
-  std::vector<float> band;
-  for (std::size_t y0 = 0; y0 < h; y0 += kBandRows) {
-    const std::size_t rows = std::min(kBandRows, h - y0);
-    band.assign(w * rows * n, 0.0f);
-    const int top = exr.dataWindow.min.y + int(y0), bottom = top + int(rows) - 1;
-    const Imath::Box2i window(Imath::V2i(exr.dataWindow.min.x, top), Imath::V2i(exr.dataWindow.max.x, bottom));
-    Imf::FrameBuffer fb;
-    for (std::size_t c = 0; c < n; ++c)
-      fb.insert(names[c], Imf::Slice::Make(Imf::FLOAT, band.data() + c, window, sizeof(float) * n, sizeof(float) * n * w));
-    exr.file->setFrameBuffer(fb);
-    exr.file->readPixels(top, bottom);
-    if (y0 == 0) fileOrder.reserve(w * h * n);  // the first band decoded: the file is plausible
-    fileOrder.insert(fileOrder.end(), band.begin(), band.end());
-  }
-  data.resize(fileOrder.size());
-  const std::size_t row = w * n;
-  for (std::size_t y = 0; y < h; ++y)
-    std::copy_n(fileOrder.data() + (h - 1 - y) * row, row, data.data() + y * row);
-  return Status::success();
-}
-
-template <class A>
-Status attribute(const Imf::Header& h, const std::string& path, const char* name, const char* expected, const A*& out) {
-  const auto it = h.find(name);
-  if (it == h.end()) return fail(StatusCode::IoError, path, std::string("has sao.version but no ") + name + " attribute");
-  out = dynamic_cast<const A*>(&it.attribute());
-  if (!out)
-    return fail(StatusCode::IoError, path,
-                std::string("attribute ") + name + " is of type " + it.attribute().typeName() + ", expected " + expected);
-  return Status::success();
-}
-
-Status intAttribute(const Imf::Header& h, const std::string& path, const char* name, int lo, int hi, int& out) {
-  const Imf::IntAttribute* a = nullptr;
-  if (Status s = attribute(h, path, name, "int", a); !s) return s;
-  out = a->value();
+Status intAttribute(const exr::Input& in, const std::string& path, const char* name, int lo, int hi, int& out) {
+  bool found = false;
+  if (Status s = in.intAttribute(name, found, out); !s) return s;
+  if (!found) return missing(path, name);
   if (out < lo || out > hi)
     return fail(StatusCode::IoError, path,
                 std::string("attribute ") + name + " is " + std::to_string(out) + "; expected " + std::to_string(lo) +
@@ -357,11 +151,10 @@ Status intAttribute(const Imf::Header& h, const std::string& path, const char* n
   return Status::success();
 }
 
-Status stringAttribute(const Imf::Header& h, const std::string& path, const char* name, std::string& out) {
-  const Imf::StringAttribute* a = nullptr;
-  if (Status s = attribute(h, path, name, "string", a); !s) return s;
-  out = a->value();
-  return Status::success();
+Status stringAttribute(const exr::Input& in, const std::string& path, const char* name, std::string& out) {
+  bool found = false;
+  if (Status s = in.stringAttribute(name, found, out); !s) return s;
+  return found ? Status::success() : missing(path, name);
 }
 
 Status unknownValue(const std::string& path, const char* name, const std::string& value, const char* known) {
@@ -370,58 +163,60 @@ Status unknownValue(const std::string& path, const char* name, const std::string
 }
 
 // The camera and format of a file that has sao.version.
-Status readCamera(const Imf::Header& h, const std::string& path, Camera& cam, DepthFormat& format) {
+Status readCamera(const exr::Input& in, const std::string& path, Camera& cam, DepthFormat& format) {
   int version = 0;
-  if (Status s = intAttribute(h, path, "sao.version", INT_MIN, INT_MAX, version); !s) return s;
+  if (Status s = intAttribute(in, path, "sao.version", INT_MIN, INT_MAX, version); !s) return s;
   if (version != kDepthExrVersion)
     return fail(StatusCode::UnsupportedFormat, path,
                 "sao.version is " + std::to_string(version) + "; this library reads version " +
                     std::to_string(kDepthExrVersion));
 
-  const Imf::M44dAttribute* proj = nullptr;
-  if (Status s = attribute(h, path, "sao.projection", "m44d", proj); !s) return s;
+  double proj[16] = {};
+  bool found = false;
+  if (Status s = in.matrixAttribute("sao.projection", found, proj); !s) return s;
+  if (!found) return missing(path, "sao.projection");
   for (int i = 0; i < 16; ++i) {
-    const double v = proj->value()[i / 4][i % 4];
-    if (!std::isfinite(v))
+    // Stored as Imath::M44d, m[column][row]: element i is column i / 4, row i % 4.
+    if (!std::isfinite(proj[i]))
       return fail(StatusCode::IoError, path,
                   "sao.projection element " + std::to_string(i) + " (row " + std::to_string(i % 4) + ", column " +
                       std::to_string(i / 4) + ") is not finite");
-    cam.projection[std::size_t(i)] = v;
+    cam.projection[std::size_t(i)] = proj[i];
   }
-
   std::string text;
-  if (Status s = stringAttribute(h, path, "sao.kind", text); !s) return s;
+  if (Status s = stringAttribute(in, path, "sao.kind", text); !s) return s;
   if (text == kindName(ProjectionKind::Perspective)) cam.kind = ProjectionKind::Perspective;
   else if (text == kindName(ProjectionKind::Orthographic)) cam.kind = ProjectionKind::Orthographic;
   else return unknownValue(path, "sao.kind", text, "perspective, orthographic");
 
-  if (Status s = stringAttribute(h, path, "sao.clipDepth", text); !s) return s;
+  if (Status s = stringAttribute(in, path, "sao.clipDepth", text); !s) return s;
   if (text == clipName(ClipDepth::NegativeOneToOne)) cam.clipDepth = ClipDepth::NegativeOneToOne;
   else if (text == clipName(ClipDepth::ZeroToOne)) cam.clipDepth = ClipDepth::ZeroToOne;
   else return unknownValue(path, "sao.clipDepth", text, "negativeOneToOne, zeroToOne");
 
   int flag = 0;
-  if (Status s = intAttribute(h, path, "sao.reversedZ", 0, 1, flag); !s) return s;
+  if (Status s = intAttribute(in, path, "sao.reversedZ", 0, 1, flag); !s) return s;
   cam.reversedZ = flag != 0;
-  if (Status s = intAttribute(h, path, "sao.infiniteFar", 0, 1, flag); !s) return s;
+  if (Status s = intAttribute(in, path, "sao.infiniteFar", 0, 1, flag); !s) return s;
   cam.infiniteFar = flag != 0;
-  if (Status s = intAttribute(h, path, "sao.flipY", 0, 1, flag); !s) return s;
+  if (Status s = intAttribute(in, path, "sao.flipY", 0, 1, flag); !s) return s;
   cam.flipY = flag != 0;
 
-  const Imf::DoubleAttribute* meters = nullptr;
-  if (Status s = attribute(h, path, "sao.metersToViewUnits", "double", meters); !s) return s;
-  if (!std::isfinite(meters->value())) return fail(StatusCode::IoError, path, "sao.metersToViewUnits is not finite");
-  cam.metersToViewUnits = meters->value();
+  double meters = 0.0;
+  if (Status s = in.doubleAttribute("sao.metersToViewUnits", found, meters); !s) return s;
+  if (!found) return missing(path, "sao.metersToViewUnits");
+  if (!std::isfinite(meters)) return fail(StatusCode::IoError, path, "sao.metersToViewUnits is not finite");
+  cam.metersToViewUnits = meters;
 
   int width = 0, height = 0, guard = 0;
-  if (Status s = intAttribute(h, path, "sao.width", 0, INT_MAX, width); !s) return s;
-  if (Status s = intAttribute(h, path, "sao.height", 0, INT_MAX, height); !s) return s;
-  if (Status s = intAttribute(h, path, "sao.guardBand", 0, INT_MAX, guard); !s) return s;
+  if (Status s = intAttribute(in, path, "sao.width", 0, INT_MAX, width); !s) return s;
+  if (Status s = intAttribute(in, path, "sao.height", 0, INT_MAX, height); !s) return s;
+  if (Status s = intAttribute(in, path, "sao.guardBand", 0, INT_MAX, guard); !s) return s;
   cam.width = std::uint32_t(width);
   cam.height = std::uint32_t(height);
   cam.guardBand = std::uint32_t(guard);
 
-  if (Status s = stringAttribute(h, path, "sao.depthFormat", text); !s) return s;
+  if (Status s = stringAttribute(in, path, "sao.depthFormat", text); !s) return s;
   const std::optional<DepthFormat> f = parseFormat(text);
   if (!f) return unknownValue(path, "sao.depthFormat", text, "D16, D24, D32F, LinearZ");
   format = *f;
@@ -440,38 +235,36 @@ std::uint32_t integerTexel(DepthFormat format, float v) {
 }
 
 Status readDepthImpl(const std::string& path, DepthImage& depth, Camera& camera, bool& hasCamera) {
-  OpenedExr exr;
-  if (Status s = openExr(path, exr); !s) return s;
-  const Imf::Header& h = exr.file->header();
-
-  const Imf::ChannelList& channels = h.channels();
-  std::string name;
-  if (channels.findChannel(kDepthChannel)) {
-    name = kDepthChannel;
-  } else {
-    std::size_t count = 0;
-    for (auto it = channels.begin(); it != channels.end(); ++it, ++count) name = it.name();
-    if (count != 1)
+  exr::Input in;
+  if (Status s = in.open(path); !s) return s;
+  const std::vector<exr::ChannelInfo>& channels = in.channels();
+  auto named = [&](const std::string& n) {
+    return std::find_if(channels.begin(), channels.end(), [&](const exr::ChannelInfo& c) { return c.name == n; });
+  };
+  auto channel = named(kDepthChannel);
+  if (channel == channels.end()) {
+    if (channels.size() != 1)
       return fail(StatusCode::IoError, path,
-                  "has " + std::to_string(count) + " channels (" + channelList(channels) +
+                  "has " + std::to_string(channels.size()) + " channels (" + channelList(channels) +
                       ") and none is named Z; a depth file needs a Z channel or exactly one channel");
+    channel = channels.begin();
   }
-  if (Status s = checkChannel(path, name, *channels.findChannel(name)); !s) return s;
+  if (Status s = checkChannel(path, *channel); !s) return s;
 
   Camera cam;
   DepthFormat format = DepthFormat::D32F;
-  const bool sao = h.find("sao.version") != h.end();
+  const bool sao = in.hasAttribute("sao.version");
   if (sao) {
-    if (Status s = readCamera(h, path, cam, format); !s) return s;
-    if (!extentMatches(exr.extent, cam.width, cam.height, cam.guardBand))
-      return fail(StatusCode::IoError, path, extentMismatch(exr.extent, cam.width, cam.height, cam.guardBand));
+    if (Status s = readCamera(in, path, cam, format); !s) return s;
+    if (!extentMatches(in.extent(), cam.width, cam.height, cam.guardBand))
+      return fail(StatusCode::IoError, path, extentMismatch(in.extent(), cam.width, cam.height, cam.guardBand));
   }
 
   std::vector<float> values;
-  if (Status s = readChannels(path, exr, {name}, values); !s) return s;
+  if (Status s = in.readChannels({channel->name}, values); !s) return s;
 
   DepthImage out;
-  out.extent = exr.extent;
+  out.extent = in.extent();
   out.format = format;
   out.texels.resize(values.size());
   const std::uint32_t max = integerMax(format);
@@ -495,28 +288,28 @@ Status readDepthImpl(const std::string& path, DepthImage& depth, Camera& camera,
 }
 
 Status readFloatImpl(const std::string& path, FloatImage& image, std::vector<std::string>& channelNames) {
-  OpenedExr exr;
-  if (Status s = openExr(path, exr); !s) return s;
-  const Imf::Header& h = exr.file->header();
-  const Imf::ChannelList& channels = h.channels();
-
+  exr::Input in;
+  if (Status s = in.open(path); !s) return s;
   std::vector<std::string> names;
-  for (auto it = channels.begin(); it != channels.end(); ++it) {
-    if (Status s = checkChannel(path, it.name(), it.channel()); !s) return s;
-    names.push_back(it.name());
+  for (const exr::ChannelInfo& c : in.channels()) {
+    if (Status s = checkChannel(path, c); !s) return s;
+    names.push_back(c.name);
   }
   if (names.empty()) return fail(StatusCode::IoError, path, "has no channels");
-  if (const auto* order = h.findTypedAttribute<Imf::StringVectorAttribute>("sao.channels")) {
-    std::vector<std::string> sortedOrder = order->value(), sortedNames = names;
+  std::vector<std::string> order;
+  bool found = false;
+  // An order of another type, or one that does not name exactly the file's channels, is ignored.
+  if (in.stringVectorAttribute("sao.channels", found, order) && found) {
+    std::vector<std::string> sortedOrder = order, sortedNames = names;
     std::sort(sortedOrder.begin(), sortedOrder.end());
     std::sort(sortedNames.begin(), sortedNames.end());
-    if (sortedOrder == sortedNames) names = order->value();
+    if (sortedOrder == sortedNames) names = order;
   }
 
   FloatImage out;
-  out.extent = exr.extent;
+  out.extent = in.extent();
   out.channels = std::uint32_t(names.size());
-  if (Status s = readChannels(path, exr, names, out.data); !s) return s;
+  if (Status s = in.readChannels(names, out.data); !s) return s;
   image = std::move(out);
   channelNames = std::move(names);
   return Status::success();

@@ -23,6 +23,9 @@ namespace sao {
 
 // The value of the sao.version attribute this library writes and reads.
 inline constexpr int kDepthExrVersion = 1;
+// Most pixels an EXR reader accepts (8192 x 8192, or any shape of at most kMaxImageSide a side):
+// 256 MiB a float channel.
+inline constexpr std::uint64_t kMaxExrPixels = std::uint64_t(1) << 26;
 
 // Writes a single-channel EXR (channel "Z", FLOAT, ZIP, data window (0,0)-(w-1,h-1)). D32F and
 // LinearZ store the float bits exactly; D16 and D24 store the decoded normalised value
@@ -58,9 +61,13 @@ Status writeDepthExr(const std::string& path, const DepthImage& depth, const Cam
 // Errors: IoError for missing files, directories and other non-regular files (FIFOs, devices),
 // files that are not EXR, truncated or corrupt files, wrong channel counts, missing or mistyped
 // attributes, non-finite camera values, an extent that contradicts width/height/guardBand, data
-// windows larger than kMaxImageSide; UnsupportedFormat
+// windows larger than kMaxImageSide a side or kMaxExrPixels in all, headers that declare more
+// chunks than the file can hold; UnsupportedFormat
 // for an unknown sao.version, format, kind or clipDepth string, subsampled channels and UINT
 // channels. On error `depth`, `camera` and `hasCamera` are left unchanged.
+// Reading never allocates by what a header declares before the file is known to hold that much:
+// headers are parsed by OpenEXR's core library within a fixed memory budget, and the image grows
+// as its chunks decode.
 Status readDepthExr(const std::string& path, DepthImage& depth, Camera& camera, bool& hasCamera);
 
 // Writes one channel of `ao` as an 8-bit grey PNG, value round(clamp(v, 0, 1) * 255), image row
