@@ -6,8 +6,8 @@
 #
 # By default the run is deterministic, so that CI's verdict depends on the commit alone: each
 # target runs a fixed number of inputs (-runs, sized to about a minute each on a 2-core machine)
-# from a fixed -seed, a fresh working corpus, -timeout far above any honest input and fixed memory
-# limits. A crash, a sanitizer report, a leak, a broken invariant, an input over the timeout or an
+# from a fixed -seed, a fresh working corpus, address-space randomisation off, -timeout far above
+# any honest input and fixed memory limits: the same commit runs the same inputs on every machine. A crash, a sanitizer report, a leak, a broken invariant, an input over the timeout or an
 # out-of-memory fails the stage and prints the input (hex) and its path under
 # build-fuzz/artifacts/<target>/ - fix the bug and commit the input to
 # tests/fuzz/regressions/<target>/, where the ctest test fuzz.replay.<target> replays it.
@@ -55,6 +55,18 @@ export ASAN_OPTIONS="abort_on_error=1:detect_leaks=1:strict_string_checks=1:dete
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 if [ -n "$symbolizer" ]; then export ASAN_SYMBOLIZER_PATH="$symbolizer"; fi
 
+# libFuzzer's comparison tracing feeds operand values into its mutations, and some operands are
+# addresses: with address-space randomisation the same seed would explore differently on every
+# run. setarch -R turns it off for the fuzzer, so a run is reproducible input for input.
+no_aslr=()
+if [ -z "$explore" ]; then
+  if setarch "$(uname -m)" -R true 2>/dev/null; then
+    no_aslr=(setarch "$(uname -m)" -R)
+  else
+    echo "ci/fuzz.sh: warning: cannot turn off address-space randomisation (setarch -R); runs are not reproducible input for input" >&2
+  fi
+fi
+
 summary=()
 status=0
 for t in "${targets[@]}"; do
@@ -75,14 +87,14 @@ for t in "${targets[@]}"; do
     budget=(-max_total_time="$explore" -timeout=10)
     what="${explore} s"
   else
-    budget=(-runs="${runs[$t]}" -seed=1 -timeout=120)
+    budget=(-runs="${runs[$t]}" -seed=1 -timeout=120 -reload=0)
     what="${runs[$t]} runs, seed 1"
   fi
   echo "== fuzz_$t: $what from ${seeds[*]}"
   log="$build/fuzz_$t.log"
   start=$SECONDS
   set +e
-  "$build/bin/fuzz_$t" "${budget[@]}" -rss_limit_mb=2560 -malloc_limit_mb=2048 \
+  "${no_aslr[@]}" "$build/bin/fuzz_$t" "${budget[@]}" -rss_limit_mb=2560 -malloc_limit_mb=2048 \
     -print_final_stats=1 -artifact_prefix="$artifacts/" "$work" "${seeds[@]}" >"$log" 2>&1
   rc=$?
   set -e

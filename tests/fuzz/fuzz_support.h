@@ -4,6 +4,7 @@
 #pragma once
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -39,7 +40,11 @@ inline const std::filesystem::path& scratchDir() {
     std::error_code ec;
     const fs::path base = fs::is_directory("/dev/shm", ec) && access("/dev/shm", W_OK) == 0 ? fs::path("/dev/shm")
                                                                                              : fs::temp_directory_path();
-    auto* d = new fs::path(base / ("sao_fuzz_" + std::to_string(getpid())));
+    // The pid padded to a fixed width: the path appears in messages, and a path of another
+    // length could take other branches, so a fixed -seed would not give the same run everywhere.
+    std::string pid = std::to_string(getpid());
+    pid.insert(0, 12 - std::min<std::size_t>(pid.size(), 12), '_');  // ci/fuzz.sh reads it back after the last '_'
+    auto* d = new fs::path(base / ("sao_fuzz_" + pid));
     fs::create_directories(*d);
     std::atexit([] {
       std::error_code e;
