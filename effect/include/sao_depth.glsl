@@ -27,10 +27,13 @@ bool sao_is_sky(float z)
 //              SAO_DEPTH_MODE_ORTHOGRAPHIC, SAO_DEPTH_MODE_LINEAR: z = d*c1 + c2
 //   far_dir, far_lim: the far/clear test on d: sky when d*far_dir >= far_lim
 //              (standard depth: 1, 1 -> d >= 1; reversed: -1, 0 -> d <= 0; off: 0, 1).
+// Hardware depth outside [0, 1] is no depth a GPU writes: sky, on either side (-0.0 is 0).
 // Returns z < 0 for geometry and +0.0 for sky / no geometry.
 float sao_z_from_depth(float d, vec4 clip_info, int depth_mode, float far_dir, float far_lim)
 {
     if (!sao_is_finite(d) || d * far_dir >= far_lim)
+        return 0.0;
+    if (depth_mode != SAO_DEPTH_MODE_LINEAR && (d < 0.0 || d > 1.0))
         return 0.0;
     float z;
     if (depth_mode == SAO_DEPTH_MODE_PERSPECTIVE)

@@ -158,7 +158,8 @@ TEST(Constants, Eq5ProjectionScaleAndSettingScales) {
   EXPECT_NEAR(p.proj_scale, 720.0 / (2.0 * std::tan(kFovy / 2.0)), 1e-3);
   EXPECT_FLOAT_EQ(p.radius, 150.0f);
   EXPECT_FLOAT_EQ(p.radius2, 22500.0f);
-  EXPECT_FLOAT_EQ(p.intensity_div_s, 2.0f * 2.0f * 100.0f / 16.0f) << "eq. 1 is 1/length: sigma scales with units";
+  // sigma is unitless: eq. 1's sum (1/length) is scaled by the radius in view units, 1.5 m * 100.
+  EXPECT_FLOAT_EQ(p.intensity_div_s, 2.0f * 2.0f * 150.0f / 16.0f) << "sigma multiplies the sum by r in view units";
   EXPECT_FLOAT_EQ(p.inv_samples, 1.0f / 16.0f);
   EXPECT_NEAR(p.epsilon, 1e-4 * 1e4, 1e-6) << "epsilon is an area: scales with units squared";
   EXPECT_EQ(p.spiral_turns, sao::spiralTurns(16));

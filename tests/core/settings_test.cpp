@@ -3,8 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <sstream>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include "sao/presets.h"
 #include "sao/spiral.h"
@@ -73,6 +78,77 @@ TEST(Settings, EverySettingRejectsOutOfRangeAndNonFinite) {
       EXPECT_NE(st.message.find(rangeOf(info)), std::string::npos) << "range missing: " << st.message;
     }
   }
+}
+
+// The bounds as a user reads them in a refusal, e.g. "[1e-06, 0.01]".
+std::pair<std::string, std::string> printedBounds(const std::string& name) {
+  sao::Settings s;
+  const sao::Status st = sao::setFromText(s, name, "1e300");
+  const auto open = st.message.find('['), comma = st.message.find(", ", open), close = st.message.find(']', comma);
+  if (open == std::string::npos || comma == std::string::npos || close == std::string::npos) return {};
+  return {st.message.substr(open + 1, comma - open - 1), st.message.substr(comma + 2, close - comma - 2)};
+}
+
+std::string printed(double v, int digits) {
+  std::ostringstream t;
+  t.precision(digits);
+  t << v;
+  return t.str();
+}
+
+// Each bound typed exactly as a refusal prints it is accepted (and stored as the nearest float for
+// float settings); the next double beyond it, the next float beyond the stored bound and, for ints,
+// the next whole number are refused naming the range.
+TEST(Settings, EveryBoundAcceptedAsPrintedAndJustBeyondRefused) {
+  for (std::size_t i = 0; i < sao::gen::kSettings.size(); ++i) {
+    const auto& info = sao::gen::kSettings[i];
+    if (info.type == sao::gen::SettingType::Bool) continue;
+    const auto id = static_cast<sao::SettingId>(i);
+    const std::string name(info.name);
+    const auto [loText, hiText] = printedBounds(name);
+    ASSERT_FALSE(loText.empty()) << name << ": the refusal of 1e300 names no range";
+    const std::vector<std::tuple<std::string, double, double>> bounds = {{loText, info.minValue, -1.0},
+                                                                         {hiText, info.maxValue, 1.0}};
+    for (const auto& [text, bound, outward] : bounds) {
+      sao::Settings s;
+      const sao::Status st = sao::setFromText(s, name, text);
+      EXPECT_TRUE(st.ok()) << name << " = " << text << ": " << st.message;
+      const double expected = info.type == sao::gen::SettingType::Float ? double(float(bound)) : bound;
+      EXPECT_EQ(sao::gen::settingValue(s, id), expected) << name << " = " << text;
+      EXPECT_TRUE(sao::validate(s).ok()) << name << " = " << text << ": " << sao::validate(s).message;
+
+      std::vector<std::string> beyond = {printed(std::nextafter(std::strtod(text.c_str(), nullptr), outward * INFINITY), 17)};
+      if (info.type == sao::gen::SettingType::Float)
+        beyond.push_back(printed(std::nextafter(float(bound), float(outward * INFINITY)), 9));
+      else
+        beyond.push_back(printed(bound + outward, 17));
+      for (const std::string& out : beyond) {
+        sao::Settings t;
+        const sao::Settings untouched = t;
+        const sao::Status refused = sao::setFromText(t, name, out);
+        EXPECT_EQ(refused.code, StatusCode::InvalidSetting) << name << " = " << out << " must be refused";
+        // The next double beyond a whole bound is no whole number: that is the reason given.
+        const bool whole = std::strtod(out.c_str(), nullptr) == std::floor(std::strtod(out.c_str(), nullptr));
+        const std::string reason = info.type == sao::gen::SettingType::Int && !whole
+                                       ? std::string("is not a whole number")
+                                       : "is outside its range [" + loText + ", " + hiText + "]";
+        EXPECT_NE(refused.message.find(reason), std::string::npos) << refused.message;
+        EXPECT_TRUE(t == untouched) << name << " = " << out;
+      }
+    }
+  }
+}
+
+// The two values of the report: the upper bound of epsilon and the lower bound of contrast.
+TEST(Settings, EpsilonAndContrastAtTheirPrintedBounds) {
+  sao::Settings s;
+  EXPECT_TRUE(sao::setFromAssignment(s, "epsilon=0.01").ok());
+  EXPECT_EQ(s.epsilon, 0.01f);
+  EXPECT_TRUE(sao::setFromAssignment(s, "contrast=0.1").ok());
+  EXPECT_EQ(s.contrast, 0.1f);
+  EXPECT_TRUE(sao::validate(s).ok());
+  EXPECT_EQ(sao::setFromAssignment(s, "epsilon=0.0100001").message,
+            "setting 'epsilon' = 0.0100001 is outside its range [1e-06, 0.01] m^2");
 }
 
 TEST(Settings, MessageNamesValueAndRange) {

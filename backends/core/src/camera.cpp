@@ -3,7 +3,10 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 #include <string>
+
+#include "sao/plan.h"  // kMaxImageSide
 
 namespace sao {
 namespace {
@@ -39,6 +42,15 @@ static Status checkExpected(const Camera& cam, const char* what, const char* pla
 
 static Status analyzeMatrix(const Camera& cam, DepthModel& m);
 
+// A standard matrix built with near and far swapped is exactly a reversed-Z matrix with them in
+// order (and the other way round): the matrix cannot tell the two mistakes apart, so name both.
+static Status reversedMismatch(const Camera& cam) {
+  return bad(std::string("declared ") + (cam.reversedZ ? "reversed-Z" : "standard depth") +
+             ", but the projection maps the near plane to depth " + (cam.reversedZ ? "0" : "1") +
+             ": set reversedZ = " + (cam.reversedZ ? "false" : "true") +
+             ", or, if the matrix was built with the near and far distances swapped, swap them");
+}
+
 Status analyze(const Camera& cam, DepthModel& m) {
   if (Status st = analyzeMatrix(cam, m); !st.ok()) return st;
   if (Status st = checkExpected(cam, "Near", "near", cam.expectedNear, m.nearDistance); !st.ok()) return st;
@@ -46,8 +58,14 @@ Status analyze(const Camera& cam, DepthModel& m) {
 }
 
 static Status analyzeMatrix(const Camera& cam, DepthModel& m) {
-  for (double v : cam.projection)
-    if (!std::isfinite(v)) return bad("projection matrix has a non-finite element");
+  for (int i = 0; i < 16; ++i)
+    if (!std::isfinite(cam.projection[i])) {
+      // Element (row i % 4, column i / 4). An infinite P22 or P23 comes from near == far.
+      char text[160];
+      std::snprintf(text, sizeof text, "projection matrix has a non-finite element P%d%d (row %d, column %d) = %g",
+                    i % 4, i / 4, i % 4, i / 4, cam.projection[i]);
+      return bad(std::string(text) + (i == 10 || i == 14 ? ": were the near and far planes equal when it was built?" : ""));
+    }
   if (cam.width == 0 || cam.height == 0) return bad("viewport size is " + std::to_string(cam.width) + "x" +
                                                     std::to_string(cam.height) + "; both must be > 0");
   // Outside this range float view-space positions lose the precision the effect needs (normals
@@ -82,19 +100,14 @@ static Status analyzeMatrix(const Camera& cam, DepthModel& m) {
     const bool poleAtNear = std::fabs(nearDen) <= kPoleTolerance * std::fmax(1.0, std::fabs(m.c2));
     const double zAtFar = m.c0 / farDen;
     if (poleAtNear || (zNear < 0 && zAtFar < 0 && std::isfinite(zAtFar) && -zAtFar < -zNear))
-      return bad(std::string("declared ") + (cam.reversedZ ? "reversed-Z" : "standard depth") +
-                 ", but the projection maps the near plane to depth " + (cam.reversedZ ? "0" : "1") +
-                 ": set reversedZ = " + (cam.reversedZ ? "false" : "true"));
+      return reversedMismatch(cam);
     // An infinite far plane puts the clear depth exactly at the pole (C = -1 or 0 as the paper's
     // c = [zn, -1, +1]). The tolerance is relative rounding of a double computation; a finite far
     // plane even 1e10 times the near distance is still finite.
     const bool atPole = std::fabs(farDen) <= kPoleTolerance * std::fmax(1.0, std::fabs(m.c2));
     if (!(zNear < 0) || !std::isfinite(zNear)) {
       const double zOther = m.c0 / (m.depthAtFar * m.c1 + m.c2);
-      if (zOther < 0 && std::isfinite(zOther) && !atPole)
-        return bad(std::string("declared ") + (cam.reversedZ ? "reversed-Z" : "standard depth") +
-                   ", but the projection maps the near plane to depth " + (cam.reversedZ ? "0" : "1") +
-                   ": set reversedZ = " + (cam.reversedZ ? "false" : "true"));
+      if (zOther < 0 && std::isfinite(zOther) && !atPole) return reversedMismatch(cam);
       return bad("projection puts the near plane at or behind the eye (near <= 0)");
     }
     m.nearDistance = -zNear;
@@ -134,6 +147,48 @@ static Status analyzeMatrix(const Camera& cam, DepthModel& m) {
 double linearZ(const DepthModel& m, ProjectionKind kind, double d) {
   if (kind == ProjectionKind::Orthographic) return d * m.c1 + m.c2;
   return m.c0 / (d * m.c1 + m.c2);
+}
+
+namespace {
+
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+Status checkViewport(std::uint32_t width, std::uint32_t height) {
+  if (width == 0 || height == 0 || width > kMaxImageSide || height > kMaxImageSide)
+    return bad("viewport size is " + std::to_string(width) + "x" + std::to_string(height) +
+               "; each side must be in [1, " + std::to_string(kMaxImageSide) + "]");
+  return Status::success();
+}
+
+}  // namespace
+
+Status checkPerspectiveArguments(double fovy, std::uint32_t width, std::uint32_t height, double n, double f) {
+  if (!(fovy > 0 && fovy < std::numbers::pi))
+    return bad("vertical field of view " + number(fovy) + " rad (" + number(fovy * 180 / std::numbers::pi) +
+               " degrees) is outside (0, pi)");
+  if (Status st = checkViewport(width, height); !st) return st;
+  if (!(std::isfinite(n) && n > 0)) return bad("near distance " + number(n) + " must be finite and > 0");
+  if (std::isnan(f) || f == -INFINITY) return bad("far distance " + number(f) + " must be a number > near or +inf");
+  if (!(f > n))
+    return bad("far distance " + number(f) + (f == n ? " equals" : " is nearer than") + " the near distance " +
+               number(n) + ": far must be beyond near (or +inf)");
+  return Status::success();
+}
+
+Status checkOrthographicArguments(double halfHeight, std::uint32_t width, std::uint32_t height, double n, double f) {
+  if (!(std::isfinite(halfHeight) && halfHeight > 0))
+    return bad("orthographic half height " + number(halfHeight) + " must be finite and > 0");
+  if (Status st = checkViewport(width, height); !st) return st;
+  if (!std::isfinite(n)) return bad("near distance " + number(n) + " must be finite");
+  if (!std::isfinite(f)) return bad("far distance " + number(f) + " of an orthographic projection must be finite");
+  if (!(f > n))
+    return bad("far distance " + number(f) + (f == n ? " equals" : " is nearer than") + " the near distance " +
+               number(n) + ": far must be beyond near");
+  return Status::success();
 }
 
 Camera perspectiveCamera(double fovy, std::uint32_t width, std::uint32_t height, double n, double f, ClipDepth clip,

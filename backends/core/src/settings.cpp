@@ -8,10 +8,17 @@
 namespace sao {
 namespace {
 
+// 9 significant digits, or 17 when 9 would print a different number (64.00000000000001 is not
+// "64", which would make "is not a whole number" read as nonsense).
 std::string describe(double v) {
   std::ostringstream s;
   s.precision(9);
   s << v;
+  if (std::isfinite(v) && std::strtod(s.str().c_str(), nullptr) != v) {
+    s.str("");
+    s.precision(17);
+    s << v;
+  }
   return s.str();
 }
 
@@ -20,7 +27,10 @@ std::string rangeText(const SettingInfo& info) {
   return "[" + describe(info.minValue) + ", " + describe(info.maxValue) + "]";
 }
 
-Status checkValue(const SettingInfo& info, double v) {
+// exactBounds: `v` is what the user wrote (text), held to the bounds exactly as printed. Otherwise
+// `v` is a value already stored in Settings: a float setting then also accepts the float nearest
+// each bound (0.01 is stored as 0.0099999998f, 0.1 as 0.100000001f).
+Status checkValue(const SettingInfo& info, double v, bool exactBounds) {
   const std::string where = "setting '" + std::string(info.name) + "' ";
   if (std::isnan(v)) return Status::error(StatusCode::InvalidSetting, where + "is NaN; allowed range " + rangeText(info));
   if (std::isinf(v))
@@ -28,11 +38,9 @@ Status checkValue(const SettingInfo& info, double v) {
                          where + "is " + (v > 0 ? "+inf" : "-inf") + "; allowed range " + rangeText(info));
   if (info.type != gen::SettingType::Float && v != std::floor(v))
     return Status::error(StatusCode::InvalidSetting, where + "= " + describe(v) + " is not a whole number");
-  // Float settings live in a float: compare against the float nearest each bound, so a value
-  // written as the bound itself (e.g. 0.01f) is in range.
-  const bool isFloat = info.type == gen::SettingType::Float;
-  const double lo = isFloat ? double(float(info.minValue)) : info.minValue;
-  const double hi = isFloat ? double(float(info.maxValue)) : info.maxValue;
+  const bool widen = !exactBounds && info.type == gen::SettingType::Float;
+  const double lo = widen ? std::fmin(info.minValue, double(float(info.minValue))) : info.minValue;
+  const double hi = widen ? std::fmax(info.maxValue, double(float(info.maxValue))) : info.maxValue;
   if (v < lo || v > hi)
     return Status::error(StatusCode::InvalidSetting,
                          where + "= " + describe(v) + " is outside its range " + rangeText(info) +
@@ -44,7 +52,7 @@ Status checkValue(const SettingInfo& info, double v) {
 
 Status validate(const Settings& settings) {
   for (size_t i = 0; i < gen::kSettings.size(); ++i) {
-    Status s = checkValue(gen::kSettings[i], gen::settingValue(settings, static_cast<SettingId>(i)));
+    Status s = checkValue(gen::kSettings[i], gen::settingValue(settings, static_cast<SettingId>(i)), false);
     if (!s) return s;
   }
   return Status::success();
@@ -94,7 +102,7 @@ Status setFromText(Settings& settings, std::string_view name, std::string_view v
       return Status::error(StatusCode::InvalidSetting,
                            "setting '" + std::string(name) + "': '" + text + "' is not a number");
   }
-  if (Status s = checkValue(info, v); !s) return s;
+  if (Status s = checkValue(info, v, true); !s) return s;
   gen::setSettingValue(settings, *id, v);
   return Status::success();
 }

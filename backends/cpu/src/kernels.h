@@ -88,6 +88,7 @@ T glslMin(T a, T b) {  // GLSL min(a, b) = (b < a) ? b : a
 template <typename T>
 T zFromDepth(T d, const Block<T>& P) {
   if (!isFinite(d) || d * P.far_dir >= P.far_lim) return T(0);
+  if (P.depth_mode != gen::SAO_DEPTH_MODE_LINEAR && (d < T(0) || d > T(1))) return T(0);  // no hardware depth
   T z;
   if (P.depth_mode == gen::SAO_DEPTH_MODE_PERSPECTIVE)
     z = P.clip_info.x / (d * P.clip_info.y + P.clip_info.z);

@@ -58,9 +58,20 @@ Status analyze(const Camera& camera, DepthModel& out);
 double linearZ(const DepthModel& model, ProjectionKind kind, double depth);
 
 // Builders for tests and samples: GLM-style matrices for each convention (expectedNear left 0).
+// They do not check their arguments: numbers that come from a user go through
+// checkPerspectiveArguments / checkOrthographicArguments first, which name the bad argument
+// (near == far would otherwise surface as "a non-finite element", near > far as "set reversedZ").
 Camera perspectiveCamera(double fovyRadians, std::uint32_t width, std::uint32_t height, double nearDistance,
                          double farDistance /* inf for infinite */, ClipDepth clip, bool reversedZ);
 Camera orthographicCamera(double halfHeight, std::uint32_t width, std::uint32_t height, double nearDistance,
                           double farDistance, ClipDepth clip, bool reversedZ);
+
+// Ok, or InvalidCamera naming the first bad argument of the builder: fovy outside (0, pi) or
+// halfHeight <= 0, an empty viewport or a side above kMaxImageSide, near not finite or (perspective) not > 0,
+// far not beyond near (perspective: far may be +inf; orthographic: finite).
+Status checkPerspectiveArguments(double fovyRadians, std::uint32_t width, std::uint32_t height, double nearDistance,
+                                 double farDistance);
+Status checkOrthographicArguments(double halfHeight, std::uint32_t width, std::uint32_t height, double nearDistance,
+                                  double farDistance);
 
 }  // namespace sao

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "sao/plan.h"
+#include "sao/status.h"
 
 namespace sao {
 
@@ -23,6 +24,23 @@ struct DepthImage {
   // The value a shader reads (texelFetch(...).r), computed in double.
   double value(std::uint32_t x, std::uint32_t y) const;
 };
+
+// The one contract for depth values, on every backend (cpu, gl, vulkan):
+//  - In the shader, hardware depth (D16/D24/D32F) that is NaN, +-Inf, below 0 or above 1 is sky
+//    (+0.0 in csz), exactly like the clear value; -0.0 is 0. LinearZ is sky when it is NaN, +-Inf,
+//    +-0.0 or positive. The GPU paths do not scan the depth each frame, so this rule is what they
+//    give, bit for bit the same on every backend.
+//  - A GL D32F texture cannot hold such texels: GL clamps NaN, infinities and values outside
+//    [0, 1] (and turns -0.0 into +0.0) when they are uploaded or written.
+//  - Depth that comes from a file (sao-render --depth) is checked with checkDepthValues first, so
+//    a file that is not what its format says is refused with the same error on every backend.
+
+// Ok, or InvalidInput naming how many texels the format cannot hold, the first of them (x, y and
+// value, row 0 first) and the likely cause: D16/D24 texels above 2^n - 1; D32F texels that are
+// NaN, +-Inf, below 0 or above 1 (-0.0 is fine: it is 0); LinearZ texels that are NaN. A D32F
+// image with values above 1 is most likely a linear distance in view units and one with negative
+// values a linear camera-space z: the message says so and names the LinearZ format.
+Status checkDepthValues(const DepthImage& depth);
 
 // Quantises a window-space depth d in [0, 1] (or a linear z for LinearZ) to the format, as a GPU
 // depth write would (round to nearest for the integer formats).

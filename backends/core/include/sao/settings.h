@@ -13,7 +13,8 @@ using Settings = gen::Settings;
 using SettingInfo = gen::SettingInfo;
 using SettingId = gen::SettingId;
 
-// Ok, or InvalidSetting naming the first offending setting, its value and the allowed range.
+// Ok, or InvalidSetting naming the first offending setting, its value and the allowed range. A
+// float setting holding the float nearest a bound (0.01 is stored as 0.0099999998f) is in range.
 Status validate(const Settings& settings);
 
 // Every value pulled into its range (NaN becomes the default). For sliders, never implicit.
@@ -23,7 +24,9 @@ Settings clamped(const Settings& settings);
 std::optional<SettingId> findSetting(std::string_view name);
 
 // Parses `value` for the named setting ("true"/"false"/"1"/"0" for bools) and stores it if it is
-// valid; otherwise returns InvalidSetting and leaves `settings` unchanged.
+// valid; otherwise returns InvalidSetting and leaves `settings` unchanged. The number as written
+// must lie in [min, max] exactly as the metadata (and every refusal) prints them: each bound is
+// accepted, the next double beyond it is not.
 Status setFromText(Settings& settings, std::string_view name, std::string_view value);
 
 // "name=value" as the CLI's --set takes it.

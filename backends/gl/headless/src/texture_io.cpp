@@ -79,6 +79,13 @@ Status uploadDepth(const DepthImage& depth, GlDepth format, std::uint32_t& textu
                                                        " image cannot be uploaded as " + toString(format));
   if (depth.texels.size() != n || n == 0)
     return Status::error(StatusCode::InvalidInput, "depth image texel count does not match its extent");
+  // GL clamps depth to [0, 1] on upload (NaN and -inf to 0, +inf to 1): a texture of such texels
+  // would hold other values than the CPU reference reads, which are sky by the contract.
+  const bool floatDepth = format == GlDepth::D32F || format == GlDepth::D32FS8;
+  if (floatDepth)
+    if (Status st = checkDepthValues(depth); !st)
+      return Status::error(st.code, std::string("a GL ") + toString(format) +
+                                        " texture clamps depth to [0, 1], so it cannot hold this image: " + st.message);
   const GLuint t = makeTexture(internalFormat(format), e);
   tightPixelStore();
   std::vector<std::uint16_t> u16;
@@ -133,8 +140,10 @@ Status uploadDepth(const DepthImage& depth, GlDepth format, std::uint32_t& textu
     glGetTextureImage(t, 0, GL_RED, GL_FLOAT, GLsizei(back.size() * sizeof(back[0])), back.data());
     for (std::size_t i = 0; i < n; ++i) mismatches += back[i] != depth.texels[i];
   } else {
+    // GL stores -0.0 as +0.0: the same depth, and the same csz by the contract (sao/image.h).
     glGetTextureImage(t, 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(back.size() * sizeof(back[0])), back.data());
-    for (std::size_t i = 0; i < n; ++i) mismatches += back[i] != depth.texels[i];
+    for (std::size_t i = 0; i < n; ++i)
+      mismatches += back[i] != (depth.texels[i] == 0x80000000u ? 0u : depth.texels[i]);
   }
   if (mismatches) {
     deleteTexture(t);

@@ -72,6 +72,8 @@ struct DepthInput {
   // One of the k* depth formats above (hardware depth per the Camera's conventions) or kR32F
   // (linear camera-space z, negative in front of the camera, view units). The effect queries the
   // texture's real internal format and rejects a mismatch; 0 accepts whatever the texture holds.
+  // Depth values (sao/image.h): GL clamps depth textures to [0, 1] (and -0.0 to +0.0), so they
+  // always hold valid hardware depth; R32F linear z that is NaN, +-Inf, +-0 or positive is sky.
   std::uint32_t internalFormat = 0;
 };
 

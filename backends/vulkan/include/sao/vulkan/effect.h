@@ -91,6 +91,9 @@ struct Config {
   // D32_SFLOAT_S8_UINT (hardware depth per the camera's conventions; views of the combined
   // formats must select VK_IMAGE_ASPECT_DEPTH_BIT only) or VK_FORMAT_R32_SFLOAT (linear
   // camera-space z, DepthEncoding::LinearZ). depth2 (secondLayer) has the same format.
+  // Depth values (sao/image.h): hardware depth that is NaN, +-Inf, below 0 or above 1 (possible in
+  // D32_SFLOAT with VK_EXT_depth_range_unrestricted or a buffer copy) is read as sky, like the
+  // clear value, bit for bit as on the other backends; -0.0 is 0. The depth is not scanned.
   VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;
   // Camera-space normals in .xyz (components in [-1,1]), any sampled colour format, e.g.
   // VK_FORMAT_R16G16B16A16_SFLOAT; VK_FORMAT_UNDEFINED: no normals (rebuilt from depth).

@@ -16,7 +16,10 @@ std::uint32_t internalFormat(GlDepth format);
 DepthFormat cpuFormat(GlDepth format);  // the DepthImage format holding the same texels
 
 // A new GL_TEXTURE_2D with immutable storage holding `depth` exactly; verified by reading it back
-// (InvalidInput when the texels differ, e.g. a driver's integer conversion is off by one).
+// (InvalidInput when the texels differ, e.g. a driver's integer conversion is off by one). GL
+// clamps D32F / D32FS8 depth to [0, 1]: an image with NaN, +-Inf or values outside [0, 1] is
+// refused up front with checkDepthValues' message (sao/image.h), and -0.0 is held as +0.0 (the
+// same depth). R32F holds every float bit pattern, NaN payloads and -0.0 included.
 Status uploadDepth(const DepthImage& depth, GlDepth format, std::uint32_t& texture);
 // GL_RGBA16F from a 4-channel image, uploaded as nearest-even half bits (sao::halfBits).
 Status uploadNormals(const FloatImage& normals, std::uint32_t& texture);

@@ -1,0 +1,97 @@
+// checkDepthValues: a depth image from a file is refused when its texels are not what its format
+// can hold, with the count, the first bad texel and the likely cause (sao/image.h).
+#include <bit>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "sao/image.h"
+
+namespace sao {
+namespace {
+
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", v);
+  return text;
+}
+
+struct BadTexels {
+  std::size_t nan = 0, positiveInf = 0, negativeInf = 0, below = 0, above = 0;
+  std::size_t first = 0;
+  std::size_t count() const { return nan + positiveInf + negativeInf + below + above; }
+};
+
+std::string kinds(const BadTexels& b) {
+  std::string s;
+  auto add = [&](std::size_t n, const char* what) {
+    if (n) s += (s.empty() ? "" : ", ") + std::to_string(n) + " " + what;
+  };
+  add(b.nan, "NaN");
+  add(b.positiveInf, "+inf");
+  add(b.negativeInf, "-inf");
+  add(b.below, "below 0");
+  add(b.above, "above 1");
+  return s;
+}
+
+// What most likely went wrong, judged from the kinds of bad texels.
+std::string likelyCause(const BadTexels& b) {
+  const std::string linearZ = "store it as LinearZ (camera-space z, negative in front of the camera; sao.depthFormat "
+                              "\"LinearZ\", see sao/io.h)";
+  if (b.above && !b.below && !b.nan)
+    return "values above 1 look like linear depth (a distance in view units, e.g. metres), not hardware depth in "
+           "[0, 1]: " + linearZ;
+  if (b.below && !b.above && !b.nan)
+    return "values below 0 look like linear camera-space z, not hardware depth in [0, 1]: " + linearZ;
+  return "hardware depth lies in [0, 1] and holds no NaN or infinity; write the sky as the clear value (1, or 0 "
+         "with reversed-Z)";
+}
+
+}  // namespace
+
+Status checkDepthValues(const DepthImage& depth) {
+  const std::size_t n = std::size_t(depth.extent.width) * depth.extent.height;
+  if (depth.texels.size() != n)
+    return Status::error(StatusCode::InvalidInput, "depth image holds " + std::to_string(depth.texels.size()) +
+                                                       " texels, its extent " + std::to_string(depth.extent.width) +
+                                                       "x" + std::to_string(depth.extent.height) + " needs " +
+                                                       std::to_string(n));
+  BadTexels bad;
+  auto note = [&](std::size_t& kind, std::size_t i) {
+    if (bad.count() == 0) bad.first = i;
+    ++kind;
+  };
+  if (depth.format == DepthFormat::D16 || depth.format == DepthFormat::D24) {
+    const std::uint32_t max = depth.format == DepthFormat::D16 ? 0xffffu : 0xffffffu;
+    for (std::size_t i = 0; i < n; ++i)
+      if (depth.texels[i] > max) note(bad.above, i);
+  } else {
+    const bool linear = depth.format == DepthFormat::LinearZ;
+    for (std::size_t i = 0; i < n; ++i) {
+      const float v = std::bit_cast<float>(depth.texels[i]);
+      if (std::isnan(v)) note(bad.nan, i);
+      else if (linear) continue;  // every other linear z is geometry (z < 0) or sky
+      else if (v == INFINITY) note(bad.positiveInf, i);
+      else if (v == -INFINITY) note(bad.negativeInf, i);
+      else if (v < 0) note(bad.below, i);  // -0.0 == 0 is not below
+      else if (v > 1) note(bad.above, i);
+    }
+  }
+  if (bad.count() == 0) return Status::success();
+  const auto x = std::uint32_t(bad.first % depth.extent.width), y = std::uint32_t(bad.first / depth.extent.width);
+  const std::string where = "the first is (" + std::to_string(x) + ", " + std::to_string(y) + ") = ";
+  const std::string counted = std::to_string(bad.count()) + " of " + std::to_string(n) + " texels ";
+  std::string message;
+  if (depth.format == DepthFormat::D16 || depth.format == DepthFormat::D24)
+    message = counted + "are above " + std::to_string(depth.format == DepthFormat::D16 ? 0xffffu : 0xffffffu) +
+              ", the largest " + toString(depth.format) + " texel; " + where + std::to_string(depth.texels[bad.first]);
+  else
+    message = counted + "are not " + toString(depth.format) + " depth (" + kinds(bad) + "); " + where +
+              number(std::bit_cast<float>(depth.texels[bad.first])) + ": " +
+              (depth.format == DepthFormat::LinearZ ? "linear z holds no NaN; write the sky as +0 or +inf"
+                                                    : likelyCause(bad));
+  return Status::error(StatusCode::InvalidInput, message);
+}
+
+}  // namespace sao
