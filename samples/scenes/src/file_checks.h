@@ -19,6 +19,9 @@ std::string lowerExtension(std::string_view path);
 // Reads a whole regular file of at most maxBytes bytes (IoError naming the path otherwise).
 Status readWholeFile(const std::string& path, std::uintmax_t maxBytes, std::string& out);
 
+// The UTF-8 byte-order mark some editors write at the start of a text file.
+inline constexpr std::string_view kUtf8ByteOrderMark = "\xEF\xBB\xBF";
+
 // "PATH: PROBLEM" as a Status.
 inline Status fileError(StatusCode code, std::string_view path, const std::string& problem) {
   return Status::error(code, std::string(path) + ": " + problem);

@@ -7,11 +7,13 @@
 #include <assimp/IOStream.hpp>
 #include <assimp/IOSystem.hpp>
 #include <assimp/Importer.hpp>
+#include <assimp/MemoryIOWrapper.h>
 #include <assimp/config.h>
 #include <assimp/importerdesc.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -44,16 +46,24 @@ constexpr std::string_view kMeshExtensions[] = {".gltf", ".glb", ".obj", ".ply"}
 
 // Files a glTF refers to (its buffers) are opened only when they are
 // regular files: a FIFO would block, a device (say /dev/zero as a glTF buffer) never end.
+// `mainText`, when not empty, is read instead of the file `mainPath` (a .gltf without its
+// byte-order mark, which assimp 5.2 refuses as "JSON parse error, offset 0").
 class RegularFilesOnly : public Assimp::DefaultIOSystem {
  public:
+  RegularFilesOnly(std::string mainPath, const std::string& mainText)
+      : mainPath_(std::move(mainPath)), mainText_(mainText) {}
   bool Exists(const char* file) const override { return isRegular(file); }
   Assimp::IOStream* Open(const char* file, const char* mode) override {
     if (!isRegular(file) || mode == nullptr || std::strchr(mode, 'r') == nullptr || std::strpbrk(mode, "wa+"))
       return nullptr;
+    if (!mainText_.empty() && mainPath_ == file)
+      return new Assimp::MemoryIOStream(reinterpret_cast<const std::uint8_t*>(mainText_.data()), mainText_.size());
     return DefaultIOSystem::Open(file, mode);
   }
 
  private:
+  std::string mainPath_;
+  const std::string& mainText_;  // outlives the importer
   static bool isRegular(const char* file) {
     if (file == nullptr || *file == '\0') return false;
     std::error_code ec;
@@ -205,11 +215,16 @@ Status fromOwnReader(bool obj, std::string_view bytes, std::string_view name, Me
 }
 
 // What assimp is not given (gltf_checks.h): binary glTF chunks larger than the file, invalid JSON.
-Status checkGltfFile(const std::string& path, const std::string& ext) {
+// A .gltf that starts with a UTF-8 byte-order mark leaves its text without the mark in
+// `withoutMark` (for assimp); otherwise that stays empty.
+Status checkGltfFile(const std::string& path, const std::string& ext, std::string& withoutMark) {
   if (ext == ".gltf") {
     std::string text;
     if (Status s = detail::readWholeFile(path, kMaxMeshFileBytes, text); !s) return s;
-    return detail::checkGltfJson(text, path);
+    if (Status s = detail::checkGltfJson(text, path, {{}, std::filesystem::path(path).parent_path()}); !s) return s;
+    if (std::string_view(text).starts_with(detail::kUtf8ByteOrderMark))
+      withoutMark = text.substr(detail::kUtf8ByteOrderMark.size());
+    return Status::success();
   }
   std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
@@ -222,7 +237,7 @@ Status checkGltfFile(const std::string& path, const std::string& ext) {
     in.seekg(std::streamoff(offset));
     in.read(bytes.data(), std::streamsize(count));
     return in.gcount() == std::streamsize(count);
-  }, path);
+  }, path, std::filesystem::path(path).parent_path());
 }
 
 }  // namespace
@@ -250,12 +265,13 @@ Status loadMeshFile(const std::string& path, Mesh& out) {
     if (Status s = detail::readWholeFile(path, kMaxMeshFileBytes, bytes); !s) return s;
     return guarded(path, [&] { return fromOwnReader(ext == ".obj", bytes, path, out); });
   }
+  std::string withoutMark;
   if (ext == ".gltf" || ext == ".glb")
-    if (Status s = guarded(path, [&] { return checkGltfFile(path, ext); }); !s) return s;
+    if (Status s = guarded(path, [&] { return checkGltfFile(path, ext, withoutMark); }); !s) return s;
   return guarded(path, [&]() -> Status {
     Assimp::Importer importer;
     if (Status s = configure(importer, path); !s) return s;
-    importer.SetIOHandler(new RegularFilesOnly);  // the importer owns it
+    importer.SetIOHandler(new RegularFilesOnly(path, withoutMark));  // the importer owns it
     const aiScene* scene = importer.ReadFile(path, kPostProcess);
     if (scene == nullptr) return assimpFailed(path, importer);
     return extract(*scene, path, out);
@@ -269,10 +285,14 @@ Status loadMeshFromMemory(std::span<const std::uint8_t> bytes, std::string_view 
     return fileError(StatusCode::UnsupportedFormat, name,
                      "unknown format '" + hint + "' (mesh formats: gltf, glb, obj, ply)");
   if (bytes.empty()) return fileError(StatusCode::IoError, name, "is empty");
-  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   if (hint == "ply" || hint == "obj") return guarded(name, [&] { return fromOwnReader(hint == "obj", text, name, out); });
-  if (hint == "gltf")
+  if (hint == "gltf") {
     if (Status s = guarded(name, [&] { return detail::checkGltfJson(text, name); }); !s) return s;
+    // assimp 5.2 refuses a byte-order mark ("JSON parse error, offset 0"); the glTF 2.0
+    // specification lets readers ignore it.
+    if (text.starts_with(detail::kUtf8ByteOrderMark)) text.remove_prefix(detail::kUtf8ByteOrderMark.size());
+  }
   if (hint == "glb") {
     const auto read = [&](std::uint64_t offset, std::size_t count, std::string& chunk) {
       if (offset > text.size() || count > text.size() - offset) return false;
@@ -312,7 +332,42 @@ Status validateMesh(const Mesh& mesh, std::string_view name, std::size_t maxTria
   if (lo == hi)
     return fileError(StatusCode::InvalidInput, name,
                      "all its triangles are at one point " + point(lo));
-  return Status::success();
+  for (std::size_t i = 0; i < mesh.indices.size(); i += 3) {
+    const auto& p = mesh.positions;
+    if (!isDegenerateTriangle(p[mesh.indices[i]], p[mesh.indices[i + 1]], p[mesh.indices[i + 2]]))
+      return Status::success();
+  }
+  return fileError(StatusCode::InvalidInput, name,
+                   "all its " + std::to_string(triangles) +
+                       " triangles are degenerate (no area: corners repeated or on one line), so nothing would be "
+                       "drawn");
+}
+
+bool isDegenerateTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+  const glm::dvec3 ab = glm::dvec3(b) - glm::dvec3(a), ac = glm::dvec3(c) - glm::dvec3(a);
+  const glm::dvec3 bc = glm::dvec3(c) - glm::dvec3(b);
+  const double longest2 = std::max({glm::dot(ab, ab), glm::dot(ac, ac), glm::dot(bc, bc)});
+  // |ab x ac| is twice the area: the longest edge times the height on it.
+  return glm::length(glm::cross(ab, ac)) <= 1e-6 * longest2;
+}
+
+std::size_t removeDegenerateTriangles(Mesh& mesh, std::string_view name, std::vector<std::string>& warnings) {
+  std::size_t kept = 0;
+  const auto& p = mesh.positions;
+  for (std::size_t i = 0; i < mesh.indices.size(); i += 3) {
+    const std::uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
+    if (isDegenerateTriangle(p[a], p[b], p[c])) continue;
+    mesh.indices[kept++] = a;
+    mesh.indices[kept++] = b;
+    mesh.indices[kept++] = c;
+  }
+  const std::size_t removed = (mesh.indices.size() - kept) / 3;
+  if (removed > 0)
+    warnings.push_back(std::string(name) + ": " + std::to_string(removed) + " of " +
+                       std::to_string(mesh.triangleCount()) +
+                       " triangles are degenerate (no area: corners repeated or on one line) and were left out");
+  mesh.indices.resize(kept);
+  return removed;
 }
 
 }  // namespace sao::scenes

@@ -50,7 +50,9 @@ Status readObj(std::string_view text, std::string_view name, Mesh& out) {
   std::vector<std::uint32_t> polygon;
   std::string joined;  // a logical line made of continued physical lines
   int lineNumber = 0;
-  std::size_t pos = 0;
+  // A UTF-8 byte-order mark (Windows editors write one) is skipped: glued to the first word, it
+  // made the first statement unknown and so ignored, a lost first vertex and every index shifted.
+  std::size_t pos = text.starts_with(kUtf8ByteOrderMark) ? kUtf8ByteOrderMark.size() : 0;
   while (pos < text.size()) {
     // One logical line: physical lines ending in a backslash continue on the next.
     const int firstLine = lineNumber + 1;

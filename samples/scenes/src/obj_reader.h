@@ -13,7 +13,8 @@ namespace sao::scenes::detail {
 // ignored: w, vertex colours) and `f` lines of references `i`, `i/t`, `i//n` or `i/t/n` (1-based,
 // or negative: relative to the vertices so far); polygons are split into fans, faces of fewer
 // than 3 vertices are left out, a line ending in a backslash continues on the next, every other
-// statement (vt, vn, g, o, s, usemtl, mtllib, l, p, comments, ...) is ignored. Errors: IoError
+// statement (vt, vn, g, o, s, usemtl, mtllib, l, p, comments, ...) is ignored; a UTF-8
+// byte-order mark at the start is skipped. Errors: IoError
 // "NAME: OBJ line N: ..." for a malformed line, InvalidInput for a reference to a vertex that
 // does not exist or more than kMaxMeshTriangles triangles. out is left untouched on error. Does
 // not call validateMesh.

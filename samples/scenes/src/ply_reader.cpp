@@ -109,6 +109,10 @@ class Parser {
 
   Status header(Header& h) {
     std::string_view line;
+    // Refused, not skipped: a PLY file is binary-capable and its magic is the bytes "ply"; an
+    // editor that added the mark may also have changed the line ends or the encoding.
+    if (bytes_.starts_with(kUtf8ByteOrderMark))
+      return error("starts with a UTF-8 byte-order mark before 'ply'; save it without the mark (as plain ASCII)");
     if (!nextLine(line) || line != "ply") return error("not a PLY file (the first line is not 'ply')");
     bool haveFormat = false;
     while (true) {

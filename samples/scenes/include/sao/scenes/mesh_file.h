@@ -6,8 +6,11 @@
 // The mesh is in world space (a glTF's node hierarchy is applied) and triangulated (polygons:
 // assimp triangulates them, the own readers split them into fans); only positions and indices are
 // kept, points and lines are left out. assimp joins identical vertices; OBJ and PLY keep the
-// file's vertex list. Units are the file's (sao treats them as metres; a glTF is in metres).
-// Before assimp sees a glTF, its JSON must be valid and a .glb's chunks must fit the file.
+// file's vertex list. Units are the file's (a glTF is in metres; OBJ and PLY state none: units.h).
+// Before assimp sees a glTF, its JSON must be valid, its version 2.x (glTF 1.0 is named as
+// unsupported), a .glb's chunks must fit the file, and the accessors of its meshes must have valid
+// strides and bounds and indices below their vertex count (src/gltf_accessors.h). A UTF-8
+// byte-order mark is skipped in OBJ and .gltf files, refused in PLY.
 //
 // No exception escapes these functions: every problem is a Status whose message starts with the
 // file's name. Files a glTF refers to (its .bin buffers) are opened only when they are regular
@@ -19,6 +22,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "sao/scenes/mesh.h"
 #include "sao/status.h"
@@ -48,7 +52,17 @@ Status loadMeshFromMemory(std::span<const std::uint8_t> bytes, std::string_view 
 
 // InvalidInput "NAME: PROBLEM" unless the mesh has at least one and at most maxTriangles
 // triangles, a whole number of triangles, finite positions, indices below the vertex count and
-// triangles that are not all at one point.
+// triangles that are not all at one point nor all degenerate ("all its N triangles are
+// degenerate ...": nothing would be drawn).
 Status validateMesh(const Mesh& mesh, std::string_view name, std::size_t maxTriangles = kMaxMeshTriangles);
+
+// A triangle without area: its height on its longest edge is at most 1e-6 of that edge (corners
+// repeated or collinear, up to float rounding). It covers no pixel and has no normal.
+bool isDegenerateTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c);
+
+// Removes the degenerate triangles of a mesh (indices in range, as after validateMesh) and returns
+// how many there were; when there were any, appends "NAME: N of M triangles are degenerate (...)
+// and were left out" to `warnings`. loadScene does so for every mesh file (Scene::warnings).
+std::size_t removeDegenerateTriangles(Mesh& mesh, std::string_view name, std::vector<std::string>& warnings);
 
 }  // namespace sao::scenes
