@@ -2,6 +2,7 @@
 
 #include <fstream>
 #include <map>
+#include <sstream>
 
 #include "svg_plot.h"
 
@@ -28,23 +29,33 @@ std::string json(const std::string& s) {
 const char* kErrorColumns[] = {"rmse_raw", "bias_raw", "ssim_raw", "over_0_1_raw", "fitted_scale",
                                "rmse_fitted", "bias_fitted", "ssim_fitted", "over_0_1_fitted"};
 
+// A metric as text: `undefined` ("n/a" in CSV, null in JSON) where it is NaN (samples/metrics.h).
+std::string metric(double v, const char* undefined) {
+  if (!samples::isDefined(v)) return undefined;
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
 void csvErrors(std::ofstream& f, const std::optional<samples::ReferenceComparison>& e) {
   if (!e) {
     for (std::size_t i = 0; i < std::size(kErrorColumns); ++i) f << ",";
     return;
   }
-  f << "," << e->raw.rmse << "," << e->raw.meanBias << "," << e->raw.ssim << "," << e->raw.fractionOver01 << ","
-    << e->fittedIntensity << "," << e->fitted.rmse << "," << e->fitted.meanBias << "," << e->fitted.ssim << ","
-    << e->fitted.fractionOver01;
+  auto m = [](double v) { return metric(v, "n/a"); };
+  f << "," << m(e->raw.rmse) << "," << m(e->raw.meanBias) << "," << m(e->raw.ssim) << "," << m(e->raw.fractionOver01)
+    << "," << m(e->fittedIntensity) << "," << m(e->fitted.rmse) << "," << m(e->fitted.meanBias) << ","
+    << m(e->fitted.ssim) << "," << m(e->fitted.fractionOver01);
 }
 
 void jsonErrors(std::ofstream& f, const char* key, const std::optional<samples::ReferenceComparison>& e) {
   if (!e) return;
-  f << ", \"" << key << "\": {\"pixels\": " << e->raw.pixels << ", \"rmse_raw\": " << e->raw.rmse
-    << ", \"bias_raw\": " << e->raw.meanBias << ", \"ssim_raw\": " << e->raw.ssim
-    << ", \"over_0_1_raw\": " << e->raw.fractionOver01 << ", \"fitted_scale\": " << e->fittedIntensity
-    << ", \"rmse_fitted\": " << e->fitted.rmse << ", \"bias_fitted\": " << e->fitted.meanBias
-    << ", \"ssim_fitted\": " << e->fitted.ssim << ", \"over_0_1_fitted\": " << e->fitted.fractionOver01 << "}";
+  auto m = [](double v) { return metric(v, "null"); };
+  f << ", \"" << key << "\": {\"pixels\": " << e->raw.pixels << ", \"rmse_raw\": " << m(e->raw.rmse)
+    << ", \"bias_raw\": " << m(e->raw.meanBias) << ", \"ssim_raw\": " << m(e->raw.ssim)
+    << ", \"over_0_1_raw\": " << m(e->raw.fractionOver01) << ", \"fitted_scale\": " << m(e->fittedIntensity)
+    << ", \"rmse_fitted\": " << m(e->fitted.rmse) << ", \"bias_fitted\": " << m(e->fitted.meanBias)
+    << ", \"ssim_fitted\": " << m(e->fitted.ssim) << ", \"over_0_1_fitted\": " << m(e->fitted.fractionOver01) << "}";
 }
 
 }  // namespace

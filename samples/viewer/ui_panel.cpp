@@ -3,7 +3,9 @@
 #include <imgui.h>
 
 #include <cmath>
+#include <cstdio>
 #include <sstream>
+#include <string>
 
 namespace sao::viewer {
 namespace {
@@ -70,9 +72,18 @@ void referenceSection(UiState& s, const PanelInfo& info) {
   if (ImGui::Button("Compute reference (R)")) s.computeReference = true;
   ImGui::TextWrapped("%s", info.referenceStatus.c_str());
   if (info.haveMetrics) {
+    // An undefined metric (NaN, sao/samples/metrics.h) reads "n/a", never "nan".
+    auto shown = [](double v, const char* format) {
+      if (!samples::isDefined(v)) return std::string("n/a");
+      char text[32];
+      std::snprintf(text, sizeof text, format, v);
+      return std::string(text);
+    };
     const auto& m = info.metrics.raw;
-    ImGui::Text("RMSE %.4f  bias %+.4f  SSIM %.3f", m.rmse, m.meanBias, m.ssim);
-    ImGui::Text("fitted intensity %.3f -> RMSE %.4f", info.metrics.fittedIntensity, info.metrics.fitted.rmse);
+    ImGui::Text("RMSE %s  bias %s  SSIM %s", shown(m.rmse, "%.4f").c_str(), shown(m.meanBias, "%+.4f").c_str(),
+                shown(m.ssim, "%.3f").c_str());
+    ImGui::Text("fitted intensity %s -> RMSE %s", shown(info.metrics.fittedIntensity, "%.3f").c_str(),
+                shown(info.metrics.fitted.rmse, "%.4f").c_str());
   }
 }
 

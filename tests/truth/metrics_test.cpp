@@ -43,4 +43,37 @@ TEST(Metrics, FractionOverThreshold) {
   EXPECT_NEAR(c.raw.meanBias, -0.025, 1e-7);
 }
 
+// Undefined metrics are NaN (printed n/a, JSON null), not a flattering 1.
+TEST(Metrics, UndefinedMetricsAreNaN) {
+  FloatImage white({16, 16}, 1, 1.0f), grey({16, 16}, 1, 0.5f);
+  const std::vector<unsigned char> all(white.data.size(), 1);
+  // Two constant images: SSIM is 0/0 in its structure term; no occlusion in the AO: no scale fits best.
+  const auto same = samples::compareToReference(white, white, all);
+  EXPECT_TRUE(std::isnan(same.raw.ssim));
+  EXPECT_TRUE(std::isnan(same.fittedIntensity));
+  EXPECT_DOUBLE_EQ(same.raw.rmse, 0.0);
+  EXPECT_DOUBLE_EQ(same.fitted.rmse, 0.0);
+  const auto darker = samples::compareToReference(white, grey, all);
+  EXPECT_TRUE(std::isnan(darker.raw.ssim));
+  EXPECT_TRUE(std::isnan(darker.fittedIntensity));
+  EXPECT_DOUBLE_EQ(darker.raw.meanBias, 0.5);
+  // One constant image is enough for a defined SSIM (and occlusion in the AO for a defined scale).
+  FloatImage ramp({16, 16}, 1, 0.0f);
+  for (std::size_t i = 0; i < ramp.data.size(); ++i) ramp.data[i] = float(i % 16) / 16.0f;
+  const auto defined = samples::compareToReference(ramp, grey, all);
+  EXPECT_FALSE(std::isnan(defined.raw.ssim));
+  EXPECT_FALSE(std::isnan(defined.fittedIntensity));
+  // Nothing compared: every metric is undefined.
+  const auto none = samples::compareToReference(ramp, grey, std::vector<unsigned char>(ramp.data.size(), 0));
+  EXPECT_EQ(none.raw.pixels, 0u);
+  for (double v : {none.raw.rmse, none.raw.meanBias, none.raw.ssim, none.raw.fractionOver01, none.fittedIntensity})
+    EXPECT_TRUE(std::isnan(v));
+  // A mask with no full 8x8 window: SSIM is undefined, the per-pixel metrics are not.
+  std::vector<unsigned char> stripes(ramp.data.size(), 0);
+  for (std::size_t i = 0; i < stripes.size(); i += 2) stripes[i] = 1;
+  const auto sparse = samples::compareToReference(ramp, grey, stripes);
+  EXPECT_TRUE(std::isnan(sparse.raw.ssim));
+  EXPECT_FALSE(std::isnan(sparse.raw.rmse));
+}
+
 }  // namespace

@@ -11,9 +11,14 @@ ErrorMetrics measure(const FloatImage& ao, const FloatImage& ref, const std::vec
   auto value = [&](std::uint32_t x, std::uint32_t y) { return 1.0 - k * (1.0 - double(ao.at(x, y))); };
   double sq = 0, bias = 0;
   std::size_t over = 0;
+  bool aoConstant = true, refConstant = true;  // over the mask
+  double aoFirst = 0, refFirst = 0;
   for (std::uint32_t y = 0; y < e.height; ++y)
     for (std::uint32_t x = 0; x < e.width; ++x) {
       if (!mask[std::size_t(y) * e.width + x]) continue;
+      if (!m.pixels) aoFirst = value(x, y), refFirst = ref.at(x, y);
+      aoConstant = aoConstant && value(x, y) == aoFirst;
+      refConstant = refConstant && ref.at(x, y) == refFirst;
       const double d = value(x, y) - ref.at(x, y);
       sq += d * d;
       bias += d;
@@ -47,7 +52,7 @@ ErrorMetrics measure(const FloatImage& ao, const FloatImage& ref, const std::vec
       ssimSum += ((2 * ma * mb + c1) * (2 * cov + c2)) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
       ++windows;
     }
-  m.ssim = windows ? ssimSum / windows : 1.0;
+  m.ssim = windows && !(aoConstant && refConstant) ? ssimSum / windows : NAN;  // undefined: see metrics.h
   return m;
 }
 
@@ -71,8 +76,8 @@ ReferenceComparison compareToReference(const FloatImage& ao, const FloatImage& r
     num += oa * orf;
     den += oa * oa;
   }
-  c.fittedIntensity = den > 0 ? num / den : 1.0;
-  c.fitted = measure(ao, ref, mask, c.fittedIntensity);
+  c.fittedIntensity = den > 0 ? num / den : NAN;  // den = 0: no occlusion in the AO, every k fits alike
+  c.fitted = measure(ao, ref, mask, isDefined(c.fittedIntensity) ? c.fittedIntensity : 1.0);
   return c;
 }
 

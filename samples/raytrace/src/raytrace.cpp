@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 
 #include "sampling.h"
 
@@ -202,6 +203,8 @@ Status referenceAmbientOcclusion(const RayScene& scene, const Camera& camera, co
   const glm::dmat4 toWorld = glm::inverse(scenes::viewMatrix(view));
   ao = FloatImage({camera.width, camera.height}, 1, 1.0f);
   const std::uint32_t g = camera.guardBand;
+  std::mutex progressMutex;
+  std::uint32_t rowsDone = 0;
   parallelRows(camera.height, o.threads, [&](std::uint32_t y) {
     for (std::uint32_t x = 0; x < camera.width; ++x) {
       if (primary.position.at(x + g, y + g, 3) == 0.0f) continue;  // sky
@@ -213,6 +216,10 @@ Status referenceAmbientOcclusion(const RayScene& scene, const Camera& camera, co
       const glm::dvec3 n = glm::normalize(glm::dvec3(toWorld * glm::dvec4(ncam, 0.0)));
       const std::uint64_t seed = detail::pixelSeed(o.seed, x, y);
       ao.at(x, y) = float(visibilityAt(scene, p, n, o.radius, o.rays, seed, 1e-4 * std::max(1.0, glm::length(pc))));
+    }
+    if (o.progress) {
+      std::lock_guard lock(progressMutex);
+      o.progress(++rowsDone, camera.height);
     }
   });
   return Status::success();

@@ -1,5 +1,13 @@
 // Error of an AO image against a reference, over the pixels that have geometry.
+//
+// A metric that is undefined for the images at hand is NaN (test with isDefined), never a
+// plausible-looking number: every one of them over zero pixels; SSIM when no 8x8 window lies
+// inside the mask, or when both images are constant over the mask (its structure term is then
+// 0/0, and a score of 1 would only say that the two constants match); the best-fit occlusion
+// scale when the AO shows no occlusion on any compared pixel (every scale fits equally). Printers
+// write "n/a" for it, JSON writers null.
 #pragma once
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -9,17 +17,20 @@ namespace sao::samples {
 
 struct ErrorMetrics {
   std::size_t pixels = 0;     // pixels compared (mask non-zero)
-  double rmse = 0;
-  double meanBias = 0;        // mean(ao - reference): negative = darker than the reference
-  double ssim = 0;            // mean SSIM over 8x8 windows fully inside the mask (data range 1)
-  double fractionOver01 = 0;  // share of pixels off by more than 0.1
+  double rmse = NAN;
+  double meanBias = NAN;        // mean(ao - reference): negative = darker than the reference
+  double ssim = NAN;            // mean SSIM over 8x8 windows fully inside the mask (data range 1)
+  double fractionOver01 = NAN;  // share of pixels off by more than 0.1
 };
 
 struct ReferenceComparison {
   ErrorMetrics raw;
-  double fittedIntensity = 1;  // k minimising |(1 - k (1 - ao)) - reference|^2: occlusion scale
-  ErrorMetrics fitted;         // the same metrics after applying k
+  double fittedIntensity = NAN;  // k minimising |(1 - k (1 - ao)) - reference|^2: occlusion scale
+  ErrorMetrics fitted;           // the same metrics after applying k (k = 1 when k is undefined)
 };
+
+// Whether a metric above is defined (not NaN).
+inline bool isDefined(double metric) { return !std::isnan(metric); }
 
 // `mask[i]` non-zero selects pixel i (row-major, the AO extent). Both images are 1-channel.
 ReferenceComparison compareToReference(const FloatImage& ao, const FloatImage& reference,

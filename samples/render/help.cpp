@@ -1,0 +1,77 @@
+#include "help.h"
+
+#include <algorithm>
+#include <sstream>
+#include <string_view>
+
+#include "sao/io.h"
+#include "sao/settings.h"
+
+namespace sao::render {
+namespace {
+
+std::string number(double v) {
+  std::ostringstream s;
+  s.precision(9);  // as the range errors print them: 0.1, not 0.10000000000000001
+  s << v;
+  return s.str();
+}
+
+// `text` wrapped at `width` columns, every line indented by `indent` spaces.
+std::string wrapped(std::string_view text, std::size_t indent, std::size_t width) {
+  std::string out, line;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find(' ', start);
+    if (end == std::string_view::npos) end = text.size();
+    const std::string_view word = text.substr(start, end - start);
+    if (!line.empty() && indent + line.size() + 1 + word.size() > width) {
+      out += std::string(indent, ' ') + line + "\n";
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + std::string(word);
+    start = end + 1;
+  }
+  if (!line.empty()) out += std::string(indent, ' ') + line + "\n";
+  return out;
+}
+
+}  // namespace
+
+std::string settingsHelp() {
+  std::ostringstream s;
+  s << "\nSettings (--set NAME=VALUE; range, unit and default from the effect's metadata):\n";
+  for (const auto& info : gen::kSettings) {
+    std::string range;
+    switch (info.type) {
+      case gen::SettingType::Bool: range = "0 | 1"; break;
+      case gen::SettingType::Int:
+        range = "whole number in [" + number(info.minValue) + ", " + number(info.maxValue) + "]";
+        break;
+      case gen::SettingType::Float: range = "[" + number(info.minValue) + ", " + number(info.maxValue) + "]"; break;
+    }
+    std::string name(info.name);
+    name.resize(std::max<std::size_t>(name.size(), 20), ' ');
+    s << "  " << name << "  " << range << ", " << (info.unit.empty() ? std::string("unitless") : std::string(info.unit))
+      << ", default " << number(info.defaultValue) << "\n"
+      << wrapped(info.doc, 24, 100);
+  }
+  return s.str();
+}
+
+std::string depthExrHelp() {
+  std::ostringstream s;
+  s << "\nDepth EXR files (--depth reads them, --save-depth writes them): one FLOAT channel \"Z\" of\n"
+       "hardware depth (D16/D24 as the normalised value, D32F as is, LinearZ as camera-space z). The\n"
+       "camera travels in header attributes (sao/io.h):\n"
+       "  sao.version int (" << kDepthExrVersion << ")   sao.projection m44d (x[c][r] = the matrix's row r, column c)\n"
+       "  sao.kind \"perspective\"|\"orthographic\"   sao.clipDepth \"negativeOneToOne\"|\"zeroToOne\"\n"
+       "  sao.reversedZ, sao.infiniteFar, sao.flipY int 0|1   sao.metersToViewUnits double\n"
+       "  sao.width, sao.height, sao.guardBand int (the depth is (width+2*guardBand) x (height+2*guardBand))\n"
+       "  sao.depthFormat \"D16\"|\"D24\"|\"D32F\"|\"LinearZ\"\n"
+       "A file without sao.version is read as D32F hardware depth (channel \"Z\", else its only\n"
+       "channel) and needs the camera as options: --fovy, --near, --far, --clip, --reversed-z, --guard.\n";
+  return s.str();
+}
+
+}  // namespace sao::render
