@@ -15,7 +15,7 @@
 // ---------------------------------------------------------------------------------------------
 #pragma sao setting float radius              default=1.0   range=[0.01,100]       unit=m   "World-space radius r of the obscurance ball (eq. 1, 5)"
 #pragma sao setting float bias                default=0.02  range=[0,0.5]                   "Bias beta of eq. 1: the term v.n + z_C*beta, a unitless multiplier of |z_C|; raise to remove self-occlusion, lower if corners leak light"
-#pragma sao setting float intensity           default=1.0   range=[0,10]                    "Intensity sigma of eq. 1 (the sum is scaled by 2*sigma/s)"
+#pragma sao setting float intensity           default=1.0   range=[0,10]                    "Intensity sigma of eq. 1, unitless: the sum is scaled by 2*sigma*r/s with r the radius, so A does not change with the scene's units"
 #pragma sao setting float contrast            default=1.0   range=[0.1,8]                   "Contrast exponent k of eq. 1"
 #pragma sao setting float epsilon             default=0.0001 range=[0.000001,0.01] unit=m^2 "Epsilon of eq. 1 added to v.v against division by zero"
 #pragma sao setting int   samples             default=11    range=[1,64]                    "Direct samples s per pixel (spiral taps)"
@@ -87,7 +87,7 @@ layout(std140, binding = 0) uniform SaoParams {
     float radius;               // [80]  r, view units
     float radius2;              // [84]  r*r
     float bias;                 // [88]  beta of eq. 1 (unitless)
-    float intensity_div_s;      // [92]  2*sigma*u/s (u = metersToViewUnits: eq. 1's term is 1/length)
+    float intensity_div_s;      // [92]  2*sigma*r/s, r = radius in view units (eq. 1's term is 1/length, sigma is unitless)
     float epsilon;              // [96]  epsilon of eq. 1, view units squared
     float contrast;             // [100] k of eq. 1
     float proj_scale;           // [104] S' of eq. 5: pixels spanned by 1 view unit at z = -1 (perspective) or anywhere (ortho), > 0

@@ -19,8 +19,9 @@ float sao_tap_obscurance(vec3 C, vec3 n, vec2 q_pixel, float zq, vec4 proj_info,
     return max(0.0, vn + C.z * bias) / (vv + epsilon);
 }
 
-// Eq. 1 from the sum of the terms: A = max(0, 1 - (2*sigma/s) * sum)^k. pow is skipped for
-// k == 1 (GPU pow(x, 1) is not always exactly x).
+// Eq. 1 from the sum of the terms: A = max(0, 1 - (2*sigma*r/s) * sum)^k, with sigma unitless and r
+// the radius in view units (intensity_div_s). pow is skipped for k == 1 (GPU pow(x, 1) is not
+// always exactly x).
 float sao_visibility(float sum, float intensity_div_s, float contrast)
 {
     float a = max(0.0, 1.0 - intensity_div_s * sum);

@@ -47,6 +47,9 @@ Writes results.csv, results.json and SVG plots.
   --depth-source S raster (default): the scene's depth, positions, normals and peeled second
                    layer from the rasterising prepass (GL, else Vulkan; D32F, reversed-Z, [0,1],
                    infinite far); raytrace: from Embree primary rays (raytrace::castPrimary)
+  --units U        the scenes' length unit: m | cm | mm | in | ft | auto (default: each scene's
+                   own, the built-in scenes' metres). Settings stay in metres and are converted
+                   (Camera::metersToViewUnits); the choice is printed per scene
   --quick          the smoke run: 160x90, 3 runs, 16 rays, two scenes, short sweeps
   --help
 )";
@@ -65,6 +68,7 @@ struct Options {
   int runs = 5;
   std::uint32_t rays = 256, width = 1280, height = 720;
   bool quick = false;
+  std::optional<scenes::LengthUnit> units;  // --units
 };
 
 [[noreturn]] void fail(const std::string& m, int code = 1) {
@@ -121,6 +125,11 @@ Options parse(int argc, char** argv) {
       o.width = std::uint32_t(count(v.substr(0, x), 1, 8192));
       o.height = std::uint32_t(count(v.substr(x + 1), 1, 8192));
     } else if (a == "--quick") o.quick = true;
+    else if (a == "--units") {
+      const std::string v = value();
+      o.units = scenes::parseLengthUnit(v);
+      if (!o.units) fail("--units expects " + std::string(scenes::kLengthUnitNames) + ", got '" + v + "'", 2);
+    }
     else fail("unknown option '" + a + "' (see --help)", 2);
   }
   if (o.quick) o.width = 160, o.height = 90, o.runs = 3, o.rays = 16;
@@ -145,19 +154,24 @@ struct Prepared {
 // `prepass` null: the depth comes from Embree primary rays. Otherwise the rasterised depth (and the
 // peeled second layer) of that prepass; the references still trace rays from its visible points.
 Prepared& prepare(std::map<std::string, Prepared>& cache, prepass::Prepass* prepass, const std::string& name,
-                  std::uint32_t w, std::uint32_t h) {
+                  std::uint32_t w, std::uint32_t h, std::optional<scenes::LengthUnit> units) {
   const std::string key = name + "@" + std::to_string(w) + "x" + std::to_string(h);
   auto it = cache.find(key);
   if (it != cache.end()) return it->second;
   Prepared& p = cache[key];
   if (Status s = scenes::loadScene(name, p.scene); !s) fail(s.message);
+  for (const std::string& w : p.scene.warnings) std::fprintf(stderr, "sao-bench: warning: %s\n", w.c_str());
   if (Status s = raytrace::RayScene::create(p.scene.mesh, p.rays); !s) fail(s.message);
   p.camera = scenes::makeCamera(p.scene.views[0], w, h, INFINITY, ClipDepth::ZeroToOne, true);
+  const scenes::UnitChoice unit = scenes::chooseUnits(p.scene.mesh, p.scene.units, units);
+  if (units) std::fprintf(stderr, "\nsao-bench: %s: units %s\n", name.c_str(), unit.note.c_str());
+  // The depth is drawn with a factor of 1 (the scene's world is in its own units, the view units;
+  // the prepass would scale a world in metres); the effect and the references get the scene's.
   if (prepass) {
     prepass::PrepassOptions po;
     po.format = DepthFormat::D32F;
     po.secondLayer = true;
-    po.minSeparation = kSecondLayerSeparation;
+    po.minSeparation = kSecondLayerSeparation * unit.metersToViewUnits;
     prepass::PrepassResult r;
     if (Status s = prepass->render(p.scene.mesh, p.scene.views[0], p.camera, po, r); !s)
       fail(std::string(prepass->name()) + " prepass of " + name + ": " + s.message);
@@ -172,6 +186,7 @@ Prepared& prepare(std::map<std::string, Prepared>& cache, prepass::Prepass* prep
     fail(s.message);
   }
   p.mask = samples::geometryMask(p.primary.position, 0);
+  p.camera.metersToViewUnits = unit.metersToViewUnits;
   return p;
 }
 
@@ -179,7 +194,7 @@ const FloatImage& reference(Prepared& p, double radius, std::uint32_t rays) {
   auto it = p.references.find(radius);
   if (it != p.references.end()) return it->second;
   raytrace::ReferenceOptions o;
-  o.radius = radius;
+  o.radius = radius * p.camera.metersToViewUnits;  // radius is in metres, the scene in its own units
   o.rays = rays;
   FloatImage& ref = p.references[radius];
   if (Status s = raytrace::referenceAmbientOcclusion(*p.rays, p.camera, p.primary, p.scene.views[0], o, ref); !s)
@@ -313,7 +328,7 @@ int main(int argc, char** argv) {
                  bool withError, Extra extra = Extra::None) {
     progress(section + ": " + scene + " " + std::string(b.name()) + " " + preset + " " + variant + " " +
              std::to_string(size.width) + "x" + std::to_string(size.height));
-    Prepared& p = prepare(cache, depthPrepass.get(), scene, size.width, size.height);
+    Prepared& p = prepare(cache, depthPrepass.get(), scene, size.width, size.height, o.units);
     samples::RunInputs inputs{&p.primary.depth, nullptr, nullptr};
     std::string what = "depth";
     if (extra == Extra::Normals) inputs.normals = &p.primary.normal, what = "depth+normals";

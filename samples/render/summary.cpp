@@ -1,9 +1,34 @@
 #include "summary.h"
 
+#include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 namespace sao::samples {
+namespace {
+
+// A metric to 4 decimals, or "n/a" where it is undefined (NaN: sao/samples/metrics.h).
+std::string metric(double v, double scale = 1.0) {
+  if (!isDefined(v)) return "n/a";
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(4);
+  s << v * scale;
+  return s.str();
+}
+
+// A float setting as the shortest decimal that reads back as the same float (0.02, not
+// 0.019999999552965164, which is what the float holds as a double).
+double shortestOfFloat(double v) {
+  char text[32];
+  const auto r = std::to_chars(text, text + sizeof text, float(v));
+  return std::strtod(std::string(text, r.ptr).c_str(), nullptr);
+}
+
+}  // namespace
 
 std::string Summary::text() const {
   std::ostringstream s;
@@ -21,67 +46,98 @@ std::string Summary::text() const {
     s << " " << gen::kSettings[i].name << "=" << value.str();
   }
   s << "\nplan: " << plan.describe();
-  s << "timing (" << toString(timings.method) << "):";
-  for (const auto& p : timings.passes) s << " " << p.pass << " " << p.milliseconds << " ms;";
-  s << " total " << timings.totalMilliseconds() << " ms\n";
+  s << "timing (" << toString(timing.method) << ", median of " << timing.runs << " run" << (timing.runs == 1 ? "" : "s")
+    << " after 1 warm-up run):";
+  for (const auto& p : timing.passes) s << " " << p.pass << " " << p.ms.median << " ms;";
+  s << " total " << timing.total.median << " ms\n";
+  s << "timing spread (fastest..slowest of " << timing.runs << "):";
+  for (const auto& p : timing.passes) s << " " << p.pass << " " << p.ms.min << ".." << p.ms.max << " ms;";
+  s << " total " << timing.total.min << ".." << timing.total.max << " ms\n";
   s << "depth preparation: " << prepareSeconds << " s\n";
+  if (!units.empty()) s << "units: " << units << "\n";
+  for (const std::string& w : inputWarnings) s << "warning: " << w << "\n";
+  if (scale) {
+    std::ostringstream g;
+    g << "geometry: " << scale->geometryPixels << " pixels; AO min " << scale->aoMin << ", mean " << scale->aoMean
+      << "; radius " << settings.radius << " m = " << settings.radius * metersToViewUnits << " scene units, projected "
+      << scale->radiusPxMedian << " px (median), below 1 px on " << 100.0 * scale->fractionBelowOnePx
+      << " %, beyond the image on " << 100.0 * scale->fractionAboveImage << " %\n";
+    s << g.str();  // default float format: 6 significant digits
+    for (const std::string& w : scale->warnings) s << "warning: " << w << "\n";
+  }
   if (metrics) {
     s.precision(4);
     s << "vs ray-traced near-field AO (" << referenceRays << " rays/pixel, radius " << settings.radius
       << " m; screen-space AO sees only the first depth layer and nothing off-screen), " << metrics->raw.pixels
       << " pixels with geometry:\n";
     auto row = [&](const char* what, const ErrorMetrics& m) {
-      s << "  " << what << ": RMSE " << m.rmse << ", mean bias " << m.meanBias << ", SSIM " << m.ssim
-        << ", off by > 0.1: " << 100.0 * m.fractionOver01 << " %\n";
+      s << "  " << what << ": RMSE " << metric(m.rmse) << ", mean bias " << metric(m.meanBias) << ", SSIM "
+        << metric(m.ssim) << ", off by > 0.1: " << metric(m.fractionOver01, 100.0) << " %\n";
     };
     row("raw", metrics->raw);
-    s << "  best-fit occlusion scale " << metrics->fittedIntensity << "\n";
+    s << "  best-fit occlusion scale " << metric(metrics->fittedIntensity)
+      << (isDefined(metrics->fittedIntensity) ? "" : " (the AO shows no occlusion: every scale fits alike)") << "\n";
     row("fitted", metrics->fitted);
   }
   return s.str();
 }
 
 std::string Summary::json() const {
-  std::ostringstream s;
-  s.precision(9);
-  auto quote = [](const std::string& t) {
-    std::string o = "\"";
-    for (char c : t) {
-      if (c == '"' || c == '\\') o += '\\';
-      if (c == '\n') {
-        o += "\\n";
-        continue;
-      }
-      o += c;
-    }
-    return o + "\"";
-  };
-  s << "{\n  \"backend\": " << quote(backend) << ",\n  \"input\": " << quote(input) << ",\n  \"width\": " << size.width
-    << ",\n  \"height\": " << size.height << ",\n  \"guard_band\": " << guard << ",\n  \"settings\": {";
-  for (std::size_t i = 0; i < gen::kSettings.size(); ++i)
-    s << (i ? ", " : "") << quote(std::string(gen::kSettings[i].name)) << ": "
-      << gen::settingValue(settings, static_cast<SettingId>(i));
-  s << "},\n  \"plan\": {\"csz_levels\": " << plan.cszLevels << ", \"bytes\": " << plan.totalBytes << ", \"passes\": [";
-  for (std::size_t i = 0; i < plan.passes.size(); ++i)
-    s << (i ? ", " : "") << quote(std::string(gen::pass(plan.passes[i].pass).name));
-  s << "]},\n  \"timing_method\": " << quote(toString(timings.method)) << ",\n  \"pass_ms\": {";
-  for (std::size_t i = 0; i < timings.passes.size(); ++i)
-    s << (i ? ", " : "") << quote(timings.passes[i].pass) << ": " << timings.passes[i].milliseconds;
-  s << "},\n  \"total_ms\": " << timings.totalMilliseconds();
-  if (metrics) {
-    auto obj = [&](const ErrorMetrics& m) {
-      std::ostringstream o;
-      o.precision(9);
-      o << "{\"rmse\": " << m.rmse << ", \"mean_bias\": " << m.meanBias << ", \"ssim\": " << m.ssim
-        << ", \"fraction_over_0_1\": " << m.fractionOver01 << "}";
-      return o.str();
-    };
-    s << ",\n  \"reference\": {\"rays\": " << referenceRays << ", \"pixels\": " << metrics->raw.pixels
-      << ", \"raw\": " << obj(metrics->raw) << ", \"fitted_intensity\": " << metrics->fittedIntensity
-      << ", \"fitted\": " << obj(metrics->fitted) << "}";
+  using Json = nlohmann::ordered_json;
+  Json j;
+  j["backend"] = backend;
+  j["input"] = input;
+  j["width"] = size.width;
+  j["height"] = size.height;
+  j["guard_band"] = guard;
+  Json& values = j["settings"] = Json::object();
+  for (std::size_t i = 0; i < gen::kSettings.size(); ++i) {
+    const double v = gen::settingValue(settings, static_cast<SettingId>(i));
+    const std::string name(gen::kSettings[i].name);
+    if (gen::kSettings[i].type == gen::SettingType::Float) values[name] = shortestOfFloat(v);
+    else values[name] = static_cast<long long>(v);
   }
-  s << "\n}\n";
-  return s.str();
+  Json passes = Json::array();
+  for (const auto& p : plan.passes) passes.push_back(std::string(gen::pass(p.pass).name));
+  j["plan"] = {{"csz_levels", plan.cszLevels}, {"bytes", plan.totalBytes}, {"passes", passes}};
+  j["timing_method"] = toString(timing.method);
+  j["runs"] = timing.runs;  // measured, after one warm-up run
+  Json median = Json::object(), fastest = Json::object(), slowest = Json::object();
+  for (const auto& p : timing.passes) {
+    median[p.pass] = p.ms.median;
+    fastest[p.pass] = p.ms.min;
+    slowest[p.pass] = p.ms.max;
+  }
+  j["pass_ms"] = median;
+  j["pass_ms_min"] = fastest;
+  j["pass_ms_max"] = slowest;
+  j["total_ms"] = timing.total.median;
+  j["total_ms_min"] = timing.total.min;
+  j["total_ms_max"] = timing.total.max;
+  j["units"] = {{"how", units}, {"meters_to_view_units", metersToViewUnits}};
+  if (scale) {
+    j["geometry"] = {{"pixels", scale->geometryPixels},
+                     {"ao_min", scale->aoMin},
+                     {"ao_mean", scale->aoMean},
+                     {"radius_px_median", scale->radiusPxMedian},
+                     {"fraction_radius_below_1px", scale->fractionBelowOnePx},
+                     {"fraction_radius_beyond_image", scale->fractionAboveImage}};
+  }
+  std::vector<std::string> warnings = inputWarnings;
+  if (scale) warnings.insert(warnings.end(), scale->warnings.begin(), scale->warnings.end());
+  j["warnings"] = warnings;
+  if (metrics) {
+    // NaN (undefined) serialises as null.
+    auto obj = [](const ErrorMetrics& m) {
+      return Json{
+          {"rmse", m.rmse}, {"mean_bias", m.meanBias}, {"ssim", m.ssim}, {"fraction_over_0_1", m.fractionOver01}};
+    };
+    j["reference"] = {{"rays", referenceRays},        {"pixels", metrics->raw.pixels},
+                      {"raw", obj(metrics->raw)},      {"fitted_intensity", metrics->fittedIntensity},
+                      {"fitted", obj(metrics->fitted)}};
+  }
+  // Invalid UTF-8 in a path (any byte sequence is a valid Linux file name) is replaced, not thrown.
+  return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace sao::samples

@@ -3,12 +3,14 @@
 #pragma once
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "sao/image.h"
 #include "sao/plan.h"
 #include "sao/samples/metrics.h"
+#include "sao/samples/scale_warnings.h"
+#include "run_timing.h"
 #include "sao/settings.h"
-#include "sao/timing.h"
 
 namespace sao::samples {
 
@@ -18,12 +20,18 @@ struct Summary {
   std::uint32_t guard = 0;
   Settings settings;
   Plan plan;
-  Timings timings;
+  render::RunTiming timing;  // median and spread over the measured runs
   double prepareSeconds = 0;
   std::optional<ReferenceComparison> metrics;
   std::uint32_t referenceRays = 0;
+  std::string units;  // how the scene's units were chosen (scenes::UnitChoice::note)
+  double metersToViewUnits = 1.0;
+  std::optional<ScaleCheck> scale;  // the radius against the scene's scale, and its warnings
+  std::vector<std::string> inputWarnings;  // from loading the input (e.g. degenerate triangles left out)
 
   std::string text() const;
+  // Through nlohmann-json: any path is a valid string, and an undefined metric (NaN, see
+  // sao/samples/metrics.h) is null, since JSON has no NaN.
   std::string json() const;
 };
 

@@ -38,7 +38,9 @@ class App {
  private:
   Status start();
   Status loadScene(int index);                          // a built-in scene
-  Status adoptScene(scenes::Scene&& scene, int index);  // index -1: the file ui_.sceneFile
+  // index -1: the file ui_.sceneFile. `requested`: --units, for the scene named on the command line.
+  Status adoptScene(scenes::Scene&& scene, int index, std::optional<scenes::LengthUnit> requested = std::nullopt);
+  double radiusInSceneUnits() const { return ui_.settings.radius * metersToViewUnits_; }
   void handleKeys();
   Status handleRequests(const FrameDesc& frame);
   FrameDesc buildFrame(glm::ivec2 size) const;
@@ -50,6 +52,7 @@ class App {
   std::unique_ptr<ImGuiContextOwner> imgui_;
   std::unique_ptr<Backend> backend_;  // destroyed before the ImGui context and the window
   scenes::Scene scene_;
+  double metersToViewUnits_ = 1.0;  // the scene's units (scenes::chooseUnits)
   glm::dvec3 boundsMin_{0}, boundsMax_{0};
   CameraController camera_;
   UiState ui_;
@@ -87,10 +90,13 @@ Status App::start() {
     // A mesh or scene file (scenes::loadScene; its errors name the file and list the built-ins).
     scenes::Scene scene;
     if (Status s = scenes::loadScene(name, scene); !s) return s;
+    for (const std::string& w : scene.warnings) std::fprintf(stderr, "sao-viewer: warning: %s\n", w.c_str());
     ui_.sceneFile = name;
-    if (Status s = adoptScene(std::move(scene), -1); !s) return s;
-  } else if (Status s = loadScene(int(it - names.begin())); !s) {
-    return s;
+    if (Status s = adoptScene(std::move(scene), -1, options_.units); !s) return s;
+  } else {
+    scenes::Scene scene;
+    if (Status s = scenes::makeBuiltinScene(name, scene); !s) return s;
+    if (Status s = adoptScene(std::move(scene), int(it - names.begin()), options_.units); !s) return s;
   }
   if (options_.view >= scene_.views.size())
     return Status::error(StatusCode::InvalidInput, "scene '" + name + "' has views 0.." +
@@ -106,8 +112,11 @@ Status App::loadScene(int index) {
   return adoptScene(std::move(scene), index);
 }
 
-Status App::adoptScene(scenes::Scene&& scene, int index) {
+Status App::adoptScene(scenes::Scene&& scene, int index, std::optional<scenes::LengthUnit> requested) {
   scene_ = std::move(scene);
+  const scenes::UnitChoice units = scenes::chooseUnits(scene_.mesh, scene_.units, requested);
+  metersToViewUnits_ = units.metersToViewUnits;
+  std::printf("sao-viewer: units %s\n", units.note.c_str());
   boundsMin_ = glm::dvec3(std::numeric_limits<double>::max());
   boundsMax_ = -boundsMin_;
   for (const auto& p : scene_.mesh.positions) {
@@ -160,13 +169,14 @@ FrameDesc App::buildFrame(glm::ivec2 size) const {
   const double far = backend_->reversedZ() ? INFINITY : f.zFar * 1.5 + 1.0;
   f.camera = scenes::makeCamera(v, std::uint32_t(size.x), std::uint32_t(size.y), far, backend_->clipDepth(),
                                 backend_->reversedZ());
+  f.camera.metersToViewUnits = metersToViewUnits_;  // the depth is drawn in the scene's own units
   f.settings = ui_.settings;
   f.mode = ui_.mode;
   f.cszLevel = ui_.cszLevel;
   f.splitFraction = ui_.split;
   f.errorScale = ui_.errorScale;
   f.measureTime = ui_.measureTime;
-  f.referenceValid = reference_.matches(v, f.camera, ui_.settings.radius);
+  f.referenceValid = reference_.matches(v, f.camera, radiusInSceneUnits());
   return f;
 }
 
@@ -183,7 +193,7 @@ Status App::handleRequests(const FrameDesc& frame) {
     ui_.computeReference = referenceRequested_ = false;
     std::printf("sao-viewer: tracing the reference (%d rays per pixel)...\n", ui_.referenceRays);
     std::fflush(stdout);
-    if (Status s = reference_.compute(camera_.view(), frame.camera, ui_.settings.radius,
+    if (Status s = reference_.compute(camera_.view(), frame.camera, radiusInSceneUnits(),
                                       std::uint32_t(ui_.referenceRays));
         !s)
       return s;
@@ -226,13 +236,13 @@ PanelInfo App::panelInfo() const {
     const glm::ivec2 fb = window_->framebufferSize();
     Camera c = scenes::makeCamera(v, std::uint32_t(fb.x), std::uint32_t(fb.y), INFINITY, ClipDepth::ZeroToOne, true);
     char text[160];
-    if (reference_.matches(v, c, ui_.settings.radius))
+    if (reference_.matches(v, c, radiusInSceneUnits()))
       std::snprintf(text, sizeof text, "reference of this view: %u rays per pixel, %.2f s", reference_.rays(),
                     reference_.seconds());
     else
       std::snprintf(text, sizeof text, "the reference is stale (camera, size or radius changed): press R");
     p.referenceStatus = text;
-    p.haveMetrics = haveMetrics_ && ui_.mode == ViewMode::Error && reference_.matches(v, c, ui_.settings.radius);
+    p.haveMetrics = haveMetrics_ && ui_.mode == ViewMode::Error && reference_.matches(v, c, radiusInSceneUnits());
   }
   p.metrics = metrics_;
   p.message = message_;

@@ -22,6 +22,10 @@ effect's settings metadata, live per-pass timings and the plan.
   --scene NAME|PATH     built-in scene: sponza-like (default), sphere-plane, crease, thin, gears;
                         or a mesh file (.gltf .glb .obj .ply) or a scene file (.scene)
   --view N              the scene's view number (default 0)
+  --units U             the --scene's length unit: m | cm | mm | in | ft, or auto (OBJ and PLY: a
+                        scale that makes the bounding-box diagonal 5 m, printed at start).
+                        Default: the scene's own (built-in and glTF metres, a .scene file's
+                        `units` line), else metres. Settings stay in metres and are converted
   --size WxH            window size (default 1280x720)
   --preset NAME         low | medium | high | ultra | reference
   --set NAME=VALUE      any setting (repeatable), checked against its range
@@ -90,6 +94,11 @@ Options parseOptions(int argc, char** argv) {
       if (o.backend != "gl" && o.backend != "vulkan") usageError("--backend expects gl or vulkan, got '" + o.backend + "'");
     } else if (a == "--scene") o.scene = value();
     else if (a == "--view") o.view = std::uint32_t(parseWhole(a, value(), 0, 1000));
+    else if (a == "--units") {
+      const std::string v = value();
+      o.units = scenes::parseLengthUnit(v);
+      if (!o.units) usageError("--units expects " + std::string(scenes::kLengthUnitNames) + ", got '" + v + "'");
+    }
     else if (a == "--size") {
       const std::string v = value();
       const auto x = v.find('x');

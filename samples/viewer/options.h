@@ -1,9 +1,11 @@
 // sao-viewer's command line.
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "sao/scenes/units.h"
 #include "viewer_types.h"
 
 namespace sao::viewer {
@@ -12,6 +14,7 @@ struct Options {
   std::string backend = "gl";
   std::string scene;  // empty: the default built-in scene
   std::uint32_t view = 0;
+  std::optional<scenes::LengthUnit> units;  // --units: the --scene's unit (scenes::chooseUnits)
   int width = 1280, height = 720;
   std::string preset;
   std::vector<std::string> sets;

@@ -14,7 +14,7 @@ namespace sao::viewer {
 class Reference {
  public:
   void setScene(const scenes::Scene* scene);  // forgets the reference and the ray scene
-  // Traces `rays` cosine-weighted rays per pixel within `radius` for the view and camera.
+  // Traces `rays` cosine-weighted rays per pixel within `radius` (scene units) for the view and camera.
   Status compute(const scenes::View& view, const Camera& camera, double radius, std::uint32_t rays);
   bool available() const { return !image_.data.empty(); }
   // Whether the reference belongs to this view, camera size and radius.

@@ -106,6 +106,14 @@ struct SyntaxCase {
   std::string message;  // after "s.scene"
 };
 
+// The text names the case, on one line (gtest would print the object's bytes, pointers included,
+// and the ctest names would change with every build).
+void PrintTo(const SyntaxCase& c, std::ostream* os) {
+  *os << '"';
+  for (char ch : c.text) *os << (ch == '\n' ? std::string("\\n") : std::string(1, ch));
+  *os << '"';
+}
+
 class SceneFileSyntax : public ::testing::TestWithParam<SyntaxCase> {};
 
 TEST_P(SceneFileSyntax, IsRejectedWithItsLine) {
@@ -125,8 +133,13 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         SyntaxCase{"", ": has no mesh line"},
         SyntaxCase{"# nothing but a comment\n\n", ": has no mesh line"},
-        SyntaxCase{kM + "camera x\n", ":2: unknown keyword 'camera' (expected mesh, transform or view)"},
-        SyntaxCase{"Mesh a.obj\n", ":1: unknown keyword 'Mesh' (expected mesh, transform or view)"},
+        SyntaxCase{kM + "camera x\n", ":2: unknown keyword 'camera' (expected mesh, transform, view or units)"},
+        SyntaxCase{"Mesh a.obj\n", ":1: unknown keyword 'Mesh' (expected mesh, transform, view or units)"},
+        SyntaxCase{kM + "units\n", ":2: units takes one word (m, cm, mm, in, ft or auto)"},
+        SyntaxCase{kM + "units mm cm\n", ":2: units takes one word (m, cm, mm, in, ft or auto)"},
+        SyntaxCase{kM + "units km\n", ":2: unknown unit 'km' (expected m, cm, mm, in, ft or auto)"},
+        SyntaxCase{kM + "units MM\n", ":2: unknown unit 'MM' (expected m, cm, mm, in, ft or auto)"},
+        SyntaxCase{"units mm\n" + kM + "units cm\n", ":3: units given twice (first on dir/s.scene:1)"},
         SyntaxCase{"mesh\n", ":1: mesh takes one path (quote a path with spaces), got 0 words"},
         SyntaxCase{"mesh a b.obj\n", ":1: mesh takes one path (quote a path with spaces), got 2 words"},
         SyntaxCase{"mesh \"\"\n", ":1: mesh: empty path"},

@@ -335,8 +335,8 @@ Camera scaleCamera(const ScaleSetup& su, double u) {
 }
 
 // Finding F2 (docs/STABILITY.md, fixed): eq. 1's term max(0, v·n + z_C·β) / (v·v + ε) has the
-// unit 1/length, so A is unit-free only if σ is a length too, i.e. if the block holds
-// intensity_div_s = 2·σ·u/s. True when the block scales σ with the units.
+// unit 1/length, so A is unit-free only if the block multiplies it by a length in view units:
+// intensity_div_s = 2·σ·r/s with r = radius·u. True when intensity_div_s scales with the units.
 bool intensityScalesWithUnits() {
   Camera c1 = camera(16, 16, 0.1, kInf, ClipDepth::ZeroToOne, true), c2 = c1;
   c2.metersToViewUnits = 1000.0;
@@ -378,10 +378,12 @@ TEST(WorldScale, MilliAndKiloUnitsLeaveAUnchanged) {
          "max |A(u) - A(1)| <= 1/255 on every backend", measured);
 }
 
-TEST(WorldScale, PhysicalScaleNeedsTheIntensityScaledAlike) {
+TEST(WorldScale, PhysicalScaleWithTheRadiusLeavesAUnchanged) {
   // The same geometry made k times larger in metres (u = 1), with radius, ε, the quad threshold
-  // and the blur sharpness scaled alike: eq. 1 (paper and AlchemyAO) is not scale-free, A stays
-  // the same only if σ is scaled by k too. Documented property of the estimator, not a defect.
+  // and the blur sharpness scaled alike. Eq. 1's sum has the unit 1/length; σ is unitless because
+  // the block multiplies the sum by the radius (intensity_div_s = 2·σ·r/s), so A must not change
+  // with σ fixed. The run with σ·k (what a σ in metres needed) must differ: it shows the test can
+  // tell the two apart.
   const test::Scene scene = test::sphereOnPlaneScene();
   const Camera cam = camera(64, 48, 0.1, kInf, ClipDepth::ZeroToOne, true, 8);
   const SceneRun r1 = runScene("physical scale 1", Settings{}, cam, scene, DepthFormat::D32F);
@@ -396,17 +398,18 @@ TEST(WorldScale, PhysicalScaleNeedsTheIntensityScaledAlike) {
     const test::Scene sk = scaledScene(scene, k);
     const SceneRun plain = runScene(fmt("physical scale %g, sigma 1", k), s, ck, sk, DepthFormat::D32F);
     s.intensity = float(k);
-    const SceneRun comp = runScene(fmt("physical scale %g, sigma %g", k, k), s, ck, sk, DepthFormat::D32F);
-    for (const BackendRun& b : comp.runs.runs)
+    const SceneRun scaled = runScene(fmt("physical scale %g, sigma %g", k, k), s, ck, sk, DepthFormat::D32F);
+    for (const BackendRun& b : plain.runs.runs)
       if (const BackendRun* b1 = r1.runs.find(b.name)) {
         const double d = maxAbsDiff(b.out.ao, b1->out.ao);
         EXPECT_LE(d, k255) << "k = " << k << " on " << b.name;
-        const double dp = maxAbsDiff(plain.runs.find(b.name)->out.ao, b1->out.ao);
-        if (b.name == "cpu") measured += fmt("%sk=%g: sigma·k %.2g, sigma fixed %.2g", measured.empty() ? "" : "; ", k, d, dp);
+        const double ds = maxAbsDiff(scaled.runs.find(b.name)->out.ao, b1->out.ao);
+        EXPECT_GT(ds, k255) << "k = " << k << " on " << b.name << ": sigma*k should change A";
+        if (b.name == "cpu") measured += fmt("%sk=%g: sigma fixed %.2g, sigma·k %.2g", measured.empty() ? "" : "; ", k, d, ds);
       }
   }
   report("scene scaled x0.1 / x10 in metres with radius, epsilon, thresholds scaled alike",
-         "A unchanged within 1/255 when sigma is scaled by k as well (eq. 1 has the unit 1/length)", measured);
+         "A unchanged within 1/255 with sigma fixed (sigma is unitless: the sum is scaled by r)", measured);
 }
 
 TEST(WorldScale, UnitsSweepFindsTheRangeThatHolds) {
@@ -578,6 +581,7 @@ float specZ(float d, const ParamBlock& p) {
   auto bits = [](float x) { return std::bit_cast<std::uint32_t>(x); };
   const bool finite = (bits(d) & 0x7F800000u) != 0x7F800000u;
   if (!finite || d * p.far_dir >= p.far_lim) return 0.0f;
+  if (p.depth_mode != gen::SAO_DEPTH_MODE_LINEAR && (d < 0.0f || d > 1.0f)) return 0.0f;  // no hardware depth
   const float z = p.depth_mode == gen::SAO_DEPTH_MODE_PERSPECTIVE ? p.clip_info.x / (d * p.clip_info.y + p.clip_info.z)
                                                                   : d * p.clip_info.y + p.clip_info.z;
   const std::uint32_t b = bits(z);
@@ -586,6 +590,7 @@ float specZ(float d, const ParamBlock& p) {
 
 double specZDouble(double d, const ParamBlock& p) {
   if (!std::isfinite(d) || d * double(p.far_dir) >= double(p.far_lim)) return 0.0;
+  if (p.depth_mode != gen::SAO_DEPTH_MODE_LINEAR && (d < 0.0 || d > 1.0)) return 0.0;
   const double c0 = p.clip_info.x, c1 = p.clip_info.y, c2 = p.clip_info.z;
   const double z = p.depth_mode == gen::SAO_DEPTH_MODE_PERSPECTIVE ? c0 / (d * c1 + c2) : d * c1 + c2;
   return (std::isfinite(z) && z < 0) ? z : 0.0;

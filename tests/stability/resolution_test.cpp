@@ -83,7 +83,7 @@ std::uint32_t floatHashPhase(std::uint32_t x, std::uint32_t y) {
 
 TEST(Resolution, EightKRotationKeepsFullPrecision) {
   // Orthographic view of a plane 1 m away with a checkerboard of 2 mm bumps (R32F linear z), 1 mm
-  // pixels, radius 12 mm (r' = 12 px, all taps on csz level 0), bias 0, intensity 0.05, no 2x2
+  // pixels, radius 12 mm (r' = 12 px, all taps on csz level 0), bias 0, sigma*r = 0.05 m, no 2x2
   // averaging, no blur:
   // every pixel sees the same geometry up to the checkerboard parity, so A(p) is a function of the
   // parity and the rotation phi(p) alone. On "cpu" only (the issue allows the CPU reference here).
@@ -99,7 +99,7 @@ TEST(Resolution, EightKRotationKeepsFullPrecision) {
   Settings s;
   s.radius = 0.012f;
   s.bias = 0.0f;
-  s.intensity = 0.05f;  // eq. 1 at millimetre scale: sigma 1 would black everything out
+  s.intensity = 0.05f / 0.012f;  // sigma*r = 0.05 m, the block's value from before sigma became unitless
   s.samples = 8;
   s.blur_radius = 0;
   s.quad_edge_threshold = 0.0f;

@@ -75,9 +75,10 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
   p.radius = f(r);
   p.radius2 = f(r * r);
   p.bias = s.bias;
-  // Eq. 1's term max(0, v.n + z beta) / (v.v + eps) has the unit 1/length: scaling sigma by the
-  // view units keeps A independent of the unit system (settings are in metres).
-  p.intensity_div_s = f(2.0 * s.intensity * u / s.samples);
+  // Eq. 1's term max(0, v.n + z beta) / (v.v + eps) has the unit 1/length: sigma multiplies the sum
+  // by the view-space radius r, so sigma is unitless and A is the same in any unit system and for a
+  // scene scaled together with its radius (at r = 1 m it is the paper's sigma in metres).
+  p.intensity_div_s = f(2.0 * s.intensity * r / s.samples);
   p.epsilon = f(double(s.epsilon) * u * u);
   p.contrast = s.contrast;
   p.proj_scale = f(projScale(c));

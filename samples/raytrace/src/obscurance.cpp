@@ -74,7 +74,7 @@ Status referenceObscurance(const RayScene& scene, const Camera& camera, const Pr
   if (primary.position.extent != input || primary.normal.extent != input)
     return bad("primary images do not match the camera's depth extent");
   // The effect's units (docs/effect-math.md §2): lengths in view units, the scene's world units.
-  const double radius = o.radius * u, intensity = o.intensity * u, epsilon = o.epsilon * u * u;
+  const double radius = o.radius * u, intensity = o.intensity * radius, epsilon = o.epsilon * u * u;
   const glm::dmat4 toWorld = glm::inverse(scenes::viewMatrix(view));
   ao = FloatImage({camera.width, camera.height}, 1, 1.0f);
   const std::uint32_t g = camera.guardBand;

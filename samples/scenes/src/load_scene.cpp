@@ -21,8 +21,10 @@ Status loadScene(std::string_view nameOrPath, Scene& out) {
   if (isMeshFileExtension(path)) {
     Scene scene;
     if (Status s = loadMeshFile(path, scene.mesh); !s) return s;
+    removeDegenerateTriangles(scene.mesh, path, scene.warnings);
     scene.name = std::filesystem::path(path).filename().string();
     scene.views.push_back(defaultView(scene.mesh));
+    if (ext == ".gltf" || ext == ".glb") scene.units = DeclaredUnits{LengthUnit::Metre, "glTF: metres by its specification"};
     out = std::move(scene);
     return Status::success();
   }

@@ -237,7 +237,8 @@ Status appendTransformed(Mesh& scene, const Mesh& mesh, const glm::dmat4& transf
 Status parseSceneFile(std::string_view text, const std::string& path, SceneFile& out) {
   SceneFile file;
   const fs::path folder = fs::path(path).parent_path();
-  std::size_t start = 0;
+  // A UTF-8 byte-order mark (Windows editors write one) is skipped.
+  std::size_t start = text.starts_with(detail::kUtf8ByteOrderMark) ? detail::kUtf8ByteOrderMark.size() : 0;
   int lineNumber = 0;
   while (start <= text.size()) {
     std::size_t end = text.find('\n', start);
@@ -260,6 +261,13 @@ Status parseSceneFile(std::string_view text, const std::string& path, SceneFile&
     } else if (keyword == "transform") {
       if (file.meshes.empty()) return where.error("transform before any mesh line (it applies to the mesh above it)");
       if (Status s = parseTransform(tokens, where, file.meshes.back().transform); !s) return s;
+    } else if (keyword == "units") {
+      if (tokens.size() != 2) return where.error("units takes one word (" + std::string(kLengthUnitNames) + ")");
+      const auto unit = parseLengthUnit(tokens[1]);
+      if (!unit)
+        return where.error("unknown unit " + shown(tokens[1]) + " (expected " + std::string(kLengthUnitNames) + ")");
+      if (file.units) return where.error("units given twice (first on " + file.units->source + ")");
+      file.units = DeclaredUnits{*unit, path + ":" + std::to_string(where.line)};
     } else if (keyword == "view") {
       SceneFileView view;
       if (Status s = parseView(tokens, where, view); !s) return s;
@@ -268,7 +276,7 @@ Status parseSceneFile(std::string_view text, const std::string& path, SceneFile&
           return where.error("view " + shown(view.view.name) + " is defined twice (first on line " + std::to_string(other.line) + ")");
       file.views.push_back(std::move(view));
     } else {
-      return where.error("unknown keyword " + shown(keyword) + " (expected mesh, transform or view)");
+      return where.error("unknown keyword " + shown(keyword) + " (expected mesh, transform, view or units)");
     }
     if (end == text.size()) break;
   }
@@ -288,6 +296,7 @@ Status loadSceneFile(const std::string& path, Scene& out) {
     const Where where{path, m.line};
     Mesh mesh;
     if (Status s = loadMeshFile(m.path, mesh); !s) return Status::error(s.code, path + ":" + std::to_string(m.line) + ": " + s.message);
+    removeDegenerateTriangles(mesh, path + ":" + std::to_string(m.line) + ": " + m.path, scene.warnings);
     if (scene.mesh.triangleCount() + mesh.triangleCount() > kMaxMeshTriangles)
       return where.error("the meshes have more than " + std::to_string(kMaxMeshTriangles) + " triangles in all");
     if (Status s = appendTransformed(scene.mesh, mesh, m.transform, where, m.path); !s) return s;
@@ -299,6 +308,13 @@ Status loadSceneFile(const std::string& path, Scene& out) {
     scene.views.back().nearDistance = v.nearDistance.value_or(near);
   }
   if (scene.views.empty()) scene.views.push_back(defaultView(scene.mesh));
+  scene.units = file.units;
+  const bool allGltf = std::all_of(file.meshes.begin(), file.meshes.end(), [](const SceneFileMesh& m) {
+    const std::string ext = detail::lowerExtension(m.path);
+    return ext == ".gltf" || ext == ".glb";
+  });
+  if (!scene.units && allGltf)
+    scene.units = DeclaredUnits{LengthUnit::Metre, "glTF meshes: metres by their specification"};
   out = std::move(scene);
   return Status::success();
 }

@@ -4,6 +4,7 @@
 // obscurance integral that the effect's estimator approximates (docs/reference.md).
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 
 #include "sao/image.h"
@@ -61,6 +62,9 @@ struct ReferenceOptions {
   std::uint32_t rays = 256;   // cosine-weighted rays per pixel
   std::uint64_t seed = 1;     // results are a pure function of (scene, view, options)
   unsigned threads = 0;
+  // Optional: called after each finished row with (rows done, rows), from the worker threads but
+  // never two calls at once. For progress reports; it must not throw.
+  std::function<void(std::uint32_t, std::uint32_t)> progress;
 };
 
 // Near-field visibility at one world-space point with unit normal n: the fraction of `rays`
@@ -78,7 +82,7 @@ Status referenceAmbientOcclusion(const RayScene& scene, const Camera& camera, co
 // the effect's units: metres, converted to view units with Camera::metersToViewUnits u.
 struct ObscuranceOptions {
   double radius = 1.0;      // r, metres: only occluders closer than r count
-  double intensity = 1.0;   // sigma, metres (the effect's 2*sigma*u/s: the sum's terms are 1/length)
+  double intensity = 1.0;   // sigma, unitless (the effect's 2*sigma*r/s, r in view units: the terms are 1/length)
   double bias = 0.02;       // beta, unitless: the numerator is v.n + z_C*beta
   double epsilon = 1e-4;    // epsilon, square metres, added to v.v
   double contrast = 1.0;    // k: the output is clamp(1 - obscurance, 0, 1)^k
@@ -91,7 +95,7 @@ struct ObscuranceOptions {
 ObscuranceOptions obscuranceOptions(const Settings& s, std::uint32_t rays, std::uint64_t seed = 1);
 
 // The obscurance integral at camera-space-z `zC` point p (world space, on a surface, unit normal n),
-// all lengths in view units (r, sigma, epsilon already scaled by u):
+// all lengths in view units (r and epsilon already scaled by u, sigma by r):
 //   O = (sigma/pi) * Integral over the hemisphere of H(r - t) max(0, t cos + zC beta) / (t^2 + eps) dw
 // with t the distance to the first hit along w and cos = w.n, estimated from `rays` cosine-weighted
 // rays (mean of sigma H(r - t) max(0, t cos + zC beta) / (cos (t^2 + eps)); derivation in

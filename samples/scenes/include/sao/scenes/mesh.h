@@ -1,4 +1,5 @@
-// Triangle meshes in world space (metres, y up) and the primitives the built-in scenes use.
+// Triangle meshes in world space (the scene's units, metres for the built-in scenes; y up) and the
+// primitives the built-in scenes use.
 #pragma once
 #include <cstdint>
 #include <vector>

@@ -10,6 +10,7 @@
 
 #include "sao/camera.h"
 #include "sao/scenes/mesh.h"
+#include "sao/scenes/units.h"
 #include "sao/status.h"
 
 namespace sao::scenes {
@@ -27,6 +28,12 @@ struct Scene {
   std::string name;
   Mesh mesh;
   std::vector<View> views;  // at least one
+  // The unit the scene states: built-in scenes and glTF files metres, a scene file its `units`
+  // line; none for OBJ and PLY (scenes::chooseUnits decides, units.h).
+  std::optional<DeclaredUnits> units;
+  // What loadScene changed without refusing the file, one line each ("PATH: 3 of 12 triangles
+  // are degenerate ... left out"), for the programs to print.
+  std::vector<std::string> warnings;
 };
 
 // "sponza-like" (the default), "sphere-plane", "crease", "thin", "gears".
@@ -38,7 +45,7 @@ Status makeBuiltinScene(std::string_view name, Scene& out);
 // The entry point of the programs' --scene: a built-in scene's name goes to makeBuiltinScene;
 // otherwise nameOrPath is a file (src/load_scene.cpp):
 //   .scene                   a scene file (scene_file.h, docs/scene-format.md)
-//   .gltf .glb .obj .ply     a mesh file (mesh_file.h) in file units taken as metres, with one
+//   .gltf .glb .obj .ply     a mesh file (mesh_file.h) in the file's units (Scene::units), with one
 //                            view, "default" (default_view.h)
 // Errors: the built-in scenes' "unknown built-in scene" for a name that is no file either,
 // UnsupportedFormat for another extension, and the file readers' errors, each naming the file.

@@ -31,6 +31,7 @@ struct SceneFileView {
 struct SceneFile {
   std::vector<SceneFileMesh> meshes;  // at least one
   std::vector<SceneFileView> views;   // may be empty: then the default view (default_view.h)
+  std::optional<DeclaredUnits> units; // the `units` line (source "PATH:LINE"), if any
 };
 
 // Parses the text of a scene file; `path` is used in messages and to resolve mesh paths. Opens no
