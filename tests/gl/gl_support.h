@@ -1,5 +1,5 @@
 // Shared by the OpenGL backend tests: one headless debug context per test process, texture
-// upload/readback through libepoxy, image comparison with failure images.
+// upload/readback through libepoxy, image comparison with failure images (image_compare.h).
 #pragma once
 #include <gtest/gtest.h>
 
@@ -8,11 +8,14 @@
 #include <string>
 #include <vector>
 
+#include "analytic_scenes.h"
+#include "image_compare.h"
 #include "sao/camera.h"
 #include "sao/gl/effect.h"
 #include "sao/gl/headless.h"
 #include "sao/gl/texture_io.h"
 #include "sao/image.h"
+#include "test_cameras.h"
 
 namespace sao::gltest {
 
@@ -41,24 +44,20 @@ std::uint32_t uploadDepth(const DepthImage& depth, GlDepth format);
 std::uint32_t uploadNormals(const FloatImage& normals);  // GL_RGBA16F, nearest-even halves
 
 // A 60-degree perspective camera, near 0.1, far `farDistance` (inf: infinite), OpenGL depth.
-Camera camera(std::uint32_t width, std::uint32_t height, std::uint32_t guard, double farDistance = 1000.0,
-              bool reversedZ = false);
-
-struct Agreement {
-  double maxAbs = 0;       // largest |actual - expected|
-  double p999 = 0;         // 99.9th percentile of |actual - expected|
-  double fractionWithin = 0;  // share of pixels within `within`
-  std::size_t beyond = 0;     // pixels beyond `never`
-  std::size_t nonFinite = 0;  // NaN / Inf in actual
-};
-
-// Compares channel `channel` of two images. When `write` is set and the comparison fails
-// (fractionWithin < 0.999 or beyond > 0 or non-finite), writes <dir>/<name>_{actual,expected,diff}
-// .png (diff scaled so that `never` is white) and float EXRs, and says where in `note`.
-Agreement compare(const FloatImage& actual, const FloatImage& expected, std::uint32_t channel, double within,
-                  double never, const std::string& name, std::string* note = nullptr);
-bool acceptable(const Agreement& a);
+inline Camera camera(std::uint32_t width, std::uint32_t height, std::uint32_t guard, double farDistance = 1000.0,
+                     bool reversedZ = false) {
+  return test::openglCamera(width, height, guard, farDistance, reversedZ);
+}
 
 std::string failureDir();  // tests/gl/failures in the build tree
+
+// The reference tests' scenes (also what Vulkan is compared with GL on): "plane" (3 m away),
+// "crease" (2 m), "sphere" (on a plane), "stairs", anything else the rods.
+test::Scene sceneByName(const std::string& name);
+
+// test::compare (image_compare.h) with its failure images under failureDir().
+using test::acceptable;
+using test::Agreement;
+inline const test::FailureImagesIn compare{failureDir()};
 
 }  // namespace sao::gltest

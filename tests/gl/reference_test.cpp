@@ -25,14 +25,6 @@ namespace {
 constexpr double kWithin = 2.0 / 255.0, kNever = 4.0 / 255.0;
 constexpr std::uint32_t kWidth = 160, kHeight = 90, kGuard = 8;
 
-test::Scene sceneByName(const std::string& name) {
-  if (name == "plane") return test::planeScene(3.0);
-  if (name == "crease") return test::creaseScene(2.0);
-  if (name == "sphere") return test::sphereOnPlaneScene();
-  if (name == "stairs") return test::stairsScene();
-  return test::rodsScene();
-}
-
 struct Run {
   FloatImage ao, raw;
 };

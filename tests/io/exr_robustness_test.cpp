@@ -23,15 +23,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<char> readBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void writeBytes(const std::string& path, const std::vector<char>& bytes) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(bytes.data(), std::streamsize(bytes.size()));
-}
+using test::readBytes;
+using test::writeBytes;
 
 // Peak RSS of the process so far, bytes.
 std::uint64_t peakRss() {

@@ -187,15 +187,8 @@ void eraseAttribute(Imf::Header& h, const char* name) {
   h = out;
 }
 
-std::vector<char> readBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void writeBytes(const std::string& path, const std::vector<char>& bytes) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(bytes.data(), std::streamsize(bytes.size()));
-}
+using test::readBytes;
+using test::writeBytes;
 
 // Asserts a failed read with the given code, a message naming the path and `problem`, and the
 // outputs untouched.
@@ -712,7 +705,7 @@ TEST_F(ExrFile, ReadFloatExrErrors) {
   Status s = readFloatExr(file("missing.exr"), img, names);
   EXPECT_EQ(s.code, StatusCode::IoError);
   EXPECT_NE(s.message.find("no such file"), std::string::npos) << s.message;
-  s = readFloatExr(dir_.string(), img, names);
+  s = readFloatExr(tmp_.path().string(), img, names);
   EXPECT_EQ(s.code, StatusCode::IoError);
   EXPECT_NE(s.message.find("is a directory"), std::string::npos) << s.message;
 }

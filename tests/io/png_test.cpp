@@ -96,7 +96,7 @@ TEST_F(AoPng, Errors) {
   EXPECT_EQ(writeAoPng(path, shortImage).code, StatusCode::InvalidInput);
   EXPECT_FALSE(fs::exists(path));
 
-  s = writeAoPng(dir_.string(), ao);
+  s = writeAoPng(tmp_.path().string(), ao);
   EXPECT_EQ(s.code, StatusCode::IoError);
   EXPECT_NE(s.message.find("is a directory"), std::string::npos) << s.message;
   const std::string nowhere = file("missing/dir/e.png");

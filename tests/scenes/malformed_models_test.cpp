@@ -11,7 +11,7 @@
 
 #include "sao/scenes/mesh_file.h"
 #include "sao/scenes/scene.h"
-#include "temp_dir.h"
+#include "test_models.h"
 
 namespace sao::scenes {
 namespace {

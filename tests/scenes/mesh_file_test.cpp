@@ -15,7 +15,7 @@
 #include "sao/scenes/default_view.h"
 #include "sao/scenes/mesh_file.h"
 #include "sao/scenes/scene.h"
-#include "temp_dir.h"
+#include "test_models.h"
 
 // Declared by <assimp/ai_assert.h>; defined by Debian's libassimp and again by sao_scenes.
 namespace Assimp {

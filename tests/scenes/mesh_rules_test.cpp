@@ -14,7 +14,7 @@
 #include "sao/scenes/mesh_file.h"
 #include "sao/scenes/scene.h"
 #include "sao/scenes/scene_file.h"
-#include "temp_dir.h"
+#include "test_models.h"
 
 namespace sao::scenes {
 namespace {

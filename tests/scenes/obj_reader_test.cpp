@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "sao/scenes/mesh_file.h"
+#include "test_models.h"
 
 namespace sao::scenes {
 namespace {
@@ -49,6 +50,8 @@ struct Bad {
   StatusCode code;
   std::string message;  // after "mem: "
 };
+
+void PrintTo(const Bad& c, std::ostream* os) { *os << test::escapedText(c.text); }
 
 class ObjReaderRejects : public ::testing::TestWithParam<Bad> {};
 

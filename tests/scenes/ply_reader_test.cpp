@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "sao/scenes/mesh_file.h"
+#include "test_models.h"
 
 namespace sao::scenes {
 namespace {
@@ -110,6 +111,8 @@ struct Bad {
   StatusCode code;
   std::string message;  // after "mem: "
 };
+
+void PrintTo(const Bad& c, std::ostream* os) { *os << test::escapedText(c.bytes); }
 
 class PlyReaderRejects : public ::testing::TestWithParam<Bad> {};
 

@@ -10,7 +10,7 @@
 #include "sao/scenes/mesh_file.h"
 #include "sao/scenes/scene.h"
 #include "sao/scenes/scene_file.h"
-#include "temp_dir.h"
+#include "test_models.h"
 
 namespace sao::scenes {
 namespace {
@@ -106,13 +106,7 @@ struct SyntaxCase {
   std::string message;  // after "s.scene"
 };
 
-// The text names the case, on one line (gtest would print the object's bytes, pointers included,
-// and the ctest names would change with every build).
-void PrintTo(const SyntaxCase& c, std::ostream* os) {
-  *os << '"';
-  for (char ch : c.text) *os << (ch == '\n' ? std::string("\\n") : std::string(1, ch));
-  *os << '"';
-}
+void PrintTo(const SyntaxCase& c, std::ostream* os) { *os << test::escapedText(c.text); }
 
 class SceneFileSyntax : public ::testing::TestWithParam<SyntaxCase> {};
 

@@ -7,7 +7,7 @@
 
 #include "sao/scenes/scene.h"
 #include "sao/scenes/units.h"
-#include "temp_dir.h"
+#include "test_models.h"
 
 namespace sao::scenes {
 namespace {

@@ -12,6 +12,7 @@
 #include <numbers>
 
 #include "analytic_scenes.h"
+#include "gl_support.h"
 #include "sao/gl/effect.h"
 #include "sao/gl/headless.h"
 #include "sao/presets.h"
@@ -23,27 +24,7 @@ namespace {
 constexpr std::uint32_t kW = 160, kH = 90, kGuard = 8;
 constexpr double kLimit = 1.0 / 255.0;
 
-gl::HeadlessContext& glContext() {
-  static std::unique_ptr<gl::HeadlessContext> ctx = [] {
-    std::unique_ptr<gl::HeadlessContext> c;
-    const Status st = gl::HeadlessContext::create(c);
-    if (!st) {
-      std::fprintf(stderr, "no headless GL context: %s\n", st.message.c_str());
-      std::abort();
-    }
-    std::printf("GL context: %s\n", c->description().c_str());
-    return c;
-  }();
-  return *ctx;
-}
-
-test::Scene sceneByName(const std::string& name) {
-  if (name == "plane") return test::planeScene(3.0);
-  if (name == "crease") return test::creaseScene(2.0);
-  if (name == "sphere") return test::sphereOnPlaneScene();
-  if (name == "stairs") return test::stairsScene();
-  return test::rodsScene();
-}
+using gltest::sceneByName;
 
 GLuint uploadGlDepth(const DepthImage& depth) {
   const auto w = GLsizei(depth.extent.width), h = GLsizei(depth.extent.height);
@@ -138,11 +119,11 @@ class VkVsGl : public VkTest, public ::testing::WithParamInterface<std::tuple<Pr
  protected:
   void SetUp() override {
     VkTest::SetUp();
-    ASSERT_TRUE(glContext().makeCurrent().ok());
-    glContext().clearMessages();
+    ASSERT_TRUE(gltest::context().makeCurrent().ok());
+    gltest::context().clearMessages();
   }
   void TearDown() override {
-    for (const auto& m : glContext().errors()) ADD_FAILURE() << "GL debug message: " << gl::HeadlessContext::format(m);
+    for (const auto& m : gltest::context().errors()) ADD_FAILURE() << "GL debug message: " << gl::HeadlessContext::format(m);
     VkTest::TearDown();
   }
 };

@@ -1,16 +1,11 @@
 #include "vk_support.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <fstream>
-#include <numbers>
 #include <malloc.h>
 #include <unistd.h>
-
-#include "sao/io.h"
 
 namespace sao::vktest {
 
@@ -149,70 +144,7 @@ Status runEffect(const Settings& settings, const Camera& camera, const DepthImag
   return Status::success();
 }
 
-Camera vulkanCamera(std::uint32_t width, std::uint32_t height, std::uint32_t guard, double farDistance, bool reversedZ,
-                    bool flipY) {
-  Camera c = perspectiveCamera(std::numbers::pi / 3.0, width, height, 0.1, farDistance, ClipDepth::ZeroToOne, reversedZ);
-  c.guardBand = guard;
-  c.flipY = flipY;
-  return c;
-}
-
-Camera openglCamera(std::uint32_t width, std::uint32_t height, std::uint32_t guard, double farDistance, bool reversedZ) {
-  Camera c = perspectiveCamera(std::numbers::pi / 3.0, width, height, 0.1, farDistance, ClipDepth::NegativeOneToOne,
-                               reversedZ);
-  c.guardBand = guard;
-  return c;
-}
-
 std::string failureDir() { return SAO_VK_TEST_FAILURE_DIR; }
-
-bool acceptable(const Agreement& a) { return a.fractionWithin >= 0.999 && a.beyond == 0 && a.nonFinite == 0; }
-
-Agreement compare(const FloatImage& actual, const FloatImage& expected, std::uint32_t channel, double within,
-                  double never, const std::string& name, std::string* note) {
-  Agreement a;
-  if (actual.extent != expected.extent || channel >= actual.channels || channel >= expected.channels) {
-    ADD_FAILURE() << name << ": images differ in size or channels";
-    a.beyond = 1;
-    return a;
-  }
-  const Extent e = actual.extent;
-  const std::size_t n = std::size_t(e.width) * e.height;
-  std::vector<double> diffs(n);
-  FloatImage a1(e, 1), b1(e, 1), d1(e, 1);
-  std::size_t ok = 0;
-  for (std::uint32_t y = 0; y < e.height; ++y)
-    for (std::uint32_t x = 0; x < e.width; ++x) {
-      const float u = actual.at(x, y, channel), v = expected.at(x, y, channel);
-      const double d = std::isfinite(u) ? std::fabs(double(u) - double(v)) : INFINITY;
-      if (!std::isfinite(u)) ++a.nonFinite;
-      diffs[std::size_t(y) * e.width + x] = d;
-      a.maxAbs = std::max(a.maxAbs, d);
-      ok += d <= within;
-      a.beyond += d > never;
-      a1.at(x, y) = std::isfinite(u) ? u : 0.0f;
-      b1.at(x, y) = v;
-      d1.at(x, y) = float(std::min(1.0, d / never));
-    }
-  a.fractionWithin = double(ok) / double(n);
-  std::vector<double> sorted = diffs;
-  const std::size_t k = std::min(n - 1, std::size_t(std::ceil(0.999 * double(n))) - 1);
-  std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(k), sorted.end());
-  a.p999 = sorted[k];
-  if (!acceptable(a)) {
-    std::error_code ec;
-    std::filesystem::create_directories(failureDir(), ec);
-    const std::string base = failureDir() + "/" + name;
-    (void)writeAoPng(base + "_actual.png", a1);
-    (void)writeAoPng(base + "_expected.png", b1);
-    (void)writeAoPng(base + "_diff.png", d1);
-    (void)writeFloatExr(base + "_actual.exr", a1, {"A"});
-    (void)writeFloatExr(base + "_expected.exr", b1, {"A"});
-    if (note)
-      *note = "images written to " + base + "_{actual,expected,diff}.png (diff: white = " + std::to_string(never) + ")";
-  }
-  return a;
-}
 
 std::uint64_t residentBytes() {
   malloc_trim(0);  // return freed heap pages first: count live memory, not the allocator's free lists

@@ -1,6 +1,7 @@
 // Shared by the Vulkan backend tests: one headless context per test process with the validation
 // layer and synchronization validation on (any message fails the running test), a one-call "run
-// the effect on this depth and read everything back", and image comparison with failure images.
+// the effect on this depth and read everything back", and image comparison with failure images
+// (image_compare.h).
 #pragma once
 #include <gtest/gtest.h>
 
@@ -9,10 +10,12 @@
 #include <string>
 #include <vector>
 
+#include "image_compare.h"
 #include "sao/camera.h"
 #include "sao/image.h"
 #include "sao/vulkan/effect.h"
 #include "sao/vulkan/headless.h"
+#include "test_cameras.h"
 
 namespace sao::vktest {
 
@@ -55,27 +58,16 @@ struct RunResult {
 Status runEffect(const Settings& settings, const Camera& camera, const DepthImage& depth, VkDepth format,
                  RunResult& out, const RunOptions& options = {});
 
-// Cameras: 60 degree vertical field of view, near 0.1.
-Camera vulkanCamera(std::uint32_t width, std::uint32_t height, std::uint32_t guard, double farDistance = 100.0,
-                    bool reversedZ = false, bool flipY = false);  // ClipDepth::ZeroToOne
-Camera openglCamera(std::uint32_t width, std::uint32_t height, std::uint32_t guard, double farDistance = 1000.0,
-                    bool reversedZ = false);  // ClipDepth::NegativeOneToOne
+// Cameras: 60 degree vertical field of view, near 0.1 (test_cameras.h).
+using test::openglCamera;
+using test::vulkanCamera;
 
-struct Agreement {
-  double maxAbs = 0;          // largest |actual - expected|
-  double p999 = 0;            // 99.9th percentile of |actual - expected|
-  double fractionWithin = 0;  // share of pixels within `within`
-  std::size_t beyond = 0;     // pixels beyond `never`
-  std::size_t nonFinite = 0;  // NaN / Inf in actual
-};
+std::string failureDir();  // tests/vulkan/failures in the build tree
 
-// Compares channel `channel`. When the comparison is not acceptable (fractionWithin < 0.999,
-// anything beyond `never` or non-finite), writes <failureDir>/<name>_{actual,expected,diff}.png
-// (diff: white = `never`) and float EXRs, and says where in `note`.
-Agreement compare(const FloatImage& actual, const FloatImage& expected, std::uint32_t channel, double within,
-                  double never, const std::string& name, std::string* note = nullptr);
-bool acceptable(const Agreement& a);
-std::string failureDir();
+// test::compare (image_compare.h) with its failure images under failureDir().
+using test::acceptable;
+using test::Agreement;
+inline const test::FailureImagesIn compare{failureDir()};
 
 // Resident set size of this process, bytes (/proc/self/statm).
 std::uint64_t residentBytes();

@@ -1,0 +1,186 @@
+// World scale: metersToViewUnits and a physically scaled scene leave A unchanged; the units sweep
+// finds the supported range and everything outside it is rejected.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "extremes_support.h"
+
+namespace sao::stability {
+namespace {
+
+// The sphere-on-plane scene at metersToViewUnits = u: geometry, near and far in view units.
+struct ScaleSetup {
+  const char* name;
+  DepthFormat fm;
+  ClipDepth clip;
+  bool reversed;
+  double far;  // metres
+  bool ortho;
+};
+const ScaleSetup kScaleSetups[] = {
+    {"D24 standard [-1,1] far 1e4", DepthFormat::D24, ClipDepth::NegativeOneToOne, false, 1e4, false},
+    {"D32F reversed [0,1] infinite", DepthFormat::D32F, ClipDepth::ZeroToOne, true, kInf, false},
+    {"R32F linear z", DepthFormat::LinearZ, ClipDepth::ZeroToOne, true, kInf, false},
+    {"orthographic D24 standard [0,1]", DepthFormat::D24, ClipDepth::ZeroToOne, false, 100.0, true},
+};
+
+Camera scaleCamera(const ScaleSetup& su, double u) {
+  Camera c = su.ortho ? orthoCamera(64, 48, 0.1 * u, su.far * u, su.clip, su.reversed, 8, 3.0 * u)
+                      : camera(64, 48, 0.1 * u, su.far * u, su.clip, su.reversed, 8);
+  c.metersToViewUnits = u;
+  return c;
+}
+
+// Finding F2 (docs/STABILITY.md, fixed): eq. 1's term max(0, v·n + z_C·β) / (v·v + ε) has the
+// unit 1/length, so A is unit-free only if the block multiplies it by a length in view units:
+// intensity_div_s = 2·σ·r/s with r = radius·u. True when intensity_div_s scales with the units.
+bool intensityScalesWithUnits() {
+  Camera c1 = camera(16, 16, 0.1, kInf, ClipDepth::ZeroToOne, true), c2 = c1;
+  c2.metersToViewUnits = 1000.0;
+  ParamBlock p1, p2;
+  EXPECT_TRUE(computeConstants(Settings{}, c1, DepthEncoding::Hardware, p1).ok());
+  EXPECT_TRUE(computeConstants(Settings{}, c2, DepthEncoding::Hardware, p2).ok());
+  return std::fabs(double(p2.intensity_div_s) / p1.intensity_div_s - 1000.0) < 1e-3;
+}
+
+TEST(WorldScale, MilliAndKiloUnitsLeaveAUnchanged) {
+  // The same scene in metres (u = 1), in km (u = 1e-3: 1 m = 0.001 view units) and in mm
+  // (u = 1e3): geometry, near and far in view units, the settings (defaults) in metres as always.
+  // The block converts the radius, ε (m²), the quad threshold, the blur sharpness and σ, so A must
+  // not change. The same settings at both scales: no compensation in the test, so that an F2
+  // regression fails here.
+  EXPECT_TRUE(intensityScalesWithUnits()) << "intensity_div_s does not scale with metersToViewUnits (finding F2)";
+  std::string measured;
+  for (const ScaleSetup& su : kScaleSetups) {
+    // Orthographic views along -z see the floor edge-on: they look at the 90° crease instead.
+    const test::Scene scene = su.ortho ? test::creaseScene(5.0) : test::sphereOnPlaneScene();
+    const SceneRun r1 = runScene(fmt("world scale 1, %s", su.name), Settings{}, scaleCamera(su, 1.0), scene, su.fm);
+    for (double u : {1e-3, 1e3}) {
+      const SceneRun ru = runScene(fmt("world scale %g, %s", u, su.name), Settings{}, scaleCamera(su, u),
+                                   scaledScene(scene, u), su.fm);
+      double worst = 0;
+      std::size_t compared = 0;
+      for (const BackendRun& b : ru.runs.runs)
+        if (const BackendRun* b1 = r1.runs.find(b.name)) {
+          const double d = maxAbsDiff(b.out.ao, b1->out.ao);
+          EXPECT_LE(d, k255) << su.name << " u = " << u << " on " << b.name;
+          worst = std::max(worst, d);
+          ++compared;
+        }
+      EXPECT_GT(compared, 0u) << su.name << " u = " << u << ": no backend ran both scales";
+      measured += fmt("%s%s u=%g: %.2g", measured.empty() ? "" : "; ", su.name, u, worst);
+    }
+  }
+  report("world scale x1e-3 / x1e3 (metersToViewUnits; D24 std, D32F rev, R32F, ortho D24; default settings)",
+         "max |A(u) - A(1)| <= 1/255 on every backend", measured);
+}
+
+TEST(WorldScale, PhysicalScaleWithTheRadiusLeavesAUnchanged) {
+  // The same geometry made k times larger in metres (u = 1), with radius, ε, the quad threshold
+  // and the blur sharpness scaled alike. Eq. 1's sum has the unit 1/length; σ is unitless because
+  // the block multiplies the sum by the radius (intensity_div_s = 2·σ·r/s), so A must not change
+  // with σ fixed. The run with σ·k (what a σ in metres needed) must differ: it shows the test can
+  // tell the two apart.
+  const test::Scene scene = test::sphereOnPlaneScene();
+  const Camera cam = camera(64, 48, 0.1, kInf, ClipDepth::ZeroToOne, true, 8);
+  const SceneRun r1 = runScene("physical scale 1", Settings{}, cam, scene, DepthFormat::D32F);
+  std::string measured;
+  for (double k : {0.1, 10.0}) {
+    Settings s;
+    s.radius = float(1.0 * k);
+    s.epsilon = float(1e-4 * k * k);
+    s.quad_edge_threshold = float(0.02 * k);
+    s.blur_edge_sharpness = float(10.0 / k);
+    Camera ck = camera(64, 48, 0.1 * k, kInf, ClipDepth::ZeroToOne, true, 8);
+    const test::Scene sk = scaledScene(scene, k);
+    const SceneRun plain = runScene(fmt("physical scale %g, sigma 1", k), s, ck, sk, DepthFormat::D32F);
+    s.intensity = float(k);
+    const SceneRun scaled = runScene(fmt("physical scale %g, sigma %g", k, k), s, ck, sk, DepthFormat::D32F);
+    for (const BackendRun& b : plain.runs.runs)
+      if (const BackendRun* b1 = r1.runs.find(b.name)) {
+        const double d = maxAbsDiff(b.out.ao, b1->out.ao);
+        EXPECT_LE(d, k255) << "k = " << k << " on " << b.name;
+        const double ds = maxAbsDiff(scaled.runs.find(b.name)->out.ao, b1->out.ao);
+        EXPECT_GT(ds, k255) << "k = " << k << " on " << b.name << ": sigma*k should change A";
+        if (b.name == "cpu") measured += fmt("%sk=%g: sigma fixed %.2g, sigma·k %.2g", measured.empty() ? "" : "; ", k, d, ds);
+      }
+  }
+  report("scene scaled x0.1 / x10 in metres with radius, epsilon, thresholds scaled alike",
+         "A unchanged within 1/255 with sigma fixed (sigma is unitless: the sum is scaled by r)", measured);
+}
+
+TEST(WorldScale, UnitsSweepFindsTheRangeThatHolds) {
+  // metersToViewUnits = 10^k, k = -20 .. 20, on the float and double references, compared with
+  // u = 1 (default settings: the block converts them, finding F2). The supported range is
+  // [1e-6, 1e6] (camera.cpp; below it the normal reconstruction underflows in float, finding F3):
+  // A must hold to 1/255 at every u inside it, and every u outside must be rejected with
+  // InvalidCamera naming the range.
+  EXPECT_TRUE(intensityScalesWithUnits()) << "finding F2 regressed";
+  const test::Scene scene = test::sphereOnPlaneScene();
+  const ScaleSetup& su = kScaleSetups[1];
+  constexpr double kLo = 1e-6, kHi = 1e6;
+  const char* kRangeText = "[1e-6, 1e6]";
+  std::string measured;
+  double okLo = 1, okHi = 1, dALo = -1, dAHi = -1;
+  bool lowBroken = false, highBroken = false;
+  std::size_t rejected = 0;
+  CaseOptions refs;
+  refs.only = {"cpu-double", "cpu"};
+  const SceneRun b1 = runScene("units sweep base", Settings{}, scaleCamera(su, 1.0), scene, su.fm, refs);
+  for (int sign : {-1, 1})
+    for (int e = 1; e <= 20; ++e) {
+      const int k = sign * e;
+      const double u = std::pow(10.0, k);
+      const bool supported = u >= kLo * (1 - 1e-12) && u <= kHi * (1 + 1e-12);
+      const Camera cu = scaleCamera(su, u);
+      DepthModel m;
+      const Status ast = analyze(cu, m);
+      if (!supported) {
+        EXPECT_EQ(ast.code, StatusCode::InvalidCamera) << "u = 1e" << k << ": '" << ast.message << "'";
+        EXPECT_NE(ast.message.find(kRangeText), std::string::npos) << "u = 1e" << k << ": '" << ast.message << "'";
+        rejected += ast.code == StatusCode::InvalidCamera;
+        (sign < 0 ? lowBroken : highBroken) = true;
+        continue;
+      }
+      ASSERT_TRUE(ast.ok()) << "u = 1e" << k << " is inside " << kRangeText << " but rejected: " << ast.message;
+      const SceneRun r = runScene(fmt("units sweep u=1e%d", k), Settings{}, cu, scaledScene(scene, u), su.fm, refs);
+      double worst = 0;
+      for (const BackendRun& b : r.runs.runs)
+        if (const BackendRun* x = b1.runs.find(b.name)) worst = std::max(worst, maxAbsDiff(b.out.ao, x->out.ao));
+      EXPECT_LE(worst, k255) << "u = 1e" << k;
+      measured += fmt("%s1e%d: %.2g", measured.empty() ? "" : "; ", k, worst);
+      if (k == -6) dALo = worst;
+      if (k == 6) dAHi = worst;
+      if (worst <= k255) {
+        if (sign < 0 && !lowBroken) okLo = u;
+        if (sign > 0 && !highBroken) okHi = u;
+      } else {
+        (sign < 0 ? lowBroken : highBroken) = true;
+      }
+    }
+  EXPECT_LE(okLo, kLo);
+  EXPECT_GE(okHi, kHi);
+  // Both ends measured (a dA of -1 means the end was never run).
+  EXPECT_GE(dALo, 0.0);
+  EXPECT_LE(dALo, k255);
+  EXPECT_GE(dAHi, 0.0);
+  EXPECT_LE(dAHi, k255);
+  EXPECT_EQ(rejected, 28u) << "1e-20 .. 1e-7 and 1e7 .. 1e20 must all be rejected";
+  // Just outside, through every backend's own validation, not only analyze().
+  const DepthImage probe = renderGpuDepth(scene, scaleCamera(su, 1.0), su.fm);
+  std::string messages;
+  for (double u : {1e-7, 1e7}) {
+    const std::string msg = expectRejected(fmt("metersToViewUnits %g", u), Settings{}, scaleCamera(su, u),
+                                           {&probe, nullptr, nullptr}, StatusCode::InvalidCamera);
+    EXPECT_NE(msg.find(kRangeText), std::string::npos) << "u = " << u << ": '" << msg << "'";
+    messages += fmt("%s'%s'", messages.empty() ? "" : "; ", msg.c_str());
+  }
+  report("world scale sweep metersToViewUnits = 1e-20 .. 1e20 (D32F reversed, cpu and cpu-double)",
+         "A within 1/255 of u = 1 over [1e-6, 1e6]; every u outside rejected with InvalidCamera naming the range",
+         fmt("holds for %g .. %g (max dA %.2g at 1e-6, %.2g at 1e6); %zu u outside rejected (%s); per u: %s", okLo, okHi,
+             dALo, dAHi, rejected, messages.c_str(), measured.c_str()));
+}
+
+}  // namespace
+}  // namespace sao::stability
