@@ -1,8 +1,12 @@
 #!/usr/bin/env bash
 # Stage "install + consumer": installs the build tree's libraries and headers into a prefix, then
-# configures, builds and runs (ctest) the consumer project tests/package against that prefix only
-# (find_package(sao CONFIG) -> sao::core, sao::gl, sao::vulkan).
-# usage: ci/package.sh [BUILD_DIR]   (default build; the prefix and consumer trees go beside it)
+# configures, builds and runs (ctest) the consumer project tests/package against that prefix only,
+# once per component (find_package(sao CONFIG COMPONENTS <c>) -> sao::core, sao::io, sao::gl,
+# sao::vulkan) with the other components' dependencies made unfindable
+# (CMAKE_DISABLE_FIND_PACKAGE_<Pkg>), and checks that a component whose dependency is missing is
+# refused with a message naming it.
+# usage: ci/package.sh [BUILD_DIR]   (default build; the prefix and consumer trees go beside it:
+#        BUILD_DIR-install/, BUILD_DIR-consumer/<component>/, BUILD_DIR-consumer/refused-*/)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -23,9 +27,68 @@ if grep -rn -e "$root/backends" -e "$root/$build" "$prefix/lib/cmake/sao"; then
   exit 1
 fi
 
-mkdir -p "$consumer"
-cmake -S tests/package -B "$consumer" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_PREFIX_PATH="$prefix" >"$consumer/configure-output.log" 2>&1 || { cat "$consumer/configure-output.log"; exit 1; }
-grep -E "^-- sao " "$consumer/configure-output.log" || true
-cmake --build "$consumer" --parallel "$(nproc)"
-ctest --test-dir "$consumer" --output-on-failure
+# File I/O lives in sao::io only: sao::core and the backends neither call OpenEXR or stb nor
+# link them.
+for lib in "$prefix"/lib/libsao_core.a "$prefix"/lib/libsao_effect.a "$prefix"/lib/libsao_gl.so \
+           "$prefix"/lib/libsao_vulkan.so; do
+  [ -e "$lib" ] || continue
+  if nm -u -C "$lib" 2>/dev/null | grep -E "Imf_|Imf::|Imath|exr_|stbi_" | head -5 | grep .; then
+    echo "ci/package.sh: $(basename "$lib") refers to OpenEXR or stb (above); that is sao::io's job" >&2
+    exit 1
+  fi
+  if [[ "$lib" == *.so ]] && readelf -d "$lib" | grep -E "NEEDED.*(OpenEXR|Imath|Iex|stb)"; then
+    echo "ci/package.sh: $(basename "$lib") links OpenEXR or stb (above)" >&2
+    exit 1
+  fi
+done
+
+# What each component needs found, beyond sao (the package for the library, the consumer program
+# for its own use: EGL for gl, the loader for vulkan); every other component's list is disabled.
+declare -A needs=([core]="" [io]="OpenEXR Imath PkgConfig" [gl]="OpenGL" [vulkan]="Vulkan")
+components=$(sed -n 's/^set(sao_AVAILABLE_COMPONENTS \(.*\))$/\1/p' "$prefix/lib/cmake/sao/saoConfig.cmake" |
+  tr ';' ' ')
+echo "components: $components"
+disabled_for() {  # the -DCMAKE_DISABLE_FIND_PACKAGE_<Pkg>=ON of every component but $1
+  local c pkg
+  for c in "${!needs[@]}"; do
+    [ "$c" = "$1" ] && continue
+    for pkg in ${needs[$c]}; do echo "-DCMAKE_DISABLE_FIND_PACKAGE_$pkg=ON"; done
+  done
+}
+
+for c in $components; do
+  dir="$consumer/$c"
+  mkdir -p "$dir"
+  mapfile -t disabled < <(disabled_for "$c")
+  echo "== consumer '$c' (${disabled[*]:-nothing disabled})"
+  cmake -S tests/package -B "$dir" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_PREFIX_PATH="$prefix" -DSAO_CONSUMER_COMPONENTS="$c" "${disabled[@]}" \
+    >"$dir/configure-output.log" 2>&1 || { cat "$dir/configure-output.log"; exit 1; }
+  grep -E "^-- sao " "$dir/configure-output.log" || true
+  cmake --build "$dir" --parallel "$(nproc)"
+  ctest --test-dir "$dir" --output-on-failure
+done
+
+# A component whose own dependency is unfindable is refused with a message naming what is missing
+# (stb is found through pkg-config), and so is a component the package does not have.
+# component:package made unfindable:what the message must say
+for refusal in "io:OpenEXR:component 'io' needs OpenEXR" "io:PkgConfig:component 'io' needs stb" \
+               "vulkan:Vulkan:component 'vulkan' needs Vulkan" "metal::no component 'metal'"; do
+  IFS=: read -r c pkg expected <<<"$refusal"
+  [[ "$c" == metal || " $components " == *" $c "* ]] || continue
+  dir="$consumer/refused-$c${pkg:+-$pkg}"
+  disable=()
+  [ -n "$pkg" ] && disable=("-DCMAKE_DISABLE_FIND_PACKAGE_$pkg=ON")
+  mkdir -p "$dir"
+  if cmake -S tests/package -B "$dir" "${generator[@]}" -DCMAKE_PREFIX_PATH="$prefix" \
+       -DSAO_CONSUMER_COMPONENTS="$c" "${disable[@]}" >"$dir/configure-output.log" 2>&1; then
+    echo "ci/package.sh: COMPONENTS $c was found${pkg:+ with $pkg disabled}" >&2
+    exit 1
+  fi
+  if ! grep -q "$expected" "$dir/configure-output.log"; then
+    cat "$dir/configure-output.log"
+    echo "ci/package.sh: COMPONENTS $c ${pkg:+without $pkg }failed without saying \"$expected\"" >&2
+    exit 1
+  fi
+  echo "== COMPONENTS $c${pkg:+ with $pkg disabled}: refused, \"$expected\""
+done

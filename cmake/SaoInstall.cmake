@@ -1,10 +1,11 @@
-# `cmake --install` gives a config package: find_package(sao CONFIG) defines sao::core (static, with
-# the generated effect sao::effect), sao::gl and sao::vulkan (shared, when built) — the same names
-# as the in-tree aliases, so a project builds unchanged against the source tree or the package.
+# `cmake --install` gives a config package: find_package(sao CONFIG COMPONENTS ...) defines sao::core
+# (static, with the generated effect sao::effect), sao::io (static, EXR/PNG files), sao::gl and
+# sao::vulkan (shared, when built) — the same names as the in-tree aliases, so a project builds
+# unchanged against the source tree or the package.
 #
 #   <prefix>/include/sao/*.h, sao/gl/effect.h, sao/vulkan/effect.h, sao_effect.h (generated)
-#   <prefix>/lib/libsao_core.a, libsao_effect.a, libsao_gl.so*, libsao_vulkan.so*
-#   <prefix>/lib/cmake/sao/saoConfig.cmake, saoConfigVersion.cmake, saoTargets*.cmake
+#   <prefix>/lib/libsao_core.a, libsao_effect.a, libsao_io.a, libsao_gl.so*, libsao_vulkan.so*
+#   <prefix>/lib/cmake/sao/saoConfig.cmake, saoConfigVersion.cmake, sao_<component>_targets*.cmake
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -21,41 +22,58 @@ foreach(part MAJOR MINOR PATCH)
 endforeach()
 
 set(sao_install_cmakedir ${CMAKE_INSTALL_LIBDIR}/cmake/sao)
-set(sao_export_targets sao_core sao_effect)
+
+# One export set a component, so that saoConfig.cmake loads (and finds the dependencies of) only
+# the components asked for: a GL-only consumer needs neither OpenEXR, stb nor Vulkan installed.
+#   component  targets                exported name   dependencies the consumer must have
+#   core       sao_core, sao_effect   sao::core       none
+#   io         sao_io                 sao::io         OpenEXR (CONFIG), stb (pkg-config)
+#   gl         sao_gl                 sao::gl         none (GL comes from the caller's loader)
+#   vulkan     sao_vulkan             sao::vulkan     Vulkan (Vulkan::Headers)
+set(sao_package_components core)
+# sao_export_component(COMPONENT TARGET [TARGET...]): exports the targets as sao::<EXPORT_NAME>.
+function(sao_export_component component)
+  foreach(target IN LISTS ARGN)
+    target_include_directories(${target} PUBLIC $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  endforeach()
+  install(TARGETS ${ARGN} EXPORT sao_${component}_targets
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  install(EXPORT sao_${component}_targets NAMESPACE sao:: FILE sao_${component}_targets.cmake
+          DESTINATION ${sao_install_cmakedir})
+endfunction()
+
 set_target_properties(sao_core PROPERTIES EXPORT_NAME core)
 set_target_properties(sao_effect PROPERTIES EXPORT_NAME effect)
-target_include_directories(sao_core PUBLIC $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
-target_include_directories(sao_effect PUBLIC $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+sao_export_component(core sao_core sao_effect)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/backends/core/include/sao DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
         FILES_MATCHING PATTERN "*.h")
 install(FILES ${PROJECT_BINARY_DIR}/effect/sao_effect/sao_effect.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 
-set(sao_package_has_gl OFF)
+if(TARGET sao_io)
+  list(APPEND sao_package_components io)
+  set_target_properties(sao_io PROPERTIES EXPORT_NAME io)
+  sao_export_component(io sao_io)
+  install(FILES ${PROJECT_SOURCE_DIR}/backends/io/include/sao/io.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/sao)
+endif()
+
 if(TARGET sao_gl)
-  set(sao_package_has_gl ON)
-  list(APPEND sao_export_targets sao_gl)
+  list(APPEND sao_package_components gl)
   set_target_properties(sao_gl PROPERTIES EXPORT_NAME gl)
-  target_include_directories(sao_gl PUBLIC $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  sao_export_component(gl sao_gl)
   install(FILES ${PROJECT_SOURCE_DIR}/backends/gl/include/sao/gl/effect.h
           DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/sao/gl)
 endif()
 
-set(sao_package_has_vulkan OFF)
 if(TARGET sao_vulkan)
-  set(sao_package_has_vulkan ON)
-  list(APPEND sao_export_targets sao_vulkan)
+  list(APPEND sao_package_components vulkan)
   set_target_properties(sao_vulkan PROPERTIES EXPORT_NAME vulkan VERSION ${PROJECT_VERSION}
                                               SOVERSION ${PROJECT_VERSION_MAJOR})
-  target_include_directories(sao_vulkan PUBLIC $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  sao_export_component(vulkan sao_vulkan)
   install(FILES ${PROJECT_SOURCE_DIR}/backends/vulkan/include/sao/vulkan/effect.h
           DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/sao/vulkan)
 endif()
-
-install(TARGETS ${sao_export_targets} EXPORT saoTargets
-        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-        RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(EXPORT saoTargets NAMESPACE sao:: DESTINATION ${sao_install_cmakedir})
 
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/saoConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/saoConfig.cmake

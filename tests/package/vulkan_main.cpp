@@ -13,14 +13,8 @@
 #include <vector>
 
 #include "sao/vulkan/effect.h"
+#include "consumer_check.h"
 
-#define CHECK(cond)                                                                 \
-  do {                                                                              \
-    if (!(cond)) {                                                                  \
-      std::fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond); \
-      return 1;                                                                     \
-    }                                                                               \
-  } while (0)
 #define VK(call) CHECK((call) == VK_SUCCESS)
 
 namespace {

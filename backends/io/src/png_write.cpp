@@ -1,43 +1,29 @@
-// 8-bit grey PNG of the ambient-obscurance result. See sao/io.h for the row order.
+// writeAoPng: the 8-bit grey PNG of the ambient-obscurance result, through stb. See sao/io.h for
+// the row order.
 #include <stb/stb_image_write.h>
 
 #include <algorithm>
-#include <climits>
 #include <cmath>
 #include <cstdint>
-#include <exception>
-#include <filesystem>
 #include <string>
-#include <system_error>
 #include <vector>
 
+#include "io_checks.h"
 #include "sao/io.h"
 
 namespace sao {
 namespace {
 
-Status fail(StatusCode code, const std::string& path, const std::string& problem) {
-  return Status::error(code, path + ": " + problem);
-}
+using namespace io::detail;
 
 Status writePng(const std::string& path, const FloatImage& ao, std::uint32_t channel) {
-  if (path.empty()) return Status::error(StatusCode::IoError, "empty path");
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    return fail(StatusCode::IoError, path, "is a directory, cannot write a file there");
-  const Extent e = ao.extent;
-  if (e.width == 0 || e.height == 0)
-    return fail(StatusCode::InvalidExtent, path,
-                "image is " + std::to_string(e.width) + "x" + std::to_string(e.height) + "; both sides must be > 0");
-  if (e.width > kMaxImageSide || e.height > kMaxImageSide)
-    return fail(StatusCode::InvalidExtent, path,
-                "image is " + std::to_string(e.width) + "x" + std::to_string(e.height) + "; the largest side is " +
-                    std::to_string(kMaxImageSide));
+  if (Status s = checkWritable(path); !s) return s;
+  if (Status s = checkExtent(path, ao.extent); !s) return s;
   if (channel >= ao.channels)
     return fail(StatusCode::InvalidInput, path,
                 "channel " + std::to_string(channel) + " asked of an image with " + std::to_string(ao.channels) +
                     " channels");
-  const std::size_t w = e.width, h = e.height;
+  const std::size_t w = ao.extent.width, h = ao.extent.height;
   if (ao.data.size() != w * h * ao.channels)
     return fail(StatusCode::InvalidInput, path,
                 "image has " + std::to_string(ao.data.size()) + " floats, its extent and channels need " +
@@ -64,13 +50,7 @@ Status writePng(const std::string& path, const FloatImage& ao, std::uint32_t cha
 }  // namespace
 
 Status writeAoPng(const std::string& path, const FloatImage& ao, std::uint32_t channel) {
-  try {
-    return writePng(path, ao, channel);
-  } catch (const std::exception& ex) {
-    return fail(StatusCode::IoError, path, std::string("cannot write the PNG: ") + ex.what());
-  } catch (...) {
-    return fail(StatusCode::IoError, path, "cannot write the PNG: unknown error");
-  }
+  return guarded(path, "write the PNG", [&] { return writePng(path, ao, channel); });
 }
 
 }  // namespace sao
