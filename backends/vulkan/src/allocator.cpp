@@ -20,10 +20,41 @@ MemoryStats processMemoryStats() {
 void Allocator::init(const Dispatch* dispatch, VkDevice device, const VkPhysicalDeviceMemoryProperties& memory,
                      VkDeviceSize bufferImageGranularity, const VkAllocationCallbacks* callbacks) {
   d_ = dispatch;
-  device_ = device;
+  owner_ = {device, callbacks};
   memory_ = memory;
   granularity_ = std::max<VkDeviceSize>(1, bufferImageGranularity);
-  callbacks_ = callbacks;
+}
+
+void Allocator::count(VkDeviceSize size) noexcept {
+  ++stats_.liveAllocations;
+  ++stats_.totalAllocations;
+  stats_.liveBytes += size;
+  ++gLiveAllocations;
+  ++gTotalAllocations;
+  gLiveBytes += size;
+}
+
+void Allocator::uncount(VkDeviceSize size) noexcept {
+  --stats_.liveAllocations;
+  stats_.liveBytes -= size;
+  --gLiveAllocations;
+  gLiveBytes -= size;
+}
+
+Allocator::Block& Allocator::Block::operator=(Block&& other) noexcept {
+  if (this != &other) {
+    release();
+    owner_ = other.owner_;
+    memory_ = std::move(other.memory_);
+    size_ = other.size_;
+  }
+  return *this;
+}
+
+void Allocator::Block::release() noexcept {
+  if (!memory_) return;
+  memory_.reset();
+  owner_->uncount(size_);
 }
 
 int Allocator::chooseType(std::uint32_t typeBits, VkMemoryPropertyFlags required) const {
@@ -37,7 +68,6 @@ int Allocator::chooseType(std::uint32_t typeBits, VkMemoryPropertyFlags required
 }
 
 Status Allocator::allocateAndBind(std::span<const Request> requests, std::vector<Block>& out) {
-  out.clear();
   struct Placed {
     const Request* request;
     VkMemoryRequirements req;
@@ -45,10 +75,11 @@ Status Allocator::allocateAndBind(std::span<const Request> requests, std::vector
     VkDeviceSize offset;
   };
   std::vector<Placed> placed;
+  placed.reserve(requests.size());
   for (const auto& r : requests) {
     Placed p{&r, {}, -1, 0};
-    if (r.image) d_->vkGetImageMemoryRequirements(device_, r.image, &p.req);
-    else d_->vkGetBufferMemoryRequirements(device_, r.buffer, &p.req);
+    if (r.image) d_->vkGetImageMemoryRequirements(owner_.device, r.image, &p.req);
+    else d_->vkGetBufferMemoryRequirements(owner_.device, r.buffer, &p.req);
     constexpr VkMemoryPropertyFlags hostCoherent =
         VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
     p.type = chooseType(p.req.memoryTypeBits, r.mapped ? hostCoherent : 0);
@@ -63,6 +94,8 @@ Status Allocator::allocateAndBind(std::span<const Request> requests, std::vector
   std::stable_sort(placed.begin(), placed.end(), [](const Placed& a, const Placed& b) {
     return (a.request->buffer != VK_NULL_HANDLE) > (b.request->buffer != VK_NULL_HANDLE);
   });
+  std::vector<Block> blocks;  // freed on any early return
+  blocks.reserve(memory_.memoryTypeCount);
   for (std::uint32_t type = 0; type < memory_.memoryTypeCount; ++type) {
     VkDeviceSize size = 0;
     for (auto& p : placed) {
@@ -72,52 +105,29 @@ Status Allocator::allocateAndBind(std::span<const Request> requests, std::vector
     }
     if (size == 0) continue;
     VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, size, type};
-    VkDeviceMemory memory = VK_NULL_HANDLE;
-    if (VkResult r = d_->vkAllocateMemory(device_, &info, callbacks_, &memory); r != VK_SUCCESS) {
-      free(out);
+    Block block;
+    if (VkResult r = make(owner_, d_->vkAllocateMemory, d_->vkFreeMemory, info, block.memory_); r != VK_SUCCESS)
       return vkError(("vkAllocateMemory(" + std::to_string(size) + " bytes)").c_str(), r);
-    }
-    out.push_back({memory, size, type, false});
-    ++stats_.liveAllocations;
-    ++stats_.totalAllocations;
-    stats_.liveBytes += size;
-    ++gLiveAllocations;
-    ++gTotalAllocations;
-    gLiveBytes += size;
+    block.owner_ = this;
+    block.size_ = size;
+    count(size);
+    const VkDeviceMemory memory = block.memory_.get();
+    blocks.push_back(std::move(block));  // reserved: cannot throw
     void* base = nullptr;
     for (auto& p : placed)
-      if (p.type == static_cast<int>(type) && p.request->mapped && !base) {
-        if (VkResult r = d_->vkMapMemory(device_, memory, 0, VK_WHOLE_SIZE, 0, &base); r != VK_SUCCESS) {
-          free(out);
+      if (p.type == static_cast<int>(type) && p.request->mapped && !base)
+        if (VkResult r = d_->vkMapMemory(owner_.device, memory, 0, VK_WHOLE_SIZE, 0, &base); r != VK_SUCCESS)
           return vkError("vkMapMemory", r);
-        }
-        out.back().mapped = true;
-      }
     for (auto& p : placed) {
       if (p.type != static_cast<int>(type)) continue;
       if (p.request->mapped) *p.request->mapped = static_cast<char*>(base) + p.offset;
-      const VkResult r = p.request->image ? d_->vkBindImageMemory(device_, p.request->image, memory, p.offset)
-                                          : d_->vkBindBufferMemory(device_, p.request->buffer, memory, p.offset);
-      if (r != VK_SUCCESS) {
-        free(out);
-        return vkError(p.request->image ? "vkBindImageMemory" : "vkBindBufferMemory", r);
-      }
+      const VkResult r = p.request->image ? d_->vkBindImageMemory(owner_.device, p.request->image, memory, p.offset)
+                                          : d_->vkBindBufferMemory(owner_.device, p.request->buffer, memory, p.offset);
+      if (r != VK_SUCCESS) return vkError(p.request->image ? "vkBindImageMemory" : "vkBindBufferMemory", r);
     }
   }
+  out = std::move(blocks);
   return Status::success();
-}
-
-void Allocator::free(std::vector<Block>& blocks) {
-  for (auto& b : blocks) {
-    if (!b.memory) continue;
-    if (b.mapped) d_->vkUnmapMemory(device_, b.memory);
-    d_->vkFreeMemory(device_, b.memory, callbacks_);
-    --stats_.liveAllocations;
-    stats_.liveBytes -= b.size;
-    --gLiveAllocations;
-    gLiveBytes -= b.size;
-  }
-  blocks.clear();
 }
 
 }  // namespace sao::vk

@@ -1,5 +1,6 @@
 // Effect: creation (version, functions, device checks), configuration checks, update, teardown.
 #include <string>
+#include <utility>
 
 #include "effect_impl.h"
 
@@ -42,7 +43,7 @@ bool isDepthStencilFormat(VkFormat f) {
   }
 }
 
-Status checkSampled(const Effect::Impl& e, VkFormat format, const char* what) {
+Status checkSampled(const EffectState& e, VkFormat format, const char* what) {
   VkFormatProperties fp{};
   e.d.vkGetPhysicalDeviceFormatProperties(e.ctx.physicalDevice, format, &fp);
   if (!(fp.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT))
@@ -53,7 +54,7 @@ Status checkSampled(const Effect::Impl& e, VkFormat format, const char* what) {
 
 // Everything a configuration needs that does not allocate: format and layout checks, the plan, the
 // parameter block, device limits.
-Status checkConfig(const Effect::Impl& e, const Config& c, Plan& plan, ParamBlock& params) {
+Status checkConfig(const EffectState& e, const Config& c, Plan& plan, ParamBlock& params) {
   if (c.framesInFlight < 1 || c.framesInFlight > kMaxFramesInFlight)
     return Status::error(StatusCode::InvalidInput, "Config::framesInFlight is " + std::to_string(c.framesInFlight) +
                                                        "; allowed 1.." + std::to_string(kMaxFramesInFlight));
@@ -135,139 +136,124 @@ VkFormat depthVkFormat(DepthFormat format) {
   return VK_FORMAT_UNDEFINED;
 }
 
-Effect::Impl::~Impl() { destroyAll(); }
-
-void Effect::Impl::destroyAll() {
-  if (!d.vkDestroyImage) return;  // functions never loaded: nothing was created
-  destroyDescriptors(*this, desc);
-  destroyResources(*this, res);
-  destroyParamBuffer(*this, ubo);
-  destroyPipelines(*this);
-  if (queryPool) d.vkDestroyQueryPool(ctx.device, queryPool, ctx.allocator);
-  queryPool = VK_NULL_HANDLE;
-  if (sampler) d.vkDestroySampler(ctx.device, sampler, ctx.allocator);
-  sampler = VK_NULL_HANDLE;
+Status exceptionStatus(const char* where, const char* what) noexcept {
+  try {
+    return Status::error(StatusCode::DriverError, std::string(where) + ": " + what);
+  } catch (...) {
+    return Status::error(StatusCode::DriverError, "out of memory");  // short enough to need no allocation
+  }
 }
 
 Effect::Effect(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
-Effect::~Effect() = default;
+Effect::~Effect() = default;  // the handles destroy every object; nothing here can throw
 
-Status Effect::create(const DeviceContext& context, const Config& config, std::unique_ptr<Effect>& out,
-                      int headerVersion) {
-  out.reset();
-  if (headerVersion != SAO_VERSION)
-    return Status::error(StatusCode::VersionMismatch, "sao::vk::Effect::create(): the header is version " +
-                                                          versionText(headerVersion) + " but the library is " +
-                                                          versionText(SAO_VERSION) + "; rebuild against one version");
-  auto e = std::make_unique<Impl>();
-  e->ctx = context;
-  if (Status st = e->d.load(context); !st) {
-    e->d = Dispatch{};
-    return st;
-  }
-  e->d.vkGetPhysicalDeviceProperties(context.physicalDevice, &e->props);
-  e->d.vkGetPhysicalDeviceFeatures(context.physicalDevice, &e->features);
-  e->d.vkGetPhysicalDeviceMemoryProperties(context.physicalDevice, &e->memoryProps);
+namespace {
+
+// Everything of create() but the version check; `e` is dropped on error.
+Status createEffect(const DeviceContext& context, const Config& config, EffectState& e) {
+  e.ctx = context;
+  e.owner = {context.device, context.allocator};
+  if (Status st = e.d.load(context); !st) return st;
+  e.d.vkGetPhysicalDeviceProperties(context.physicalDevice, &e.props);
+  e.d.vkGetPhysicalDeviceFeatures(context.physicalDevice, &e.features);
+  e.d.vkGetPhysicalDeviceMemoryProperties(context.physicalDevice, &e.memoryProps);
   std::uint32_t families = 0;
-  e->d.vkGetPhysicalDeviceQueueFamilyProperties(context.physicalDevice, &families, nullptr);
+  e.d.vkGetPhysicalDeviceQueueFamilyProperties(context.physicalDevice, &families, nullptr);
   std::vector<VkQueueFamilyProperties> fams(families);
-  e->d.vkGetPhysicalDeviceQueueFamilyProperties(context.physicalDevice, &families, fams.data());
+  e.d.vkGetPhysicalDeviceQueueFamilyProperties(context.physicalDevice, &families, fams.data());
   if (context.queueFamilyIndex >= families)
     return Status::error(StatusCode::InvalidInput, "DeviceContext::queueFamilyIndex " +
                                                        std::to_string(context.queueFamilyIndex) + " but the device has " +
                                                        std::to_string(families) + " queue families");
-  e->family = fams[context.queueFamilyIndex];
-  if (!(e->family.queueFlags & VK_QUEUE_COMPUTE_BIT))
+  e.family = fams[context.queueFamilyIndex];
+  if (!(e.family.queueFlags & VK_QUEUE_COMPUTE_BIT))
     return Status::error(StatusCode::InvalidInput, "queue family " + std::to_string(context.queueFamilyIndex) +
                                                        " has no compute: the effect is compute passes");
-  if (e->props.apiVersion < VK_API_VERSION_1_1)
-    return Status::error(StatusCode::DriverError, std::string("the device ('") + e->props.deviceName +
-                                                      "') is Vulkan " + std::to_string(VK_API_VERSION_MAJOR(e->props.apiVersion)) +
-                                                      "." + std::to_string(VK_API_VERSION_MINOR(e->props.apiVersion)) +
+  if (e.props.apiVersion < VK_API_VERSION_1_1)
+    return Status::error(StatusCode::DriverError, std::string("the device ('") + e.props.deviceName +
+                                                      "') is Vulkan " + std::to_string(VK_API_VERSION_MAJOR(e.props.apiVersion)) +
+                                                      "." + std::to_string(VK_API_VERSION_MINOR(e.props.apiVersion)) +
                                                       "; the effect's SPIR-V 1.3 needs Vulkan 1.1");
-  if (!e->features.shaderStorageImageExtendedFormats)
+  if (!e.features.shaderStorageImageExtendedFormats)
     return Status::error(StatusCode::DriverError,
                          "the device lacks shaderStorageImageExtendedFormats (rg32f / r16f storage images)");
 
-  Plan plan;
-  ParamBlock params{};
-  if (Status st = checkConfig(*e, config, plan, params); !st) return st;
-  e->config = config;
-  e->plan = std::move(plan);
-  e->params = params;
-  e->allocator.init(&e->d, context.device, e->memoryProps, e->props.limits.bufferImageGranularity, context.allocator);
-  if (Status st = createSampler(*e); !st) return st;
-  if (Status st = ensurePipelines(*e, e->plan); !st) return st;
-  if (Status st = createResources(*e, e->plan, e->res); !st) return st;
-  if (Status st = createParamBuffer(*e, config.framesInFlight, e->ubo); !st) return st;
-  if (Status st = createDescriptors(*e, e->plan, config.framesInFlight, e->desc); !st) return st;
-  if (Status st = ensureQueryPool(*e); !st) return st;
-  out.reset(new Effect(std::move(e)));
-  return Status::success();
-}
-
-Status Effect::update(const Config& config) {
-  Impl& e = *impl_;
-  Plan plan;
-  ParamBlock params{};
-  if (Status st = checkConfig(e, config, plan, params); !st) return st;
-  if (Status st = ensurePipelines(e, plan); !st) return st;  // a cache: kept even if a later step fails
-  const bool newImages = !sameImages(e.plan, plan);
-  const bool newFrames = config.framesInFlight != e.config.framesInFlight;
-  const bool newSets = newImages || newFrames || !samePasses(e.plan, plan);
-
-  Resources res;
-  ParamBuffer ubo;
-  Descriptors desc;
-  auto undo = [&] {
-    destroyDescriptors(e, desc);
-    destroyParamBuffer(e, ubo);
-    destroyResources(e, res);
-  };
-  if (newImages) {
-    if (Status st = createResources(e, plan, res); !st) {
-      undo();
-      return st;
-    }
-  }
-  if (newFrames) {
-    if (Status st = createParamBuffer(e, config.framesInFlight, ubo); !st) {
-      undo();
-      return st;
-    }
-  }
-  if (newSets) {
-    if (Status st = createDescriptors(e, plan, config.framesInFlight, desc); !st) {
-      undo();
-      return st;
-    }
-  }
-  // Commit.
-  if (newSets) {
-    destroyDescriptors(e, e.desc);
-    e.desc = std::move(desc);
-    e.nextSlot = 0;
-    e.lastTimedRegion = -1;
-  }
-  if (newImages) {
-    destroyResources(e, e.res);
-    e.res = std::move(res);
-  }
-  if (newFrames) {
-    destroyParamBuffer(e, e.ubo);
-    e.ubo = std::move(ubo);
-  }
+  if (Status st = checkConfig(e, config, e.plan, e.params); !st) return st;
   e.config = config;
-  e.plan = std::move(plan);
-  e.params = params;
-  if (newFrames) {
-    if (e.queryPool) e.d.vkDestroyQueryPool(e.ctx.device, e.queryPool, e.ctx.allocator);
-    e.queryPool = VK_NULL_HANDLE;
-    if (Status st = ensureQueryPool(e); !st) return st;
-  }
+  e.allocator.init(&e.d, context.device, e.memoryProps, e.props.limits.bufferImageGranularity, context.allocator);
+  if (Status st = createSampler(e); !st) return st;
+  if (Status st = ensurePipelines(e, e.plan); !st) return st;
+  if (Status st = createResources(e, e.plan, e.res); !st) return st;
+  if (Status st = createParamBuffer(e, config.framesInFlight, e.ubo); !st) return st;
+  if (Status st = createDescriptors(e, e.plan, config.framesInFlight, e.desc); !st) return st;
+  if (Status st = createQueryPool(e, config.framesInFlight, e.queryPool); !st) return st;
   return Status::success();
 }
 
+}  // namespace
+
+Status Effect::create(const DeviceContext& context, const Config& config, std::unique_ptr<Effect>& out,
+                      int headerVersion) {
+  out.reset();
+  return guarded("sao::vk::Effect::create()", [&] {
+    if (headerVersion != SAO_VERSION)
+      return Status::error(StatusCode::VersionMismatch, "sao::vk::Effect::create(): the header is version " +
+                                                            versionText(headerVersion) + " but the library is " +
+                                                            versionText(SAO_VERSION) + "; rebuild against one version");
+    auto impl = std::make_unique<Impl>();
+    if (Status st = createEffect(context, config, *impl); !st) return st;
+    out.reset(new Effect(std::move(impl)));
+    return Status::success();
+  });
+}
+
+// Everything that can fail (or throw) happens before the commit; the commit only moves and swaps.
+Status Effect::update(const Config& config) {
+  return guarded("sao::vk::Effect::update()", [&] {
+    EffectState& e = *impl_;
+    Plan plan;
+    ParamBlock params{};
+    if (Status st = checkConfig(e, config, plan, params); !st) return st;
+    if (Status st = ensurePipelines(e, plan); !st) return st;  // a cache: kept even if a later step fails
+    const bool newImages = !sameImages(e.plan, plan);
+    const bool newFrames = config.framesInFlight != e.config.framesInFlight;
+    const bool newSets = newImages || newFrames || !samePasses(e.plan, plan);
+
+    // Built aside; dropped (destroyed) on any early return.
+    Config next = config;
+    Resources res;
+    ParamBuffer ubo;
+    Descriptors desc;
+    Handle<VkQueryPool> queries;
+    if (newImages)
+      if (Status st = createResources(e, plan, res); !st) return st;
+    if (newFrames) {
+      if (Status st = createParamBuffer(e, config.framesInFlight, ubo); !st) return st;
+      if (Status st = createQueryPool(e, config.framesInFlight, queries); !st) return st;
+    }
+    if (newSets)
+      if (Status st = createDescriptors(e, plan, config.framesInFlight, desc); !st) return st;
+
+    // Commit: nothing below allocates or fails. The replaced objects end up in the locals above and
+    // are destroyed on return, the descriptor sets before the images they name.
+    if (newSets) {
+      std::swap(e.desc, desc);
+      e.nextSlot = 0;
+      e.lastTimedRegion = -1;
+    }
+    if (newImages) std::swap(e.res, res);
+    if (newFrames) {
+      std::swap(e.ubo, ubo);
+      std::swap(e.queryPool, queries);
+    }
+    e.config = std::move(next);
+    e.plan = std::move(plan);
+    e.params = params;
+    return Status::success();
+  });
+}
+
+// These allocate nothing and cannot fail.
 const Config& Effect::config() const { return impl_->config; }
 const Plan& Effect::plan() const { return impl_->plan; }
 const ParamBlock& Effect::params() const { return impl_->params; }
@@ -277,14 +263,14 @@ std::uint32_t Effect::pipelineCount() const { return static_cast<std::uint32_t>(
 OutputImage Effect::output() const {
   const OwnedImage* ao = impl_->res.find(gen::ResourceId::ao);
   if (!ao) return {};
-  return {ao->image, ao->levelViews[0], ao->format, ao->extent, impl_->config.outputLayout};
+  return {ao->image.get(), ao->levelViews[0].get(), ao->format, ao->extent, impl_->config.outputLayout};
 }
 
 OwnedImageInfo Effect::ownedImage(gen::ResourceId id) const {
   const OwnedImage* img = impl_->res.find(id);
   if (!img) return {};
   const bool isOutput = id == gen::ResourceId::ao;
-  return {img->image, img->format, img->extent, img->levels,
+  return {img->image.get(), img->format, img->extent, img->levels,
           isOutput ? impl_->config.outputLayout : VK_IMAGE_LAYOUT_GENERAL};
 }
 

@@ -1,35 +1,40 @@
 // The state behind sao::vk::Effect, shared by the source files that each own one responsibility:
 // resources.cpp (images and the parameter buffer from the plan), pipelines.cpp (pipelines,
 // layouts, descriptor sets), record.cpp (commands and barriers), timing.cpp (timestamps and the
-// fence fallback), effect.cpp (creation, validation, update).
+// fence fallback), effect.cpp (creation, validation, update). Every Vulkan object is held by a
+// Handle (handle.h) or an Allocator::Block, so whatever is dropped is destroyed.
 #pragma once
 #include <vulkan/vulkan_core.h>
 
 #include <array>
+#include <exception>
 #include <string>
 #include <vector>
 
 #include "allocator.h"
 #include "dispatch.h"
+#include "handle.h"
 #include "sao/vulkan/effect.h"
 
 namespace sao::vk {
 
 // An effect-owned image with a view of every level (storage writes, per-level reads of the mips
-// pass) and one of the whole chain (the sampled reads of later passes).
+// pass) and one of the whole chain (the sampled reads of later passes). The views are declared after
+// the image, so they go first.
 struct OwnedImage {
   gen::ResourceId id{};
-  VkImage image = VK_NULL_HANDLE;
+  Handle<VkImage> image;
   VkFormat format = VK_FORMAT_UNDEFINED;
   Extent extent;
   std::uint32_t levels = 1;
-  VkImageView fullView = VK_NULL_HANDLE;
-  std::vector<VkImageView> levelViews;
+  Handle<VkImageView> fullView;
+  std::vector<Handle<VkImageView>> levelViews;
 };
 
+// The images go before the memory they are bound to.
 struct Resources {
-  std::vector<OwnedImage> images;
   std::vector<Allocator::Block> memory;
+  std::vector<OwnedImage> images;
   const OwnedImage* find(gen::ResourceId id) const {
     for (const auto& i : images)
       if (i.id == id) return &i;
@@ -41,8 +46,8 @@ struct Resources {
 // in persistently mapped, host-coherent memory. record() copies gen::SaoParams as is into its
 // slot's region (when it differs from what the region holds); the slot's descriptor sets read it.
 struct ParamBuffer {
-  VkBuffer buffer = VK_NULL_HANDLE;
   std::vector<Allocator::Block> memory;
+  Handle<VkBuffer> buffer;
   char* mapped = nullptr;
   VkDeviceSize stride = 0;
   std::vector<ParamBlock> written;  // per slot, what its region holds
@@ -51,15 +56,15 @@ struct ParamBuffer {
 
 struct PipelineEntry {
   const gen::PassVariantInfo* variant = nullptr;
-  VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-  VkPipelineLayout layout = VK_NULL_HANDLE;
-  VkPipeline pipeline = VK_NULL_HANDLE;
+  Handle<VkDescriptorSetLayout> setLayout;
+  Handle<VkPipelineLayout> layout;
+  Handle<VkPipeline> pipeline;
 };
 
-// What a ring slot's descriptor sets were last written with.
-// One descriptor set per dispatch of every planned pass (mips: one per level), per ring slot.
+// One descriptor set per dispatch of every planned pass (mips: one per level), per ring slot; the
+// sets go with the pool.
 struct Descriptors {
-  VkDescriptorPool pool = VK_NULL_HANDLE;
+  Handle<VkDescriptorPool> pool;
   std::uint32_t setsPerSlot = 0;
   std::vector<VkDescriptorSet> sets;  // [slot * setsPerSlot + k], k in plan order
 };
@@ -72,9 +77,12 @@ struct OutputTarget {
 
 inline constexpr std::uint32_t kMaxFramesInFlight = 16;
 
-// Hidden: only Effect's own members are exported.
-struct __attribute__((visibility("hidden"))) Effect::Impl {
+// Everything Effect holds. Members are destroyed in reverse order: the descriptor sets, the images,
+// the parameter buffer, the pipelines, the query pool, the sampler (the set layouts' immutable
+// sampler), and last the allocator that counts the memory blocks.
+struct __attribute__((visibility("hidden"))) EffectState {
   DeviceContext ctx;
+  Owner owner;  // ctx.device and ctx.allocator, for Handle
   Dispatch d;
   VkPhysicalDeviceProperties props{};
   VkPhysicalDeviceFeatures features{};
@@ -86,52 +94,71 @@ struct __attribute__((visibility("hidden"))) Effect::Impl {
   ParamBlock params{};
 
   Allocator allocator;
-  Resources res;
-  ParamBuffer ubo;
-  VkSampler sampler = VK_NULL_HANDLE;  // nearest, clamp to edge, every level
+  Handle<VkSampler> sampler;  // nearest, clamp to edge, every level
+  // Timestamps: one region of (passes + 1) queries per ring slot, plus one for measure().
+  Handle<VkQueryPool> queryPool;
   std::vector<PipelineEntry> pipelines;
+  ParamBuffer ubo;
+  Resources res;
   Descriptors desc;
 
-  // Timestamps: one region of (passes + 1) queries per ring slot, plus one for measure().
-  VkQueryPool queryPool = VK_NULL_HANDLE;
-  std::uint32_t queriesPerRegion = 0;
   std::uint32_t nextSlot = 0;
-  int lastTimedRegion = -1;                    // region of the last timestamped record()
-  std::vector<std::string> lastTimedPasses;    // its pass names, in order
+  int lastTimedRegion = -1;  // region of the last timestamped record(); its passes are plan.passes
 
-  ~Impl();
-  void destroyAll();
+  EffectState() = default;
+  EffectState(const EffectState&) = delete;
+  EffectState& operator=(const EffectState&) = delete;
 };
+
+// Defined here, not in the public header: the library's own type.
+struct __attribute__((visibility("hidden"))) Effect::Impl : EffectState {};
 
 // ---- resources.cpp
 VkFormat vkFormat(gen::Format format);
-Status createResources(Effect::Impl& e, const Plan& plan, Resources& out);  // on error: destroy `out`
-void destroyResources(Effect::Impl& e, Resources& res);
-Status createParamBuffer(Effect::Impl& e, std::uint32_t slots, ParamBuffer& out);  // on error: destroy `out`
-void destroyParamBuffer(Effect::Impl& e, ParamBuffer& ubo);
+Status createResources(EffectState& e, const Plan& plan, Resources& out);  // on error: `out` unchanged
+Status createParamBuffer(EffectState& e, std::uint32_t slots, ParamBuffer& out);  // on error: `out` unchanged
 bool sameImages(const Plan& a, const Plan& b);
 
 // ---- pipelines.cpp
-Status createSampler(Effect::Impl& e);
-Status ensurePipelines(Effect::Impl& e, const Plan& plan);  // every pass variant of the plan
-const PipelineEntry* findPipeline(const Effect::Impl& e, const gen::PassVariantInfo* variant);
-void destroyPipelines(Effect::Impl& e);
-// Pool and sets for the plan, `slots` ring slots (pipelines must exist). On error: destroy `out`.
-Status createDescriptors(Effect::Impl& e, const Plan& plan, std::uint32_t slots, Descriptors& out);
-void destroyDescriptors(Effect::Impl& e, Descriptors& ds);
-void writeDescriptors(Effect::Impl& e, std::uint32_t slot, const Inputs& inputs, const OutputTarget& output);
+Status createSampler(EffectState& e);
+Status ensurePipelines(EffectState& e, const Plan& plan);  // every pass variant of the plan
+const PipelineEntry* findPipeline(const EffectState& e, const gen::PassVariantInfo* variant);
+// Pool and sets for the plan, `slots` ring slots (pipelines must exist). On error: `out` unchanged.
+Status createDescriptors(EffectState& e, const Plan& plan, std::uint32_t slots, Descriptors& out);
+void writeDescriptors(EffectState& e, std::uint32_t slot, const Inputs& inputs, const OutputTarget& output);
 
 // ---- record.cpp
-// timingRegion < 0: no timestamps.
-void recordPrologue(const Effect::Impl& e, VkCommandBuffer cmd, const OutputTarget& output, int timingRegion);
-void recordPass(const Effect::Impl& e, VkCommandBuffer cmd, std::size_t passIndex, std::uint32_t slot,
-                const OutputTarget& output, int timingRegion);
-void recordEpilogue(const Effect::Impl& e, VkCommandBuffer cmd, const OutputTarget& output);
-Status checkInputs(const Effect::Impl& e, const Inputs& inputs, const OutputImage* userOutput, OutputTarget& out);
-std::uint32_t acquireSlot(Effect::Impl& e, const Inputs& inputs, const OutputTarget& output);
+// timingRegion < 0: no timestamps. These three record commands only: they allocate nothing and
+// cannot fail, so a record() that fails has recorded nothing.
+void recordPrologue(const EffectState& e, VkCommandBuffer cmd, const OutputTarget& output, int timingRegion) noexcept;
+void recordPass(const EffectState& e, VkCommandBuffer cmd, std::size_t passIndex, std::uint32_t slot,
+                const OutputTarget& output, int timingRegion) noexcept;
+void recordEpilogue(const EffectState& e, VkCommandBuffer cmd, const OutputTarget& output) noexcept;
+Status checkInputs(const EffectState& e, const Inputs& inputs, const OutputImage* userOutput, OutputTarget& out);
+std::uint32_t acquireSlot(EffectState& e, const Inputs& inputs, const OutputTarget& output);
 
 // ---- timing.cpp
-Status ensureQueryPool(Effect::Impl& e);
-bool familyHasTimestamps(const Effect::Impl& e);
+// The timestamp pool for `framesInFlight` ring slots; none (and success) where the queue family
+// has no timestamps. On error: `out` unchanged.
+Status createQueryPool(const EffectState& e, std::uint32_t framesInFlight, Handle<VkQueryPool>& out);
+std::uint32_t queriesPerRegion();
+bool familyHasTimestamps(const EffectState& e);
+
+// ---- effect.cpp
+// DriverError "<where>: <what>"; without memory for that, a message that needs none.
+Status exceptionStatus(const char* where, const char* what) noexcept;
+
+// Runs `body` (returning a Status) and turns an exception (std::bad_alloc, std::length_error, ...)
+// into a DriverError naming `where`: no exception crosses the API.
+template <typename Body>
+Status guarded(const char* where, Body&& body) noexcept {
+  try {
+    return body();
+  } catch (const std::exception& x) {
+    return exceptionStatus(where, x.what());
+  } catch (...) {
+    return exceptionStatus(where, "unknown exception");
+  }
+}
 
 }  // namespace sao::vk

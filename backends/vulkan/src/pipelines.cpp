@@ -6,7 +6,7 @@
 
 namespace sao::vk {
 
-Status createSampler(Effect::Impl& e) {
+Status createSampler(EffectState& e) {
   VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   info.magFilter = VK_FILTER_NEAREST;
   info.minFilter = VK_FILTER_NEAREST;
@@ -15,12 +15,12 @@ Status createSampler(Effect::Impl& e) {
   info.minLod = 0.0f;
   info.maxLod = VK_LOD_CLAMP_NONE;
   info.borderColor = VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;
-  if (VkResult r = e.d.vkCreateSampler(e.ctx.device, &info, e.ctx.allocator, &e.sampler); r != VK_SUCCESS)
+  if (VkResult r = make(e.owner, e.d.vkCreateSampler, e.d.vkDestroySampler, info, e.sampler); r != VK_SUCCESS)
     return vkError("vkCreateSampler", r);
   return Status::success();
 }
 
-const PipelineEntry* findPipeline(const Effect::Impl& e, const gen::PassVariantInfo* variant) {
+const PipelineEntry* findPipeline(const EffectState& e, const gen::PassVariantInfo* variant) {
   for (const auto& p : e.pipelines)
     if (p.variant == variant) return &p;
   return nullptr;
@@ -28,56 +28,63 @@ const PipelineEntry* findPipeline(const Effect::Impl& e, const gen::PassVariantI
 
 namespace {
 
-Status buildPipeline(Effect::Impl& e, const gen::PassInfo& pass, const gen::PassVariantInfo* variant) {
+Status buildPipeline(EffectState& e, const gen::PassInfo& pass, const gen::PassVariantInfo* variant) {
   PipelineEntry entry;
   entry.variant = variant;
   std::vector<VkDescriptorSetLayoutBinding> bindings;
+  bindings.reserve(variant->bindings.size() + 1);
+  const VkSampler sampler = e.sampler.get();
   bindings.push_back({gen::kParamBlockBinding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
   for (const auto& b : variant->bindings)
     bindings.push_back({b.binding, b.write ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-                        VK_SHADER_STAGE_COMPUTE_BIT, b.write ? nullptr : &e.sampler});
+                        VK_SHADER_STAGE_COMPUTE_BIT, b.write ? nullptr : &sampler});
 
-  const std::string name(pass.name);
   auto fail = [&](const char* what, VkResult r) {
-    if (entry.layout) e.d.vkDestroyPipelineLayout(e.ctx.device, entry.layout, e.ctx.allocator);
-    if (entry.setLayout) e.d.vkDestroyDescriptorSetLayout(e.ctx.device, entry.setLayout, e.ctx.allocator);
-    return vkError((std::string(what) + " for pass '" + name + "' (" + std::string(variant->fileStem) + ")").c_str(), r);
+    const std::string where =
+        std::string(what) + " for pass '" + std::string(pass.name) + "' (" + std::string(variant->fileStem) + ")";
+    return vkError(where.c_str(), r);
   };
 
   VkDescriptorSetLayoutCreateInfo dl{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   dl.bindingCount = static_cast<std::uint32_t>(bindings.size());
   dl.pBindings = bindings.data();
-  if (VkResult r = e.d.vkCreateDescriptorSetLayout(e.ctx.device, &dl, e.ctx.allocator, &entry.setLayout); r != VK_SUCCESS)
+  if (VkResult r =
+          make(e.owner, e.d.vkCreateDescriptorSetLayout, e.d.vkDestroyDescriptorSetLayout, dl, entry.setLayout);
+      r != VK_SUCCESS)
     return fail("vkCreateDescriptorSetLayout", r);
 
+  const VkDescriptorSetLayout setLayout = entry.setLayout.get();
   VkPipelineLayoutCreateInfo pl{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   pl.setLayoutCount = 1;
-  pl.pSetLayouts = &entry.setLayout;
-  if (VkResult r = e.d.vkCreatePipelineLayout(e.ctx.device, &pl, e.ctx.allocator, &entry.layout); r != VK_SUCCESS)
+  pl.pSetLayouts = &setLayout;
+  if (VkResult r = make(e.owner, e.d.vkCreatePipelineLayout, e.d.vkDestroyPipelineLayout, pl, entry.layout);
+      r != VK_SUCCESS)
     return fail("vkCreatePipelineLayout", r);
 
   const auto code = gen::spirvModule(variant->spirvBlob);
   VkShaderModuleCreateInfo sm{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
   sm.codeSize = code.size_bytes();
   sm.pCode = code.data();
-  VkShaderModule module = VK_NULL_HANDLE;
-  if (VkResult r = e.d.vkCreateShaderModule(e.ctx.device, &sm, e.ctx.allocator, &module); r != VK_SUCCESS)
+  Handle<VkShaderModule> module;  // only needed until the pipeline exists
+  if (VkResult r = make(e.owner, e.d.vkCreateShaderModule, e.d.vkDestroyShaderModule, sm, module); r != VK_SUCCESS)
     return fail("vkCreateShaderModule", r);
 
   VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-  ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module, "main", nullptr};
-  ci.layout = entry.layout;
+  ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT,
+              module.get(), "main", nullptr};
+  ci.layout = entry.layout.get();
+  VkPipeline pipeline = VK_NULL_HANDLE;
   const VkResult r =
-      e.d.vkCreateComputePipelines(e.ctx.device, e.ctx.pipelineCache, 1, &ci, e.ctx.allocator, &entry.pipeline);
-  e.d.vkDestroyShaderModule(e.ctx.device, module, e.ctx.allocator);
+      e.d.vkCreateComputePipelines(e.ctx.device, e.ctx.pipelineCache, 1, &ci, e.ctx.allocator, &pipeline);
   if (r != VK_SUCCESS) return fail("vkCreateComputePipelines", r);
-  e.pipelines.push_back(entry);
+  entry.pipeline = Handle<VkPipeline>(e.owner, e.d.vkDestroyPipeline, pipeline);
+  e.pipelines.push_back(std::move(entry));
   return Status::success();
 }
 
 }  // namespace
 
-Status ensurePipelines(Effect::Impl& e, const Plan& plan) {
+Status ensurePipelines(EffectState& e, const Plan& plan) {
   for (const auto& p : plan.passes) {
     if (findPipeline(e, p.variant)) continue;
     if (Status st = buildPipeline(e, gen::pass(p.pass), p.variant); !st) return st;
@@ -85,16 +92,8 @@ Status ensurePipelines(Effect::Impl& e, const Plan& plan) {
   return Status::success();
 }
 
-void destroyPipelines(Effect::Impl& e) {
-  for (auto& p : e.pipelines) {
-    e.d.vkDestroyPipeline(e.ctx.device, p.pipeline, e.ctx.allocator);
-    e.d.vkDestroyPipelineLayout(e.ctx.device, p.layout, e.ctx.allocator);
-    e.d.vkDestroyDescriptorSetLayout(e.ctx.device, p.setLayout, e.ctx.allocator);
-  }
-  e.pipelines.clear();
-}
-
-Status createDescriptors(Effect::Impl& e, const Plan& plan, std::uint32_t slots, Descriptors& ds) {
+Status createDescriptors(EffectState& e, const Plan& plan, std::uint32_t slots, Descriptors& out) {
+  Descriptors ds;
   std::uint32_t sets = 0, samplers = 0, storage = 0;
   for (const auto& p : plan.passes) {
     sets += p.dispatchCount;
@@ -109,29 +108,28 @@ Status createDescriptors(Effect::Impl& e, const Plan& plan, std::uint32_t slots,
   info.maxSets = sets * slots;
   info.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
   info.pPoolSizes = sizes.data();
-  if (VkResult r = e.d.vkCreateDescriptorPool(e.ctx.device, &info, e.ctx.allocator, &ds.pool); r != VK_SUCCESS)
+  if (VkResult r = make(e.owner, e.d.vkCreateDescriptorPool, e.d.vkDestroyDescriptorPool, info, ds.pool);
+      r != VK_SUCCESS)
     return vkError("vkCreateDescriptorPool", r);
 
   std::vector<VkDescriptorSetLayout> layouts;
+  layouts.reserve(std::size_t(sets) * slots);
   for (std::uint32_t s = 0; s < slots; ++s)
     for (const auto& p : plan.passes)
-      for (std::uint32_t k = 0; k < p.dispatchCount; ++k) layouts.push_back(findPipeline(e, p.variant)->setLayout);
+      for (std::uint32_t k = 0; k < p.dispatchCount; ++k)
+        layouts.push_back(findPipeline(e, p.variant)->setLayout.get());
   ds.sets.assign(layouts.size(), VK_NULL_HANDLE);
   VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  ai.descriptorPool = ds.pool;
+  ai.descriptorPool = ds.pool.get();
   ai.descriptorSetCount = static_cast<std::uint32_t>(layouts.size());
   ai.pSetLayouts = layouts.data();
   if (VkResult r = e.d.vkAllocateDescriptorSets(e.ctx.device, &ai, ds.sets.data()); r != VK_SUCCESS)
     return vkError("vkAllocateDescriptorSets", r);
+  out = std::move(ds);
   return Status::success();
 }
 
-void destroyDescriptors(Effect::Impl& e, Descriptors& ds) {
-  if (ds.pool) e.d.vkDestroyDescriptorPool(e.ctx.device, ds.pool, e.ctx.allocator);
-  ds = Descriptors{};
-}
-
-void writeDescriptors(Effect::Impl& e, std::uint32_t slot, const Inputs& inputs, const OutputTarget& output) {
+void writeDescriptors(EffectState& e, std::uint32_t slot, const Inputs& inputs, const OutputTarget& output) {
   std::vector<VkDescriptorImageInfo> images;
   std::vector<VkDescriptorBufferInfo> buffers;
   std::vector<VkWriteDescriptorSet> writes;
@@ -147,7 +145,7 @@ void writeDescriptors(Effect::Impl& e, std::uint32_t slot, const Inputs& inputs,
     const bool perMip = gen::pass(p.pass).perMip;
     for (std::uint32_t dispatch = 0; dispatch < p.dispatchCount; ++dispatch, ++k) {
       const VkDescriptorSet set = e.desc.sets[k];
-      buffers.push_back({e.ubo.buffer, slot * e.ubo.stride, sizeof(ParamBlock)});
+      buffers.push_back({e.ubo.buffer.get(), slot * e.ubo.stride, sizeof(ParamBlock)});
       writes.push_back({VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, set, gen::kParamBlockBinding, 0, 1,
                         VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, nullptr, &buffers.back(), nullptr});
       for (const auto& b : p.variant->bindings) {
@@ -159,8 +157,8 @@ void writeDescriptors(Effect::Impl& e, std::uint32_t slot, const Inputs& inputs,
         else if (const OwnedImage* img = e.res.find(id)) {
           // per=mip: read level m-1 = dispatch, write level m = dispatch + 1. Otherwise reads see
           // the whole chain and writes go to level 0.
-          if (perMip) info.imageView = img->levelViews[b.write ? dispatch + 1 : dispatch];
-          else info.imageView = b.write ? img->levelViews[0] : img->fullView;
+          if (perMip) info.imageView = img->levelViews[b.write ? dispatch + 1 : dispatch].get();
+          else info.imageView = b.write ? img->levelViews[0].get() : img->fullView.get();
         } else {
           info.imageView = output.view;  // the user's output
         }

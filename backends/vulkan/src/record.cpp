@@ -9,6 +9,9 @@
 //  dispatch  after each dispatch, the level it wrote: SHADER_WRITE -> SHADER_READ (the next mips
 //            level, and the passes that read csz, ao_raw, ao_blur_h).
 //  epilogue  output GENERAL -> Config::outputLayout, SHADER_WRITE -> outputDstStages/Access.
+#include <algorithm>
+#include <array>
+#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -71,7 +74,33 @@ Status checkInput(const InputImage& in, const char* name, bool wanted, const cha
   return Status::success();
 }
 
-std::uint32_t firstSet(const Effect::Impl& e, std::size_t passIndex) {
+// Image barriers gathered on the stack (recording allocates nothing), issued as one
+// vkCmdPipelineBarrier per batch: when full (never with the effect's few images) and at the end.
+class BarrierBatch {
+ public:
+  BarrierBatch(const EffectState& e, VkCommandBuffer cmd, VkPipelineStageFlags src, VkPipelineStageFlags dst) noexcept
+      : e_(e), cmd_(cmd), src_(src), dst_(dst) {}
+  ~BarrierBatch() { flush(); }
+  BarrierBatch(const BarrierBatch&) = delete;
+  BarrierBatch& operator=(const BarrierBatch&) = delete;
+  void add(const VkImageMemoryBarrier& b) noexcept {
+    if (count_ == list_.size()) flush();
+    list_[count_++] = b;
+  }
+  void flush() noexcept {
+    if (count_) e_.d.vkCmdPipelineBarrier(cmd_, src_, dst_, 0, 0, nullptr, 0, nullptr, count_, list_.data());
+    count_ = 0;
+  }
+
+ private:
+  const EffectState& e_;
+  VkCommandBuffer cmd_;
+  VkPipelineStageFlags src_, dst_;
+  std::array<VkImageMemoryBarrier, 16> list_;
+  std::uint32_t count_ = 0;
+};
+
+std::uint32_t firstSet(const EffectState& e, std::size_t passIndex) {
   std::uint32_t k = 0;
   for (std::size_t i = 0; i < passIndex; ++i) k += e.plan.passes[i].dispatchCount;
   return k;
@@ -79,7 +108,7 @@ std::uint32_t firstSet(const Effect::Impl& e, std::size_t passIndex) {
 
 }  // namespace
 
-Status checkInputs(const Effect::Impl& e, const Inputs& in, const OutputImage* userOutput, OutputTarget& out) {
+Status checkInputs(const EffectState& e, const Inputs& in, const OutputImage* userOutput, OutputTarget& out) {
   const Extent ie = e.plan.inputExtent;
   const Config& c = e.config;
   if (Status st = checkInput(in.depth, "depth", true, "always", ie, c.depthFormat); !st) return st;
@@ -94,7 +123,7 @@ Status checkInputs(const Effect::Impl& e, const Inputs& in, const OutputImage* u
       return Status::error(StatusCode::InvalidInput,
                            "record() got an output image but Config::userOutput is false (the effect owns its output)");
     const OwnedImage* ao = e.res.find(gen::ResourceId::ao);
-    out = {ao->image, ao->levelViews[0]};
+    out = {ao->image.get(), ao->levelViews[0].get()};
     return Status::success();
   }
   if (!userOutput)
@@ -117,7 +146,7 @@ Status checkInputs(const Effect::Impl& e, const Inputs& in, const OutputImage* u
   return Status::success();
 }
 
-std::uint32_t acquireSlot(Effect::Impl& e, const Inputs& in, const OutputTarget& output) {
+std::uint32_t acquireSlot(EffectState& e, const Inputs& in, const OutputTarget& output) {
   const std::uint32_t slot = e.nextSlot;
   e.nextSlot = (slot + 1) % e.config.framesInFlight;
   // Always rewritten: a caller may destroy a view and create another that gets the same handle
@@ -135,38 +164,40 @@ std::uint32_t acquireSlot(Effect::Impl& e, const Inputs& in, const OutputTarget&
   return slot;
 }
 
-void recordPrologue(const Effect::Impl& e, VkCommandBuffer cmd, const OutputTarget& output, int timingRegion) {
+void recordPrologue(const EffectState& e, VkCommandBuffer cmd, const OutputTarget& output, int timingRegion) noexcept {
+  const VkQueryPool queries = e.queryPool.get();
   if (timingRegion >= 0)
-    e.d.vkCmdResetQueryPool(cmd, e.queryPool, static_cast<std::uint32_t>(timingRegion) * e.queriesPerRegion,
-                            e.queriesPerRegion);
-  std::vector<VkImageMemoryBarrier> images;
-  for (const auto& img : e.res.images) {
-    if (img.image == output.image) continue;
-    images.push_back(imageBarrier(img.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                                  VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT, 0,
-                                  img.levels));
+    e.d.vkCmdResetQueryPool(cmd, queries, static_cast<std::uint32_t>(timingRegion) * queriesPerRegion(),
+                            queriesPerRegion());
+  {
+    BarrierBatch images(e, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | e.config.outputDstStages,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+    for (const auto& img : e.res.images) {
+      if (img.image.get() == output.image) continue;
+      images.add(imageBarrier(img.image.get(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                              VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT, 0,
+                              img.levels));
+    }
+    images.add(imageBarrier(output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                            VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_WRITE_BIT, 0, 1));
   }
-  images.push_back(imageBarrier(output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                                VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_WRITE_BIT, 0, 1));
-  e.d.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | e.config.outputDstStages,
-                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr,
-                           static_cast<std::uint32_t>(images.size()), images.data());
   if (timingRegion >= 0)
-    e.d.vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, e.queryPool,
-                            static_cast<std::uint32_t>(timingRegion) * e.queriesPerRegion);
+    e.d.vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries,
+                            static_cast<std::uint32_t>(timingRegion) * queriesPerRegion());
 }
 
-void recordPass(const Effect::Impl& e, VkCommandBuffer cmd, std::size_t passIndex, std::uint32_t slot,
-                const OutputTarget& output, int timingRegion) {
+void recordPass(const EffectState& e, VkCommandBuffer cmd, std::size_t passIndex, std::uint32_t slot,
+                const OutputTarget& output, int timingRegion) noexcept {
   const PlannedPass& p = e.plan.passes[passIndex];
   const gen::PassInfo& info = gen::pass(p.pass);
   const PipelineEntry* pipe = findPipeline(e, p.variant);
   if (e.d.vkCmdBeginDebugUtilsLabelEXT) {
-    const std::string label = "sao " + std::string(info.name);
-    VkDebugUtilsLabelEXT l{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT, nullptr, label.c_str(), {0.4f, 0.6f, 0.9f, 1.0f}};
+    char label[64];
+    std::snprintf(label, sizeof label, "sao %.*s", static_cast<int>(info.name.size()), info.name.data());
+    VkDebugUtilsLabelEXT l{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT, nullptr, label, {0.4f, 0.6f, 0.9f, 1.0f}};
     e.d.vkCmdBeginDebugUtilsLabelEXT(cmd, &l);
   }
-  e.d.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe->pipeline);
+  e.d.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe->pipeline.get());
 
   // The dispatch size follows the first written resource (docs/effect-format.md).
   gen::ResourceId first{};
@@ -181,31 +212,28 @@ void recordPass(const Effect::Impl& e, VkCommandBuffer cmd, std::size_t passInde
   const std::uint32_t setBase = slot * e.desc.setsPerSlot + firstSet(e, passIndex);
   for (std::uint32_t k = 0; k < p.dispatchCount; ++k) {
     const std::uint32_t level = info.perMip ? k + 1 : 0;
-    e.d.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe->layout, 0, 1, &e.desc.sets[setBase + k], 0,
-                                nullptr);
+    e.d.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe->layout.get(), 0, 1,
+                                &e.desc.sets[setBase + k], 0, nullptr);
     const std::uint32_t w = std::max(1u, base.width >> level), h = std::max(1u, base.height >> level);
     e.d.vkCmdDispatch(cmd, (w + info.localX - 1) / info.localX, (h + info.localY - 1) / info.localY, 1);
 
-    std::vector<VkImageMemoryBarrier> written;
+    BarrierBatch written(e, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
     for (const auto& b : p.variant->bindings) {
       if (!b.write) continue;
       const OwnedImage* img = e.res.find(e.plan.resolve(p, b.resource));
-      if (!img || img->image == output.image) continue;  // the output: the epilogue's barrier
-      written.push_back(imageBarrier(img->image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL,
-                                     VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, level, 1));
+      if (!img || img->image.get() == output.image) continue;  // the output: the epilogue's barrier
+      written.add(imageBarrier(img->image.get(), VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL,
+                               VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, level, 1));
     }
-    if (!written.empty())
-      e.d.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0,
-                               nullptr, 0, nullptr, static_cast<std::uint32_t>(written.size()), written.data());
   }
   if (timingRegion >= 0)
-    e.d.vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, e.queryPool,
-                            static_cast<std::uint32_t>(timingRegion) * e.queriesPerRegion + 1 +
+    e.d.vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, e.queryPool.get(),
+                            static_cast<std::uint32_t>(timingRegion) * queriesPerRegion() + 1 +
                                 static_cast<std::uint32_t>(passIndex));
   if (e.d.vkCmdEndDebugUtilsLabelEXT) e.d.vkCmdEndDebugUtilsLabelEXT(cmd);
 }
 
-void recordEpilogue(const Effect::Impl& e, VkCommandBuffer cmd, const OutputTarget& output) {
+void recordEpilogue(const EffectState& e, VkCommandBuffer cmd, const OutputTarget& output) noexcept {
   const VkImageMemoryBarrier b =
       imageBarrier(output.image, VK_IMAGE_LAYOUT_GENERAL, e.config.outputLayout, VK_ACCESS_SHADER_WRITE_BIT,
                    e.config.outputDstAccess, 0, 1);
@@ -214,21 +242,21 @@ void recordEpilogue(const Effect::Impl& e, VkCommandBuffer cmd, const OutputTarg
 }
 
 Status Effect::record(VkCommandBuffer cmd, const Inputs& inputs, const OutputImage* userOutput) {
-  Impl& e = *impl_;
-  if (cmd == VK_NULL_HANDLE) return Status::error(StatusCode::InvalidInput, "record(): the command buffer is VK_NULL_HANDLE");
-  OutputTarget output;
-  if (Status st = checkInputs(e, inputs, userOutput, output); !st) return st;
-  const std::uint32_t slot = acquireSlot(e, inputs, output);
-  const int region = e.config.timestamps && e.queryPool ? static_cast<int>(slot) : -1;
-  recordPrologue(e, cmd, output, region);
-  for (std::size_t i = 0; i < e.plan.passes.size(); ++i) recordPass(e, cmd, i, slot, output, region);
-  recordEpilogue(e, cmd, output);
-  if (region >= 0) {
-    e.lastTimedRegion = region;
-    e.lastTimedPasses.clear();
-    for (const auto& p : e.plan.passes) e.lastTimedPasses.emplace_back(gen::pass(p.pass).name);
-  }
-  return Status::success();
+  return guarded("sao::vk::Effect::record()", [&] {
+    EffectState& e = *impl_;
+    if (cmd == VK_NULL_HANDLE)
+      return Status::error(StatusCode::InvalidInput, "record(): the command buffer is VK_NULL_HANDLE");
+    OutputTarget output;
+    if (Status st = checkInputs(e, inputs, userOutput, output); !st) return st;
+    // The only step that allocates, before the first command: a failure records nothing.
+    const std::uint32_t slot = acquireSlot(e, inputs, output);
+    const int region = e.config.timestamps && e.queryPool ? static_cast<int>(slot) : -1;
+    recordPrologue(e, cmd, output, region);
+    for (std::size_t i = 0; i < e.plan.passes.size(); ++i) recordPass(e, cmd, i, slot, output, region);
+    recordEpilogue(e, cmd, output);
+    if (region >= 0) e.lastTimedRegion = region;
+    return Status::success();
+  });
 }
 
 }  // namespace sao::vk

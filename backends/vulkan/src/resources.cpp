@@ -1,6 +1,7 @@
 // Effect-owned images, their views and the parameter buffer, exactly as plan() lists them.
 #include <algorithm>
 #include <string>
+#include <utility>
 
 #include "effect_impl.h"
 
@@ -32,21 +33,23 @@ bool sameImages(const Plan& a, const Plan& b) {
 
 namespace {
 
-Status createView(Effect::Impl& e, VkImage image, VkFormat format, std::uint32_t baseLevel, std::uint32_t levels,
-                  VkImageView& out) {
+Status createView(const EffectState& e, VkImage image, VkFormat format, std::uint32_t baseLevel, std::uint32_t levels,
+                  Handle<VkImageView>& out) {
   VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   info.image = image;
   info.viewType = VK_IMAGE_VIEW_TYPE_2D;
   info.format = format;
   info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, baseLevel, levels, 0, 1};
-  if (VkResult r = e.d.vkCreateImageView(e.ctx.device, &info, e.ctx.allocator, &out); r != VK_SUCCESS)
+  if (VkResult r = make(e.owner, e.d.vkCreateImageView, e.d.vkDestroyImageView, info, out); r != VK_SUCCESS)
     return vkError("vkCreateImageView", r);
   return Status::success();
 }
 
 }  // namespace
 
-Status createResources(Effect::Impl& e, const Plan& plan, Resources& res) {
+Status createResources(EffectState& e, const Plan& plan, Resources& out) {
+  Resources res;
+  res.images.reserve(plan.images.size());
   std::vector<Allocator::Request> requests;
   for (const auto& planned : plan.images) {
     const auto& info = gen::kResources[static_cast<std::size_t>(planned.resource)];
@@ -75,57 +78,42 @@ Status createResources(Effect::Impl& e, const Plan& plan, Resources& res) {
     ci.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    if (VkResult r = e.d.vkCreateImage(e.ctx.device, &ci, e.ctx.allocator, &img.image); r != VK_SUCCESS)
+    if (VkResult r = make(e.owner, e.d.vkCreateImage, e.d.vkDestroyImage, ci, img.image); r != VK_SUCCESS)
       return vkError(("vkCreateImage('" + std::string(info.name) + "')").c_str(), r);
     res.images.push_back(std::move(img));
-    requests.push_back({res.images.back().image, VK_NULL_HANDLE});
+    requests.push_back({res.images.back().image.get(), VK_NULL_HANDLE});
   }
 
   if (Status st = e.allocator.allocateAndBind(requests, res.memory); !st) return st;
 
   for (auto& img : res.images) {
-    if (Status st = createView(e, img.image, img.format, 0, img.levels, img.fullView); !st) return st;
-    for (std::uint32_t m = 0; m < img.levels; ++m) {
-      VkImageView v = VK_NULL_HANDLE;
-      if (Status st = createView(e, img.image, img.format, m, 1, v); !st) return st;
-      img.levelViews.push_back(v);
-    }
+    if (Status st = createView(e, img.image.get(), img.format, 0, img.levels, img.fullView); !st) return st;
+    img.levelViews.resize(img.levels);
+    for (std::uint32_t m = 0; m < img.levels; ++m)
+      if (Status st = createView(e, img.image.get(), img.format, m, 1, img.levelViews[m]); !st) return st;
   }
+  std::swap(out, res);  // not `out = std::move(res)`: that would free out's memory before its images
   return Status::success();
 }
 
-void destroyResources(Effect::Impl& e, Resources& res) {
-  for (auto& img : res.images) {
-    for (VkImageView v : img.levelViews) e.d.vkDestroyImageView(e.ctx.device, v, e.ctx.allocator);
-    if (img.fullView) e.d.vkDestroyImageView(e.ctx.device, img.fullView, e.ctx.allocator);
-    if (img.image) e.d.vkDestroyImage(e.ctx.device, img.image, e.ctx.allocator);
-  }
-  res.images.clear();
-  e.allocator.free(res.memory);
-}
-
-Status createParamBuffer(Effect::Impl& e, std::uint32_t slots, ParamBuffer& ubo) {
+Status createParamBuffer(EffectState& e, std::uint32_t slots, ParamBuffer& out) {
+  ParamBuffer ubo;
   const VkDeviceSize align = std::max<VkDeviceSize>(1, e.props.limits.minUniformBufferOffsetAlignment);
   ubo.stride = (sizeof(ParamBlock) + align - 1) / align * align;
+  ubo.written.assign(slots, ParamBlock{});
+  ubo.valid.assign(slots, false);
   VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   bi.size = ubo.stride * slots;
   bi.usage = VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
   bi.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-  if (VkResult r = e.d.vkCreateBuffer(e.ctx.device, &bi, e.ctx.allocator, &ubo.buffer); r != VK_SUCCESS)
+  if (VkResult r = make(e.owner, e.d.vkCreateBuffer, e.d.vkDestroyBuffer, bi, ubo.buffer); r != VK_SUCCESS)
     return vkError("vkCreateBuffer(parameter block)", r);
   void* mapped = nullptr;
-  const Allocator::Request request{VK_NULL_HANDLE, ubo.buffer, &mapped};
+  const Allocator::Request request{VK_NULL_HANDLE, ubo.buffer.get(), &mapped};
   if (Status st = e.allocator.allocateAndBind({&request, 1}, ubo.memory); !st) return st;
   ubo.mapped = static_cast<char*>(mapped);
-  ubo.written.assign(slots, ParamBlock{});
-  ubo.valid.assign(slots, false);
+  std::swap(out, ubo);  // the old buffer goes before its memory
   return Status::success();
-}
-
-void destroyParamBuffer(Effect::Impl& e, ParamBuffer& ubo) {
-  if (ubo.buffer) e.d.vkDestroyBuffer(e.ctx.device, ubo.buffer, e.ctx.allocator);
-  e.allocator.free(ubo.memory);
-  ubo = ParamBuffer{};
 }
 
 }  // namespace sao::vk

@@ -170,6 +170,9 @@ enum class MeasureMethod {
   FenceClock,  // one submission per pass, a fence wait and a steady clock around each
 };
 
+// No exception leaves an Effect: every failure, running out of host memory (std::bad_alloc)
+// included, comes back as a Status (DriverError naming the call), and the accessors and the
+// destructor cannot fail.
 class SAO_VK_API Effect {
  public:
   // Checks the version (VersionMismatch when the header you compiled against differs from the
@@ -217,9 +220,8 @@ class SAO_VK_API Effect {
   MemoryStats memoryStats() const;  // this effect's device memory
   std::uint32_t pipelineCount() const;  // pipelines built so far (one per pass variant used)
 
-  struct Impl;
-
  private:
+  struct Impl;  // the library's own
   explicit Effect(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
 };

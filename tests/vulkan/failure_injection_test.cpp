@@ -1,0 +1,476 @@
+// sao::vk::Effect keeps its promises when the driver or the host runs out of memory:
+//  * every Vulkan call that can fail (vkCreate*, vkAllocateMemory, vkMapMemory, vkBind*Memory,
+//    vkAllocateDescriptorSets), failed in turn through an interposed vkGetDeviceProcAddr: create()
+//    returns a DriverError naming the call and destroys every object it made; update() returns the
+//    error and keeps its previous configuration: the same images, memory and output bit for bit
+//    (the query pool of a new ring size is one of the calls: it used to be created after the
+//    commit);
+//  * every heap allocation the library makes itself (operator new called from libsao_vulkan.so's
+//    code, replaced in this program), failed in turn with std::bad_alloc inside create(), update(),
+//    record(), timings() and measure(): no exception crosses the API, the Status says
+//    "std::bad_alloc", and the effect stays as it was.
+// Runs under the validation layer with synchronization validation; any message fails the test.
+#include <dlfcn.h>
+#include <link.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <new>
+#include <set>
+#include <string>
+
+#include "analytic_scenes.h"
+#include "image_compare.h"
+#include "vk_support.h"
+
+// ---- The bad_alloc seam: this program's operator new throws on the Nth allocation made from the
+// library's own code (the caller's address inside libsao_vulkan.so), when armed. Everything else
+// (the test, gtest, the validation layer, libstdc++'s own string code) allocates normally.
+namespace {
+
+std::uintptr_t gLibraryBegin = 0, gLibraryEnd = 0;  // the library's executable segment
+long gThrowAt = 0;                                   // 0: disarmed
+long gLibraryAllocations = 0;
+bool gThrown = false;
+
+void* allocate(std::size_t n, void* caller) {
+  if (gThrowAt > 0) {
+    const auto at = reinterpret_cast<std::uintptr_t>(caller);
+    if (at >= gLibraryBegin && at < gLibraryEnd && ++gLibraryAllocations == gThrowAt) {
+      gThrown = true;
+      throw std::bad_alloc();
+    }
+  }
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+
+}  // namespace
+
+void* operator new(std::size_t n) { return allocate(n, __builtin_return_address(0)); }
+void* operator new[](std::size_t n) { return allocate(n, __builtin_return_address(0)); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+namespace sao::vktest {
+namespace {
+
+using test::sameBits;
+
+// Finds libsao_vulkan.so's executable segment (once, outside operator new).
+void findLibrary() {
+  if (gLibraryEnd) return;
+  Dl_info info{};
+  ASSERT_NE(dladdr(reinterpret_cast<void*>(&vk::processMemoryStats), &info), 0);
+  dl_iterate_phdr(
+      [](dl_phdr_info* lib, std::size_t, void* base) {
+        if (reinterpret_cast<void*>(lib->dlpi_addr) != base) return 0;
+        for (int i = 0; i < lib->dlpi_phnum; ++i) {
+          const ElfW(Phdr)& ph = lib->dlpi_phdr[i];
+          if (ph.p_type == PT_LOAD && (ph.p_flags & PF_X)) {
+            gLibraryBegin = lib->dlpi_addr + ph.p_vaddr;
+            gLibraryEnd = gLibraryBegin + ph.p_memsz;
+          }
+        }
+        return 1;
+      },
+      info.dli_fbase);
+  ASSERT_LT(gLibraryBegin, gLibraryEnd) << "libsao_vulkan.so's code not found";
+}
+
+// Runs `call` with the Nth library allocation throwing; true when it did throw.
+template <typename Call>
+bool withBadAllocAt(long n, Call&& call) {
+  gLibraryAllocations = 0;
+  gThrown = false;
+  gThrowAt = n;
+  call();
+  gThrowAt = 0;
+  return gThrown;
+}
+
+// ---- The VkResult seam: an interposed vkGetDeviceProcAddr whose functions fail on the Nth call
+// when armed, and which counts the objects the library creates and destroys.
+struct Injector {
+  int failAt = 0;  // 0: disarmed
+  int calls = 0;
+  std::string failed;  // the call that failed
+  long live = 0;       // objects created minus destroyed
+  bool failHere(const char* name) {
+    if (failAt == 0 || ++calls != failAt) return false;
+    failed = name;
+    return true;
+  }
+  void arm(int n) {
+    failAt = n;
+    calls = 0;
+    failed.clear();
+  }
+};
+Injector gInjector;
+
+template <typename Pfn>
+struct Failing;
+template <typename... A>
+struct Failing<VkResult(VKAPI_PTR*)(A...)> {
+  static inline VkResult(VKAPI_PTR* real)(A...) = nullptr;
+  static inline const char* name = "";
+  static inline int objects = 0;  // made by one successful call (the library makes one pipeline a call)
+  static VKAPI_ATTR VkResult VKAPI_CALL call(A... a) {
+    if (gInjector.failHere(name)) return VK_ERROR_OUT_OF_DEVICE_MEMORY;
+    const VkResult r = real(a...);
+    if (r == VK_SUCCESS) gInjector.live += objects;
+    return r;
+  }
+};
+
+template <typename Pfn>
+struct Counted;
+template <typename H>
+struct Counted<void(VKAPI_PTR*)(VkDevice, H, const VkAllocationCallbacks*)> {
+  static inline void(VKAPI_PTR* real)(VkDevice, H, const VkAllocationCallbacks*) = nullptr;
+  static VKAPI_ATTR void VKAPI_CALL call(VkDevice device, H object, const VkAllocationCallbacks* callbacks) {
+    if (object != VK_NULL_HANDLE) --gInjector.live;
+    real(device, object, callbacks);
+  }
+};
+
+VKAPI_ATTR PFN_vkVoidFunction VKAPI_CALL injectingGetDeviceProcAddr(VkDevice device, const char* name) {
+#define SAO_FAILING(fn, made)                                                               \
+  if (std::strcmp(name, #fn) == 0) {                                                        \
+    using W = Failing<PFN_##fn>;                                                            \
+    W::real = reinterpret_cast<PFN_##fn>(vkGetDeviceProcAddr(device, name));               \
+    W::name = #fn;                                                                          \
+    W::objects = made;                                                                      \
+    return reinterpret_cast<PFN_vkVoidFunction>(&W::call);                                  \
+  }
+#define SAO_COUNTED(fn)                                                                     \
+  if (std::strcmp(name, #fn) == 0) {                                                        \
+    Counted<PFN_##fn>::real = reinterpret_cast<PFN_##fn>(vkGetDeviceProcAddr(device, name)); \
+    return reinterpret_cast<PFN_vkVoidFunction>(&Counted<PFN_##fn>::call);                   \
+  }
+  SAO_FAILING(vkCreateImage, 1)
+  SAO_FAILING(vkCreateImageView, 1)
+  SAO_FAILING(vkCreateBuffer, 1)
+  SAO_FAILING(vkAllocateMemory, 1)
+  SAO_FAILING(vkMapMemory, 0)
+  SAO_FAILING(vkBindImageMemory, 0)
+  SAO_FAILING(vkBindBufferMemory, 0)
+  SAO_FAILING(vkCreateSampler, 1)
+  SAO_FAILING(vkCreateShaderModule, 1)
+  SAO_FAILING(vkCreateDescriptorSetLayout, 1)
+  SAO_FAILING(vkCreatePipelineLayout, 1)
+  SAO_FAILING(vkCreateComputePipelines, 1)
+  SAO_FAILING(vkCreateDescriptorPool, 1)
+  SAO_FAILING(vkAllocateDescriptorSets, 0)  // freed with their pool
+  SAO_FAILING(vkCreateQueryPool, 1)
+  SAO_FAILING(vkCreateCommandPool, 1)
+  SAO_FAILING(vkCreateFence, 1)
+  SAO_COUNTED(vkDestroyImage)
+  SAO_COUNTED(vkDestroyImageView)
+  SAO_COUNTED(vkDestroyBuffer)
+  SAO_COUNTED(vkFreeMemory)
+  SAO_COUNTED(vkDestroySampler)
+  SAO_COUNTED(vkDestroyShaderModule)
+  SAO_COUNTED(vkDestroyDescriptorSetLayout)
+  SAO_COUNTED(vkDestroyPipelineLayout)
+  SAO_COUNTED(vkDestroyPipeline)
+  SAO_COUNTED(vkDestroyDescriptorPool)
+  SAO_COUNTED(vkDestroyQueryPool)
+  SAO_COUNTED(vkDestroyCommandPool)
+  SAO_COUNTED(vkDestroyFence)
+#undef SAO_FAILING
+#undef SAO_COUNTED
+  return vkGetDeviceProcAddr(device, name);
+}
+
+// A depth image and the inputs for one camera.
+struct Scene {
+  Camera camera;
+  DepthImage depth;
+  vk::headless::Image image;
+  vk::Inputs inputs() const {
+    vk::Inputs in;
+    in.depth = {image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth.extent, VK_FORMAT_D32_SFLOAT};
+    return in;
+  }
+};
+
+class VkFailureInjection : public VkTest {
+ protected:
+  void SetUp() override {
+    VkTest::SetUp();
+    gInjector = Injector{};
+    load(vulkanCamera(48, 27, 4), small);
+    load(vulkanCamera(56, 30, 6), large);
+    config.camera = small.camera;
+    config.depthFormat = VK_FORMAT_D32_SFLOAT;
+    config.framesInFlight = 2;
+    config.timestamps = true;
+    // Another size, ring, pass list (no blur) and variant (no z hierarchy): every object of update().
+    other = config;
+    other.camera = large.camera;
+    other.framesInFlight = 3;
+    other.settings.blur_radius = 0;
+    other.settings.use_z_hierarchy = false;
+  }
+  void TearDown() override {
+    gInjector.failAt = 0;
+    context().destroy(small.image);
+    context().destroy(large.image);
+    VkTest::TearDown();
+  }
+  void load(const Camera& camera, Scene& scene) {
+    scene.camera = camera;
+    scene.depth = test::renderDepth(test::sphereOnPlaneScene(), camera, DepthFormat::D32F);
+    const VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    ASSERT_TRUE(context().uploadDepth(scene.depth, VK_FORMAT_D32_SFLOAT, layout, scene.image).ok());
+  }
+  vk::DeviceContext injecting() const {
+    vk::DeviceContext c = context().deviceContext();
+    c.getDeviceProcAddr = &injectingGetDeviceProcAddr;
+    return c;
+  }
+  FloatImage run(vk::Effect& e, const Scene& scene) {
+    Status recorded;
+    EXPECT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = e.record(cmd, scene.inputs()); }).ok());
+    EXPECT_TRUE(recorded.ok()) << recorded.message;
+    const vk::OutputImage o = e.output();
+    FloatImage ao;
+    EXPECT_TRUE(context()
+                    .readback(o.image, o.format, o.extent, 0, o.layout, e.config().outputDstStages,
+                              e.config().outputDstAccess, ao)
+                    .ok());
+    return ao;
+  }
+  // The effect is still in `config` (small, 2 slots), holds `memory` and renders `before`.
+  void expectUnchanged(vk::Effect& e, const vk::MemoryStats& memory, const FloatImage& before) {
+    EXPECT_EQ(e.config().camera.width, config.camera.width);
+    EXPECT_EQ(e.config().framesInFlight, config.framesInFlight);
+    EXPECT_EQ(e.plan().aoExtent.width, config.camera.width);
+    EXPECT_EQ(e.memoryStats().liveBytes, memory.liveBytes);
+    EXPECT_EQ(e.memoryStats().liveAllocations, memory.liveAllocations);
+    EXPECT_TRUE(sameBits(run(e, small), before)) << "the effect renders as before the failed call";
+  }
+
+  Scene small, large;
+  vk::Config config, other;
+};
+
+// Every fallible Vulkan call of create(), failed in turn: the error names it, `out` stays empty,
+// every object made so far is destroyed and no device memory is left.
+TEST_F(VkFailureInjection, CreateFailingAtEveryVulkanCallLeavesNothingBehind) {
+  bool timestamps = false;
+  {
+    std::unique_ptr<vk::Effect> e;
+    ASSERT_TRUE(vk::Effect::create(injecting(), config, e).ok());
+    timestamps = e->timestampsSupported();
+  }
+  std::set<std::string> failed;
+  for (int n = 1;; ++n) {
+    ASSERT_LT(n, 1000) << "create() never got through";
+    const vk::MemoryStats process = vk::processMemoryStats();
+    std::unique_ptr<vk::Effect> e;
+    gInjector.arm(n);
+    const Status st = vk::Effect::create(injecting(), config, e);
+    gInjector.failAt = 0;
+    if (gInjector.failed.empty()) {
+      ASSERT_TRUE(st.ok()) << st.message;
+      break;
+    }
+    SCOPED_TRACE("call " + std::to_string(n) + ": " + gInjector.failed);
+    failed.insert(gInjector.failed);
+    EXPECT_EQ(st.code, StatusCode::DriverError) << st.message;
+    EXPECT_NE(st.message.find(gInjector.failed), std::string::npos) << st.message;
+    EXPECT_NE(st.message.find("VK_ERROR_OUT_OF_DEVICE_MEMORY"), std::string::npos) << st.message;
+    EXPECT_FALSE(e);
+    EXPECT_EQ(gInjector.live, 0) << "every object made before the failure is destroyed";
+    EXPECT_EQ(vk::processMemoryStats().liveAllocations, process.liveAllocations);
+  }
+  EXPECT_EQ(gInjector.live, 0);
+  std::string names;
+  for (const auto& f : failed) names += f + " ";
+  std::printf("create(): failed in turn at %zu kinds of call: %s\n", failed.size(), names.c_str());
+  for (const char* call : {"vkCreateImage", "vkCreateImageView", "vkAllocateMemory", "vkBindImageMemory", "vkMapMemory",
+                           "vkCreateComputePipelines", "vkCreateDescriptorPool", "vkAllocateDescriptorSets"})
+    EXPECT_TRUE(failed.count(call)) << call << " was never called";
+  if (timestamps) {
+    EXPECT_TRUE(failed.count("vkCreateQueryPool"));
+  }
+}
+
+// Every fallible Vulkan call of an update() that changes the size, the ring, the passes and a
+// variant, failed in turn (the new ring's query pool among them): the error, and the effect keeps
+// its configuration, memory and output bit for bit. Pipelines built for the new variant stay (a
+// cache); nothing else is left.
+TEST_F(VkFailureInjection, UpdateFailingAtEveryVulkanCallKeepsThePreviousConfiguration) {
+  std::unique_ptr<vk::Effect> e;
+  ASSERT_TRUE(vk::Effect::create(injecting(), config, e).ok());
+  const FloatImage before = run(*e, small);
+  ASSERT_FALSE(before.data.empty());
+  const vk::MemoryStats memory = e->memoryStats();
+  const long objects = gInjector.live;
+  const std::uint32_t pipelines = e->pipelineCount();
+  std::set<std::string> failed;
+  for (int n = 1;; ++n) {
+    ASSERT_LT(n, 1000) << "update() never got through";
+    gInjector.arm(n);
+    const Status st = e->update(other);
+    gInjector.failAt = 0;
+    if (gInjector.failed.empty()) {
+      ASSERT_TRUE(st.ok()) << st.message;
+      break;
+    }
+    SCOPED_TRACE("call " + std::to_string(n) + ": " + gInjector.failed);
+    failed.insert(gInjector.failed);
+    EXPECT_EQ(st.code, StatusCode::DriverError) << st.message;
+    EXPECT_NE(st.message.find(gInjector.failed), std::string::npos) << st.message;
+    EXPECT_EQ(gInjector.live, objects + 3 * long(e->pipelineCount() - pipelines))
+        << "only the new pipelines (pipeline, layout, set layout) stay";
+    expectUnchanged(*e, memory, before);
+  }
+  std::string names;
+  for (const auto& f : failed) names += f + " ";
+  std::printf("update(): failed in turn at %zu kinds of call: %s\n", failed.size(), names.c_str());
+  for (const char* call : {"vkCreateImage", "vkAllocateMemory", "vkCreateBuffer", "vkCreateComputePipelines",
+                           "vkCreateDescriptorPool"})
+    EXPECT_TRUE(failed.count(call)) << call << " was never called";
+  if (e->timestampsSupported())
+    EXPECT_TRUE(failed.count("vkCreateQueryPool")) << "the new ring's query pool is made before the commit";
+  else
+    std::printf("update(): the queue family has no timestamps: no query pool to fail\n");
+  EXPECT_EQ(e->config().framesInFlight, 3u) << "the update that got through is committed";
+  EXPECT_EQ(e->plan().aoExtent.width, other.camera.width);
+  EXPECT_FALSE(run(*e, large).data.empty()) << "the update that got through is used";
+  e.reset();
+  EXPECT_EQ(gInjector.live, 0);
+}
+
+// std::bad_alloc at every allocation the library makes in create(): a DriverError, no effect, no
+// device memory left.
+TEST_F(VkFailureInjection, BadAllocInCreateIsAStatus) {
+  findLibrary();
+  long thrown = 0;
+  for (long n = 1;; ++n) {
+    ASSERT_LT(n, 10000);
+    const vk::MemoryStats process = vk::processMemoryStats();
+    std::unique_ptr<vk::Effect> e;
+    Status st;
+    if (!withBadAllocAt(n, [&] { st = vk::Effect::create(injecting(), config, e); })) {
+      ASSERT_TRUE(st.ok()) << st.message;
+      break;
+    }
+    ++thrown;
+    SCOPED_TRACE("allocation " + std::to_string(n));
+    EXPECT_EQ(st.code, StatusCode::DriverError) << st.message;
+    EXPECT_NE(st.message.find("std::bad_alloc"), std::string::npos) << st.message;
+    EXPECT_FALSE(e);
+    EXPECT_EQ(gInjector.live, 0) << "every object made before the exception is destroyed";
+    EXPECT_EQ(vk::processMemoryStats().liveAllocations, process.liveAllocations);
+  }
+  std::printf("create(): std::bad_alloc at each of its %ld allocations\n", thrown);
+  EXPECT_GT(thrown, 10);
+}
+
+// std::bad_alloc at every allocation of update(), record(), timings() and measure(): a Status each
+// time; update() keeps the configuration and the output bit for bit; a failed record() records
+// nothing (a good one after it in the same command buffer gives the same bits).
+TEST_F(VkFailureInjection, BadAllocInUpdateRecordAndTimingIsAStatus) {
+  findLibrary();
+  std::unique_ptr<vk::Effect> e;
+  ASSERT_TRUE(vk::Effect::create(injecting(), config, e).ok());
+  const FloatImage before = run(*e, small);
+  const vk::MemoryStats memory = e->memoryStats();
+  auto expectBadAlloc = [](const Status& st) {
+    EXPECT_EQ(st.code, StatusCode::DriverError) << st.message;
+    EXPECT_NE(st.message.find("std::bad_alloc"), std::string::npos) << st.message;
+  };
+
+  long thrown = 0;
+  for (long n = 1;; ++n) {
+    ASSERT_LT(n, 10000);
+    Status recorded, good;
+    Status submitted = context().submit([&](VkCommandBuffer cmd) {
+      if (withBadAllocAt(n, [&] { recorded = e->record(cmd, small.inputs()); })) good = e->record(cmd, small.inputs());
+    });
+    ASSERT_TRUE(submitted.ok()) << submitted.message;
+    if (recorded.ok()) break;
+    ++thrown;
+    expectBadAlloc(recorded);
+    EXPECT_TRUE(good.ok()) << good.message;
+    const vk::OutputImage o = e->output();
+    FloatImage ao;
+    ASSERT_TRUE(context().readback(o.image, o.format, o.extent, 0, o.layout, config.outputDstStages,
+                                   config.outputDstAccess, ao).ok());
+    EXPECT_TRUE(sameBits(ao, before)) << "a failed record() left nothing in the command buffer";
+  }
+  std::printf("record(): std::bad_alloc at each of its %ld allocations\n", thrown);
+  EXPECT_GT(thrown, 0);
+
+  if (e->timestampsSupported()) {
+    thrown = 0;
+    for (long n = 1;; ++n) {
+      ASSERT_LT(n, 10000);
+      Timings t;
+      Status st;
+      if (!withBadAllocAt(n, [&] { st = e->timings(t); })) {
+        EXPECT_TRUE(st.ok()) << st.message;
+        EXPECT_EQ(t.passes.size(), e->plan().passes.size());
+        break;
+      }
+      ++thrown;
+      expectBadAlloc(st);
+    }
+    std::printf("timings(): std::bad_alloc at each of its %ld allocations\n", thrown);
+    EXPECT_GT(thrown, 0);
+  }
+
+  for (vk::MeasureMethod method : {vk::MeasureMethod::Auto, vk::MeasureMethod::FenceClock}) {
+    thrown = 0;
+    for (long n = 1;; ++n) {
+      ASSERT_LT(n, 10000);
+      Timings t;
+      Status st;
+      if (!withBadAllocAt(n, [&] { st = e->measure(context().queue(), small.inputs(), nullptr, t, method); })) {
+        EXPECT_TRUE(st.ok()) << st.message;
+        break;
+      }
+      ++thrown;
+      expectBadAlloc(st);
+    }
+    std::printf("measure(%s): std::bad_alloc at each of its %ld allocations\n",
+                method == vk::MeasureMethod::Auto ? "Auto" : "FenceClock", thrown);
+    EXPECT_GT(thrown, 0);
+  }
+  expectUnchanged(*e, memory, before);
+
+  thrown = 0;
+  const long objects = gInjector.live;
+  const std::uint32_t pipelines = e->pipelineCount();
+  for (long n = 1;; ++n) {
+    ASSERT_LT(n, 10000);
+    Status st;
+    if (!withBadAllocAt(n, [&] { st = e->update(other); })) {
+      ASSERT_TRUE(st.ok()) << st.message;
+      break;
+    }
+    ++thrown;
+    SCOPED_TRACE("allocation " + std::to_string(n));
+    expectBadAlloc(st);
+    EXPECT_EQ(gInjector.live, objects + 3 * long(e->pipelineCount() - pipelines))
+        << "only the new pipelines (pipeline, layout, set layout) stay";
+    expectUnchanged(*e, memory, before);
+  }
+  std::printf("update(): std::bad_alloc at each of its %ld allocations\n", thrown);
+  EXPECT_GT(thrown, 10);
+  EXPECT_EQ(e->config().framesInFlight, 3u) << "the update that got through is committed";
+  EXPECT_EQ(e->plan().aoExtent.width, other.camera.width);
+  EXPECT_FALSE(run(*e, large).data.empty());
+  e.reset();
+  EXPECT_EQ(gInjector.live, 0);
+}
+
+}  // namespace
+}  // namespace sao::vktest
