@@ -306,13 +306,45 @@ TEST(GltfAccessors, AnInvalidByteStrideIsRefused) {
 
 TEST(GltfAccessors, ABufferViewPastItsBufferIsRefused) {
   Primitive p = quad();
-  std::string text = p.dataUriGltf();
   const std::string length = "\"byteLength\": " + std::to_string(p.bin().size()) + ",";
+  // A buffer of 40 bytes, its data URI holding just those.
+  std::string text = p.json("data:application/octet-stream;base64," + base64(p.bin().substr(0, 40)));
   ASSERT_NE(text.find(length), std::string::npos);
   text.replace(text.find(length), length.size(), "\"byteLength\": 40,");
   Mesh mesh;
-  const Status s = loadMeshFromMemory(bytes(text), "gltf", "mem", mesh);
+  Status s = loadMeshFromMemory(bytes(text), "gltf", "mem", mesh);
   EXPECT_EQ(s.message, "mem: glTF: bufferView 0 (byteOffset 0, byteLength 48) runs past the byteLength 40 of buffer 0");
+  // byteLength 40 over a data URI of more bytes: refused before assimp, which would throw on the
+  // mismatch without freeing what it decoded (a leak found by fuzzing).
+  text = p.dataUriGltf();
+  text.replace(text.find(length), length.size(), "\"byteLength\": 40,");
+  s = loadMeshFromMemory(bytes(text), "gltf", "mem", mesh);
+  EXPECT_EQ(s.message, "mem: glTF: buffers[0].uri: the data holds " + std::to_string(p.bin().size()) +
+                           " bytes, but byteLength is 40");
+}
+
+// A buffer's data URI: glTF 2.0's media types only, base64 only, valid base64.
+TEST(GltfAccessors, ABufferDataUriOfAnotherKindIsRefused) {
+  const Primitive p = quad();
+  const std::string data = base64(p.bin());
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"data:~application/octet-stream;base64," + data,
+       "a data URI 'data:~application/octet-stream;base64' is not of glTF 2.0's buffer media types "
+       "(application/octet-stream, application/gltf-buffer)"},
+      {"data:application/octet-stream," + data, "the data URI is not base64 (its header does not end in ;base64)"},
+      {"data:application/octet-stream;base64," + data.substr(0, 8) + "\u023e" + data.substr(8),
+       "the data is not valid base64 (a character outside the alphabet, misplaced '=', or a length that is no "
+       "multiple of 4)"},
+  };
+  for (const auto& [uri, message] : cases) {
+    SCOPED_TRACE(uri.substr(0, 48));
+    Mesh mesh;
+    const Status s = loadMeshFromMemory(bytes(p.json(uri)), "gltf", "mem", mesh);
+    EXPECT_EQ(s.code, StatusCode::IoError);
+    EXPECT_EQ(s.message, "mem: glTF: buffers[0].uri: " + message);
+  }
+  Mesh mesh;
+  EXPECT_TRUE(loadMeshFromMemory(bytes(p.json("data:application/gltf-buffer;base64," + data)), "gltf", "mem", mesh));
 }
 
 // ---- degenerate triangles

@@ -57,6 +57,34 @@ bool decodeBase64(std::string_view text, std::string& out) {
   return true;
 }
 
+// A buffer's data URI: one of glTF 2.0's two media types, base64, and exactly byteLength bytes.
+// assimp 5.2 decodes it and throws on a length other than byteLength without freeing what it
+// decoded (found by fuzzing: a media type of "~application/octet-stream" and a two-byte UTF-8
+// character in the base64 text, then a leak).
+Status checkBufferDataUri(const nlohmann::json& buffer, const std::string& uri, std::size_t index,
+                          std::string_view name) {
+  const std::string where = "glTF: buffers[" + std::to_string(index) + "].uri: ";
+  const std::size_t comma = uri.find(',');
+  const std::string header = uri.substr(0, std::min(comma, uri.size()));
+  if (!isBufferDataUri(uri) || comma == std::string::npos)
+    return fileError(StatusCode::IoError, name,
+                     where + "a data URI '" + header.substr(0, 64) +
+                         "' is not of glTF 2.0's buffer media types (application/octet-stream, application/gltf-buffer)");
+  if (header.size() < 7 || header.compare(header.size() - 7, 7, ";base64") != 0)
+    return fileError(StatusCode::IoError, name, where + "the data URI is not base64 (its header does not end in ;base64)");
+  std::string bytes;
+  if (!decodeBase64(std::string_view(uri).substr(comma + 1), bytes))
+    return fileError(StatusCode::IoError, name,
+                     where + "the data is not valid base64 (a character outside the alphabet, misplaced '=', or a "
+                             "length that is no multiple of 4)");
+  const auto length = buffer.find("byteLength");
+  if (length != buffer.end() && length->is_number() && length->get<double>() != double(bytes.size()))
+    return fileError(StatusCode::IoError, name,
+                     where + "the data holds " + std::to_string(bytes.size()) + " bytes, but byteLength is " +
+                         length->dump());
+  return Status::success();
+}
+
 // A glTF 2.0 asset: asset.version "2.x". glTF 1.0 files have "1.0", the number 1, or no asset.
 Status checkVersion(const nlohmann::json& doc, std::string_view name) {
   const auto asset = doc.find("asset");
@@ -178,6 +206,8 @@ Status checkGltfJson(std::string_view text, std::string_view name, const GltfBuf
         return fileError(StatusCode::IoError, name,
                          "glTF: " + std::string(key) + "[" + std::to_string(i) + "].uri: the data URI's header (before " +
                              "its comma) is " + std::to_string(comma) + " characters long, more than 126");
+      if (std::string_view(key) == "buffers")
+        if (Status s = checkBufferDataUri(item, uri, i, name); !s) return s;
     }
   }
   // Every mesh primitive has positions, and none is a line loop: assimp 5.2 closes a line loop
