@@ -27,6 +27,17 @@
 #pragma sao setting float quad_edge_threshold default=0.02  range=[0,10]           unit=m   "2x2 reconstruction: quad neighbours average only when their z differ by less than this"
 
 // ---------------------------------------------------------------------------------------------
+// Presets (speed against accuracy; sao-bench measures both). Unlisted settings keep their
+// defaults. Low switches to coarser z levels from q' = 4 px on (fewer cache misses, less z
+// detail); medium and high use the paper's q' = 8.
+// ---------------------------------------------------------------------------------------------
+#pragma sao preset low       samples=6  blur_radius=2 blur_stride=2 use_z_hierarchy=true  mip_switch_log2=2 "6 taps, 2x2 + 5-tap blur, z hierarchy with an early MIP switch (q' = 4 px)"
+#pragma sao preset medium    samples=11 blur_radius=3 blur_stride=2 use_z_hierarchy=true  mip_switch_log2=3 "11 taps, 2x2 + 7-tap blur, z hierarchy (q' = 8 px)"
+#pragma sao preset high      samples=16 blur_radius=4 blur_stride=2 use_z_hierarchy=true  mip_switch_log2=3 "16 taps, 2x2 + 9-tap blur, z hierarchy (q' = 8 px)"
+#pragma sao preset ultra     samples=32 blur_radius=6 blur_stride=1 use_z_hierarchy=true  mip_switch_log2=4 "32 taps, 2x2 + 13-tap blur, z hierarchy with a later MIP switch (q' = 16 px)"
+#pragma sao preset reference samples=64 blur_radius=2 blur_stride=1 use_z_hierarchy=false "64 taps at full resolution (no z hierarchy), light blur"
+
+// ---------------------------------------------------------------------------------------------
 // Constants
 // ---------------------------------------------------------------------------------------------
 #pragma sao constant int  SAO_MAX_MIP_LEVELS=8 "Most csz MIP levels ever allocated (level 0 and 7 reduced ones); max_mip <= SAO_MAX_MIP_LEVELS-1"
@@ -41,9 +52,9 @@
 // ---------------------------------------------------------------------------------------------
 // Variants
 // ---------------------------------------------------------------------------------------------
-#pragma sao variant NORMALS_SUPPLIED values=[0,1] default=0 "0: face normals rebuilt from csz level 0 (eq. 4, explicit neighbour fetches, smaller-|dz| side per axis); 1: read the normals input (camera space, components in [-1,1], e.g. rgba16f)"
-#pragma sao variant TWO_LAYER values=[0,1] default=0 "1: deep G-buffer, a second depth layer; each tap takes the larger obscurance of the two layers' points"
-#pragma sao variant Z_HIERARCHY values=[0,1] default=1 "1: taps read z MIP level clamp(findMSB(int(h)) - log_q, 0, max_mip) (eq. 9-10); 0: always level 0 (the AlchemyAO / no-MIP baseline)"
+#pragma sao variant NORMALS_SUPPLIED values=[0,1] default=0 select=input:normals "0: face normals rebuilt from csz level 0 (eq. 4, explicit neighbour fetches, smaller-|dz| side per axis); 1: read the normals input (camera space, components in [-1,1], e.g. rgba16f)"
+#pragma sao variant TWO_LAYER values=[0,1] default=0 select=input:depth2 "1: deep G-buffer, a second depth layer; each tap takes the larger obscurance of the two layers' points"
+#pragma sao variant Z_HIERARCHY values=[0,1] default=1 select=use_z_hierarchy "1: taps read z MIP level clamp(findMSB(int(h)) - log_q, 0, max_mip) (eq. 9-10); 0: always level 0 (the AlchemyAO / no-MIP baseline)"
 #pragma sao exclude Z_HIERARCHY=0 TWO_LAYER=1 "the no-hierarchy baseline is a single-layer benchmark path"
 
 // ---------------------------------------------------------------------------------------------
@@ -216,7 +227,7 @@ void sao_ao_main()
 // ---------------------------------------------------------------------------------------------
 // Pass 4: horizontal bilateral blur of (A, key).
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass blur_h entry=sao_blur_h_main local=8x8 reads=ao_raw writes=ao_blur_h "Horizontal depth-aware Gaussian blur (float z key); with blur_radius 0 a copy"
+#pragma sao pass blur_h entry=sao_blur_h_main local=8x8 reads=ao_raw writes=ao_blur_h skip_when=blur_radius==0 "Horizontal depth-aware Gaussian blur (float z key); with blur_radius 0 a copy"
 void sao_blur_h_main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -231,7 +242,7 @@ void sao_blur_h_main()
 // ---------------------------------------------------------------------------------------------
 // Pass 5: vertical bilateral blur; writes the final A.
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass blur_v entry=sao_blur_v_main local=8x8 reads=ao_blur_h writes=ao "Vertical depth-aware Gaussian blur; writes the final visibility A, rounded to binary16 in the shader"
+#pragma sao pass blur_v entry=sao_blur_v_main local=8x8 reads=ao_blur_h writes=ao alias_when=blur_radius==0:ao_blur_h=ao_raw "Vertical depth-aware Gaussian blur; writes the final visibility A, rounded to binary16 in the shader"
 void sao_blur_v_main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);

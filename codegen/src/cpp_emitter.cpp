@@ -121,6 +121,60 @@ void emitWidenedBlock(std::ostringstream& h, const ParamBlock& b) {
     << "template <typename T>\nusing ParamBlockAs = " << b.name << "As<T>;\n\n";
 }
 
+const char* selectName(VariantSelect v) {
+  switch (v) {
+    case VariantSelect::Setting: return "VariantSelect::Setting";
+    case VariantSelect::Input: return "VariantSelect::Input";
+    default: return "VariantSelect::Default";
+  }
+}
+
+const char* compareName(CompareOp op) {
+  switch (op) {
+    case CompareOp::Eq: return "Compare::Eq";
+    case CompareOp::Ne: return "Compare::Ne";
+    case CompareOp::Lt: return "Compare::Lt";
+    case CompareOp::Le: return "Compare::Le";
+    case CompareOp::Gt: return "Compare::Gt";
+    default: return "Compare::Ge";
+  }
+}
+
+std::string conditionValue(const Effect& e, const std::optional<SettingCondition>& c) {
+  if (!c) return "{false, SettingId{}, Compare::Eq, 0.0}";
+  return std::string("{true, SettingId::") + e.settings[c->setting].name + ", " + compareName(c->op) + ", " +
+         number(c->value) + "}";
+}
+
+// The C++ enumerator of a preset: its lower-case name with the first letter upper-cased.
+std::string presetEnumerator(const std::string& name) {
+  std::string out = name;
+  out[0] = static_cast<char>(out[0] - 'a' + 'A');
+  return out;
+}
+
+void emitPresets(std::ostringstream& h, const Effect& e) {
+  h << "// ---- Presets: named setting values; settings a preset does not list keep their defaults.\n"
+    << "enum class Preset : std::uint32_t {\n";
+  for (const auto& p : e.presets) h << "  " << presetEnumerator(p.name) << ",\n";
+  h << "};\nstruct PresetValue {\n  SettingId setting;\n  double value;  // as setSettingValue takes it\n};\n";
+  for (const auto& p : e.presets) {
+    if (p.values.empty()) continue;
+    h << "inline constexpr PresetValue kPresetValues_" << p.name << "[] = {";
+    for (size_t i = 0; i < p.values.size(); ++i)
+      h << (i ? ", " : "") << "{SettingId::" << e.settings[p.values[i].first].name << ", " << number(p.values[i].second)
+        << "}";
+    h << "};\n";
+  }
+  h << "struct PresetInfo {\n  Preset preset;\n  std::string_view name;\n  std::string_view summary;\n"
+    << "  std::span<const PresetValue> values;\n};\n"
+    << "inline constexpr std::array<PresetInfo, " << e.presets.size() << "> kPresets = {{\n";
+  for (const auto& p : e.presets)
+    h << "  {Preset::" << presetEnumerator(p.name) << ", " << quoted(p.name) << ", " << quoted(p.doc) << ", "
+      << (p.values.empty() ? std::string("{}") : "kPresetValues_" + p.name) << "},\n";
+  h << "}};\n\n";
+}
+
 }  // namespace
 
 GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& pvs,
@@ -159,6 +213,7 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     << "// Reads or writes one setting as a double (ints and bools exactly).\n"
     << "double settingValue(const Settings& s, SettingId id);\n"
     << "void setSettingValue(Settings& s, SettingId id, double value);\n\n";
+  emitPresets(h, e);
 
   // --- constants
   h << "// ---- Compile-time constants (also #defined in every shader).\n";
@@ -197,8 +252,16 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     << "using VariantValues = std::array<std::int32_t, kVariantCount>;  // -1 in tables: any value\n"
     << "enum class VariantId : std::uint32_t {\n";
   for (const auto& v : e.variants) h << "  " << v.name << ",\n";
-  h << "};\nstruct VariantInfo {\n  std::string_view name;\n  std::span<const std::int32_t> values;\n"
-    << "  std::int32_t defaultValue;\n  std::string_view doc;\n};\n";
+  h << "};\n"
+    << "// What gives a variant its value when the effect is planned.\n"
+    << "enum class VariantSelect : std::uint8_t {\n"
+    << "  Default,  // always defaultValue\n"
+    << "  Setting,  // the bool setting SettingId(selectIndex): 1 when true\n"
+    << "  Input,    // the kind=input resource ResourceId(selectIndex): 1 when the user supplies it\n"
+    << "};\n"
+    << "struct VariantInfo {\n  std::string_view name;\n  std::span<const std::int32_t> values;\n"
+    << "  std::int32_t defaultValue;\n  VariantSelect select;\n  std::uint32_t selectIndex;\n"
+    << "  std::string_view doc;\n};\n";
   for (const auto& v : e.variants) {
     h << "inline constexpr std::int32_t kVariantValues_" << v.name << "[] = {";
     for (size_t i = 0; i < v.values.size(); ++i) h << (i ? ", " : "") << v.values[i];
@@ -206,8 +269,8 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
   }
   h << "inline constexpr std::array<VariantInfo, kVariantCount> kVariants = {{\n";
   for (const auto& v : e.variants)
-    h << "  {" << quoted(v.name) << ", kVariantValues_" << v.name << ", " << v.defaultValue << ", " << quoted(v.doc)
-      << "},\n";
+    h << "  {" << quoted(v.name) << ", kVariantValues_" << v.name << ", " << v.defaultValue << ", "
+      << selectName(v.select) << ", " << (v.selectIndex < 0 ? 0 : v.selectIndex) << ", " << quoted(v.doc) << "},\n";
   h << "}};\nstruct Exclusion {\n  VariantValues values;  // -1: not part of the exclusion\n  std::string_view reason;\n};\n"
     << "inline constexpr std::array<Exclusion, " << e.exclusions.size() << "> kExclusions = {{\n";
   for (const auto& x : e.exclusions) {
@@ -249,10 +312,19 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     << "struct PassVariantInfo {\n  VariantValues values;  // -1 where the pass does not depend on the variant\n"
     << "  std::span<const BindingInfo> bindings;\n  std::uint32_t glslBlob;\n  std::uint32_t spirvBlob;\n"
     << "  std::string_view fileStem;\n};\n"
+    << "enum class Compare : std::uint8_t { Eq, Ne, Lt, Le, Gt, Ge };\n"
+    << "// `setting op value` on an int or bool setting; never holds when not active.\n"
+    << "struct SettingCondition {\n  bool active;\n  SettingId setting;\n  Compare op;\n  double value;\n};\n"
+    << "bool holds(const SettingCondition& condition, const Settings& s);\n"
+    << "// A binding of `declared` that `serving` fills instead (a skipped pass's output).\n"
+    << "struct ResourceAlias {\n  ResourceId declared;\n  ResourceId serving;\n};\n"
     << "struct PassInfo {\n  std::string_view name;\n  std::string_view entry;\n  std::uint32_t localX, localY;\n"
     << "  bool perMip;  // runs once per MIP level 1..L-1 of the written image\n"
     << "  std::span<const ResourceId> reads;\n  std::span<const ResourceId> writes;\n"
     << "  std::span<const VariantId> variants;\n  std::span<const PassVariantInfo> compiled;\n"
+    << "  SettingCondition skipWhen;   // the pass does not run when this holds\n"
+    << "  SettingCondition aliasWhen;  // `aliases` apply when this holds\n"
+    << "  std::span<const ResourceAlias> aliases;\n"
     << "  std::string_view doc;\n};\n"
     << "inline constexpr std::uint32_t kParamBlockBinding = 0;\n"
     << "std::span<const PassInfo> passes();\n"
@@ -286,7 +358,13 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     << "  for (const auto& x : kExclusions) {\n    bool all = true;\n"
     << "    for (std::size_t i = 0; i < kVariantCount; ++i)\n"
     << "      if (x.values[i] >= 0 && x.values[i] != values[i]) all = false;\n"
-    << "    if (all) return x.reason;\n  }\n  return {};\n}\n\n";
+    << "    if (all) return x.reason;\n  }\n  return {};\n}\n\n"
+    << "bool holds(const SettingCondition& c, const Settings& s) {\n"
+    << "  if (!c.active) return false;\n  const double v = settingValue(s, c.setting);\n  switch (c.op) {\n"
+    << "    case Compare::Eq: return v == c.value;\n    case Compare::Ne: return v != c.value;\n"
+    << "    case Compare::Lt: return v < c.value;\n    case Compare::Le: return v <= c.value;\n"
+    << "    case Compare::Gt: return v > c.value;\n    case Compare::Ge: return v >= c.value;\n"
+    << "  }\n  return false;\n}\n\n";
 
   // bindings and variants per pass
   for (size_t p = 0; p < e.passes.size(); ++p) {
@@ -315,7 +393,14 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     for (int r : pass.writes) s << "ResourceId::" << e.resources[r].name << ", ";
     s << "};\nstatic constexpr VariantId kVariants_" << pass.name << "[] = {";
     for (int v : pass.variants) s << "VariantId::" << e.variants[v].name << ", ";
-    s << "};\n\n";
+    s << "};\n";
+    if (!pass.aliases.empty()) {
+      s << "static constexpr ResourceAlias kAliases_" << pass.name << "[] = {";
+      for (const auto& a : pass.aliases)
+        s << "{ResourceId::" << e.resources[a.declared].name << ", ResourceId::" << e.resources[a.serving].name << "}, ";
+      s << "};\n";
+    }
+    s << "\n";
   }
   s << "static constexpr PassInfo kPasses[] = {\n";
   for (const auto& pass : e.passes) {
@@ -325,7 +410,9 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     s << "  {" << quoted(pass.name) << ", " << quoted(pass.entry) << ", " << pass.localX << ", " << pass.localY << ", "
       << (pass.perMip ? "true" : "false") << ", " << span("kReads_", pass.reads.size()) << ", "
       << span("kWrites_", pass.writes.size()) << ", " << span("kVariants_", pass.variants.size())
-      << ", kCompiled_" << pass.name << ", " << quoted(pass.doc) << "},\n";
+      << ", kCompiled_" << pass.name << ",\n   " << conditionValue(e, pass.skipWhen) << ", "
+      << conditionValue(e, pass.aliasWhen) << ", " << span("kAliases_", pass.aliases.size()) << ", "
+      << quoted(pass.doc) << "},\n";
   }
   s << "};\n\nstd::span<const PassInfo> passes() { return kPasses; }\n"
     << "const PassInfo& pass(PassId id) { return kPasses[static_cast<std::size_t>(id)]; }\n\n"

@@ -1,58 +1,18 @@
 #include "directive_parser.h"
 
-#include <charconv>
-#include <cmath>
-#include <cstdlib>
+#include <algorithm>
 #include <map>
 #include <regex>
 #include <set>
 
+#include "effect_rules.h"
 #include "std140.h"
+#include "text_values.h"
 
 namespace sao::codegen {
 namespace {
 
 const std::set<std::string> kFormats = {"r32f", "rg32f", "r16f", "rg16f", "rgba16f", "r8", "rgba8", "depth"};
-
-bool isIdentifier(const std::string& s) {
-  static const std::regex re("^[A-Za-z_][A-Za-z0-9_]*$");
-  return std::regex_match(s, re);
-}
-
-bool parseNumber(const std::string& s, double& out) {
-  if (s.empty()) return false;
-  char* end = nullptr;
-  out = std::strtod(s.c_str(), &end);
-  return end == s.c_str() + s.size() && std::isfinite(out);
-}
-
-bool parseInt(const std::string& s, int& out) {
-  static const std::regex re("^[+-]?[0-9]+$");
-  if (!std::regex_match(s, re) || s.size() > 11) return false;
-  // from_chars, not stoi: a value beyond int (e.g. 2540685460) is an error, not an exception
-  // (found by fuzz_codegen_parser).
-  const char* first = s.data() + (s[0] == '+' ? 1 : 0);
-  int v = 0;
-  const auto [end, ec] = std::from_chars(first, s.data() + s.size(), v);
-  if (ec != std::errc() || end != s.data() + s.size()) return false;
-  out = v;
-  return true;
-}
-
-std::vector<std::string> splitList(const std::string& s, char sep = ',') {
-  std::vector<std::string> out;
-  std::string cur;
-  for (char c : s) {
-    if (c == sep) {
-      out.push_back(cur);
-      cur.clear();
-    } else {
-      cur += c;
-    }
-  }
-  out.push_back(cur);
-  return out;
-}
 
 // One `#pragma sao` line: words, key=value attributes and an optional trailing doc string.
 struct Directive {
@@ -141,6 +101,7 @@ class Parser {
       else if (d.kind == "resource") parseResource(d);
       else if (d.kind == "block") parseBlock(d, i + 1);
       else if (d.kind == "pass") open = parsePass(d);
+      else if (d.kind == "preset") pendingPresets_.push_back(d);
       else if (d.kind == "end") {
         if (!open) diags_.error(d.loc, "'#pragma sao end' without an open pass section");
         open = nullptr;
@@ -152,7 +113,11 @@ class Parser {
     const SourceLoc fileLoc{src_.files.empty() ? std::string() : src_.files.front(), 0};
     if (!sawEffect_) diags_.error(fileLoc, "no '#pragma sao effect' directive: not an annotated effect");
     for (const auto& d : pendingExcludes_) parseExclude(d);
+    // Rules name settings and resources, which may be declared after the variant or pass.
+    for (const auto& [v, d] : pendingSelects_) resolveVariantSelect(effect_, effect_.variants[v], d.loc, d.text, diags_);
     for (const auto& [p, d] : pendingPasses_) resolvePass(effect_.passes[p], d);
+    checkPassRules(effect_, diags_);
+    for (const auto& d : pendingPresets_) parsePreset(effect_, d.loc, d.words, d.attrs, d.doc, d.hasDoc, diags_);
     if (sawEffect_ && !effect_.block) diags_.error(fileLoc, "no '#pragma sao block' parameter block declared");
     if (sawEffect_ && effect_.passes.empty()) diags_.error(fileLoc, "no '#pragma sao pass' declared");
     checkExplicitBindings();
@@ -317,9 +282,9 @@ class Parser {
   }
 
   void parseVariant(const Directive& d) {
-    auto a = attrs(d, {"values", "default"});
+    auto a = attrs(d, {"values", "default", "select"});
     if (d.words.size() != 1) {
-      diags_.error(d.loc, "expected '#pragma sao variant NAME values=[a,b,...] default=V \"doc\"'");
+      diags_.error(d.loc, "expected '#pragma sao variant NAME values=[a,b,...] default=V [select=S] \"doc\"'");
       return;
     }
     Variant v;
@@ -367,6 +332,7 @@ class Parser {
         return;
       }
     }
+    if (a.count("select")) pendingSelects_.push_back({effect_.variants.size(), {d.loc, a["select"]}});
     effect_.variants.push_back(v);
   }
 
@@ -490,7 +456,7 @@ class Parser {
   }
 
   Pass* parsePass(const Directive& d) {
-    attrs(d, {"entry", "local", "reads", "writes", "variants", "per"});
+    attrs(d, {"entry", "local", "reads", "writes", "variants", "per", "skip_when", "alias_when"});
     Pass p;
     p.loc = d.loc;
     p.doc = d.doc;
@@ -580,6 +546,8 @@ class Parser {
           diags_.error(d.loc, "pass '" + p.name + "' uses '" + res.name + "', which exists only when " +
                                   effect_.variants[res.whenVariant].name + " != 0, but does not list that variant in variants=");
       }
+    resolvePassRules(effect_, p, d.loc, a.count("skip_when") ? &a["skip_when"] : nullptr,
+                     a.count("alias_when") ? &a["alias_when"] : nullptr, diags_);
   }
 
   // Bindings are assigned by the tool; an explicit one in effect code would collide.
@@ -610,6 +578,12 @@ class Parser {
   std::map<std::string, SourceLoc> names_;
   std::vector<Directive> pendingExcludes_;
   std::vector<std::pair<size_t, Directive>> pendingPasses_;
+  struct PendingText {
+    SourceLoc loc;
+    std::string text;
+  };
+  std::vector<std::pair<size_t, PendingText>> pendingSelects_;  // (variant index, select=)
+  std::vector<Directive> pendingPresets_;
 };
 
 }  // namespace

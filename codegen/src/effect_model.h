@@ -29,11 +29,20 @@ struct Constant {
   std::string doc;
 };
 
+// What picks a variant's value when the effect is planned (`select=`).
+enum class VariantSelect {
+  Default,  // no select=: always the default value
+  Setting,  // select=SETTING: a bool setting, 1 when true
+  Input,    // select=input:RESOURCE: 1 when the user supplies that kind=input resource
+};
+
 struct Variant {
   SourceLoc loc;
   std::string name;
   std::vector<int> values;
   int defaultValue = 0;
+  VariantSelect select = VariantSelect::Default;
+  int selectIndex = -1;  // setting or resource index
   std::string doc;
 };
 
@@ -73,6 +82,25 @@ struct ParamBlock {
   int size = 0;  // rounded up to 16 bytes
 };
 
+enum class CompareOp { Eq, Ne, Lt, Le, Gt, Ge };
+
+// `SETTING OP LITERAL` on one int or bool setting (skip_when=, alias_when=).
+struct SettingCondition {
+  int setting = -1;
+  CompareOp op = CompareOp::Eq;
+  double value = 0;
+  std::string text;  // as written, for messages
+  bool operator==(const SettingCondition& o) const {
+    return setting == o.setting && op == o.op && value == o.value;
+  }
+};
+
+// A binding of `declared` that `serving` fills instead (the output of a skipped pass).
+struct ResourceAlias {
+  int declared = -1;  // resource indices
+  int serving = -1;
+};
+
 struct Pass {
   SourceLoc loc;
   std::string name;
@@ -82,8 +110,19 @@ struct Pass {
   std::vector<int> writes;   // resource indices
   std::vector<int> variants; // variant indices, effect order
   bool perMip = false;
+  std::optional<SettingCondition> skipWhen;   // the pass does not run when this holds
+  std::optional<SettingCondition> aliasWhen;  // `aliases` apply when this holds
+  std::vector<ResourceAlias> aliases;
   std::string doc;
   std::vector<SourceLine> code;  // the pass section's GLSL
+};
+
+// A named set of setting values; settings it does not list keep their defaults.
+struct Preset {
+  SourceLoc loc;
+  std::string name;  // lower-case identifier; the C++ enumerator upper-cases its first letter
+  std::vector<std::pair<int, double>> values;  // (setting index, value), in source order
+  std::string doc;
 };
 
 struct Effect {
@@ -97,6 +136,7 @@ struct Effect {
   std::vector<Resource> resources;
   std::optional<ParamBlock> block;
   std::vector<Pass> passes;
+  std::vector<Preset> presets;
   std::vector<SourceLine> commonCode;  // GLSL outside pass sections, directives removed
 };
 

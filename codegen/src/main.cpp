@@ -29,6 +29,18 @@ std::string spirvBytes(const std::vector<uint32_t>& words) {
   return out;
 }
 
+// A pass's skip/alias rules as the source spells them, for the pass table in words.
+std::string rulesText(const Effect& e, const Pass& p) {
+  std::string out;
+  if (p.skipWhen) out += " skip_when=" + p.skipWhen->text;
+  if (p.aliasWhen) {
+    out += " alias_when=" + p.aliasWhen->text + ":";
+    for (size_t i = 0; i < p.aliases.size(); ++i)
+      out += (i ? "," : "") + e.resources[p.aliases[i].declared].name + "=" + e.resources[p.aliases[i].serving].name;
+  }
+  return out;
+}
+
 int fail(const Diagnostics& diags) {
   for (const auto& d : diags.all()) std::fprintf(stderr, "%s\n", d.format().c_str());
   return 1;
@@ -98,7 +110,7 @@ int main(int argc, char** argv) {
   for (const auto& c : compiled) {
     const Pass& pass = effect.passes[c.variant.pass];
     manifest += c.variant.stem + " local=" + std::to_string(pass.localX) + "x" + std::to_string(pass.localY) +
-                (pass.perMip ? " per=mip" : "") + " glsl=#" + std::to_string(c.glslBlob) + " spirv=#" +
+                (pass.perMip ? " per=mip" : "") + rulesText(effect, pass) + " glsl=#" + std::to_string(c.glslBlob) + " spirv=#" +
                 std::to_string(c.spirvBlob) + " | 0 block " + effect.block->name;
     for (const auto& b : c.variant.bindings) {
       const Resource& r = effect.resources[b.resource];

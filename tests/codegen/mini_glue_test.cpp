@@ -39,7 +39,7 @@ TEST(MiniGlue, ParamBlockLayoutIsStd140) {
 }
 
 TEST(MiniGlue, PassTableAndVariantLookup) {
-  ASSERT_EQ(gen::passes().size(), 2u);
+  ASSERT_EQ(gen::passes().size(), 3u);
   const auto& first = gen::pass(gen::PassId::first);
   EXPECT_EQ(first.entry, "mini_first");
   EXPECT_EQ(first.localX, 8u);
@@ -64,6 +64,48 @@ TEST(MiniGlue, PassTableAndVariantLookup) {
   EXPECT_EQ(gen::findPassVariant(gen::PassId::second, {1, 1}), nullptr) << "excluded combination";
   EXPECT_EQ(gen::exclusionReason({1, 1}), "not both");
   EXPECT_TRUE(gen::exclusionReason({1, 0}).empty());
+}
+
+TEST(MiniGlue, VariantsNameWhatSelectsThem) {
+  const auto& fancy = gen::kVariants[static_cast<std::size_t>(gen::VariantId::FANCY)];
+  EXPECT_EQ(fancy.select, gen::VariantSelect::Setting);
+  EXPECT_EQ(fancy.selectIndex, static_cast<std::uint32_t>(gen::SettingId::enabled));
+  const auto& extra = gen::kVariants[static_cast<std::size_t>(gen::VariantId::EXTRA)];
+  EXPECT_EQ(extra.select, gen::VariantSelect::Input);
+  EXPECT_EQ(extra.selectIndex, static_cast<std::uint32_t>(gen::ResourceId::extra));
+}
+
+TEST(MiniGlue, SkipAndAliasRulesHoldOnTheirSetting) {
+  const auto& first = gen::pass(gen::PassId::first);
+  const auto& smoothing = gen::pass(gen::PassId::smoothing);
+  const auto& second = gen::pass(gen::PassId::second);
+  gen::Settings s;
+  s.taps = 1;
+  EXPECT_FALSE(gen::holds(first.skipWhen, s)) << "no rule: never holds";
+  EXPECT_TRUE(gen::holds(smoothing.skipWhen, s));
+  EXPECT_TRUE(gen::holds(second.aliasWhen, s));
+  ASSERT_EQ(second.aliases.size(), 1u);
+  EXPECT_EQ(second.aliases[0].declared, gen::ResourceId::smooth);
+  EXPECT_EQ(second.aliases[0].serving, gen::ResourceId::mid);
+  s.taps = 2;
+  EXPECT_FALSE(gen::holds(smoothing.skipWhen, s));
+  EXPECT_FALSE(gen::holds(second.aliasWhen, s));
+  EXPECT_TRUE(first.aliases.empty());
+}
+
+TEST(MiniGlue, PresetsListOnlyTheirValues) {
+  ASSERT_EQ(gen::kPresets.size(), 2u);
+  const auto& fast = gen::kPresets[0];
+  EXPECT_EQ(fast.preset, gen::Preset::Fast);
+  EXPECT_EQ(fast.name, "fast");
+  EXPECT_EQ(fast.summary, "One tap, plain path");
+  gen::Settings s;
+  for (const auto& v : fast.values) gen::setSettingValue(s, v.setting, v.value);
+  EXPECT_EQ(s.taps, 1);
+  EXPECT_FALSE(s.enabled);
+  EXPECT_FLOAT_EQ(s.strength, 0.5f) << "unlisted: the default";
+  EXPECT_EQ(gen::kPresets[1].preset, gen::Preset::Best);
+  EXPECT_EQ(gen::kPresets[1].values.size(), 2u);
 }
 
 TEST(MiniGlue, EmbeddedBlobsArePresent) {

@@ -93,8 +93,9 @@ TEST(Shaderc, EmitsEveryPassVariantAsGlsl430AndSpirv) {
   const fs::path out = freshDir("mini_files");
   const auto r = runCommand("'" + kShaderc + "' mini/mini.glsl -o '" + out.string() + "'", kTestsDir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  // first: EXTRA0/1; second: FANCY0/1 (the FANCY=1 EXTRA=1 exclusion removes no projection).
-  for (const std::string stem : {"first.EXTRA0", "first.EXTRA1", "second.FANCY0", "second.FANCY1"}) {
+  // first: EXTRA0/1; smoothing: no variant; second: FANCY0/1 (the FANCY=1 EXTRA=1 exclusion removes
+  // no projection).
+  for (const std::string stem : {"first.EXTRA0", "first.EXTRA1", "smoothing", "second.FANCY0", "second.FANCY1"}) {
     const std::string glsl = readFile((out / (stem + ".glsl")).string());
     EXPECT_EQ(glsl.rfind("#version 430\n", 0), 0u) << stem;
     const std::string spv = readFile((out / (stem + ".spv")).string());

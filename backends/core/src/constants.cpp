@@ -93,8 +93,10 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
   p.blur_stride = s.blur_stride;
 
   // Gaussian in taps, sigma = R/2: w(t) = exp(-2 t^2 / R^2), w(0) = 1 implicit.
-  float w[8] = {};
-  for (int t = 1; t <= std::min(s.blur_radius, 8); ++t)
+  static_assert(sizeof(p.blur_weights_1_4) + sizeof(p.blur_weights_5_8) == gen::SAO_MAX_BLUR_RADIUS * sizeof(float),
+                "the block holds one weight per tap 1..SAO_MAX_BLUR_RADIUS");
+  float w[gen::SAO_MAX_BLUR_RADIUS] = {};
+  for (int t = 1; t <= std::min(s.blur_radius, gen::SAO_MAX_BLUR_RADIUS); ++t)
     w[t - 1] = f(std::exp(-2.0 * t * t / (double(s.blur_radius) * s.blur_radius)));
   p.blur_weights_1_4 = {w[0], w[1], w[2], w[3]};
   p.blur_weights_5_8 = {w[4], w[5], w[6], w[7]};

@@ -94,12 +94,26 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
   DepthModel model;
   if (Status st = analyze(camera, model); !st) return st;
   if (Status st = checkExtents(camera, out.inputExtent, out.aoExtent); !st) return st;
+  // Each variant as the effect's `select=` says: a bool setting, a supplied input, or its default.
+  // PlanInputs names the optional inputs; depth is always supplied.
+  const auto supplied = [&](gen::ResourceId input) {
+    if (input == gen::ResourceId::normals) return inputs.normals;
+    if (input == gen::ResourceId::depth2) return inputs.secondLayer;
+    return input == gen::ResourceId::depth;
+  };
   for (std::size_t v = 0; v < gen::kVariantCount; ++v) {
-    const std::string_view name = gen::kVariants[v].name;
-    if (name == "NORMALS_SUPPLIED") out.variants[v] = inputs.normals ? 1 : 0;
-    else if (name == "TWO_LAYER") out.variants[v] = inputs.secondLayer ? 1 : 0;
-    else if (name == "Z_HIERARCHY") out.variants[v] = settings.use_z_hierarchy ? 1 : 0;
-    else out.variants[v] = gen::kVariants[v].defaultValue;
+    const gen::VariantInfo& info = gen::kVariants[v];
+    switch (info.select) {
+      case gen::VariantSelect::Setting:
+        out.variants[v] = gen::settingValue(settings, static_cast<gen::SettingId>(info.selectIndex)) != 0.0 ? 1 : 0;
+        break;
+      case gen::VariantSelect::Input:
+        out.variants[v] = supplied(static_cast<gen::ResourceId>(info.selectIndex)) ? 1 : 0;
+        break;
+      case gen::VariantSelect::Default:
+        out.variants[v] = info.defaultValue;
+        break;
+    }
   }
   if (const auto why = gen::exclusionReason(out.variants); !why.empty()) {
     std::string combo;
@@ -111,7 +125,6 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
   }
 
   out.cszLevels = mipLevelsNeeded(settings, camera, model);
-  const bool blur = settings.blur_radius > 0;
 
   for (const auto& info : gen::passes()) {
     const auto id = static_cast<gen::PassId>(&info - gen::passes().data());
@@ -122,10 +135,11 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
       if (out.cszLevels <= 1) continue;  // the hierarchy is not used: no MIP pass
       p.dispatchCount = out.cszLevels - 1;
     }
-    // blur 0: blur_h and ao_blur_h go; blur_v stays as the copy of ao_raw into the r16f output
-    // (docs/effect-math.md §2.5).
-    if (info.name == "blur_h" && !blur) continue;
-    if (info.name == "blur_v" && !blur) p.aliases.push_back({gen::ResourceId::ao_blur_h, gen::ResourceId::ao_raw});
+    // The effect's skip_when= / alias_when= rules (e.g. blur 0: blur_h and ao_blur_h go, blur_v
+    // copies ao_raw into the r16f output; docs/effect-math.md §2.5).
+    if (gen::holds(info.skipWhen, settings)) continue;
+    if (gen::holds(info.aliasWhen, settings))
+      for (const auto& a : info.aliases) p.aliases.push_back({a.declared, a.serving});
     out.passes.push_back(std::move(p));
   }
 

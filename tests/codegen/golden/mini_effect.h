@@ -43,6 +43,28 @@ inline constexpr std::array<SettingInfo, 3> kSettings = {{
 double settingValue(const Settings& s, SettingId id);
 void setSettingValue(Settings& s, SettingId id, double value);
 
+// ---- Presets: named setting values; settings a preset does not list keep their defaults.
+enum class Preset : std::uint32_t {
+  Fast,
+  Best,
+};
+struct PresetValue {
+  SettingId setting;
+  double value;  // as setSettingValue takes it
+};
+inline constexpr PresetValue kPresetValues_fast[] = {{SettingId::taps, 1.0}, {SettingId::enabled, 0.0}};
+inline constexpr PresetValue kPresetValues_best[] = {{SettingId::taps, 16.0}, {SettingId::strength, 1.5}};
+struct PresetInfo {
+  Preset preset;
+  std::string_view name;
+  std::string_view summary;
+  std::span<const PresetValue> values;
+};
+inline constexpr std::array<PresetInfo, 2> kPresets = {{
+  {Preset::Fast, "fast", "One tap, plain path", kPresetValues_fast},
+  {Preset::Best, "best", "All taps, stronger", kPresetValues_best},
+}};
+
 // ---- Compile-time constants (also #defined in every shader).
 inline constexpr std::int32_t MINI_MAX_TAPS = 16;  // Upper bound of taps
 
@@ -112,17 +134,25 @@ enum class VariantId : std::uint32_t {
   FANCY,
   EXTRA,
 };
+// What gives a variant its value when the effect is planned.
+enum class VariantSelect : std::uint8_t {
+  Default,  // always defaultValue
+  Setting,  // the bool setting SettingId(selectIndex): 1 when true
+  Input,    // the kind=input resource ResourceId(selectIndex): 1 when the user supplies it
+};
 struct VariantInfo {
   std::string_view name;
   std::span<const std::int32_t> values;
   std::int32_t defaultValue;
+  VariantSelect select;
+  std::uint32_t selectIndex;
   std::string_view doc;
 };
 inline constexpr std::int32_t kVariantValues_FANCY[] = {0, 1};
 inline constexpr std::int32_t kVariantValues_EXTRA[] = {0, 1};
 inline constexpr std::array<VariantInfo, kVariantCount> kVariants = {{
-  {"FANCY", kVariantValues_FANCY, 0, "Fancy path"},
-  {"EXTRA", kVariantValues_EXTRA, 0, "Extra input"},
+  {"FANCY", kVariantValues_FANCY, 0, VariantSelect::Setting, 2, "Fancy path"},
+  {"EXTRA", kVariantValues_EXTRA, 0, VariantSelect::Input, 1, "Extra input"},
 }};
 struct Exclusion {
   VariantValues values;  // -1: not part of the exclusion
@@ -141,6 +171,7 @@ enum class ResourceId : std::uint32_t {
   src,
   extra,
   mid,
+  smooth,
   dst,
 };
 struct ResourceInfo {
@@ -153,16 +184,18 @@ struct ResourceInfo {
   std::int32_t whenVariant;   // exists only when this variant is non-zero; -1: always
   std::string_view doc;
 };
-inline constexpr std::array<ResourceInfo, 4> kResources = {{
+inline constexpr std::array<ResourceInfo, 5> kResources = {{
   {"src", ResourceKind::Input, Format::Depth, false, true, 1, -1, "Input depth"},
   {"extra", ResourceKind::Input, Format::RGBA16F, false, true, 1, 1, "Extra input"},
   {"mid", ResourceKind::Image, Format::R32F, true, false, 1, -1, "Intermediate chain"},
+  {"smooth", ResourceKind::Image, Format::R32F, false, false, 1, -1, "Smoothed intermediate"},
   {"dst", ResourceKind::Output, Format::R16F, false, false, 1, -1, "Result"},
 }};
 
 // ---- Passes, in execution order, and their compiled variants.
 enum class PassId : std::uint32_t {
   first,
+  smoothing,
   second,
 };
 struct BindingInfo {
@@ -177,6 +210,20 @@ struct PassVariantInfo {
   std::uint32_t spirvBlob;
   std::string_view fileStem;
 };
+enum class Compare : std::uint8_t { Eq, Ne, Lt, Le, Gt, Ge };
+// `setting op value` on an int or bool setting; never holds when not active.
+struct SettingCondition {
+  bool active;
+  SettingId setting;
+  Compare op;
+  double value;
+};
+bool holds(const SettingCondition& condition, const Settings& s);
+// A binding of `declared` that `serving` fills instead (a skipped pass's output).
+struct ResourceAlias {
+  ResourceId declared;
+  ResourceId serving;
+};
 struct PassInfo {
   std::string_view name;
   std::string_view entry;
@@ -186,6 +233,9 @@ struct PassInfo {
   std::span<const ResourceId> writes;
   std::span<const VariantId> variants;
   std::span<const PassVariantInfo> compiled;
+  SettingCondition skipWhen;   // the pass does not run when this holds
+  SettingCondition aliasWhen;  // `aliases` apply when this holds
+  std::span<const ResourceAlias> aliases;
   std::string_view doc;
 };
 inline constexpr std::uint32_t kParamBlockBinding = 0;
@@ -195,7 +245,7 @@ const PassInfo& pass(PassId id);
 const PassVariantInfo* findPassVariant(PassId id, const VariantValues& values);
 std::string_view glslSource(std::uint32_t blob);        // GLSL 4.30 for OpenGL
 std::span<const std::uint32_t> spirvModule(std::uint32_t blob);  // SPIR-V 1.3 for Vulkan 1.1+
-inline constexpr std::size_t kGlslBlobCount = 4;
-inline constexpr std::size_t kSpirvBlobCount = 4;
+inline constexpr std::size_t kGlslBlobCount = 5;
+inline constexpr std::size_t kSpirvBlobCount = 5;
 
 }  // namespace sao::gen

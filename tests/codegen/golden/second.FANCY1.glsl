@@ -4,9 +4,10 @@
 #define MINI_MAX_TAPS 16
 #define FANCY 1
 layout(local_size_x = 16, local_size_y = 4, local_size_z = 1) in;
-layout(binding = 1) uniform sampler2D in_mid;
+layout(binding = 1) uniform sampler2D in_smooth;
 layout(binding = 2, r16f) writeonly uniform image2D out_dst;
-// A small effect for the codegen's golden tests: two passes, one variant with an exclusion.
+// A small effect for the codegen's golden tests: three passes (one skipped for a single tap, its
+// reader then aliased), two variants selected by a setting and an input, an exclusion, two presets.
 
 // Shared library code of the mini effect.
 float mini_twice(float x) { return 2.0 * x; }
@@ -21,9 +22,10 @@ layout(std140, binding = 0) uniform MiniParams {
 };
 
 
+
 void mini_second() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  float v = texelFetch(in_mid, p, 0).r;
+  float v = texelFetch(in_smooth, p, 0).r;
 #if FANCY
   v = sqrt(abs(v));
 #endif

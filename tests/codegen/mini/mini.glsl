@@ -1,18 +1,22 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// A small effect for the codegen's golden tests: two passes, one variant with an exclusion.
+// A small effect for the codegen's golden tests: three passes (one skipped for a single tap, its
+// reader then aliased), two variants selected by a setting and an input, an exclusion, two presets.
 #pragma sao effect mini version=2
 #pragma sao setting float strength default=0.5 range=[0,2] unit=m "How strong"
 #pragma sao setting int taps default=4 range=[1,16] "Taps per pixel"
 #pragma sao setting bool enabled default=true "Whether to run at all"
 #pragma sao constant int MINI_MAX_TAPS=16 "Upper bound of taps"
-#pragma sao variant FANCY values=[0,1] default=0 "Fancy path"
-#pragma sao variant EXTRA values=[0,1] "Extra input"
+#pragma sao variant FANCY values=[0,1] default=0 select=enabled "Fancy path"
+#pragma sao variant EXTRA values=[0,1] select=input:extra "Extra input"
 #pragma sao exclude FANCY=1 EXTRA=1 "not both"
 #pragma sao resource src kind=input format=depth "Input depth"
 #pragma sao resource extra kind=input format=rgba16f when=EXTRA "Extra input"
 #pragma sao resource mid kind=image format=r32f mips=auto "Intermediate chain"
+#pragma sao resource smooth kind=image format=r32f "Smoothed intermediate"
 #pragma sao resource dst kind=output format=r16f "Result"
+#pragma sao preset fast taps=1 enabled=false "One tap, plain path"
+#pragma sao preset best taps=16 strength=1.5 "All taps, stronger"
 
 #include "include/mini_lib.glsl"
 
@@ -37,10 +41,17 @@ void mini_first() {
 }
 #pragma sao end
 
-#pragma sao pass second entry=mini_second local=16x4 reads=mid writes=dst variants=FANCY "Finish"
+#pragma sao pass smoothing entry=mini_smooth local=8x8 reads=mid writes=smooth skip_when=taps==1 "Smooth (nothing to smooth with one tap)"
+void mini_smooth() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  imageStore(out_smooth, p, vec4(0.5 * (texelFetch(in_mid, p, 0).r + texelFetch(in_mid, p + ivec2(1, 0), 0).r)));
+}
+#pragma sao end
+
+#pragma sao pass second entry=mini_second local=16x4 reads=smooth writes=dst variants=FANCY alias_when=taps==1:smooth=mid "Finish"
 void mini_second() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  float v = texelFetch(in_mid, p, 0).r;
+  float v = texelFetch(in_smooth, p, 0).r;
 #if FANCY
   v = sqrt(abs(v));
 #endif

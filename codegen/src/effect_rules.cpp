@@ -1,0 +1,294 @@
+#include "effect_rules.h"
+
+#include <algorithm>
+#include <regex>
+#include <sstream>
+
+#include "text_values.h"
+
+namespace sao::codegen {
+namespace {
+
+int findSetting(const Effect& e, const std::string& name) {
+  for (size_t i = 0; i < e.settings.size(); ++i)
+    if (e.settings[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+int findResource(const Effect& e, const std::string& name) {
+  for (size_t i = 0; i < e.resources.size(); ++i)
+    if (e.resources[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+const char* typeName(ScalarType t) {
+  return t == ScalarType::Float ? "float" : t == ScalarType::Int ? "int" : "bool";
+}
+
+std::string valueText(const Setting& s, double v) {
+  if (s.type == ScalarType::Bool) return v != 0 ? "true" : "false";
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
+
+std::string rangeText(const Setting& s) {
+  return "[" + valueText(s, s.minValue) + "," + valueText(s, s.maxValue) + "]";
+}
+
+// A literal of the setting's type inside its range; `owner` starts each message.
+bool parseSettingValue(const Setting& s, const std::string& text, const SourceLoc& loc, const std::string& owner,
+                       double& out, Diagnostics& diags) {
+  bool ok = false;
+  if (s.type == ScalarType::Bool) {
+    ok = text == "true" || text == "false";
+    out = text == "true" ? 1 : 0;
+  } else if (s.type == ScalarType::Int) {
+    int v = 0;
+    ok = parseInt(text, v);
+    out = v;
+  } else {
+    ok = parseNumber(text, out);
+  }
+  if (!ok) {
+    diags.error(loc, owner + ": '" + text + "' is not a value of " + typeName(s.type) + " setting '" + s.name + "'" +
+                         (s.type == ScalarType::Bool ? " (true or false)" : ""));
+    return false;
+  }
+  if (out < s.minValue || out > s.maxValue) {
+    diags.error(loc, owner + ": " + text + " is outside the range " + rangeText(s) + " of setting '" + s.name + "'");
+    return false;
+  }
+  return true;
+}
+
+bool parseCondition(const Effect& e, const std::string& text, const SourceLoc& loc, const std::string& owner,
+                    SettingCondition& out, Diagnostics& diags) {
+  static const std::regex re(R"(^([A-Za-z_][A-Za-z0-9_]*)(==|!=|<=|>=|<|>)([^=<>!]+)$)");
+  std::smatch m;
+  if (!std::regex_match(text, m, re)) {
+    diags.error(loc, owner + " must be SETTING==VALUE (or !=, <, <=, >, >=), got '" + text + "'");
+    return false;
+  }
+  out.text = text;
+  out.setting = findSetting(e, m[1]);
+  if (out.setting < 0) {
+    diags.error(loc, owner + " names unknown setting '" + m[1].str() + "'");
+    return false;
+  }
+  const Setting& s = e.settings[out.setting];
+  if (s.type == ScalarType::Float) {
+    diags.error(loc, owner + " compares float setting '" + s.name + "': a condition takes an int or bool setting");
+    return false;
+  }
+  const std::string op = m[2];
+  out.op = op == "==" ? CompareOp::Eq : op == "!=" ? CompareOp::Ne : op == "<" ? CompareOp::Lt
+         : op == "<=" ? CompareOp::Le : op == ">" ? CompareOp::Gt : CompareOp::Ge;
+  if (s.type == ScalarType::Bool && out.op != CompareOp::Eq && out.op != CompareOp::Ne) {
+    diags.error(loc, owner + " orders bool setting '" + s.name + "': use == or !=");
+    return false;
+  }
+  return parseSettingValue(s, m[3], loc, owner, out.value, diags);
+}
+
+bool sameExtent(const Resource& a, const Resource& b) {
+  return a.inputExtent == b.inputExtent && a.scaleDenominator == b.scaleDenominator;
+}
+
+bool writes(const Pass& p, int r) { return std::find(p.writes.begin(), p.writes.end(), r) != p.writes.end(); }
+
+const ResourceAlias* aliasOf(const std::vector<ResourceAlias>& aliases, int declared) {
+  for (const auto& a : aliases)
+    if (a.declared == declared) return &a;
+  return nullptr;
+}
+
+}  // namespace
+
+void resolveVariantSelect(const Effect& e, Variant& v, const SourceLoc& loc, const std::string& text,
+                          Diagnostics& diags) {
+  const std::string prefix = "input:";
+  if (text.rfind(prefix, 0) == 0) {
+    const std::string name = text.substr(prefix.size());
+    const int r = findResource(e, name);
+    if (r < 0) {
+      diags.error(loc, "variant '" + v.name + "' is selected by undeclared resource '" + name + "'");
+      return;
+    }
+    const Resource& res = e.resources[r];
+    if (res.kind != ResourceKind::Input) {
+      diags.error(loc, "variant '" + v.name + "' is selected by resource '" + name +
+                           "', which is not kind=input (select=input: takes an input the user supplies)");
+      return;
+    }
+    if (res.whenVariant >= 0 && e.variants[res.whenVariant].name != v.name) {
+      diags.error(loc, "variant '" + v.name + "' is selected by input '" + name + "', which exists only when " +
+                           e.variants[res.whenVariant].name + " != 0");
+      return;
+    }
+    v.select = VariantSelect::Input;
+    v.selectIndex = r;
+  } else {
+    const int s = findSetting(e, text);
+    if (s < 0) {
+      diags.error(loc, "variant '" + v.name + "' is selected by unknown setting '" + text + "'");
+      return;
+    }
+    if (e.settings[s].type != ScalarType::Bool) {
+      diags.error(loc, "variant '" + v.name + "' is selected by " + typeName(e.settings[s].type) + " setting '" + text +
+                           "': select= takes a bool setting or input:RESOURCE");
+      return;
+    }
+    v.select = VariantSelect::Setting;
+    v.selectIndex = s;
+  }
+  const auto has = [&](int x) { return std::find(v.values.begin(), v.values.end(), x) != v.values.end(); };
+  if (!has(0) || !has(1)) {
+    diags.error(loc, "variant '" + v.name + "' is selected by '" + text +
+                         "', which gives 0 or 1, but its values do not include both");
+    v.select = VariantSelect::Default;
+    v.selectIndex = -1;
+  }
+}
+
+void resolvePassRules(const Effect& e, Pass& p, const SourceLoc& loc, const std::string* skipWhen,
+                      const std::string* aliasWhen, Diagnostics& diags) {
+  if (skipWhen) {
+    SettingCondition c;
+    if (parseCondition(e, *skipWhen, loc, "skip_when of pass '" + p.name + "'", c, diags)) p.skipWhen = c;
+  }
+  if (!aliasWhen) return;
+  const std::string owner = "alias_when of pass '" + p.name + "'";
+  const size_t colon = aliasWhen->find(':');
+  if (colon == std::string::npos) {
+    diags.error(loc, owner + " must be CONDITION:RESOURCE=RESOURCE[,...], got '" + *aliasWhen + "'");
+    return;
+  }
+  SettingCondition c;
+  if (!parseCondition(e, aliasWhen->substr(0, colon), loc, owner, c, diags)) return;
+  std::vector<ResourceAlias> aliases;
+  for (const auto& pair : splitList(aliasWhen->substr(colon + 1))) {
+    const auto names = splitList(pair, '=');
+    if (names.size() != 2) {
+      diags.error(loc, owner + ": '" + pair + "' is not DECLARED=SERVING");
+      return;
+    }
+    ResourceAlias a{findResource(e, names[0]), findResource(e, names[1])};
+    for (int i = 0; i < 2; ++i)
+      if ((i ? a.serving : a.declared) < 0) {
+        diags.error(loc, owner + " names undeclared resource '" + names[i] + "'");
+        return;
+      }
+    const Resource& from = e.resources[a.declared];
+    const Resource& to = e.resources[a.serving];
+    std::string why;
+    if (std::find(p.reads.begin(), p.reads.end(), a.declared) == p.reads.end())
+      why = "replaces '" + from.name + "', which the pass does not read";
+    else if (aliasOf(aliases, a.declared))
+      why = "replaces '" + from.name + "' twice";
+    else if (a.serving == a.declared)
+      why = "serves '" + from.name + "' by itself";
+    else if (to.kind == ResourceKind::Output)
+      why = "serves '" + from.name + "' from output resource '" + to.name + "' (passes do not read outputs)";
+    else if (to.format != from.format)
+      why = "serves '" + from.name + "' (" + from.format + ") from '" + to.name + "' (" + to.format + "): the formats differ";
+    else if (!sameExtent(from, to))
+      why = "serves '" + from.name + "' from '" + to.name + "': their extents differ";
+    else if (to.whenVariant >= 0 &&
+             std::find(p.variants.begin(), p.variants.end(), to.whenVariant) == p.variants.end())
+      why = "serves '" + from.name + "' from '" + to.name + "', which exists only when " +
+            e.variants[to.whenVariant].name + " != 0, but the pass does not list that variant in variants=";
+    if (!why.empty()) {
+      diags.error(loc, owner + " " + why);
+      return;
+    }
+    aliases.push_back(a);
+  }
+  p.aliasWhen = c;
+  p.aliases = aliases;
+}
+
+void checkPassRules(const Effect& e, Diagnostics& diags) {
+  for (size_t i = 0; i < e.passes.size(); ++i) {
+    const Pass& p = e.passes[i];
+    if (p.skipWhen)
+      for (int r : p.writes)
+        if (e.resources[r].kind == ResourceKind::Output)
+          diags.error(p.loc, "pass '" + p.name + "' writes output '" + e.resources[r].name + "' but has skip_when=" +
+                                 p.skipWhen->text + ": the output would be left unwritten");
+    // Each alias stands in for a skipped earlier writer, from a resource an earlier pass writes anyway.
+    for (const auto& a : p.aliases) {
+      bool skippedWriter = false, servingWritten = e.resources[a.serving].kind == ResourceKind::Input;
+      for (size_t j = 0; j < i; ++j) {
+        const Pass& w = e.passes[j];
+        if (writes(w, a.declared) && w.skipWhen && *w.skipWhen == *p.aliasWhen) skippedWriter = true;
+        if (writes(w, a.serving) && !(w.skipWhen && *w.skipWhen == *p.aliasWhen)) servingWritten = true;
+      }
+      if (!skippedWriter)
+        diags.error(p.loc, "alias_when of pass '" + p.name + "' serves '" + e.resources[a.declared].name + "' when " +
+                               p.aliasWhen->text + ", but no earlier pass that writes it is skipped then");
+      else if (!servingWritten)
+        diags.error(p.loc, "alias_when of pass '" + p.name + "' serves '" + e.resources[a.declared].name + "' from '" +
+                               e.resources[a.serving].name + "', which no earlier pass writes when " +
+                               p.aliasWhen->text);
+    }
+    // A read whose earlier writers can all be skipped needs an alias for the last one's condition.
+    for (int r : p.reads) {
+      const Pass* last = nullptr;
+      bool always = false;
+      for (size_t j = 0; j < i; ++j) {
+        if (!writes(e.passes[j], r)) continue;
+        if (!e.passes[j].skipWhen) always = true;
+        last = &e.passes[j];
+      }
+      if (!last || always) continue;
+      if (p.aliasWhen && *p.aliasWhen == *last->skipWhen && aliasOf(p.aliases, r)) continue;
+      diags.error(p.loc, "pass '" + p.name + "' reads '" + e.resources[r].name + "', which pass '" + last->name +
+                             "' does not write when " + last->skipWhen->text + "; add alias_when=" +
+                             last->skipWhen->text + ":" + e.resources[r].name + "=RESOURCE to pass '" + p.name + "'");
+    }
+  }
+}
+
+void parsePreset(Effect& e, const SourceLoc& loc, const std::vector<std::string>& words,
+                 const std::vector<std::pair<std::string, std::string>>& attrs, const std::string& doc,
+                 bool hasDoc, Diagnostics& diags) {
+  static const std::regex nameRe("^[a-z][a-z0-9_]*$");
+  if (words.size() != 1 || !std::regex_match(words[0], nameRe)) {
+    diags.error(loc, "expected '#pragma sao preset NAME SETTING=VALUE ... \"summary\"' with NAME in lower case "
+                     "(the C++ enumerator upper-cases its first letter)");
+    return;
+  }
+  Preset p;
+  p.loc = loc;
+  p.name = words[0];
+  p.doc = doc;
+  for (const auto& other : e.presets)
+    if (other.name == p.name) {
+      diags.error(loc, "duplicate preset '" + p.name + "' (first declared at line " + std::to_string(other.loc.line) + ")");
+      return;
+    }
+  if (!hasDoc || doc.empty()) {
+    diags.error(loc, "preset '" + p.name + "' has no \"summary\"");
+    return;
+  }
+  const std::string owner = "preset '" + p.name + "'";
+  for (const auto& [name, text] : attrs) {
+    const int s = findSetting(e, name);
+    if (s < 0) {
+      diags.error(loc, owner + " sets unknown setting '" + name + "'");
+      return;
+    }
+    for (const auto& [other, value] : p.values)
+      if (other == s) {
+        diags.error(loc, owner + " sets '" + name + "' twice");
+        return;
+      }
+    double v = 0;
+    if (!parseSettingValue(e.settings[s], text, loc, owner, v, diags)) return;
+    p.values.emplace_back(s, v);
+  }
+  e.presets.push_back(p);
+}
+
+}  // namespace sao::codegen
