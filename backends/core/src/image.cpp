@@ -4,7 +4,13 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <limits>
+
+// Imath's half conversions, header only: without the lookup table half -> float is bit
+// arithmetic, so sao::core (and the gl and vulkan components that link it) references no Imath
+// symbol and its package needs no Imath. The C functions (static inline), not Imath::half, whose
+// inline members would differ from those of a program built with the table (an ODR clash).
+#define IMATH_HALF_NO_LOOKUP_TABLE
+#include <Imath/half.h>
 
 namespace sao {
 
@@ -42,53 +48,19 @@ double DepthImage::value(std::uint32_t x, std::uint32_t y) const {
   return decodeDepth(format, texels[std::size_t(y) * extent.width + x]);
 }
 
+// Imath's float -> binary16 rounds to nearest even, overflows to +-Inf and keeps subnormals, as a
+// GPU's rgba16f does. NaN is handled here: Imath keeps (part of) its payload, and the contract in
+// sao/image.h is a quiet NaN.
 float quantizeHalf(float x) {
-  if (!std::isfinite(x) || x == 0.0f) return x;
-  const float a = std::fabs(x);
-  int e = 0;
-  (void)std::frexp(a, &e);              // a = f * 2^e, f in [0.5, 1)
-  const int q = std::max(e - 11, -24);  // log2 of the binary16 spacing at a
-  const float t = std::ldexp(a, -q);    // exact: a power-of-two scaling
-  float r = std::floor(t);
-  const float frac = t - r;             // exact
-  if (frac > 0.5f || (frac == 0.5f && std::fmod(r, 2.0f) != 0.0f)) r += 1.0f;
-  float v = std::ldexp(r, q);
-  if (v > 65504.0f) v = std::numeric_limits<float>::infinity();
-  return std::copysign(v, x);
+  if (std::isnan(x)) return x;
+  return imath_half_to_float(imath_float_to_half(x));
 }
 
 std::uint16_t halfBits(float x) {
-  const std::uint16_t sign = std::uint16_t((std::bit_cast<std::uint32_t>(x) >> 16) & 0x8000u);
-  if (std::isnan(x)) return std::uint16_t(sign | 0x7E00u);
-  const float a = std::fabs(quantizeHalf(x));
-  if (std::isinf(a)) return std::uint16_t(sign | 0x7C00u);
-  if (a < 0x1p-14f) return std::uint16_t(sign | std::uint16_t(a * 0x1p24f));  // subnormal: a / 2^-24, exact
-  int e = 0;
-  const float f = std::frexp(a, &e);  // a = f * 2^e = (2f) * 2^(e-1), f in [0.5, 1)
-  const auto mantissa = std::uint32_t(f * 2048.0f) - 1024u;  // exact: a has at most 11 significant bits
-  return std::uint16_t(sign | (std::uint32_t(e - 1 + 15) << 10) | mantissa);
+  if (std::isnan(x)) return std::uint16_t(((std::bit_cast<std::uint32_t>(x) >> 16) & 0x8000u) | 0x7E00u);
+  return imath_float_to_half(x);
 }
 
-float halfToFloat(std::uint16_t h) {
-  const std::uint32_t sign = (h & 0x8000u) << 16;
-  std::uint32_t exp = (h >> 10) & 0x1f, mant = h & 0x3ffu;
-  std::uint32_t bits;
-  if (exp == 0) {
-    if (mant == 0) bits = sign;
-    else {  // subnormal: normalise
-      int e = -1;
-      do {
-        ++e;
-        mant <<= 1;
-      } while (!(mant & 0x400u));
-      bits = sign | std::uint32_t(127 - 15 - e) << 23 | (mant & 0x3ffu) << 13;
-    }
-  } else if (exp == 31) {
-    bits = sign | 0x7f800000u | mant << 13;
-  } else {
-    bits = sign | (exp + 112) << 23 | mant << 13;
-  }
-  return std::bit_cast<float>(bits);
-}
+float halfToFloat(std::uint16_t bits) { return imath_half_to_float(bits); }
 
 }  // namespace sao

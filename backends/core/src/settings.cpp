@@ -31,19 +31,20 @@ std::string rangeText(const SettingInfo& info) {
 // `v` is a value already stored in Settings: a float setting then also accepts the float nearest
 // each bound (0.01 is stored as 0.0099999998f, 0.1 as 0.100000001f).
 Status checkValue(const SettingInfo& info, double v, bool exactBounds) {
-  const std::string where = "setting '" + std::string(info.name) + "' ";
-  if (std::isnan(v)) return Status::error(StatusCode::InvalidSetting, where + "is NaN; allowed range " + rangeText(info));
+  // Built only for an error: a steady render() allocates nothing.
+  auto where = [&] { return "setting '" + std::string(info.name) + "' "; };
+  if (std::isnan(v)) return Status::error(StatusCode::InvalidSetting, where() + "is NaN; allowed range " + rangeText(info));
   if (std::isinf(v))
     return Status::error(StatusCode::InvalidSetting,
-                         where + "is " + (v > 0 ? "+inf" : "-inf") + "; allowed range " + rangeText(info));
+                         where() + "is " + (v > 0 ? "+inf" : "-inf") + "; allowed range " + rangeText(info));
   if (info.type != gen::SettingType::Float && v != std::floor(v))
-    return Status::error(StatusCode::InvalidSetting, where + "= " + describe(v) + " is not a whole number");
+    return Status::error(StatusCode::InvalidSetting, where() + "= " + describe(v) + " is not a whole number");
   const bool widen = !exactBounds && info.type == gen::SettingType::Float;
   const double lo = widen ? std::fmin(info.minValue, double(float(info.minValue))) : info.minValue;
   const double hi = widen ? std::fmax(info.maxValue, double(float(info.maxValue))) : info.maxValue;
   if (v < lo || v > hi)
     return Status::error(StatusCode::InvalidSetting,
-                         where + "= " + describe(v) + " is outside its range " + rangeText(info) +
+                         where() + "= " + describe(v) + " is outside its range " + rangeText(info) +
                              (info.unit.empty() ? "" : " " + std::string(info.unit)));
   return Status::success();
 }

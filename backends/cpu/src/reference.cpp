@@ -12,7 +12,8 @@
 #include <type_traits>
 
 #include "kernels.h"
-#include "parallel.h"
+#include "sao/schedule.h"
+#include "sao/cpu/parallel.h"
 
 namespace sao::cpu {
 
@@ -91,30 +92,21 @@ class Pipeline {
     zHierarchy_ = plan.variants[variantIndex(gen::VariantId::Z_HIERARCHY)] != 0;
   }
 
+  // Runs the schedule's dispatches in order (sao/schedule.h); images are plain arrays, so its
+  // hazards need nothing here.
   Status execute(Result& out, bool measureTime) {
     if (measureTime) out.timings.method = TimingMethod::CpuClock;
-    for (const PlannedPass& pass : plan_.passes) {
-      const auto start = std::chrono::steady_clock::now();
-      switch (pass.pass) {
-        case gen::PassId::linear_z: linearZ(); break;
-        case gen::PassId::mips:
-          for (std::uint32_t m = 1; m <= pass.dispatchCount; ++m) mips(static_cast<int>(m));
-          break;
-        case gen::PassId::ao_sample:
-          if (Status st = aoSample(); !st) return st;
-          break;
-        case gen::PassId::blur_h:
-          blur(source(pass, gen::ResourceId::ao_raw), aoBlurH_, 1, 0, false);
-          haveBlurH_ = true;
-          break;
-        case gen::PassId::blur_v: blur(source(pass, gen::ResourceId::ao_blur_h), ao_, 0, 1, true); break;
-        default:
-          return invalid("the plan holds pass '" + std::string(gen::pass(pass.pass).name) +
-                         "', which the CPU reference does not implement");
-      }
-      if (measureTime) {
-        const std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - start;
-        out.timings.passes.push_back({std::string(gen::pass(pass.pass).name), ms.count()});
+    const Schedule schedule = makeSchedule(plan_);
+    auto start = std::chrono::steady_clock::now();
+    for (std::size_t i = 0; i < schedule.dispatches.size(); ++i) {
+      const ScheduledDispatch& d = schedule.dispatches[i];
+      if (Status st = run(d, schedule.bindingsOf(d)); !st) return st;
+      const bool lastOfPass = i + 1 == schedule.dispatches.size() || schedule.dispatches[i + 1].passIndex != d.passIndex;
+      if (measureTime && lastOfPass) {
+        const auto now = std::chrono::steady_clock::now();
+        const std::chrono::duration<double, std::milli> ms = now - start;
+        out.timings.passes.push_back({std::string(gen::pass(d.pass).name), ms.count()});
+        start = now;
       }
     }
     for (const auto& level : csz_) out.csz.push_back(toFloatImage(level));
@@ -126,9 +118,28 @@ class Pipeline {
   }
 
  private:
-  // The image that serves `declared` in `pass` (a dropped pass's output is aliased by the plan).
-  const Image<T>& source(const PlannedPass& pass, gen::ResourceId declared) const {
-    return plan_.resolve(pass, declared) == gen::ResourceId::ao_raw ? aoRaw_ : aoBlurH_;
+  Status run(const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
+    switch (d.pass) {
+      case gen::PassId::linear_z: linearZ(); break;
+      case gen::PassId::mips: mips(static_cast<int>(d.level)); break;
+      case gen::PassId::ao_sample: return aoSample();
+      case gen::PassId::blur_h:
+        blur(readImage(bindings), aoBlurH_, 1, 0, false);
+        haveBlurH_ = true;
+        break;
+      case gen::PassId::blur_v: blur(readImage(bindings), ao_, 0, 1, true); break;
+      default:
+        return invalid("the plan holds pass '" + std::string(gen::pass(d.pass).name) +
+                       "', which the CPU reference does not implement");
+    }
+    return Status::success();
+  }
+
+  // The (A, key) image a blur dispatch reads: its sampled binding, aliases already resolved.
+  const Image<T>& readImage(std::span<const ScheduledBinding> bindings) const {
+    for (const ScheduledBinding& b : bindings)
+      if (!b.write) return b.resource == gen::ResourceId::ao_raw ? aoRaw_ : aoBlurH_;
+    return aoRaw_;
   }
 
   // Pass linear_z: one invocation per depth texel.
@@ -350,8 +361,7 @@ Status run(const Settings& settings, const Camera& camera, const Inputs& inputs,
   out = Result{};
   Result r;
   if (Status st = validateAndPlan(settings, camera, inputs, r); !st) return st;
-  unsigned threads = options.threads != 0 ? options.threads : std::thread::hardware_concurrency();
-  if (threads == 0) threads = 1;
+  const unsigned threads = threadCount(options.threads);
   try {
     Status st;
     const bool timed = options.measureTime;

@@ -1,7 +1,5 @@
 #include "dispatch.h"
 
-#include <algorithm>
-
 namespace sao::gl::detail {
 
 GLuint textureFor(const PassResources& r, gen::ResourceId id) {
@@ -16,6 +14,25 @@ GLuint textureFor(const PassResources& r, gen::ResourceId id) {
   return r.owned->texture(id);
 }
 
+GLbitfield barrierBits(std::span<const Hazard> hazards) {
+  GLbitfield bits = 0;
+  for (const Hazard& h : hazards) switch (h.kind) {
+      // Texel fetches after the barrier see the image stores before it.
+      case HazardKind::ReadAfterWrite: bits |= GL_TEXTURE_FETCH_BARRIER_BIT; break;
+      // Image stores after the barrier wait for every access before it.
+      case HazardKind::WriteAfterRead:
+      case HazardKind::WriteAfterWrite: bits |= GL_SHADER_IMAGE_ACCESS_BARRIER_BIT; break;
+      // The caller's own shaders may have stored to an input.
+      case HazardKind::CallerWrote: bits |= GL_TEXTURE_FETCH_BARRIER_BIT; break;
+      // Whatever way the caller reads the result next.
+      case HazardKind::CallerReads:
+        bits |= GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                GL_FRAMEBUFFER_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT;
+        break;
+    }
+  return bits;
+}
+
 Status preparePrograms(Programs& programs, const Plan& plan, std::vector<GLuint>& out, std::uint64_t& compiled) {
   out.assign(plan.passes.size(), 0);
   for (std::size_t i = 0; i < plan.passes.size(); ++i) {
@@ -27,60 +44,45 @@ Status preparePrograms(Programs& programs, const Plan& plan, std::vector<GLuint>
 
 namespace {
 
-GLuint divUp(std::uint32_t n, std::uint32_t d) { return GLuint((n + d - 1) / d); }
-
-Extent levelExtent(Extent e, std::uint32_t level) {
-  return {std::max(1u, e.width >> level), std::max(1u, e.height >> level)};
+void barrier(const GlFunctions& gl, std::span<const Hazard> hazards) {
+  if (const GLbitfield bits = barrierBits(hazards)) gl.MemoryBarrier(bits);
 }
 
-// Level-0 extent of the image serving `id`.
-Extent extentOf(const Plan& plan, gen::ResourceId id) {
-  if (const PlannedImage* img = plan.image(id)) return img->extent;
-  const auto& info = gen::kResources[static_cast<std::size_t>(id)];
-  return info.inputExtent ? plan.inputExtent : plan.aoExtent;
+void bind(const GlFunctions& gl, const PassResources& r, const ScheduledBinding& b) {
+  const GLuint texture = textureFor(r, b.resource);
+  if (b.write) {
+    const GLenum format = glFormat(gen::kResources[static_cast<std::size_t>(b.resource)].format);
+    gl.BindImageTexture(b.binding, texture, GLint(b.baseLevel), GL_FALSE, 0, GL_WRITE_ONLY, format);
+    return;
+  }
+  GLuint tex = texture, sampler = r.nearestSampler;
+  if (b.wholeChain) sampler = r.mipSampler;
+  else if (const GLuint view = r.owned->levelView(b.resource, b.baseLevel)) tex = view;  // one level of a chain
+  gl.ActiveTexture(GL_TEXTURE0 + b.binding);
+  gl.BindTexture(GL_TEXTURE_2D, tex);
+  gl.BindSampler(b.binding, sampler);
 }
 
 }  // namespace
 
-void dispatchPasses(const GlFunctions& gl, const Plan& plan, const std::vector<GLuint>& programs,
-                    const PassResources& r, PassTimer& timer) {
-  constexpr GLbitfield kBetweenPasses = GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT;
-  for (std::size_t i = 0; i < plan.passes.size(); ++i) {
-    const PlannedPass& p = plan.passes[i];
-    const gen::PassInfo& info = gen::pass(p.pass);
-    timer.beginPass(info.name);
-    gl.UseProgram(programs[i]);
-    for (std::uint32_t d = 0; d < p.dispatchCount; ++d) {
-      const std::uint32_t level = info.perMip ? d + 1 : 0;  // level written
-      Extent size{};
-      bool haveSize = false;
-      for (const gen::BindingInfo& b : p.variant->bindings) {
-        const gen::ResourceId id = plan.resolve(p, b.resource);
-        if (b.write) {
-          const GLenum format = glFormat(gen::kResources[static_cast<std::size_t>(id)].format);
-          gl.BindImageTexture(b.binding, textureFor(r, id), GLint(level), GL_FALSE, 0, GL_WRITE_ONLY, format);
-          if (!haveSize) {
-            size = levelExtent(extentOf(plan, id), level);
-            haveSize = true;
-          }
-        } else {
-          GLuint tex = textureFor(r, id);
-          GLuint sampler = r.nearestSampler;
-          if (info.perMip) {
-            tex = r.owned->levelView(id, level - 1);  // level m-1 alone, read at lod 0
-          } else if (const PlannedImage* img = plan.image(id); img && img->mipLevels > 1) {
-            sampler = r.mipSampler;
-          }
-          gl.ActiveTexture(GL_TEXTURE0 + b.binding);
-          gl.BindTexture(GL_TEXTURE_2D, tex);
-          gl.BindSampler(b.binding, sampler);
-        }
-      }
-      gl.DispatchCompute(divUp(size.width, info.localX), divUp(size.height, info.localY), 1);
-      gl.MemoryBarrier(kBetweenPasses);
+void runSchedule(const GlFunctions& gl, const Plan& plan, const Schedule& schedule, const std::vector<GLuint>& programs,
+                 const PassResources& r, PassTimer& timer) {
+  barrier(gl, schedule.entryHazards());
+  const ScheduledDispatch* previous = nullptr;
+  for (const ScheduledDispatch& d : schedule.dispatches) {
+    const bool newPass = !previous || previous->passIndex != d.passIndex;
+    if (newPass) {
+      if (previous) timer.endPass();
+      timer.beginPass(gen::pass(plan.passes[d.passIndex].pass).name);
+      gl.UseProgram(programs[d.passIndex]);
     }
-    timer.endPass();
+    barrier(gl, schedule.hazardsBefore(d));
+    for (const ScheduledBinding& b : schedule.bindingsOf(d)) bind(gl, r, b);
+    gl.DispatchCompute(d.groupsX, d.groupsY, 1);
+    previous = &d;
   }
+  if (previous) timer.endPass();
+  barrier(gl, schedule.exitHazards());
 }
 
 }  // namespace sao::gl::detail

@@ -1,6 +1,6 @@
-// Running the planned passes: bindings per pass variant from gen::PassVariantInfo::bindings
-// (binding N = texture unit N for samplers, image unit N for images), aliases from the plan,
-// per=mip passes once per level through single-level views, a barrier after every dispatch.
+// Running the schedule (sao/schedule.h): for each dispatch, its program, its resolved bindings
+// (binding N = texture unit N for sampled reads, image unit N for stores) and the memory barrier
+// its hazards need; the frame's entry and exit hazards around them.
 #pragma once
 #include <vector>
 
@@ -8,6 +8,7 @@
 #include "inputs.h"
 #include "programs.h"
 #include "resources.h"
+#include "sao/schedule.h"
 #include "timing.h"
 
 namespace sao::gl::detail {
@@ -15,17 +16,21 @@ namespace sao::gl::detail {
 struct PassResources {
   const Resources* owned = nullptr;
   const CheckedInputs* inputs = nullptr;
-  GLuint nearestSampler = 0;  // GL_NEAREST, compare mode none: inputs and single-level images
-  GLuint mipSampler = 0;      // GL_NEAREST_MIPMAP_NEAREST: MIP chains read at explicit lods
+  GLuint nearestSampler = 0;  // GL_NEAREST, compare mode none: inputs, single levels
+  GLuint mipSampler = 0;      // GL_NEAREST_MIPMAP_NEAREST: whole MIP chains read at explicit lods
 };
 
 // The texture that serves `id` (input, owned image or output), 0 if none.
 GLuint textureFor(const PassResources& r, gen::ResourceId id);
 
+// The glMemoryBarrier bits that resolve `hazards` (0: none needed).
+GLbitfield barrierBits(std::span<const Hazard> hazards);
+
 // Programs of every planned pass, compiled before anything is dispatched.
 Status preparePrograms(Programs& programs, const Plan& plan, std::vector<GLuint>& out, std::uint64_t& compiled);
 
-void dispatchPasses(const GlFunctions& gl, const Plan& plan, const std::vector<GLuint>& programs,
-                    const PassResources& r, PassTimer& timer);
+// Entry barrier, every dispatch, exit barrier. Allocates nothing (the timer reuses its storage).
+void runSchedule(const GlFunctions& gl, const Plan& plan, const Schedule& schedule, const std::vector<GLuint>& programs,
+                 const PassResources& r, PassTimer& timer);
 
 }  // namespace sao::gl::detail

@@ -31,7 +31,15 @@ struct __attribute__((visibility("hidden"))) Effect::Impl {
   GLuint scratchUnit = 1;
   bool haveParams = false;
   ParamBlock uploaded{};
+  // The configuration last rendered, and what was derived from it: render() plans, schedules and
+  // prepares programs and images only when settings, camera or inputs change.
+  bool planned = false;
+  Settings plannedSettings;
+  Camera plannedCamera;
+  PlanInputs plannedInputs;
   Plan plan;
+  Schedule schedule;
+  std::vector<GLuint> passPrograms;  // per planned pass
   ParamBlock params{};
   Timings timings;
   Stats stats;
@@ -91,6 +99,9 @@ Status Effect::Impl::checkLimits() {
   }
   textureUnits.assign(tex.begin(), tex.end());
   imageUnits.assign(img.begin(), img.end());
+  if (textureUnits.size() > StateGuard::kMaxUnits || imageUnits.size() > StateGuard::kMaxUnits)
+    return Status::error(StatusCode::DriverError, "sao::gl: the effect binds more units than the state guard saves (" +
+                                                      std::to_string(StateGuard::kMaxUnits) + ")");
   if (textureUnits.empty()) textureUnits.push_back(1);
   scratchUnit = textureUnits.front();
   const GLint highestTexture = GLint(*std::max_element(textureUnits.begin(), textureUnits.end()));
@@ -189,18 +200,32 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
 
   CheckedInputs checked;
   if (Status st = checkInputs(gl, scratchUnit, inputs, checked); !st) return st;
+  // A new configuration is planned into these (and committed at the end); an unchanged one
+  // reuses what the last render derived, so a steady frame allocates nothing.
+  const bool replan = !planned || !(settings == plannedSettings) || !(camera == plannedCamera) ||
+                      !(checked.planInputs == plannedInputs);
   Plan newPlan;
-  if (Status st = sao::plan(settings, camera, checked.planInputs, newPlan); !st) return st;
-  if (Status st = checkExtents(checked, newPlan); !st) return st;
+  Schedule newSchedule;
+  std::vector<GLuint> newPrograms;
+  if (replan) {
+    planned = false;  // until the new configuration is committed: images may change on the way
+    if (Status st = sao::plan(settings, camera, checked.planInputs, newPlan); !st) return st;
+    newSchedule = makeSchedule(newPlan);
+  }
+  const Plan& p = replan ? newPlan : plan;
+  const Schedule& s = replan ? newSchedule : schedule;
+  if (Status st = checkSupplied(p, supplied(checked), checked.planInputs.userOutput, "sao::gl"); !st) return st;
   ParamBlock block{};
   if (Status st = computeConstants(settings, camera, checked.planInputs.depthEncoding, block); !st) return st;
-  if (newPlan.inputExtent.width > std::uint32_t(maxTextureSize) || newPlan.inputExtent.height > std::uint32_t(maxTextureSize))
-    return Status::error(StatusCode::InvalidExtent, "sao::gl: the depth input " + std::to_string(newPlan.inputExtent.width) +
-                                                        "x" + std::to_string(newPlan.inputExtent.height) +
-                                                        " exceeds GL_MAX_TEXTURE_SIZE " + std::to_string(maxTextureSize));
-  std::vector<GLuint> passPrograms;
-  if (Status st = preparePrograms(*programs, newPlan, passPrograms, stats.programsCompiled); !st) return st;
-  if (Status st = resources->update(newPlan, scratchUnit, maxTextureSize, stats.textureAllocations); !st) return st;
+  if (replan) {
+    if (p.inputExtent.width > std::uint32_t(maxTextureSize) || p.inputExtent.height > std::uint32_t(maxTextureSize))
+      return Status::error(StatusCode::InvalidExtent, "sao::gl: the depth input " + std::to_string(p.inputExtent.width) +
+                                                          "x" + std::to_string(p.inputExtent.height) +
+                                                          " exceeds GL_MAX_TEXTURE_SIZE " + std::to_string(maxTextureSize));
+    if (Status st = preparePrograms(*programs, p, newPrograms, stats.programsCompiled); !st) return st;
+    if (Status st = resources->update(p, scratchUnit, maxTextureSize, stats.textureAllocations); !st) return st;
+  }
+  const std::vector<GLuint>& programsOfPlan = replan ? newPrograms : passPrograms;
 
   // Texture parameters of the caller's textures that would change what texelFetch returns or
   // whether an image store lands (restored before the StateGuard restores the bindings).
@@ -219,18 +244,13 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
   gl.BindBufferBase(GL_UNIFORM_BUFFER, gen::kParamBlockBinding, ubo);
 
   PassResources r{resources.get(), &checked, nearestSampler, mipSampler};
-  // Work of the caller's own shaders on the inputs (image stores) becomes visible to the passes.
-  gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   timer->beginFrame(options.measureTime);
-  dispatchPasses(gl, newPlan, passPrograms, r, *timer);
+  runSchedule(gl, p, s, programsOfPlan, r, *timer);
   if (!timer->endFrame(timings)) {  // GPU timers saw nothing: measure the same work again by clock
     timer->beginFrame(true);
-    dispatchPasses(gl, newPlan, passPrograms, r, *timer);
+    runSchedule(gl, p, s, programsOfPlan, r, *timer);
     timer->endFrame(timings);
   }
-  // Whatever way the caller reads the result next.
-  gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
-                   GL_FRAMEBUFFER_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
 
   for (std::size_t i = 0; i < served.size(); ++i) {
     const auto id = static_cast<gen::ResourceId>(i);
@@ -238,7 +258,15 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
     served[i] = kind == gen::ResourceKind::Input ? 0 : textureFor(r, id);
   }
   aoTexture = textureFor(r, gen::ResourceId::ao);
-  plan = std::move(newPlan);
+  if (replan) {
+    plan = std::move(newPlan);
+    schedule = std::move(newSchedule);
+    passPrograms = std::move(newPrograms);
+    plannedSettings = settings;
+    plannedCamera = camera;
+    plannedInputs = checked.planInputs;
+    planned = true;
+  }
   params = block;
   ++stats.renders;
   return Status::success();

@@ -5,23 +5,22 @@
 namespace sao::gl::detail {
 namespace {
 
-std::string size(Extent e) { return std::to_string(e.width) + "x" + std::to_string(e.height); }
-
 Status inspect(const GlFunctions& gl, GLuint unit, GLuint texture, const char* role, TextureInfo& out) {
-  const std::string who = std::string("sao::gl: the ") + role + " texture " + std::to_string(texture);
+  // Built only for an error: render() allocates nothing per frame.
+  auto who = [&] { return std::string("sao::gl: the ") + role + " texture " + std::to_string(texture); };
   if (texture == 0)
     return Status::error(StatusCode::InvalidInput, std::string("sao::gl: the ") + role + " texture is 0");
   if (!gl.IsTexture(texture))
-    return Status::error(StatusCode::InvalidInput, who + " is not a texture object (never bound, or deleted)");
+    return Status::error(StatusCode::InvalidInput, who() + " is not a texture object (never bound, or deleted)");
   if (gl.hasDsa) {
     GLint target = 0;
     gl.GetTextureParameteriv(texture, GL_TEXTURE_TARGET, &target);
     if (target == GL_TEXTURE_2D_MULTISAMPLE || target == GL_TEXTURE_2D_MULTISAMPLE_ARRAY)
-      return Status::error(StatusCode::UnsupportedFormat, who + " is multisampled (" + glEnumName(GLenum(target)) +
+      return Status::error(StatusCode::UnsupportedFormat, who() + " is multisampled (" + glEnumName(GLenum(target)) +
                                                               "); resolve it to a single-sample GL_TEXTURE_2D first "
                                                               "(glBlitFramebuffer of GL_DEPTH_BUFFER_BIT, GL_NEAREST)");
     if (target != GL_TEXTURE_2D)
-      return Status::error(StatusCode::InvalidInput, who + " is a " + glEnumName(GLenum(target)) +
+      return Status::error(StatusCode::InvalidInput, who() + " is a " + glEnumName(GLenum(target)) +
                                                          "; the effect reads and writes GL_TEXTURE_2D level 0");
   }
   // Without DSA (GL 4.3 / 4.4) the target cannot be queried without binding: a texture of another
@@ -35,7 +34,7 @@ Status inspect(const GlFunctions& gl, GLuint unit, GLuint texture, const char* r
   gl.GetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
   if (GLuint(bound) != texture)
     return Status::error(StatusCode::InvalidInput,
-                         who + " cannot be bound as GL_TEXTURE_2D (multisampled, an array, 3D or a cube map?); the "
+                         who() + " cannot be bound as GL_TEXTURE_2D (multisampled, an array, 3D or a cube map?); the "
                                "effect reads and writes GL_TEXTURE_2D level 0 (resolve multisampled depth first)");
   GLint format = 0, w = 0, h = 0, stencil = 0;
   gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
@@ -43,7 +42,7 @@ Status inspect(const GlFunctions& gl, GLuint unit, GLuint texture, const char* r
   gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &h);
   gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_STENCIL_SIZE, &stencil);
   gl.BindTexture(GL_TEXTURE_2D, 0);
-  if (w <= 0 || h <= 0) return Status::error(StatusCode::InvalidInput, who + " has no level 0 image");
+  if (w <= 0 || h <= 0) return Status::error(StatusCode::InvalidInput, who() + " has no level 0 image");
   out.texture = texture;
   out.internalFormat = GLenum(format);
   out.hasStencil = stencil > 0;
@@ -79,15 +78,15 @@ bool isNormalFormat(GLenum f) {
 Status depthInput(const GlFunctions& gl, GLuint unit, const DepthInput& in, const char* role, TextureInfo& out,
                   DepthEncoding& encoding) {
   if (Status st = inspect(gl, unit, in.texture, role, out); !st) return st;
-  const std::string who = std::string("sao::gl: the ") + role + " texture " + std::to_string(in.texture);
+  auto who = [&] { return std::string("sao::gl: the ") + role + " texture " + std::to_string(in.texture); };
   const GLenum f = out.internalFormat;
   if (!isHardwareDepth(f) && f != GL_R32F)
     return Status::error(StatusCode::UnsupportedFormat,
-                         who + " is " + glEnumName(f) +
+                         who() + " is " + glEnumName(f) +
                              "; depth must be GL_DEPTH_COMPONENT16/24/32F, GL_DEPTH24_STENCIL8, "
                              "GL_DEPTH32F_STENCIL8 or GL_R32F (linear camera-space z)");
   if (in.internalFormat != 0 && in.internalFormat != f)
-    return Status::error(StatusCode::InvalidInput, who + " was declared " + glEnumName(in.internalFormat) +
+    return Status::error(StatusCode::InvalidInput, who() + " was declared " + glEnumName(in.internalFormat) +
                                                        " but its level 0 is " + glEnumName(f));
   encoding = f == GL_R32F ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
   return Status::success();
@@ -140,24 +139,16 @@ Status checkInputs(const GlFunctions& gl, GLuint unit, const Inputs& inputs, Che
   return Status::success();
 }
 
-Status checkExtents(const CheckedInputs& in, const Plan& plan) {
-  const std::string expected = size(plan.inputExtent) + " (the viewport " + size(plan.aoExtent) +
-                               " plus twice the guard band " +
-                               std::to_string((plan.inputExtent.width - plan.aoExtent.width) / 2) + ")";
-  auto input = [&](const TextureInfo& t, const char* role) {
-    if (t.texture == 0 || t.extent == plan.inputExtent) return Status::success();
-    return Status::error(StatusCode::InvalidInput, std::string("sao::gl: the ") + role + " texture " +
-                                                       std::to_string(t.texture) + " is " + size(t.extent) +
-                                                       ", the camera needs " + expected);
+SuppliedImages supplied(const CheckedInputs& in) {
+  SuppliedImages images{};
+  auto add = [&](gen::ResourceId id, const TextureInfo& t) {
+    images[static_cast<std::size_t>(id)] = {t.texture != 0, t.extent};
   };
-  if (Status st = input(in.depth, "depth"); !st) return st;
-  if (Status st = input(in.depth2, "second-layer depth"); !st) return st;
-  if (Status st = input(in.normals, "normals"); !st) return st;
-  if (in.output.texture != 0 && !(in.output.extent == plan.aoExtent))
-    return Status::error(StatusCode::InvalidInput, "sao::gl: the output texture " + std::to_string(in.output.texture) +
-                                                       " is " + size(in.output.extent) + ", the viewport is " +
-                                                       size(plan.aoExtent));
-  return Status::success();
+  add(gen::ResourceId::depth, in.depth);
+  add(gen::ResourceId::depth2, in.depth2);
+  add(gen::ResourceId::normals, in.normals);
+  add(gen::ResourceId::ao, in.output);
+  return images;
 }
 
 }  // namespace sao::gl::detail

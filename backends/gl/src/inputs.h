@@ -2,7 +2,7 @@
 // (glGetTexLevelParameteriv on level 0), never taken on trust.
 #pragma once
 #include "gl_functions.h"
-#include "sao/plan.h"
+#include "sao/schedule.h"
 
 namespace sao::gl::detail {
 
@@ -22,8 +22,7 @@ struct CheckedInputs {
 // saves) and derives the plan inputs. InvalidInput / UnsupportedFormat naming the texture's role.
 Status checkInputs(const GlFunctions& gl, GLuint scratchUnit, const Inputs& inputs, CheckedInputs& out);
 
-// Sizes against the plan: depth, depth2 and normals must be the input extent (viewport + 2 guard
-// band), the output the AO extent.
-Status checkExtents(const CheckedInputs& in, const Plan& plan);
+// The textures as sao::checkSupplied sees them (sizes against the plan are checked there).
+SuppliedImages supplied(const CheckedInputs& in);
 
 }  // namespace sao::gl::detail

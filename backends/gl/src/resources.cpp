@@ -1,5 +1,7 @@
 #include "resources.h"
 
+#include "sao/schedule.h"
+
 #include <string>
 
 namespace sao::gl::detail {
@@ -45,7 +47,7 @@ Status Resources::update(const Plan& plan, GLuint scratchUnit, GLint maxTextureS
       continue;
     }
     const GLenum format = glFormat(img->format);
-    if (s.texture && s.format == format && s.extent == img->extent && s.levels == img->mipLevels) continue;
+    if (s.texture && sameImage(s.planned, *img)) continue;
     release(s);
     const std::string name = std::string(gen::kResources[r].name);
     if (format == 0)
@@ -71,8 +73,9 @@ Status Resources::update(const Plan& plan, GLuint scratchUnit, GLint maxTextureS
     gl_.BindTexture(GL_TEXTURE_2D, 0);
     const std::string label = "sao " + name;
     gl_.ObjectLabel(GL_TEXTURE, s.texture, GLsizei(label.size()), label.c_str());
-    // Views of single levels: the per=mip pass reads level m-1 as "lod 0" of a view.
-    for (std::uint32_t m = 0; m + 1 < img->mipLevels; ++m) {
+    // Views of single levels of a chain: a binding that sees one level (the per=mip pass reads
+    // level m-1) reads it as "lod 0" of a view.
+    for (std::uint32_t m = 0; img->mipLevels > 1 && m < img->mipLevels; ++m) {
       GLuint view = 0;
       gl_.GenTextures(1, &view);
       gl_.TextureView(view, GL_TEXTURE_2D, s.texture, format, m, 1, 0, 1);
@@ -92,9 +95,7 @@ Status Resources::update(const Plan& plan, GLuint scratchUnit, GLint maxTextureS
                                                         std::to_string(img->mipLevels) +
                                                         " levels) or its level views failed (out of memory?)");
     }
-    s.format = format;
-    s.extent = img->extent;
-    s.levels = img->mipLevels;
+    s.planned = *img;
   }
   return Status::success();
 }

@@ -1,5 +1,5 @@
 // The effect-owned textures, allocated from the plan: one immutable GL_TEXTURE_2D per planned
-// image (csz with its MIP levels) plus single-level views of the MIP chains for the per=mip pass.
+// image (csz with its MIP levels) plus single-level views of the MIP chains (bindings that see one level).
 #pragma once
 #include <array>
 #include <cstdint>
@@ -32,10 +32,8 @@ class Resources {
  private:
   struct Slot {
     GLuint texture = 0;
-    GLenum format = 0;
-    Extent extent;
-    std::uint32_t levels = 0;
-    std::vector<GLuint> views;  // views[m]: level m alone (m = 0 .. levels - 2)
+    PlannedImage planned;       // what the texture was allocated for
+    std::vector<GLuint> views;  // views[m]: level m alone (chains only)
   };
   const Slot& slot(gen::ResourceId id) const { return slots_[static_cast<std::size_t>(id)]; }
   void release(Slot& s);

@@ -11,16 +11,16 @@ StateGuard::StateGuard(const GlFunctions& gl, const std::vector<GLuint>& texture
   gl.GetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, 0, &uniformBuffer0_);
   gl.GetInteger64i_v(GL_UNIFORM_BUFFER_START, 0, &uniformStart0_);
   gl.GetInteger64i_v(GL_UNIFORM_BUFFER_SIZE, 0, &uniformSize0_);
-  textures_.reserve(textureUnits.size());
   for (GLuint u : textureUnits) {
+    if (textureCount_ == kMaxUnits) break;
     TextureUnit t{u, 0, 0};
     gl.ActiveTexture(GL_TEXTURE0 + u);
     gl.GetIntegerv(GL_TEXTURE_BINDING_2D, &t.texture2D);
     gl.GetIntegerv(GL_SAMPLER_BINDING, &t.sampler);
-    textures_.push_back(t);
+    textures_[textureCount_++] = t;
   }
-  images_.reserve(imageUnits.size());
   for (GLuint u : imageUnits) {
+    if (imageCount_ == kMaxUnits) break;
     ImageUnit i{u, 0, 0, 0, 0, GL_READ_ONLY, GL_R8};
     gl.GetIntegeri_v(GL_IMAGE_BINDING_NAME, u, &i.name);
     gl.GetIntegeri_v(GL_IMAGE_BINDING_LEVEL, u, &i.level);
@@ -28,16 +28,19 @@ StateGuard::StateGuard(const GlFunctions& gl, const std::vector<GLuint>& texture
     gl.GetIntegeri_v(GL_IMAGE_BINDING_LAYER, u, &i.layer);
     gl.GetIntegeri_v(GL_IMAGE_BINDING_ACCESS, u, &i.access);
     gl.GetIntegeri_v(GL_IMAGE_BINDING_FORMAT, u, &i.format);
-    images_.push_back(i);
+    images_[imageCount_++] = i;
   }
 }
 
 StateGuard::~StateGuard() {
   const GlFunctions& gl = gl_;
-  for (const ImageUnit& i : images_)
+  for (std::size_t k = 0; k < imageCount_; ++k) {
+    const ImageUnit& i = images_[k];
     gl.BindImageTexture(i.unit, GLuint(i.name), i.level, i.layered ? GL_TRUE : GL_FALSE, i.layer, GLenum(i.access),
                         GLenum(i.format));
-  for (const TextureUnit& t : textures_) {
+  }
+  for (std::size_t k = 0; k < textureCount_; ++k) {
+    const TextureUnit& t = textures_[k];
     gl.ActiveTexture(GL_TEXTURE0 + t.unit);
     gl.BindTexture(GL_TEXTURE_2D, GLuint(t.texture2D));
     gl.BindSampler(t.unit, GLuint(t.sampler));
@@ -64,7 +67,7 @@ void TextureParamGuard::apply(const GlFunctions& gl, GLuint unit, GLuint texture
     GLint current = 0;
     gl.GetTexParameteriv(GL_TEXTURE_2D, pname, &current);
     if (current == wanted) return;
-    changed_.push_back({pname, current});
+    changed_[changedCount_++] = {pname, current};
     gl.TexParameteri(GL_TEXTURE_2D, pname, wanted);
   };
   // texelFetch's lod is relative to the base level: read level 0 whatever the caller set.
@@ -76,15 +79,17 @@ void TextureParamGuard::apply(const GlFunctions& gl, GLuint unit, GLuint texture
 }
 
 void TextureParamGuard::restore() {
-  if (!gl_ || changed_.empty()) {
-    changed_.clear();
+  if (!gl_ || changedCount_ == 0) {
+    changedCount_ = 0;
     return;
   }
   const GlFunctions& gl = *gl_;
   gl.ActiveTexture(GL_TEXTURE0 + unit_);
   gl.BindTexture(GL_TEXTURE_2D, texture_);
-  for (auto it = changed_.rbegin(); it != changed_.rend(); ++it) gl.TexParameteri(GL_TEXTURE_2D, it->pname, it->saved);
-  changed_.clear();
+  while (changedCount_ > 0) {
+    const Param& p = changed_[--changedCount_];
+    gl.TexParameteri(GL_TEXTURE_2D, p.pname, p.saved);
+  }
 }
 
 }  // namespace sao::gl::detail

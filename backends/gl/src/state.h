@@ -1,5 +1,6 @@
 // Saving and restoring the caller's GL state around everything the effect does.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -13,6 +14,9 @@ namespace sao::gl::detail {
 // (generic and index 0, with its range).
 class StateGuard {
  public:
+  // Units it can save: fixed storage, so that render() allocates nothing (create() checks the
+  // effect's units fit).
+  static constexpr std::size_t kMaxUnits = 32;
   StateGuard(const GlFunctions& gl, const std::vector<GLuint>& textureUnits, const std::vector<GLuint>& imageUnits);
   ~StateGuard();
   StateGuard(const StateGuard&) = delete;
@@ -31,8 +35,9 @@ class StateGuard {
   GLint program_ = 0, activeTexture_ = GL_TEXTURE0;
   GLint uniformBuffer_ = 0, uniformBuffer0_ = 0;
   GLint64 uniformStart0_ = 0, uniformSize0_ = 0;
-  std::vector<TextureUnit> textures_;
-  std::vector<ImageUnit> images_;
+  std::array<TextureUnit, kMaxUnits> textures_{};
+  std::array<ImageUnit, kMaxUnits> images_{};
+  std::size_t textureCount_ = 0, imageCount_ = 0;
 };
 
 // Saves the texture parameters the effect sets on a caller's GL_TEXTURE_2D (base level, the
@@ -57,7 +62,8 @@ class TextureParamGuard {
   };
   const GlFunctions* gl_ = nullptr;
   GLuint unit_ = 0, texture_ = 0;
-  std::vector<Param> changed_;
+  std::array<Param, 3> changed_{};  // at most the three parameters apply() sets
+  std::size_t changedCount_ = 0;
 };
 
 }  // namespace sao::gl::detail

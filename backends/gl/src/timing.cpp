@@ -24,7 +24,7 @@ void PassTimer::beginFrame(bool measure) {
 void PassTimer::beginPass(std::string_view name) {
   if (method_ == TimingMethod::None) return;
   Entry e;
-  e.pass = name;
+  e.pass = name;  // a view of the generated pass table's name
   if (method_ == TimingMethod::GpuTimestamps) {
     if (queries_.size() <= entries_.size()) {
       GLuint q = 0;
@@ -51,10 +51,10 @@ void PassTimer::endPass() {
 }
 
 bool PassTimer::endFrame(Timings& out) {
-  out = Timings{};
+  // Storage is reused (clear, not reassign): a timed steady frame allocates nothing either.
+  out.passes.clear();
   out.method = method_;
   if (method_ == TimingMethod::None) return true;
-  std::vector<double> ms(entries_.size(), 0.0);
   if (method_ == TimingMethod::GpuTimestamps) {
     // With a buffer on GL_QUERY_BUFFER the result would be written into it: unbind it meanwhile.
     GLint queryBuffer = 0;
@@ -70,27 +70,26 @@ bool PassTimer::endFrame(Timings& out) {
       GLuint64 ns = 0;
       gl_.GetQueryObjectui64v(entries_[i].query, GL_QUERY_RESULT, &ns);
       zero = zero || ns < kLeastPlausibleNs;
-      ms[i] = double(ns) * 1e-6;
+      entries_[i].ms = double(ns) * 1e-6;
     }
     if (queryBuffer) gl_.BindBuffer(GL_QUERY_BUFFER, GLuint(queryBuffer));
     if (zero) {
       gpuUnusable_ = true;  // this driver's timer queries do not see compute work
       method_ = TimingMethod::FinishAndClock;
       entries_.clear();
-      out = Timings{};
       out.method = method_;
       return false;
     }
   } else {
     for (std::size_t i = 0; i < entries_.size(); ++i)
-      ms[i] = std::chrono::duration<double, std::milli>(entries_[i].end - entries_[i].start).count();
+      entries_[i].ms = std::chrono::duration<double, std::milli>(entries_[i].end - entries_[i].start).count();
   }
   // One entry per pass name ("mips" sums its levels).
   for (std::size_t i = 0; i < entries_.size(); ++i) {
     if (!out.passes.empty() && out.passes.back().pass == entries_[i].pass)
-      out.passes.back().milliseconds += ms[i];
+      out.passes.back().milliseconds += entries_[i].ms;
     else
-      out.passes.push_back({entries_[i].pass, ms[i]});
+      out.passes.push_back({std::string(entries_[i].pass), entries_[i].ms});
   }
   return true;
 }

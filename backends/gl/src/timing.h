@@ -32,8 +32,9 @@ class PassTimer {
 
  private:
   struct Entry {
-    std::string pass;
+    std::string_view pass;  // the generated pass table's name
     GLuint query = 0;
+    double ms = 0;
     std::chrono::steady_clock::time_point start, end;
   };
   const GlFunctions& gl_;

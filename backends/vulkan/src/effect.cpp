@@ -1,4 +1,5 @@
 // Effect: creation (version, functions, device checks), configuration checks, update, teardown.
+#include <algorithm>
 #include <string>
 #include <utility>
 
@@ -114,14 +115,10 @@ Status checkConfig(const EffectState& e, const Config& c, Plan& plan, ParamBlock
   return Status::success();
 }
 
-bool samePasses(const Plan& a, const Plan& b) {
-  if (a.passes.size() != b.passes.size()) return false;
-  for (std::size_t i = 0; i < a.passes.size(); ++i) {
-    const auto &x = a.passes[i], &y = b.passes[i];
-    if (x.pass != y.pass || x.variant != y.variant || x.dispatchCount != y.dispatchCount || x.aliases != y.aliases)
-      return false;
-  }
-  return true;
+// Descriptor sets follow the dispatches and their pass variants (set layouts).
+bool sameDispatches(const Schedule& a, const Schedule& b) {
+  return std::equal(a.dispatches.begin(), a.dispatches.end(), b.dispatches.begin(), b.dispatches.end(),
+                    [](const ScheduledDispatch& x, const ScheduledDispatch& y) { return x.variant == y.variant; });
 }
 
 }  // namespace
@@ -179,13 +176,14 @@ Status createEffect(const DeviceContext& context, const Config& config, EffectSt
                          "the device lacks shaderStorageImageExtendedFormats (rg32f / r16f storage images)");
 
   if (Status st = checkConfig(e, config, e.plan, e.params); !st) return st;
+  e.schedule = makeSchedule(e.plan);
   e.config = config;
   e.allocator.init(&e.d, context.device, e.memoryProps, e.props.limits.bufferImageGranularity, context.allocator);
   if (Status st = createSampler(e); !st) return st;
   if (Status st = ensurePipelines(e, e.plan); !st) return st;
   if (Status st = createResources(e, e.plan, e.res); !st) return st;
   if (Status st = createParamBuffer(e, config.framesInFlight, e.ubo); !st) return st;
-  if (Status st = createDescriptors(e, e.plan, config.framesInFlight, e.desc); !st) return st;
+  if (Status st = createDescriptors(e, e.schedule, config.framesInFlight, e.desc); !st) return st;
   if (Status st = createQueryPool(e, config.framesInFlight, e.queryPool); !st) return st;
   return Status::success();
 }
@@ -214,10 +212,11 @@ Status Effect::update(const Config& config) {
     Plan plan;
     ParamBlock params{};
     if (Status st = checkConfig(e, config, plan, params); !st) return st;
+    Schedule schedule = makeSchedule(plan);
     if (Status st = ensurePipelines(e, plan); !st) return st;  // a cache: kept even if a later step fails
     const bool newImages = !sameImages(e.plan, plan);
     const bool newFrames = config.framesInFlight != e.config.framesInFlight;
-    const bool newSets = newImages || newFrames || !samePasses(e.plan, plan);
+    const bool newSets = newImages || newFrames || !sameDispatches(e.schedule, schedule);
 
     // Built aside; dropped (destroyed) on any early return.
     Config next = config;
@@ -232,7 +231,7 @@ Status Effect::update(const Config& config) {
       if (Status st = createQueryPool(e, config.framesInFlight, queries); !st) return st;
     }
     if (newSets)
-      if (Status st = createDescriptors(e, plan, config.framesInFlight, desc); !st) return st;
+      if (Status st = createDescriptors(e, schedule, config.framesInFlight, desc); !st) return st;
 
     // Commit: nothing below allocates or fails. The replaced objects end up in the locals above and
     // are destroyed on return, the descriptor sets before the images they name.
@@ -248,6 +247,7 @@ Status Effect::update(const Config& config) {
     }
     e.config = std::move(next);
     e.plan = std::move(plan);
+    e.schedule = std::move(schedule);
     e.params = params;
     return Status::success();
   });

@@ -14,6 +14,7 @@
 #include "allocator.h"
 #include "dispatch.h"
 #include "handle.h"
+#include "sao/schedule.h"
 #include "sao/vulkan/effect.h"
 
 namespace sao::vk {
@@ -61,12 +62,15 @@ struct PipelineEntry {
   Handle<VkPipeline> pipeline;
 };
 
-// One descriptor set per dispatch of every planned pass (mips: one per level), per ring slot; the
-// sets go with the pool.
+// One descriptor set per dispatch of the schedule, per ring slot; the sets go with the pool. The
+// write structures of one slot are sized here once, so record() fills them without allocating.
 struct Descriptors {
   Handle<VkDescriptorPool> pool;
   std::uint32_t setsPerSlot = 0;
-  std::vector<VkDescriptorSet> sets;  // [slot * setsPerSlot + k], k in plan order
+  std::vector<VkDescriptorSet> sets;  // [slot * setsPerSlot + k], k = the dispatch's index
+  std::vector<VkWriteDescriptorSet> writes;    // one slot's: a buffer write per set, then one per binding
+  std::vector<VkDescriptorImageInfo> images;   // one per binding of every dispatch
+  std::vector<VkDescriptorBufferInfo> buffers; // one per set
 };
 
 // The output record() writes this time: the effect's own or the user's.
@@ -91,6 +95,7 @@ struct __attribute__((visibility("hidden"))) EffectState {
 
   Config config;
   Plan plan;
+  Schedule schedule;  // of `plan`: what record() translates
   ParamBlock params{};
 
   Allocator allocator;
@@ -117,22 +122,23 @@ struct __attribute__((visibility("hidden"))) Effect::Impl : EffectState {};
 VkFormat vkFormat(gen::Format format);
 Status createResources(EffectState& e, const Plan& plan, Resources& out);  // on error: `out` unchanged
 Status createParamBuffer(EffectState& e, std::uint32_t slots, ParamBuffer& out);  // on error: `out` unchanged
-bool sameImages(const Plan& a, const Plan& b);
 
 // ---- pipelines.cpp
 Status createSampler(EffectState& e);
 Status ensurePipelines(EffectState& e, const Plan& plan);  // every pass variant of the plan
 const PipelineEntry* findPipeline(const EffectState& e, const gen::PassVariantInfo* variant);
-// Pool and sets for the plan, `slots` ring slots (pipelines must exist). On error: `out` unchanged.
-Status createDescriptors(EffectState& e, const Plan& plan, std::uint32_t slots, Descriptors& out);
+// Pool and sets for the schedule, `slots` ring slots (pipelines must exist). On error: `out` unchanged.
+Status createDescriptors(EffectState& e, const Schedule& schedule, std::uint32_t slots, Descriptors& out);
 void writeDescriptors(EffectState& e, std::uint32_t slot, const Inputs& inputs, const OutputTarget& output);
 
 // ---- record.cpp
 // timingRegion < 0: no timestamps. These three record commands only: they allocate nothing and
 // cannot fail, so a record() that fails has recorded nothing.
 void recordPrologue(const EffectState& e, VkCommandBuffer cmd, const OutputTarget& output, int timingRegion) noexcept;
-void recordPass(const EffectState& e, VkCommandBuffer cmd, std::size_t passIndex, std::uint32_t slot,
-                const OutputTarget& output, int timingRegion) noexcept;
+// Every dispatch of the schedule, or those of plan pass `onlyPass` (>= 0), with the barriers their
+// hazards need.
+void recordDispatches(const EffectState& e, VkCommandBuffer cmd, std::uint32_t slot, const OutputTarget& output,
+                      int timingRegion, int onlyPass = -1) noexcept;
 void recordEpilogue(const EffectState& e, VkCommandBuffer cmd, const OutputTarget& output) noexcept;
 Status checkInputs(const EffectState& e, const Inputs& inputs, const OutputImage* userOutput, OutputTarget& out);
 std::uint32_t acquireSlot(EffectState& e, const Inputs& inputs, const OutputTarget& output);

@@ -92,13 +92,11 @@ Status ensurePipelines(EffectState& e, const Plan& plan) {
   return Status::success();
 }
 
-Status createDescriptors(EffectState& e, const Plan& plan, std::uint32_t slots, Descriptors& out) {
+Status createDescriptors(EffectState& e, const Schedule& schedule, std::uint32_t slots, Descriptors& out) {
   Descriptors ds;
-  std::uint32_t sets = 0, samplers = 0, storage = 0;
-  for (const auto& p : plan.passes) {
-    sets += p.dispatchCount;
-    for (const auto& b : p.variant->bindings) (b.write ? storage : samplers) += p.dispatchCount;
-  }
+  const auto sets = static_cast<std::uint32_t>(schedule.dispatches.size());
+  std::uint32_t samplers = 0, storage = 0;
+  for (const ScheduledBinding& b : schedule.bindings) ++(b.write ? storage : samplers);
   ds.setsPerSlot = sets;
   std::vector<VkDescriptorPoolSize> sizes;
   sizes.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, sets * slots});
@@ -115,9 +113,7 @@ Status createDescriptors(EffectState& e, const Plan& plan, std::uint32_t slots, 
   std::vector<VkDescriptorSetLayout> layouts;
   layouts.reserve(std::size_t(sets) * slots);
   for (std::uint32_t s = 0; s < slots; ++s)
-    for (const auto& p : plan.passes)
-      for (std::uint32_t k = 0; k < p.dispatchCount; ++k)
-        layouts.push_back(findPipeline(e, p.variant)->setLayout.get());
+    for (const ScheduledDispatch& d : schedule.dispatches) layouts.push_back(findPipeline(e, d.variant)->setLayout.get());
   ds.sets.assign(layouts.size(), VK_NULL_HANDLE);
   VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
   ai.descriptorPool = ds.pool.get();
@@ -125,51 +121,49 @@ Status createDescriptors(EffectState& e, const Plan& plan, std::uint32_t slots, 
   ai.pSetLayouts = layouts.data();
   if (VkResult r = e.d.vkAllocateDescriptorSets(e.ctx.device, &ai, ds.sets.data()); r != VK_SUCCESS)
     return vkError("vkAllocateDescriptorSets", r);
+  ds.writes.resize(sets + schedule.bindings.size());
+  ds.images.resize(schedule.bindings.size());
+  ds.buffers.resize(sets);
   out = std::move(ds);
   return Status::success();
 }
 
-void writeDescriptors(EffectState& e, std::uint32_t slot, const Inputs& inputs, const OutputTarget& output) {
-  std::vector<VkDescriptorImageInfo> images;
-  std::vector<VkDescriptorBufferInfo> buffers;
-  std::vector<VkWriteDescriptorSet> writes;
-  // Reserve so the pointers stored in `writes` stay valid.
-  std::size_t bindingCount = 0;
-  for (const auto& p : e.plan.passes) bindingCount += p.dispatchCount * p.variant->bindings.size();
-  images.reserve(bindingCount);
-  buffers.reserve(e.desc.setsPerSlot);
-  writes.reserve(bindingCount + e.desc.setsPerSlot);
+namespace {
 
-  std::uint32_t k = slot * e.desc.setsPerSlot;
-  for (const auto& p : e.plan.passes) {
-    const bool perMip = gen::pass(p.pass).perMip;
-    for (std::uint32_t dispatch = 0; dispatch < p.dispatchCount; ++dispatch, ++k) {
-      const VkDescriptorSet set = e.desc.sets[k];
-      buffers.push_back({e.ubo.buffer.get(), slot * e.ubo.stride, sizeof(ParamBlock)});
-      writes.push_back({VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, set, gen::kParamBlockBinding, 0, 1,
-                        VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, nullptr, &buffers.back(), nullptr});
-      for (const auto& b : p.variant->bindings) {
-        const gen::ResourceId id = e.plan.resolve(p, b.resource);
-        VkDescriptorImageInfo info{VK_NULL_HANDLE, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL};
-        if (id == gen::ResourceId::depth) info = {VK_NULL_HANDLE, inputs.depth.view, inputs.depth.layout};
-        else if (id == gen::ResourceId::depth2) info = {VK_NULL_HANDLE, inputs.depth2.view, inputs.depth2.layout};
-        else if (id == gen::ResourceId::normals) info = {VK_NULL_HANDLE, inputs.normals.view, inputs.normals.layout};
-        else if (const OwnedImage* img = e.res.find(id)) {
-          // per=mip: read level m-1 = dispatch, write level m = dispatch + 1. Otherwise reads see
-          // the whole chain and writes go to level 0.
-          if (perMip) info.imageView = img->levelViews[b.write ? dispatch + 1 : dispatch].get();
-          else info.imageView = b.write ? img->levelViews[0].get() : img->fullView.get();
-        } else {
-          info.imageView = output.view;  // the user's output
-        }
-        images.push_back(info);
-        writes.push_back({VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, set, b.binding, 0, 1,
-                          b.write ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                          &images.back(), nullptr, nullptr});
-      }
+// The view and layout that serve a resolved binding.
+VkDescriptorImageInfo imageInfo(const EffectState& e, const ScheduledBinding& b, const Inputs& inputs,
+                                const OutputTarget& output) {
+  switch (b.resource) {
+    case gen::ResourceId::depth: return {VK_NULL_HANDLE, inputs.depth.view, inputs.depth.layout};
+    case gen::ResourceId::depth2: return {VK_NULL_HANDLE, inputs.depth2.view, inputs.depth2.layout};
+    case gen::ResourceId::normals: return {VK_NULL_HANDLE, inputs.normals.view, inputs.normals.layout};
+    default: break;
+  }
+  VkDescriptorImageInfo info{VK_NULL_HANDLE, output.view, VK_IMAGE_LAYOUT_GENERAL};  // the user's output
+  if (const OwnedImage* img = e.res.find(b.resource))
+    info.imageView = b.wholeChain ? img->fullView.get() : img->levelViews[b.baseLevel].get();
+  return info;
+}
+
+}  // namespace
+
+void writeDescriptors(EffectState& e, std::uint32_t slot, const Inputs& inputs, const OutputTarget& output) {
+  Descriptors& ds = e.desc;
+  std::size_t w = 0, image = 0;
+  for (std::uint32_t k = 0; k < e.schedule.dispatches.size(); ++k) {
+    const ScheduledDispatch& d = e.schedule.dispatches[k];
+    const VkDescriptorSet set = ds.sets[slot * ds.setsPerSlot + k];
+    ds.buffers[k] = {e.ubo.buffer.get(), slot * e.ubo.stride, sizeof(ParamBlock)};
+    ds.writes[w++] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, set, gen::kParamBlockBinding, 0, 1,
+                      VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, nullptr, &ds.buffers[k], nullptr};
+    for (const ScheduledBinding& b : e.schedule.bindingsOf(d)) {
+      ds.images[image] = imageInfo(e, b, inputs, output);
+      ds.writes[w++] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, set, b.binding, 0, 1,
+                        b.write ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                        &ds.images[image++], nullptr, nullptr};
     }
   }
-  e.d.vkUpdateDescriptorSets(e.ctx.device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
+  e.d.vkUpdateDescriptorSets(e.ctx.device, static_cast<std::uint32_t>(w), ds.writes.data(), 0, nullptr);
 }
 
 }  // namespace sao::vk

@@ -1,14 +1,16 @@
-// Recording: the parameter block, every planned pass and the barriers between them.
+// Recording: the schedule (sao/schedule.h) translated into commands and barriers.
 //
 // Barriers (all VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT unless named):
-//  prologue  intermediates UNDEFINED -> GENERAL (their contents are rewritten every frame), after
-//            the previous frame's compute reads and writes; the output UNDEFINED -> GENERAL after
-//            Config::outputDstStages (where the previous result was read).
+//  entry     each image the frame writes: UNDEFINED -> GENERAL (its contents are rewritten every
+//            frame) after the previous frame's compute reads and writes, and for the output after
+//            Config::outputDstStages (where the previous result was read). Inputs the caller wrote
+//            are the caller's to synchronise (their layouts and barriers come with Inputs).
 // The parameter block is not a device write: record() copies it into its ring slot's region of
 // mapped host-coherent memory, which vkQueueSubmit makes visible (no barrier).
-//  dispatch  after each dispatch, the level it wrote: SHADER_WRITE -> SHADER_READ (the next mips
-//            level, and the passes that read csz, ao_raw, ao_blur_h).
-//  epilogue  output GENERAL -> Config::outputLayout, SHADER_WRITE -> outputDstStages/Access.
+//  hazards   before a dispatch, one image barrier per hazard the schedule lists: a write then a
+//            sampled read (SHADER_WRITE -> SHADER_READ), a read then a write (execution only), two
+//            writes (SHADER_WRITE -> SHADER_WRITE), on exactly the levels concerned.
+//  exit      the output GENERAL -> Config::outputLayout, SHADER_WRITE -> outputDstStages/Access.
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -45,23 +47,9 @@ bool isLayoutAllowed(VkImageLayout l) {
   }
 }
 
-std::string extentText(Extent e) { return std::to_string(e.width) + "x" + std::to_string(e.height); }
-
-Status checkInput(const InputImage& in, const char* name, bool wanted, const char* flag, Extent extent,
-                  VkFormat format) {
-  if (!wanted) {
-    if (in.view != VK_NULL_HANDLE)
-      return Status::error(StatusCode::InvalidInput,
-                           std::string("Inputs::") + name + " is given but " + flag + " says there is none");
-    return Status::success();
-  }
-  if (in.view == VK_NULL_HANDLE)
-    return Status::error(StatusCode::InvalidInput,
-                         std::string("Inputs::") + name + ".view is VK_NULL_HANDLE (required: " + flag + ")");
-  if (!(in.extent == extent))
-    return Status::error(StatusCode::InvalidInput, std::string("Inputs::") + name + " is " + extentText(in.extent) +
-                                                       " but the plan needs the input extent " + extentText(extent) +
-                                                       " (viewport + 2 * guard band)");
+// The Vulkan side of an input the plan reads (presence and extent: sao::checkSupplied).
+Status checkInput(const InputImage& in, const char* name, VkFormat format) {
+  if (in.view == VK_NULL_HANDLE) return Status::success();
   if (in.format != VK_FORMAT_UNDEFINED && in.format != format)
     return Status::error(StatusCode::InvalidInput, std::string("Inputs::") + name + ".format " +
                                                        std::to_string(in.format) + " is not the format Config names (" +
@@ -100,36 +88,32 @@ class BarrierBatch {
   std::uint32_t count_ = 0;
 };
 
-std::uint32_t firstSet(const EffectState& e, std::size_t passIndex) {
-  std::uint32_t k = 0;
-  for (std::size_t i = 0; i < passIndex; ++i) k += e.plan.passes[i].dispatchCount;
-  return k;
-}
-
 }  // namespace
 
 Status checkInputs(const EffectState& e, const Inputs& in, const OutputImage* userOutput, OutputTarget& out) {
-  const Extent ie = e.plan.inputExtent;
   const Config& c = e.config;
-  if (Status st = checkInput(in.depth, "depth", true, "always", ie, c.depthFormat); !st) return st;
-  if (Status st = checkInput(in.depth2, "depth2", c.secondLayer, "Config::secondLayer", ie, c.depthFormat); !st)
-    return st;
-  if (Status st = checkInput(in.normals, "normals", c.normalsFormat != VK_FORMAT_UNDEFINED, "Config::normalsFormat",
-                             ie, c.normalsFormat);
-      !st)
-    return st;
-  if (!e.config.userOutput) {
-    if (userOutput)
-      return Status::error(StatusCode::InvalidInput,
-                           "record() got an output image but Config::userOutput is false (the effect owns its output)");
+  SuppliedImages supplied{};
+  auto add = [&](gen::ResourceId id, VkImageView view, Extent extent) {
+    supplied[static_cast<std::size_t>(id)] = {view != VK_NULL_HANDLE, extent};
+  };
+  add(gen::ResourceId::depth, in.depth.view, in.depth.extent);
+  add(gen::ResourceId::depth2, in.depth2.view, in.depth2.extent);
+  add(gen::ResourceId::normals, in.normals.view, in.normals.extent);
+  if (userOutput) add(gen::ResourceId::ao, userOutput->view, userOutput->extent);
+  if (userOutput && (userOutput->image == VK_NULL_HANDLE || userOutput->view == VK_NULL_HANDLE))
+    return Status::error(StatusCode::InvalidInput, "the output image or its view is VK_NULL_HANDLE");
+  if (userOutput && !c.userOutput)
+    return Status::error(StatusCode::InvalidInput,
+                         "record() got an output image but Config::userOutput is false (the effect owns its output)");
+  if (Status st = checkSupplied(e.plan, supplied, c.userOutput, "sao::vk::Effect::record()"); !st) return st;
+  if (Status st = checkInput(in.depth, "depth", c.depthFormat); !st) return st;
+  if (Status st = checkInput(in.depth2, "depth2", c.depthFormat); !st) return st;
+  if (Status st = checkInput(in.normals, "normals", c.normalsFormat); !st) return st;
+  if (!c.userOutput) {
     const OwnedImage* ao = e.res.find(gen::ResourceId::ao);
     out = {ao->image.get(), ao->levelViews[0].get()};
     return Status::success();
   }
-  if (!userOutput)
-    return Status::error(StatusCode::InvalidInput, "Config::userOutput is set but record() got no output image");
-  if (userOutput->image == VK_NULL_HANDLE || userOutput->view == VK_NULL_HANDLE)
-    return Status::error(StatusCode::InvalidInput, "the output image or its view is VK_NULL_HANDLE");
   if (userOutput->format != VK_FORMAT_R16_SFLOAT)
     return Status::error(StatusCode::UnsupportedFormat, "the output must be VK_FORMAT_R16_SFLOAT (the shader writes r16f), got format " +
                                                             std::to_string(userOutput->format));
@@ -138,10 +122,6 @@ Status checkInputs(const EffectState& e, const Inputs& in, const OutputImage* us
     if (input != VK_NULL_HANDLE && input == userOutput->view)
       return Status::error(StatusCode::InvalidInput, std::string("the output view is also Inputs::") + name +
                                                          ".view; the output must be a separate image");
-  if (!(userOutput->extent == e.plan.aoExtent))
-    return Status::error(StatusCode::InvalidInput, "the output is " + extentText(userOutput->extent) +
-                                                       " but the plan's AO extent (the viewport) is " +
-                                                       extentText(e.plan.aoExtent));
   out = {userOutput->image, userOutput->view};
   return Status::success();
 }
@@ -164,6 +144,23 @@ std::uint32_t acquireSlot(EffectState& e, const Inputs& in, const OutputTarget& 
   return slot;
 }
 
+namespace {
+
+// The image behind a resource this frame: owned, or the caller's output.
+VkImage imageOf(const EffectState& e, gen::ResourceId id, const OutputTarget& output) {
+  if (const OwnedImage* img = e.res.find(id)) return img->image.get();
+  return gen::kResources[static_cast<std::size_t>(id)].kind == gen::ResourceKind::Output ? output.image : VK_NULL_HANDLE;
+}
+
+VkImageMemoryBarrier hazardBarrier(VkImage image, const Hazard& h) {
+  VkAccessFlags src = VK_ACCESS_SHADER_WRITE_BIT, dst = VK_ACCESS_SHADER_WRITE_BIT;
+  if (h.kind == HazardKind::ReadAfterWrite) dst = VK_ACCESS_SHADER_READ_BIT;
+  if (h.kind == HazardKind::WriteAfterRead) src = 0;  // an execution dependency is enough
+  return imageBarrier(image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL, src, dst, h.baseLevel, h.levelCount);
+}
+
+}  // namespace
+
 void recordPrologue(const EffectState& e, VkCommandBuffer cmd, const OutputTarget& output, int timingRegion) noexcept {
   const VkQueryPool queries = e.queryPool.get();
   if (timingRegion >= 0)
@@ -172,73 +169,65 @@ void recordPrologue(const EffectState& e, VkCommandBuffer cmd, const OutputTarge
   {
     BarrierBatch images(e, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | e.config.outputDstStages,
                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
-    for (const auto& img : e.res.images) {
-      if (img.image.get() == output.image) continue;
-      images.add(imageBarrier(img.image.get(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                              VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT, 0,
-                              img.levels));
+    for (const Hazard& h : e.schedule.entryHazards()) {
+      if (h.kind == HazardKind::CallerWrote) continue;  // the caller's barrier (see above)
+      const VkImage image = imageOf(e, h.resource, output);
+      const bool isOutput = image == output.image;
+      images.add(imageBarrier(image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_ACCESS_SHADER_WRITE_BIT,
+                              isOutput ? VK_ACCESS_SHADER_WRITE_BIT : VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
+                              h.baseLevel, h.levelCount));
     }
-    images.add(imageBarrier(output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                            VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_WRITE_BIT, 0, 1));
   }
   if (timingRegion >= 0)
     e.d.vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries,
                             static_cast<std::uint32_t>(timingRegion) * queriesPerRegion());
 }
 
-void recordPass(const EffectState& e, VkCommandBuffer cmd, std::size_t passIndex, std::uint32_t slot,
-                const OutputTarget& output, int timingRegion) noexcept {
-  const PlannedPass& p = e.plan.passes[passIndex];
-  const gen::PassInfo& info = gen::pass(p.pass);
-  const PipelineEntry* pipe = findPipeline(e, p.variant);
-  if (e.d.vkCmdBeginDebugUtilsLabelEXT) {
-    char label[64];
-    std::snprintf(label, sizeof label, "sao %.*s", static_cast<int>(info.name.size()), info.name.data());
-    VkDebugUtilsLabelEXT l{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT, nullptr, label, {0.4f, 0.6f, 0.9f, 1.0f}};
-    e.d.vkCmdBeginDebugUtilsLabelEXT(cmd, &l);
-  }
-  e.d.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe->pipeline.get());
-
-  // The dispatch size follows the first written resource (docs/effect-format.md).
-  gen::ResourceId first{};
-  for (const auto& b : p.variant->bindings)
-    if (b.write) {
-      first = e.plan.resolve(p, b.resource);
-      break;
+void recordDispatches(const EffectState& e, VkCommandBuffer cmd, std::uint32_t slot, const OutputTarget& output,
+                      int timingRegion, int onlyPass) noexcept {
+  const auto& dispatches = e.schedule.dispatches;
+  const PipelineEntry* pipe = nullptr;
+  for (std::uint32_t k = 0; k < dispatches.size(); ++k) {
+    const ScheduledDispatch& d = dispatches[k];
+    if (onlyPass >= 0 && d.passIndex != static_cast<std::uint32_t>(onlyPass)) continue;
+    const bool firstOfPass = k == 0 || dispatches[k - 1].passIndex != d.passIndex;
+    const bool lastOfPass = k + 1 == dispatches.size() || dispatches[k + 1].passIndex != d.passIndex;
+    if (firstOfPass) {
+      if (e.d.vkCmdBeginDebugUtilsLabelEXT) {
+        const std::string_view name = gen::pass(d.pass).name;
+        char label[64];
+        std::snprintf(label, sizeof label, "sao %.*s", static_cast<int>(name.size()), name.data());
+        VkDebugUtilsLabelEXT l{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT, nullptr, label, {0.4f, 0.6f, 0.9f, 1.0f}};
+        e.d.vkCmdBeginDebugUtilsLabelEXT(cmd, &l);
+      }
+      pipe = findPipeline(e, d.variant);
+      e.d.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe->pipeline.get());
     }
-  const OwnedImage* firstImage = e.res.find(first);
-  const Extent base = firstImage ? firstImage->extent : e.plan.aoExtent;
-
-  const std::uint32_t setBase = slot * e.desc.setsPerSlot + firstSet(e, passIndex);
-  for (std::uint32_t k = 0; k < p.dispatchCount; ++k) {
-    const std::uint32_t level = info.perMip ? k + 1 : 0;
+    {
+      BarrierBatch hazards(e, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+      for (const Hazard& h : e.schedule.hazardsBefore(d))
+        if (const VkImage image = imageOf(e, h.resource, output)) hazards.add(hazardBarrier(image, h));
+    }
     e.d.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe->layout.get(), 0, 1,
-                                &e.desc.sets[setBase + k], 0, nullptr);
-    const std::uint32_t w = std::max(1u, base.width >> level), h = std::max(1u, base.height >> level);
-    e.d.vkCmdDispatch(cmd, (w + info.localX - 1) / info.localX, (h + info.localY - 1) / info.localY, 1);
-
-    BarrierBatch written(e, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
-    for (const auto& b : p.variant->bindings) {
-      if (!b.write) continue;
-      const OwnedImage* img = e.res.find(e.plan.resolve(p, b.resource));
-      if (!img || img->image.get() == output.image) continue;  // the output: the epilogue's barrier
-      written.add(imageBarrier(img->image.get(), VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL,
-                               VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, level, 1));
+                                &e.desc.sets[slot * e.desc.setsPerSlot + k], 0, nullptr);
+    e.d.vkCmdDispatch(cmd, d.groupsX, d.groupsY, 1);
+    if (lastOfPass) {
+      if (timingRegion >= 0)
+        e.d.vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, e.queryPool.get(),
+                                static_cast<std::uint32_t>(timingRegion) * queriesPerRegion() + 1 + d.passIndex);
+      if (e.d.vkCmdEndDebugUtilsLabelEXT) e.d.vkCmdEndDebugUtilsLabelEXT(cmd);
     }
   }
-  if (timingRegion >= 0)
-    e.d.vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, e.queryPool.get(),
-                            static_cast<std::uint32_t>(timingRegion) * queriesPerRegion() + 1 +
-                                static_cast<std::uint32_t>(passIndex));
-  if (e.d.vkCmdEndDebugUtilsLabelEXT) e.d.vkCmdEndDebugUtilsLabelEXT(cmd);
 }
 
 void recordEpilogue(const EffectState& e, VkCommandBuffer cmd, const OutputTarget& output) noexcept {
-  const VkImageMemoryBarrier b =
-      imageBarrier(output.image, VK_IMAGE_LAYOUT_GENERAL, e.config.outputLayout, VK_ACCESS_SHADER_WRITE_BIT,
-                   e.config.outputDstAccess, 0, 1);
-  e.d.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, e.config.outputDstStages, 0, 0, nullptr, 0,
-                           nullptr, 1, &b);
+  for (const Hazard& h : e.schedule.exitHazards()) {
+    const VkImageMemoryBarrier b = imageBarrier(imageOf(e, h.resource, output), VK_IMAGE_LAYOUT_GENERAL,
+                                                e.config.outputLayout, VK_ACCESS_SHADER_WRITE_BIT,
+                                                e.config.outputDstAccess, h.baseLevel, h.levelCount);
+    e.d.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, e.config.outputDstStages, 0, 0, nullptr, 0,
+                             nullptr, 1, &b);
+  }
 }
 
 Status Effect::record(VkCommandBuffer cmd, const Inputs& inputs, const OutputImage* userOutput) {
@@ -252,7 +241,7 @@ Status Effect::record(VkCommandBuffer cmd, const Inputs& inputs, const OutputIma
     const std::uint32_t slot = acquireSlot(e, inputs, output);
     const int region = e.config.timestamps && e.queryPool ? static_cast<int>(slot) : -1;
     recordPrologue(e, cmd, output, region);
-    for (std::size_t i = 0; i < e.plan.passes.size(); ++i) recordPass(e, cmd, i, slot, output, region);
+    recordDispatches(e, cmd, slot, output, region);
     recordEpilogue(e, cmd, output);
     if (region >= 0) e.lastTimedRegion = region;
     return Status::success();

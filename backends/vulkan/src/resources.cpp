@@ -21,16 +21,6 @@ VkFormat vkFormat(gen::Format format) {
   return VK_FORMAT_UNDEFINED;
 }
 
-bool sameImages(const Plan& a, const Plan& b) {
-  if (a.images.size() != b.images.size()) return false;
-  for (std::size_t i = 0; i < a.images.size(); ++i) {
-    const auto &x = a.images[i], &y = b.images[i];
-    if (x.resource != y.resource || x.format != y.format || !(x.extent == y.extent) || x.mipLevels != y.mipLevels)
-      return false;
-  }
-  return true;
-}
-
 namespace {
 
 Status createView(const EffectState& e, VkImage image, VkFormat format, std::uint32_t baseLevel, std::uint32_t levels,

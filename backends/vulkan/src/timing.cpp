@@ -136,7 +136,7 @@ Status Effect::measure(VkQueue queue, const Inputs& inputs, const OutputImage* u
       VkCommandBuffer cmd = VK_NULL_HANDLE;
       if (Status st = sub.begin(cmd); !st) return st;
       recordPrologue(e, cmd, output, region);
-      for (std::size_t i = 0; i < e.plan.passes.size(); ++i) recordPass(e, cmd, i, slot, output, region);
+      recordDispatches(e, cmd, slot, output, region);
       recordEpilogue(e, cmd, output);
       if (Status st = sub.submitAndWait(queue, cmd, nullptr); !st) return st;
       return readTimestamps(e, static_cast<std::uint32_t>(region), true, out);
@@ -151,7 +151,7 @@ Status Effect::measure(VkQueue queue, const Inputs& inputs, const OutputImage* u
     t.method = TimingMethod::FinishAndClock;
     for (std::size_t i = 0; i < e.plan.passes.size(); ++i) {
       if (Status st = sub.begin(cmd); !st) return st;
-      recordPass(e, cmd, i, slot, output, -1);
+      recordDispatches(e, cmd, slot, output, -1, static_cast<int>(i));
       if (i + 1 == e.plan.passes.size()) recordEpilogue(e, cmd, output);
       double ms = 0;
       if (Status st = sub.submitAndWait(queue, cmd, &ms); !st) return st;

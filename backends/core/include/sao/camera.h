@@ -36,6 +36,7 @@ struct Camera {
   // analyze() rejects a camera whose matrix, read with the declared conventions, disagrees.
   double expectedNear = 0;
   double expectedFar = 0;
+  bool operator==(const Camera&) const = default;
 };
 
 // What the projection says about itself, derived in double precision.

@@ -1,5 +1,6 @@
 // plan(): only the passes, variants, MIP levels and images a configuration needs. Backends
-// allocate and dispatch from it; it is cheap and deterministic, so tests assert it.
+// allocate from it and dispatch from its schedule (sao/schedule.h); it is cheap and deterministic,
+// so tests assert it.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -25,6 +26,7 @@ struct PlanInputs {
   bool normals = false;      // the user supplies camera-space normals
   bool secondLayer = false;  // the user supplies a second depth layer (deep G-buffer)
   bool userOutput = false;   // the user supplies the output image (not counted in bytes)
+  bool operator==(const PlanInputs&) const = default;
 };
 
 struct PlannedImage {

@@ -24,7 +24,10 @@
 //  - Synchronisation: render() issues glMemoryBarrier(texture fetch | image access) before its
 //    first pass (so depth written by the caller's own image stores is visible) and, after its
 //    last pass, the barriers needed to read the result by texture fetch, image load, framebuffer
-//    read, glGetTexImage or a copy. Depth written by rendering needs no barrier.
+//    read, glGetTexImage or a copy. Depth written by rendering needs no barrier. Between its
+//    passes it issues only the barrier bits the schedule's hazards need (sao/schedule.h).
+//  - Allocation: a render() with the same settings, camera and kinds of input as the previous
+//    successful one allocates nothing (host or GL); a changed one plans again.
 //  - Textures are GL_TEXTURE_2D; level 0 is read and written. Multisampled depth
 //    (GL_TEXTURE_2D_MULTISAMPLE) is rejected with UnsupportedFormat: resolve it first (a
 //    glBlitFramebuffer of GL_DEPTH_BUFFER_BIT with GL_NEAREST into a single-sample texture).

@@ -193,7 +193,8 @@ class SAO_VK_API Effect {
   // Records every planned pass (with its barriers) into `cmd`, which must be in the recording
   // state, outside a render pass, on a queue of DeviceContext::queueFamilyIndex's family.
   // `userOutput` is required with Config::userOutput and must be null otherwise. Nothing is
-  // recorded when the Status is not Ok.
+  // recorded when the Status is not Ok. Allocates no host memory: the descriptor writes of every
+  // ring slot are sized by update().
   Status record(VkCommandBuffer cmd, const Inputs& inputs, const OutputImage* userOutput = nullptr);
 
   // Per-pass times of the last record() with Config::timestamps, once its submission completed

@@ -1,0 +1,167 @@
+// makeSchedule(): the flat dispatch list the backends translate. Dispatch sizes, resolved
+// bindings (aliases, a per=mip pass reading level m-1), and the fewest hazards that order the
+// frame: a write becomes visible to sampled reads once, just before the first dispatch that
+// reads it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "sao/schedule.h"
+
+namespace {
+
+using sao::HazardKind;
+using sao::gen::PassId;
+using sao::gen::ResourceId;
+
+sao::Camera camera(std::uint32_t w, std::uint32_t h, std::uint32_t guard) {
+  sao::Camera c =
+      sao::perspectiveCamera(std::numbers::pi / 3.0, w, h, 0.1, INFINITY, sao::ClipDepth::ZeroToOne, true);
+  c.guardBand = guard;
+  return c;
+}
+
+sao::Schedule scheduleOf(const sao::Settings& s, const sao::Camera& c, const sao::PlanInputs& in = {}) {
+  sao::Plan p;
+  EXPECT_TRUE(sao::plan(s, c, in, p).ok());
+  return sao::makeSchedule(p);
+}
+
+TEST(Schedule, DefaultSettings) {
+  const sao::Settings settings;
+  sao::Plan p;
+  ASSERT_TRUE(sao::plan(settings, camera(100, 60, 4), {}, p).ok());
+  const sao::Schedule s = sao::makeSchedule(p);
+  std::printf("%s", s.describe().c_str());
+  const std::uint32_t L = p.cszLevels;
+  ASSERT_GT(L, 2u);
+  ASSERT_EQ(s.dispatches.size(), 1 + (L - 1) + 3) << "linear_z, one mips per level, ao_sample, two blurs";
+
+  // linear_z covers the input (108x68 with the guard band): 14x9 groups of 8x8.
+  const auto& z = s.dispatches[0];
+  EXPECT_EQ(z.pass, PassId::linear_z);
+  EXPECT_EQ(z.groupsX, 14u);
+  EXPECT_EQ(z.groupsY, 9u);
+  EXPECT_EQ(z.hazardCount, 0u);
+
+  // mips at level m: reads csz level m-1 alone, writes level m, sized by level m; one hazard, the
+  // write of level m-1 just before.
+  for (std::uint32_t m = 1; m < L; ++m) {
+    const auto& d = s.dispatches[m];
+    EXPECT_EQ(d.pass, PassId::mips);
+    EXPECT_EQ(d.level, m);
+    const std::uint32_t w = std::max(1u, 108u >> m), h = std::max(1u, 68u >> m);
+    EXPECT_EQ(d.groupsX, (w + 7) / 8);
+    EXPECT_EQ(d.groupsY, (h + 7) / 8);
+    for (const auto& b : s.bindingsOf(d)) {
+      EXPECT_EQ(b.resource, ResourceId::csz);
+      EXPECT_EQ(b.baseLevel, b.write ? m : m - 1);
+      EXPECT_EQ(b.levelCount, 1u);
+      EXPECT_FALSE(b.wholeChain);
+    }
+    ASSERT_EQ(d.hazardCount, 1u);
+    const auto& h0 = s.hazardsBefore(d)[0];
+    EXPECT_EQ(h0.kind, HazardKind::ReadAfterWrite);
+    EXPECT_EQ(h0.resource, ResourceId::csz);
+    EXPECT_EQ(h0.baseLevel, m - 1);
+  }
+
+  // ao_sample reads the whole chain; only its last level is still pending.
+  const auto& ao = s.dispatches[L];
+  EXPECT_EQ(ao.pass, PassId::ao_sample);
+  EXPECT_EQ(ao.groupsX, 13u);  // the AO extent 100x60
+  EXPECT_EQ(ao.groupsY, 8u);
+  bool sawChain = false;
+  for (const auto& b : s.bindingsOf(ao))
+    if (!b.write && b.resource == ResourceId::csz) {
+      EXPECT_TRUE(b.wholeChain);
+      EXPECT_EQ(b.levelCount, L);
+      sawChain = true;
+    }
+  EXPECT_TRUE(sawChain);
+  ASSERT_EQ(ao.hazardCount, 1u);
+  EXPECT_EQ(s.hazardsBefore(ao)[0].baseLevel, L - 1);
+
+  // Each blur waits for the image the previous dispatch wrote.
+  const auto& bh = s.dispatches[L + 1];
+  const auto& bv = s.dispatches[L + 2];
+  ASSERT_EQ(bh.hazardCount, 1u);
+  EXPECT_EQ(s.hazardsBefore(bh)[0].resource, ResourceId::ao_raw);
+  ASSERT_EQ(bv.hazardCount, 1u);
+  EXPECT_EQ(s.hazardsBefore(bv)[0].resource, ResourceId::ao_blur_h);
+
+  // Entry: the caller's depth, then every written image against the previous frame. Exit: the output.
+  int callerWrote = 0, written = 0;
+  for (const auto& h : s.entryHazards()) {
+    if (h.kind == HazardKind::CallerWrote) {
+      EXPECT_EQ(h.resource, ResourceId::depth);
+      ++callerWrote;
+    } else {
+      EXPECT_EQ(h.kind, HazardKind::WriteAfterRead) << "every written image is read by someone";
+      ++written;
+    }
+  }
+  EXPECT_EQ(callerWrote, 1);
+  EXPECT_EQ(written, 4) << "csz, ao_raw, ao_blur_h, ao";
+  ASSERT_EQ(s.exitHazards().size(), 1u);
+  EXPECT_EQ(s.exitHazards()[0].resource, ResourceId::ao);
+  EXPECT_EQ(s.exitHazards()[0].kind, HazardKind::CallerReads);
+}
+
+TEST(Schedule, NoBlurReadsTheAliasedImage) {
+  sao::Settings settings;
+  settings.blur_radius = 0;
+  const sao::Schedule s = scheduleOf(settings, camera(64, 32, 0));
+  const auto& last = s.dispatches.back();
+  EXPECT_EQ(last.pass, PassId::blur_v);
+  for (const auto& b : s.bindingsOf(last)) EXPECT_EQ(b.resource, b.write ? ResourceId::ao : ResourceId::ao_raw);
+  ASSERT_EQ(last.hazardCount, 1u);
+  EXPECT_EQ(s.hazardsBefore(last)[0].resource, ResourceId::ao_raw);
+  for (const auto& d : s.dispatches) EXPECT_NE(d.pass, PassId::blur_h);
+}
+
+TEST(Schedule, WithoutTheHierarchyThereIsNoMipDispatch) {
+  sao::Settings settings;
+  settings.use_z_hierarchy = false;
+  const sao::Schedule s = scheduleOf(settings, camera(64, 32, 0));
+  ASSERT_EQ(s.dispatches.size(), 4u);
+  // ao_sample reads the single csz level, written by linear_z just before.
+  ASSERT_EQ(s.dispatches[1].hazardCount, 1u);
+  EXPECT_EQ(s.hazardsBefore(s.dispatches[1])[0].resource, ResourceId::csz);
+  for (const auto& b : s.bindingsOf(s.dispatches[1])) EXPECT_FALSE(b.wholeChain);
+}
+
+TEST(Schedule, SecondLayerAndNormalsAreReadAndWrittenInTheSameDispatches) {
+  const sao::Schedule s = scheduleOf(sao::Settings{}, camera(64, 32, 2), {sao::DepthEncoding::Hardware, true, true});
+  int callerWrote = 0;
+  for (const auto& h : s.entryHazards()) callerWrote += h.kind == HazardKind::CallerWrote;
+  EXPECT_EQ(callerWrote, 3) << "depth, depth2, normals";
+  // Each mips dispatch waits for both chains' previous level.
+  EXPECT_EQ(s.dispatches[1].hazardCount, 2u);
+}
+
+TEST(Schedule, SuppliedImagesAreCheckedAgainstThePlan) {
+  sao::Plan p;
+  ASSERT_TRUE(sao::plan(sao::Settings{}, camera(64, 32, 2), {}, p).ok());
+  sao::SuppliedImages in{};
+  in[static_cast<std::size_t>(ResourceId::depth)] = {true, {68, 36}};
+  EXPECT_TRUE(sao::checkSupplied(p, in, false, "test").ok());
+  in[static_cast<std::size_t>(ResourceId::depth)] = {true, {64, 32}};
+  const sao::Status wrong = sao::checkSupplied(p, in, false, "test");
+  EXPECT_EQ(wrong.code, sao::StatusCode::InvalidInput);
+  EXPECT_NE(wrong.message.find("is 64x32, the camera needs 68x36"), std::string::npos) << wrong.message;
+  in[static_cast<std::size_t>(ResourceId::depth)] = {false, {}};
+  EXPECT_NE(sao::checkSupplied(p, in, false, "test").message.find("none is supplied"), std::string::npos);
+  in[static_cast<std::size_t>(ResourceId::depth)] = {true, {68, 36}};
+  in[static_cast<std::size_t>(ResourceId::normals)] = {true, {68, 36}};
+  EXPECT_EQ(sao::checkSupplied(p, in, false, "test").code, sao::StatusCode::InvalidInput) << "normals not planned";
+  in[static_cast<std::size_t>(ResourceId::normals)] = {};
+  in[static_cast<std::size_t>(ResourceId::ao)] = {true, {64, 32}};
+  EXPECT_EQ(sao::checkSupplied(p, in, false, "test").code, sao::StatusCode::InvalidInput) << "output not expected";
+  EXPECT_TRUE(sao::checkSupplied(p, in, true, "test").ok());
+  in[static_cast<std::size_t>(ResourceId::ao)] = {true, {60, 32}};
+  EXPECT_EQ(sao::checkSupplied(p, in, true, "test").code, sao::StatusCode::InvalidInput) << "output size";
+}
+
+}  // namespace

@@ -1,0 +1,85 @@
+// render() allocates nothing per frame: 100 frames with one configuration (effect-owned output,
+// the caller's output, timed frames), counting every operator new called from libsao_gl.so's code
+// (tests/common/library_allocations.h). A changed setting makes the next render() plan again and
+// allocate, which shows the counter sees the library.
+#include <epoxy/gl.h>
+
+#include <cstdio>
+
+#include "analytic_scenes.h"
+#include "gl_support.h"
+#include "library_allocations.h"
+
+namespace sao::gltest {
+namespace {
+
+constexpr int kFrames = 100;
+
+class FrameAllocations : public GlTest {
+ protected:
+  void SetUp() override {
+    GlTest::SetUp();
+    ASSERT_TRUE(test::watchLibraryOf(reinterpret_cast<const void*>(&gl::Effect::create)));
+    cam = camera(48, 27, 4);
+    depth = test::renderDepth(test::sphereOnPlaneScene(), cam, DepthFormat::D24);
+    texture = uploadDepth(depth, GlDepth::D24);
+  }
+  void TearDown() override {
+    deleteTexture(texture);
+    GlTest::TearDown();
+  }
+  gl::Inputs inputs(GLuint output = 0) const {
+    gl::Inputs in;
+    in.depth = {texture, gl::kDepthComponent24};
+    in.output = output;
+    return in;
+  }
+  // Renders once (the configuration's first frame), then counts the library allocations of kFrames.
+  long steadyFrames(gl::Effect& e, const Settings& settings, GLuint output, bool timed) {
+    gl::RenderOptions options;
+    options.measureTime = timed;
+    EXPECT_TRUE(e.render(cam, settings, inputs(output), options).ok());
+    long counted = 0;
+    for (int f = 0; f < kFrames; ++f) {
+      test::startCountingAllocations();
+      const Status st = e.render(cam, settings, inputs(output), options);
+      test::stopCountingAllocations();
+      counted += test::countedAllocations();
+      EXPECT_TRUE(st.ok()) << st.message;
+    }
+    return counted;
+  }
+
+  Camera cam;
+  DepthImage depth;
+  GLuint texture = 0;
+};
+
+TEST_F(FrameAllocations, RenderAllocatesNothingPerFrame) {
+  auto e = makeEffect();
+  ASSERT_TRUE(e);
+  Settings settings;
+  EXPECT_EQ(steadyFrames(*e, settings, 0, false), 0) << "library allocations in " << kFrames << " render() calls";
+  EXPECT_EQ(steadyFrames(*e, settings, 0, true), 0) << "timed frames";
+
+  settings.blur_radius = 0;  // another plan: one render() plans, schedules and allocates
+  test::startCountingAllocations();
+  ASSERT_TRUE(e->render(cam, settings, inputs()).ok());
+  test::stopCountingAllocations();
+  const long replanned = test::countedAllocations();
+  EXPECT_GT(replanned, 0);
+  EXPECT_EQ(steadyFrames(*e, settings, 0, false), 0) << "after the new configuration";
+  std::printf("a new configuration: %ld library allocations; %d steady render() calls: none\n", replanned,
+              3 * kFrames);
+}
+
+TEST_F(FrameAllocations, RenderIntoTheCallersOutputAllocatesNothing) {
+  auto e = makeEffect();
+  ASSERT_TRUE(e);
+  const GLuint output = makeTexture(GL_R16F, {cam.width, cam.height});
+  EXPECT_EQ(steadyFrames(*e, Settings{}, output, false), 0);
+  deleteTexture(output);
+}
+
+}  // namespace
+}  // namespace sao::gltest
