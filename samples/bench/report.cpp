@@ -4,10 +4,15 @@
 #include <map>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
+#include "sao/samples/shortest_float.h"
 #include "svg_plot.h"
 
 namespace sao::bench {
 namespace {
+
+using Json = nlohmann::ordered_json;  // keys in the order written
 
 // A CSV field: quoted (with doubled quotes) only when it holds a comma or a quote.
 std::string csv(const std::string& s) {
@@ -17,21 +22,12 @@ std::string csv(const std::string& s) {
   return o + "\"";
 }
 
-std::string json(const std::string& s) {
-  std::string o = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') o += '\\';
-    if (static_cast<unsigned char>(c) >= 0x20) o += c;
-  }
-  return o + "\"";
-}
-
 const char* kErrorColumns[] = {"rmse_raw", "bias_raw", "ssim_raw", "over_0_1_raw", "fitted_scale",
                                "rmse_fitted", "bias_fitted", "ssim_fitted", "over_0_1_fitted"};
 
-// A metric as text: `undefined` ("n/a" in CSV, null in JSON) where it is NaN (samples/metrics.h).
-std::string metric(double v, const char* undefined) {
-  if (!samples::isDefined(v)) return undefined;
+// A metric as CSV text: "n/a" where it is NaN (samples/metrics.h).
+std::string csvMetric(double v) {
+  if (!samples::isDefined(v)) return "n/a";
   std::ostringstream s;
   s << v;
   return s.str();
@@ -42,20 +38,19 @@ void csvErrors(std::ofstream& f, const std::optional<samples::ReferenceCompariso
     for (std::size_t i = 0; i < std::size(kErrorColumns); ++i) f << ",";
     return;
   }
-  auto m = [](double v) { return metric(v, "n/a"); };
+  const auto m = csvMetric;
   f << "," << m(e->raw.rmse) << "," << m(e->raw.meanBias) << "," << m(e->raw.ssim) << "," << m(e->raw.fractionOver01)
     << "," << m(e->fittedIntensity) << "," << m(e->fitted.rmse) << "," << m(e->fitted.meanBias) << ","
     << m(e->fitted.ssim) << "," << m(e->fitted.fractionOver01);
 }
 
-void jsonErrors(std::ofstream& f, const char* key, const std::optional<samples::ReferenceComparison>& e) {
-  if (!e) return;
-  auto m = [](double v) { return metric(v, "null"); };
-  f << ", \"" << key << "\": {\"pixels\": " << e->raw.pixels << ", \"rmse_raw\": " << m(e->raw.rmse)
-    << ", \"bias_raw\": " << m(e->raw.meanBias) << ", \"ssim_raw\": " << m(e->raw.ssim)
-    << ", \"over_0_1_raw\": " << m(e->raw.fractionOver01) << ", \"fitted_scale\": " << m(e->fittedIntensity)
-    << ", \"rmse_fitted\": " << m(e->fitted.rmse) << ", \"bias_fitted\": " << m(e->fitted.meanBias)
-    << ", \"ssim_fitted\": " << m(e->fitted.ssim) << ", \"over_0_1_fitted\": " << m(e->fitted.fractionOver01) << "}";
+// One reference's error columns; NaN (undefined) serialises as null.
+Json jsonErrors(const samples::ReferenceComparison& e) {
+  return Json{{"pixels", e.raw.pixels},          {"rmse_raw", e.raw.rmse},
+              {"bias_raw", e.raw.meanBias},       {"ssim_raw", e.raw.ssim},
+              {"over_0_1_raw", e.raw.fractionOver01}, {"fitted_scale", e.fittedIntensity},
+              {"rmse_fitted", e.fitted.rmse},     {"bias_fitted", e.fitted.meanBias},
+              {"ssim_fitted", e.fitted.ssim},     {"over_0_1_fitted", e.fitted.fractionOver01}};
 }
 
 }  // namespace
@@ -91,29 +86,36 @@ void writeCsv(const std::string& path, const std::vector<Row>& rows) {
 
 void writeJson(const std::string& path, const std::vector<Row>& rows, const std::string& machine,
                const std::vector<std::pair<std::string, std::string>>& notes) {
-  std::ofstream f(path);
-  f << "{\n  \"machine\": " << json(machine) << ",\n  \"notes\": {\n";
-  for (std::size_t i = 0; i < notes.size(); ++i)
-    f << "    " << json(notes[i].first) << ": " << json(notes[i].second) << (i + 1 < notes.size() ? "," : "") << "\n";
-  f << "  },\n  \"rows\": [\n";
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const auto& r = rows[i];
-    f << "    {\"section\": " << json(r.section) << ", \"scene\": " << json(r.scene) << ", \"backend\": "
-      << json(r.backend) << ", \"preset\": " << json(r.preset) << ", \"variant\": " << json(r.variant)
-      << ", \"inputs\": " << json(r.inputs) << ", \"shader_variant\": " << json(r.m.shaderVariant)
-      << ", \"width\": " << r.size.width << ", \"height\": " << r.size.height
-      << ", \"radius_m\": " << r.settings.radius << ", \"samples\": " << r.settings.samples
-      << ", \"use_z_hierarchy\": " << (r.settings.use_z_hierarchy ? "true" : "false")
-      << ", \"blur_radius\": " << r.settings.blur_radius << ", \"timing_method\": " << json(toString(r.m.method))
-      << ", \"runs\": " << r.m.runs << ", \"total_ms\": " << r.m.totalMs << ", \"pass_ms\": {";
-    for (std::size_t k = 0; k < r.m.passes.size(); ++k)
-      f << (k ? ", " : "") << json(r.m.passes[k].pass) << ": " << r.m.passes[k].milliseconds;
-    f << "}";
-    jsonErrors(f, "error_vs_ao", r.m.aoError);
-    jsonErrors(f, "error_vs_obscurance", r.m.obscuranceError);
-    f << "}" << (i + 1 < rows.size() ? "," : "") << "\n";
+  Json j;
+  j["machine"] = machine;
+  Json& notesJson = j["notes"] = Json::object();
+  for (const auto& [key, text] : notes) notesJson[key] = text;
+  Json& rowsJson = j["rows"] = Json::array();
+  for (const auto& r : rows) {
+    Json row{{"section", r.section},
+             {"scene", r.scene},
+             {"backend", r.backend},
+             {"preset", r.preset},
+             {"variant", r.variant},
+             {"inputs", r.inputs},
+             {"shader_variant", r.m.shaderVariant},
+             {"width", r.size.width},
+             {"height", r.size.height},
+             {"radius_m", samples::shortestDecimal(r.settings.radius)},
+             {"samples", r.settings.samples},
+             {"use_z_hierarchy", r.settings.use_z_hierarchy},
+             {"blur_radius", r.settings.blur_radius},
+             {"timing_method", toString(r.m.method)},
+             {"runs", r.m.runs},
+             {"total_ms", r.m.totalMs}};
+    Json& passMs = row["pass_ms"] = Json::object();
+    for (const auto& p : r.m.passes) passMs[p.pass] = p.milliseconds;
+    if (r.m.aoError) row["error_vs_ao"] = jsonErrors(*r.m.aoError);
+    if (r.m.obscuranceError) row["error_vs_obscurance"] = jsonErrors(*r.m.obscuranceError);
+    rowsJson.push_back(std::move(row));
   }
-  f << "  ]\n}\n";
+  // Invalid UTF-8 (a machine name, a scene path) is replaced, not thrown.
+  std::ofstream(path) << j.dump(2, ' ', false, Json::error_handler_t::replace) << "\n";
 }
 
 std::vector<std::string> writeCharts(const std::string& dir, const std::vector<Row>& rows,

@@ -1,11 +1,11 @@
 #include "summary.h"
 
-#include <charconv>
 #include <cmath>
-#include <cstdlib>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
+
+#include "sao/samples/shortest_float.h"
 
 namespace sao::samples {
 namespace {
@@ -18,14 +18,6 @@ std::string metric(double v, double scale = 1.0) {
   s.precision(4);
   s << v * scale;
   return s.str();
-}
-
-// A float setting as the shortest decimal that reads back as the same float (0.02, not
-// 0.019999999552965164, which is what the float holds as a double).
-double shortestOfFloat(double v) {
-  char text[32];
-  const auto r = std::to_chars(text, text + sizeof text, float(v));
-  return std::strtod(std::string(text, r.ptr).c_str(), nullptr);
 }
 
 }  // namespace
@@ -94,7 +86,7 @@ std::string Summary::json() const {
   for (std::size_t i = 0; i < gen::kSettings.size(); ++i) {
     const double v = gen::settingValue(settings, static_cast<SettingId>(i));
     const std::string name(gen::kSettings[i].name);
-    if (gen::kSettings[i].type == gen::SettingType::Float) values[name] = shortestOfFloat(v);
+    if (gen::kSettings[i].type == gen::SettingType::Float) values[name] = shortestDecimal(float(v));
     else values[name] = static_cast<long long>(v);
   }
   Json passes = Json::array();

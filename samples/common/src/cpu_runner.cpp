@@ -1,7 +1,6 @@
 // The CPU reference as a sample backend (float mode: what a GPU computes).
-#include <thread>
-
 #include "runners.h"
+#include "sao/cpu/parallel.h"
 #include "sao/cpu/reference.h"
 
 namespace sao::samples {
@@ -13,7 +12,7 @@ class CpuRunner final : public BackendRunner {
   std::string_view name() const override { return precision_ == cpu::Precision::Float ? "cpu" : "cpu-double"; }
   std::string description() const override {
     return std::string("CPU reference (") + cpu::toString(precision_) + ", " +
-           std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " threads)";
+           std::to_string(cpu::threadCount(0)) + " threads)";  // Options::threads = 0
   }
   Status run(const Settings& settings, const Camera& camera, const RunInputs& in, bool measureTime, bool dumpPasses,
              RunOutputs& out) override {

@@ -24,6 +24,7 @@
 #include <cmath>
 
 #include "sampling.h"
+#include "sao/cpu/parallel.h"
 #include "sao/raytrace/raytrace.h"
 
 namespace sao::raytrace {
@@ -78,7 +79,7 @@ Status referenceObscurance(const RayScene& scene, const Camera& camera, const Pr
   const glm::dmat4 toWorld = glm::inverse(scenes::viewMatrix(view));
   ao = FloatImage({camera.width, camera.height}, 1, 1.0f);
   const std::uint32_t g = camera.guardBand;
-  detail::parallelRows(camera.height, o.threads, [&](std::uint32_t y) {
+  cpu::parallelFor(camera.height, o.threads, [&](std::uint32_t y) {
     for (std::uint32_t x = 0; x < camera.width; ++x) {
       if (primary.position.at(x + g, y + g, 3) == 0.0f) continue;  // sky
       const glm::dvec3 pc(primary.position.at(x + g, y + g, 0), primary.position.at(x + g, y + g, 1),

@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "sampling.h"
+#include "sao/cpu/parallel.h"
 
 namespace sao::raytrace {
 
@@ -93,7 +94,7 @@ bool RayScene::occluded(glm::dvec3 o, glm::dvec3 d, double tFar) const {
 
 namespace {
 
-using detail::parallelRows;
+using cpu::parallelFor;
 
 double P(const Camera& c, int row, int col) { return c.projection[col * 4 + row]; }
 
@@ -132,7 +133,7 @@ Status castLayer(const RayScene& scene, const scenes::View& view, const Camera& 
   if (format == DepthFormat::LinearZ) std::fill(out.depth.texels.begin(), out.depth.texels.end(), encodeDepth(format, 0.0));
   out.position = FloatImage(e, 4, 0.0f);
   out.normal = FloatImage(e, 4, 0.0f);
-  parallelRows(e.height, threads, [&](std::uint32_t y) {
+  parallelFor(e.height, threads, [&](std::uint32_t y) {
     for (std::uint32_t x = 0; x < e.width; ++x) {
       const glm::dvec3 dirCam = cameraRay(camera, x, y);
       const glm::dvec3 dirWorld = glm::dvec3(toWorld * glm::dvec4(dirCam, 0.0));
@@ -205,7 +206,7 @@ Status referenceAmbientOcclusion(const RayScene& scene, const Camera& camera, co
   const std::uint32_t g = camera.guardBand;
   std::mutex progressMutex;
   std::uint32_t rowsDone = 0;
-  parallelRows(camera.height, o.threads, [&](std::uint32_t y) {
+  parallelFor(camera.height, o.threads, [&](std::uint32_t y) {
     for (std::uint32_t x = 0; x < camera.width; ++x) {
       if (primary.position.at(x + g, y + g, 3) == 0.0f) continue;  // sky
       const glm::dvec3 pc(primary.position.at(x + g, y + g, 0), primary.position.at(x + g, y + g, 1),

@@ -1,31 +1,15 @@
-// Internal to sao::raytrace: the row-parallel loop and the deterministic random directions that
-// the references share. Every result is a pure function of its seed, whatever the thread count.
+// Internal to sao::raytrace: the deterministic random directions that the references share. Every
+// result is a pure function of its seed, whatever the thread count (rows run through
+// sao::cpu::parallelFor).
 #pragma once
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
-#include <thread>
-#include <vector>
 
 #include <glm/glm.hpp>
 
 namespace sao::raytrace::detail {
-
-// Calls f(y) for every row y in [0, rows) on `threads` threads (0: one per hardware thread). Rows
-// are independent, so the order they run in changes nothing.
-template <class F>
-void parallelRows(std::uint32_t rows, unsigned threads, F&& f) {
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-  std::atomic<std::uint32_t> next{0};
-  std::vector<std::thread> pool;
-  for (unsigned t = 0; t < threads; ++t)
-    pool.emplace_back([&] {
-      for (std::uint32_t y = next++; y < rows; y = next++) f(y);
-    });
-  for (auto& th : pool) th.join();
-}
 
 inline std::uint64_t splitmix(std::uint64_t& s) {
   std::uint64_t z = (s += 0x9e3779b97f4a7c15ull);

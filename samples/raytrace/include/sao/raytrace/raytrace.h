@@ -62,8 +62,9 @@ struct ReferenceOptions {
   std::uint32_t rays = 256;   // cosine-weighted rays per pixel
   std::uint64_t seed = 1;     // results are a pure function of (scene, view, options)
   unsigned threads = 0;
-  // Optional: called after each finished row with (rows done, rows), from the worker threads but
-  // never two calls at once. For progress reports; it must not throw.
+  // Optional: called after each finished row with (rows done, rows), from the threads that trace
+  // the rows (the caller's among them) but never two calls at once. For progress reports; it must
+  // not throw.
   std::function<void(std::uint32_t, std::uint32_t)> progress;
 };
 
