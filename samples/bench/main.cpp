@@ -18,6 +18,8 @@
 #include "precision_report.h"
 #include "reference_check.h"
 #include "report.h"
+#include "sao/cli/command_line.h"
+#include "sao/cli/shared_options.h"
 #include "sao/prepass/precision.h"
 #include "sao/prepass/prepass.h"
 #include "sao/presets.h"
@@ -29,34 +31,23 @@ using namespace sao;
 
 namespace {
 
-constexpr const char* kUsage = R"(usage: sao-bench [options]
-Measures every preset on every scene and backend (median per-pass time of --runs runs, and the
+constexpr const char* kDescription =
+    R"(Measures every preset on every scene and backend (median per-pass time of --runs runs, and the
 error against two ray-traced references: (a) near-field AO, (b) the AlchemyAO obscurance integral),
 then the sweeps: samples, MIP and blur on/off, radius (paper Fig. 5: SAO with and without the z
 hierarchy and an AlchemyAO-style baseline), resolution (paper Table 3) and the two-layer variant.
 Every run first checks reference (a) against the analytic sphere case (reference_check.csv).
-Writes results.csv, results.json and SVG plots.
-  --out DIR        output folder (default out/bench)
-  --backends LIST  comma-separated: cpu,gl,vulkan (default: gl,vulkan,cpu, those that start)
-  --sections LIST  comma-separated parts to run (default: all):
-                   presets,samples,mip_blur,radius,resolution,two_layer,precision
-  --runs N         measured runs per point, after one warm-up (default 5)
-  --rays N         reference rays per pixel (default 256)
-  --size WxH       size of the preset matrix and sweeps (default 1280x720; the radius sweep
-                   always runs at 1920x1080 unless --quick)
-  --depth-source S raster (default): the scene's depth, positions, normals and peeled second
-                   layer from the rasterising prepass (GL, else Vulkan; D32F, reversed-Z, [0,1],
-                   infinite far); raytrace: from Embree primary rays (raytrace::castPrimary)
-  --units U        the scenes' length unit: m | cm | mm | in | ft | auto (default: each scene's
-                   own, the built-in scenes' metres). Settings stay in metres and are converted
-                   (Camera::metersToViewUnits); the choice is printed per scene
-  --quick          the smoke run: 160x90, 3 runs, 16 rays, two scenes, short sweeps
-  --help
-)";
+Writes results.csv, results.json and SVG plots.)";
 
 // The parts of the run, in the order they run (--sections picks some).
 const std::vector<std::string> kSections = {"presets",    "samples",   "mip_blur", "radius",
                                             "resolution", "two_layer", "precision"};
+
+std::string sectionNames() {
+  std::string names;
+  for (const auto& s : kSections) names += (names.empty() ? "" : ",") + s;
+  return names;
+}
 
 // The two_layer section's second depth layer: the first surface at least this far (metres, in
 // camera-space z) behind the first (depth peeling, or raytrace::castSecondLayer).
@@ -65,15 +56,15 @@ constexpr double kSecondLayerSeparation = 0.5;
 struct Options {
   std::string out = "out/bench", backends = "gl,vulkan,cpu", depthSource = "raster";
   std::set<std::string> sections{kSections.begin(), kSections.end()};
-  int runs = 5;
-  std::uint32_t rays = 256, width = 1280, height = 720;
+  std::uint32_t runs = 5, rays = 256;
+  Extent size{1280, 720};
   bool quick = false;
   std::optional<scenes::LengthUnit> units;  // --units
 };
 
-[[noreturn]] void fail(const std::string& m, int code = 1) {
+[[noreturn]] void fail(const std::string& m) {
   std::fprintf(stderr, "\nsao-bench: %s\n", m.c_str());
-  std::exit(code);
+  std::exit(1);
 }
 
 std::set<std::string> parseSections(const std::string& list) {
@@ -81,58 +72,40 @@ std::set<std::string> parseSections(const std::string& list) {
   std::stringstream in(list);
   std::string name;
   while (std::getline(in, name, ',')) {
-    if (std::find(kSections.begin(), kSections.end(), name) == kSections.end()) {
-      std::string valid;
-      for (const auto& s : kSections) valid += (valid.empty() ? "" : ",") + s;
-      fail("--sections: unknown section '" + name + "' (expected some of " + valid + ")", 2);
-    }
+    if (std::find(kSections.begin(), kSections.end(), name) == kSections.end())
+      cli::reject("--sections: unknown section '" + name + "' (expected some of " + sectionNames() + ")");
     out.insert(name);
   }
-  if (out.empty()) fail("--sections needs at least one section", 2);
+  if (out.empty()) cli::reject("--sections needs at least one section");
   return out;
 }
 
 Options parse(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) fail(a + " needs a value (see --help)", 2);
-      return argv[++i];
-    };
-    auto count = [&](const std::string& v, long lo, long hi) {
-      char* end = nullptr;
-      const long n = std::strtol(v.c_str(), &end, 10);
-      if (v.empty() || *end || n < lo || n > hi) fail(a + " expects a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]", 2);
-      return n;
-    };
-    if (a == "--help" || a == "-h") {
-      std::fputs(kUsage, stdout);
-      std::exit(0);
-    } else if (a == "--out") o.out = value();
-    else if (a == "--backends") o.backends = value();
-    else if (a == "--sections") o.sections = parseSections(value());
-    else if (a == "--depth-source") {
-      o.depthSource = value();
-      if (o.depthSource != "raster" && o.depthSource != "raytrace") fail("--depth-source expects raster or raytrace", 2);
-    }
-    else if (a == "--runs") o.runs = int(count(value(), 1, 1000));
-    else if (a == "--rays") o.rays = std::uint32_t(count(value(), 1, 65536));
-    else if (a == "--size") {
-      const std::string v = value();
-      const auto x = v.find('x');
-      if (x == std::string::npos) fail("--size expects WxH", 2);
-      o.width = std::uint32_t(count(v.substr(0, x), 1, 8192));
-      o.height = std::uint32_t(count(v.substr(x + 1), 1, 8192));
-    } else if (a == "--quick") o.quick = true;
-    else if (a == "--units") {
-      const std::string v = value();
-      o.units = scenes::parseLengthUnit(v);
-      if (!o.units) fail("--units expects " + std::string(scenes::kLengthUnitNames) + ", got '" + v + "'", 2);
-    }
-    else fail("unknown option '" + a + "' (see --help)", 2);
-  }
-  if (o.quick) o.width = 160, o.height = 90, o.runs = 3, o.rays = 16;
+  cli::CommandLine cl("sao-bench", kDescription);
+  cl.text("--out", o.out, "DIR", "output folder (default out/bench)");
+  cl.text("--backends", o.backends, "LIST",
+          "comma-separated: cpu,gl,vulkan (default: gl,vulkan,cpu, those that start; the others are skipped)");
+  cl.value("--sections", "LIST", "comma-separated parts to run (default: all):\n" + sectionNames(),
+           [&o](const std::string& v) { o.sections = parseSections(v); });
+  cli::addRuns(cl, o.runs, 1, "measured runs per point, after one warm-up", "default 5");
+  cli::addRays(cl, "--rays", o.rays, "reference rays per pixel", "default 256");
+  cli::addImageSize(cl, o.size, "size of the preset matrix and sweeps",
+                    "default 1280x720; the radius sweep always runs at 1920x1080 unless --quick");
+  cl.choice("--depth-source", o.depthSource,
+            [](const std::string& v) { return v == "raster" || v == "raytrace" ? std::optional(v) : std::nullopt; },
+            "raster or raytrace", "S",
+            "raster (default): the scene's depth, positions, normals and peeled second layer from the rasterising "
+            "prepass (GL, else Vulkan; D32F, reversed-Z, [0,1], infinite far); raytrace: from Embree primary rays "
+            "(raytrace::castPrimary)");
+  cl.choice("--units", o.units, scenes::parseLengthUnit, std::string(scenes::kLengthUnitNames), "U",
+            "the scenes' length unit: m | cm | mm | in | ft | auto (default: each scene's own, the built-in scenes' "
+            "metres). Settings stay in metres and are converted (Camera::metersToViewUnits); the choice is printed "
+            "per scene");
+  cl.flag("--quick", o.quick, "the smoke run: 160x90, 3 runs, 16 rays, two scenes, short sweeps (replaces --size, "
+          "--runs and --rays)");
+  cl.parse(argc, argv);
+  if (o.quick) o.size = {160, 90}, o.runs = 3, o.rays = 16;
   return o;
 }
 
@@ -340,12 +313,12 @@ int main(int argc, char** argv) {
       refs.mask = &p.mask;
     }
     bench::Row r{section, scene, std::string(b.name()), preset, variant, what, size, s, {}};
-    if (Status st = bench::measure(b, s, p.camera, inputs, o.runs, refs, r.m); !st)
+    if (Status st = bench::measure(b, s, p.camera, inputs, int(o.runs), refs, r.m); !st)
       fail(section + " " + scene + " " + variant + ": " + st.message);
     rows.push_back(std::move(r));
   };
   auto want = [&](const char* section) { return o.sections.count(section) > 0; };
-  const Extent size{o.width, o.height};
+  const Extent size = o.size;
   auto& first = *backends.front();
   const Settings base = presetSettings(Preset::Medium);
 
@@ -417,7 +390,7 @@ int main(int argc, char** argv) {
       progress(std::string("precision: ") + api + " prepass");
       prepass::PrecisionOptions po;
       if (o.quick) po.width = 320, po.height = 180;
-      else po.width = o.width, po.height = o.height;
+      else po.width = o.size.width, po.height = o.size.height;
       std::vector<prepass::PrecisionRow> rowsOut;
       if (Status s = prepass::measurePrecision(*pp, po, rowsOut); !s) fail(std::string("precision on ") + api + ": " + s.message);
       precision.emplace_back(api, std::move(rowsOut));

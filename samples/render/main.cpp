@@ -12,19 +12,17 @@
 #include <memory>
 #include <numbers>
 #include <optional>
-#include <set>
-#include <sstream>
 #include <string>
 
+#include "sao/cli/command_line.h"
 #include "sao/io.h"
-#include "sao/presets.h"
 #include "sao/prepass/prepass.h"
 #include "sao/raytrace/raytrace.h"
 #include "sao/samples/backend_runner.h"
 #include "sao/samples/scale_warnings.h"
 #include "sao/samples/shading.h"
 #include "sao/scenes/scene.h"
-#include "help.h"
+#include "options.h"
 #include "output_folder.h"
 #include "progress.h"
 #include "run_timing.h"
@@ -32,90 +30,9 @@
 
 namespace fs = std::filesystem;
 using namespace sao;
+using sao::render::Options;
 
 namespace {
-
-constexpr const char* kUsage = R"(usage: sao-render [options]
-Renders a scene's depth, runs Scalable Ambient Obscurance and writes into the output folder:
-ao.png (8-bit), ao.exr (float), lit.png and lit_no_ao.png (environment light with and without
-AO; a scene only), reference.png (with --reference), summary.txt (per-pass times, the plan and
-its memory), summary.json (with --json) and sao-render-outputs.txt (the list of these files).
-
-  --out DIR             output folder (default: out/render). It is replaced as a whole, so no
-                        file of an earlier run survives: the run writes into a new folder beside
-                        it and swaps it in only once every output is written (a failed run
-                        leaves DIR as it was). DIR must be missing, empty, or an earlier output
-                        holding only the files its sao-render-outputs.txt lists; any other file
-                        in it stops the run before rendering (nothing of yours is deleted)
-  --backend NAME        gl | vulkan | cpu (the CPU reference in float, as a GPU computes) |
-                        cpu-double (the CPU reference in double) | auto (default: the first of
-                        gl, vulkan, cpu that starts)
-  --scene NAME|PATH     built-in scene: sponza-like (default), sphere-plane, crease, thin, gears;
-                        or a mesh file (.gltf .glb .obj .ply; one view looking at the whole
-                        mesh) or a scene file (.scene, docs/scene-format.md)
-  --units U             the scene's length unit: m | cm | mm | in | ft, or auto (OBJ and PLY:
-                        a scale that makes the bounding-box diagonal 5 m, printed on stderr
-                        and in the summary; glTF and built-in scenes keep metres). Default: the
-                        scene's own (built-in and glTF metres, a .scene file's `units` line),
-                        else metres. Settings stay in metres and are converted; --eye, --target
-                        and --near are in the scene's units. With --depth: a file without a
-                        sao.* camera (one with it carries sao.metersToViewUnits)
-  --view N              the scene's view number (default 0)
-  --eye X,Y,Z --target X,Y,Z
-                        an explicit camera for the scene (scene units, y up; both together),
-                        with --fovy DEG (default 60) and --near D (default 0.1); replaces --view
-  --size WxH            AO size in pixels, 1..16384 each (default 1280x720)
-  --guard N             guard band in pixels on each side, 0..4096 (default 0)
-  --preset NAME         low | medium | high | ultra | reference (default: the settings' defaults)
-  --set NAME=VALUE      any setting below (repeatable), checked against its range
-  --depth-format F      D16 | D24 | D32F: the precision of a scene's depth (default D32F; always
-                        reversed-Z, [0,1] clip, infinite far)
-  --depth-source S      how a scene's depth is made: raster (the rasterising prepass of the
-                        backend's API; cpu uses GL, else Vulkan), raytrace (Embree primary rays),
-                        auto (default: raster when a prepass starts, else raytrace; the summary
-                        says which)
-  --depth FILE.exr      run on your own depth buffer instead of a scene (format below); the
-                        camera comes from the file's sao.* attributes or, for a file without
-                        them, from --fovy DEG --near M --far M|inf --clip gl|zero-one
-                        --reversed-z --guard N (defaults 60, 0.1, inf, zero-one, off, 0)
-  --save-depth FILE.exr write the depth input with its camera (a file --depth reads back); its
-                        folder must exist
-  --dump-passes DIR     every intermediate image as EXR (a folder handled as --out is)
-  --reference           also the ray-traced reference (near-field AO within the radius) and the
-                        error metrics, for a scene (not --depth); "n/a" (JSON null) marks a
-                        metric that is undefined for the images (e.g. SSIM of two constant ones)
-  --reference-rays N    rays per pixel of the reference, 1..65536 (default 256)
-  --runs N              measured runs of the effect after one warm-up run, 1..1000 (default 1);
-                        the summary gives each pass's median and the fastest..slowest run
-  --progress S          a line on stderr every S seconds for a step running longer than S
-                        seconds, with the elapsed time and the reference's share done, and one
-                        when it ends (default 2; 0: every step, every 0.5 s and each tenth
-                        of the reference done)
-  --json                write summary.json too
-  --help                this text
-Any option but --set given twice: the last one counts. Options that would have no effect are
-refused (e.g. --fovy for a scene without --eye, --size with --depth, --reference-rays without
---reference).
-Exit status: 0 on success, 1 when the run fails (nothing is written then), 2 for bad options;
-errors are one line on stderr.
-)";
-
-struct Options {
-  std::string out = "out/render", backend = "auto", scene = std::string(scenes::kDefaultScene), depthPath, dumpDir,
-              saveDepth, depthSource = "auto";
-  std::uint32_t view = 0, width = 1280, height = 720, guard = 0, referenceRays = 256;
-  std::string preset, clip = "zero-one";
-  DepthFormat depthFormat = DepthFormat::D32F;
-  double fovyDegrees = 60, nearDistance = 0.1, far = INFINITY;
-  std::optional<glm::dvec3> eye, target;
-  bool reversedZ = false, reversedGiven = false, cameraFlags = false, reference = false, json = false;
-  std::vector<std::string> sets;
-  std::uint32_t runs = 1;
-  double progressSeconds = 2;
-  std::optional<scenes::LengthUnit> units;  // --units
-  std::set<std::string> given;  // the options on the command line
-  bool has(const char* option) const { return given.count(option) > 0; }
-};
 
 // The outputs being written (staged beside their places until the run succeeds); an error exit
 // removes them.
@@ -131,157 +48,13 @@ struct StagedOutputs {
 
 [[noreturn]] void usageError(const std::string& message) {
   g_staged.abandon();
-  std::fprintf(stderr, "sao-render: %s (see --help)\n", message.c_str());
-  std::exit(2);
+  cli::exitWithUsageError("sao-render", message);
 }
 
 [[noreturn]] void runError(const Status& s) {
   g_staged.abandon();
   std::fprintf(stderr, "sao-render: %s: %s\n", toString(s.code), s.message.c_str());
   std::exit(1);
-}
-
-std::uint32_t parseCount(const std::string& flag, const std::string& v, std::uint32_t lo, std::uint32_t hi) {
-  char* end = nullptr;
-  const long long n = std::strtoll(v.c_str(), &end, 10);
-  if (v.empty() || *end || n < lo || n > hi)
-    usageError(flag + " expects a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got '" + v + "'");
-  return static_cast<std::uint32_t>(n);
-}
-
-double parseNumber(const std::string& flag, const std::string& v) {
-  char* end = nullptr;
-  const double d = std::strtod(v.c_str(), &end);
-  if (v.empty() || *end || !std::isfinite(d)) usageError(flag + " expects a finite number, got '" + v + "'");
-  return d;
-}
-
-glm::dvec3 parsePoint(const std::string& flag, const std::string& v) {
-  glm::dvec3 p;
-  std::size_t start = 0;
-  for (int i = 0; i < 3; ++i) {
-    const std::size_t comma = v.find(',', start);
-    if ((i < 2) != (comma != std::string::npos)) usageError(flag + " expects X,Y,Z, got '" + v + "'");
-    p[i] = parseNumber(flag, v.substr(start, i < 2 ? comma - start : std::string::npos));
-    start = comma + 1;
-  }
-  return p;
-}
-
-DepthFormat parseDepthFormat(const std::string& f) {
-  if (f == "D16") return DepthFormat::D16;
-  if (f == "D24") return DepthFormat::D24;
-  if (f == "D32F") return DepthFormat::D32F;
-  usageError("--depth-format expects D16, D24 or D32F, got '" + f + "'");
-}
-
-// Options that would change nothing in this combination are refused rather than ignored.
-void refuseIneffectiveOptions(const Options& o) {
-  if (o.has("--depth")) {
-    if (o.has("--scene")) usageError("--scene and --depth are two inputs: give one");
-    for (const char* scene : {"--view", "--eye", "--target"})
-      if (o.has(scene))
-        usageError(std::string(scene) + " has no effect with --depth: a depth file carries its camera, or takes "
-                   "--fovy/--near/--far/--clip/--reversed-z");
-    if (o.has("--size")) usageError("--size has no effect with --depth: the AO has the depth file's size");
-    if (o.has("--depth-format")) usageError("--depth-format has no effect with --depth: the file gives its format");
-    if (o.has("--depth-source")) usageError("--depth-source has no effect with --depth: the file is the depth");
-    if (o.units == scenes::LengthUnit::Auto)
-      usageError("--units auto needs a scene's bounding box: a --depth file takes m, cm, mm, in or ft");
-  } else {
-    for (const char* flag : {"--fovy", "--near"})
-      if (o.has(flag) && !o.has("--eye"))
-        usageError(std::string(flag) + " has no effect without --eye: a scene's view has its own camera");
-    for (const char* flag : {"--far", "--clip", "--reversed-z"})
-      if (o.has(flag))
-        usageError(std::string(flag) + " is for a --depth file without a camera: a scene's depth is always "
-                   "reversed-Z, [0,1] clip, infinite far");
-    if (o.has("--view") && o.has("--eye"))
-      usageError("--view has no effect with --eye/--target, which replace the view");
-  }
-  if (o.has("--reference-rays") && !o.reference) usageError("--reference-rays has no effect without --reference");
-}
-
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) usageError(a + " needs a value");
-      if (!*argv[i + 1]) usageError(a + " needs a value, got an empty string");
-      return argv[++i];
-    };
-    o.given.insert(a);
-    if (a == "--help" || a == "-h") {
-      const std::string help = kUsage + render::settingsHelp() + render::depthExrHelp();
-      std::fputs(help.c_str(), stdout);
-      std::exit(std::fflush(stdout) == 0 && !std::ferror(stdout) ? 0 : 1);
-    } else if (a == "--out") o.out = value();
-    else if (a == "--backend") o.backend = value();
-    else if (a == "--scene") o.scene = value();
-    else if (a == "--depth-source") {
-      o.depthSource = value();
-      if (o.depthSource != "auto" && o.depthSource != "raster" && o.depthSource != "raytrace")
-        usageError("--depth-source expects raster, raytrace or auto");
-    } else if (a == "--view") o.view = parseCount(a, value(), 0, 1000);
-    else if (a == "--size") {
-      const std::string v = value();
-      const auto x = v.find('x');
-      if (x == std::string::npos) usageError("--size expects WxH, got '" + v + "'");
-      o.width = parseCount("--size width", v.substr(0, x), 1, kMaxImageSide);
-      o.height = parseCount("--size height", v.substr(x + 1), 1, kMaxImageSide);
-    } else if (a == "--guard") o.guard = parseCount(a, value(), 0, 4096);
-    else if (a == "--preset") o.preset = value();
-    else if (a == "--set") o.sets.push_back(value());
-    else if (a == "--depth-format") o.depthFormat = parseDepthFormat(value());
-    else if (a == "--depth") o.depthPath = value();
-    else if (a == "--eye") o.eye = parsePoint(a, value());
-    else if (a == "--target") o.target = parsePoint(a, value());
-    else if (a == "--fovy") o.fovyDegrees = parseNumber(a, value()), o.cameraFlags = true;
-    else if (a == "--near") o.nearDistance = parseNumber(a, value()), o.cameraFlags = true;
-    else if (a == "--far") {
-      const std::string v = value();
-      o.far = v == "inf" ? INFINITY : parseNumber(a, v);
-      o.cameraFlags = true;
-    } else if (a == "--clip") {
-      o.clip = value();
-      o.cameraFlags = true;
-      if (o.clip != "gl" && o.clip != "zero-one") usageError("--clip expects gl or zero-one, got '" + o.clip + "'");
-    }
-    else if (a == "--reversed-z") o.reversedZ = o.reversedGiven = o.cameraFlags = true;
-    else if (a == "--dump-passes") o.dumpDir = value();
-    else if (a == "--save-depth") o.saveDepth = value();
-    else if (a == "--reference") o.reference = true;
-    else if (a == "--reference-rays") o.referenceRays = parseCount(a, value(), 1, 1u << 16);
-    else if (a == "--json") o.json = true;
-    else if (a == "--units") {
-      const std::string v = value();
-      o.units = scenes::parseLengthUnit(v);
-      if (!o.units) usageError("--units expects " + std::string(scenes::kLengthUnitNames) + ", got '" + v + "'");
-    }
-    else if (a == "--runs") o.runs = parseCount(a, value(), 1, 1000);
-    else if (a == "--progress") {
-      o.progressSeconds = parseNumber(a, value());
-      if (!(o.progressSeconds >= 0 && o.progressSeconds <= 3600)) usageError("--progress expects seconds in [0, 3600]");
-    } else usageError("unknown option '" + a + "'");
-  }
-  refuseIneffectiveOptions(o);
-  if (o.eye.has_value() != o.target.has_value()) usageError("--eye and --target go together");
-  // Refused here, not after the AO was written: a depth file has no geometry to trace.
-  if (o.reference && !o.depthPath.empty()) usageError("--reference needs a scene, not a --depth file (no geometry to trace)");
-  return o;
-}
-
-Settings buildSettings(const Options& o) {
-  Settings s;
-  if (!o.preset.empty()) {
-    const auto p = findPreset(o.preset);
-    if (!p) usageError("unknown preset '" + o.preset + "' (low, medium, high, ultra, reference)");
-    s = presetSettings(*p);
-  }
-  for (const auto& set : o.sets)
-    if (Status st = setFromAssignment(s, set); !st) usageError(st.message);
-  return s;
 }
 
 Camera cameraFromFlags(const Options& o, Extent inputExtent) {
@@ -400,9 +173,8 @@ Status writeText(const std::string& path, const std::string& text) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options o = parse(argc, argv);
-  const Settings settings = buildSettings(o);
-  if (Status s = validate(settings); !s) usageError(s.message);
+  const Options o = render::parseOptions(argc, argv);
+  const Settings& settings = o.settings;
 
   std::unique_ptr<samples::BackendRunner> backend;
   if (Status s = samples::createBackend(o.backend, backend); !s) {
@@ -470,7 +242,7 @@ int main(int argc, char** argv) {
       viewIndex = std::uint32_t(scene.views.size() - 1);
     }
     const scenes::View& view = scene.views[viewIndex];
-    camera = scenes::makeCamera(view, o.width, o.height, INFINITY, ClipDepth::ZeroToOne, true, o.guard);
+    camera = scenes::makeCamera(view, o.size.width, o.size.height, INFINITY, ClipDepth::ZeroToOne, true, o.guard);
     const scenes::UnitChoice units = scenes::chooseUnits(scene.mesh, scene.units, o.units);
     camera.metersToViewUnits = units.metersToViewUnits;
     if (units.unit == "auto") std::fprintf(stderr, "sao-render: units %s\n", units.note.c_str());

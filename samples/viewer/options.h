@@ -1,9 +1,8 @@
-// sao-viewer's command line.
+// sao-viewer's command line (sao/cli, CLI11).
 #pragma once
 #include <cstdint>
 #include <optional>
 #include <string>
-#include <vector>
 
 #include "sao/scenes/units.h"
 #include "viewer_types.h"
@@ -15,9 +14,7 @@ struct Options {
   std::string scene;  // empty: the default built-in scene
   std::uint32_t view = 0;
   std::optional<scenes::LengthUnit> units;  // --units: the --scene's unit (scenes::chooseUnits)
-  int width = 1280, height = 720;
-  std::string preset;
-  std::vector<std::string> sets;
+  int width = 1280, height = 720;  // the window
   ViewMode mode = ViewMode::Lit;
   int zLevel = 1;
   bool reference = false;

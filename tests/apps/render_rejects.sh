@@ -57,6 +57,14 @@ check 2 "--size width expects a whole number in [1, 16384], got '0'" --size 0x0
 check 2 "--size height expects a whole number in [1, 16384], got '0'" --size 64x0
 check 2 "--size expects WxH, got 'abc'" --size abc
 check 2 "--size expects WxH, got '64'" --size 64
+check 2 "--size needs a value" --size=
+# Every value is checked, also one that a later one would replace.
+check 2 "--size expects WxH, got 'abc'" --size abc --size 64x36
+check 2 "--runs expects a whole number in [1, 1000], got '2.5'" --runs 2.5
+check 2 "--reference-rays expects a whole number in [1, 65536], got '0'" --reference --reference-rays 0
+check 2 "--eye expects X,Y,Z, got '1,2'" --eye 1,2 --target 0,0,-1
+check 2 "--json takes no value (or true or false), got 'x'" --json=x
+check 2 "unexpected argument 'stray'" stray
 check 2 "got '20000'" --size 20000x20000
 check 2 "got '99999999999'" --size 99999999999x2
 check 2 "--guard expects a whole number in [0, 4096], got '5000'" --guard 5000

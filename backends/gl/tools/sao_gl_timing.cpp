@@ -1,19 +1,18 @@
 // sao-gl-timing: per-pass time of the OpenGL backend at 1280x720 and 1920x1080 (or the sizes
 // given), median of N runs per preset, on a headless EGL context. A measurement tool, not a test.
-//
-//   sao-gl-timing [--runs N] [--preset NAME|all] [--size WxH]... [--guard G]
+// `sao-gl-timing --help` lists the options.
 #include <epoxy/gl.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <map>
 #include <numbers>
 #include <string>
 #include <vector>
 
+#include "sao/cli/command_line.h"
+#include "sao/cli/shared_options.h"
 #include "sao/gl/effect.h"
 #include "sao/gl/headless.h"
 #include "sao/presets.h"
@@ -45,35 +44,23 @@ double median(std::vector<double> v) {
   return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-int usage() {
-  std::fprintf(stderr, "usage: sao-gl-timing [--runs N>=5] [--preset NAME|all] [--size WxH]... [--guard G]\n");
-  return 2;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  int runs = 7;
-  std::uint32_t guard = 16;
-  std::string presetName = "all";
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> sizes;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--runs" && i + 1 < argc) runs = std::atoi(argv[++i]);
-    else if (a == "--preset" && i + 1 < argc) presetName = argv[++i];
-    else if (a == "--guard" && i + 1 < argc) guard = std::uint32_t(std::atoi(argv[++i]));
-    else if (a == "--size" && i + 1 < argc) {
-      unsigned w = 0, h = 0;
-      if (std::sscanf(argv[++i], "%ux%u", &w, &h) != 2 || !w || !h) return usage();
-      sizes.push_back({w, h});
-    } else return usage();
-  }
-  if (runs < 5) runs = 5;
-  if (sizes.empty()) sizes = {{1280, 720}, {1920, 1080}};
+  std::uint32_t runs = 7, guard = 16;
   std::vector<sao::Preset> presets;
-  for (const auto& p : sao::presets())
-    if (presetName == "all" || p.name == presetName) presets.push_back(p.preset);
-  if (presets.empty()) return usage();
+  std::vector<sao::Extent> sizes;
+  sao::cli::CommandLine cl("sao-gl-timing",
+                           "Per-pass time of the OpenGL backend on a headless EGL context: the median of N runs\n"
+                           "per preset and size (a measurement tool, not a test).");
+  sao::cli::addRuns(cl, runs, 5, "measured runs per configuration", "default 7; the median is reported");
+  sao::cli::addPresetList(cl, presets);
+  sao::cli::addImageSizes(cl, sizes, "an AO size to measure", "default: 1280x720 and 1920x1080");
+  sao::cli::addGuardBand(cl, guard, "guard band in pixels on each side", "default 16");
+  cl.parse(argc, argv);
+  if (sizes.empty()) sizes = {{1280, 720}, {1920, 1080}};
+  if (presets.empty())
+    for (const auto& p : sao::presets()) presets.push_back(p.preset);
 
   std::unique_ptr<sao::gl::HeadlessContext> ctx;
   sao::gl::HeadlessOptions ho;
@@ -87,10 +74,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "sao-gl-timing: %s\n", st.message.c_str());
     return 1;
   }
-  std::printf("context: %s\nruns per configuration: %d (median reported), depth GL_DEPTH_COMPONENT32F, guard band %u\n",
+  std::printf("context: %s\nruns per configuration: %u (median reported), depth GL_DEPTH_COMPONENT32F, guard band %u\n",
               ctx->description().c_str(), runs, guard);
 
-  for (const auto& [w, h] : sizes) {
+  for (const auto [w, h] : sizes) {
     sao::Camera cam = sao::perspectiveCamera(std::numbers::pi / 3.0, w, h, 0.1, 100.0,
                                              sao::ClipDepth::NegativeOneToOne, false);
     cam.guardBand = guard;
@@ -124,7 +111,7 @@ int main(int argc, char** argv) {
       std::vector<std::string> order;
       std::vector<double> totals;
       sao::TimingMethod method = sao::TimingMethod::None;
-      for (int r = 0; r < runs; ++r) {
+      for (std::uint32_t r = 0; r < runs; ++r) {
         if (sao::Status st = effect->render(cam, settings, in, {true}); !st) {
           std::fprintf(stderr, "sao-gl-timing: %s\n", st.message.c_str());
           return 1;

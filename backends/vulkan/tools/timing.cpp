@@ -1,18 +1,17 @@
 // sao-vk-timing: per-pass GPU time of the Vulkan backend at 1280x720 and 1920x1080 (or the sizes
 // given), for every preset (or the ones given), median of N runs after one warm-up. Timestamps where
 // the queue has them, else the fence fallback; the method used is printed. No validation layers.
-//
-//   sao-vk-timing [--runs N] [--preset NAME]... [--size WxH]... [--fence] [--format d16|d24|d32f]
+// `sao-vk-timing --help` lists the options.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <map>
 #include <numbers>
 #include <string>
 #include <vector>
 
+#include "sao/cli/command_line.h"
+#include "sao/cli/shared_options.h"
 #include "sao/presets.h"
 #include "sao/vulkan/effect.h"
 #include "sao/vulkan/headless.h"
@@ -61,44 +60,21 @@ sao::DepthImage scene(const sao::Camera& cam, sao::DepthFormat format) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int runs = 7;
+  std::uint32_t runs = 7;
   bool fence = false;
   sao::DepthFormat format = sao::DepthFormat::D32F;
   std::vector<sao::Preset> presets;
   std::vector<sao::Extent> sizes;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "%s needs a value\n", a.c_str());
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if (a == "--runs") runs = std::max(5, std::atoi(next().c_str()));
-    else if (a == "--fence") fence = true;
-    else if (a == "--preset") {
-      const auto p = sao::findPreset(next());
-      if (!p) {
-        std::fprintf(stderr, "unknown preset\n");
-        return 2;
-      }
-      presets.push_back(*p);
-    } else if (a == "--size") {
-      unsigned w = 0, h = 0;
-      if (std::sscanf(next().c_str(), "%ux%u", &w, &h) != 2 || !w || !h) {
-        std::fprintf(stderr, "--size WxH\n");
-        return 2;
-      }
-      sizes.push_back({w, h});
-    } else if (a == "--format") {
-      const std::string f = next();
-      format = f == "d16" ? sao::DepthFormat::D16 : f == "d24" ? sao::DepthFormat::D24 : sao::DepthFormat::D32F;
-    } else {
-      std::fprintf(stderr, "usage: sao-vk-timing [--runs N>=5] [--preset NAME]... [--size WxH]... [--fence] [--format d16|d24|d32f]\n");
-      return a == "--help" ? 0 : 2;
-    }
-  }
+  sao::cli::CommandLine cl("sao-vk-timing",
+                           "Per-pass GPU time of the Vulkan backend: the median of N runs after one warm-up, per\n"
+                           "preset and size; timestamps where the queue has them, else the fence fallback (the\n"
+                           "method used is printed). No validation layers.");
+  sao::cli::addRuns(cl, runs, 5, "measured runs per configuration", "default 7; the median is reported");
+  sao::cli::addPresetList(cl, presets);
+  sao::cli::addImageSizes(cl, sizes, "an AO size to measure", "default: 1280x720 and 1920x1080");
+  cl.flag("--fence", fence, "time with the fence fallback even where the queue has timestamps");
+  sao::cli::addDepthFormat(cl, "--format", format, "the depth format: D16 | D24 | D32F (default D32F)");
+  cl.parse(argc, argv);
   if (presets.empty())
     for (const auto& p : sao::presets()) presets.push_back(p.preset);
   if (sizes.empty()) sizes = {{1280, 720}, {1920, 1080}};
@@ -109,7 +85,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::printf("device: %s\n", ctx->description().c_str());
-  std::printf("runs: median of %d (after 1 warm-up), depth %s\n", runs, sao::toString(format));
+  std::printf("runs: median of %u (after 1 warm-up), depth %s\n", runs, sao::toString(format));
 
   for (const auto size : sizes) {
     sao::Camera cam = sao::perspectiveCamera(std::numbers::pi / 3.0, size.width, size.height, 0.1, 100.0,
@@ -136,7 +112,7 @@ int main(int argc, char** argv) {
       std::vector<std::string> order;
       std::vector<double> totals;
       sao::TimingMethod method = sao::TimingMethod::None;
-      for (int r = 0; r <= runs; ++r) {
+      for (std::uint32_t r = 0; r <= runs; ++r) {
         sao::Timings t;
         if (auto st = effect->measure(ctx->queue(), in, nullptr, t,
                                       fence ? sao::vk::MeasureMethod::FenceClock : sao::vk::MeasureMethod::Auto);
