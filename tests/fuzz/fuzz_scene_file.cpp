@@ -1,12 +1,12 @@
 // Fuzz target: scenes from files (samples/scenes): the .scene parser (parseSceneFile) on every
 // input, and the mesh readers from memory (loadMeshFromMemory: sao's OBJ and PLY readers; for
-// glTF, sao's JSON and binary-container checks, then assimp) in the format the bytes start like, as
+// glTF, sao's JSON and binary-container checks, then tinygltf) in the format the bytes start like, as
 // a program picks a reader by extension: "ply" -> ply, "glTF" -> glb, a '{' (after blanks) ->
 // gltf, anything else -> obj. No file is opened (meshes named by a scene file are not loaded; a
 // glTF's external buffers are refused from memory).
 //
-// Invariants: no crash, no exception, no sanitizer report, no leak (assimp itself is Debian's
-// build, not instrumented; its crashes, hangs and huge allocations are still caught). Scene text:
+// Invariants: no crash, no exception, no sanitizer report, no leak (tinygltf is compiled into
+// sao_scenes, so it is instrumented too). Scene text:
 // an error is InvalidInput "NAME:" or "NAME:LINE: ..." and leaves the output untouched; a success
 // has at least one mesh with a mesh extension and a finite, invertible transform, and views whose
 // eye and target differ, with fovy in (0, pi) and a positive near plane when given. Mesh: an error

@@ -1,6 +1,7 @@
 // Input a user's tools write that the readers used to take silently wrong (docs/ROBUSTNESS.md
 // section 4.8): a UTF-8 byte-order mark (OBJ lost its first vertex), glTF 1.0, glTF indices out
-// of range and invalid byteStrides (assimp dropped triangles or read garbage), and degenerate
+// of range and invalid byteStrides (assimp dropped triangles or read garbage; tinygltf reads an
+// unparsable byteStride as packed), and degenerate
 // triangles (an all-degenerate mesh rendered an empty image).
 #include <cstdio>
 #include <cstring>
@@ -60,8 +61,8 @@ std::string glb(std::string json, std::string bin) {
 
 // One indexed mesh primitive: the positions (xyz each) at `stride` bytes apart (0: no byteStride,
 // packed), then the uint16 indices. `viewShortBy` shortens the vertex buffer view's byteLength.
-// A strided view holds count * stride bytes: assimp 5.2 wants that much, though glTF 2.0 lets the
-// last element end the view.
+// A strided view holds count * stride bytes (as assimp 5.2, the reader before tinygltf, wanted),
+// though glTF 2.0 lets the last element end the view.
 struct Primitive {
   std::vector<float> positions;
   std::vector<std::uint16_t> indices;
@@ -188,7 +189,7 @@ TEST(ByteOrderMark, GltfIsAcceptedButNotInsideABinaryGltf) {
   dir.write("quad.bin", p.bin());
   Mesh plain;
   ASSERT_TRUE(loadMeshFile(dir.write("plain.gltf", p.json("quad.bin")), plain));
-  // assimp 5.2 alone said "JSON parse error, offset 0: Invalid value."
+  // assimp 5.2, the reader before tinygltf, said "JSON parse error, offset 0: Invalid value."
   for (const std::string& text : {p.json("quad.bin"), p.dataUriGltf()}) {
     Mesh fromFile, fromMemory;
     const Status f = loadMeshFile(dir.write("marked.gltf", kMark + text), fromFile);
@@ -206,7 +207,7 @@ TEST(ByteOrderMark, GltfIsAcceptedButNotInsideABinaryGltf) {
   const std::string binary = dir.write("marked.glb", glb(kMark + p.json(""), p.bin()));
   const Status s = loadMeshFile(binary, mesh);
   EXPECT_EQ(s.message, binary + ": binary glTF: the JSON chunk starts with a UTF-8 byte-order mark, which glTF 2.0 "
-                                "forbids there and assimp 5.2 cannot read; write the chunk without it");
+                                "forbids there; write the chunk without it");
 }
 
 // ---- glTF 1.0
@@ -314,8 +315,8 @@ TEST(GltfAccessors, ABufferViewPastItsBufferIsRefused) {
   Mesh mesh;
   Status s = loadMeshFromMemory(bytes(text), "gltf", "mem", mesh);
   EXPECT_EQ(s.message, "mem: glTF: bufferView 0 (byteOffset 0, byteLength 48) runs past the byteLength 40 of buffer 0");
-  // byteLength 40 over a data URI of more bytes: refused before assimp, which would throw on the
-  // mismatch without freeing what it decoded (a leak found by fuzzing).
+  // byteLength 40 over a data URI of more bytes: refused, with the sizes (assimp 5.2 threw on the
+  // mismatch without freeing what it decoded, a leak found by fuzzing).
   text = p.dataUriGltf();
   text.replace(text.find(length), length.size(), "\"byteLength\": 40,");
   s = loadMeshFromMemory(bytes(text), "gltf", "mem", mesh);
@@ -345,6 +346,81 @@ TEST(GltfAccessors, ABufferDataUriOfAnotherKindIsRefused) {
   }
   Mesh mesh;
   EXPECT_TRUE(loadMeshFromMemory(bytes(p.json("data:application/gltf-buffer;base64," + data)), "gltf", "mem", mesh));
+}
+
+// ---- glTF node trees, strips, fans and sparse positions (read from tinygltf's model)
+
+// Four positions of a unit quad at z = 0 (48 bytes), then a sparse replacement of vertex 2 by
+// (2, 2, 0): its index (uint16, padded to 4 bytes) and its value.
+std::string quadWithSparse(const std::string& primitives, const std::string& nodes, const std::string& scene) {
+  const float quad[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  const float moved[3] = {2, 2, 0};
+  std::string bin(reinterpret_cast<const char*>(quad), 48);
+  bin += std::string("\x02\x00\x00\x00", 4) + std::string(reinterpret_cast<const char*>(moved), 12);
+  return R"({"asset": {"version": "2.0"}, )" + scene + R"(, "nodes": )" + nodes + R"(,
+  "meshes": [{"primitives": )" + primitives + R"(}],
+  "buffers": [{"byteLength": 64, "uri": "data:application/octet-stream;base64,)" + base64(bin) + R"("}],
+  "bufferViews": [{"buffer": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 2},
+                  {"buffer": 0, "byteOffset": 52, "byteLength": 12}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3"},
+                {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                 "sparse": {"count": 1, "indices": {"bufferView": 1, "componentType": 5123},
+                            "values": {"bufferView": 2}}}]})";
+}
+
+TEST(GltfModel, StripsFansSparsePositionsAndNodeTrees) {
+  const std::string oneNode = R"([{"mesh": 0}])", oneScene = R"("scenes": [{"nodes": [0]}])";
+  Mesh mesh;
+  // A strip and a fan of the same 4 vertices: 2 triangles each, 4 vertices in all per primitive.
+  Status s = loadMeshFromMemory(bytes(quadWithSparse(R"([{"attributes": {"POSITION": 0}, "mode": 5},
+      {"attributes": {"POSITION": 0}, "mode": 6}])", oneNode, oneScene)), "gltf", "mem", mesh);
+  ASSERT_TRUE(s) << s.message;
+  EXPECT_EQ(mesh.triangleCount(), 4u);
+  EXPECT_EQ(mesh.positions.size(), 8u);
+  EXPECT_EQ(std::vector<std::uint32_t>(mesh.indices.begin(), mesh.indices.begin() + 6),
+            (std::vector<std::uint32_t>{0, 1, 2, 1, 3, 2}));  // the strip's second triangle turned
+  EXPECT_EQ(std::vector<std::uint32_t>(mesh.indices.begin() + 6, mesh.indices.end()),
+            (std::vector<std::uint32_t>{5, 6, 4, 6, 7, 4}));  // the fan around its first vertex
+  // Sparse positions: vertex 2 is (2, 2, 0); a child node inherits its parent's transform.
+  const std::string tree = R"([{"children": [1], "translation": [10, 0, 0]}, {"mesh": 0, "scale": [2, 2, 2]}])";
+  s = loadMeshFromMemory(bytes(quadWithSparse(R"([{"attributes": {"POSITION": 1}}])", tree, oneScene)), "gltf", "mem",
+                         mesh);
+  ASSERT_TRUE(s) << s.message;
+  EXPECT_EQ(mesh.triangleCount(), 1u);  // 4 vertices make 1 triangle in mode 4
+  ASSERT_EQ(mesh.positions.size(), 4u);
+  EXPECT_EQ(mesh.positions[2], glm::vec3(14, 4, 0));
+  // Two scenes: "scene" picks the second, which has the mesh twice through two nodes.
+  s = loadMeshFromMemory(bytes(quadWithSparse(R"([{"attributes": {"POSITION": 0}, "mode": 6}])",
+                                              R"([{"mesh": 0}, {"mesh": 0, "translation": [0, 0, 5]}])",
+                                              R"("scene": 1, "scenes": [{"nodes": []}, {"nodes": [0, 1]}])")),
+                         "gltf", "mem", mesh);
+  ASSERT_TRUE(s) << s.message;
+  EXPECT_EQ(mesh.triangleCount(), 4u);
+
+  struct Case {
+    std::string nodes, scene, message;
+  };
+  const Case cases[] = {
+      {R"([{"children": [1]}, {"children": [0], "mesh": 0}])", oneScene,
+       "glTF: nodes[0] is its own ancestor (the node hierarchy has a cycle)"},
+      {R"([{"children": [2]}, {"children": [2]}, {"mesh": 0}])", R"("scenes": [{"nodes": [0, 1]}])",
+       "glTF: node 2 is a child of node 0 and of node 1; glTF 2.0 allows one parent"},
+      {R"([{"children": [1]}, {"mesh": 0}])", R"("scenes": [{"nodes": [1]}])",
+       "glTF: scenes[0].nodes names node 1, which is a child of node 0; a scene lists root nodes only"},
+      {oneNode, R"("scenes": [{"nodes": [0, 0]}])", "glTF: scenes[0].nodes names node 0 twice"},
+      {R"([{"mesh": 3}])", oneScene, "glTF: nodes[0].mesh is 3, which does not exist"},
+      {R"([{"mesh": 0, "rotation": [0, 0, 1]}])", oneScene, "glTF: nodes[0].rotation has 3 numbers; glTF 2.0 requires 4"},
+      {oneNode, R"("scene": 2, "scenes": [{"nodes": [0]}])", "glTF: \"scene\" is 2, which does not exist"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.message);
+    Mesh untouched;
+    s = loadMeshFromMemory(bytes(quadWithSparse(R"([{"attributes": {"POSITION": 0}}])", c.nodes, c.scene)), "gltf",
+                           "mem", untouched);
+    EXPECT_EQ(s.code, StatusCode::IoError);
+    EXPECT_EQ(s.message, "mem: " + c.message);
+    EXPECT_TRUE(untouched.positions.empty());
+  }
 }
 
 // ---- degenerate triangles
@@ -420,7 +496,7 @@ TEST(GltfVersion, CesiumMilkTruckIsNamedAsGltfOne) {
   const auto path = kAssimpModels / "glTF/CesiumMilkTruck/CesiumMilkTruck.gltf";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is missing: install assimp-testmodels";
   Mesh mesh;
-  // assimp 5.2 said: Member "version" was not of type "string".
+  // assimp 5.2 said: Member "version" was not of type "string"; tinygltf would read it as glTF 2.0.
   EXPECT_EQ(loadMeshFile(path.string(), mesh).message,
             path.string() + ": glTF 1.0 is not supported (glTF 2.0 only): asset.version is the number 1 (glTF 1.0 "
                             "allowed a number; glTF 2.0 writes the string \"2.0\")");

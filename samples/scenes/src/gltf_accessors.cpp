@@ -1,5 +1,5 @@
-// glTF buffer views and accessors: their layout first (strides, bounds), then the index values of
-// the triangle primitives, read in chunks from the buffers.
+// glTF buffer views and accessors, on the JSON: strides and bounds, index types, views within
+// their buffers.
 #include "gltf_accessors.h"
 
 #include <algorithm>
@@ -16,7 +16,7 @@ namespace {
 
 using nlohmann::json;
 
-// A non-negative whole number, or nullopt for another type (assimp names members of a wrong type).
+// A non-negative whole number, or nullopt for another type (checkGltfTypes named those).
 std::optional<std::uint64_t> wholeNumber(const json& value) {
   if (value.is_number_unsigned()) return value.get<std::uint64_t>();
   if (value.is_number_integer()) {
@@ -36,7 +36,7 @@ std::optional<std::uint64_t> member(const json& object, const char* key, std::op
   return it == object.end() ? absent : wholeNumber(*it);
 }
 
-// Item i of a top-level array, or null when there is none (assimp reports a bad reference).
+// Item i of a top-level array, or null when there is none (tinygltf or gltf_mesh.cpp reports it).
 const json* item(const json& doc, const char* array, std::optional<std::uint64_t> i) {
   const auto it = doc.find(array);
   if (!i || it == doc.end() || !it->is_array() || *i >= it->size() || !(*it)[std::size_t(*i)].is_object())
@@ -73,15 +73,8 @@ std::string describe(const json& accessor) {
          " of componentType " + std::to_string(member(accessor, "componentType").value_or(0));
 }
 
-// Where an accessor's elements are: the first one's byte in its buffer, and the stride.
-struct Layout {
-  std::uint64_t buffer = 0, first = 0, stride = 0, count = 0, element = 0;
-};
-
-// Checks accessor `a`'s layout; sets `layout` when the accessor has its data in a buffer view and
-// its members have the right types (otherwise assimp reports them).
-Status checkLayout(const json& doc, std::size_t a, std::string_view name, std::optional<Layout>& layout) {
-  layout.reset();
+// Checks accessor `a`'s layout when it has its data in a buffer view.
+Status checkLayout(const json& doc, std::size_t a, std::string_view name) {
   const json& accessor = *item(doc, "accessors", a);
   const json* view = item(doc, "bufferViews", member(accessor, "bufferView"));
   const std::uint64_t element = elementSize(accessor);
@@ -97,7 +90,10 @@ Status checkLayout(const json& doc, std::size_t a, std::string_view name, std::o
                             std::to_string(element) + " bytes an element)";
   std::uint64_t stride = element;
   if (const auto s = view->find("byteStride"); s != view->end()) {
-    if (!s->is_number()) return Status::success();
+    if (!s->is_number())
+      return fileError(StatusCode::IoError, name,
+                       which + ": its bufferView " + v + " has a byteStride that is not a number; glTF 2.0 requires "
+                               "a multiple of 4 from 4 to 252");
     const double given = s->get<double>();
     const auto whole = wholeNumber(*s);
     char shown[32];
@@ -127,95 +123,78 @@ Status checkLayout(const json& doc, std::size_t a, std::string_view name, std::o
                      "glTF: bufferView " + v + " (byteOffset " + std::to_string(*viewOffset) + ", byteLength " +
                          std::to_string(*viewLength) + ") runs past the byteLength " + std::to_string(*bufferLength) +
                          " of buffer " + std::to_string(*bufferIndex));
-  layout = Layout{*bufferIndex, *viewOffset + *offset, stride, *count, element};
   return Status::success();
 }
 
-// The index values of a triangle primitive, each below its vertex count.
-Status checkIndices(const json& doc, std::size_t m, std::size_t p, const std::optional<Layout>& layout,
-                    std::uint64_t indexAccessor, std::uint64_t vertices, std::uint64_t positionAccessor,
-                    const ReadBuffer& read, std::string_view name) {
-  const std::string which = "glTF: mesh " + std::to_string(m) + " primitive " + std::to_string(p);
+// The type of a triangle primitive's indices: SCALAR of an unsigned integer type.
+Status checkIndexType(const json& doc, std::size_t m, std::size_t p, std::uint64_t indexAccessor, std::string_view name) {
   const json& accessor = *item(doc, "accessors", indexAccessor);
   const auto componentType = member(accessor, "componentType");
   const auto type = accessor.find("type");
-  if (!componentType || type == accessor.end() || !type->is_string()) return Status::success();  // assimp's
+  if (!componentType || type == accessor.end()) return Status::success();  // tinygltf refuses them
   if ((*componentType != 5121 && *componentType != 5123 && *componentType != 5125) || *type != "SCALAR")
     return fileError(StatusCode::IoError, name,
-                     which + ": its indices, accessor " + std::to_string(indexAccessor) + ", are " +
-                         describe(accessor) + "; indices must be SCALAR of an unsigned integer type (5121, 5123 or 5125)");
-  if (!layout || accessor.contains("sparse") || !read) return Status::success();
-  const std::uint64_t size = componentSize(*componentType);
-  constexpr std::uint64_t kChunk = 1 << 16;  // elements read at a time
-  std::string bytes;
-  for (std::uint64_t k0 = 0; k0 < layout->count; k0 += kChunk) {
-    const std::uint64_t n = std::min(kChunk, layout->count - k0);
-    if (!read(std::size_t(layout->buffer), layout->first + k0 * layout->stride,
-              std::size_t((n - 1) * layout->stride + size), bytes))
-      return Status::success();  // the data is not at hand; assimp reports it
-    for (std::uint64_t k = 0; k < n; ++k) {
-      const auto* b = reinterpret_cast<const unsigned char*>(bytes.data() + k * layout->stride);
-      std::uint64_t index = 0;
-      for (std::uint64_t i = 0; i < size; ++i) index |= std::uint64_t(b[i]) << (8 * i);  // little-endian
-      if (index >= vertices)
-        return fileError(StatusCode::IoError, name,
-                         which + ": index " + std::to_string(index) + " (element " + std::to_string(k0 + k) +
-                             " of accessor " + std::to_string(indexAccessor) + ") is out of range: its POSITION, " +
-                             "accessor " + std::to_string(positionAccessor) + ", has " + std::to_string(vertices) +
-                             " vertices");
-    }
+                     "glTF: mesh " + std::to_string(m) + " primitive " + std::to_string(p) + ": its indices, accessor " +
+                         std::to_string(indexAccessor) + ", are " + describe(accessor) +
+                         "; indices must be SCALAR of an unsigned integer type (5121, 5123 or 5125)");
+  return Status::success();
+}
+
+// The buffer view of every image in a buffer view lies within its buffer: tinygltf takes the
+// address of its first byte (a view of a mesh accessor is checked by checkLayout; other views are
+// not read, and a file whose unused views run past their buffer still loads).
+Status checkImageViews(const json& doc, std::string_view name) {
+  const auto images = doc.find("images");
+  for (std::size_t i = 0; images != doc.end() && i < images->size(); ++i) {
+    const auto v = member((*images)[i], "bufferView");
+    const json* view = item(doc, "bufferViews", v);
+    if (view == nullptr) continue;  // none, or one that does not exist: tinygltf refuses the latter
+    const auto length = member(*view, "byteLength"), offset = member(*view, "byteOffset", 0), b = member(*view, "buffer");
+    const json* buffer = item(doc, "buffers", b);
+    const auto bufferLength = buffer ? member(*buffer, "byteLength") : std::nullopt;
+    if (!length || !bufferLength || (unsigned __int128)*offset + *length > *bufferLength)
+      return fileError(StatusCode::IoError, name,
+                       "glTF: images[" + std::to_string(i) + "]: its bufferView " + std::to_string(*v) +
+                           " is not within a buffer");
   }
   return Status::success();
 }
 
 }  // namespace
 
-Status checkGltfAccessors(const json& doc, const ReadBuffer& read, std::string_view name) {
+Status checkGltfAccessors(const json& doc, std::string_view name) {
   const auto accessors = doc.find("accessors");
   const auto meshes = doc.find("meshes");
-  if (accessors == doc.end() || !accessors->is_array() || meshes == doc.end() || !meshes->is_array())
-    return Status::success();
-  // The accessors assimp reads for the meshes: every primitive's attributes and indices. (Others,
-  // of animations or skins, are not used; a broken one there changes no geometry.)
+  if (accessors == doc.end() || meshes == doc.end()) return checkImageViews(doc, name);
+  // The accessors of the meshes: every primitive's attributes and indices. (Others, of animations
+  // or skins, are not used; a broken one there changes no geometry.)
   std::vector<bool> used(accessors->size());
   for (const json& mesh : *meshes) {
-    const auto primitives = mesh.is_object() ? mesh.find("primitives") : mesh.end();
-    if (!mesh.is_object() || primitives == mesh.end() || !primitives->is_array()) continue;
+    const auto primitives = mesh.find("primitives");
+    if (primitives == mesh.end()) continue;
     for (const json& primitive : *primitives) {
-      if (!primitive.is_object()) continue;
       if (const auto i = member(primitive, "indices"); i && *i < used.size()) used[std::size_t(*i)] = true;
-      const auto attributes = primitive.find("attributes");
-      if (attributes == primitive.end() || !attributes->is_object()) continue;
-      for (const json& a : *attributes)
+      for (const json& a : primitive.at("attributes"))  // checkGltfJson made sure there is one
         if (const auto i = wholeNumber(a); i && *i < used.size()) used[std::size_t(*i)] = true;
     }
   }
-  std::vector<std::optional<Layout>> layouts(accessors->size());
   for (std::size_t a = 0; a < accessors->size(); ++a)
-    if (used[a] && (*accessors)[a].is_object())
-      if (Status s = checkLayout(doc, a, name, layouts[a]); !s) return s;
+    if (used[a])
+      if (Status s = checkLayout(doc, a, name); !s) return s;
 
   for (std::size_t m = 0; m < meshes->size(); ++m) {
     const json& mesh = (*meshes)[m];
-    const auto primitives = mesh.is_object() ? mesh.find("primitives") : mesh.end();
-    if (!mesh.is_object() || primitives == mesh.end() || !primitives->is_array()) continue;
-    for (std::size_t p = 0; p < primitives->size(); ++p) {
+    const auto primitives = mesh.find("primitives");
+    for (std::size_t p = 0; primitives != mesh.end() && p < primitives->size(); ++p) {
       const json& primitive = (*primitives)[p];
-      if (!primitive.is_object()) continue;
       const auto mode = member(primitive, "mode", 4);
-      if (!mode || *mode < 4 || *mode > 6) continue;  // only triangles are used; points and lines are dropped
+      if (*mode < 4) continue;  // only triangles are used; points and lines are dropped
       const auto indices = member(primitive, "indices");
-      const auto attributes = primitive.find("attributes");
-      if (!indices || attributes == primitive.end() || !attributes->is_object()) continue;
-      const auto position = member(*attributes, "POSITION");
-      const json* positions = item(doc, "accessors", position);
-      const auto vertices = positions ? member(*positions, "count") : std::nullopt;
-      if (!vertices || !item(doc, "accessors", indices)) continue;
-      const std::optional<Layout>& layout = layouts[std::size_t(*indices)];
-      if (Status s = checkIndices(doc, m, p, layout, *indices, *vertices, *position, read, name); !s) return s;
+      if (indices && item(doc, "accessors", indices))
+        if (Status s = checkIndexType(doc, m, p, *indices, name); !s) return s;
     }
   }
-  return Status::success();
+  return checkImageViews(doc, name);
 }
 
 }  // namespace sao::scenes::detail

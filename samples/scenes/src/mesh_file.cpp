@@ -1,32 +1,21 @@
-// Mesh files: OBJ and PLY to sao's own readers, glTF through sao's checks to assimp; then the
+// Mesh files: OBJ and PLY to sao's own readers, glTF through sao's checks to tinygltf; then the
 // same checks of the mesh (validateMesh) for all.
 #include "sao/scenes/mesh_file.h"
-
-#include <assimp/BaseImporter.h>
-#include <assimp/DefaultIOSystem.h>
-#include <assimp/IOStream.hpp>
-#include <assimp/IOSystem.hpp>
-#include <assimp/Importer.hpp>
-#include <assimp/MemoryIOWrapper.h>
-#include <assimp/config.h>
-#include <assimp/importerdesc.h>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <new>
+#include <optional>
 #include <string>
 
-#include "assimp_assert.h"
 #include "file_checks.h"
 #include "gltf_checks.h"
+#include "gltf_load.h"
+#include "gltf_mesh.h"
 #include "obj_reader.h"
 #include "ply_reader.h"
 
@@ -44,143 +33,7 @@ std::string point(glm::vec3 p) {
 
 constexpr std::string_view kMeshExtensions[] = {".gltf", ".glb", ".obj", ".ply"};
 
-// Files a glTF refers to (its buffers) are opened only when they are
-// regular files: a FIFO would block, a device (say /dev/zero as a glTF buffer) never end.
-// `mainText`, when not empty, is read instead of the file `mainPath` (a .gltf without its
-// byte-order mark, which assimp 5.2 refuses as "JSON parse error, offset 0").
-class RegularFilesOnly : public Assimp::DefaultIOSystem {
- public:
-  RegularFilesOnly(std::string mainPath, const std::string& mainText)
-      : mainPath_(std::move(mainPath)), mainText_(mainText) {}
-  bool Exists(const char* file) const override { return isRegular(file); }
-  Assimp::IOStream* Open(const char* file, const char* mode) override {
-    if (!isRegular(file) || mode == nullptr || std::strchr(mode, 'r') == nullptr || std::strpbrk(mode, "wa+"))
-      return nullptr;
-    if (!mainText_.empty() && mainPath_ == file)
-      return new Assimp::MemoryIOStream(reinterpret_cast<const std::uint8_t*>(mainText_.data()), mainText_.size());
-    return DefaultIOSystem::Open(file, mode);
-  }
-
- private:
-  std::string mainPath_;
-  const std::string& mainText_;  // outlives the importer
-  static bool isRegular(const char* file) {
-    if (file == nullptr || *file == '\0') return false;
-    std::error_code ec;
-    return std::filesystem::is_regular_file(file, ec);
-  }
-};
-
-// For data in memory: no other file is ever opened (assimp's memory reader would otherwise pass
-// any other name a glTF mentions on to the file system).
-class NoFiles : public Assimp::IOSystem {
- public:
-  bool Exists(const char*) const override { return false; }
-  char getOsSeparator() const override { return '/'; }
-  Assimp::IOStream* Open(const char*, const char*) override { return nullptr; }
-  void Close(Assimp::IOStream* stream) override { delete stream; }
-};
-
-constexpr unsigned kPostProcess = aiProcess_ValidateDataStructure | aiProcess_RemoveComponent |
-                                  aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                  aiProcess_PreTransformVertices;
-
-// Only assimp's glTF 2 reader stays. Otherwise assimp tries every reader it has on a file its
-// extension's reader refuses (a damaged .glb was read by the DXF reader): input nobody meant to
-// give, code nobody here has fuzzed. The glTF 1.0 reader leaks on every file, even valid ones
-// (LeakSanitizer, all five glTF 1.0 models of assimp-testmodels), and glTF 1.0 is long superseded.
-// UnregisterLoader hands a reader back to the caller, who deletes it.
-void keepOnlyGltf2Reader(Assimp::Importer& importer) {
-  for (std::size_t i = importer.GetImporterCount(); i-- > 0;) {
-    Assimp::BaseImporter* reader = importer.GetImporter(i);
-    const aiImporterDesc* info = reader->GetInfo();
-    const bool ours = info != nullptr && info->mName != nullptr && std::string_view(info->mName) == "glTF2 Importer";
-    if (!ours && importer.UnregisterLoader(reader) == aiReturn_SUCCESS) delete reader;
-  }
-}
-
-Status configure(Assimp::Importer& importer, std::string_view name) {
-  // assimp's ai_assert checks must throw, not abort (assimp_assert.cpp); checked once.
-  static const bool assertionsThrow = detail::assimpAssertionsThrow();
-  if (!assertionsThrow)
-    return fileError(StatusCode::DriverError, name, "assimp's internal checks would abort the program; not reading it");
-  keepOnlyGltf2Reader(importer);
-  // Positions are all that is kept: drop the rest before vertices are joined, so that vertices
-  // that differ only in normals or texture coordinates become one.
-  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
-                              aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
-                                  aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
-                                  aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS |
-                                  aiComponent_MATERIALS);
-  return Status::success();
-}
-
-// The triangles of an imported scene (in world space after aiProcess_PreTransformVertices); points
-// and lines are left out.
-Status extract(const aiScene& scene, std::string_view name, Mesh& out) {
-  std::size_t vertices = 0, triangles = 0;
-  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
-    const aiMesh* mesh = scene.mMeshes ? scene.mMeshes[m] : nullptr;
-    if (mesh == nullptr) return fileError(StatusCode::IoError, name, "assimp returned an empty mesh slot");
-    if (mesh->mNumVertices > 0 && mesh->mVertices == nullptr)
-      return fileError(StatusCode::IoError, name, "assimp returned a mesh without positions");
-    vertices += mesh->mNumVertices;
-    for (unsigned f = 0; f < mesh->mNumFaces; ++f)
-      if (mesh->mFaces[f].mNumIndices == 3) ++triangles;
-  }
-  if (triangles == 0) return fileError(StatusCode::InvalidInput, name, "has no triangles");
-  if (triangles > kMaxMeshTriangles)
-    return fileError(StatusCode::InvalidInput, name,
-                     "has " + std::to_string(triangles) + " triangles, more than the limit of " +
-                         std::to_string(kMaxMeshTriangles));
-  if (vertices > std::numeric_limits<std::uint32_t>::max())
-    return fileError(StatusCode::InvalidInput, name, "has " + std::to_string(vertices) + " vertices, more than 2^32 - 1");
-
-  Mesh result;
-  result.positions.reserve(vertices);
-  result.indices.reserve(triangles * 3);
-  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
-    const aiMesh& mesh = *scene.mMeshes[m];
-    const auto base = static_cast<std::uint32_t>(result.positions.size());
-    for (unsigned v = 0; v < mesh.mNumVertices; ++v)
-      result.positions.emplace_back(mesh.mVertices[v].x, mesh.mVertices[v].y, mesh.mVertices[v].z);
-    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
-      const aiFace& face = mesh.mFaces[f];
-      if (face.mNumIndices != 3) continue;
-      for (unsigned k = 0; k < 3; ++k) {
-        if (face.mIndices[k] >= mesh.mNumVertices)
-          return fileError(StatusCode::InvalidInput, name,
-                           "mesh " + std::to_string(m) + " face " + std::to_string(f) + " refers to vertex " +
-                               std::to_string(face.mIndices[k]) + ", but the mesh has " +
-                               std::to_string(mesh.mNumVertices) + " vertices");
-        result.indices.push_back(base + face.mIndices[k]);
-      }
-    }
-  }
-  if (Status s = validateMesh(result, name); !s) return s;
-  out = std::move(result);
-  return Status::success();
-}
-
-Status assimpFailed(std::string_view name, const Assimp::Importer& importer) {
-  const char* text = importer.GetErrorString();
-  std::string reason = text && *text ? text : "the file could not be read (no reason given)";
-  // An exception other than assimp's own (ours from a failed ai_assert, std::bad_alloc) leaves
-  // "Unknown exception" as the error string; the exception says more.
-  if (const std::exception_ptr& e = importer.GetException(); e && reason == "Unknown exception") {
-    try {
-      std::rethrow_exception(e);
-    } catch (const std::bad_alloc&) {
-      reason = "out of memory";
-    } catch (const std::exception& x) {
-      reason = x.what();
-    } catch (...) {
-    }
-  }
-  return fileError(StatusCode::IoError, name, "assimp: " + reason);
-}
-
-// Runs `read` with every exception (from assimp, or std::bad_alloc) turned into a Status.
+// Runs `read` with every exception (std::bad_alloc, or one from a library) turned into a Status.
 template <class Read>
 Status guarded(std::string_view name, Read&& read) {
   try {
@@ -194,50 +47,33 @@ Status guarded(std::string_view name, Read&& read) {
   }
 }
 
-// Data in memory through assimp; no other file is opened.
-Status assimpFromMemory(std::string_view bytes, const std::string& hint, std::string_view name, Mesh& out) {
-  Assimp::Importer importer;
-  if (Status s = configure(importer, name); !s) return s;
-  importer.SetIOHandler(new NoFiles);
-  const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), kPostProcess, hint.c_str());
-  if (scene == nullptr) return assimpFailed(name, importer);
-  return extract(*scene, name, out);
-}
-
-// OBJ and PLY go to our own readers (obj_reader.h, ply_reader.h), then the same checks as an
-// imported mesh.
-Status fromOwnReader(bool obj, std::string_view bytes, std::string_view name, Mesh& out) {
-  Mesh mesh;
-  if (Status s = obj ? detail::readObj(bytes, name, mesh) : detail::readPly(bytes, name, mesh); !s) return s;
+// The mesh a reader made, after the same checks for every format.
+Status validated(Mesh& mesh, std::string_view name, Mesh& out) {
   if (Status s = validateMesh(mesh, name); !s) return s;
   out = std::move(mesh);
   return Status::success();
 }
 
-// What assimp is not given (gltf_checks.h): binary glTF chunks larger than the file, invalid JSON.
-// A .gltf that starts with a UTF-8 byte-order mark leaves its text without the mark in
-// `withoutMark` (for assimp); otherwise that stays empty.
-Status checkGltfFile(const std::string& path, const std::string& ext, std::string& withoutMark) {
-  if (ext == ".gltf") {
-    std::string text;
-    if (Status s = detail::readWholeFile(path, kMaxMeshFileBytes, text); !s) return s;
-    if (Status s = detail::checkGltfJson(text, path, {{}, std::filesystem::path(path).parent_path()}); !s) return s;
-    if (std::string_view(text).starts_with(detail::kUtf8ByteOrderMark))
-      withoutMark = text.substr(detail::kUtf8ByteOrderMark.size());
-    return Status::success();
-  }
-  std::error_code ec;
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec) return fileError(StatusCode::IoError, path, "cannot read its size: " + ec.message());
-  std::ifstream in(path, std::ios::binary);
-  if (!in.is_open()) return fileError(StatusCode::IoError, path, "cannot open it");
-  return detail::checkGlb(size, [&](std::uint64_t offset, std::size_t count, std::string& bytes) {
-    bytes.assign(count, '\0');
-    in.clear();
-    in.seekg(std::streamoff(offset));
-    in.read(bytes.data(), std::streamsize(count));
-    return in.gcount() == std::streamsize(count);
-  }, path, std::filesystem::path(path).parent_path());
+// OBJ and PLY go to our own readers (obj_reader.h, ply_reader.h).
+Status fromOwnReader(bool obj, std::string_view bytes, std::string_view name, Mesh& out) {
+  Mesh mesh;
+  if (Status s = obj ? detail::readObj(bytes, name, mesh) : detail::readPly(bytes, name, mesh); !s) return s;
+  return validated(mesh, name, out);
+}
+
+// glTF (`binary`: a .glb): sao's checks (gltf_checks.h), then tinygltf, then the triangles of its
+// model. `folder`: where a file's external buffers are; none for data in memory.
+Status fromGltf(std::string_view bytes, bool binary, const std::optional<std::filesystem::path>& folder,
+                std::string_view name, Mesh& out) {
+  // The glTF 2.0 specification lets readers ignore a byte-order mark before a .gltf's JSON.
+  if (!binary && bytes.starts_with(detail::kUtf8ByteOrderMark)) bytes.remove_prefix(detail::kUtf8ByteOrderMark.size());
+  if (Status s = binary ? detail::checkGlb(bytes, name, folder) : detail::checkGltfJson(bytes, name, folder); !s)
+    return s;
+  tinygltf::Model model;
+  if (Status s = detail::parseGltf(bytes, binary, folder, name, model); !s) return s;
+  Mesh mesh;
+  if (Status s = detail::gltfTriangles(model, name, mesh); !s) return s;
+  return validated(mesh, name, out);
 }
 
 }  // namespace
@@ -260,48 +96,26 @@ Status loadMeshFile(const std::string& path, Mesh& out) {
   std::error_code ec;
   if (std::filesystem::file_size(path, ec) == 0 && !ec) return fileError(StatusCode::IoError, path, "is empty");
   const std::string ext = detail::lowerExtension(path);
-  if (ext == ".ply" || ext == ".obj") {
-    std::string bytes;
-    if (Status s = detail::readWholeFile(path, kMaxMeshFileBytes, bytes); !s) return s;
-    return guarded(path, [&] { return fromOwnReader(ext == ".obj", bytes, path, out); });
-  }
-  std::string withoutMark;
-  if (ext == ".gltf" || ext == ".glb")
-    if (Status s = guarded(path, [&] { return checkGltfFile(path, ext, withoutMark); }); !s) return s;
-  return guarded(path, [&]() -> Status {
-    Assimp::Importer importer;
-    if (Status s = configure(importer, path); !s) return s;
-    importer.SetIOHandler(new RegularFilesOnly(path, withoutMark));  // the importer owns it
-    const aiScene* scene = importer.ReadFile(path, kPostProcess);
-    if (scene == nullptr) return assimpFailed(path, importer);
-    return extract(*scene, path, out);
+  std::string bytes;
+  if (Status s = detail::readWholeFile(path, kMaxMeshFileBytes, bytes); !s) return s;
+  return guarded(path, [&] {
+    if (ext == ".ply" || ext == ".obj") return fromOwnReader(ext == ".obj", bytes, path, out);
+    return fromGltf(bytes, ext == ".glb", std::filesystem::path(path).parent_path(), path, out);
   });
 }
 
 Status loadMeshFromMemory(std::span<const std::uint8_t> bytes, std::string_view formatHint, std::string_view name,
                           Mesh& out) {
-  std::string hint(formatHint);
+  const std::string hint(formatHint);
   if (!isMeshFileExtension("x." + hint))
     return fileError(StatusCode::UnsupportedFormat, name,
                      "unknown format '" + hint + "' (mesh formats: gltf, glb, obj, ply)");
   if (bytes.empty()) return fileError(StatusCode::IoError, name, "is empty");
-  std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-  if (hint == "ply" || hint == "obj") return guarded(name, [&] { return fromOwnReader(hint == "obj", text, name, out); });
-  if (hint == "gltf") {
-    if (Status s = guarded(name, [&] { return detail::checkGltfJson(text, name); }); !s) return s;
-    // assimp 5.2 refuses a byte-order mark ("JSON parse error, offset 0"); the glTF 2.0
-    // specification lets readers ignore it.
-    if (text.starts_with(detail::kUtf8ByteOrderMark)) text.remove_prefix(detail::kUtf8ByteOrderMark.size());
-  }
-  if (hint == "glb") {
-    const auto read = [&](std::uint64_t offset, std::size_t count, std::string& chunk) {
-      if (offset > text.size() || count > text.size() - offset) return false;
-      chunk.assign(text.substr(std::size_t(offset), count));
-      return true;
-    };
-    if (Status s = guarded(name, [&] { return detail::checkGlb(text.size(), read, name); }); !s) return s;
-  }
-  return guarded(name, [&] { return assimpFromMemory(text, hint, name, out); });
+  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  return guarded(name, [&] {
+    if (hint == "ply" || hint == "obj") return fromOwnReader(hint == "obj", text, name, out);
+    return fromGltf(text, hint == "glb", std::nullopt, name, out);
+  });
 }
 
 Status validateMesh(const Mesh& mesh, std::string_view name, std::size_t maxTriangles) {

@@ -1,21 +1,22 @@
-// Triangle meshes from files: .gltf and .glb (glTF 2.0) through assimp (Debian's libassimp),
-// .obj and .ply through sao's own readers (src/obj_reader.cpp, src/ply_reader.cpp): fuzzing found
-// assimp 5.2's OBJ and PLY readers reading out of bounds on malformed files (docs/ROBUSTNESS.md
-// section 4.8).
+// Triangle meshes from files: .gltf and .glb (glTF 2.0) through tinygltf (Debian's
+// libtinygltf-dev, geometry only: images are neither decoded nor opened), .obj and .ply through
+// sao's own readers (src/obj_reader.cpp, src/ply_reader.cpp): fuzzing found assimp 5.2's OBJ and
+// PLY readers reading out of bounds on malformed files (docs/ROBUSTNESS.md section 4.8).
 //
-// The mesh is in world space (a glTF's node hierarchy is applied) and triangulated (polygons:
-// assimp triangulates them, the own readers split them into fans); only positions and indices are
-// kept, points and lines are left out. assimp joins identical vertices; OBJ and PLY keep the
-// file's vertex list. Units are the file's (a glTF is in metres; OBJ and PLY state none: units.h).
-// Before assimp sees a glTF, its JSON must be valid, its version 2.x (glTF 1.0 is named as
-// unsupported), a .glb's chunks must fit the file, and the accessors of its meshes must have valid
-// strides and bounds and indices below their vertex count (src/gltf_accessors.h). A UTF-8
-// byte-order mark is skipped in OBJ and .gltf files, refused in PLY.
+// The mesh is in world space (the node trees of a glTF's default scene are applied; morph targets
+// and skins are not) and triangulated (glTF strips and fans are split, OBJ and PLY polygons become
+// fans); only positions and indices are kept, points and lines are left out. A glTF primitive's
+// identical positions become one vertex; OBJ and PLY keep the file's vertex list. Units are the
+// file's (a glTF is in metres; OBJ and PLY state none: units.h). Before tinygltf sees a glTF, its
+// JSON must be valid, its version 2.x (glTF 1.0 is named as unsupported), its members of the
+// schema's types (src/gltf_schema.h), a .glb's chunks must fit the file, and the accessors of its
+// meshes must have valid strides and bounds (src/gltf_accessors.h); reading the mesh checks every
+// index against its vertex count (src/gltf_mesh.h). A UTF-8 byte-order mark is skipped in OBJ and
+// .gltf files, refused in PLY and in a .glb's JSON chunk.
 //
 // No exception escapes these functions: every problem is a Status whose message starts with the
 // file's name. Files a glTF refers to (its .bin buffers) are opened only when they are regular
-// files; from memory, never. An OBJ's material libraries are not opened. assimp's internal
-// assertions fail the read instead of aborting the program (src/assimp_assert.cpp).
+// files; from memory, never. An OBJ's material libraries are not opened.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -38,8 +39,9 @@ inline constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t(2) << 30;
 bool isMeshFileExtension(std::string_view path);
 
 // Reads a mesh file. Errors (out is left untouched):
-//   IoError            missing file, a directory or another non-regular file, assimp's own error
-//                      for a malformed file ("assimp: ..."), a file that cannot be read
+//   IoError            missing file, a directory or another non-regular file, a malformed file
+//                      (sao's checks, "glTF: ..."; or tinygltf's own error, "tinygltf: ..."), a
+//                      file that cannot be read
 //   UnsupportedFormat  an extension other than the four above
 //   InvalidInput       a mesh that fails validateMesh
 Status loadMeshFile(const std::string& path, Mesh& out);

@@ -1,0 +1,3 @@
+// tinygltf's implementation, with the settings of tinygltf.h.
+#define TINYGLTF_IMPLEMENTATION
+#include "tinygltf.h"
