@@ -1,23 +1,23 @@
-// The Vulkan path: a real Vulkan window. Each frame, in one command buffer: the depth-only
-// prepass pipeline renders the scene into a D32_SFLOAT image, sao::vk::Effect::record adds the
-// effect's compute passes, and a render pass on the acquired swapchain image runs the composite
-// and ImGui (imgui_impl_vulkan); the image is presented with vkQueuePresentKHR. One frame in
-// flight: the frame's fence is waited before the next one is recorded.
-#define GLFW_INCLUDE_NONE
+// The Vulkan path: a real Vulkan window on the project's Vulkan bootstrap (sao::vk::headless with
+// a window surface). Each frame, in one command buffer: samples/prepass records the scene's depth
+// into a D32_SFLOAT image, sao::vk::Effect::record adds the effect's compute passes, and a render
+// pass on the acquired swapchain image runs the composite and ImGui (imgui_impl_vulkan); the
+// image is presented with vkQueuePresentKHR. One frame in flight: the frame's fence is waited
+// before the next one is recorded.
+#define GLFW_INCLUDE_VULKAN  // glfwCreateWindowSurface
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_vulkan.h>
 #include <imgui.h>
 
-#include <cstring>
-#include <glm/gtc/type_ptr.hpp>
+#include <cstdio>
 
 #include "backend.h"
+#include "sao/prepass/vk_prepass.h"
 #include "sao/vulkan/effect.h"
+#include "sao/vulkan/headless.h"
 #include "screenshot.h"
 #include "vk_composite.h"
-#include "vk_context.h"
-#include "vk_prepass.h"
 #include "vk_swapchain.h"
 
 namespace sao::viewer {
@@ -29,22 +29,41 @@ bool sameCamera(const Camera& a, const Camera& b) {
          a.width == b.width && a.height == b.height && a.guardBand == b.guardBand;
 }
 
+// The instance, the window's surface and a device that presents to it and runs graphics and
+// compute on one queue; --validation adds the layer with synchronization validation.
+Status createContext(GLFWwindow* window, bool validation, std::unique_ptr<vk::headless::Context>& out) {
+  vk::headless::Options o;
+  o.validation = o.synchronizationValidation = validation;
+  o.applicationName = "sao-viewer";
+  std::uint32_t count = 0;
+  const char** extensions = glfwGetRequiredInstanceExtensions(&count);
+  if (!extensions) return Status::error(StatusCode::DriverError, "GLFW cannot present with Vulkan on this system");
+  o.instanceExtensions.assign(extensions, extensions + count);
+  o.createSurface = [window](VkInstance instance, VkSurfaceKHR* surface) {
+    return glfwCreateWindowSurface(instance, window, nullptr, surface);
+  };
+  return vk::headless::Context::create(o, out);
+}
+
 class VkBackend final : public Backend {
  public:
   VkBackend(Window& window, const BackendOptions& options) : window_(window), options_(options) {}
   ~VkBackend() override;
   Status init();
 
-  std::string description() const override { return ctx_->description; }
+  std::string description() const override {
+    return "Vulkan: " + ctx_->description() +
+           "; presents through a VK_KHR_swapchain; depth: D32_SFLOAT reversed-Z, [0,1], infinite far";
+  }
   ClipDepth clipDepth() const override { return ClipDepth::ZeroToOne; }
   bool reversedZ() const override { return true; }
-  std::size_t validationErrors() const override { return ctx_ ? ctx_->validationMessages.load() : 0; }
+  std::size_t validationErrors() const override;
   Status setMesh(const scenes::Mesh& mesh) override {
-    vkDeviceWaitIdle(ctx_->device);
-    return prepass_.setMesh(mesh);
+    vkDeviceWaitIdle(ctx_->device());
+    return prepass_->setMesh(mesh);
   }
   Status setReference(const FloatImage* reference) override {
-    vkDeviceWaitIdle(ctx_->device);
+    vkDeviceWaitIdle(ctx_->device());
     return composite_.setReference(reference);
   }
   void newImGuiFrame() override {
@@ -63,9 +82,9 @@ class VkBackend final : public Backend {
 
   Window& window_;
   BackendOptions options_;
-  std::unique_ptr<VkContext> ctx_;
+  std::unique_ptr<vk::headless::Context> ctx_;
   VkSwapchain swapchain_;
-  VkPrepass prepass_;
+  std::unique_ptr<prepass::VkPrepass> prepass_;
   VkComposite composite_;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
@@ -77,14 +96,26 @@ class VkBackend final : public Backend {
   bool effectConfigured_ = false;  // effect_ matches config_ (its last create/update succeeded)
   VkImageView aoRawView_ = VK_NULL_HANDLE, cszView_ = VK_NULL_HANDLE;
   std::uint32_t cszLevels_ = 0;
-  vkx::Buffer shot_;
+  vk::headless::Buffer shot_;
   Timings lastTimings_;
   std::string timingNote_;
+  mutable std::size_t validationMessages_ = 0;  // warnings and errors, the first 20 printed
 };
+
+std::size_t VkBackend::validationErrors() const {
+  if (!ctx_) return 0;
+  for (const vk::headless::Message& m : ctx_->takeMessages()) {
+    if (m.severity < VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) continue;
+    if (++validationMessages_ <= 20)
+      std::fprintf(stderr, "sao-viewer: validation %s: %s\n",
+                   m.severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error" : "warning", m.text.c_str());
+  }
+  return validationMessages_;
+}
 
 VkBackend::~VkBackend() {
   if (!ctx_) return;
-  vkDeviceWaitIdle(ctx_->device);
+  vkDeviceWaitIdle(ctx_->device());
   if (imgui_) {
     ImGui_ImplVulkan_Shutdown();
     ImGui_ImplGlfw_Shutdown();
@@ -92,31 +123,31 @@ VkBackend::~VkBackend() {
   destroyEffectViews();
   effect_.reset();
   composite_.destroy();
-  prepass_.destroy();
+  prepass_.reset();
   swapchain_.destroy();
   ctx_->destroy(shot_);
-  VkDevice d = ctx_->device;
+  VkDevice d = ctx_->device();
   if (imguiPool_) vkDestroyDescriptorPool(d, imguiPool_, nullptr);
   if (fence_) vkDestroyFence(d, fence_, nullptr);
   if (acquired_) vkDestroySemaphore(d, acquired_, nullptr);
 }
 
 Status VkBackend::init() {
-  if (Status s = VkContext::create(window_.handle(), options_.validation, ctx_); !s) return s;
+  if (Status s = createContext(window_.handle(), options_.validation, ctx_); !s) return s;
   const glm::ivec2 fb = window_.framebufferSize();
   if (Status s = swapchain_.create(*ctx_, std::uint32_t(fb.x), std::uint32_t(fb.y), options_.vsync); !s) return s;
-  if (Status s = prepass_.init(*ctx_); !s) return s;
+  if (Status s = prepass::VkPrepass::create(*ctx_, prepass_); !s) return s;
   if (Status s = composite_.init(*ctx_, swapchain_.renderPass); !s) return s;
   VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   ai.commandPool = ctx_->commandPool();
   ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   ai.commandBufferCount = 1;
-  SAO_VIEWER_VK(vkAllocateCommandBuffers(ctx_->device, &ai, &cmd_));
+  SAO_VIEWER_VK(vkAllocateCommandBuffers(ctx_->device(), &ai, &cmd_));
   VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   fi.flags = VK_FENCE_CREATE_SIGNALED_BIT;
-  SAO_VIEWER_VK(vkCreateFence(ctx_->device, &fi, nullptr, &fence_));
+  SAO_VIEWER_VK(vkCreateFence(ctx_->device(), &fi, nullptr, &fence_));
   VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-  SAO_VIEWER_VK(vkCreateSemaphore(ctx_->device, &si, nullptr, &acquired_));
+  SAO_VIEWER_VK(vkCreateSemaphore(ctx_->device(), &si, nullptr, &acquired_));
   return initImGui();
 }
 
@@ -127,15 +158,15 @@ Status VkBackend::initImGui() {
   pi.maxSets = 16;
   pi.poolSizeCount = 1;
   pi.pPoolSizes = &size;
-  SAO_VIEWER_VK(vkCreateDescriptorPool(ctx_->device, &pi, nullptr, &imguiPool_));
+  SAO_VIEWER_VK(vkCreateDescriptorPool(ctx_->device(), &pi, nullptr, &imguiPool_));
   if (!ImGui_ImplGlfw_InitForVulkan(window_.handle(), true))
     return Status::error(StatusCode::DriverError, "cannot initialise ImGui's GLFW backend");
   ImGui_ImplVulkan_InitInfo info{};
-  info.Instance = ctx_->instance;
-  info.PhysicalDevice = ctx_->physical;
-  info.Device = ctx_->device;
-  info.QueueFamily = ctx_->family;
-  info.Queue = ctx_->queue;
+  info.Instance = ctx_->instance();
+  info.PhysicalDevice = ctx_->physicalDevice();
+  info.Device = ctx_->device();
+  info.QueueFamily = ctx_->queueFamily();
+  info.Queue = ctx_->queue();
   info.DescriptorPool = imguiPool_;
   info.MinImageCount = swapchain_.minImageCount;
   info.ImageCount = std::uint32_t(swapchain_.images.size());
@@ -145,7 +176,7 @@ Status VkBackend::initImGui() {
     return Status::error(StatusCode::DriverError, "cannot initialise ImGui's Vulkan backend");
   }
   imgui_ = true;
-  Status s = ctx_->oneShot([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
+  Status s = ctx_->submit([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
   ImGui_ImplVulkan_DestroyFontUploadObjects();
   return s;
 }
@@ -153,7 +184,7 @@ Status VkBackend::initImGui() {
 void VkBackend::destroyEffectViews() {
   for (VkImageView* v : {&aoRawView_, &cszView_})
     if (*v) {
-      vkDestroyImageView(ctx_->device, *v, nullptr);
+      vkDestroyImageView(ctx_->device(), *v, nullptr);
       *v = VK_NULL_HANDLE;
     }
   cszLevels_ = 0;
@@ -169,7 +200,7 @@ Status VkBackend::createEffectViews() {
     vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
     vi.format = info.format;
     vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, info.mipLevels, 0, 1};
-    SAO_VIEWER_VK(vkCreateImageView(ctx_->device, &vi, nullptr, view));
+    SAO_VIEWER_VK(vkCreateImageView(ctx_->device(), &vi, nullptr, view));
     if (id == gen::ResourceId::csz) cszLevels_ = info.mipLevels;
   }
   return Status::success();
@@ -181,7 +212,7 @@ Status VkBackend::updateEffect(const FrameDesc& frame, FrameStats& stats) {
   vk::Config c;
   c.settings = frame.settings;
   c.camera = frame.camera;
-  c.depthFormat = VkPrepass::kDepthFormat;
+  c.depthFormat = VK_FORMAT_D32_SFLOAT;  // DepthFormat::D32F in renderFrame
   c.outputLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   c.framesInFlight = 1;
   c.timestamps = frame.measureTime;
@@ -199,7 +230,7 @@ Status VkBackend::updateEffect(const FrameDesc& frame, FrameStats& stats) {
 }
 
 void VkBackend::recordScreenshot(VkCommandBuffer cmd, VkImage image) {
-  auto b = vkx::imageBarrier(image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+  auto b = vk::headless::imageBarrier(image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
                              VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
                              VK_ACCESS_TRANSFER_READ_BIT);
   vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
@@ -208,7 +239,7 @@ void VkBackend::recordScreenshot(VkCommandBuffer cmd, VkImage image) {
   copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
   copy.imageExtent = {swapchain_.extent.width, swapchain_.extent.height, 1};
   vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, shot_.buffer, 1, &copy);
-  b = vkx::imageBarrier(image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+  b = vk::headless::imageBarrier(image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                         VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, 0, 0);
   VkBufferMemoryBarrier hb{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
   hb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
@@ -221,7 +252,8 @@ void VkBackend::recordScreenshot(VkCommandBuffer cmd, VkImage image) {
 }
 
 Status VkBackend::renderFrame(const FrameDesc& frame, FrameStats& stats) {
-  VkDevice d = ctx_->device;
+  validationErrors();  // prints what the last frame drew, as it comes
+  VkDevice d = ctx_->device();
   SAO_VIEWER_VK(vkWaitForFences(d, 1, &fence_, VK_TRUE, UINT64_MAX));
   if (pendingTimings_) {  // the previous frame has completed: its timestamps are readable
     pendingTimings_ = false;
@@ -237,8 +269,6 @@ Status VkBackend::renderFrame(const FrameDesc& frame, FrameStats& stats) {
     ImGui_ImplVulkan_SetMinImageCount(swapchain_.minImageCount);
     recreate_ = false;
   }
-  const Camera& cam = frame.camera;
-  if (Status s = prepass_.resize({cam.width + 2 * cam.guardBand, cam.height + 2 * cam.guardBand}); !s) return s;
   if (Status s = updateEffect(frame, stats); !s) return s;
   const bool screenshot = !frame.screenshotPath.empty() && swapchain_.transferSrc;
   const VkDeviceSize shotBytes = VkDeviceSize(swapchain_.extent.width) * swapchain_.extent.height * 4;
@@ -262,13 +292,14 @@ Status VkBackend::renderFrame(const FrameDesc& frame, FrameStats& stats) {
   // The previous frame's composite read the effect's intermediates: order before their rewrite.
   vkCmdPipelineBarrier(cmd_, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr,
                        0, nullptr, 0, nullptr);
-  const glm::dmat4 projection = glm::make_mat4(cam.projection.data());
-  prepass_.record(cmd_, projection * frame.view);
+  Camera depthCamera = frame.camera;
+  depthCamera.metersToViewUnits = 1;  // the mesh and the view are in the scene's units already
+  vk::headless::Image depth;
+  if (Status s = prepass_->record(cmd_, frame.view, depthCamera, DepthFormat::D32F, depth); !s) return s;
   bool recorded = false;
   if (effect_ && effectConfigured_) {
     vk::Inputs in;
-    in.depth = {prepass_.depthView(), VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, effect_->plan().inputExtent,
-                VkPrepass::kDepthFormat};
+    in.depth = {depth.view, depth.layout, effect_->plan().inputExtent, depth.format};
     stats.effect = effect_->record(cmd_, in);
     recorded = stats.effect.ok();
   }
@@ -279,7 +310,7 @@ Status VkBackend::renderFrame(const FrameDesc& frame, FrameStats& stats) {
   vkCmdPipelineBarrier(cmd_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 1, &mb, 0,
                        nullptr, 0, nullptr);
   VkCompositeInputs inputs;
-  inputs.depth = prepass_.depthView();
+  inputs.depth = depth.view;
   if (recorded) {
     inputs.ao = effect_->output().view;
     inputs.aoRaw = aoRawView_;
@@ -312,14 +343,14 @@ Status VkBackend::renderFrame(const FrameDesc& frame, FrameStats& stats) {
   si.signalSemaphoreCount = 1;
   si.pSignalSemaphores = &swapchain_.renderFinished[imageIndex];
   SAO_VIEWER_VK(vkResetFences(d, 1, &fence_));
-  SAO_VIEWER_VK(vkQueueSubmit(ctx_->queue, 1, &si, fence_));
+  SAO_VIEWER_VK(vkQueueSubmit(ctx_->queue(), 1, &si, fence_));
   VkPresentInfoKHR pi{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
   pi.waitSemaphoreCount = 1;
   pi.pWaitSemaphores = &swapchain_.renderFinished[imageIndex];
   pi.swapchainCount = 1;
   pi.pSwapchains = &swapchain_.handle;
   pi.pImageIndices = &imageIndex;
-  r = vkQueuePresentKHR(ctx_->queue, &pi);
+  r = vkQueuePresentKHR(ctx_->queue(), &pi);
   if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR) recreate_ = true;
   else SAO_VIEWER_VK(r);
 
@@ -339,40 +370,11 @@ Status VkBackend::renderFrame(const FrameDesc& frame, FrameStats& stats) {
 
 Status VkBackend::readAo(FloatImage& out) {
   if (!effect_ || !effectConfigured_) return Status::error(StatusCode::InvalidInput, "no AO rendered yet");
-  SAO_VIEWER_VK(vkWaitForFences(ctx_->device, 1, &fence_, VK_TRUE, UINT64_MAX));
+  SAO_VIEWER_VK(vkWaitForFences(ctx_->device(), 1, &fence_, VK_TRUE, UINT64_MAX));
   const vk::OutputImage ao = effect_->output();
-  vkx::Buffer buffer;
-  if (Status s = ctx_->createBuffer(VkDeviceSize(ao.extent.width) * ao.extent.height * 2,
-                                    VK_BUFFER_USAGE_TRANSFER_DST_BIT, buffer);
-      !s)
-    return s;
-  const VkPipelineStageFlags readers = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
-  Status s = ctx_->oneShot([&](VkCommandBuffer cmd) {
-    auto b = vkx::imageBarrier(ao.image, VK_IMAGE_ASPECT_COLOR_BIT, ao.layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                               VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-    vkCmdPipelineBarrier(cmd, readers, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1, &b);
-    VkBufferImageCopy copy{};
-    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    copy.imageExtent = {ao.extent.width, ao.extent.height, 1};
-    vkCmdCopyImageToBuffer(cmd, ao.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.buffer, 1, &copy);
-    b = vkx::imageBarrier(ao.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, ao.layout, 0,
-                          VK_ACCESS_SHADER_READ_BIT);
-    VkBufferMemoryBarrier hb{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
-    hb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    hb.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    hb.srcQueueFamilyIndex = hb.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    hb.buffer = buffer.buffer;
-    hb.size = VK_WHOLE_SIZE;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, readers | VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1,
-                         &hb, 1, &b);
-  });
-  if (s) {
-    out = FloatImage({ao.extent.width, ao.extent.height}, 1);
-    const auto* half = static_cast<const std::uint16_t*>(buffer.mapped);
-    for (std::size_t i = 0; i < out.data.size(); ++i) out.data[i] = halfToFloat(half[i]);
-  }
-  ctx_->destroy(buffer);
-  return s;
+  return ctx_->readback(ao.image, ao.format, ao.extent, 0, ao.layout,
+                        VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_SHADER_WRITE_BIT, out);
 }
 
 }  // namespace

@@ -10,7 +10,7 @@ namespace {
 constexpr std::uint32_t kTextures = 5;  // bindings 1..5: depth, ao, ao_raw, csz, reference
 }
 
-Status VkComposite::init(VkContext& context, VkRenderPass renderPass) {
+Status VkComposite::init(vk::headless::Context& context, VkRenderPass renderPass) {
   context_ = &context;
   if (Status s = context.createBuffer(sizeof(CompositeParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, params_); !s)
     return s;
@@ -19,15 +19,18 @@ Status VkComposite::init(VkContext& context, VkRenderPass renderPass) {
   si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
   si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   si.maxLod = VK_LOD_CLAMP_NONE;
-  SAO_VIEWER_VK(vkCreateSampler(context.device, &si, nullptr, &sampler_));
-  if (Status s = createWhite(); !s) return s;
+  SAO_VIEWER_VK(vkCreateSampler(context.device(), &si, nullptr, &sampler_));
+  // 1.0 where an input is missing (no AO, no reference, a plan without the intermediate).
+  const FloatImage white({1, 1}, 1, 1.0f);
+  if (Status s = context.uploadColor(white, VK_FORMAT_R32_SFLOAT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, white_); !s)
+    return s;
   if (Status s = createDescriptors(); !s) return s;
   return createPipeline(renderPass);
 }
 
 void VkComposite::destroy() {
   if (!context_) return;
-  VkDevice d = context_->device;
+  VkDevice d = context_->device();
   if (pipeline_) vkDestroyPipeline(d, pipeline_, nullptr);
   if (layout_) vkDestroyPipelineLayout(d, layout_, nullptr);
   if (pool_) vkDestroyDescriptorPool(d, pool_, nullptr);
@@ -39,30 +42,6 @@ void VkComposite::destroy() {
   context_ = nullptr;
 }
 
-// A 1x1 R32_SFLOAT image holding 1.0 (no AO, no reference, a plan without the intermediate).
-Status VkComposite::createWhite() {
-  if (Status s = context_->createImage(VK_FORMAT_R32_SFLOAT, {1, 1},
-                                       VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                                       VK_IMAGE_ASPECT_COLOR_BIT, white_);
-      !s)
-    return s;
-  return context_->oneShot([&](VkCommandBuffer cmd) {
-    auto b = vkx::imageBarrier(white_.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0, VK_ACCESS_TRANSFER_WRITE_BIT);
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
-                         nullptr, 1, &b);
-    VkClearColorValue one{};
-    one.float32[0] = one.float32[1] = one.float32[2] = one.float32[3] = 1.0f;
-    VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    vkCmdClearColorImage(cmd, white_.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &one, 1, &range);
-    b = vkx::imageBarrier(white_.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT,
-                          VK_ACCESS_SHADER_READ_BIT);
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0,
-                         nullptr, 1, &b);
-  });
-}
-
 Status VkComposite::createDescriptors() {
   VkDescriptorSetLayoutBinding bindings[1 + kTextures]{};
   bindings[0] = {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
@@ -71,28 +50,28 @@ Status VkComposite::createDescriptors() {
   VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   li.bindingCount = 1 + kTextures;
   li.pBindings = bindings;
-  SAO_VIEWER_VK(vkCreateDescriptorSetLayout(context_->device, &li, nullptr, &setLayout_));
+  SAO_VIEWER_VK(vkCreateDescriptorSetLayout(context_->device(), &li, nullptr, &setLayout_));
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kTextures}};
   VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   pi.maxSets = 1;
   pi.poolSizeCount = 2;
   pi.pPoolSizes = sizes;
-  SAO_VIEWER_VK(vkCreateDescriptorPool(context_->device, &pi, nullptr, &pool_));
+  SAO_VIEWER_VK(vkCreateDescriptorPool(context_->device(), &pi, nullptr, &pool_));
   VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
   ai.descriptorPool = pool_;
   ai.descriptorSetCount = 1;
   ai.pSetLayouts = &setLayout_;
-  SAO_VIEWER_VK(vkAllocateDescriptorSets(context_->device, &ai, &set_));
+  SAO_VIEWER_VK(vkAllocateDescriptorSets(context_->device(), &ai, &set_));
   VkPipelineLayoutCreateInfo pl{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   pl.setLayoutCount = 1;
   pl.pSetLayouts = &setLayout_;
-  SAO_VIEWER_VK(vkCreatePipelineLayout(context_->device, &pl, nullptr, &layout_));
+  SAO_VIEWER_VK(vkCreatePipelineLayout(context_->device(), &pl, nullptr, &layout_));
   return Status::success();
 }
 
 Status VkComposite::createPipeline(VkRenderPass renderPass) {
-  VkDevice d = context_->device;
+  VkDevice d = context_->device();
   VkShaderModule vs = vkx::shaderModule(d, kFullscreenVertSpv, sizeof kFullscreenVertSpv);
   VkShaderModule fs = vkx::shaderModule(d, kCompositeFragSpv, sizeof kCompositeFragSpv);
   VkPipelineShaderStageCreateInfo stages[2]{};
@@ -143,33 +122,7 @@ Status VkComposite::setReference(const FloatImage* reference) {
   context_->destroy(reference_);
   written_ = false;
   if (!reference) return Status::success();
-  const VkExtent2D extent{reference->extent.width, reference->extent.height};
-  if (Status s = context_->createImage(VK_FORMAT_R32_SFLOAT, extent,
-                                       VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                                       VK_IMAGE_ASPECT_COLOR_BIT, reference_);
-      !s)
-    return s;
-  vkx::Buffer staging;
-  const VkDeviceSize bytes = reference->data.size() * sizeof(float);
-  if (Status s = context_->createBuffer(bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, staging); !s) return s;
-  std::memcpy(staging.mapped, reference->data.data(), bytes);
-  Status s = context_->oneShot([&](VkCommandBuffer cmd) {
-    auto b = vkx::imageBarrier(reference_.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0, VK_ACCESS_TRANSFER_WRITE_BIT);
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
-                         nullptr, 1, &b);
-    VkBufferImageCopy copy{};
-    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    copy.imageExtent = {extent.width, extent.height, 1};
-    vkCmdCopyBufferToImage(cmd, staging.buffer, reference_.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
-    b = vkx::imageBarrier(reference_.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT,
-                          VK_ACCESS_SHADER_READ_BIT);
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0,
-                         nullptr, 1, &b);
-  });
-  context_->destroy(staging);
-  return s;
+  return context_->uploadColor(*reference, VK_FORMAT_R32_SFLOAT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, reference_);
 }
 
 // Always rewritten (six writes): a destroyed view and its replacement may share a handle.
@@ -206,7 +159,7 @@ void VkComposite::writeDescriptors() {
     writes[1 + i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     writes[1 + i].pImageInfo = &images[i];
   }
-  vkUpdateDescriptorSets(context_->device, 1 + kTextures, writes, 0, nullptr);
+  vkUpdateDescriptorSets(context_->device(), 1 + kTextures, writes, 0, nullptr);
   written_ = true;
 }
 

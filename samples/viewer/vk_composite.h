@@ -4,7 +4,8 @@
 #pragma once
 #include "sao/image.h"
 #include "viewer_types.h"
-#include "vk_context.h"
+#include "sao/vulkan/headless.h"
+#include "vk_util.h"
 
 namespace sao::viewer {
 
@@ -17,7 +18,7 @@ struct VkCompositeInputs {
 
 class VkComposite {
  public:
-  Status init(VkContext& context, VkRenderPass renderPass);
+  Status init(vk::headless::Context& context, VkRenderPass renderPass);
   void destroy();
   // Not while a frame that uses them is pending; setInputs() before the set is bound in the
   // frame's command buffer.
@@ -29,17 +30,16 @@ class VkComposite {
  private:
   Status createDescriptors();
   Status createPipeline(VkRenderPass renderPass);
-  Status createWhite();
   void writeDescriptors();
-  VkContext* context_ = nullptr;
+  vk::headless::Context* context_ = nullptr;
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
   VkPipeline pipeline_ = VK_NULL_HANDLE;
   VkSampler sampler_ = VK_NULL_HANDLE;
-  vkx::Buffer params_;
-  vkx::Image white_, reference_;
+  vk::headless::Buffer params_;
+  vk::headless::Image white_, reference_;
   VkCompositeInputs inputs_;
   bool written_ = false;
 };

@@ -51,22 +51,22 @@ Status VkSwapchain::createRenderPass() {
   ci.pSubpasses = &subpass;
   ci.dependencyCount = 1;
   ci.pDependencies = &dep;
-  SAO_VIEWER_VK(vkCreateRenderPass(context_->device, &ci, nullptr, &renderPass));
+  SAO_VIEWER_VK(vkCreateRenderPass(context_->device(), &ci, nullptr, &renderPass));
   return Status::success();
 }
 
-Status VkSwapchain::create(VkContext& context, std::uint32_t width, std::uint32_t height, bool vsync) {
+Status VkSwapchain::create(vk::headless::Context& context, std::uint32_t width, std::uint32_t height, bool vsync) {
   context_ = &context;
-  VkPhysicalDevice pd = context.physical;
+  VkPhysicalDevice pd = context.physicalDevice();
   VkSurfaceCapabilitiesKHR caps;
-  SAO_VIEWER_VK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(pd, context.surface, &caps));
+  SAO_VIEWER_VK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(pd, context.surface(), &caps));
   std::uint32_t n = 0;
-  vkGetPhysicalDeviceSurfaceFormatsKHR(pd, context.surface, &n, nullptr);
+  vkGetPhysicalDeviceSurfaceFormatsKHR(pd, context.surface(), &n, nullptr);
   std::vector<VkSurfaceFormatKHR> formats(n);
-  vkGetPhysicalDeviceSurfaceFormatsKHR(pd, context.surface, &n, formats.data());
-  vkGetPhysicalDeviceSurfacePresentModesKHR(pd, context.surface, &n, nullptr);
+  vkGetPhysicalDeviceSurfaceFormatsKHR(pd, context.surface(), &n, formats.data());
+  vkGetPhysicalDeviceSurfacePresentModesKHR(pd, context.surface(), &n, nullptr);
   std::vector<VkPresentModeKHR> modes(n);
-  vkGetPhysicalDeviceSurfacePresentModesKHR(pd, context.surface, &n, modes.data());
+  vkGetPhysicalDeviceSurfacePresentModesKHR(pd, context.surface(), &n, modes.data());
   if (formats.empty()) return Status::error(StatusCode::DriverError, "the window surface offers no format");
   const VkSurfaceFormatKHR surfaceFormat = pickFormat(formats);
   if (renderPass && surfaceFormat.format != format)
@@ -86,7 +86,7 @@ Status VkSwapchain::create(VkContext& context, std::uint32_t width, std::uint32_
   transferSrc = (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT) != 0;
 
   VkSwapchainCreateInfoKHR ci{VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR};
-  ci.surface = context.surface;
+  ci.surface = context.surface();
   ci.minImageCount = minImageCount;
   ci.imageFormat = format;
   ci.imageColorSpace = surfaceFormat.colorSpace;
@@ -102,14 +102,14 @@ Status VkSwapchain::create(VkContext& context, std::uint32_t width, std::uint32_
   ci.clipped = VK_TRUE;
   ci.oldSwapchain = handle;
   VkSwapchainKHR created = VK_NULL_HANDLE;
-  SAO_VIEWER_VK(vkCreateSwapchainKHR(context.device, &ci, nullptr, &created));
+  SAO_VIEWER_VK(vkCreateSwapchainKHR(context.device(), &ci, nullptr, &created));
   destroyImages();
-  if (handle) vkDestroySwapchainKHR(context.device, handle, nullptr);
+  if (handle) vkDestroySwapchainKHR(context.device(), handle, nullptr);
   handle = created;
 
-  vkGetSwapchainImagesKHR(context.device, handle, &n, nullptr);
+  vkGetSwapchainImagesKHR(context.device(), handle, &n, nullptr);
   images.resize(n);
-  vkGetSwapchainImagesKHR(context.device, handle, &n, images.data());
+  vkGetSwapchainImagesKHR(context.device(), handle, &n, images.data());
   for (VkImage image : images) {
     VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     vi.image = image;
@@ -117,7 +117,7 @@ Status VkSwapchain::create(VkContext& context, std::uint32_t width, std::uint32_
     vi.format = format;
     vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     views_.push_back(VK_NULL_HANDLE);
-    SAO_VIEWER_VK(vkCreateImageView(context.device, &vi, nullptr, &views_.back()));
+    SAO_VIEWER_VK(vkCreateImageView(context.device(), &vi, nullptr, &views_.back()));
     VkFramebufferCreateInfo fi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
     fi.renderPass = renderPass;
     fi.attachmentCount = 1;
@@ -126,19 +126,19 @@ Status VkSwapchain::create(VkContext& context, std::uint32_t width, std::uint32_
     fi.height = extent.height;
     fi.layers = 1;
     framebuffers.push_back(VK_NULL_HANDLE);
-    SAO_VIEWER_VK(vkCreateFramebuffer(context.device, &fi, nullptr, &framebuffers.back()));
+    SAO_VIEWER_VK(vkCreateFramebuffer(context.device(), &fi, nullptr, &framebuffers.back()));
     VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
     renderFinished.push_back(VK_NULL_HANDLE);
-    SAO_VIEWER_VK(vkCreateSemaphore(context.device, &si, nullptr, &renderFinished.back()));
+    SAO_VIEWER_VK(vkCreateSemaphore(context.device(), &si, nullptr, &renderFinished.back()));
   }
   return Status::success();
 }
 
 void VkSwapchain::destroyImages() {
   if (!context_) return;
-  for (VkFramebuffer f : framebuffers) vkDestroyFramebuffer(context_->device, f, nullptr);
-  for (VkImageView v : views_) vkDestroyImageView(context_->device, v, nullptr);
-  for (VkSemaphore s : renderFinished) vkDestroySemaphore(context_->device, s, nullptr);
+  for (VkFramebuffer f : framebuffers) vkDestroyFramebuffer(context_->device(), f, nullptr);
+  for (VkImageView v : views_) vkDestroyImageView(context_->device(), v, nullptr);
+  for (VkSemaphore s : renderFinished) vkDestroySemaphore(context_->device(), s, nullptr);
   framebuffers.clear();
   views_.clear();
   renderFinished.clear();
@@ -148,8 +148,8 @@ void VkSwapchain::destroyImages() {
 void VkSwapchain::destroy() {
   if (!context_) return;
   destroyImages();
-  if (handle) vkDestroySwapchainKHR(context_->device, handle, nullptr);
-  if (renderPass) vkDestroyRenderPass(context_->device, renderPass, nullptr);
+  if (handle) vkDestroySwapchainKHR(context_->device(), handle, nullptr);
+  if (renderPass) vkDestroyRenderPass(context_->device(), renderPass, nullptr);
   handle = VK_NULL_HANDLE;
   renderPass = VK_NULL_HANDLE;
 }

@@ -5,7 +5,8 @@
 
 #include <vector>
 
-#include "vk_context.h"
+#include "sao/vulkan/headless.h"
+#include "vk_util.h"
 
 namespace sao::viewer {
 
@@ -13,7 +14,7 @@ class VkSwapchain {
  public:
   // Creates the render pass (once) and the swapchain for the surface's current size (or
   // `width` x `height` where the surface leaves it to us); recreates when called again.
-  Status create(VkContext& context, std::uint32_t width, std::uint32_t height, bool vsync);
+  Status create(vk::headless::Context& context, std::uint32_t width, std::uint32_t height, bool vsync);
   void destroy();  // everything, the render pass included
 
   VkSwapchainKHR handle = VK_NULL_HANDLE;
@@ -30,7 +31,7 @@ class VkSwapchain {
  private:
   Status createRenderPass();
   void destroyImages();
-  VkContext* context_ = nullptr;
+  vk::headless::Context* context_ = nullptr;
   std::vector<VkImageView> views_;
 };
 

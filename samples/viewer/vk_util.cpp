@@ -35,19 +35,6 @@ Status check(VkResult result, const char* what) {
                        std::string(what) + " failed: " + resultName(result) + " (" + std::to_string(int(result)) + ")");
 }
 
-VkImageMemoryBarrier imageBarrier(VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
-                                  VkAccessFlags srcAccess, VkAccessFlags dstAccess) {
-  VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-  b.srcAccessMask = srcAccess;
-  b.dstAccessMask = dstAccess;
-  b.oldLayout = from;
-  b.newLayout = to;
-  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.image = image;
-  b.subresourceRange = {aspect, 0, 1, 0, 1};
-  return b;
-}
-
 VkShaderModule shaderModule(VkDevice device, const std::uint32_t* code, std::size_t bytes) {
   VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
   ci.codeSize = bytes;

@@ -75,13 +75,9 @@ TEST(VkHeadless, SynchronizationValidationCatchesAHazard) {
   ASSERT_TRUE(ctx.createStorageImage(VK_FORMAT_R16_SFLOAT, {8, 8}, b).ok());
   // Two clears of the same image without a barrier between them: write-after-write.
   ASSERT_TRUE(ctx.submit([&](VkCommandBuffer cmd) {
-                   VkImageMemoryBarrier bar{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-                   bar.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-                   bar.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-                   bar.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-                   bar.srcQueueFamilyIndex = bar.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-                   bar.image = a.image;
-                   bar.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+                   const auto bar = vk::headless::imageBarrier(a.image, VK_IMAGE_ASPECT_COLOR_BIT,
+                                                               VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
+                                                               VK_ACCESS_TRANSFER_WRITE_BIT);
                    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
                                         nullptr, 0, nullptr, 1, &bar);
                    const VkClearColorValue v{};

@@ -155,13 +155,9 @@ class RawAoSample {
     vkUpdateDescriptorSets(d, std::uint32_t(w.size()), w.data(), 0, nullptr);
     EXPECT_TRUE(context()
                     .submit([&](VkCommandBuffer cmd) {
-                      VkImageMemoryBarrier bar{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-                      bar.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
-                      bar.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-                      bar.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-                      bar.srcQueueFamilyIndex = bar.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-                      bar.image = csz_;
-                      bar.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, levels_, 0, 1};
+                      const auto bar = vk::headless::imageBarrier(csz_, VK_IMAGE_ASPECT_COLOR_BIT,
+                                                                  VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
+                                                                  VK_ACCESS_SHADER_READ_BIT, 0, levels_);
                       vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
                                            0, nullptr, 0, nullptr, 1, &bar);
                     })
@@ -188,14 +184,9 @@ class RawAoSample {
   void dispatch() {
     EXPECT_TRUE(context()
                     .submit([&](VkCommandBuffer cmd) {
-                      VkImageMemoryBarrier bar{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-                      bar.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-                      bar.dstAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-                      bar.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-                      bar.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-                      bar.srcQueueFamilyIndex = bar.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-                      bar.image = aoRaw_.image;
-                      bar.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+                      const auto bar = vk::headless::imageBarrier(
+                          aoRaw_.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                          VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_WRITE_BIT);
                       vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                                            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr, 1, &bar);
                       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);

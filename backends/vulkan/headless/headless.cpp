@@ -45,6 +45,16 @@ bool hasLayer(const char* name) {
   return false;
 }
 
+bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
+  std::uint32_t n = 0;
+  vkEnumerateDeviceExtensionProperties(device, nullptr, &n, nullptr);
+  std::vector<VkExtensionProperties> ext(n);
+  vkEnumerateDeviceExtensionProperties(device, nullptr, &n, ext.data());
+  for (const auto& e : ext)
+    if (std::strcmp(e.extensionName, name) == 0) return true;
+  return false;
+}
+
 bool hasInstanceExtension(const char* layer, const char* name) {
   std::uint32_t n = 0;
   vkEnumerateInstanceExtensionProperties(layer, &n, nullptr);
@@ -131,11 +141,12 @@ Status Context::createInstance(const Options& o, bool validation) {
   apiVersion_ = std::max<std::uint32_t>(VK_API_VERSION_1_1, std::min(o.apiVersion, loaderVersion));
 
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
-  app.pApplicationName = "sao headless";
+  app.pApplicationName = o.applicationName;
   app.pEngineName = "sao";
   app.apiVersion = apiVersion_;
 
   std::vector<const char*> layers, extensions;
+  for (const std::string& e : o.instanceExtensions) extensions.push_back(e.c_str());
   VkDebugUtilsMessengerCreateInfoEXT messenger{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
   messenger.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_INFO_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
                               VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
@@ -196,7 +207,43 @@ Status Context::createInstance(const Options& o, bool validation) {
     if (VkResult r = create(instance_, &messenger, nullptr, &messenger_); r != VK_SUCCESS)
       return vkFail("vkCreateDebugUtilsMessengerEXT", r);
   }
+  if (o.createSurface)
+    if (VkResult r = o.createSurface(instance_, &surface_); r != VK_SUCCESS) {
+      surface_ = VK_NULL_HANDLE;
+      return vkFail("creating the window's surface", r);
+    }
   return Status::success();
+}
+
+void Context::destroyInstance() {
+  if (surface_) vkDestroySurfaceKHR(instance_, surface_, nullptr);
+  if (messenger_) {
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+    if (destroy) destroy(instance_, messenger_, nullptr);
+  }
+  if (instance_) vkDestroyInstance(instance_, nullptr);
+  surface_ = VK_NULL_HANDLE;
+  messenger_ = VK_NULL_HANDLE;
+  instance_ = VK_NULL_HANDLE;
+}
+
+// Graphics + compute first (the usual queue), else compute only; with a surface, graphics +
+// compute that can present to it.
+int Context::queueFamilyFor(VkPhysicalDevice device) const {
+  std::uint32_t n = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &n, nullptr);
+  std::vector<VkQueueFamilyProperties> fams(n);
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &n, fams.data());
+  const VkQueueFlags both = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    VkBool32 present = VK_TRUE;
+    if (surface_) vkGetPhysicalDeviceSurfaceSupportKHR(device, i, surface_, &present);
+    if ((fams[i].queueFlags & both) == both && present) return static_cast<int>(i);
+  }
+  for (std::uint32_t i = 0; i < n && !surface_; ++i)
+    if (fams[i].queueFlags & VK_QUEUE_COMPUTE_BIT) return static_cast<int>(i);
+  return -1;
 }
 
 Status Context::pickDevice(const Options& o) {
@@ -206,42 +253,39 @@ Status Context::pickDevice(const Options& o) {
   std::vector<VkPhysicalDevice> devices(n);
   vkEnumeratePhysicalDevices(instance_, &n, devices.data());
   int best = -1;
+  std::string rejected;
   for (VkPhysicalDevice d : devices) {
     VkPhysicalDeviceProperties p;
     vkGetPhysicalDeviceProperties(d, &p);
     VkPhysicalDeviceFeatures f;
     vkGetPhysicalDeviceFeatures(d, &f);
-    if (p.apiVersion < VK_API_VERSION_1_1 || !f.shaderStorageImageExtendedFormats) continue;
     const int rank = deviceRank(p.deviceType, o.device);
-    if (rank > best) {
+    const int family = queueFamilyFor(d);
+    const char* why = rank < 0                                                         ? "not a CPU device"
+                      : p.apiVersion < VK_API_VERSION_1_1                              ? "Vulkan 1.0 only"
+                      : !f.shaderStorageImageExtendedFormats                           ? "no shaderStorageImageExtendedFormats"
+                      : surface_ && !hasDeviceExtension(d, VK_KHR_SWAPCHAIN_EXTENSION_NAME) ? "no VK_KHR_swapchain"
+                      : family < 0 && surface_ ? "no graphics + compute queue that can present to the window"
+                      : family < 0             ? "no compute queue"
+                                               : nullptr;
+    if (why) {
+      rejected += std::string(rejected.empty() ? "" : "; ") + p.deviceName + ": " + why;
+    } else if (rank > best) {
       best = rank;
       physical_ = d;
       props_ = p;
+      family_ = static_cast<std::uint32_t>(family);
     }
   }
   if (!physical_)
-    return Status::error(StatusCode::DriverError, std::to_string(n) + " Vulkan device(s) found, none " +
-                                                      (o.device == DevicePreference::Cpu ? "is a CPU device with " : "has ") +
-                                                      "Vulkan 1.1 and shaderStorageImageExtendedFormats");
+    return Status::error(StatusCode::DriverError, std::to_string(n) + " Vulkan device(s) found, none suitable" +
+                                                      (rejected.empty() ? "" : " (" + rejected + ")"));
   return Status::success();
 }
 
-Status Context::createDevice(const Options&) {
+Status Context::createDevice() {
   apiVersion_ = std::min(apiVersion_, props_.apiVersion);
   vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
-  std::uint32_t n = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &n, nullptr);
-  std::vector<VkQueueFamilyProperties> fams(n);
-  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &n, fams.data());
-  int chosen = -1;
-  for (std::uint32_t i = 0; i < n && chosen < 0; ++i)  // graphics + compute first (the usual queue)
-    if ((fams[i].queueFlags & (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) == (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT))
-      chosen = static_cast<int>(i);
-  for (std::uint32_t i = 0; i < n && chosen < 0; ++i)
-    if (fams[i].queueFlags & VK_QUEUE_COMPUTE_BIT) chosen = static_cast<int>(i);
-  if (chosen < 0) return Status::error(StatusCode::DriverError, "the device has no compute queue");
-  family_ = static_cast<std::uint32_t>(chosen);
-
   const float priority = 1.0f;
   VkDeviceQueueCreateInfo q{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
   q.queueFamilyIndex = family_;
@@ -249,10 +293,13 @@ Status Context::createDevice(const Options&) {
   q.pQueuePriorities = &priority;
   VkPhysicalDeviceFeatures features{};
   features.shaderStorageImageExtendedFormats = VK_TRUE;
+  const char* swapchain = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
   VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   info.queueCreateInfoCount = 1;
   info.pQueueCreateInfos = &q;
   info.pEnabledFeatures = &features;
+  info.enabledExtensionCount = surface_ ? 1 : 0;
+  info.ppEnabledExtensionNames = &swapchain;
   if (VkResult r = vkCreateDevice(physical_, &info, nullptr, &device_); r != VK_SUCCESS) {
     device_ = VK_NULL_HANDLE;
     return vkFail("vkCreateDevice", r);
@@ -289,14 +336,7 @@ Status Context::init(const Options& o) {
     if (icd.empty())
       return Status::error(StatusCode::DriverError,
                            picked.message + "; and no lavapipe ICD (lvp_icd.*.json) was found (Debian: mesa-vulkan-drivers)");
-    if (messenger_) {
-      auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-          vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
-      if (destroy) destroy(instance_, messenger_, nullptr);
-      messenger_ = VK_NULL_HANDLE;
-    }
-    if (instance_) vkDestroyInstance(instance_, nullptr);
-    instance_ = VK_NULL_HANDLE;
+    destroyInstance();
     // Messages of the failed attempt (the loader finding no driver) are not about this session.
     if (const auto dropped = takeMessages(); !dropped.empty())
       how_ += std::to_string(dropped.size()) + " loader message(s) of the first attempt dropped; ";
@@ -306,7 +346,7 @@ Status Context::init(const Options& o) {
     if (Status st = createInstance(o, validation); !st) return st;
     if (Status st = pickDevice(o); !st) return st;
   }
-  return createDevice(o);
+  return createDevice();
 }
 
 Context::~Context() {
@@ -316,12 +356,7 @@ Context::~Context() {
     if (pool_) vkDestroyCommandPool(device_, pool_, nullptr);
     vkDestroyDevice(device_, nullptr);
   }
-  if (messenger_) {
-    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
-    if (destroy) destroy(instance_, messenger_, nullptr);
-  }
-  if (instance_) vkDestroyInstance(instance_, nullptr);
+  destroyInstance();
 }
 
 std::string Context::description() const {

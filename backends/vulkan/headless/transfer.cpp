@@ -30,19 +30,6 @@ std::uint32_t channelsOf(VkFormat f, std::uint32_t& bytes) {
   }
 }
 
-VkImageMemoryBarrier barrier(VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
-                             VkAccessFlags src, VkAccessFlags dst, std::uint32_t level = 0, std::uint32_t levels = 1) {
-  VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-  b.srcAccessMask = src;
-  b.dstAccessMask = dst;
-  b.oldLayout = from;
-  b.newLayout = to;
-  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.image = image;
-  b.subresourceRange = {aspect, level, levels, 0, 1};
-  return b;
-}
-
 }  // namespace
 
 int Context::memoryType(std::uint32_t bits, VkMemoryPropertyFlags flags) const {
@@ -51,20 +38,36 @@ int Context::memoryType(std::uint32_t bits, VkMemoryPropertyFlags flags) const {
   return -1;
 }
 
-Status Context::createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, VkBuffer& buffer, VkDeviceMemory& memory) {
+Status Context::createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, Buffer& out) {
+  out = Buffer{};
   VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   bi.size = size;
   bi.usage = usage;
   bi.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-  if (VkResult r = vkCreateBuffer(device_, &bi, nullptr, &buffer); r != VK_SUCCESS) return vkFail("vkCreateBuffer", r);
+  if (VkResult r = vkCreateBuffer(device_, &bi, nullptr, &out.buffer); r != VK_SUCCESS) return vkFail("vkCreateBuffer", r);
   VkMemoryRequirements req;
-  vkGetBufferMemoryRequirements(device_, buffer, &req);
+  vkGetBufferMemoryRequirements(device_, out.buffer, &req);
   const int type = memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-  if (type < 0) return Status::error(StatusCode::DriverError, "no host-visible coherent memory for a staging buffer");
+  Status st = type < 0 ? Status::error(StatusCode::DriverError, "no host-visible coherent memory for a buffer")
+                       : Status::success();
   VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size, static_cast<std::uint32_t>(type)};
-  if (VkResult r = vkAllocateMemory(device_, &ai, nullptr, &memory); r != VK_SUCCESS) return vkFail("vkAllocateMemory", r);
-  if (VkResult r = vkBindBufferMemory(device_, buffer, memory, 0); r != VK_SUCCESS) return vkFail("vkBindBufferMemory", r);
-  return Status::success();
+  if (st)
+    if (VkResult r = vkAllocateMemory(device_, &ai, nullptr, &out.memory); r != VK_SUCCESS) st = vkFail("vkAllocateMemory", r);
+  if (st)
+    if (VkResult r = vkBindBufferMemory(device_, out.buffer, out.memory, 0); r != VK_SUCCESS)
+      st = vkFail("vkBindBufferMemory", r);
+  if (st)
+    if (VkResult r = vkMapMemory(device_, out.memory, 0, VK_WHOLE_SIZE, 0, &out.mapped); r != VK_SUCCESS)
+      st = vkFail("vkMapMemory", r);
+  if (!st) destroy(out);
+  else out.size = size;
+  return st;
+}
+
+void Context::destroy(Buffer& buffer) {
+  if (buffer.buffer) vkDestroyBuffer(device_, buffer.buffer, nullptr);
+  if (buffer.memory) vkFreeMemory(device_, buffer.memory, nullptr);  // unmaps it
+  buffer = Buffer{};
 }
 
 Status Context::createImage(VkFormat format, Extent extent, VkImageUsageFlags usage, VkImageAspectFlags viewAspect,
@@ -83,17 +86,27 @@ Status Context::createImage(VkFormat format, Extent extent, VkImageUsageFlags us
   ci.usage = usage;
   ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  if (VkResult r = vkCreateImage(device_, &ci, nullptr, &out.image); r != VK_SUCCESS) return vkFail("vkCreateImage", r);
+  if (VkResult r = vkCreateImage(device_, &ci, nullptr, &out.image); r != VK_SUCCESS) {
+    out = Image{};
+    return vkFail("vkCreateImage", r);
+  }
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(device_, out.image, &req);
   int type = memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   if (type < 0) type = memoryType(req.memoryTypeBits, 0);
+  if (type < 0) {
+    destroy(out);
+    return Status::error(StatusCode::DriverError, "no memory type for an image");
+  }
   VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size, static_cast<std::uint32_t>(type)};
   if (VkResult r = vkAllocateMemory(device_, &ai, nullptr, &out.memory); r != VK_SUCCESS) {
     destroy(out);
     return vkFail("vkAllocateMemory", r);
   }
-  vkBindImageMemory(device_, out.image, out.memory, 0);
+  if (VkResult r = vkBindImageMemory(device_, out.image, out.memory, 0); r != VK_SUCCESS) {
+    destroy(out);
+    return vkFail("vkBindImageMemory", r);
+  }
   VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   vi.image = out.image;
   vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
@@ -132,18 +145,9 @@ Status Context::uploadDepth(const DepthImage& depth, VkFormat format, VkImageLay
   const VkImageAspectFlags allAspects = hasStencil(format) ? (VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT) : viewAspect;
   const std::size_t texelBytes = format == VK_FORMAT_D16_UNORM ? 2 : 4;
 
-  VkBuffer staging = VK_NULL_HANDLE;
-  VkDeviceMemory stagingMemory = VK_NULL_HANDLE;
-  auto cleanup = [&] {
-    if (staging) vkDestroyBuffer(device_, staging, nullptr);
-    if (stagingMemory) vkFreeMemory(device_, stagingMemory, nullptr);
-  };
-  if (Status st = createBuffer(n * texelBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, staging, stagingMemory); !st) {
-    cleanup();
-    return st;
-  }
-  void* mapped = nullptr;
-  vkMapMemory(device_, stagingMemory, 0, VK_WHOLE_SIZE, 0, &mapped);
+  Buffer staging;
+  if (Status st = createBuffer(n * texelBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, staging); !st) return st;
+  void* mapped = staging.mapped;
   if (texelBytes == 2) {
     auto* p = static_cast<std::uint16_t*>(mapped);
     for (std::size_t i = 0; i < n; ++i) p[i] = static_cast<std::uint16_t>(depth.texels[i]);
@@ -152,31 +156,30 @@ Status Context::uploadDepth(const DepthImage& depth, VkFormat format, VkImageLay
     const std::uint32_t mask = depth.format == DepthFormat::D24 ? 0xffffffu : 0xffffffffu;
     for (std::size_t i = 0; i < n; ++i) p[i] = depth.texels[i] & mask;
   }
-  vkUnmapMemory(device_, stagingMemory);
 
   const VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
                                   VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
                                   (depthFormat ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT : 0);
   if (Status st = createImage(format, depth.extent, usage, viewAspect, out); !st) {
-    cleanup();
+    destroy(staging);
     return st;
   }
   Status st = submit([&](VkCommandBuffer cmd) {
-    auto toDst = barrier(out.image, allAspects, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+    auto toDst = imageBarrier(out.image, allAspects, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
                          VK_ACCESS_TRANSFER_WRITE_BIT);
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
                          nullptr, 1, &toDst);
     VkBufferImageCopy copy{};
     copy.imageSubresource = {viewAspect, 0, 0, 1};
     copy.imageExtent = {depth.extent.width, depth.extent.height, 1};
-    vkCmdCopyBufferToImage(cmd, staging, out.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
-    auto toRead = barrier(out.image, allAspects, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, layout,
+    vkCmdCopyBufferToImage(cmd, staging.buffer, out.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+    auto toRead = imageBarrier(out.image, allAspects, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, layout,
                           VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT);
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0,
                          nullptr, 1, &toRead);
   });
-  cleanup();
+  destroy(staging);
   if (!st) {
     destroy(out);
     return st;
@@ -191,47 +194,37 @@ Status Context::uploadColor(const FloatImage& image, VkFormat format, VkImageLay
   const std::size_t n = std::size_t(image.extent.width) * image.extent.height;
   if (channels == 0 || image.channels != channels || image.data.size() != n * channels || n == 0)
     return Status::error(StatusCode::InvalidInput, "uploadColor: the image does not match the format's channels");
-  VkBuffer staging = VK_NULL_HANDLE;
-  VkDeviceMemory stagingMemory = VK_NULL_HANDLE;
-  auto cleanup = [&] {
-    if (staging) vkDestroyBuffer(device_, staging, nullptr);
-    if (stagingMemory) vkFreeMemory(device_, stagingMemory, nullptr);
-  };
-  if (Status st = createBuffer(n * bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, staging, stagingMemory); !st) {
-    cleanup();
-    return st;
-  }
-  void* mapped = nullptr;
-  vkMapMemory(device_, stagingMemory, 0, VK_WHOLE_SIZE, 0, &mapped);
+  Buffer staging;
+  if (Status st = createBuffer(n * bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, staging); !st) return st;
+  void* mapped = staging.mapped;
   const bool half = bytes / channels == 2;
   for (std::size_t i = 0; i < n * channels; ++i) {
     if (half) static_cast<std::uint16_t*>(mapped)[i] = sao::halfBits(image.data[i]);
     else static_cast<float*>(mapped)[i] = image.data[i];
   }
-  vkUnmapMemory(device_, stagingMemory);
   if (Status st = createImage(format, image.extent,
                               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                               VK_IMAGE_ASPECT_COLOR_BIT, out);
       !st) {
-    cleanup();
+    destroy(staging);
     return st;
   }
   Status st = submit([&](VkCommandBuffer cmd) {
-    auto toDst = barrier(out.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+    auto toDst = imageBarrier(out.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                          VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0, VK_ACCESS_TRANSFER_WRITE_BIT);
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
                          nullptr, 1, &toDst);
     VkBufferImageCopy copy{};
     copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     copy.imageExtent = {image.extent.width, image.extent.height, 1};
-    vkCmdCopyBufferToImage(cmd, staging, out.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
-    auto toRead = barrier(out.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, layout,
+    vkCmdCopyBufferToImage(cmd, staging.buffer, out.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+    auto toRead = imageBarrier(out.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, layout,
                           VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT);
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0,
                          nullptr, 1, &toRead);
   });
-  cleanup();
+  destroy(staging);
   if (!st) {
     destroy(out);
     return st;
@@ -255,28 +248,20 @@ Status Context::readback(VkImage image, VkFormat format, Extent levelZero, std::
     return Status::error(StatusCode::UnsupportedFormat, "readback: unsupported format or null image");
   const Extent e{std::max(1u, levelZero.width >> level), std::max(1u, levelZero.height >> level)};
   const std::size_t n = std::size_t(e.width) * e.height;
-  VkBuffer staging = VK_NULL_HANDLE;
-  VkDeviceMemory stagingMemory = VK_NULL_HANDLE;
-  auto cleanup = [&] {
-    if (staging) vkDestroyBuffer(device_, staging, nullptr);
-    if (stagingMemory) vkFreeMemory(device_, stagingMemory, nullptr);
-  };
-  if (Status st = createBuffer(n * bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, staging, stagingMemory); !st) {
-    cleanup();
-    return st;
-  }
+  Buffer staging;
+  if (Status st = createBuffer(n * bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, staging); !st) return st;
   // Always through TRANSFER_SRC_OPTIMAL (copies from GENERAL draw a performance warning).
   const VkImageLayout copyLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
   Status st = submit([&](VkCommandBuffer cmd) {
-    auto pre = barrier(image, VK_IMAGE_ASPECT_COLOR_BIT, layout, copyLayout, srcAccess, VK_ACCESS_TRANSFER_READ_BIT,
+    auto pre = imageBarrier(image, VK_IMAGE_ASPECT_COLOR_BIT, layout, copyLayout, srcAccess, VK_ACCESS_TRANSFER_READ_BIT,
                        level, 1);
     vkCmdPipelineBarrier(cmd, srcStages, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1, &pre);
     VkBufferImageCopy copy{};
     copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1};
     copy.imageExtent = {e.width, e.height, 1};
-    vkCmdCopyImageToBuffer(cmd, image, copyLayout, staging, 1, &copy);
+    vkCmdCopyImageToBuffer(cmd, image, copyLayout, staging.buffer, 1, &copy);
     // Back to the caller's layout; later work of any stage comes after the copy.
-    auto post = barrier(image, VK_IMAGE_ASPECT_COLOR_BIT, copyLayout, layout, 0,
+    auto post = imageBarrier(image, VK_IMAGE_ASPECT_COLOR_BIT, copyLayout, layout, 0,
                         VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT, level, 1);
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0,
                          nullptr, 1, &post);
@@ -284,23 +269,21 @@ Status Context::readback(VkImage image, VkFormat format, Extent levelZero, std::
     host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
     host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
     host.srcQueueFamilyIndex = host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    host.buffer = staging;
+    host.buffer = staging.buffer;
     host.size = VK_WHOLE_SIZE;
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &host, 0,
                          nullptr);
   });
   if (!st) {
-    cleanup();
+    destroy(staging);
     return st;
   }
   out = FloatImage(e, channels);
-  void* mapped = nullptr;
-  vkMapMemory(device_, stagingMemory, 0, VK_WHOLE_SIZE, 0, &mapped);
+  void* mapped = staging.mapped;
   const bool half = bytes / channels == 2;
   for (std::size_t i = 0; i < n * channels; ++i)
     out.data[i] = half ? sao::halfToFloat(static_cast<const std::uint16_t*>(mapped)[i]) : static_cast<const float*>(mapped)[i];
-  vkUnmapMemory(device_, stagingMemory);
-  cleanup();
+  destroy(staging);
   return Status::success();
 }
 

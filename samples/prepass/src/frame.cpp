@@ -59,6 +59,15 @@ std::vector<float> expandMesh(const scenes::Mesh& mesh) {
 Status prepareFrame(const scenes::Mesh& mesh, const scenes::View& view, const Camera& camera,
                     const PrepassOptions& options, Frame& out) {
   out = Frame{};
+  if (mesh.indices.empty()) return Status::error(StatusCode::InvalidInput, "prepass: the mesh has no triangles");
+  for (double e : {view.eye.x, view.eye.y, view.eye.z, view.target.x, view.target.y, view.target.z, view.up.x,
+                   view.up.y, view.up.z})
+    if (!std::isfinite(e)) return Status::error(StatusCode::InvalidCamera, "prepass: the view is not finite");
+  return prepareFrame(scenes::viewMatrix(view), camera, options, out);
+}
+
+Status prepareFrame(const glm::dmat4& viewM, const Camera& camera, const PrepassOptions& options, Frame& out) {
+  out = Frame{};
   if (options.format == DepthFormat::LinearZ)
     return Status::error(StatusCode::UnsupportedFormat,
                          "prepass: LinearZ is not a depth-buffer format; use D16, D24 or D32F");
@@ -67,7 +76,6 @@ Status prepareFrame(const scenes::Mesh& mesh, const scenes::View& view, const Ca
   if (options.secondLayer && !(std::isfinite(options.minSeparation) && options.minSeparation > 0))
     return Status::error(StatusCode::InvalidInput, "prepass: minSeparation must be a finite number > 0 metres, not " +
                                                        std::to_string(options.minSeparation));
-  if (mesh.indices.empty()) return Status::error(StatusCode::InvalidInput, "prepass: the mesh has no triangles");
   if (camera.width == 0 || camera.height == 0)
     return Status::error(StatusCode::InvalidExtent, "prepass: the viewport is " + std::to_string(camera.width) + "x" +
                                                         std::to_string(camera.height) + "; both sides must be > 0");
@@ -79,10 +87,6 @@ Status prepareFrame(const scenes::Mesh& mesh, const scenes::View& view, const Ca
   out.extent = {std::uint32_t(w), std::uint32_t(h)};
   if (!(std::isfinite(camera.metersToViewUnits) && camera.metersToViewUnits > 0))
     return Status::error(StatusCode::InvalidCamera, "prepass: metersToViewUnits must be finite and > 0");
-  for (double e : {view.eye.x, view.eye.y, view.eye.z, view.target.x, view.target.y, view.target.z, view.up.x,
-                   view.up.y, view.up.z})
-    if (!std::isfinite(e)) return Status::error(StatusCode::InvalidCamera, "prepass: the view is not finite");
-  const glm::dmat4 viewM = scenes::viewMatrix(view);
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r)
       if (!std::isfinite(viewM[c][r]))

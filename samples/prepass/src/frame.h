@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "sao/prepass/prepass.h"
 
 namespace sao::prepass::detail {
@@ -32,6 +34,8 @@ struct Frame {
 // Validates everything that does not depend on the API and fills `out`.
 Status prepareFrame(const scenes::Mesh& mesh, const scenes::View& view, const Camera& camera,
                     const PrepassOptions& options, Frame& out);
+// The same for a view given as its matrix, world -> camera (scenes::viewMatrix), without a mesh.
+Status prepareFrame(const glm::dmat4& view, const Camera& camera, const PrepassOptions& options, Frame& out);
 
 // Checks the mesh (at least one triangle, indices a multiple of 3 and in range, finite vertices)
 // and returns a 64-bit digest of its contents, the key of the backends' upload cache.

@@ -9,15 +9,27 @@
 #include "kPrepassFragSpv.h"
 #include "kPrepassPeelFragSpv.h"
 #include "kPrepassVertSpv.h"
-#include "vk_resources.h"
 
 namespace sao::prepass {
+namespace {
 
-using detail::VkBufferRes;
-using detail::vkCheck;
-using detail::VkImageRes;
+Status clipError() {
+  return Status::error(StatusCode::InvalidCamera,
+                       "prepass: Vulkan's clip depth is [0, 1]; a camera with ClipDepth::NegativeOneToOne cannot be "
+                       "rendered here (use ClipDepth::ZeroToOne)");
+}
+
+}  // namespace
+
+using vk::headless::Buffer;
+using vk::headless::Image;
 
 namespace {
+
+Status vkCheck(VkResult r, const std::string& what) {
+  if (r == VK_SUCCESS) return Status::success();
+  return Status::error(StatusCode::DriverError, "prepass: " + what + " failed: VkResult " + std::to_string(int(r)));
+}
 
 constexpr VkFormat kColorFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
@@ -46,7 +58,7 @@ VkDeviceSize align16(VkDeviceSize v) { return (v + 15) & ~VkDeviceSize(15); }
 }  // namespace
 
 struct VkPrepass::State {
-  detail::VkAllocator alloc;
+  vk::headless::Context* alloc = nullptr;  // images and buffers
   VkDevice device = VK_NULL_HANDLE;
   VkPhysicalDevice physical = VK_NULL_HANDLE;
   VkPhysicalDeviceLimits limits{};
@@ -56,7 +68,7 @@ struct VkPrepass::State {
   VkDescriptorPool pool = VK_NULL_HANDLE;
   VkDescriptorSet layerSet = VK_NULL_HANDLE, peelSet = VK_NULL_HANDLE;
   VkSampler sampler = VK_NULL_HANDLE;
-  VkBufferRes ubo;
+  Buffer ubo;
 
   // Per (format, reversed): the render pass and both pipelines.
   bool pipelinesMade = false;
@@ -67,18 +79,29 @@ struct VkPrepass::State {
 
   // Per (extent, format, second layer, render pass): images, framebuffers, the read-back buffer.
   struct Layer {
-    VkImageRes depth, position, normal;
+    Image depth, position, normal;
     VkFramebuffer framebuffer = VK_NULL_HANDLE;
   } layers[2];
   bool targetsMade = false;
   Extent extent;
   DepthFormat targetFormat = DepthFormat::D32F;
   bool targetSecond = false;
-  VkBufferRes readback;
+  Buffer readback;
   VkDeviceSize depthOffset[2]{}, positionOffset[2]{}, normalOffset[2]{};
 
+  // record(): a depth-only render pass and pipeline per (format, reversed), the image per extent.
+  struct FrameTarget {
+    bool made = false;
+    DepthFormat format = DepthFormat::D32F;
+    bool reversed = false;
+    VkRenderPass pass = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    Image depth;
+    VkFramebuffer framebuffer = VK_NULL_HANDLE;
+  } frameTarget;
+
   // The expanded mesh.
-  VkBufferRes vertices;
+  Buffer vertices;
   std::uint32_t vertexCount = 0;
   std::uint64_t meshDigest = 0;
   bool haveMesh = false;
@@ -86,12 +109,12 @@ struct VkPrepass::State {
   void destroyTargets() {
     for (Layer& l : layers) {
       if (l.framebuffer) vkDestroyFramebuffer(device, l.framebuffer, nullptr);
-      alloc.destroy(l.depth);
-      alloc.destroy(l.position);
-      alloc.destroy(l.normal);
+      alloc->destroy(l.depth);
+      alloc->destroy(l.position);
+      alloc->destroy(l.normal);
       l = Layer{};
     }
-    alloc.destroy(readback);
+    alloc->destroy(readback);
     targetsMade = false;
   }
   void destroyPipelines() {
@@ -102,12 +125,21 @@ struct VkPrepass::State {
     renderPass = VK_NULL_HANDLE;
     pipelinesMade = false;
   }
+  void destroyFrameTarget() {
+    FrameTarget& t = frameTarget;
+    if (t.framebuffer) vkDestroyFramebuffer(device, t.framebuffer, nullptr);
+    alloc->destroy(t.depth);
+    if (t.pipeline) vkDestroyPipeline(device, t.pipeline, nullptr);
+    if (t.pass) vkDestroyRenderPass(device, t.pass, nullptr);
+    t = FrameTarget{};
+  }
   void destroyAll() {
     if (!device) return;
+    destroyFrameTarget();
     destroyTargets();
     destroyPipelines();
-    alloc.destroy(vertices);
-    alloc.destroy(ubo);
+    alloc->destroy(vertices);
+    alloc->destroy(ubo);
     if (sampler) vkDestroySampler(device, sampler, nullptr);
     if (pool) vkDestroyDescriptorPool(device, pool, nullptr);
     if (layerLayout) vkDestroyPipelineLayout(device, layerLayout, nullptr);
@@ -178,7 +210,7 @@ struct VkPrepass::State {
     si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     if (Status s = vkCheck(vkCreateSampler(device, &si, nullptr, &sampler), "vkCreateSampler"); !s) return s;
 
-    if (Status s = alloc.createBuffer(sizeof(detail::Uniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, ubo); !s) return s;
+    if (Status s = alloc->createBuffer(sizeof(detail::Uniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, ubo); !s) return s;
     VkDescriptorBufferInfo bufferInfo{ubo.buffer, 0, sizeof(detail::Uniforms)};
     VkWriteDescriptorSet writes[2]{};
     for (int i = 0; i < 2; ++i) {
@@ -193,7 +225,7 @@ struct VkPrepass::State {
     return Status::success();
   }
 
-  Status createRenderPass(VkFormat depthFormat) {
+  Status createRenderPass(VkFormat depthFormat, VkRenderPass& out) {
     VkAttachmentDescription att[3]{};
     for (int i = 0; i < 3; ++i) {
       att[i].format = i < 2 ? kColorFormat : depthFormat;
@@ -239,10 +271,47 @@ struct VkPrepass::State {
     ci.pSubpasses = &sub;
     ci.dependencyCount = 2;
     ci.pDependencies = deps;
-    return vkCheck(vkCreateRenderPass(device, &ci, nullptr, &renderPass), "vkCreateRenderPass");
+    return vkCheck(vkCreateRenderPass(device, &ci, nullptr, &out), "vkCreateRenderPass");
   }
 
-  Status createPipeline(VkShaderModule fragment, VkPipelineLayout layout, bool reversed, VkPipeline& out) {
+  // record()'s pass: depth only, left for the caller's compute and fragment shaders to read.
+  Status createFramePass(VkFormat depthFormat, VkRenderPass& out) {
+    VkAttachmentDescription att{};
+    att.format = depthFormat;
+    att.samples = VK_SAMPLE_COUNT_1_BIT;
+    att.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    att.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    att.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    att.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    att.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    att.finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+    const VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription sub{};
+    sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    sub.pDepthStencilAttachment = &ref;
+    const VkPipelineStageFlags readers = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+    const VkPipelineStageFlags tests =
+        VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+    VkSubpassDependency deps[2]{};
+    // Before: the previous frame's reads of the depth (write-after-read).
+    deps[0] = {VK_SUBPASS_EXTERNAL, 0, readers, tests, 0,
+               VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, 0};
+    // After: this frame's reads.
+    deps[1] = {0, VK_SUBPASS_EXTERNAL, tests, readers, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+               VK_ACCESS_SHADER_READ_BIT, 0};
+    VkRenderPassCreateInfo ci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+    ci.attachmentCount = 1;
+    ci.pAttachments = &att;
+    ci.subpassCount = 1;
+    ci.pSubpasses = &sub;
+    ci.dependencyCount = 2;
+    ci.pDependencies = deps;
+    return vkCheck(vkCreateRenderPass(device, &ci, nullptr, &out), "vkCreateRenderPass");
+  }
+
+  // Without a fragment shader: depth only, no colour attachments (record()'s pass).
+  Status createPipeline(VkRenderPass pass, VkShaderModule fragment, VkPipelineLayout layout, bool reversed,
+                        VkPipeline& out) {
     VkPipelineShaderStageCreateInfo stages[2]{};
     stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
     stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
@@ -281,14 +350,14 @@ struct VkPrepass::State {
       b.colorWriteMask =
           VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
     VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    cb.attachmentCount = 2;
+    cb.attachmentCount = fragment ? 2 : 0;
     cb.pAttachments = blend;
     const VkDynamicState dynamic[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
     VkPipelineDynamicStateCreateInfo dy{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
     dy.dynamicStateCount = 2;
     dy.pDynamicStates = dynamic;
     VkGraphicsPipelineCreateInfo pi{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-    pi.stageCount = 2;
+    pi.stageCount = fragment ? 2 : 1;
     pi.pStages = stages;
     pi.pVertexInputState = &vi;
     pi.pInputAssemblyState = &ia;
@@ -299,7 +368,7 @@ struct VkPrepass::State {
     pi.pColorBlendState = &cb;
     pi.pDynamicState = &dy;
     pi.layout = layout;
-    pi.renderPass = renderPass;
+    pi.renderPass = pass;
     return vkCheck(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &pi, nullptr, &out), "vkCreateGraphicsPipelines");
   }
 
@@ -307,9 +376,9 @@ struct VkPrepass::State {
     if (pipelinesMade && pipelineFormat == format && pipelineReversed == reversed) return Status::success();
     destroyTargets();  // their framebuffers belong to the render pass
     destroyPipelines();
-    Status s = createRenderPass(vkDepthFormat(format));
-    if (s) s = createPipeline(frag, layerLayout, reversed, layerPipeline);
-    if (s) s = createPipeline(peelFrag, peelLayout, reversed, peelPipeline);
+    Status s = createRenderPass(vkDepthFormat(format), renderPass);
+    if (s) s = createPipeline(renderPass, frag, layerLayout, reversed, layerPipeline);
+    if (s) s = createPipeline(renderPass, peelFrag, peelLayout, reversed, peelPipeline);
     if (!s) {
       destroyPipelines();
       return s;
@@ -333,9 +402,9 @@ struct VkPrepass::State {
       VkImageUsageFlags depthUsage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
       if (second && i == 0) depthUsage |= VK_IMAGE_USAGE_SAMPLED_BIT;
       const VkImageUsageFlags colorUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-      s = alloc.createImage(df, e, depthUsage, VK_IMAGE_ASPECT_DEPTH_BIT, l.depth);
-      if (s) s = alloc.createImage(kColorFormat, e, colorUsage, VK_IMAGE_ASPECT_COLOR_BIT, l.position);
-      if (s) s = alloc.createImage(kColorFormat, e, colorUsage, VK_IMAGE_ASPECT_COLOR_BIT, l.normal);
+      s = alloc->createImage(df, e, depthUsage, VK_IMAGE_ASPECT_DEPTH_BIT, l.depth);
+      if (s) s = alloc->createImage(kColorFormat, e, colorUsage, VK_IMAGE_ASPECT_COLOR_BIT, l.position);
+      if (s) s = alloc->createImage(kColorFormat, e, colorUsage, VK_IMAGE_ASPECT_COLOR_BIT, l.normal);
       if (s) {
         const VkImageView views[3] = {l.position.view, l.normal.view, l.depth.view};
         VkFramebufferCreateInfo fi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
@@ -354,7 +423,7 @@ struct VkPrepass::State {
       normalOffset[i] = offset;
       offset = align16(offset + texels * 16);
     }
-    if (s) s = alloc.createBuffer(offset, VK_BUFFER_USAGE_TRANSFER_DST_BIT, readback);
+    if (s) s = alloc->createBuffer(offset, VK_BUFFER_USAGE_TRANSFER_DST_BIT, readback);
     if (!s) {
       destroyTargets();
       return s;
@@ -378,10 +447,10 @@ struct VkPrepass::State {
 
   Status uploadMesh(const scenes::Mesh& mesh, std::uint64_t digest) {
     if (haveMesh && meshDigest == digest) return Status::success();
-    alloc.destroy(vertices);
+    alloc->destroy(vertices);
     haveMesh = false;
     const std::vector<float> v = detail::expandMesh(mesh);
-    if (Status s = alloc.createBuffer(v.size() * sizeof(float), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vertices); !s)
+    if (Status s = alloc->createBuffer(v.size() * sizeof(float), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vertices); !s)
       return s;
     std::memcpy(vertices.mapped, v.data(), v.size() * sizeof(float));
     vertexCount = std::uint32_t(v.size() / detail::kVertexFloats);
@@ -450,6 +519,66 @@ struct VkPrepass::State {
                          nullptr);
   }
 
+  Status ensureFrameTarget(Extent e, DepthFormat format, bool reversed) {
+    FrameTarget& t = frameTarget;
+    if (!t.made || t.format != format || t.reversed != reversed) {
+      destroyFrameTarget();
+      Status s = createFramePass(vkDepthFormat(format), t.pass);
+      if (s) s = createPipeline(t.pass, VK_NULL_HANDLE, layerLayout, reversed, t.pipeline);
+      if (!s) {
+        destroyFrameTarget();
+        return s;
+      }
+      t.made = true;
+      t.format = format;
+      t.reversed = reversed;
+    }
+    if (t.depth.image && t.depth.extent == e) return Status::success();
+    if (t.framebuffer) vkDestroyFramebuffer(device, t.framebuffer, nullptr);
+    t.framebuffer = VK_NULL_HANDLE;
+    alloc->destroy(t.depth);
+    Status s = alloc->createImage(vkDepthFormat(format), e,
+                                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                      VK_IMAGE_USAGE_TRANSFER_SRC_BIT,  // read-backs (tests, screenshots)
+                                  VK_IMAGE_ASPECT_DEPTH_BIT, t.depth);
+    if (s) {
+      VkFramebufferCreateInfo fi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+      fi.renderPass = t.pass;
+      fi.attachmentCount = 1;
+      fi.pAttachments = &t.depth.view;
+      fi.width = e.width;
+      fi.height = e.height;
+      fi.layers = 1;
+      s = vkCheck(vkCreateFramebuffer(device, &fi, nullptr, &t.framebuffer), "vkCreateFramebuffer");
+    }
+    if (!s) alloc->destroy(t.depth);
+    t.depth.layout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+    return s;
+  }
+
+  void recordFrame(VkCommandBuffer cmd, const detail::Frame& frame) {
+    VkClearValue clear{};
+    clear.depthStencil = {float(frame.clearDepth), 0};
+    const VkRect2D area{{0, 0}, {frame.extent.width, frame.extent.height}};
+    VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    bi.renderPass = frameTarget.pass;
+    bi.framebuffer = frameTarget.framebuffer;
+    bi.renderArea = area;
+    bi.clearValueCount = 1;
+    bi.pClearValues = &clear;
+    vkCmdBeginRenderPass(cmd, &bi, VK_SUBPASS_CONTENTS_INLINE);
+    // A positive viewport height: row 0 is at ndc y = -1.
+    const VkViewport viewport{0, 0, float(frame.extent.width), float(frame.extent.height), 0, 1};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &area);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, frameTarget.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layerLayout, 0, 1, &layerSet, 0, nullptr);
+    const VkDeviceSize zero = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vertices.buffer, &zero);
+    vkCmdDraw(cmd, vertexCount, 1, 0, 0);
+    vkCmdEndRenderPass(cmd);
+  }
+
   void read(int layer, DepthFormat format, Extent e, DepthImage& depth, FloatImage& position, FloatImage& normal) const {
     const std::size_t n = std::size_t(e.width) * e.height;
     const auto* base = static_cast<const unsigned char*>(readback.mapped);
@@ -497,7 +626,7 @@ Status VkPrepass::init() {
   st.device = context_->device();
   st.physical = context_->physicalDevice();
   st.limits = context_->properties().limits;
-  st.alloc.init(st.physical, st.device);
+  st.alloc = context_;
   VkFormatProperties fp;
   vkGetPhysicalDeviceFormatProperties(st.physical, kColorFormat, &fp);
   const VkFormatFeatureFlags colorNeed = VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT;
@@ -539,29 +668,30 @@ Status VkPrepass::checkFormat(DepthFormat format, bool secondLayer) const {
   return Status::success();
 }
 
-Status VkPrepass::render(const scenes::Mesh& mesh, const scenes::View& view, const Camera& camera,
-                         const PrepassOptions& options, PrepassResult& out) {
-  out = PrepassResult{};
-  detail::Frame frame;
-  if (Status s = detail::prepareFrame(mesh, view, camera, options, frame); !s) return s;
-  if (!frame.zeroToOneClip)
-    return Status::error(StatusCode::InvalidCamera,
-                         "prepass: Vulkan's clip depth is [0, 1]; a camera with ClipDepth::NegativeOneToOne cannot be "
-                         "rendered here (use ClipDepth::ZeroToOne)");
-  std::uint64_t digest = 0;
-  if (Status s = detail::checkMesh(mesh, digest); !s) return s;
-  if (Status s = checkFormat(options.format, options.secondLayer); !s) return s;
-  State& st = *state_;
-  const Extent e = frame.extent;
-  const std::uint64_t maxW = std::min({st.limits.maxImageDimension2D, st.limits.maxFramebufferWidth,
-                                       st.limits.maxViewportDimensions[0]});
-  const std::uint64_t maxH = std::min({st.limits.maxImageDimension2D, st.limits.maxFramebufferHeight,
-                                       st.limits.maxViewportDimensions[1]});
+Status VkPrepass::checkExtent(Extent e) const {
+  const VkPhysicalDeviceLimits& l = state_->limits;
+  const std::uint64_t maxW = std::min({l.maxImageDimension2D, l.maxFramebufferWidth, l.maxViewportDimensions[0]});
+  const std::uint64_t maxH = std::min({l.maxImageDimension2D, l.maxFramebufferHeight, l.maxViewportDimensions[1]});
   if (e.width > maxW || e.height > maxH)
     return Status::error(StatusCode::InvalidExtent,
                          "prepass: the image is " + std::to_string(e.width) + "x" + std::to_string(e.height) +
                              " (viewport + 2 x guard band); this device renders at most " + std::to_string(maxW) + "x" +
                              std::to_string(maxH));
+  return Status::success();
+}
+
+Status VkPrepass::render(const scenes::Mesh& mesh, const scenes::View& view, const Camera& camera,
+                         const PrepassOptions& options, PrepassResult& out) {
+  out = PrepassResult{};
+  detail::Frame frame;
+  if (Status s = detail::prepareFrame(mesh, view, camera, options, frame); !s) return s;
+  if (!frame.zeroToOneClip) return clipError();
+  std::uint64_t digest = 0;
+  if (Status s = detail::checkMesh(mesh, digest); !s) return s;
+  if (Status s = checkFormat(options.format, options.secondLayer); !s) return s;
+  if (Status s = checkExtent(frame.extent); !s) return s;
+  State& st = *state_;
+  const Extent e = frame.extent;
   if (Status s = st.uploadMesh(mesh, digest); !s) return s;
   if (Status s = st.ensurePipelines(options.format, frame.reversedZ); !s) return s;
   if (Status s = st.ensureTargets(e, options.format, options.secondLayer); !s) return s;
@@ -577,6 +707,33 @@ Status VkPrepass::render(const scenes::Mesh& mesh, const scenes::View& view, con
     for (FloatImage* f : {&out.position, &out.normal, &out.position2, &out.normal2})
       if (!f->data.empty()) detail::flipRows(*f);
   }
+  return Status::success();
+}
+
+Status VkPrepass::setMesh(const scenes::Mesh& mesh) {
+  std::uint64_t digest = 0;
+  if (Status s = detail::checkMesh(mesh, digest); !s) return s;
+  return state_->uploadMesh(mesh, digest);
+}
+
+Status VkPrepass::record(VkCommandBuffer cmd, const glm::dmat4& view, const Camera& camera, DepthFormat format,
+                         vk::headless::Image& out) {
+  out = vk::headless::Image{};
+  State& st = *state_;
+  if (!st.haveMesh) return Status::error(StatusCode::InvalidInput, "prepass: record() before setMesh()");
+  PrepassOptions options;
+  options.format = format;
+  detail::Frame frame;
+  if (Status s = detail::prepareFrame(view, camera, options, frame); !s) return s;
+  if (!frame.zeroToOneClip) return clipError();
+  if (frame.flipY)
+    return Status::error(StatusCode::InvalidCamera, "prepass: record() draws row 0 at ndc y = -1 (no Camera::flipY)");
+  if (Status s = checkFormat(format, /*sampled=*/true); !s) return s;
+  if (Status s = checkExtent(frame.extent); !s) return s;
+  if (Status s = st.ensureFrameTarget(frame.extent, format, frame.reversedZ); !s) return s;
+  std::memcpy(st.ubo.mapped, &frame.uniforms, sizeof frame.uniforms);
+  st.recordFrame(cmd, frame);
+  out = st.frameTarget.depth;
   return Status::success();
 }
 

@@ -4,8 +4,13 @@
 // Vulkan's clip depth is [0, 1]: cameras with ClipDepth::NegativeOneToOne are refused
 // (InvalidCamera). It runs on its own headless instance and device (sao::vk::headless, lavapipe
 // without a GPU; validation optional) or on a headless context the caller owns and outlives it.
+//
+// A renderer that draws every frame (sao-viewer) uses setMesh() and record() instead of render():
+// the first layer's depth only, recorded into the caller's command buffer.
 #pragma once
 #include <memory>
+
+#include <glm/glm.hpp>
 
 #include "sao/prepass/prepass.h"
 #include "sao/vulkan/headless.h"
@@ -33,10 +38,22 @@ class VkPrepass final : public Prepass {
   Status checkFormat(DepthFormat format, bool secondLayer) const;
   vk::headless::Context& context() { return *context_; }
 
+  // Checks and uploads the mesh record() draws (render() replaces it with its own).
+  Status setMesh(const scenes::Mesh& mesh);
+  // Records the depth of `view` (world -> camera, scenes::viewMatrix) into `cmd`, outside a render
+  // pass, with render()'s conventions: no positions, normals, peeling or read-back, and no
+  // Camera::flipY. `out` is the depth image (valid until the next record() with another size or
+  // format), left in DEPTH_STENCIL_READ_ONLY_OPTIMAL and visible to compute and fragment shaders;
+  // the clear waits for such reads of the previous frame. Neither this nor setMesh() while a
+  // command buffer from an earlier record() is pending (the uniforms and images are rewritten).
+  Status record(VkCommandBuffer cmd, const glm::dmat4& view, const Camera& camera, DepthFormat format,
+                vk::headless::Image& out);
+
  private:
   VkPrepass() = default;
   struct State;
   Status init();
+  Status checkExtent(Extent extent) const;  // InvalidExtent beyond the device's limits
   std::unique_ptr<vk::headless::Context> owned_;
   vk::headless::Context* context_ = nullptr;
   std::unique_ptr<State> state_;

@@ -1,4 +1,5 @@
-// sao::vk::headless — an instance and device without a window, for tests and tools.
+// sao::vk::headless — the project's one Vulkan bootstrap: an instance and device for tests and
+// tools, and (Options::createSurface) for sao-viewer's window.
 //
 // Device choice: a real GPU when one exists (discrete, then integrated, then virtual), else a
 // CPU device (Mesa lavapipe). When the loader finds no device at all, or VK_DRIVER_FILES /
@@ -12,6 +13,10 @@
 // performance types; only the layer's own status report at instance creation is kept apart, see
 // layerStatus()), and optionally synchronization validation (VkValidationFeaturesEXT). The
 // layer's shader-validation cache file is turned off. Tests fail on any collected message.
+//
+// Presentation: with Options::createSurface the context owns the window's surface, and a device
+// qualifies only with VK_KHR_swapchain (enabled) and a graphics + compute queue family that can
+// present to the surface.
 //
 // This library links the Vulkan loader; sao::vulkan itself does not.
 #pragma once
@@ -40,6 +45,10 @@ struct Options {
   bool synchronizationValidation = false;  // implies validation
   DevicePreference device = DevicePreference::Auto;
   std::uint32_t apiVersion = VK_API_VERSION_1_3;  // capped to what the instance and device offer (>= 1.1)
+  const char* applicationName = "sao headless";
+  std::vector<std::string> instanceExtensions;  // required, e.g. the window system's (glfwGetRequiredInstanceExtensions)
+  // Makes the window's surface on a new instance; called again for the lavapipe retry.
+  std::function<VkResult(VkInstance, VkSurfaceKHR*)> createSurface;
 };
 
 struct Message {
@@ -60,6 +69,30 @@ struct Image {
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
 };
 
+// A host-visible, coherent buffer, mapped for its lifetime.
+struct Buffer {
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  void* mapped = nullptr;
+  VkDeviceSize size = 0;
+};
+
+// The project's image barrier: levels [level, level + levels) of layer 0, no queue-family transfer.
+inline VkImageMemoryBarrier imageBarrier(VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
+                                         VkAccessFlags srcAccess, VkAccessFlags dstAccess, std::uint32_t level = 0,
+                                         std::uint32_t levels = 1) {
+  VkImageMemoryBarrier b{};  // sType apart: consumers may build with -Wmissing-field-initializers
+  b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
+  b.srcAccessMask = srcAccess;
+  b.dstAccessMask = dstAccess;
+  b.oldLayout = from;
+  b.newLayout = to;
+  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = image;
+  b.subresourceRange = {aspect, level, levels, 0, 1};
+  return b;
+}
+
 class Context {
  public:
   static Status create(const Options& options, std::unique_ptr<Context>& out);
@@ -71,6 +104,9 @@ class Context {
   VkPhysicalDevice physicalDevice() const { return physical_; }
   VkDevice device() const { return device_; }
   VkQueue queue() const { return queue_; }
+  VkSurfaceKHR surface() const { return surface_; }  // with Options::createSurface, else null
+  // Resettable command buffers of the queue's family, for callers that record their own frames.
+  VkCommandPool commandPool() const { return pool_; }
   std::uint32_t queueFamily() const { return family_; }
   std::uint32_t apiVersion() const { return apiVersion_; }
   const VkPhysicalDeviceProperties& properties() const { return props_; }
@@ -104,7 +140,12 @@ class Context {
   Status uploadColor(const FloatImage& image, VkFormat format, VkImageLayout layout, Image& out);
   // An image for the effect's output when the caller owns it: STORAGE, SAMPLED, TRANSFER_SRC/DST.
   Status createStorageImage(VkFormat format, Extent extent, Image& out);
+  // A 2D image, one level, in device-local memory, with one view of `viewAspect`; left UNDEFINED.
+  Status createImage(VkFormat format, Extent extent, VkImageUsageFlags usage, VkImageAspectFlags viewAspect, Image& out);
+  Status createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, Buffer& out);
+  // Destroying an empty object is a no-op; either comes back empty.
   void destroy(Image& image);
+  void destroy(Buffer& buffer);
 
   // Reads level `level` of a colour image (R16_SFLOAT, R32_SFLOAT, R32G32_SFLOAT,
   // R16G16B16A16_SFLOAT, R32G32B32A32_SFLOAT) into floats. The image is in `layout` and its last
@@ -116,17 +157,18 @@ class Context {
   Context() = default;
   Status init(const Options& options);
   Status createInstance(const Options& options, bool validation);
+  void destroyInstance();
   Status pickDevice(const Options& options);
-  Status createDevice(const Options& options);
+  int queueFamilyFor(VkPhysicalDevice device) const;  // -1: none fits
+  Status createDevice();
   int memoryType(std::uint32_t bits, VkMemoryPropertyFlags flags) const;
-  Status createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, VkBuffer& buffer, VkDeviceMemory& memory);
-  Status createImage(VkFormat format, Extent extent, VkImageUsageFlags usage, VkImageAspectFlags viewAspect, Image& out);
   static VKAPI_ATTR VkBool32 VKAPI_CALL onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                   VkDebugUtilsMessageTypeFlagsEXT type,
                                                   const VkDebugUtilsMessengerCallbackDataEXT* data, void* self);
 
   VkInstance instance_ = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkSurfaceKHR surface_ = VK_NULL_HANDLE;
   VkPhysicalDevice physical_ = VK_NULL_HANDLE;
   VkDevice device_ = VK_NULL_HANDLE;
   VkQueue queue_ = VK_NULL_HANDLE;
