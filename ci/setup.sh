@@ -10,9 +10,14 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   libegl-dev libgl-dev libegl1-mesa-dev libgl1-mesa-dri libepoxy-dev
   libglfw3-dev libglm-dev libopenexr-dev libimgui-dev
+  # backends/core: Imath's half.h (header only) for the binary16 conversions
+  libimath-dev
   libembree-dev libtbb-dev libstb-dev nlohmann-json3-dev
-  # samples/scenes: mesh files through assimp; tests/scenes reads the malformed and real models
-  libassimp-dev assimp-testmodels
+  # backends/cli/: the command line of the sample programs and the timing tools
+  libcli11-dev
+  # samples/scenes: glTF through tinygltf (its header); tests/scenes reads the malformed and real
+  # models of assimp-testmodels (model files only, no assimp library)
+  libtinygltf-dev assimp-testmodels
   xvfb xauth
   # ci/fuzz.sh: clang with libFuzzer and the sanitizer runtimes; llvm-symbolizer for the reports
   clang-14 libclang-rt-14-dev llvm-14

@@ -1,8 +1,13 @@
 #!/usr/bin/python3
-"""Markdown tables of a sao-bench run, as docs/BENCHMARKS.md shows them.
+"""Markdown tables of sao-bench runs, as docs/BENCHMARKS.md shows them.
 
-usage: /usr/bin/python3 samples/bench/markdown_tables.py OUT_DIR   (the folder sao-bench wrote)
-Reads results.csv and precision.csv; prints to stdout. Only the standard library.
+usage: /usr/bin/python3 samples/bench/markdown_tables.py OUT_DIR   (the folder sao-bench wrote; prints the tables)
+       /usr/bin/python3 samples/bench/markdown_tables.py --write   (regenerate the committed pages, below)
+       /usr/bin/python3 samples/bench/markdown_tables.py --check   (exit 1 if any of them is stale)
+The committed runs are docs/generated/bench-data/<run>/ (results.csv, precision.csv when the run has one,
+and run.txt: "key: value" lines saying how it was made); --write turns each into
+docs/generated/benchmarks-<run>.md and rewrites the key-figures block of docs/BENCHMARKS.md from them.
+Reads results.csv and precision.csv. Only the standard library.
 """
 import csv
 import math
@@ -24,21 +29,28 @@ def table(header, rows):
     return "\n".join(out)
 
 
-def main(folder):
-    rows = list(csv.DictReader(open(os.path.join(folder, "results.csv"))))
+def tables(folder):
+    """Every table of one sao-bench output folder, as one markdown text."""
+    out = []
+    print = lambda text="": out.append(text)  # the sections below print; collect instead
+    with open(os.path.join(folder, "results.csv"), newline="") as fh:
+        rows = list(csv.DictReader(fh))
     sec = lambda name: [r for r in rows if r["section"] == name]
 
-    print("### Presets: time and error (raw RMSE vs (a) near-field AO and (b) AlchemyAO obscurance)\n")
-    print("\"off > 0.1 (b)\": the fraction of pixels with geometry whose raw output is more than 0.1 from (b).\n")
-    print(table(["scene", "backend", "preset", "total ms", "ao_sample ms", "RMSE (a)", "bias (a)", "SSIM (a)",
-                 "RMSE (b)", "bias (b)", "off > 0.1 (b)", "fitted RMSE (b)", "scale (b)"],
-                [[r["scene"], r["backend"], r["preset"], f(r["total_ms"]), f(r["ao_sample_ms"]), g(r["ao_rmse_raw"]),
-                  g(r["ao_bias_raw"], 2), g(r["ao_ssim_raw"]), g(r["obscurance_rmse_raw"]),
-                  g(r["obscurance_bias_raw"], 2), g(r["obscurance_over_0_1_raw"], 2), g(r["obscurance_rmse_fitted"]),
-                  g(r["obscurance_fitted_scale"])]
-                 for r in sec("presets")]))
+    if sec("presets"):
+        print("### Presets: time and error (raw RMSE vs (a) near-field AO and (b) AlchemyAO obscurance)\n")
+        print("\"off > 0.1 (b)\": the fraction of pixels with geometry whose raw output is more than 0.1 from (b).\n")
+        print(table(["scene", "backend", "preset", "total ms", "ao_sample ms", "RMSE (a)", "bias (a)", "SSIM (a)",
+                     "RMSE (b)", "bias (b)", "off > 0.1 (b)", "fitted RMSE (b)", "scale (b)"],
+                    [[r["scene"], r["backend"], r["preset"], f(r["total_ms"]), f(r["ao_sample_ms"]), g(r["ao_rmse_raw"]),
+                      g(r["ao_bias_raw"], 2), g(r["ao_ssim_raw"]), g(r["obscurance_rmse_raw"]),
+                      g(r["obscurance_bias_raw"], 2), g(r["obscurance_over_0_1_raw"], 2), g(r["obscurance_rmse_fitted"]),
+                      g(r["obscurance_fitted_scale"])]
+                     for r in sec("presets")]))
 
     for name, title in (("samples", "Sample count"), ("mip_blur", "z hierarchy and blur on/off")):
+        if not sec(name):
+            continue
         print(f"\n### {title} (medium otherwise)\n")
         print(table(["scene", "backend", "variant", "total ms", "ao_sample ms", "RMSE (a)", "RMSE (b)"],
                     [[r["scene"], r["backend"], r["variant"], f(r["total_ms"]), f(r["ao_sample_ms"]),
@@ -80,16 +92,192 @@ def main(folder):
 
     path = os.path.join(folder, "precision.csv")
     if os.path.exists(path):
-        prec = list(csv.DictReader(open(path)))
+        with open(path, newline="") as fh:
+            prec = list(csv.DictReader(fh))
         print("\n### Precision (paper Figures 3, 4): worst / 99th-percentile |z error| and face-normal error\n")
         print(table(["backend", "format", "far m", "convention", "clip", "bin m", "z worst m", "z p99 m",
                      "normal worst °", "normal p99 °", "pixels"],
                     [[r["backend"], r["format"], r["far_m"] if r["far_m"] == "inf" else f(r["far_m"], 0),
                       r["convention"], r["clip"], r["distance_bin_m"], g(r["z_worst_m"], 2), g(r["z_p99_m"], 2),
                       g(r["normal_worst_deg"], 2), g(r["normal_p99_deg"], 2), r["pixels"]] for r in prec]))
+    return "\n".join(out).lstrip("\n") + "\n"
+
+
+# ---- the committed runs: generated pages and the key figures of docs/BENCHMARKS.md
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+DATA = "docs/generated/bench-data"
+DOC = "docs/BENCHMARKS.md"
+BEGIN = "<!-- markdown_tables.py: begin (generated; /usr/bin/python3 samples/bench/markdown_tables.py --write) -->"
+END = "<!-- markdown_tables.py: end -->"
+REFRESH = "/usr/bin/python3 samples/bench/markdown_tables.py --write"
+
+
+def read_csv(path):
+    if not os.path.exists(path):
+        return []
+    with open(path, newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+def run_info(folder):
+    info = {}
+    with open(os.path.join(folder, "run.txt")) as fh:
+        for line in fh:
+            if line.strip():
+                key, _, value = line.partition(":")
+                info[key.strip()] = value.strip()
+    return info
+
+
+def page(name, folder):
+    info = run_info(folder)
+    lines = [f"<!-- Generated by samples/bench/markdown_tables.py from {DATA}/{name}/: do not edit.",
+             f"     Refresh with {REFRESH} (ctest: docs.benchmark_tables). -->",
+             f"# sao-bench run `{name}`", "",
+             f"The tables of one run of [docs/BENCHMARKS.md](../BENCHMARKS.md) (how to read them: that page); "
+             f"raw data: [`bench-data/{name}/`](bench-data/{name}/).", ""]
+    lines += [f"* {k}: {v}" for k, v in info.items()]
+    return "\n".join(lines) + "\n\n" + tables(folder)
+
+
+def median(values):
+    v = sorted(values)
+    return v[len(v) // 2] if len(v) % 2 else (v[len(v) // 2 - 1] + v[len(v) // 2]) / 2
+
+
+def key_figures(runs):
+    """The key-figures table: radius ratios per run, preset errors and precision of the main run."""
+    curves = ("SAO (z hierarchy)", "SAO (no hierarchy)", "AlchemyAO-style")
+    sweeps = []  # (backend, size, {(curve, radius): ms}) in run order
+    for name, folder in runs:
+        rad = [r for r in read_csv(os.path.join(folder, "results.csv")) if r["section"] == "radius"]
+        if rad:
+            sweeps.append((rad[0]["backend"], f"{rad[0]['width']}×{rad[0]['height']}",
+                           {(r["variant"], float(r["radius_m"])): float(r["ao_sample_ms"]) for r in rad}))
+
+    def per_backend(ratio, bold=False):
+        parts = []
+        for backend in dict.fromkeys(b for b, _, _ in sweeps):
+            values = [ratio(by) for b, _, by in sweeps if b == backend]
+            text = f"{backend} " + ", ".join(f"{x:.2f}" for x in values)
+            if len(values) > 1:
+                m = f"median {median(values):.2f}"
+                text += f" ({'**' + m + '**' if bold else m})"
+            parts.append(text)
+        return "; ".join(parts)
+
+    rows = []
+    if sweeps:
+        size = sweeps[0][1]
+        alch, sao, noh = curves[2], curves[0], curves[1]
+        rows += [
+            [f"AlchemyAO-style baseline ÷ SAO, ao_sample time, r = 1.5 m, {size}",
+             per_backend(lambda by: by[(alch, 1.5)] / by[(sao, 1.5)], True), "7×"],
+            ["the same at r = 4 m", per_backend(lambda by: by[(alch, 4.0)] / by[(sao, 4.0)]), "grows with r"],
+            ["SAO time at r = 4 m ÷ time at r = 0.1 m (ao_sample, z hierarchy)",
+             per_backend(lambda by: by[(sao, 4.0)] / by[(sao, 0.1)], True), "flat"],
+            ["the same without the hierarchy", per_backend(lambda by: by[(noh, 4.0)] / by[(noh, 0.1)]), "grows"],
+            ["the same, AlchemyAO-style", per_backend(lambda by: by[(alch, 4.0)] / by[(alch, 0.1)]), "grows"],
+        ]
+
+    main = runs[0][1]
+    presets = [r for r in read_csv(os.path.join(main, "results.csv")) if r["section"] == "presets"]
+    if presets:
+        scene = presets[0]["scene"]
+        backends = list(dict.fromkeys(r["backend"] for r in presets))
+        cell = lambda r: f"{r['preset']} {g(r['ao_rmse_raw'])} / {g(r['obscurance_rmse_raw'])}"
+        by_backend = {b: [cell(r) for r in presets if r["scene"] == scene and r["backend"] == b] for b in backends}
+        same = all(v == by_backend[backends[0]] for v in by_backend.values())
+        rows.append([f"RMSE vs (a) / (b), raw, default scene ({scene})" +
+                     (f", identical on {', '.join(backends[:-1])} and {backends[-1]}" if same and len(backends) > 1 else ""),
+                     ", ".join(by_backend[backends[0]]) if same else
+                     "; ".join(f"{b}: " + ", ".join(v) for b, v in by_backend.items()), "—"])
+        medium = [r for r in presets if r["preset"] == "medium" and r["backend"] == backends[0]]
+        rows.append([f"fitted scale vs (b), medium ({backends[0]}; > 1: the effect is too light)",
+                     ", ".join(f"{r['scene']} {g(r['obscurance_fitted_scale'])}" for r in medium), "—"])
+
+    prec = read_csv(os.path.join(main, "precision.csv"))
+
+    def precision(fmt, far, convention, clip, columns):
+        picked = [r for r in prec if (r["format"], r["far_m"], r["convention"]) == (fmt, far, convention)
+                  and (clip is None or r["clip"] == clip)]
+        backends = list(dict.fromkeys(r["backend"] for r in picked))
+        text = lambda b: ", ".join(" / ".join(g(r[c], 2) for c in columns) + f" at {r['distance_bin_m']} m"
+                                   for r in picked if r["backend"] == b)
+        if not picked:
+            return None
+        if all(text(b) == text(backends[0]) for b in backends):
+            return f"{text(backends[0])} ({' and '.join(backends)})"
+        return "; ".join(f"{b}: {text(b)}" for b in backends)
+
+    for label, args, paper in (
+            ("camera-space z, worst case m, D32F reversed-Z infinite far", ("D32F", "inf", "reversed", None, ["z_worst_m"]),
+             "~2 mm worst case"),
+            ("camera-space z, worst case m, D24 standard [-1,1] infinite far", ("D24", "inf", "standard", "-1..1", ["z_worst_m"]), ""),
+            ("face-normal error within faces, 99th percentile / worst °, D32F reversed-Z infinite far",
+             ("D32F", "inf", "reversed", None, ["normal_p99_deg", "normal_worst_deg"]), "≤ 0.2°"),
+            ("face-normal error, 99th percentile / worst °, D24 standard [-1,1] infinite far",
+             ("D24", "inf", "standard", "-1..1", ["normal_p99_deg", "normal_worst_deg"]), ""),
+            ("face-normal error, 99th percentile / worst °, D16 reversed-Z infinite far",
+             ("D16", "inf", "reversed", None, ["normal_p99_deg", "normal_worst_deg"]), "")):
+        value = precision(*args)
+        if value:
+            rows.append([label, value, paper])
+    return table(["figure", "measured here", "paper"], rows)
+
+
+def generated():
+    folder = os.path.join(ROOT, DATA)
+    names = sorted(n for n in os.listdir(folder) if os.path.isfile(os.path.join(folder, n, "results.csv")))
+    if not names:
+        raise ValueError(f"no run under {DATA}/ (each needs a results.csv)")
+    runs = [(n, os.path.join(folder, n)) for n in names]
+    outputs = {f"docs/generated/benchmarks-{n}.md": page(n, d) for n, d in runs}
+    with open(os.path.join(ROOT, DOC)) as fh:
+        doc = fh.read()
+    if doc.count(BEGIN) != 1 or doc.count(END) != 1:
+        raise ValueError(f"{DOC} must hold the markers once each:\n  {BEGIN}\n  {END}")
+    head, rest = doc.split(BEGIN)
+    outputs[DOC] = f"{head}{BEGIN}\n{key_figures(runs)}\n{END}{rest.split(END)[1]}"
+    return outputs
+
+
+def write_or_check(check):
+    import difflib
+    try:
+        outputs = generated()
+    except (OSError, ValueError, KeyError, ZeroDivisionError) as e:
+        sys.exit(f"markdown_tables.py: {type(e).__name__}: {e}")
+    stale = []
+    for rel, text in outputs.items():
+        path = os.path.join(ROOT, rel)
+        old = open(path).read() if os.path.exists(path) else ""
+        if old == text:
+            continue
+        if check:
+            stale.append(rel)
+            diff = list(difflib.unified_diff(old.splitlines(), text.splitlines(), rel, "generated", lineterm=""))
+            print("\n".join(diff[:40] + (["..."] if len(diff) > 40 else [])))
+        else:
+            with open(path, "w") as fh:
+                fh.write(text)
+            print(f"wrote {rel}")
+    orphans = [n for n in os.listdir(os.path.join(ROOT, "docs/generated"))
+               if n.startswith("benchmarks-") and f"docs/generated/{n}" not in outputs]
+    if orphans:
+        sys.exit(f"markdown_tables.py: docs/generated/{', '.join(orphans)} has no run in {DATA}/: remove it")
+    if stale:
+        sys.exit(f"stale: {', '.join(stale)} differ from what {DATA}/ gives; refresh with: {REFRESH}")
+    if check:
+        print(f"the benchmark pages and the key figures of {DOC} match {DATA}/")
 
 
 if __name__ == "__main__":
     if len(sys.argv) != 2:
         sys.exit(__doc__)
-    main(sys.argv[1])
+    if sys.argv[1] in ("--write", "--check"):
+        write_or_check(sys.argv[1] == "--check")
+    elif sys.argv[1].startswith("-"):
+        sys.exit(__doc__)
+    else:
+        sys.stdout.write(tables(sys.argv[1]))
