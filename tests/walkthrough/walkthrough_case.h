@@ -1,0 +1,35 @@
+// What both processes of the walkthrough test render (walkthrough_cpu_oracle with the real
+// effect, walkthrough_test with the extended one): one analytic scene, one camera, two settings.
+#pragma once
+#include <array>
+#include <cstdint>
+
+#include "analytic_scenes.h"
+#include "sao/presets.h"
+#include "test_cameras.h"
+
+namespace sao::walkthrough {
+
+inline constexpr std::uint32_t kWidth = 64, kHeight = 48, kGuard = 8;
+
+inline Camera caseCamera() { return test::openglCamera(kWidth, kHeight, kGuard); }
+
+inline DepthImage caseDepth() {
+  return test::renderDepth(test::sphereOnPlaneScene(), caseCamera(), DepthFormat::D32F);
+}
+
+struct Case {
+  const char* name;
+  Settings settings;
+};
+
+// Blurred (ao_halve reads ao_blur_h), and blur_radius 0 (blur_h is skipped and ao_halve reads
+// ao_raw through its alias_when).
+inline std::array<Case, 2> cases() {
+  const Settings medium = presetSettings(Preset::Medium);
+  Settings unblurred = medium;
+  unblurred.blur_radius = 0;
+  return {Case{"medium", medium}, Case{"blur_radius_0", unblurred}};
+}
+
+}  // namespace sao::walkthrough
