@@ -1,8 +1,12 @@
-# sao_generate_effect(<target> EFFECT <entry.glsl> NAME <stem>)
+# sao_generate_effect(<target> EFFECT <entry.glsl> NAME <stem> [CPU_PASSES <header>])
 # Runs sao-shaderc at build time and makes <target>, a static library holding the generated
 # C++ glue and the embedded GLSL/SPIR-V blobs. Editing any included GLSL file rebuilds (depfile).
+# CPU_PASSES names the header with the effect's C++ passes (it defines sao::cpu::runEffectPass,
+# e.g. effect/cpu/passes.h): the target then carries SAO_CPU_PASSES_HEADER="<absolute path>" and
+# the header's folder, which the CPU reference compiled against the effect includes. Build tree
+# only: sao_cpu is not installed, and the package must not point into the source tree.
 function(sao_generate_effect target)
-  cmake_parse_arguments(ARG "" "EFFECT;NAME" "" ${ARGN})
+  cmake_parse_arguments(ARG "" "EFFECT;NAME;CPU_PASSES" "" ${ARGN})
   set(out_dir ${CMAKE_CURRENT_BINARY_DIR}/${target})
   set(header ${out_dir}/${ARG_NAME}_effect.h)
   set(source ${out_dir}/${ARG_NAME}_effect.cpp)
@@ -16,4 +20,13 @@ function(sao_generate_effect target)
   add_library(${target} STATIC ${source} ${header})
   target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${out_dir}>)
   target_compile_features(${target} PUBLIC cxx_std_20)
+  if(ARG_CPU_PASSES)
+    get_filename_component(cpu_passes "${ARG_CPU_PASSES}" ABSOLUTE)
+    if(NOT EXISTS "${cpu_passes}")
+      message(FATAL_ERROR "sao_generate_effect(${target}): CPU_PASSES ${cpu_passes} does not exist")
+    endif()
+    get_filename_component(cpu_passes_dir "${cpu_passes}" DIRECTORY)
+    target_compile_definitions(${target} PUBLIC "$<BUILD_INTERFACE:SAO_CPU_PASSES_HEADER=\"${cpu_passes}\">")
+    target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${cpu_passes_dir}>)
+  endif()
 endfunction()

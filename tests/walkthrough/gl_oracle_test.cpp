@@ -1,20 +1,15 @@
-// The extended effect on OpenGL (the backend and the headless helper compiled unchanged against
-// it) against the CPU oracle: the real effect's CPU reference, run by walkthrough_cpu_oracle in
-// its own process, gives the final A, and the new pass's oracle is that A times 0.5 (exact in
-// float). Bit for bit: GL's ao equals the CPU's (the extra pass changes nothing before it), GL's
-// ao_half equals the oracle, and GL's ao_half equals GL's own ao times 0.5.
+// The extended effect on OpenGL against the CPU reference, both compiled unchanged against it
+// (the CPU reference runs ao_halve through cpu_passes.h, its oracle beside the GLSL). Bit for bit:
+// GL's ao equals the CPU's (the extra pass changes nothing before it), GL's ao_half equals the
+// CPU's Result::images[ao_half], and GL's ao_half equals GL's own ao times 0.5.
 #include <gtest/gtest.h>
 
 #include <bit>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
 #include <memory>
 #include <string>
-#include <unistd.h>
-#include <vector>
 
-#include "oracle_file.h"
+#include "sao/cpu/reference.h"
 #include "sao/gl/effect.h"
 #include "sao/gl/headless.h"
 #include "sao/gl/texture_io.h"
@@ -22,20 +17,6 @@
 
 namespace sao::walkthrough {
 namespace {
-
-// Per case: the depth the oracle process rendered, then its final ao.
-std::vector<Words> runCpuOracle(std::string& error) {
-  const std::filesystem::path file =
-      std::filesystem::temp_directory_path() / ("walkthrough_cpu_oracle_" + std::to_string(::getpid()) + ".bin");
-  const std::string command = std::string("'") + WALKTHROUGH_CPU_ORACLE + "' '" + file.string() + "'";
-  std::vector<Words> images;
-  const int rc = std::system(command.c_str());
-  if (rc != 0) error = command + " failed (status " + std::to_string(rc) + ")";
-  else error = readWords(file.string(), images);
-  std::error_code ignored;
-  std::filesystem::remove(file, ignored);
-  return images;
-}
 
 // Empty when a and b hold the same bits, else the count and the first differing texel.
 std::string bitDifference(const FloatImage& actual, const FloatImage& expected) {
@@ -75,25 +56,25 @@ class ExtendedEffectOnGl : public ::testing::Test {
 std::unique_ptr<gl::HeadlessContext> ExtendedEffectOnGl::context_;
 std::string ExtendedEffectOnGl::contextError_;
 
-TEST_F(ExtendedEffectOnGl, NewPassMatchesTheCpuOracleBitForBit) {
+TEST_F(ExtendedEffectOnGl, NewPassMatchesTheCpuReferenceBitForBit) {
   ASSERT_TRUE(context_) << "no headless GL context: " << contextError_;
   std::printf("GL: %s\n", context_->description().c_str());
-  std::string error;
-  const std::vector<Words> oracle = runCpuOracle(error);
-  ASSERT_TRUE(error.empty()) << error;
-  const auto all = cases();
-  ASSERT_EQ(oracle.size(), 2 * all.size());
 
   std::unique_ptr<gl::Effect> effect;
   const Status created = gl::Effect::create(gl::HeadlessContext::getProcAddress(), effect);
   ASSERT_TRUE(created.ok()) << created.message;
 
-  for (std::size_t i = 0; i < all.size(); ++i) {
-    const Case& c = all[i];
+  for (const Case& c : cases()) {
     SCOPED_TRACE(c.name);
     const DepthImage depth = caseDepth();
-    ASSERT_EQ(wordsOf(depth), oracle[2 * i]) << "both processes must render the same depth";
-    const FloatImage cpuAo = floatImageOf(oracle[2 * i + 1]);
+    cpu::Inputs cpuInputs;
+    cpuInputs.depth = &depth;
+    cpu::Result cpu;
+    const Status ran = cpu::run(c.settings, caseCamera(), cpuInputs, {cpu::Precision::Float, 2}, cpu);
+    ASSERT_TRUE(ran.ok()) << ran.message;
+    const FloatImage& cpuAo = cpu.ao;
+    const auto& cpuHalf = cpu.images[static_cast<std::size_t>(gen::ResourceId::ao_half)];
+    ASSERT_EQ(cpuHalf.size(), 1u) << "the CPU reference ran the new pass into the new image";
 
     std::uint32_t depthTexture = 0;
     const Status up = gl::uploadDepth(depth, gl::GlDepth::D32F, depthTexture);
@@ -115,8 +96,8 @@ TEST_F(ExtendedEffectOnGl, NewPassMatchesTheCpuOracleBitForBit) {
     for (float v : cpuAo.data) occluded += v < 0.9f;
     EXPECT_GT(occluded, cpuAo.data.size() / 50) << "the scene should darken some pixels";
 
-    EXPECT_EQ(bitDifference(ao, cpuAo), "") << "GL ao of the extended effect against the real effect's CPU reference";
-    EXPECT_EQ(bitDifference(half, halved(cpuAo)), "") << "GL ao_half against the CPU oracle (CPU ao * 0.5)";
+    EXPECT_EQ(bitDifference(ao, cpuAo), "") << "GL ao against the CPU reference's, both of the extended effect";
+    EXPECT_EQ(bitDifference(half, cpuHalf[0]), "") << "GL ao_half against the CPU reference's (its ao_halve oracle)";
     EXPECT_EQ(bitDifference(half, halved(ao)), "") << "GL ao_half against GL's own ao * 0.5";
   }
 }

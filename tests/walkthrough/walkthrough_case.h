@@ -1,5 +1,5 @@
-// What both processes of the walkthrough test render (walkthrough_cpu_oracle with the real
-// effect, walkthrough_test with the extended one): one analytic scene, one camera, two settings.
+// What the walkthrough test renders on OpenGL and on the CPU reference, both built against the
+// extended effect: one analytic scene, one camera, two settings.
 #pragma once
 #include <array>
 #include <cstdint>

@@ -1,19 +1,24 @@
-// sao::cpu::run — validation, then the planned passes of effect/sao.glsl in order, each a
-// parallel loop over rows of its dispatch. The per-texel math lives in kernels.h.
+// sao::cpu::run — validation, then the schedule's dispatches in order, each run by the effect's
+// CPU pass (its C++ oracle, beside its GLSL in effect/cpu/), on images allocated from the plan.
+// Nothing here names a pass or an effect-owned image except to fill Result's named fields.
 #include "sao/cpu/reference.h"
 
-#include <bit>
+#include <algorithm>
 #include <chrono>
-#include <cmath>
-#include <limits>
 #include <new>
+#include <span>
 #include <string>
-#include <thread>
-#include <type_traits>
+#include <vector>
 
-#include "kernels.h"
-#include "sao/schedule.h"
 #include "sao/cpu/parallel.h"
+#include "sao/schedule.h"
+
+// The effect's CPU passes: the header that sao_generate_effect(... CPU_PASSES <header>) names, as
+// the effect target's compile definition. It defines sao::cpu::runEffectPass and PassContext.
+#ifndef SAO_CPU_PASSES_HEADER
+#error "SAO_CPU_PASSES_HEADER is not defined: the effect target gives none; call sao_generate_effect with CPU_PASSES <header>"
+#endif
+#include SAO_CPU_PASSES_HEADER
 
 namespace sao::cpu {
 
@@ -70,8 +75,6 @@ Status checkNormals(const FloatImage& n, const Camera& camera, Extent expected) 
   return Status::success();
 }
 
-std::size_t variantIndex(gen::VariantId id) { return static_cast<std::size_t>(id); }
-
 template <typename T>
 FloatImage toFloatImage(const Image<T>& src) {
   FloatImage out(Extent{std::uint32_t(src.w), std::uint32_t(src.h)}, std::uint32_t(src.ch));
@@ -79,242 +82,105 @@ FloatImage toFloatImage(const Image<T>& src) {
   return out;
 }
 
+template <typename T>
+std::vector<FloatImage> toFloatImages(const std::vector<Image<T>>& levels) {
+  std::vector<FloatImage> out;
+  for (const auto& level : levels) out.push_back(toFloatImage(level));
+  return out;
+}
+
+std::string resourceName(gen::ResourceId id) {
+  return std::string(gen::kResources[static_cast<std::size_t>(id)].name);
+}
+
+// Channels of an image in `format` as the CPU reference holds it; 0 when it cannot.
+int channelsOf(gen::Format format) {
+  switch (format) {
+    case gen::Format::R32F:
+    case gen::Format::R16F: return 1;
+    case gen::Format::RG32F:
+    case gen::Format::RG16F: return 2;
+    case gen::Format::RGBA16F: return 4;
+    default: return 0;
+  }
+}
+
 // ------------------------------------------------------------------------------------------------
-// The passes, in T.
+// The executor: every image of the plan (the output included), then the schedule's dispatches in
+// order (sao/schedule.h), each run by the effect's CPU pass. Images are plain arrays, so the
+// schedule's hazards need nothing here.
 
 template <typename T>
-class Pipeline {
- public:
-  Pipeline(const Inputs& in, const Plan& plan, const gen::SaoParams& params, unsigned threads)
-      : in_(in), plan_(plan), P_(params), threads_(threads) {
-    normalsSupplied_ = plan.variants[variantIndex(gen::VariantId::NORMALS_SUPPLIED)] != 0;
-    twoLayer_ = plan.variants[variantIndex(gen::VariantId::TWO_LAYER)] != 0;
-    zHierarchy_ = plan.variants[variantIndex(gen::VariantId::Z_HIERARCHY)] != 0;
+Status allocateImages(PassContext<T>& ctx) {
+  for (const PlannedImage& img : ctx.plan.images) {
+    const int channels = channelsOf(img.format);
+    if (channels == 0)
+      return Status::error(StatusCode::UnsupportedFormat,
+                           "the plan's image '" + resourceName(img.resource) +
+                               "' has a format the CPU reference cannot hold (r32f, r16f, rg32f, rg16f, rgba16f)");
+    auto& levels = ctx.levels(img.resource);
+    levels.clear();
+    for (std::uint32_t m = 0; m < img.mipLevels; ++m)
+      levels.emplace_back(int(std::max(1u, img.extent.width >> m)), int(std::max(1u, img.extent.height >> m)),
+                          channels);
   }
+  return Status::success();
+}
 
-  // Runs the schedule's dispatches in order (sao/schedule.h); images are plain arrays, so its
-  // hazards need nothing here.
-  Status execute(Result& out, bool measureTime) {
-    if (measureTime) out.timings.method = TimingMethod::CpuClock;
-    const Schedule schedule = makeSchedule(plan_);
-    auto start = std::chrono::steady_clock::now();
-    for (std::size_t i = 0; i < schedule.dispatches.size(); ++i) {
-      const ScheduledDispatch& d = schedule.dispatches[i];
-      if (Status st = run(d, schedule.bindingsOf(d)); !st) return st;
-      const bool lastOfPass = i + 1 == schedule.dispatches.size() || schedule.dispatches[i + 1].passIndex != d.passIndex;
-      if (measureTime && lastOfPass) {
-        const auto now = std::chrono::steady_clock::now();
-        const std::chrono::duration<double, std::milli> ms = now - start;
-        out.timings.passes.push_back({std::string(gen::pass(d.pass).name), ms.count()});
-        start = now;
-      }
+// Every image level a dispatch binds (inputs aside) is held, so a pass never indexes past the store.
+template <typename T>
+Status checkBindings(const PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
+  for (const ScheduledBinding& b : bindings) {
+    if (gen::kResources[static_cast<std::size_t>(b.resource)].kind == gen::ResourceKind::Input) continue;
+    if (!ctx.holds(b.resource, b.baseLevel, b.levelCount))
+      return invalid("pass '" + std::string(gen::pass(d.pass).name) + "' binds level " + std::to_string(b.baseLevel) +
+                     (b.levelCount > 1 ? ".." + std::to_string(b.baseLevel + b.levelCount - 1) : std::string()) +
+                     " of '" + resourceName(b.resource) + "', which the plan does not allocate");
+  }
+  return Status::success();
+}
+
+// Result's named images as before, then every other planned image by resource.
+template <typename T>
+void collectImages(const PassContext<T>& ctx, Result& out) {
+  using R = gen::ResourceId;
+  auto first = [&](R id) { return ctx.levels(id).empty() ? FloatImage{} : toFloatImage(ctx.levels(id)[0]); };
+  out.csz = toFloatImages(ctx.levels(R::csz));
+  out.csz2 = toFloatImages(ctx.levels(R::csz2));
+  out.aoRaw = first(R::ao_raw);
+  out.aoBlurH = first(R::ao_blur_h);
+  out.ao = first(R::ao);
+  for (std::size_t r = 0; r < gen::kResources.size(); ++r) {
+    const auto id = static_cast<R>(r);
+    if (id == R::csz || id == R::csz2 || id == R::ao_raw || id == R::ao_blur_h || id == R::ao) continue;
+    out.images[r] = toFloatImages(ctx.levels(id));
+  }
+}
+
+template <typename T>
+Status execute(const Inputs& in, const Plan& plan, const gen::SaoParams& params, unsigned threads, bool measureTime,
+               Result& out) {
+  PassContext<T> ctx(in, plan, params, threads);
+  if (Status st = allocateImages(ctx); !st) return st;
+  if (measureTime) out.timings.method = TimingMethod::CpuClock;
+  const Schedule schedule = makeSchedule(plan);
+  auto start = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < schedule.dispatches.size(); ++i) {
+    const ScheduledDispatch& d = schedule.dispatches[i];
+    const std::span<const ScheduledBinding> bindings = schedule.bindingsOf(d);
+    if (Status st = checkBindings(ctx, d, bindings); !st) return st;
+    if (Status st = runEffectPass(ctx, d, bindings); !st) return st;
+    const bool lastOfPass = i + 1 == schedule.dispatches.size() || schedule.dispatches[i + 1].passIndex != d.passIndex;
+    if (measureTime && lastOfPass) {
+      const auto now = std::chrono::steady_clock::now();
+      const std::chrono::duration<double, std::milli> ms = now - start;
+      out.timings.passes.push_back({std::string(gen::pass(d.pass).name), ms.count()});
+      start = now;
     }
-    for (const auto& level : csz_) out.csz.push_back(toFloatImage(level));
-    for (const auto& level : csz2_) out.csz2.push_back(toFloatImage(level));
-    out.aoRaw = toFloatImage(aoRaw_);
-    if (haveBlurH_) out.aoBlurH = toFloatImage(aoBlurH_);
-    out.ao = toFloatImage(ao_);
-    return Status::success();
   }
-
- private:
-  Status run(const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
-    switch (d.pass) {
-      case gen::PassId::linear_z: linearZ(); break;
-      case gen::PassId::mips: mips(static_cast<int>(d.level)); break;
-      case gen::PassId::ao_sample: return aoSample();
-      case gen::PassId::blur_h:
-        blur(readImage(bindings), aoBlurH_, 1, 0, false);
-        haveBlurH_ = true;
-        break;
-      case gen::PassId::blur_v: blur(readImage(bindings), ao_, 0, 1, true); break;
-      default:
-        return invalid("the plan holds pass '" + std::string(gen::pass(d.pass).name) +
-                       "', which the CPU reference does not implement");
-    }
-    return Status::success();
-  }
-
-  // The (A, key) image a blur dispatch reads: its sampled binding, aliases already resolved.
-  const Image<T>& readImage(std::span<const ScheduledBinding> bindings) const {
-    for (const ScheduledBinding& b : bindings)
-      if (!b.write) return b.resource == gen::ResourceId::ao_raw ? aoRaw_ : aoBlurH_;
-    return aoRaw_;
-  }
-
-  // Pass linear_z: one invocation per depth texel.
-  void linearZ() {
-    const int w = int(plan_.inputExtent.width), h = int(plan_.inputExtent.height);
-    csz_.assign(1, Image<T>(w, h, 1));
-    if (twoLayer_) csz2_.assign(1, Image<T>(w, h, 1));
-    parallelFor(h, threads_, [&](int y) {
-      for (int x = 0; x < w; ++x) {
-        csz_[0].at(x, y) = zFromDepth(texel(*in_.depth, x, y), P_);
-        if (twoLayer_) csz2_[0].at(x, y) = zFromDepth(texel(*in_.depth2, x, y), P_);
-      }
-    });
-  }
-
-  // texelFetch(in_depth, p, 0).r. Double: the exact value v / (2^n - 1) of a unorm texel (D16,
-  // D24), the float itself for D32F and LinearZ. Float: what the GPU's texture unit hands the
-  // shader; for unorm depth we model Mesa's llvmpipe / lavapipe (gallivm), which multiplies by
-  // the float reciprocal, float(v) * float(1 / (2^n - 1)), instead of rounding v / (2^n - 1)
-  // correctly: the two differ by one ulp on about half of the D24 texels, and D24 2^24 - 2 reads
-  // as 1.0 (the clear value, so sky). Other GPUs may round either way.
-  static T texel(const DepthImage& d, int x, int y) {
-    if constexpr (std::is_same_v<T, float>) {
-      const std::uint32_t t = d.texels[std::size_t(y) * d.extent.width + std::size_t(x)];
-      switch (d.format) {
-        case DepthFormat::D16: return float(t & 0xFFFFu) * kUnorm16Scale;
-        case DepthFormat::D24: return float(t & 0xFFFFFFu) * kUnorm24Scale;
-        case DepthFormat::D32F:
-        case DepthFormat::LinearZ: break;
-      }
-    }
-    return static_cast<T>(d.value(std::uint32_t(x), std::uint32_t(y)));
-  }
-  static constexpr float kUnorm16Scale = float(1.0 / 65535.0);
-  static constexpr float kUnorm24Scale = float(1.0 / 16777215.0);
-
-  // Pass mips, level m from level m - 1.
-  void mips(int m) {
-    const std::size_t level = std::size_t(m);
-    const int w = std::max(csz_[0].w >> m, 1), h = std::max(csz_[0].h >> m, 1);
-    csz_.resize(level + 1);  // levels are produced in order 1, 2, ...
-    csz_[level] = Image<T>(w, h, 1);
-    if (twoLayer_) {
-      csz2_.resize(level + 1);
-      csz2_[level] = Image<T>(w, h, 1);
-    }
-    const Image<T>& prev = csz_[level - 1];  // in_csz: a view of level m - 1, read at lod 0
-    parallelFor(h, threads_, [&](int y) {
-      for (int x = 0; x < w; ++x) {
-        int sx, sy;
-        rotatedGridSource(x, y, prev.w, prev.h, sx, sy);
-        csz_[level].at(x, y) = prev.at(sx, sy);
-        if (twoLayer_) csz2_[level].at(x, y) = csz2_[level - 1].at(sx, sy);
-      }
-    });
-  }
-
-  // Pass ao_sample: the body of sao_ao_main up to the shared-memory exchange, for one invocation.
-  void sampleInvocation(int px, int py, T& A, T& key) const {
-    const Image<T>& z0 = csz_[0];
-    const bool inside = px < std::min(P_.ao_size.x, aoRaw_.w) && py < std::min(P_.ao_size.y, aoRaw_.h);
-    const int cx = std::clamp(px + P_.guard.x, 0, z0.w - 1);
-    const int cy = std::clamp(py + P_.guard.y, 0, z0.h - 1);
-    const T zc = z0.at(cx, cy);
-    A = T(1);
-    key = T(0);
-    if (!inside || isSky(zc)) return;
-
-    const Vec3<T> C = position(T(cx) + T(0.5), T(cy) + T(0.5), zc, P_);
-    Vec3<T> n;
-    if (normalsSupplied_) {
-      const FloatImage& ni = *in_.normals;
-      n = decodeNormal(Vec3<T>{T(quantizeHalf(ni.at(std::uint32_t(cx), std::uint32_t(cy), 0))),
-                               T(quantizeHalf(ni.at(std::uint32_t(cx), std::uint32_t(cy), 1))),
-                               T(quantizeHalf(ni.at(std::uint32_t(cx), std::uint32_t(cy), 2)))});
-    } else {
-      n = reconstructNormal(z0, cx, cy, C, P_);
-    }
-    const T r_px = screenRadius(zc, P_);
-    const std::uint32_t phase = pixelPhase(std::uint32_t(px), std::uint32_t(py));
-    const int s = std::clamp(P_.samples, 1, gen::SAO_MAX_SAMPLES);
-    T sum = T(0);
-    for (int i = 0; i < s; ++i) {
-      T h;
-      int tx, ty;
-      spiralTap(cx, cy, i, s, phase, r_px, P_, tx, ty, h);
-      const int m = zHierarchy_ ? mipLevel(h, P_.log_q, P_.max_mip) : 0;
-      const int mx = mipTexel(tx, m, z0.w), my = mipTexel(ty, m, z0.h);
-      const T qx = T(tx) + T(0.5), qy = T(ty) + T(0.5);
-      T o = tapObscurance(C, n, qx, qy, csz_[std::size_t(m)].at(mx, my), P_);
-      if (twoLayer_) o = glslMax(o, tapObscurance(C, n, qx, qy, csz2_[std::size_t(m)].at(mx, my), P_));
-      sum += o;
-    }
-    A = visibility(sum, P_);
-    key = zc;
-  }
-
-  // Pass ao_sample over work groups: each group computes its invocations' (A, key) into
-  // "shared memory", then the two reconstruction steps separated as the barriers separate them.
-  // Invocations outside the AO buffer take part with A = 1, key = +0.0 (sky) and store nothing.
-  Status aoSample() {
-    const gen::PassInfo& info = gen::pass(gen::PassId::ao_sample);
-    const int LX = int(info.localX), LY = int(info.localY);
-    if (LX <= 0 || LY <= 0 || (LX & 1) || (LY & 1))
-      return invalid("ao_sample's local size " + std::to_string(LX) + "x" + std::to_string(LY) +
-                     " is not even; the 2x2 reconstruction needs whole quads in a work group");
-    if (P_.max_mip < 0 || std::size_t(P_.max_mip) >= csz_.size() || (twoLayer_ && csz2_.size() != csz_.size()))
-      return invalid("max_mip " + std::to_string(P_.max_mip) + " does not match the " +
-                     std::to_string(csz_.size()) + " csz levels computed");
-    const int W = int(plan_.aoExtent.width), H = int(plan_.aoExtent.height);
-    aoRaw_ = Image<T>(W, H, 2);
-    const int groupsX = (W + LX - 1) / LX, groupsY = (H + LY - 1) / LY;
-    const T threshold = P_.quad_edge_threshold;
-    parallelFor(groupsY, threads_, [&](int gy) {
-      std::vector<T> quadA(std::size_t(LX) * LY), quadH(quadA.size()), quadZ(quadA.size());
-      for (int gx = 0; gx < groupsX; ++gx) {
-        // Up to the first barrier: every invocation's A and key.
-        for (int ly = 0; ly < LY; ++ly)
-          for (int lx = 0; lx < LX; ++lx) {
-            const std::size_t li = std::size_t(ly) * LX + lx;
-            sampleInvocation(gx * LX + lx, gy * LY + ly, quadA[li], quadZ[li]);
-          }
-        // Between the barriers: the step along x.
-        for (int ly = 0; ly < LY; ++ly)
-          for (int lx = 0; lx < LX; ++lx) {
-            const std::size_t li = std::size_t(ly) * LX + lx;
-            const std::size_t nx = std::size_t(ly) * LX + (lx ^ 1);
-            quadH[li] = quadMix(quadA[li], quadZ[li], quadA[nx], quadZ[nx], threshold);
-          }
-        // After the second barrier: the step along y, stored by inside invocations.
-        for (int ly = 0; ly < LY; ++ly)
-          for (int lx = 0; lx < LX; ++lx) {
-            const std::size_t li = std::size_t(ly) * LX + lx;
-            const std::size_t ny = std::size_t(ly ^ 1) * LX + lx;
-            const T av = quadMix(quadH[li], quadZ[li], quadH[ny], quadZ[ny], threshold);
-            const int px = gx * LX + lx, py = gy * LY + ly;
-            if (px < std::min(P_.ao_size.x, W) && py < std::min(P_.ao_size.y, H)) {
-              aoRaw_.at(px, py, 0) = av;
-              aoRaw_.at(px, py, 1) = quadZ[li];
-            }
-          }
-      }
-    });
-    return Status::success();
-  }
-
-  // Passes blur_h (final = false: writes (A, key)) and blur_v (final = true: writes A, rounded to
-  // binary16 in Float precision as sao_round_to_half does, unrounded in Double).
-  void blur(const Image<T>& src, Image<T>& dst, int dx, int dy, bool final) {
-    const int W = src.w, H = src.h;
-    dst = Image<T>(W, H, final ? 1 : 2);
-    parallelFor(H, threads_, [&](int y) {
-      for (int x = 0; x < W; ++x) {
-        T a, key;
-        bilateralBlur(src, x, y, dx, dy, P_, a, key);
-        if (final) {
-          if constexpr (std::is_same_v<T, float>) a = roundToHalf(a);
-          dst.at(x, y, 0) = a;
-        } else {
-          dst.at(x, y, 0) = a;
-          dst.at(x, y, 1) = key;
-        }
-      }
-    });
-  }
-
-  const Inputs& in_;
-  const Plan& plan_;
-  const Block<T> P_;
-  const unsigned threads_;
-  bool normalsSupplied_ = false, twoLayer_ = false, zHierarchy_ = false;
-  std::vector<Image<T>> csz_, csz2_;
-  Image<T> aoRaw_, aoBlurH_, ao_;
-  bool haveBlurH_ = false;
-};
+  collectImages(ctx, out);
+  return Status::success();
+}
 
 Status validateAndPlan(const Settings& settings, const Camera& camera, const Inputs& in, Result& r) {
   if (in.depth == nullptr) return invalid("no depth input: Inputs::depth is null");
@@ -366,8 +232,8 @@ Status run(const Settings& settings, const Camera& camera, const Inputs& inputs,
     Status st;
     const bool timed = options.measureTime;
     switch (options.precision) {
-      case Precision::Float: st = Pipeline<float>(inputs, r.plan, r.params, threads).execute(r, timed); break;
-      case Precision::Double: st = Pipeline<double>(inputs, r.plan, r.params, threads).execute(r, timed); break;
+      case Precision::Float: st = execute<float>(inputs, r.plan, r.params, threads, timed, r); break;
+      case Precision::Double: st = execute<double>(inputs, r.plan, r.params, threads, timed, r); break;
       default: return invalid("unknown precision " + std::to_string(int(options.precision)));
     }
     if (!st) return st;

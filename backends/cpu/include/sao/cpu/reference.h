@@ -1,6 +1,8 @@
-// sao::cpu — the CPU reference backend: the five compute passes of effect/sao.glsl re-implemented
-// in C++, operation for operation (docs/effect-math.md), so that the OpenGL and Vulkan backends
-// can be compared with it pixel by pixel.
+// sao::cpu — the CPU reference backend: the compute passes of effect/sao.glsl re-implemented in
+// C++, operation for operation (docs/effect-math.md), so that the OpenGL and Vulkan backends can
+// be compared with it pixel by pixel. Each pass's C++ lives beside its GLSL (effect/cpu/); the
+// backend runs core's schedule through them (docs/adding-a-pass.md). Compiled into this static
+// library, so no header here needs them.
 //
 // Two precisions:
 //
@@ -39,6 +41,7 @@
 // Every pass runs in parallel over rows (ao_sample over rows of work groups); every output texel
 // is a pure function of its inputs, so results are bit-identical for any thread count.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -82,13 +85,18 @@ struct Result {
   FloatImage aoRaw;    // 2 channels: A after the 2x2 reconstruction, key z (+0.0 = sky)
   FloatImage aoBlurH;  // 2 channels: after blur_h; empty when the plan drops the pass
   FloatImage ao;       // 1 channel: final A (Float: binary16 values; Double: unrounded)
+  // Every other image the plan allocates, by gen::ResourceId, one FloatImage per level: what a
+  // pass added to the effect writes (the walkthrough's ao_half). Empty for the images above, for
+  // inputs and for images the plan does not allocate.
+  std::array<std::vector<FloatImage>, gen::kResources.size()> images;
   Timings timings;     // method None unless Options::measureTime ("mips" covers all its levels)
 };
 
 // Validates the inputs against the settings and camera, fills the block with computeConstants,
 // builds the plan with PlanInputs{encoding, normals != nullptr, depth2 != nullptr} and runs exactly
-// the planned passes in order. On error `out` is left default-constructed and the Status names the
-// problem (InvalidInput for missing or mismatched inputs, UnsupportedFormat for unknown formats,
+// the planned passes in order (makeSchedule's dispatches). On error `out` is left
+// default-constructed and the Status names the problem (InvalidInput for missing or mismatched
+// inputs or a planned pass the effect gives no C++ for, UnsupportedFormat for unknown formats,
 // InvalidSetting / InvalidCamera / InvalidExtent from the core); bad input never asserts or crashes.
 Status run(const Settings& settings, const Camera& camera, const Inputs& inputs, const Options& options,
            Result& out);

@@ -2,6 +2,8 @@
 // scalar type T (float mimics the GPU, double is the high-precision reference). Every expression
 // keeps the GLSL's order of operations; this file must be compiled with -ffp-contract=off.
 // Names follow the shaders (sao_foo -> foo) so that the two can be read side by side.
+// It is compiled only inside sao_cpu (backends/cpu/src/reference.cpp includes the effect's CPU
+// passes, which include this file), whose flags give that; no public header includes it.
 #pragma once
 #include <algorithm>
 #include <bit>

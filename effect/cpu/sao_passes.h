@@ -1,0 +1,290 @@
+// The passes of sao.glsl in C++, the oracle the GPU backends are compared with: each one runs its
+// shader's main over the dispatch, operation for operation, with the library of sao_math.h, in
+// parallel over rows (ao_sample over rows of work groups). Every output texel is a pure function
+// of its inputs, so results are bit-identical for any thread count. Images come from the
+// dispatch's resolved bindings (pass_context.h), as the shader's in_<name> / out_<name>.
+// A new pass: its function here, beside its GLSL, and a case in runSaoPass (docs/adding-a-pass.md).
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "pass_context.h"
+#include "sao/cpu/parallel.h"
+#include "sao/schedule.h"
+#include "sao/status.h"
+#include "sao_math.h"
+
+namespace sao::cpu::detail {
+
+inline Status passError(const ScheduledDispatch& d, const std::string& what) {
+  return Status::error(StatusCode::InvalidInput,
+                       "the CPU pass '" + std::string(gen::pass(d.pass).name) + "' " + what);
+}
+
+// A binding the pass reads or writes that its dispatch lacks: the effect and its C++ disagree.
+inline Status missingBinding(const ScheduledDispatch& d, gen::ResourceId declared, bool write) {
+  return passError(d, std::string("finds no ") + (write ? "write" : "read") + " binding of '" +
+                          std::string(gen::kResources[static_cast<std::size_t>(declared)].name) + "'");
+}
+
+inline constexpr float kUnorm16Scale = float(1.0 / 65535.0);
+inline constexpr float kUnorm24Scale = float(1.0 / 16777215.0);
+
+// texelFetch(in_depth, p, 0).r. Double: the exact value v / (2^n - 1) of a unorm texel (D16,
+// D24), the float itself for D32F and LinearZ. Float: what the GPU's texture unit hands the
+// shader; for unorm depth we model Mesa's llvmpipe / lavapipe (gallivm), which multiplies by
+// the float reciprocal, float(v) * float(1 / (2^n - 1)), instead of rounding v / (2^n - 1)
+// correctly: the two differ by one ulp on about half of the D24 texels, and D24 2^24 - 2 reads
+// as 1.0 (the clear value, so sky). Other GPUs may round either way.
+template <typename T>
+T texel(const DepthImage& d, int x, int y) {
+  if constexpr (std::is_same_v<T, float>) {
+    const std::uint32_t t = d.texels[std::size_t(y) * d.extent.width + std::size_t(x)];
+    switch (d.format) {
+      case DepthFormat::D16: return float(t & 0xFFFFu) * kUnorm16Scale;
+      case DepthFormat::D24: return float(t & 0xFFFFFFu) * kUnorm24Scale;
+      case DepthFormat::D32F:
+      case DepthFormat::LinearZ: break;
+    }
+  }
+  return static_cast<T>(d.value(std::uint32_t(x), std::uint32_t(y)));
+}
+
+inline bool sameExtent(const DepthImage& d, int w, int h) {
+  return d.extent.width == std::uint32_t(w) && d.extent.height == std::uint32_t(h);
+}
+
+// Pass linear_z: one invocation per depth texel.
+template <typename T>
+Status linearZPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
+  const bool twoLayer = ctx.variant(gen::VariantId::TWO_LAYER);
+  const ScheduledBinding* out = binding(d, bindings, gen::ResourceId::csz, true);
+  const ScheduledBinding* out2 = twoLayer ? binding(d, bindings, gen::ResourceId::csz2, true) : nullptr;
+  if (out == nullptr) return missingBinding(d, gen::ResourceId::csz, true);
+  if (twoLayer && out2 == nullptr) return missingBinding(d, gen::ResourceId::csz2, true);
+  Image<T>& csz = ctx.image(*out);
+  Image<T>* csz2 = twoLayer ? &ctx.image(*out2) : nullptr;
+  const int w = csz.w, h = csz.h;
+  if (ctx.in.depth == nullptr || !sameExtent(*ctx.in.depth, w, h) ||
+      (twoLayer && (ctx.in.depth2 == nullptr || !sameExtent(*ctx.in.depth2, w, h))))
+    return passError(d, "needs the depth input(s) at csz's extent " + std::to_string(w) + "x" + std::to_string(h));
+  parallelFor(h, ctx.threads, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      csz.at(x, y) = zFromDepth(texel<T>(*ctx.in.depth, x, y), ctx.P);
+      if (twoLayer) csz2->at(x, y) = zFromDepth(texel<T>(*ctx.in.depth2, x, y), ctx.P);
+    }
+  });
+  return Status::success();
+}
+
+// Pass mips, level m (the write binding's level) from level m - 1 (the read binding's).
+template <typename T>
+Status mipsPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
+  const bool twoLayer = ctx.variant(gen::VariantId::TWO_LAYER);
+  const ScheduledBinding* in = binding(d, bindings, gen::ResourceId::csz, false);
+  const ScheduledBinding* out = binding(d, bindings, gen::ResourceId::csz, true);
+  if (in == nullptr) return missingBinding(d, gen::ResourceId::csz, false);
+  if (out == nullptr) return missingBinding(d, gen::ResourceId::csz, true);
+  const ScheduledBinding* in2 = twoLayer ? binding(d, bindings, gen::ResourceId::csz2, false) : nullptr;
+  const ScheduledBinding* out2 = twoLayer ? binding(d, bindings, gen::ResourceId::csz2, true) : nullptr;
+  if (twoLayer && in2 == nullptr) return missingBinding(d, gen::ResourceId::csz2, false);
+  if (twoLayer && out2 == nullptr) return missingBinding(d, gen::ResourceId::csz2, true);
+  const Image<T>& prev = ctx.image(*in);  // in_csz: a view of level m - 1, read at lod 0
+  Image<T>& next = ctx.image(*out);
+  const Image<T>* prev2 = twoLayer ? &ctx.image(*in2) : nullptr;
+  Image<T>* next2 = twoLayer ? &ctx.image(*out2) : nullptr;
+  if (twoLayer && (prev2->w != prev.w || prev2->h != prev.h || next2->w != next.w || next2->h != next.h))
+    return passError(d, "needs csz and csz2 levels of the same extents");
+  const int w = next.w, h = next.h;
+  parallelFor(h, ctx.threads, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      int sx, sy;
+      rotatedGridSource(x, y, prev.w, prev.h, sx, sy);
+      next.at(x, y) = prev.at(sx, sy);
+      if (twoLayer) next2->at(x, y) = prev2->at(sx, sy);
+    }
+  });
+  return Status::success();
+}
+
+// Pass ao_sample: the body of sao_ao_main up to the shared-memory exchange, for one invocation.
+template <typename T>
+class AoSampleInvocation {
+ public:
+  AoSampleInvocation(const PassContext<T>& ctx, const std::vector<Image<T>>& csz, const std::vector<Image<T>>& csz2,
+                     const Image<T>& aoRaw)
+      : in_(ctx.in), P_(ctx.P), csz_(csz), csz2_(csz2), aoRaw_(aoRaw),
+        normalsSupplied_(ctx.variant(gen::VariantId::NORMALS_SUPPLIED)),
+        twoLayer_(ctx.variant(gen::VariantId::TWO_LAYER)),
+        zHierarchy_(ctx.variant(gen::VariantId::Z_HIERARCHY)) {}
+
+  void operator()(int px, int py, T& A, T& key) const {
+    const Image<T>& z0 = csz_[0];
+    const bool inside = px < std::min(P_.ao_size.x, aoRaw_.w) && py < std::min(P_.ao_size.y, aoRaw_.h);
+    const int cx = std::clamp(px + P_.guard.x, 0, z0.w - 1);
+    const int cy = std::clamp(py + P_.guard.y, 0, z0.h - 1);
+    const T zc = z0.at(cx, cy);
+    A = T(1);
+    key = T(0);
+    if (!inside || isSky(zc)) return;
+
+    const Vec3<T> C = position(T(cx) + T(0.5), T(cy) + T(0.5), zc, P_);
+    Vec3<T> n;
+    if (normalsSupplied_) {
+      const FloatImage& ni = *in_.normals;
+      n = decodeNormal(Vec3<T>{T(quantizeHalf(ni.at(std::uint32_t(cx), std::uint32_t(cy), 0))),
+                               T(quantizeHalf(ni.at(std::uint32_t(cx), std::uint32_t(cy), 1))),
+                               T(quantizeHalf(ni.at(std::uint32_t(cx), std::uint32_t(cy), 2)))});
+    } else {
+      n = reconstructNormal(z0, cx, cy, C, P_);
+    }
+    const T r_px = screenRadius(zc, P_);
+    const std::uint32_t phase = pixelPhase(std::uint32_t(px), std::uint32_t(py));
+    const int s = std::clamp(P_.samples, 1, gen::SAO_MAX_SAMPLES);
+    T sum = T(0);
+    for (int i = 0; i < s; ++i) {
+      T h;
+      int tx, ty;
+      spiralTap(cx, cy, i, s, phase, r_px, P_, tx, ty, h);
+      const int m = zHierarchy_ ? mipLevel(h, P_.log_q, P_.max_mip) : 0;
+      const int mx = mipTexel(tx, m, z0.w), my = mipTexel(ty, m, z0.h);
+      const T qx = T(tx) + T(0.5), qy = T(ty) + T(0.5);
+      T o = tapObscurance(C, n, qx, qy, csz_[std::size_t(m)].at(mx, my), P_);
+      if (twoLayer_) o = glslMax(o, tapObscurance(C, n, qx, qy, csz2_[std::size_t(m)].at(mx, my), P_));
+      sum += o;
+    }
+    A = visibility(sum, P_);
+    key = zc;
+  }
+
+ private:
+  const Inputs& in_;
+  const Block<T>& P_;
+  const std::vector<Image<T>>& csz_;
+  const std::vector<Image<T>>& csz2_;
+  const Image<T>& aoRaw_;
+  const bool normalsSupplied_, twoLayer_, zHierarchy_;
+};
+
+// Pass ao_sample over work groups: each group computes its invocations' (A, key) into
+// "shared memory", then the two reconstruction steps separated as the barriers separate them.
+// Invocations outside the AO buffer take part with A = 1, key = +0.0 (sky) and store nothing.
+template <typename T>
+Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
+  const bool twoLayer = ctx.variant(gen::VariantId::TWO_LAYER);
+  const ScheduledBinding* in = binding(d, bindings, gen::ResourceId::csz, false);
+  const ScheduledBinding* in2 = twoLayer ? binding(d, bindings, gen::ResourceId::csz2, false) : nullptr;
+  const ScheduledBinding* out = binding(d, bindings, gen::ResourceId::ao_raw, true);
+  if (in == nullptr) return missingBinding(d, gen::ResourceId::csz, false);
+  if (twoLayer && in2 == nullptr) return missingBinding(d, gen::ResourceId::csz2, false);
+  if (out == nullptr) return missingBinding(d, gen::ResourceId::ao_raw, true);
+  if (ctx.variant(gen::VariantId::NORMALS_SUPPLIED) && ctx.in.normals == nullptr)
+    return passError(d, "reads normals, but none were supplied");
+  const std::vector<Image<T>>& csz = ctx.levels(in->resource);  // the whole chain
+  const std::vector<Image<T>>& csz2 = ctx.levels(twoLayer ? in2->resource : gen::ResourceId::csz2);
+  Image<T>& aoRaw = ctx.image(*out);
+  const auto& P = ctx.P;
+
+  const gen::PassInfo& info = gen::pass(d.pass);
+  const int LX = int(info.localX), LY = int(info.localY);
+  if (LX <= 0 || LY <= 0 || (LX & 1) || (LY & 1))
+    return Status::error(StatusCode::InvalidInput,
+                         "ao_sample's local size " + std::to_string(LX) + "x" + std::to_string(LY) +
+                             " is not even; the 2x2 reconstruction needs whole quads in a work group");
+  if (P.max_mip < 0 || std::size_t(P.max_mip) >= csz.size() || (twoLayer && csz2.size() != csz.size()))
+    return Status::error(StatusCode::InvalidInput, "max_mip " + std::to_string(P.max_mip) + " does not match the " +
+                                                       std::to_string(csz.size()) + " csz levels computed");
+  if (aoRaw.ch != 2) return passError(d, "needs a 2-channel ao_raw");
+  const int W = aoRaw.w, H = aoRaw.h;
+  const int groupsX = int(d.groupsX), groupsY = int(d.groupsY);
+  const T threshold = P.quad_edge_threshold;
+  const AoSampleInvocation<T> sampleInvocation(ctx, csz, csz2, aoRaw);
+  parallelFor(groupsY, ctx.threads, [&](int gy) {
+    std::vector<T> quadA(std::size_t(LX) * LY), quadH(quadA.size()), quadZ(quadA.size());
+    for (int gx = 0; gx < groupsX; ++gx) {
+      // Up to the first barrier: every invocation's A and key.
+      for (int ly = 0; ly < LY; ++ly)
+        for (int lx = 0; lx < LX; ++lx) {
+          const std::size_t li = std::size_t(ly) * LX + lx;
+          sampleInvocation(gx * LX + lx, gy * LY + ly, quadA[li], quadZ[li]);
+        }
+      // Between the barriers: the step along x.
+      for (int ly = 0; ly < LY; ++ly)
+        for (int lx = 0; lx < LX; ++lx) {
+          const std::size_t li = std::size_t(ly) * LX + lx;
+          const std::size_t nx = std::size_t(ly) * LX + (lx ^ 1);
+          quadH[li] = quadMix(quadA[li], quadZ[li], quadA[nx], quadZ[nx], threshold);
+        }
+      // After the second barrier: the step along y, stored by inside invocations.
+      for (int ly = 0; ly < LY; ++ly)
+        for (int lx = 0; lx < LX; ++lx) {
+          const std::size_t li = std::size_t(ly) * LX + lx;
+          const std::size_t ny = std::size_t(ly ^ 1) * LX + lx;
+          const T av = quadMix(quadH[li], quadZ[li], quadH[ny], quadZ[ny], threshold);
+          const int px = gx * LX + lx, py = gy * LY + ly;
+          if (px < std::min(P.ao_size.x, W) && py < std::min(P.ao_size.y, H)) {
+            aoRaw.at(px, py, 0) = av;
+            aoRaw.at(px, py, 1) = quadZ[li];
+          }
+        }
+    }
+  });
+  return Status::success();
+}
+
+// Passes blur_h (final = false: writes (A, key)) and blur_v (final = true: writes A, rounded to
+// binary16 in Float precision as sao_round_to_half does, unrounded in Double). The (A, key) image
+// read is the dispatch's one read binding, aliases resolved (blur_v reads ao_raw when blur_h is
+// skipped); the image written is its one write binding.
+template <typename T>
+Status blurPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings, int dx,
+                int dy, bool final) {
+  const ScheduledBinding* in = nthBinding(bindings, false, 0);
+  const ScheduledBinding* out = nthBinding(bindings, true, 0);
+  if (in == nullptr || out == nullptr) return passError(d, "needs a read and a write binding");
+  const Image<T>& src = ctx.image(*in);
+  Image<T>& dst = ctx.image(*out);
+  if (src.ch != 2 || dst.w != src.w || dst.h != src.h || dst.ch < (final ? 1 : 2))
+    return passError(d, "needs an (A, key) image and an output of the same extent");
+  const int W = src.w, H = src.h;
+  parallelFor(H, ctx.threads, [&](int y) {
+    for (int x = 0; x < W; ++x) {
+      T a, key;
+      bilateralBlur(src, x, y, dx, dy, ctx.P, a, key);
+      if (final) {
+        if constexpr (std::is_same_v<T, float>) a = roundToHalf(a);
+        dst.at(x, y, 0) = a;
+      } else {
+        dst.at(x, y, 0) = a;
+        dst.at(x, y, 1) = key;
+      }
+    }
+  });
+  return Status::success();
+}
+
+}  // namespace sao::cpu::detail
+
+namespace sao::cpu {
+
+// One dispatch of a pass of sao.glsl. An effect that adds passes switches on its own first and
+// falls back to this (tests/walkthrough/cpu_passes.h); a pass nobody implements is refused.
+template <typename T>
+Status runSaoPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
+  switch (d.pass) {
+    case gen::PassId::linear_z: return detail::linearZPass(ctx, d, bindings);
+    case gen::PassId::mips: return detail::mipsPass(ctx, d, bindings);
+    case gen::PassId::ao_sample: return detail::aoSamplePass(ctx, d, bindings);
+    case gen::PassId::blur_h: return detail::blurPass(ctx, d, bindings, 1, 0, false);
+    case gen::PassId::blur_v: return detail::blurPass(ctx, d, bindings, 0, 1, true);
+    default:
+      return Status::error(StatusCode::InvalidInput, "the plan holds pass '" + std::string(gen::pass(d.pass).name) +
+                                                         "', which the CPU reference does not implement");
+  }
+}
+
+}  // namespace sao::cpu
