@@ -30,6 +30,25 @@ std::uint32_t channelsOf(VkFormat f, std::uint32_t& bytes) {
   }
 }
 
+// Level 0 of `image` (UNDEFINED) from the staging buffer, left in `layout` for compute and
+// fragment reads. `barrierAspects` covers every aspect of the format, `copyAspect` the one copied.
+void recordUpload(VkCommandBuffer cmd, VkBuffer staging, VkImage image, VkImageAspectFlags barrierAspects,
+                  VkImageAspectFlags copyAspect, Extent extent, VkImageLayout layout) {
+  const auto toDst = imageBarrier(image, barrierAspects, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                  0, VK_ACCESS_TRANSFER_WRITE_BIT);
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
+                       1, &toDst);
+  VkBufferImageCopy copy{};
+  copy.imageSubresource = {copyAspect, 0, 0, 1};
+  copy.imageExtent = {extent.width, extent.height, 1};
+  vkCmdCopyBufferToImage(cmd, staging, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+  const auto toRead = imageBarrier(image, barrierAspects, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, layout,
+                                   VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT);
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0,
+                       nullptr, 1, &toRead);
+}
+
 }  // namespace
 
 int Context::memoryType(std::uint32_t bits, VkMemoryPropertyFlags flags) const {
@@ -165,19 +184,7 @@ Status Context::uploadDepth(const DepthImage& depth, VkFormat format, VkImageLay
     return st;
   }
   Status st = submit([&](VkCommandBuffer cmd) {
-    auto toDst = imageBarrier(out.image, allAspects, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
-                         VK_ACCESS_TRANSFER_WRITE_BIT);
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
-                         nullptr, 1, &toDst);
-    VkBufferImageCopy copy{};
-    copy.imageSubresource = {viewAspect, 0, 0, 1};
-    copy.imageExtent = {depth.extent.width, depth.extent.height, 1};
-    vkCmdCopyBufferToImage(cmd, staging.buffer, out.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
-    auto toRead = imageBarrier(out.image, allAspects, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, layout,
-                          VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT);
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0,
-                         nullptr, 1, &toRead);
+    recordUpload(cmd, staging.buffer, out.image, allAspects, viewAspect, depth.extent, layout);
   });
   destroy(staging);
   if (!st) {
@@ -210,19 +217,8 @@ Status Context::uploadColor(const FloatImage& image, VkFormat format, VkImageLay
     return st;
   }
   Status st = submit([&](VkCommandBuffer cmd) {
-    auto toDst = imageBarrier(out.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0, VK_ACCESS_TRANSFER_WRITE_BIT);
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
-                         nullptr, 1, &toDst);
-    VkBufferImageCopy copy{};
-    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    copy.imageExtent = {image.extent.width, image.extent.height, 1};
-    vkCmdCopyBufferToImage(cmd, staging.buffer, out.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
-    auto toRead = imageBarrier(out.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, layout,
-                          VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT);
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0,
-                         nullptr, 1, &toRead);
+    recordUpload(cmd, staging.buffer, out.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_ASPECT_COLOR_BIT, image.extent,
+                 layout);
   });
   destroy(staging);
   if (!st) {
