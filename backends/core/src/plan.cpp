@@ -7,10 +7,6 @@
 namespace sao {
 namespace {
 
-Extent levelExtent(Extent e, std::uint32_t level) {
-  return {std::max(1u, e.width >> level), std::max(1u, e.height >> level)};
-}
-
 std::uint64_t imageBytes(gen::Format format, Extent e, std::uint32_t levels) {
   std::uint64_t total = 0;
   for (std::uint32_t m = 0; m < levels; ++m) {
@@ -42,6 +38,17 @@ Status checkExtents(const Camera& c, Extent& input, Extent& ao) {
 }
 
 }  // namespace
+
+Extent levelExtent(Extent e, std::uint32_t level) {
+  return {std::max(1u, e.width >> level), std::max(1u, e.height >> level)};
+}
+
+Extent resourceExtent(const Plan& plan, gen::ResourceId id) {
+  if (const PlannedImage* img = plan.image(id)) return img->extent;
+  const auto& info = gen::kResources[static_cast<std::size_t>(id)];
+  const Extent base = info.inputExtent ? plan.inputExtent : plan.aoExtent;
+  return {std::max(1u, base.width / info.scaleDenominator), std::max(1u, base.height / info.scaleDenominator)};
+}
 
 std::uint32_t bytesPerTexel(gen::Format format) {
   switch (format) {
@@ -150,8 +157,7 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
       const auto& r = gen::kResources[static_cast<std::size_t>(id)];
       if (r.kind == gen::ResourceKind::Input || out.image(id)) continue;
       if (r.kind == gen::ResourceKind::Output && inputs.userOutput) continue;
-      const Extent base = r.inputExtent ? out.inputExtent : out.aoExtent;
-      const Extent e{std::max(1u, base.width / r.scaleDenominator), std::max(1u, base.height / r.scaleDenominator)};
+      const Extent e = resourceExtent(out, id);  // not planned yet: the declared extent
       const std::uint32_t levels = r.fullMipChain ? out.cszLevels : 1;
       out.images.push_back({id, r.format, e, levels, imageBytes(r.format, e, levels)});
     }

@@ -7,10 +7,6 @@
 namespace sao {
 namespace {
 
-Extent levelExtent(Extent e, std::uint32_t level) {
-  return {std::max(1u, e.width >> level), std::max(1u, e.height >> level)};
-}
-
 std::uint32_t levelsOf(const Plan& plan, gen::ResourceId id) {
   const PlannedImage* img = plan.image(id);
   return img ? img->mipLevels : 1;
@@ -73,13 +69,6 @@ class HazardTracker {
 };
 
 }  // namespace
-
-Extent resourceExtent(const Plan& plan, gen::ResourceId id) {
-  if (const PlannedImage* img = plan.image(id)) return img->extent;
-  const auto& info = gen::kResources[static_cast<std::size_t>(id)];
-  const Extent base = info.inputExtent ? plan.inputExtent : plan.aoExtent;
-  return {std::max(1u, base.width / info.scaleDenominator), std::max(1u, base.height / info.scaleDenominator)};
-}
 
 Schedule makeSchedule(const Plan& plan) {
   Schedule s;

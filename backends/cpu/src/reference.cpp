@@ -120,9 +120,10 @@ Status allocateImages(PassContext<T>& ctx) {
                                "' has a format the CPU reference cannot hold (r32f, r16f, rg32f, rg16f, rgba16f)");
     auto& levels = ctx.levels(img.resource);
     levels.clear();
-    for (std::uint32_t m = 0; m < img.mipLevels; ++m)
-      levels.emplace_back(int(std::max(1u, img.extent.width >> m)), int(std::max(1u, img.extent.height >> m)),
-                          channels);
+    for (std::uint32_t m = 0; m < img.mipLevels; ++m) {
+      const Extent e = levelExtent(img.extent, m);
+      levels.emplace_back(int(e.width), int(e.height), channels);
+    }
   }
   return Status::success();
 }

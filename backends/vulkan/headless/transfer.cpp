@@ -242,7 +242,7 @@ Status Context::readback(VkImage image, VkFormat format, Extent levelZero, std::
   const std::uint32_t channels = channelsOf(format, bytes);
   if (channels == 0 || image == VK_NULL_HANDLE)
     return Status::error(StatusCode::UnsupportedFormat, "readback: unsupported format or null image");
-  const Extent e{std::max(1u, levelZero.width >> level), std::max(1u, levelZero.height >> level)};
+  const Extent e = levelExtent(levelZero, level);
   const std::size_t n = std::size_t(e.width) * e.height;
   Buffer staging;
   if (Status st = createBuffer(n * bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, staging); !st) return st;

@@ -69,4 +69,11 @@ std::uint64_t fullAllocationBytes(const Camera& camera, const PlanInputs& inputs
 
 std::uint32_t bytesPerTexel(gen::Format format);
 
+// Level `level` of an image whose level 0 is `e`: each side halved per level, at least 1.
+Extent levelExtent(Extent e, std::uint32_t level);
+
+// Level-0 extent of the image that serves `id` in `plan`: a planned image's own, else what the
+// resource declares (the input or AO extent over its scale), e.g. for a caller's output.
+Extent resourceExtent(const Plan& plan, gen::ResourceId id);
+
 }  // namespace sao

@@ -74,9 +74,6 @@ struct Schedule {
 // The schedule of a plan: the step right after plan(), which every backend takes. Deterministic.
 Schedule makeSchedule(const Plan& plan);
 
-// Level-0 extent of the image that serves `id` in `plan` (an owned image, else the input or AO extent).
-Extent resourceExtent(const Plan& plan, gen::ResourceId id);
-
 // ---- what a backend checks and keeps across frames
 
 // An input or output image as the caller supplies it this frame.
