@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Stage "sanitizers": the whole project and its test suite built with AddressSanitizer (+ leak
+# Stage "sanitizers": the project (all but tests/walkthrough) and its tests built with AddressSanitizer (+ leak
 # checking) and UndefinedBehaviorSanitizer (gcc) into build-asan/, then every ctest test run with
 # halt_on_error. Leaks inside Mesa (llvmpipe, lavapipe, LLVM), the Vulkan loader and validation
 # layer, and a few other system libraries are suppressed by tests/sanitizers/lsan.supp (each entry
@@ -21,6 +21,7 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
   mkdir -p "$build"
   cmake -S . -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="$flags" \
     -DCMAKE_EXE_LINKER_FLAGS="$sanitizers" -DCMAKE_SHARED_LINKER_FLAGS="$sanitizers" \
+    -DSAO_BUILD_WALKTHROUGH=OFF \
     >"$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
 fi
 

@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <memory>
 
+#include <CLI/CLI.hpp>
+
 namespace sao::cli {
 namespace {
 
@@ -109,18 +111,22 @@ Extent parseSize(std::string_view option, const std::string& text, std::uint32_t
           parseWhole(std::string(option) + " height", text.substr(x + 1), lo, hi)};
 }
 
+CommandLine::~CommandLine() = default;
+
+bool CommandLine::given(const std::string& name) const { return app_->count(name) > 0; }
+
 CommandLine::CommandLine(std::string tool, std::string description, std::string footer)
-    : tool_(std::move(tool)), app_(std::move(description), tool_) {
-  app_.formatter(std::make_shared<Formatter>());
-  app_.footer(std::move(footer));
-  app_.option_defaults()->group("options");
-  app_.allow_extras();  // reported by parse() in the tool's own words
-  app_.set_help_flag();  // added last, in parse(), to be listed last
+    : tool_(std::move(tool)), app_(std::make_unique<CLI::App>(std::move(description), tool_)) {
+  app_->formatter(std::make_shared<Formatter>());
+  app_->footer(std::move(footer));
+  app_->option_defaults()->group("options");
+  app_->allow_extras();  // reported by parse() in the tool's own words
+  app_->set_help_flag();  // added last, in parse(), to be listed last
 }
 
 CLI::Option* CommandLine::value(const std::string& name, const std::string& valueName, const std::string& help,
                                 std::function<void(const std::string&)> apply) {
-  CLI::Option* option = app_.add_option(
+  CLI::Option* option = app_->add_option(
       name,
       [name, apply = std::move(apply)](const CLI::results_t& values) {
         for (const std::string& v : values) {
@@ -153,20 +159,20 @@ CLI::Option* CommandLine::size(const std::string& name, Extent& target, std::uin
 }
 
 CLI::Option* CommandLine::flag(const std::string& name, bool& target, const std::string& help) {
-  return app_.add_flag(name, target, help);
+  return app_->add_flag(name, target, help);
 }
 
 void CommandLine::parse(int argc, char** argv) {
-  app_.set_help_flag("-h,--help", "this text");
+  app_->set_help_flag("-h,--help", "this text");
   try {
-    app_.parse(argc, argv);
+    app_->parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
-    std::fputs(app_.help().c_str(), stdout);
+    std::fputs(app_->help().c_str(), stdout);
     std::exit(std::fflush(stdout) == 0 && !std::ferror(stdout) ? 0 : 1);
   } catch (const CLI::ParseError& e) {
     fail(explained(e));
   }
-  const std::vector<std::string> extra = app_.remaining();
+  const std::vector<std::string> extra = app_->remaining();
   if (!extra.empty())
     fail(extra.front().starts_with("-") ? "unknown option " + quoted(extra.front())
                                         : "unexpected argument " + quoted(extra.front()) + " (options start with --)");
@@ -174,7 +180,7 @@ void CommandLine::parse(int argc, char** argv) {
 
 std::set<std::string> CommandLine::givenNames() const {
   std::set<std::string> names;
-  for (const CLI::Option* option : app_.get_options())
+  for (const CLI::Option* option : app_->get_options())
     if (option->count() > 0) names.insert(option->get_name());
   return names;
 }

@@ -4,14 +4,20 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
 #include <string_view>
 
-#include <CLI/CLI.hpp>
-
 #include "sao/plan.h"
+
+// CLI11 stays inside command_line.cpp: the header is heavy (tens of seconds per translation unit,
+// more under the sanitizers), and callers only pass option handles through.
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
 
 namespace sao::cli {
 
@@ -34,6 +40,7 @@ class CommandLine {
  public:
   // `description`: the paragraph under "usage: TOOL [options]"; `footer`: the text after the options.
   CommandLine(std::string tool, std::string description, std::string footer = {});
+  ~CommandLine();
   CommandLine(const CommandLine&) = delete;
   CommandLine& operator=(const CommandLine&) = delete;
 
@@ -66,13 +73,13 @@ class CommandLine {
   // bad option prints one line on stderr and exits 2.
   void parse(int argc, char** argv);
 
-  bool given(const std::string& name) const { return app_.count(name) > 0; }
+  bool given(const std::string& name) const;
   std::set<std::string> givenNames() const;  // every option on the command line
   [[noreturn]] void fail(const std::string& message) const { exitWithUsageError(tool_, message); }
 
  private:
   std::string tool_;
-  CLI::App app_;
+  std::unique_ptr<CLI::App> app_;
 };
 
 }  // namespace sao::cli
