@@ -7,8 +7,11 @@
 // operations and how host code fills the parameter block: docs/effect-math.md.
 //
 // Passes: linear_z (eq. 2) -> mips (Table 1, rotated grid) -> ao_sample (eq. 3-10 + 2x2
-// reconstruction) -> blur_h -> blur_v (separable bilateral blur). Camera space is right-handed,
-// the camera looks down -z, so geometry has z < 0; +0.0 in csz marks sky / no geometry.
+// reconstruction) -> blur_h -> blur_v (separable bilateral blur). With resolution_divisor d > 1,
+// ao_sample and the blurs run on the viewport over d (rounded up; reduced pixel p covers viewport
+// pixels [p*d, p*d + d)), blur_v_low replaces blur_v and upsample writes the full-size output.
+// Camera space is right-handed, the camera looks down -z, so geometry has z < 0; +0.0 in csz marks
+// sky / no geometry.
 
 // ---------------------------------------------------------------------------------------------
 // Settings (host side; the shaders only see block members computed from them)
@@ -25,6 +28,7 @@
 #pragma sao setting int   blur_stride         default=2     range=[1,4]            unit=px  "Pixels between bilateral blur taps"
 #pragma sao setting float blur_edge_sharpness default=10.0  range=[0,1000]         unit=1/m "Bilateral blur depth weight max(0, 1 - sharpness*|dz|): taps 1/sharpness apart in z get weight 0"
 #pragma sao setting float quad_edge_threshold default=0.02  range=[0,10]           unit=m   "2x2 reconstruction: quad neighbours average only when their z differ by less than this"
+#pragma sao setting int   resolution_divisor  default=1     values=[1,2,4]                  "AO resolution per axis: 1 full, 2 half, 4 quarter. ao_sample, the 2x2 reconstruction and the blurs run at the viewport over it (rounded up) and a depth-aware upsample writes the full-resolution output"
 
 // ---------------------------------------------------------------------------------------------
 // Presets (speed against accuracy; sao-bench measures both). Unlisted settings keep their
@@ -47,6 +51,7 @@
 #pragma sao constant uint SAO_PHASE_MUL=1270342730 "Eq. 8 rotation: 2*SAO_PHASE_MUL/2^32 = frac(10/(2*pi)), turning the hash times 10 radians into 2^-32 turns"
 #pragma sao constant int  SAO_DEPTH_MODE_PERSPECTIVE=0 "depth_mode: hardware depth of a perspective projection, z = c0/(d*c1 + c2) (eq. 2)"
 #pragma sao constant int  SAO_DEPTH_MODE_ORTHOGRAPHIC=1 "depth_mode: hardware depth of an orthographic projection, z = d*c1 + c2"
+#pragma sao constant float SAO_UPSAMPLE_Z_SHARPNESS=16.0 "upsample depth weight max(0, 1 - SHARPNESS*|z - z_low|/|z|): low-resolution texels 1/16 (6.25%) apart in relative z get weight 0"
 #pragma sao constant int  SAO_DEPTH_MODE_LINEAR=2 "depth_mode: the input already holds linear camera-space z (R32F), z = d*c1 + c2 (normally c1 = 1, c2 = 0)"
 
 // ---------------------------------------------------------------------------------------------
@@ -65,8 +70,9 @@
 #pragma sao resource normals   kind=input  format=rgba16f when=NORMALS_SUPPLIED "Camera-space normals in .xyz (components in [-1,1]), same size as depth"
 #pragma sao resource csz       kind=image  format=r32f mips=auto extent=input "Camera-space z MIP chain (z < 0, +0.0 = sky), the depth input's size including the guard band"
 #pragma sao resource csz2      kind=image  format=r32f mips=auto extent=input when=TWO_LAYER "Camera-space z MIP chain of the second layer"
-#pragma sao resource ao_raw    kind=image  format=rg32f "x: visibility A after the 2x2 reconstruction, y: key = camera-space z (+0.0 = sky)"
-#pragma sao resource ao_blur_h kind=image  format=rg32f "x: A after the horizontal bilateral blur, y: key z"
+#pragma sao resource ao_raw    kind=image  format=rg32f divide_by=resolution_divisor "x: visibility A after the 2x2 reconstruction, y: key = camera-space z (+0.0 = sky); the viewport over resolution_divisor"
+#pragma sao resource ao_blur_h kind=image  format=rg32f divide_by=resolution_divisor "x: A after the horizontal bilateral blur, y: key z"
+#pragma sao resource ao_low    kind=image  format=rg32f divide_by=resolution_divisor "Reduced resolution only: (A, key z) after both blurs, the upsample's input"
 #pragma sao resource ao        kind=output format=r16f "Final ambient visibility A in [0,1] (1 = unoccluded), linear"
 
 // ---------------------------------------------------------------------------------------------
@@ -79,11 +85,12 @@
 #include "include/sao_spiral.glsl"
 #include "include/sao_estimator.glsl"
 #include "include/sao_blur.glsl"
+#include "include/sao_upsample.glsl"
 
 // ---------------------------------------------------------------------------------------------
 // Parameter block: filled by host code from Settings + Camera + extents (docs/effect-math.md,
 // "Parameter block"). Lengths are camera-space (view) units: metres times metersToViewUnits.
-// std140 offsets in brackets; 160 bytes, no implicit padding.
+// std140 offsets in brackets; 176 bytes, the last 4 std140's padding to a multiple of 16.
 // ---------------------------------------------------------------------------------------------
 #pragma sao block SaoParams
 layout(std140, binding = 0) uniform SaoParams {
@@ -111,8 +118,10 @@ layout(std140, binding = 0) uniform SaoParams {
     float blur_edge_sharpness;  // [132] bilateral depth weight scale, 1/view units
     int   blur_radius;          // [136] R, taps each side, 0..SAO_MAX_BLUR_RADIUS
     int   blur_stride;          // [140] pixels between blur taps, >= 1
-    ivec2 ao_size;              // [144] AO buffer size (= size of ao_raw, ao_blur_h, ao)
+    ivec2 ao_size;              // [144] the viewport: size of ao (and of ao_raw, ao_blur_h when ao_divisor = 1)
     ivec2 guard;                // [152] guard band: AO pixel p is csz / depth texel p + guard
+    ivec2 input_offset;         // [160] texel of depth, depth2 and normals that holds csz texel (0, 0): the region inside a larger texture
+    int   ao_divisor;           // [168] resolution_divisor d: reduced AO pixel p stands for viewport pixel min(p*d + d/2, ao_size - 1)
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -124,10 +133,11 @@ void sao_linear_z_main()
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, imageSize(out_csz))))
         return;
-    float z = sao_z_from_depth(texelFetch(in_depth, p, 0).r, clip_info, depth_mode, far_dir, far_lim);
+    ivec2 t = p + input_offset;  // the host checked that the region lies inside the textures
+    float z = sao_z_from_depth(texelFetch(in_depth, t, 0).r, clip_info, depth_mode, far_dir, far_lim);
     imageStore(out_csz, p, vec4(z, 0.0, 0.0, 0.0));
 #if TWO_LAYER
-    float z2 = sao_z_from_depth(texelFetch(in_depth2, p, 0).r, clip_info, depth_mode, far_dir, far_lim);
+    float z2 = sao_z_from_depth(texelFetch(in_depth2, t, 0).r, clip_info, depth_mode, far_dir, far_lim);
     imageStore(out_csz2, p, vec4(z2, 0.0, 0.0, 0.0));
 #endif
 }
@@ -157,16 +167,26 @@ void sao_mips_main()
 // per AO pixel; invocations outside the AO buffer take part in the barriers as sky.
 // ---------------------------------------------------------------------------------------------
 #pragma sao pass ao_sample entry=sao_ao_main local=8x8 reads=csz,csz2,normals writes=ao_raw variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY "Obscurance from s spiral taps over the z hierarchy (eq. 1, 3-10), 2x2 bilateral reconstruction; writes (A, key z)"
+#if SAO_TARGET_VULKAN
+// The tap loop's trip count (= samples) as a push constant: Mesa lavapipe 22.3 keeps ~0.4 MB of
+// host memory per dispatch of a loop whose trip count comes from the uniform block its body also
+// reads (docs/ROBUSTNESS.md, issue 19). The Vulkan backend pushes the block's samples.
+layout(push_constant) uniform SaoLoopCounts { int samples; } sao_loop;
+#define SAO_TAP_COUNT sao_loop.samples
+#else
+#define SAO_TAP_COUNT samples
+#endif
 shared float sao_quad_a[gl_WorkGroupSize.x * gl_WorkGroupSize.y];  // A per invocation
 shared float sao_quad_h[gl_WorkGroupSize.x * gl_WorkGroupSize.y];  // A after the horizontal step
 shared float sao_quad_z[gl_WorkGroupSize.x * gl_WorkGroupSize.y];  // key z (+0.0 = sky / outside)
 
 void sao_ao_main()
 {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);  // AO pixel
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);  // AO pixel (of the reduced image when ao_divisor > 1)
     bool inside = all(lessThan(p, min(ao_size, imageSize(out_ao_raw))));
     ivec2 size0 = textureSize(in_csz, 0);
-    ivec2 c = clamp(p + guard, ivec2(0), size0 - 1);  // csz level-0 texel
+    ivec2 f = sao_low_representative(p, ao_divisor, ao_size);  // its viewport pixel (p itself at d = 1)
+    ivec2 c = clamp(f + guard, ivec2(0), size0 - 1);  // csz level-0 texel
     float zc = texelFetch(in_csz, c, 0).r;
 
     float A = 1.0;
@@ -174,13 +194,13 @@ void sao_ao_main()
     if (inside && !sao_is_sky(zc)) {
         vec3 C = sao_position(vec2(c) + 0.5, zc, proj_info, ortho);
 #if NORMALS_SUPPLIED
-        vec3 n = sao_decode_normal(texelFetch(in_normals, c, 0).xyz);
+        vec3 n = sao_decode_normal(texelFetch(in_normals, c + input_offset, 0).xyz);
 #else
         vec3 n = sao_reconstruct_normal(in_csz, c, C, proj_info, ortho);
 #endif
         float r_px = sao_screen_radius(radius, proj_scale, zc, ortho);
         uint phase = sao_pixel_phase(uvec2(p));
-        int s = clamp(samples, 1, SAO_MAX_SAMPLES);
+        int s = clamp(SAO_TAP_COUNT, 1, SAO_MAX_SAMPLES);
         float sum = 0.0;
         for (int i = 0; i < s; ++i) {
             float h;
@@ -242,7 +262,7 @@ void sao_blur_h_main()
 // ---------------------------------------------------------------------------------------------
 // Pass 5: vertical bilateral blur; writes the final A.
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass blur_v entry=sao_blur_v_main local=8x8 reads=ao_blur_h writes=ao alias_when=blur_radius==0:ao_blur_h=ao_raw "Vertical depth-aware Gaussian blur; writes the final visibility A, rounded to binary16 in the shader"
+#pragma sao pass blur_v entry=sao_blur_v_main local=8x8 reads=ao_blur_h writes=ao skip_when=resolution_divisor>1 alias_when=blur_radius==0:ao_blur_h=ao_raw "Full resolution only: vertical depth-aware Gaussian blur; writes the final visibility A, rounded to binary16 in the shader"
 void sao_blur_v_main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -251,5 +271,102 @@ void sao_blur_v_main()
     vec2 r = sao_bilateral_blur(in_ao_blur_h, p, ivec2(0, 1), blur_radius, blur_stride,
                                 blur_edge_sharpness, blur_weights_1_4, blur_weights_5_8);
     imageStore(out_ao, p, vec4(sao_round_to_half(r.x), 0.0, 0.0, 1.0));
+}
+#pragma sao end
+
+// ---------------------------------------------------------------------------------------------
+// Pass 6 (reduced resolution only): vertical bilateral blur into the reduced (A, key) image.
+// ---------------------------------------------------------------------------------------------
+#pragma sao pass blur_v_low entry=sao_blur_v_low_main local=8x8 reads=ao_blur_h writes=ao_low skip_when=resolution_divisor==1 alias_when=blur_radius==0:ao_blur_h=ao_raw "Reduced resolution only: vertical depth-aware Gaussian blur into (A, key z) for the upsample"
+void sao_blur_v_low_main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(out_ao_low))))
+        return;
+    vec2 r = sao_bilateral_blur(in_ao_blur_h, p, ivec2(0, 1), blur_radius, blur_stride,
+                                blur_edge_sharpness, blur_weights_1_4, blur_weights_5_8);
+    imageStore(out_ao_low, p, vec4(r, 0.0, 0.0));
+}
+#pragma sao end
+
+// ---------------------------------------------------------------------------------------------
+// Pass 7 (reduced resolution only): joint bilateral upsample of (A, key z) to the viewport,
+// guided by csz level 0; writes the final A, rounded to binary16 in the shader.
+// ---------------------------------------------------------------------------------------------
+#pragma sao pass upsample entry=sao_upsample_main local=8x8 reads=ao_low,csz writes=ao skip_when=resolution_divisor==1 "Reduced resolution only: depth-aware upsample to the full-resolution output (bilinear x relative-z weights over the 2x2 nearest low texels, else the nearest in z of the 3x3)"
+// The low texels a work group reads, loaded once into shared memory: with d = 2 or 4, the 2x2
+// texels of every pixel and the 3x3 fallback around it lie in the (local / 2 + 2)^2 texels from
+// the group's first q0 on (docs/effect-math.md 6.4).
+const uvec2 SAO_UP_TILE = gl_WorkGroupSize.xy / 2u + 2u;
+shared vec2 sao_up_tile[SAO_UP_TILE.x * SAO_UP_TILE.y];
+
+vec2 sao_up_low(ivec2 q, ivec2 origin)
+{
+    ivec2 k = q - origin;
+    return sao_up_tile[k.y * int(SAO_UP_TILE.x) + k.x];
+}
+
+// A at viewport pixel x (csz z): the 2x2 low texels whose representative pixels bracket x, weighted
+// bilinearly by x's place between those pixels times the depth weight; when none matches x's z (a
+// silhouette, or a thin object the reduced image missed), the A of the texel nearest in z among
+// the 3x3 around the one holding x (first in row order on ties), so no average of the two sides
+// makes a halo; all sky gives 1. d is a power of two: shifts stand for its divisions and products.
+float sao_upsample(ivec2 x, float z, int d, ivec2 last, ivec2 origin)
+{
+    if (sao_is_sky(z))
+        return 1.0;
+    int sh = findMSB(d);
+    ivec2 q0 = min(max(x - (d >> 1), ivec2(0)) >> sh, last);
+    ivec2 q1 = min(q0 + 1, last);
+    ivec2 r0 = sao_low_representative(q0, d, ao_size);
+    ivec2 r1 = sao_low_representative(q1, d, ao_size);
+    vec2 t = clamp(vec2(x - r0) / vec2(max(r1 - r0, ivec2(1))), 0.0, 1.0);
+    float k = SAO_UPSAMPLE_Z_SHARPNESS / -z;
+    vec2 s00 = sao_up_low(q0, origin);
+    vec2 s10 = sao_up_low(ivec2(q1.x, q0.y), origin);
+    vec2 s01 = sao_up_low(ivec2(q0.x, q1.y), origin);
+    vec2 s11 = sao_up_low(q1, origin);
+    float w00 = ((1.0 - t.x) * (1.0 - t.y)) * sao_upsample_depth_weight(z, s00.y, k);
+    float w10 = (t.x * (1.0 - t.y)) * sao_upsample_depth_weight(z, s10.y, k);
+    float w01 = ((1.0 - t.x) * t.y) * sao_upsample_depth_weight(z, s01.y, k);
+    float w11 = (t.x * t.y) * sao_upsample_depth_weight(z, s11.y, k);
+    float wsum = ((w00 + w10) + w01) + w11;
+    if (wsum > 0.0)
+        return (((w00 * s00.x + w10 * s10.x) + w01 * s01.x) + w11 * s11.x) / wsum;
+    ivec2 c = min(x >> sh, last);
+    float a = 1.0;
+    float best = -1.0;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            vec2 s = sao_up_low(clamp(c + ivec2(dx, dy), ivec2(0), last), origin);
+            float e = abs(z - s.y);
+            if (!sao_is_sky(s.y) && (best < 0.0 || e < best)) {
+                best = e;
+                a = s.x;
+            }
+        }
+    return a;
+}
+
+void sao_upsample_main()
+{
+    ivec2 x = ivec2(gl_GlobalInvocationID.xy);
+    int d = ao_divisor;
+    ivec2 last = textureSize(in_ao_low, 0) - 1;
+    // The group's smallest q0 (q0 grows with x); every texel it reads is clamped to at least it.
+    ivec2 first = ivec2(gl_WorkGroupID.xy * gl_WorkGroupSize.xy);
+    ivec2 origin = min(max(first - (d >> 1), ivec2(0)) >> findMSB(d), last);
+    uint count = SAO_UP_TILE.x * SAO_UP_TILE.y;
+    for (uint i = gl_LocalInvocationIndex; i < count; i += gl_WorkGroupSize.x * gl_WorkGroupSize.y) {
+        ivec2 q = min(origin + ivec2(int(i % SAO_UP_TILE.x), int(i / SAO_UP_TILE.x)), last);
+        sao_up_tile[i] = texelFetch(in_ao_low, q, 0).xy;
+    }
+    memoryBarrierShared();
+    barrier();  // every invocation reaches it: the size test comes after
+    if (any(greaterThanEqual(x, imageSize(out_ao))))
+        return;
+    float z = texelFetch(in_csz, x + guard, 0).r;
+    float a = sao_upsample(x, z, d, last, origin);
+    imageStore(out_ao, x, vec4(sao_round_to_half(a), 0.0, 0.0, 1.0));
 }
 #pragma sao end

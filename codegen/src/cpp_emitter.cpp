@@ -202,12 +202,20 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
   for (const auto& s : e.settings) h << "  " << s.name << ",\n";
   h << "};\n"
     << "struct SettingInfo {\n  std::string_view name;\n  SettingType type;\n  double defaultValue;\n"
-    << "  double minValue;\n  double maxValue;\n  std::string_view unit;\n  std::string_view doc;\n};\n"
-    << "inline constexpr std::array<SettingInfo, " << e.settings.size() << "> kSettings = {{\n";
+    << "  double minValue;\n  double maxValue;\n  std::string_view unit;\n  std::string_view doc;\n"
+    << "  std::span<const double> allowedValues;  // values=: the only values accepted; empty: the whole range\n};\n";
+  for (const auto& s : e.settings) {
+    if (s.allowed.empty()) continue;
+    h << "inline constexpr double kAllowed_" << s.name << "[] = {";
+    for (size_t i = 0; i < s.allowed.size(); ++i) h << (i ? ", " : "") << number(s.allowed[i]);
+    h << "};\n";
+  }
+  h << "inline constexpr std::array<SettingInfo, " << e.settings.size() << "> kSettings = {{\n";
   for (const auto& s : e.settings) {
     const char* t = s.type == ScalarType::Float ? "Float" : s.type == ScalarType::Int ? "Int" : "Bool";
     h << "  {" << quoted(s.name) << ", SettingType::" << t << ", " << number(s.defaultValue) << ", "
-      << number(s.minValue) << ", " << number(s.maxValue) << ", " << quoted(s.unit) << ", " << quoted(s.doc) << "},\n";
+      << number(s.minValue) << ", " << number(s.maxValue) << ", " << quoted(s.unit) << ", " << quoted(s.doc) << ", "
+      << (s.allowed.empty() ? std::string("{}") : "kAllowed_" + s.name) << "},\n";
   }
   h << "}};\n"
     << "// Reads or writes one setting as a double (ints and bools exactly).\n"
@@ -295,12 +303,13 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     << "  bool inputExtent;           // true: the depth input's extent (viewport + guard band); false: the AO extent\n"
     << "  std::uint32_t scaleDenominator;  // extent = base extent / scaleDenominator\n"
     << "  std::int32_t whenVariant;   // exists only when this variant is non-zero; -1: always\n"
-    << "  std::string_view doc;\n};\n"
+    << "  std::string_view doc;\n"
+    << "  std::int32_t divideBy;  // a SettingId: the AO extent over that int setting, rounded up; -1: none\n};\n"
     << "inline constexpr std::array<ResourceInfo, " << e.resources.size() << "> kResources = {{\n";
   for (const auto& r : e.resources)
     h << "  {" << quoted(r.name) << ", " << kindName(r.kind) << ", " << formatName(r.format) << ", "
       << (r.fullMipChain ? "true" : "false") << ", " << (r.inputExtent ? "true" : "false") << ", " << r.scaleDenominator << ", " << r.whenVariant << ", "
-      << quoted(r.doc) << "},\n";
+      << quoted(r.doc) << ", " << r.divideBy << "},\n";
   h << "}};\n\n";
 
   // --- passes

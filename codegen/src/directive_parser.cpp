@@ -171,9 +171,9 @@ class Parser {
   }
 
   void parseSetting(const Directive& d) {
-    auto a = attrs(d, {"default", "range", "unit"});
+    auto a = attrs(d, {"default", "range", "values", "unit"});
     if (d.words.size() != 2) {
-      diags_.error(d.loc, "expected '#pragma sao setting TYPE NAME default=V range=[MIN,MAX] [unit=U] \"doc\"'");
+      diags_.error(d.loc, "expected '#pragma sao setting TYPE NAME default=V range=[MIN,MAX]|values=[A,B,...] [unit=U] \"doc\"'");
       return;
     }
     Setting s;
@@ -196,7 +196,7 @@ class Parser {
     }
     const std::string& def = a["default"];
     if (s.type == ScalarType::Bool) {
-      if (a.count("range")) diags_.error(d.loc, "bool setting '" + s.name + "' takes no range");
+      if (a.count("range") || a.count("values")) diags_.error(d.loc, "bool setting '" + s.name + "' takes no range or values");
       if (def != "true" && def != "false") {
         diags_.error(d.loc, "default '" + def + "' of bool setting '" + s.name + "' is not true or false");
         return;
@@ -205,6 +205,10 @@ class Parser {
       s.minValue = 0;
       s.maxValue = 1;
       effect_.settings.push_back(s);
+      return;
+    }
+    if (a.count("values")) {
+      parseAllowedValues(d, s, a);
       return;
     }
     if (!a.count("range")) {
@@ -229,6 +233,40 @@ class Parser {
       diags_.error(d.loc, "default " + def + " of setting '" + s.name + "' is outside its range " + r);
       return;
     }
+    effect_.settings.push_back(s);
+  }
+
+  // values=[A,B,...] of an int setting: the only values it takes (a range would let the values
+  // between them through), ascending; the range is [A, last].
+  void parseAllowedValues(const Directive& d, Setting& s, std::map<std::string, std::string>& a) {
+    const std::string& text = a["values"];
+    if (s.type != ScalarType::Int || a.count("range")) {
+      diags_.error(d.loc, "values= of setting '" + s.name + "' is for int settings without range=");
+      return;
+    }
+    const auto parts = text.size() >= 2 && text.front() == '[' && text.back() == ']'
+                           ? splitList(text.substr(1, text.size() - 2))
+                           : std::vector<std::string>{};
+    if (parts.empty()) {
+      diags_.error(d.loc, "values of setting '" + s.name + "' must be [A,B,...], got '" + text + "'");
+      return;
+    }
+    for (const auto& part : parts) {
+      double v = 0;
+      if (!readValue(d, s, part, v, "value")) return;
+      if (!s.allowed.empty() && v <= s.allowed.back()) {
+        diags_.error(d.loc, "values of setting '" + s.name + "' must be ascending and distinct, got '" + text + "'");
+        return;
+      }
+      s.allowed.push_back(v);
+    }
+    if (!readValue(d, s, a["default"], s.defaultValue, "default")) return;
+    if (std::find(s.allowed.begin(), s.allowed.end(), s.defaultValue) == s.allowed.end()) {
+      diags_.error(d.loc, "default " + a["default"] + " of setting '" + s.name + "' is not one of its values " + text);
+      return;
+    }
+    s.minValue = s.allowed.front();
+    s.maxValue = s.allowed.back();
     effect_.settings.push_back(s);
   }
 
@@ -375,9 +413,9 @@ class Parser {
   }
 
   void parseResource(const Directive& d) {
-    auto a = attrs(d, {"kind", "format", "mips", "scale", "when", "extent"});
+    auto a = attrs(d, {"kind", "format", "mips", "scale", "when", "extent", "divide_by"});
     if (d.words.size() != 1) {
-      diags_.error(d.loc, "expected '#pragma sao resource NAME kind=K format=F [mips=1|auto] [scale=1/N] [when=V] \"doc\"'");
+      diags_.error(d.loc, "expected '#pragma sao resource NAME kind=K format=F [mips=1|auto] [scale=1/N] [divide_by=SETTING] [when=V] \"doc\"'");
       return;
     }
     Resource r;
@@ -432,6 +470,7 @@ class Parser {
       return;
     }
     r.inputExtent = extent == "input";
+    if (a.count("divide_by") && !parseDivideBy(d, r, a["divide_by"])) return;
     if (a.count("when")) {
       r.whenVariant = findVariant(a["when"]);
       if (r.whenVariant < 0) {
@@ -440,6 +479,26 @@ class Parser {
       }
     }
     effect_.resources.push_back(r);
+  }
+
+  // divide_by=SETTING: an effect-owned image of the AO extent whose extent is that over the value
+  // of an int setting declared earlier, rounded up (the reduced-resolution AO images).
+  bool parseDivideBy(const Directive& d, Resource& r, const std::string& name) {
+    int found = -1;
+    for (size_t i = 0; i < effect_.settings.size(); ++i)
+      if (effect_.settings[i].name == name) found = static_cast<int>(i);
+    std::string why;
+    if (found < 0) why = "names setting '" + name + "', which is not declared before it";
+    else if (effect_.settings[found].type != ScalarType::Int || effect_.settings[found].minValue < 1)
+      why = "takes an int setting whose values are at least 1, not '" + name + "'";
+    else if (r.kind != ResourceKind::Image || r.inputExtent || r.scaleDenominator != 1 || r.fullMipChain)
+      why = "is only for single-level kind=image resources of the AO extent without scale=";
+    if (!why.empty()) {
+      diags_.error(d.loc, "divide_by of resource '" + r.name + "' " + why);
+      return false;
+    }
+    r.divideBy = found;
+    return true;
   }
 
   void parseBlock(const Directive& d, size_t next) {

@@ -17,6 +17,7 @@ struct Setting {
   double defaultValue = 0;
   double minValue = 0;
   double maxValue = 1;
+  std::vector<double> allowed;  // values=[a,b,...] (int only): the only values accepted, ascending
   std::string unit;
   std::string doc;
 };
@@ -62,6 +63,7 @@ struct Resource {
   bool fullMipChain = false;  // mips=auto
   bool inputExtent = false;   // extent=input: the depth input's size (viewport + guard band)
   int scaleDenominator = 1;   // scale=1/N of the base extent
+  int divideBy = -1;          // divide_by=SETTING: the AO extent over that int setting, rounded up
   int whenVariant = -1;       // exists only when this variant is non-zero
   std::string doc;
 };

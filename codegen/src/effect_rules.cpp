@@ -33,7 +33,44 @@ std::string valueText(const Setting& s, double v) {
 }
 
 std::string rangeText(const Setting& s) {
+  if (!s.allowed.empty()) {
+    std::string t;
+    for (double v : s.allowed) t += (t.empty() ? "" : ",") + valueText(s, v);
+    return "{" + t + "}";
+  }
   return "[" + valueText(s, s.minValue) + "," + valueText(s, s.maxValue) + "]";
+}
+
+bool allowedValue(const Setting& s, double v) {
+  if (v < s.minValue || v > s.maxValue) return false;
+  return s.allowed.empty() || std::find(s.allowed.begin(), s.allowed.end(), v) != s.allowed.end();
+}
+
+bool conditionHolds(const SettingCondition& c, double v) {
+  switch (c.op) {
+    case CompareOp::Eq: return v == c.value;
+    case CompareOp::Ne: return v != c.value;
+    case CompareOp::Lt: return v < c.value;
+    case CompareOp::Le: return v <= c.value;
+    case CompareOp::Gt: return v > c.value;
+    case CompareOp::Ge: return v >= c.value;
+  }
+  return false;
+}
+
+// The values of an int or bool setting a condition can meet; a very wide int range is sampled at
+// its ends and around the condition's literal, which is where the answer can change.
+std::vector<double> conditionValues(const Setting& s, const SettingCondition& c) {
+  if (!s.allowed.empty()) return s.allowed;
+  if (s.maxValue - s.minValue <= 1024) {
+    std::vector<double> all;
+    for (double v = s.minValue; v <= s.maxValue; ++v) all.push_back(v);
+    return all;
+  }
+  std::vector<double> some{s.minValue, s.maxValue};
+  for (double v : {c.value - 1, c.value, c.value + 1})
+    if (v >= s.minValue && v <= s.maxValue) some.push_back(v);
+  return some;
 }
 
 // A literal of the setting's type inside its range; `owner` starts each message.
@@ -55,8 +92,9 @@ bool parseSettingValue(const Setting& s, const std::string& text, const SourceLo
                          (s.type == ScalarType::Bool ? " (true or false)" : ""));
     return false;
   }
-  if (out < s.minValue || out > s.maxValue) {
-    diags.error(loc, owner + ": " + text + " is outside the range " + rangeText(s) + " of setting '" + s.name + "'");
+  if (!allowedValue(s, out)) {
+    diags.error(loc, owner + ": " + text + (s.allowed.empty() ? " is outside the range " : " is not one of the values ") +
+                         rangeText(s) + " of setting '" + s.name + "'");
     return false;
   }
   return true;
@@ -92,7 +130,7 @@ bool parseCondition(const Effect& e, const std::string& text, const SourceLoc& l
 }
 
 bool sameExtent(const Resource& a, const Resource& b) {
-  return a.inputExtent == b.inputExtent && a.scaleDenominator == b.scaleDenominator;
+  return a.inputExtent == b.inputExtent && a.scaleDenominator == b.scaleDenominator && a.divideBy == b.divideBy;
 }
 
 bool writes(const Pass& p, int r) { return std::find(p.writes.begin(), p.writes.end(), r) != p.writes.end(); }
@@ -211,11 +249,24 @@ void resolvePassRules(const Effect& e, Pass& p, const SourceLoc& loc, const std:
 void checkPassRules(const Effect& e, Diagnostics& diags) {
   for (size_t i = 0; i < e.passes.size(); ++i) {
     const Pass& p = e.passes[i];
+    // An output's writer may be skipped only where another writer of it runs (e.g. the full- and
+    // reduced-resolution ends of the effect, skipped on complementary values of one setting).
     if (p.skipWhen)
       for (int r : p.writes)
         if (e.resources[r].kind == ResourceKind::Output)
-          diags.error(p.loc, "pass '" + p.name + "' writes output '" + e.resources[r].name + "' but has skip_when=" +
-                                 p.skipWhen->text + ": the output would be left unwritten");
+          for (double v : conditionValues(e.settings[p.skipWhen->setting], *p.skipWhen)) {
+            if (!conditionHolds(*p.skipWhen, v)) continue;
+            bool covered = false;
+            for (const Pass& q : e.passes)
+              if (&q != &p && writes(q, r) &&
+                  (!q.skipWhen || (q.skipWhen->setting == p.skipWhen->setting && !conditionHolds(*q.skipWhen, v))))
+                covered = true;
+            if (!covered) {
+              diags.error(p.loc, "pass '" + p.name + "' writes output '" + e.resources[r].name + "' but has skip_when=" +
+                                     p.skipWhen->text + ": the output would be left unwritten");
+              break;
+            }
+          }
     // Each alias stands in for a skipped earlier writer, from a resource an earlier pass writes anyway.
     for (const auto& a : p.aliases) {
       bool skippedWriter = false, servingWritten = e.resources[a.serving].kind == ResourceKind::Input;
@@ -242,6 +293,7 @@ void checkPassRules(const Effect& e, Diagnostics& diags) {
         last = &e.passes[j];
       }
       if (!last || always) continue;
+      if (p.skipWhen && *p.skipWhen == *last->skipWhen) continue;  // skipped together with its writer
       if (p.aliasWhen && *p.aliasWhen == *last->skipWhen && aliasOf(p.aliases, r)) continue;
       diags.error(p.loc, "pass '" + p.name + "' reads '" + e.resources[r].name + "', which pass '" + last->name +
                              "' does not write when " + last->skipWhen->text + "; add alias_when=" +

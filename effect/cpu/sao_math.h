@@ -288,6 +288,56 @@ void bilateralBlur(const Image<T>& src, int x, int y, int dx, int dy, const Bloc
   outKey = centreZ;
 }
 
+// ---- sao_upsample.glsl
+
+// sao_low_representative, one axis: the viewport pixel reduced pixel q stands for.
+inline int lowRepresentative(int q, int d, int fullSize) { return std::min(q * d + (d >> 1), fullSize - 1); }
+
+template <typename T>
+T upsampleDepthWeight(T z, T zLow, T k) {
+  if (isSky(zLow)) return T(0);
+  return glslMax(T(0), T(1) - k * std::abs(z - zLow));
+}
+
+// sao_upsample: A at viewport pixel (x, y) with csz z from the reduced (A, key) image `low`;
+// d is 1, 2 or 4 (shifts as in the shader).
+template <typename T>
+T upsample(const Image<T>& low, int x, int y, T z, int d, int fullW, int fullH) {
+  if (isSky(z)) return T(1);
+  const int sh = findMSB(d);
+  const int lastX = low.w - 1, lastY = low.h - 1;
+  const int q0x = std::min(std::max(x - (d >> 1), 0) >> sh, lastX);
+  const int q0y = std::min(std::max(y - (d >> 1), 0) >> sh, lastY);
+  const int q1x = std::min(q0x + 1, lastX), q1y = std::min(q0y + 1, lastY);
+  const int r0x = lowRepresentative(q0x, d, fullW), r0y = lowRepresentative(q0y, d, fullH);
+  const int r1x = lowRepresentative(q1x, d, fullW), r1y = lowRepresentative(q1y, d, fullH);
+  const T tx = std::clamp(T(x - r0x) / T(std::max(r1x - r0x, 1)), T(0), T(1));
+  const T ty = std::clamp(T(y - r0y) / T(std::max(r1y - r0y, 1)), T(0), T(1));
+  const T k = T(gen::SAO_UPSAMPLE_Z_SHARPNESS) / (-z);
+  const T w00 = ((T(1) - tx) * (T(1) - ty)) * upsampleDepthWeight(z, low.at(q0x, q0y, 1), k);
+  const T w10 = (tx * (T(1) - ty)) * upsampleDepthWeight(z, low.at(q1x, q0y, 1), k);
+  const T w01 = ((T(1) - tx) * ty) * upsampleDepthWeight(z, low.at(q0x, q1y, 1), k);
+  const T w11 = (tx * ty) * upsampleDepthWeight(z, low.at(q1x, q1y, 1), k);
+  const T wsum = ((w00 + w10) + w01) + w11;
+  if (wsum > T(0))
+    return (((w00 * low.at(q0x, q0y, 0) + w10 * low.at(q1x, q0y, 0)) + w01 * low.at(q0x, q1y, 0)) +
+            w11 * low.at(q1x, q1y, 0)) /
+           wsum;
+  const int cx = std::min(x >> sh, lastX), cy = std::min(y >> sh, lastY);
+  T a = T(1), best = T(-1);
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int qx = std::clamp(cx + dx, 0, lastX), qy = std::clamp(cy + dy, 0, lastY);
+      const T zl = low.at(qx, qy, 1);
+      const T e = std::abs(z - zl);
+      if (!isSky(zl) && (best < T(0) || e < best)) {
+        best = e;
+        a = low.at(qx, qy, 0);
+      }
+    }
+  return a;
+}
+
 // sao_round_to_half (float only: the shader's own rounding).
 inline float roundToHalf(float x) {
   x = std::clamp(x, 0.0f, 1.0f);

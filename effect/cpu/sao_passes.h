@@ -54,8 +54,10 @@ T texel(const DepthImage& d, int x, int y) {
   return static_cast<T>(d.value(std::uint32_t(x), std::uint32_t(y)));
 }
 
-inline bool sameExtent(const DepthImage& d, int w, int h) {
-  return d.extent.width == std::uint32_t(w) && d.extent.height == std::uint32_t(h);
+// Whether `d` holds w x h texels from (ox, oy) on (the region the host checked; in 64 bits).
+inline bool holdsRegion(const DepthImage& d, int ox, int oy, int w, int h) {
+  return ox >= 0 && oy >= 0 && std::int64_t(ox) + w <= std::int64_t(d.extent.width) &&
+         std::int64_t(oy) + h <= std::int64_t(d.extent.height);
 }
 
 // Pass linear_z: one invocation per depth texel.
@@ -69,13 +71,15 @@ Status linearZPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<co
   Image<T>& csz = ctx.image(*out);
   Image<T>* csz2 = twoLayer ? &ctx.image(*out2) : nullptr;
   const int w = csz.w, h = csz.h;
-  if (ctx.in.depth == nullptr || !sameExtent(*ctx.in.depth, w, h) ||
-      (twoLayer && (ctx.in.depth2 == nullptr || !sameExtent(*ctx.in.depth2, w, h))))
-    return passError(d, "needs the depth input(s) at csz's extent " + std::to_string(w) + "x" + std::to_string(h));
+  const int ox = ctx.P.input_offset.x, oy = ctx.P.input_offset.y;  // texel p + input_offset
+  if (ctx.in.depth == nullptr || !holdsRegion(*ctx.in.depth, ox, oy, w, h) ||
+      (twoLayer && (ctx.in.depth2 == nullptr || !holdsRegion(*ctx.in.depth2, ox, oy, w, h))))
+    return passError(d, "needs the depth input(s) to hold csz's extent " + std::to_string(w) + "x" +
+                            std::to_string(h) + " at offset (" + std::to_string(ox) + ", " + std::to_string(oy) + ")");
   parallelFor(h, ctx.threads, [&](int y) {
     for (int x = 0; x < w; ++x) {
-      csz.at(x, y) = zFromDepth(texel<T>(*ctx.in.depth, x, y), ctx.P);
-      if (twoLayer) csz2->at(x, y) = zFromDepth(texel<T>(*ctx.in.depth2, x, y), ctx.P);
+      csz.at(x, y) = zFromDepth(texel<T>(*ctx.in.depth, x + ox, y + oy), ctx.P);
+      if (twoLayer) csz2->at(x, y) = zFromDepth(texel<T>(*ctx.in.depth2, x + ox, y + oy), ctx.P);
     }
   });
   return Status::success();
@@ -125,8 +129,11 @@ class AoSampleInvocation {
   void operator()(int px, int py, T& A, T& key) const {
     const Image<T>& z0 = csz_[0];
     const bool inside = px < std::min(P_.ao_size.x, aoRaw_.w) && py < std::min(P_.ao_size.y, aoRaw_.h);
-    const int cx = std::clamp(px + P_.guard.x, 0, z0.w - 1);
-    const int cy = std::clamp(py + P_.guard.y, 0, z0.h - 1);
+    // The viewport pixel the (reduced) AO pixel stands for: itself at divisor 1.
+    const int fx = lowRepresentative(px, P_.ao_divisor, P_.ao_size.x);
+    const int fy = lowRepresentative(py, P_.ao_divisor, P_.ao_size.y);
+    const int cx = std::clamp(fx + P_.guard.x, 0, z0.w - 1);
+    const int cy = std::clamp(fy + P_.guard.y, 0, z0.h - 1);
     const T zc = z0.at(cx, cy);
     A = T(1);
     key = T(0);
@@ -135,10 +142,10 @@ class AoSampleInvocation {
     const Vec3<T> C = position(T(cx) + T(0.5), T(cy) + T(0.5), zc, P_);
     Vec3<T> n;
     if (normalsSupplied_) {
-      const FloatImage& ni = *in_.normals;
-      n = decodeNormal(Vec3<T>{T(quantizeHalf(ni.at(std::uint32_t(cx), std::uint32_t(cy), 0))),
-                               T(quantizeHalf(ni.at(std::uint32_t(cx), std::uint32_t(cy), 1))),
-                               T(quantizeHalf(ni.at(std::uint32_t(cx), std::uint32_t(cy), 2)))});
+      const FloatImage& ni = *in_.normals;  // texel c + input_offset (inside: checked by the host)
+      const auto nx = std::uint32_t(cx + P_.input_offset.x), ny = std::uint32_t(cy + P_.input_offset.y);
+      n = decodeNormal(Vec3<T>{T(quantizeHalf(ni.at(nx, ny, 0))), T(quantizeHalf(ni.at(nx, ny, 1))),
+                               T(quantizeHalf(ni.at(nx, ny, 2)))});
     } else {
       n = reconstructNormal(z0, cx, cy, C, P_);
     }
@@ -267,6 +274,36 @@ Status blurPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const
   return Status::success();
 }
 
+// Pass upsample: the reduced (A, key) image to the viewport-sized output, guided by csz level 0;
+// rounded to binary16 in Float precision as sao_round_to_half does, unrounded in Double.
+template <typename T>
+Status upsamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
+  const ScheduledBinding* in = binding(d, bindings, gen::ResourceId::ao_low, false);
+  const ScheduledBinding* z = binding(d, bindings, gen::ResourceId::csz, false);
+  const ScheduledBinding* out = binding(d, bindings, gen::ResourceId::ao, true);
+  if (in == nullptr) return missingBinding(d, gen::ResourceId::ao_low, false);
+  if (z == nullptr) return missingBinding(d, gen::ResourceId::csz, false);
+  if (out == nullptr) return missingBinding(d, gen::ResourceId::ao, true);
+  const Image<T>& low = ctx.image(*in);
+  const Image<T>& z0 = ctx.image(z->resource, 0);
+  Image<T>& dst = ctx.image(*out);
+  const auto& P = ctx.P;
+  const int div = P.ao_divisor;
+  if (low.ch != 2 || div < 1 || (div & (div - 1)) != 0 || P.ao_size.x != dst.w || P.ao_size.y != dst.h ||
+      low.w != (dst.w + div - 1) / div || low.h != (dst.h + div - 1) / div || dst.w + P.guard.x > z0.w ||
+      dst.h + P.guard.y > z0.h)
+    return passError(d, "needs a power-of-two ao_divisor, an (A, key) image of the output's extent over it "
+                        "and the viewport's csz");
+  parallelFor(dst.h, ctx.threads, [&](int y) {
+    for (int x = 0; x < dst.w; ++x) {
+      T a = upsample(low, x, y, z0.at(x + P.guard.x, y + P.guard.y), div, dst.w, dst.h);
+      if constexpr (std::is_same_v<T, float>) a = roundToHalf(a);
+      dst.at(x, y, 0) = a;
+    }
+  });
+  return Status::success();
+}
+
 }  // namespace sao::cpu::detail
 
 namespace sao::cpu {
@@ -281,6 +318,8 @@ Status runSaoPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<con
     case gen::PassId::ao_sample: return detail::aoSamplePass(ctx, d, bindings);
     case gen::PassId::blur_h: return detail::blurPass(ctx, d, bindings, 1, 0, false);
     case gen::PassId::blur_v: return detail::blurPass(ctx, d, bindings, 0, 1, true);
+    case gen::PassId::blur_v_low: return detail::blurPass(ctx, d, bindings, 0, 1, false);
+    case gen::PassId::upsample: return detail::upsamplePass(ctx, d, bindings);
     default:
       return Status::error(StatusCode::InvalidInput, "the plan holds pass '" + std::string(gen::pass(d.pass).name) +
                                                          "', which the CPU reference does not implement");

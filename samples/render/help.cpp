@@ -47,6 +47,11 @@ std::string settingsHelp() {
       case gen::SettingType::Bool: range = "0 | 1"; break;
       case gen::SettingType::Int:
         range = "whole number in [" + number(info.minValue) + ", " + number(info.maxValue) + "]";
+        if (!info.allowedValues.empty()) {  // values=[...]: those alone
+          range = "one of";
+          for (std::size_t i = 0; i < info.allowedValues.size(); ++i)
+            range += std::string(i ? " |" : "") + " " + number(info.allowedValues[i]);
+        }
         break;
       case gen::SettingType::Float: range = "[" + number(info.minValue) + ", " + number(info.maxValue) + "]"; break;
     }

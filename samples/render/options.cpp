@@ -105,6 +105,13 @@ Options parseOptions(int argc, char** argv) {
   cli::addImageSize(cl, o.size, "AO size in pixels", "default 1280x720");
   cli::addGuardBand(cl, o.guard, "guard band in pixels on each side", "default 0");
   cli::addSettings(cl, o.settings, "any setting below (repeatable), checked against its range");
+  // Declared after --preset and --set, so CLI11 applies it after them: it overrides both.
+  cl.value("--resolution-divisor", "N",
+           "the AO at full (1), half (2) or quarter (4) resolution per axis, with a depth-aware upsample to the full "
+           "size; the same as --set resolution_divisor=N, applied after --preset and --set (default: theirs, 1)",
+           [&o](const std::string& v) {
+             if (Status s = setFromText(o.settings, "resolution_divisor", v); !s) cli::reject(s.message);
+           });
   cli::addDepthFormat(cl, "--depth-format", o.depthFormat,
                       "D16 | D24 | D32F: the precision of a scene's depth (default D32F; always reversed-Z, [0,1] "
                       "clip, infinite far)");

@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <cstdio>
+#include <string>
 
 #include "sao/presets.h"
 
@@ -41,7 +42,17 @@ bool control(const SettingInfo& info, double current, double& wanted) {
     }
     case gen::SettingType::Int: {
       int v = static_cast<int>(current);
-      edited = ImGui::SliderInt(label.c_str(), &v, int(info.minValue), int(info.maxValue));
+      if (!info.allowedValues.empty()) {  // values=[...]: a slider would offer values it refuses
+        if (ImGui::BeginCombo(label.c_str(), std::to_string(v).c_str())) {
+          for (double allowed : info.allowedValues) {
+            const int a = static_cast<int>(allowed);
+            if (ImGui::Selectable(std::to_string(a).c_str(), a == v)) v = a, edited = true;
+          }
+          ImGui::EndCombo();
+        }
+      } else {
+        edited = ImGui::SliderInt(label.c_str(), &v, int(info.minValue), int(info.maxValue));
+      }
       wanted = v;
       break;
     }

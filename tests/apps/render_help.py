@@ -27,6 +27,9 @@ for name, kind, default, lo, hi, unit in settings:
     span = "0 | 1" if kind == "Bool" else f"[{number(lo)}, {number(hi)}]"
     if kind == "Int":
         span = "whole number in " + span
+    allowed = re.search(rf"kAllowed_{name}\[\] = \{{([^}}]*)\}}", open(effect_h).read())
+    if allowed:  # values=[...]: those alone
+        span = "one of " + " | ".join(number(v) for v in allowed.group(1).split(","))
     want = f"{span}, {unit or 'unitless'}, default {number(default)}"
     line = re.search(rf"^  {name} +(.*)$", help_text, re.M)
     if not line or line.group(1) != want:

@@ -78,6 +78,8 @@ check 2 "setting 'radius' is NaN" --set radius=nan
 check 2 "setting 'samples' is +inf" --set samples=1e400
 check 2 "unknown setting 'unknown'" --set unknown=1
 check 2 "setting 'radius' = 1000 is outside its range [0.01, 100] m" --set radius=1000
+check 2 "setting 'resolution_divisor' = 3 is not one of its allowed values {1, 2, 4}" --resolution-divisor 3
+check 2 "setting 'resolution_divisor' = 3 is not one of its allowed values {1, 2, 4}" --set resolution_divisor=3
 check 2 "setting 'epsilon' = 0.0100001 is outside its range [1e-06, 0.01] m^2" --set epsilon=0.01 --set epsilon=0.0100001
 check 2 "--reference needs a scene, not a --depth file" --depth good.exr --reference
 # Camera flags for a depth file without a camera (setup/ao.exr, 32x18): the real cause, not a

@@ -252,6 +252,27 @@ TEST(Camera, ExpectedPlanesCatchAClipRangeThatContradictsTheMatrix) {
   EXPECT_EQ(sao::analyze(ortho, m).code, sao::StatusCode::InvalidCamera);
 }
 
+// A matrix built for one clip range and declared with the other comes out with a wrong far plane:
+// the message names the clip depth it was read with, not only the far plane (issue 19).
+TEST(Camera, WrongClipDepthIsNamedWhenTheFarPlaneComesOutWrong) {
+  struct Case {
+    sao::ClipDepth built;
+    double far;
+    const char* declared;
+  };
+  for (const Case& c : {Case{sao::ClipDepth::NegativeOneToOne, INFINITY, "clipDepth = [0,1]"},
+                        Case{sao::ClipDepth::ZeroToOne, INFINITY, "clipDepth = [-1,1]"},
+                        Case{sao::ClipDepth::ZeroToOne, kFar, "clipDepth = [-1,1]"}}) {
+    auto cam = sao::perspectiveCamera(kFovy, 640, 480, kNear, c.far, c.built, /*reversedZ=*/true);
+    cam.clipDepth = c.built == sao::ClipDepth::ZeroToOne ? sao::ClipDepth::NegativeOneToOne : sao::ClipDepth::ZeroToOne;
+    sao::DepthModel m;
+    const sao::Status st = sao::analyze(cam, m);
+    EXPECT_EQ(st.code, sao::StatusCode::InvalidCamera) << st.message;
+    EXPECT_NE(st.message.find(c.declared), std::string::npos) << st.message;
+    EXPECT_NE(st.message.find("check clipDepth"), std::string::npos) << st.message;
+  }
+}
+
 TEST(Camera, RejectsMatricesThatContradictTheirConvention) {
   auto standard = sao::perspectiveCamera(kFovy, 640, 480, kNear, kFar, sao::ClipDepth::ZeroToOne, false);
   sao::DepthModel m;
@@ -264,7 +285,9 @@ TEST(Camera, RejectsMatricesThatContradictTheirConvention) {
   cam = standard;
   cam.infiniteFar = true;
   st = sao::analyze(cam, m);
-  EXPECT_NE(st.message.find("infinite far plane, but the projection has a far plane"), std::string::npos) << st.message;
+  EXPECT_NE(st.message.find("infinite far plane, but the projection read with clipDepth = [0,1] has a far plane"),
+            std::string::npos)
+      << st.message;
 
   cam = sao::perspectiveCamera(kFovy, 640, 480, kNear, INFINITY, sao::ClipDepth::ZeroToOne, false);
   cam.infiniteFar = false;

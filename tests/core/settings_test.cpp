@@ -21,9 +21,15 @@ using sao::StatusCode;
 
 TEST(Settings, DefaultsAreValid) { EXPECT_TRUE(sao::validate(sao::Settings{}).ok()); }
 
-// The allowed range as the messages print it: "[min, max]" (9 significant digits) or "{false, true}".
+// The allowed range as the messages print it: "[min, max]" (9 significant digits), "{false, true}"
+// or, for a setting declared with values=[...], the list "{1, 2, 4}".
 std::string rangeOf(const sao::gen::SettingInfo& info) {
   if (info.type == sao::gen::SettingType::Bool) return "{false, true}";
+  if (!info.allowedValues.empty()) {
+    std::ostringstream v;
+    for (std::size_t k = 0; k < info.allowedValues.size(); ++k) v << (k ? ", " : "{") << info.allowedValues[k];
+    return v.str() + "}";
+  }
   std::ostringstream r;
   r.precision(9);
   r << "[" << info.minValue << ", " << info.maxValue << "]";
@@ -57,8 +63,9 @@ TEST(Settings, EverySettingRejectsOutOfRangeAndNonFinite) {
       continue;
     }
     const double step = info.type == sao::gen::SettingType::Int ? 1.0 : std::max(1e-3, (info.maxValue - info.minValue) * 1e-3);
-    cases.push_back({info.minValue - step, "outside its range"});
-    cases.push_back({info.maxValue + step, "outside its range"});
+    const char* outside = info.allowedValues.empty() ? "outside its range" : "is not one of its allowed values";
+    cases.push_back({info.minValue - step, outside});
+    cases.push_back({info.maxValue + step, outside});
     for (const auto& c : cases) {
       sao::Settings s;
       const sao::Settings untouched = s;
@@ -102,7 +109,8 @@ std::string printed(double v, int digits) {
 TEST(Settings, EveryBoundAcceptedAsPrintedAndJustBeyondRefused) {
   for (std::size_t i = 0; i < sao::gen::kSettings.size(); ++i) {
     const auto& info = sao::gen::kSettings[i];
-    if (info.type == sao::gen::SettingType::Bool) continue;
+    // A list of values has no range to be just beyond (AllowedValuesAloneAreAccepted).
+    if (info.type == sao::gen::SettingType::Bool || !info.allowedValues.empty()) continue;
     const auto id = static_cast<sao::SettingId>(i);
     const std::string name(info.name);
     const auto [loText, hiText] = printedBounds(name);
@@ -224,3 +232,37 @@ TEST(Presets, ChangeTapsSpiralBlurAndMipUse) {
 }
 
 }  // namespace
+
+// resolution_divisor takes 1, 2 or 4 and nothing between: 3 is refused (no silent clamping) with a
+// message naming the setting and the values; clamped() pulls to the nearest value for sliders.
+TEST(Settings, AllowedValuesAloneAreAccepted) {
+  const auto id = sao::SettingId::resolution_divisor;
+  const auto& info = sao::gen::kSettings[static_cast<std::size_t>(id)];
+  ASSERT_EQ(info.allowedValues.size(), 3u);
+  EXPECT_EQ(sao::Settings{}.resolution_divisor, 1) << "full resolution by default";
+  for (const char* ok : {"1", "2", "4"}) {
+    sao::Settings s;
+    EXPECT_TRUE(sao::setFromText(s, "resolution_divisor", ok).ok()) << ok;
+    EXPECT_TRUE(sao::validate(s).ok()) << ok;
+  }
+  for (const char* bad : {"3", "0", "5", "8", "-2"}) {
+    sao::Settings s;
+    const sao::Status st = sao::setFromText(s, "resolution_divisor", bad);
+    EXPECT_EQ(st.code, StatusCode::InvalidSetting) << bad;
+    EXPECT_EQ(s.resolution_divisor, 1) << bad << ": a refused value changes nothing";
+    EXPECT_EQ(st.message, "setting 'resolution_divisor' = " + std::string(bad) +
+                              " is not one of its allowed values {1, 2, 4}");
+  }
+  sao::Settings three;
+  three.resolution_divisor = 3;
+  const sao::Status st = sao::validate(three);
+  EXPECT_EQ(st.code, StatusCode::InvalidSetting);
+  EXPECT_EQ(st.message, "setting 'resolution_divisor' = 3 is not one of its allowed values {1, 2, 4}");
+  EXPECT_EQ(sao::clamped(three).resolution_divisor, 2) << "a tie goes to the lower value";
+  three.resolution_divisor = 100;
+  EXPECT_EQ(sao::clamped(three).resolution_divisor, 4);
+  three.resolution_divisor = -7;
+  EXPECT_EQ(sao::clamped(three).resolution_divisor, 1);
+  for (const auto& p : sao::gen::kPresets)
+    EXPECT_EQ(sao::presetSettings(p.preset).resolution_divisor, 1) << p.name << ": presets stay at full resolution";
+}

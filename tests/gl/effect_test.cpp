@@ -169,11 +169,16 @@ TEST_F(Inputs, DeclaredFormatIsChecked) {
 
 TEST_F(Inputs, DepthSizeMustBeViewportPlusGuard) {
   Camera c = frame->camera;
-  c.guardBand = 0;
-  const Status st = effect->render(c, Settings{}, good());
+  c.guardBand = 0;  // the texture holds a guard band the camera does not declare
+  Status st = effect->render(c, Settings{}, good());
   EXPECT_EQ(st.code, StatusCode::InvalidInput);
   EXPECT_NE(st.message.find("80x52"), std::string::npos) << st.message;
   EXPECT_NE(st.message.find("64x36"), std::string::npos) << st.message;
+  EXPECT_NE(st.message.find("set Inputs::region"), std::string::npos) << st.message;
+  c.guardBand = 9;  // needs 82x54: too large for the texture, with or without a region
+  st = effect->render(c, Settings{}, good());
+  EXPECT_EQ(st.code, StatusCode::InvalidInput);
+  EXPECT_NE(st.message.find("82x54"), std::string::npos) << st.message;
 }
 
 TEST_F(Inputs, DepthAlsoPassedAsOutput) {

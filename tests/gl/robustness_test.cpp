@@ -212,10 +212,13 @@ TEST_F(Robustness, HugeAndEmptySizes) {
     // The projection stays that of 64x36 (a valid perspective); only the sizes are wrong.
     expectRejected(effect->render(big, Settings{}, good()), c.code, c.needle, allocations);
   }
-  // A depth texture larger than the camera's extent (the caller's mistake, not a huge allocation).
+  // A depth texture larger than the camera's extent with no region declared, and a region one
+  // texel beyond it (the caller's mistakes, not a huge allocation).
   const GLuint large = makeTexture(GL_DEPTH_COMPONENT24, {4096, 4096});
   gl::Inputs in;
   in.depth = {large, 0};
+  expectRejected(render(in), StatusCode::InvalidInput, "is 4096x4096, the camera needs 80x52", allocations);
+  in.region = Offset{4096 - 79, 0};
   expectRejected(render(in), StatusCode::InvalidInput, "is 4096x4096, the camera needs 80x52", allocations);
   deleteTexture(large);
 }

@@ -128,6 +128,7 @@ int main() {
   VK(vkBindBufferMemory(device, buffer, bufferMemory, 0));
 
   sao::vk::DeviceContext ctx{instance, pd, device, vkGetInstanceProcAddr, vkGetDeviceProcAddr, family};
+  ctx.enabledFeatures = &features;  // what vkCreateDevice enabled (create() checks it)
   sao::vk::Config config;
   config.camera = camera;
   config.depthFormat = VK_FORMAT_D32_SFLOAT;

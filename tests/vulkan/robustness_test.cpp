@@ -91,6 +91,26 @@ TEST_F(VkRobustness, NullInstanceOrPhysicalDevice) {
   expectCreateFails(c, config, StatusCode::InvalidInput, "VK_NULL_HANDLE");
 }
 
+// Supported is not enabled: a device created without shaderStorageImageExtendedFormats (on a
+// physical device that has it) is refused, naming the feature; so is a context that does not say
+// which features its device enabled.
+TEST_F(VkRobustness, DeviceWithoutRequiredFeatureIsRefused) {
+  vk::DeviceContext c = context().deviceContext();
+  c.enabledFeatures = nullptr;
+  expectCreateFails(c, config, StatusCode::InvalidInput, "DeviceContext::enabledFeatures is null");
+
+  vk::headless::Options o;
+  o.storageImageExtendedFormats = false;
+  std::unique_ptr<vk::headless::Context> bare;
+  ASSERT_TRUE(vk::headless::Context::create(o, bare).ok());
+  const std::string needle = "created without the feature shaderStorageImageExtendedFormats";
+  expectCreateFails(bare->deviceContext(), config, StatusCode::DriverError, needle);
+  // The same physical device with the feature enabled is accepted.
+  std::unique_ptr<vk::Effect> e;
+  const Status st = vk::Effect::create(context().deviceContext(), config, e);
+  EXPECT_TRUE(st.ok()) << st.message;
+}
+
 // Multisampled depth is rejected with a clear error (documented: resolve it first).
 TEST_F(VkRobustness, MultisampledDepthIsRejected) {
   for (VkSampleCountFlagBits samples : {VK_SAMPLE_COUNT_2_BIT, VK_SAMPLE_COUNT_4_BIT, VK_SAMPLE_COUNT_64_BIT}) {

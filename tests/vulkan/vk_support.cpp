@@ -104,6 +104,7 @@ Status runEffect(const Settings& settings, const Camera& camera, const DepthImag
   config.depthFormat = vkFormat(format);
   vk::Inputs in;
   in.depth = {depthImage.view, options.depthLayout, depth.extent};
+  in.region = options.region;
   if (options.depth2) {
     if (Status st = ctx.uploadDepth(*options.depth2, vkFormat(format), options.depthLayout, depth2Image); !st) return st;
     config.secondLayer = true;
@@ -140,6 +141,13 @@ Status runEffect(const Settings& settings, const Camera& camera, const DepthImag
                                  VK_ACCESS_SHADER_WRITE_BIT, out.csz0);
         !st)
       return st;
+    if (out.plan.image(gen::ResourceId::ao_low) != nullptr) {
+      const auto low = effect->ownedImage(gen::ResourceId::ao_low);
+      if (Status st = ctx.readback(low.image, low.format, low.extent, 0, low.layout, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                                   VK_ACCESS_SHADER_WRITE_BIT, out.aoLow);
+          !st)
+        return st;
+    }
   }
   return Status::success();
 }

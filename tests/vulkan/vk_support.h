@@ -44,6 +44,7 @@ struct RunOptions {
   const FloatImage* normals = nullptr;  // uploaded as R16G16B16A16_SFLOAT
   const DepthImage* depth2 = nullptr;
   bool readIntermediates = true;        // ao_raw (and csz level 0)
+  std::optional<Offset> region;                              // vk::Inputs::offset: the region inside larger inputs
 };
 
 struct RunResult {
@@ -52,6 +53,7 @@ struct RunResult {
   FloatImage ao;      // 1 channel
   FloatImage aoRaw;   // 2 channels (A, key z)
   FloatImage csz0;    // csz level 0
+  FloatImage aoLow;   // 2 channels (A, key z) when the plan has ao_low (resolution_divisor > 1)
 };
 
 // Uploads `depth` in `format`, creates an effect, records it once, submits, waits and reads back.

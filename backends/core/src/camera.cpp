@@ -42,6 +42,10 @@ static Status checkExpected(const Camera& cam, const char* what, const char* pla
 
 static Status analyzeMatrix(const Camera& cam, DepthModel& m);
 
+// The declared clip range as the messages name it: a far plane that comes out wrong is most often
+// a matrix built for the other range.
+static std::string clipText(const Camera& cam) { return cam.clipDepth == ClipDepth::ZeroToOne ? "[0,1]" : "[-1,1]"; }
+
 // A standard matrix built with near and far swapped is exactly a reversed-Z matrix with them in
 // order (and the other way round): the matrix cannot tell the two mistakes apart, so name both.
 static Status reversedMismatch(const Camera& cam) {
@@ -113,14 +117,18 @@ static Status analyzeMatrix(const Camera& cam, DepthModel& m) {
     m.nearDistance = -zNear;
     if (cam.infiniteFar) {
       if (!atPole)
-        return bad("declared an infinite far plane, but the projection has a far plane at " +
-                   std::to_string(-m.c0 / farDen) + " view units");
+        return bad("declared an infinite far plane, but the projection read with clipDepth = " + clipText(cam) +
+                   " has a far plane at " + std::to_string(-m.c0 / farDen) +
+                   " view units: check clipDepth, or set infiniteFar = false");
       m.farDistance = std::numeric_limits<double>::infinity();
     } else {
-      if (atPole) return bad("projection has an infinite far plane: set infiniteFar = true");
+      if (atPole)
+        return bad("the projection read with clipDepth = " + clipText(cam) +
+                   " has an infinite far plane: set infiniteFar = true, or check clipDepth");
       const double zFar = m.c0 / farDen;
       if (!(zFar < 0) || -zFar <= m.nearDistance)
-        return bad("projection's far plane is not beyond its near plane (check reversedZ and clipDepth)");
+        return bad("the projection read with clipDepth = " + clipText(cam) +
+                   " has its far plane not beyond its near plane: check clipDepth and reversedZ");
       m.farDistance = -zFar;
     }
     return Status::success();

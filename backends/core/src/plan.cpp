@@ -47,7 +47,14 @@ Extent resourceExtent(const Plan& plan, gen::ResourceId id) {
   if (const PlannedImage* img = plan.image(id)) return img->extent;
   const auto& info = gen::kResources[static_cast<std::size_t>(id)];
   const Extent base = info.inputExtent ? plan.inputExtent : plan.aoExtent;
-  return {std::max(1u, base.width / info.scaleDenominator), std::max(1u, base.height / info.scaleDenominator)};
+  const Extent scaled{std::max(1u, base.width / info.scaleDenominator), std::max(1u, base.height / info.scaleDenominator)};
+  const std::uint32_t d = std::max(1u, plan.extentDivisor[static_cast<std::size_t>(id)]);
+  return {(scaled.width + d - 1) / d, (scaled.height + d - 1) / d};
+}
+
+bool holdsInput(Extent have, const std::optional<Offset>& region, Extent needed) {
+  if (!region) return have == needed;
+  return std::uint64_t(region->x) + needed.width <= have.width && std::uint64_t(region->y) + needed.height <= have.height;
 }
 
 std::uint32_t bytesPerTexel(gen::Format format) {
@@ -132,6 +139,9 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
   }
 
   out.cszLevels = mipLevelsNeeded(settings, camera, model);
+  for (std::size_t r = 0; r < gen::kResources.size(); ++r)
+    if (const std::int32_t s = gen::kResources[r].divideBy; s >= 0)
+      out.extentDivisor[r] = static_cast<std::uint32_t>(gen::settingValue(settings, static_cast<gen::SettingId>(s)));
 
   for (const auto& info : gen::passes()) {
     const auto id = static_cast<gen::PassId>(&info - gen::passes().data());

@@ -195,12 +195,20 @@ Status checkSupplied(const Plan& plan, const SuppliedImages& images, bool output
         if (!needed[r] && in.supplied)
           return Status::error(StatusCode::InvalidInput, std::string(who) + ": a " + name(id) +
                                                              " input is supplied but the effect's configuration reads none");
-        if (in.supplied && !(in.extent == plan.inputExtent))
-          return Status::error(StatusCode::InvalidInput,
-                               std::string(who) + ": the " + name(id) + " input is " + extentText(in.extent) +
-                                   ", the camera needs " + extentText(plan.inputExtent) + " (the viewport " +
-                                   extentText(plan.aoExtent) + " plus twice the guard band " +
-                                   std::to_string((plan.inputExtent.width - plan.aoExtent.width) / 2) + ")");
+        if (in.supplied && !holdsInput(in.extent, in.region, plan.inputExtent)) {
+          std::string message = std::string(who) + ": the " + name(id) + " input is " + extentText(in.extent) +
+                                ", the camera needs " + extentText(plan.inputExtent) + " (the viewport " +
+                                extentText(plan.aoExtent) + " plus twice the guard band " +
+                                std::to_string((plan.inputExtent.width - plan.aoExtent.width) / 2) + ")";
+          if (in.region)
+            message += " at offset (" + std::to_string(in.region->x) + ", " + std::to_string(in.region->y) +
+                       "), which ends at (" + std::to_string(std::uint64_t(in.region->x) + plan.inputExtent.width) +
+                       ", " + std::to_string(std::uint64_t(in.region->y) + plan.inputExtent.height) +
+                       "): the region must lie inside the texture";
+          else
+            message += "; to read a region of a larger texture, set Inputs::region";
+          return Status::error(StatusCode::InvalidInput, message);
+        }
         break;
       case gen::ResourceKind::Output:
         if (outputExpected && !in.supplied)

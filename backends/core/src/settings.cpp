@@ -1,5 +1,6 @@
 #include "sao/settings.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -24,6 +25,11 @@ std::string describe(double v) {
 
 std::string rangeText(const SettingInfo& info) {
   if (info.type == gen::SettingType::Bool) return "{false, true}";
+  if (!info.allowedValues.empty()) {
+    std::string t;
+    for (double v : info.allowedValues) t += (t.empty() ? "" : ", ") + describe(v);
+    return "{" + t + "}";
+  }
   return "[" + describe(info.minValue) + ", " + describe(info.maxValue) + "]";
 }
 
@@ -39,6 +45,11 @@ Status checkValue(const SettingInfo& info, double v, bool exactBounds) {
                          where() + "is " + (v > 0 ? "+inf" : "-inf") + "; allowed range " + rangeText(info));
   if (info.type != gen::SettingType::Float && v != std::floor(v))
     return Status::error(StatusCode::InvalidSetting, where() + "= " + describe(v) + " is not a whole number");
+  // A setting with a list of values takes those alone (resolution_divisor: 3 is not a third size).
+  if (!info.allowedValues.empty() &&
+      std::find(info.allowedValues.begin(), info.allowedValues.end(), v) == info.allowedValues.end())
+    return Status::error(StatusCode::InvalidSetting,
+                         where() + "= " + describe(v) + " is not one of its allowed values " + rangeText(info));
   const bool widen = !exactBounds && info.type == gen::SettingType::Float;
   const double lo = widen ? std::fmin(info.minValue, double(float(info.minValue))) : info.minValue;
   const double hi = widen ? std::fmax(info.maxValue, double(float(info.maxValue))) : info.maxValue;
@@ -68,6 +79,13 @@ Settings clamped(const Settings& settings) {
     if (std::isnan(v)) v = info.defaultValue;
     v = std::fmin(std::fmax(v, info.minValue), info.maxValue);
     if (info.type != gen::SettingType::Float) v = std::round(v);
+    // The nearest allowed value (the lower one on a tie).
+    if (!info.allowedValues.empty()) {
+      double best = info.allowedValues.front();
+      for (double a : info.allowedValues)
+        if (std::fabs(a - v) < std::fabs(best - v)) best = a;
+      v = best;
+    }
     gen::setSettingValue(out, id, v);
   }
   return out;

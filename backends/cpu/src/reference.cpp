@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <new>
 #include <span>
 #include <string>
@@ -45,13 +46,21 @@ std::string expectedText(const Camera& camera, Extent expected) {
          " + 2 * guard band " + std::to_string(camera.guardBand) + ")";
 }
 
-Status checkDepth(const char* name, const DepthImage& d, const Camera& camera, Extent expected) {
+std::string regionText(const Camera& camera, Extent expected, const std::optional<Offset>& region) {
+  if (!region) return expectedText(camera, expected) + "; to read a region of a larger image, set Inputs::region";
+  return expectedText(camera, expected) + " at offset (" + std::to_string(region->x) + ", " +
+         std::to_string(region->y) + "), which ends at (" + std::to_string(std::uint64_t(region->x) + expected.width) +
+         ", " + std::to_string(std::uint64_t(region->y) + expected.height) + "): the region must lie inside the image";
+}
+
+Status checkDepth(const char* name, const DepthImage& d, const Camera& camera, Extent expected,
+                  const std::optional<Offset>& region) {
   if (d.extent.width == 0 || d.extent.height == 0)
     return invalid(std::string(name) + " is empty (" + extentText(d.extent) + "); expected " +
                    expectedText(camera, expected));
-  if (d.extent != expected)
+  if (!holdsInput(d.extent, region, expected))
     return invalid(std::string(name) + " is " + extentText(d.extent) + ", but the plan expects " +
-                   expectedText(camera, expected));
+                   regionText(camera, expected, region));
   const std::size_t texels = std::size_t(d.extent.width) * d.extent.height;
   if (d.texels.size() != texels)
     return invalid(std::string(name) + " holds " + std::to_string(d.texels.size()) + " texels, but its extent " +
@@ -59,15 +68,16 @@ Status checkDepth(const char* name, const DepthImage& d, const Camera& camera, E
   return Status::success();
 }
 
-Status checkNormals(const FloatImage& n, const Camera& camera, Extent expected) {
+Status checkNormals(const FloatImage& n, const Camera& camera, Extent expected, const std::optional<Offset>& region) {
   if (n.channels != 4)
     return Status::error(StatusCode::UnsupportedFormat,
                          "normals have " + std::to_string(n.channels) +
                              " channels; 4 are expected (rgba16f, camera-space normal in .xyz)");
   if (n.extent.width == 0 || n.extent.height == 0)
     return invalid("normals are empty (" + extentText(n.extent) + "); expected " + expectedText(camera, expected));
-  if (n.extent != expected)
-    return invalid("normals are " + extentText(n.extent) + ", but the plan expects " + expectedText(camera, expected));
+  if (!holdsInput(n.extent, region, expected))
+    return invalid("normals are " + extentText(n.extent) + ", but the plan expects " +
+                   regionText(camera, expected, region));
   const std::size_t values = std::size_t(n.extent.width) * n.extent.height * 4;
   if (n.data.size() != values)
     return invalid("normals hold " + std::to_string(n.data.size()) + " floats, but their extent " +
@@ -193,16 +203,22 @@ Status validateAndPlan(const Settings& settings, const Camera& camera, const Inp
   const PlanInputs planInputs{encoding, in.normals != nullptr, in.depth2 != nullptr, false};
   if (Status st = plan(settings, camera, planInputs, r.plan); !st) return st;
   const Extent expected = r.plan.inputExtent;
-  if (Status st = checkDepth("depth", *in.depth, camera, expected); !st) return st;
+  if (Status st = checkDepth("depth", *in.depth, camera, expected, in.region); !st) return st;
   if (in.depth2 != nullptr) {
     if (in.depth2->format != in.depth->format)
       return invalid(std::string("depth2 is ") + toString(in.depth2->format) + " but depth is " +
                      toString(in.depth->format) + "; both layers must have the same format and convention");
-    if (Status st = checkDepth("depth2", *in.depth2, camera, expected); !st) return st;
+    if (Status st = checkDepth("depth2", *in.depth2, camera, expected, in.region); !st) return st;
   }
   if (in.normals != nullptr)
-    if (Status st = checkNormals(*in.normals, camera, expected); !st) return st;
+    if (Status st = checkNormals(*in.normals, camera, expected, in.region); !st) return st;
+  // Inside the images (checked above); images that wide cannot be in memory, but the block holds int.
+  const Offset offset = in.region.value_or(Offset{});
+  if (offset.x > std::uint32_t(INT32_MAX) || offset.y > std::uint32_t(INT32_MAX))
+    return invalid("the offset (" + std::to_string(offset.x) + ", " + std::to_string(offset.y) +
+                   ") does not fit the shaders' int (at most 2^31 - 1)");
   if (Status st = computeConstants(settings, camera, encoding, r.params); !st) return st;
+  r.params.input_offset = {std::int32_t(offset.x), std::int32_t(offset.y)};
   // The block and the plan come from the same core functions; check that they agree anyway.
   if (std::uint32_t(r.params.max_mip) + 1 != r.plan.cszLevels)
     return invalid("max_mip " + std::to_string(r.params.max_mip) + " disagrees with the plan's " +

@@ -217,6 +217,9 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
   if (Status st = checkSupplied(p, supplied(checked), checked.planInputs.userOutput, "sao::gl"); !st) return st;
   ParamBlock block{};
   if (Status st = computeConstants(settings, camera, checked.planInputs.depthEncoding, block); !st) return st;
+  // checkSupplied put the region inside the textures, whose sides GL keeps far below 2^31.
+  const Offset offset = checked.region.value_or(Offset{});
+  block.input_offset = {static_cast<std::int32_t>(offset.x), static_cast<std::int32_t>(offset.y)};
   if (replan) {
     if (p.inputExtent.width > std::uint32_t(maxTextureSize) || p.inputExtent.height > std::uint32_t(maxTextureSize))
       return Status::error(StatusCode::InvalidExtent, "sao::gl: the depth input " + std::to_string(p.inputExtent.width) +

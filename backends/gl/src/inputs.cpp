@@ -96,6 +96,7 @@ Status depthInput(const GlFunctions& gl, GLuint unit, const DepthInput& in, cons
 
 Status checkInputs(const GlFunctions& gl, GLuint unit, const Inputs& inputs, CheckedInputs& out) {
   out = CheckedInputs{};
+  out.region = inputs.region;
   DepthEncoding encoding{};
   if (Status st = depthInput(gl, unit, inputs.depth, "depth", out.depth, encoding); !st) return st;
   out.planInputs.depthEncoding = encoding;
@@ -142,7 +143,8 @@ Status checkInputs(const GlFunctions& gl, GLuint unit, const Inputs& inputs, Che
 SuppliedImages supplied(const CheckedInputs& in) {
   SuppliedImages images{};
   auto add = [&](gen::ResourceId id, const TextureInfo& t) {
-    images[static_cast<std::size_t>(id)] = {t.texture != 0, t.extent};
+    const bool input = gen::kResources[static_cast<std::size_t>(id)].kind == gen::ResourceKind::Input;
+    images[static_cast<std::size_t>(id)] = {t.texture != 0, t.extent, input ? in.region : std::nullopt};
   };
   add(gen::ResourceId::depth, in.depth);
   add(gen::ResourceId::depth2, in.depth2);

@@ -15,6 +15,7 @@ struct TextureInfo {
 
 struct CheckedInputs {
   TextureInfo depth, depth2, normals, output;  // texture 0 where absent
+  std::optional<Offset> region;  // Inputs::region: where the region starts in depth, depth2 and normals
   PlanInputs planInputs;
 };
 

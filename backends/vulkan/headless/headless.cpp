@@ -291,13 +291,13 @@ Status Context::createDevice() {
   q.queueFamilyIndex = family_;
   q.queueCount = 1;
   q.pQueuePriorities = &priority;
-  VkPhysicalDeviceFeatures features{};
-  features.shaderStorageImageExtendedFormats = VK_TRUE;
+  enabled_ = {};
+  enabled_.shaderStorageImageExtendedFormats = storageImageExtendedFormats_ ? VK_TRUE : VK_FALSE;
   const char* swapchain = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
   VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   info.queueCreateInfoCount = 1;
   info.pQueueCreateInfos = &q;
-  info.pEnabledFeatures = &features;
+  info.pEnabledFeatures = &enabled_;
   info.enabledExtensionCount = surface_ ? 1 : 0;
   info.ppEnabledExtensionNames = &swapchain;
   if (VkResult r = vkCreateDevice(physical_, &info, nullptr, &device_); r != VK_SUCCESS) {
@@ -317,6 +317,7 @@ Status Context::createDevice() {
 }
 
 Status Context::init(const Options& o) {
+  storageImageExtendedFormats_ = o.storageImageExtendedFormats;
   const bool validation = o.validation || o.synchronizationValidation;
   // An exported but empty VK_DRIVER_FILES / VK_ICD_FILENAMES makes the loader find no driver.
   for (const char* var : {"VK_DRIVER_FILES", "VK_ICD_FILENAMES"}) {
@@ -376,6 +377,7 @@ DeviceContext Context::deviceContext() const {
   c.getDeviceProcAddr = &vkGetDeviceProcAddr;
   c.queueFamilyIndex = family_;
   c.debugUtilsEnabled = debugUtils_;
+  c.enabledFeatures = &enabled_;
   return c;
 }
 

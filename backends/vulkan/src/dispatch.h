@@ -63,6 +63,7 @@ struct DeviceContext;
   X(vkCmdResetQueryPool)           \
   X(vkCmdWriteTimestamp)           \
   X(vkCmdPipelineBarrier)          \
+  X(vkCmdPushConstants)            \
   X(vkCmdBindPipeline)             \
   X(vkCmdBindDescriptorSets)       \
   X(vkCmdDispatch)

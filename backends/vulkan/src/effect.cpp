@@ -174,6 +174,16 @@ Status createEffect(const DeviceContext& context, const Config& config, EffectSt
   if (!e.features.shaderStorageImageExtendedFormats)
     return Status::error(StatusCode::DriverError,
                          "the device lacks shaderStorageImageExtendedFormats (rg32f / r16f storage images)");
+  // Supported is not enabled: the device must have been created with each feature the effect uses.
+  if (!context.enabledFeatures)
+    return Status::error(StatusCode::InvalidInput,
+                         "DeviceContext::enabledFeatures is null: pass the VkPhysicalDeviceFeatures enabled at "
+                         "vkCreateDevice (the effect needs shaderStorageImageExtendedFormats)");
+  if (!context.enabledFeatures->shaderStorageImageExtendedFormats)
+    return Status::error(StatusCode::DriverError,
+                         "the device was created without the feature shaderStorageImageExtendedFormats (rg32f / "
+                         "r16f storage images): enable it in VkDeviceCreateInfo");
+  e.ctx.enabledFeatures = nullptr;  // the caller's pointer is read here only
 
   if (Status st = checkConfig(e, config, e.plan, e.params); !st) return st;
   e.schedule = makeSchedule(e.plan);

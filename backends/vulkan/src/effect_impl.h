@@ -55,6 +55,13 @@ struct ParamBuffer {
   std::vector<bool> valid;
 };
 
+// The push constants of every pipeline layout: loop trip counts, also in the parameter block.
+// Mesa lavapipe 22.3 keeps host memory per dispatch of a loop whose trip count it reads from the
+// uniform block the loop body reads (docs/ROBUSTNESS.md); ao_sample takes its count from here.
+struct LoopCounts {
+  std::int32_t samples;
+};
+
 struct PipelineEntry {
   const gen::PassVariantInfo* variant = nullptr;
   Handle<VkDescriptorSetLayout> setLayout;

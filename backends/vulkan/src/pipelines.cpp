@@ -57,6 +57,9 @@ Status buildPipeline(EffectState& e, const gen::PassInfo& pass, const gen::PassV
   VkPipelineLayoutCreateInfo pl{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   pl.setLayoutCount = 1;
   pl.pSetLayouts = &setLayout;
+  const VkPushConstantRange loopCounts{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(LoopCounts)};  // every pass, one range
+  pl.pushConstantRangeCount = 1;
+  pl.pPushConstantRanges = &loopCounts;
   if (VkResult r = make(e.owner, e.d.vkCreatePipelineLayout, e.d.vkDestroyPipelineLayout, pl, entry.layout);
       r != VK_SUCCESS)
     return fail("vkCreatePipelineLayout", r);

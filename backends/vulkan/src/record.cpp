@@ -48,8 +48,16 @@ bool isLayoutAllowed(VkImageLayout l) {
 }
 
 // The Vulkan side of an input the plan reads (presence and extent: sao::checkSupplied).
-Status checkInput(const InputImage& in, const char* name, VkFormat format) {
+Status checkInput(const InputImage& in, const char* name, VkFormat format, std::uint32_t maxSide) {
   if (in.view == VK_NULL_HANDLE) return Status::success();
+  // A view cannot tell its size: an extent beyond any image the device makes is a wrong
+  // declaration (and would let the offset overflow the shader's int).
+  if (in.extent.width > maxSide || in.extent.height > maxSide)
+    return Status::error(StatusCode::InvalidInput, std::string("Inputs::") + name + ".extent " +
+                                                       std::to_string(in.extent.width) + "x" +
+                                                       std::to_string(in.extent.height) +
+                                                       " exceeds this device's maxImageDimension2D " +
+                                                       std::to_string(maxSide));
   if (in.format != VK_FORMAT_UNDEFINED && in.format != format)
     return Status::error(StatusCode::InvalidInput, std::string("Inputs::") + name + ".format " +
                                                        std::to_string(in.format) + " is not the format Config names (" +
@@ -93,22 +101,23 @@ class BarrierBatch {
 Status checkInputs(const EffectState& e, const Inputs& in, const OutputImage* userOutput, OutputTarget& out) {
   const Config& c = e.config;
   SuppliedImages supplied{};
-  auto add = [&](gen::ResourceId id, VkImageView view, Extent extent) {
-    supplied[static_cast<std::size_t>(id)] = {view != VK_NULL_HANDLE, extent};
+  auto add = [&](gen::ResourceId id, VkImageView view, Extent extent, std::optional<Offset> region) {
+    supplied[static_cast<std::size_t>(id)] = {view != VK_NULL_HANDLE, extent, region};
   };
-  add(gen::ResourceId::depth, in.depth.view, in.depth.extent);
-  add(gen::ResourceId::depth2, in.depth2.view, in.depth2.extent);
-  add(gen::ResourceId::normals, in.normals.view, in.normals.extent);
-  if (userOutput) add(gen::ResourceId::ao, userOutput->view, userOutput->extent);
+  add(gen::ResourceId::depth, in.depth.view, in.depth.extent, in.region);
+  add(gen::ResourceId::depth2, in.depth2.view, in.depth2.extent, in.region);
+  add(gen::ResourceId::normals, in.normals.view, in.normals.extent, in.region);
+  if (userOutput) add(gen::ResourceId::ao, userOutput->view, userOutput->extent, {});
   if (userOutput && (userOutput->image == VK_NULL_HANDLE || userOutput->view == VK_NULL_HANDLE))
     return Status::error(StatusCode::InvalidInput, "the output image or its view is VK_NULL_HANDLE");
   if (userOutput && !c.userOutput)
     return Status::error(StatusCode::InvalidInput,
                          "record() got an output image but Config::userOutput is false (the effect owns its output)");
   if (Status st = checkSupplied(e.plan, supplied, c.userOutput, "sao::vk::Effect::record()"); !st) return st;
-  if (Status st = checkInput(in.depth, "depth", c.depthFormat); !st) return st;
-  if (Status st = checkInput(in.depth2, "depth2", c.depthFormat); !st) return st;
-  if (Status st = checkInput(in.normals, "normals", c.normalsFormat); !st) return st;
+  const std::uint32_t maxSide = e.props.limits.maxImageDimension2D;
+  if (Status st = checkInput(in.depth, "depth", c.depthFormat, maxSide); !st) return st;
+  if (Status st = checkInput(in.depth2, "depth2", c.depthFormat, maxSide); !st) return st;
+  if (Status st = checkInput(in.normals, "normals", c.normalsFormat, maxSide); !st) return st;
   if (!c.userOutput) {
     const OwnedImage* ao = e.res.find(gen::ResourceId::ao);
     out = {ao->image.get(), ao->levelViews[0].get()};
@@ -134,6 +143,10 @@ std::uint32_t acquireSlot(EffectState& e, const Inputs& in, const OutputTarget& 
   // stale set). The slot's previous command buffer has completed (the ring contract), and a few
   // dozen descriptor writes per record cost next to nothing.
   writeDescriptors(e, slot, in, output);
+  // The region's offset is per record (checkInputs put it inside the textures, whose sides are at
+  // most maxImageDimension2D, so it fits the shader's int).
+  const Offset offset = in.region.value_or(Offset{});
+  e.params.input_offset = {static_cast<std::int32_t>(offset.x), static_cast<std::int32_t>(offset.y)};
   // The slot's copy of the parameter block (its previous command buffer has completed: the ring
   // contract), written only when it changed.
   if (!e.ubo.valid[slot] || std::memcmp(&e.ubo.written[slot], &e.params, sizeof(ParamBlock)) != 0) {
@@ -202,6 +215,8 @@ void recordDispatches(const EffectState& e, VkCommandBuffer cmd, std::uint32_t s
       }
       pipe = findPipeline(e, d.variant);
       e.d.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe->pipeline.get());
+      const LoopCounts counts{e.params.samples};
+      e.d.vkCmdPushConstants(cmd, pipe->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof counts, &counts);
     }
     {
       BarrierBatch hazards(e, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);

@@ -33,11 +33,12 @@ struct SettingInfo {
   double maxValue;
   std::string_view unit;
   std::string_view doc;
+  std::span<const double> allowedValues;  // values=: the only values accepted; empty: the whole range
 };
 inline constexpr std::array<SettingInfo, 3> kSettings = {{
-  {"strength", SettingType::Float, 0.5, 0.0, 2.0, "m", "How strong"},
-  {"taps", SettingType::Int, 4.0, 1.0, 16.0, "", "Taps per pixel"},
-  {"enabled", SettingType::Bool, 1.0, 0.0, 1.0, "", "Whether to run at all"},
+  {"strength", SettingType::Float, 0.5, 0.0, 2.0, "m", "How strong", {}},
+  {"taps", SettingType::Int, 4.0, 1.0, 16.0, "", "Taps per pixel", {}},
+  {"enabled", SettingType::Bool, 1.0, 0.0, 1.0, "", "Whether to run at all", {}},
 }};
 // Reads or writes one setting as a double (ints and bools exactly).
 double settingValue(const Settings& s, SettingId id);
@@ -183,13 +184,14 @@ struct ResourceInfo {
   std::uint32_t scaleDenominator;  // extent = base extent / scaleDenominator
   std::int32_t whenVariant;   // exists only when this variant is non-zero; -1: always
   std::string_view doc;
+  std::int32_t divideBy;  // a SettingId: the AO extent over that int setting, rounded up; -1: none
 };
 inline constexpr std::array<ResourceInfo, 5> kResources = {{
-  {"src", ResourceKind::Input, Format::Depth, false, true, 1, -1, "Input depth"},
-  {"extra", ResourceKind::Input, Format::RGBA16F, false, true, 1, 1, "Extra input"},
-  {"mid", ResourceKind::Image, Format::R32F, true, false, 1, -1, "Intermediate chain"},
-  {"smooth", ResourceKind::Image, Format::R32F, false, false, 1, -1, "Smoothed intermediate"},
-  {"dst", ResourceKind::Output, Format::R16F, false, false, 1, -1, "Result"},
+  {"src", ResourceKind::Input, Format::Depth, false, true, 1, -1, "Input depth", -1},
+  {"extra", ResourceKind::Input, Format::RGBA16F, false, true, 1, 1, "Extra input", -1},
+  {"mid", ResourceKind::Image, Format::R32F, true, false, 1, -1, "Intermediate chain", -1},
+  {"smooth", ResourceKind::Image, Format::R32F, false, false, 1, -1, "Smoothed intermediate", -1},
+  {"dst", ResourceKind::Output, Format::R16F, false, false, 1, -1, "Result", -1},
 }};
 
 // ---- Passes, in execution order, and their compiled variants.

@@ -2,7 +2,9 @@
 // allocate from it and dispatch from its schedule (sao/schedule.h); it is cheap and deterministic,
 // so tests assert it.
 #pragma once
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +19,20 @@ struct Extent {
   std::uint32_t height = 0;
   bool operator==(const Extent&) const = default;
 };
+
+// A texel position: where a region starts inside a larger image (x counts texels along a row, y
+// rows in storage order, so (0, 0) is the image's first texel in memory).
+struct Offset {
+  std::uint32_t x = 0;
+  std::uint32_t y = 0;
+  bool operator==(const Offset&) const = default;
+};
+
+// Whether an input image of `have` serves an effect that needs `needed` texels: exactly that size
+// without a region (so that a depth buffer with an undeclared guard band, or the wrong one, is
+// refused rather than read from its corner), or the region from `region` on lying inside it
+// (compared in 64 bits: an offset near 2^32 does not wrap around into the image).
+bool holdsInput(Extent have, const std::optional<Offset>& region, Extent needed);
 
 // The largest image side the plan accepts (backends also check their device's own limit).
 inline constexpr std::uint32_t kMaxImageSide = 16384;
@@ -48,7 +64,10 @@ struct PlannedPass {
 struct Plan {
   gen::VariantValues variants{};
   Extent inputExtent;  // depth, normals, csz: viewport + 2 * guard band
-  Extent aoExtent;     // ao_raw, blurs, output: the viewport
+  Extent aoExtent;     // the output: the viewport
+  // Per resource: the value of its divide_by= setting (resolution_divisor for ao_raw, ao_blur_h,
+  // ao_low), which divides its extent rounded up; 0 or 1: not divided.
+  std::array<std::uint32_t, gen::kResources.size()> extentDivisor{};
   std::uint32_t cszLevels = 1;
   std::vector<PlannedPass> passes;
   std::vector<PlannedImage> images;  // effect-owned images only (and the output unless userOutput)
@@ -73,7 +92,9 @@ std::uint32_t bytesPerTexel(gen::Format format);
 Extent levelExtent(Extent e, std::uint32_t level);
 
 // Level-0 extent of the image that serves `id` in `plan`: a planned image's own, else what the
-// resource declares (the input or AO extent over its scale), e.g. for a caller's output.
+// resource declares (the input or AO extent over its scale, then over its divisor rounded up:
+// ceil(641 / 2) = 321, so reduced pixel p covers viewport pixels [2p, 2p + 2)), e.g. for a
+// caller's output.
 Extent resourceExtent(const Plan& plan, gen::ResourceId id);
 
 }  // namespace sao

@@ -79,14 +79,19 @@ Schedule makeSchedule(const Plan& plan);
 // An input or output image as the caller supplies it this frame.
 struct SuppliedImage {
   bool supplied = false;
-  Extent extent;
+  Extent extent;  // the whole level 0 the caller supplies
+  // Inputs: Inputs::region, the texel of the supplied image that holds the region's first texel
+  // (the guard band's corner); the region, plan.inputExtent texels from here, must lie inside
+  // `extent`. Unset: `extent` must be plan.inputExtent.
+  std::optional<Offset> region;
 };
 using SuppliedImages = std::array<SuppliedImage, gen::kResources.size()>;
 
-// The caller's images against the plan: every input a dispatch reads is supplied with the input
-// extent and no other input is; a supplied output has the AO extent, and one is supplied exactly
-// when `outputSupplied` says the plan expects it. InvalidInput naming the image; `who` prefixes the
-// message ("sao::gl", "sao::vk"). Allocates only to build an error.
+// The caller's images against the plan: every input a dispatch reads is supplied, large enough to
+// hold the input extent at its offset (no 32-bit wrap-around), and no other input is; a supplied
+// output has the AO extent, and one is supplied exactly when `outputSupplied` says the plan
+// expects it. InvalidInput naming the image (for a region: its offset, the extent and the image's
+// size); `who` prefixes the message ("sao::gl", "sao::vk"). Allocates only to build an error.
 Status checkSupplied(const Plan& plan, const SuppliedImages& images, bool outputExpected, const char* who);
 
 // Whether an owned image keeps its allocation from `before` to `after` (same format, extent, levels).

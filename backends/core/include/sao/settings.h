@@ -13,11 +13,13 @@ using Settings = gen::Settings;
 using SettingInfo = gen::SettingInfo;
 using SettingId = gen::SettingId;
 
-// Ok, or InvalidSetting naming the first offending setting, its value and the allowed range. A
+// Ok, or InvalidSetting naming the first offending setting, its value and the allowed range (or
+// the allowed values, for a setting declared with values=[...]). A
 // float setting holding the float nearest a bound (0.01 is stored as 0.0099999998f) is in range.
 Status validate(const Settings& settings);
 
-// Every value pulled into its range (NaN becomes the default). For sliders, never implicit.
+// Every value pulled into its range, or to its nearest allowed value (NaN becomes the default).
+// For sliders, never implicit.
 Settings clamped(const Settings& settings);
 
 // The setting called `name`, or nullopt.

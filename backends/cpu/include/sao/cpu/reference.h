@@ -60,16 +60,20 @@ const char* toString(Precision precision);
 
 struct Inputs {
   // Required. Hardware depth (D16 / D24 / D32F, per the camera's conventions) or LinearZ (R32F
-  // camera-space z, then DepthEncoding::LinearZ is used). Extent: the plan's input extent
-  // (viewport + 2 * guard band).
+  // camera-space z, then DepthEncoding::LinearZ is used). The region read is the plan's input
+  // extent (viewport + 2 * guard band) from `offset` on; the image may be larger.
   const DepthImage* depth = nullptr;
-  // Optional second depth layer (deep G-buffer, TWO_LAYER): same extent and format as depth.
+  // Optional second depth layer (deep G-buffer, TWO_LAYER): same format as depth, the same region.
   const DepthImage* depth2 = nullptr;
   // Optional camera-space normals (NORMALS_SUPPLIED): 4 channels (.xyz used, components in
-  // [-1, 1]), same extent as depth. They are read as the rgba16f texture would hold them: each
+  // [-1, 1]), the same region as depth. They are read as the rgba16f texture would hold them: each
   // component rounded to the nearest binary16 value (ties to even, see quantizeHalf() and
   // halfBits()).
   const FloatImage* normals = nullptr;
+  // Optional: where the region starts in depth, depth2 and normals (shared; row 0 first, as the
+  // GPU backends' Inputs::region). Unset, every input must be exactly the region's size; a region
+  // outside an image is refused, never clamped.
+  std::optional<Offset> region;
 };
 
 struct Options {

@@ -81,13 +81,22 @@ struct DepthInput {
 };
 
 struct Inputs {
-  // Required. Level 0 must be (camera.width + 2 guardBand) x (camera.height + 2 guardBand).
+  // Required. The effect reads the region of (camera.width + 2 guardBand) x (camera.height + 2
+  // guardBand) texels (plan().inputExtent) that starts at `offset` of level 0; the texture may be
+  // larger (dynamic resolution: the viewport inside a bigger depth buffer). No copy is made.
   DepthInput depth;
-  // Optional second depth layer (deep G-buffer): same size and format as depth.
+  // Optional second depth layer (deep G-buffer): same format as depth, the same region.
   DepthInput depth2;
   // Optional camera-space normals in .xyz, components in [-1, 1] (GL_RGBA16F recommended; also
-  // GL_RGBA32F, GL_RGB16F, GL_RGB32F, GL_RGBA8_SNORM, GL_RGBA16_SNORM); same size as depth.
+  // GL_RGBA32F, GL_RGB16F, GL_RGB32F, GL_RGBA8_SNORM, GL_RGBA16_SNORM); the same region as depth.
   std::uint32_t normals = 0;
+  // Optional: the inputs hold the camera's image as a region of larger textures (dynamic
+  // resolution). The texel (x along a row, y in rows from row 0, i.e. storage order) of depth,
+  // depth2 and normals (they share it) that holds the guard band's first corner. Unset, every
+  // input must be exactly the region's size. A region that does not lie inside every texture given
+  // is refused (InvalidInput naming the offset, the extent and the texture's size), never clamped.
+  // Changing it does not plan again.
+  std::optional<Offset> region;
   // Optional output: a GL_R16F texture of the viewport size whose level 0 receives A. 0: the
   // effect writes into a texture it owns (aoTexture()). Must not be one of the inputs.
   std::uint32_t output = 0;
@@ -118,9 +127,9 @@ class SAO_GL_API Effect {
 
   // Runs the planned passes. Resources follow plan(settings, camera, inputs); when the size or the
   // plan changes only the images that changed are reallocated. Errors (bad settings or camera,
-  // texture 0, an unsupported or mismatched internal format, a size that is not the viewport plus
-  // twice the guard band, an input also passed as output, shader or driver failures) return a
-  // Status naming the problem and leave the GL state unchanged.
+  // texture 0, an unsupported or mismatched internal format, an input not the viewport plus twice
+  // the guard band or, with Inputs::region, too small to hold it there, an input also passed as output, shader or
+  // driver failures) return a Status naming the problem and leave the GL state unchanged.
   Status render(const Camera& camera, const Settings& settings, const Inputs& inputs,
                 const RenderOptions& options = {});
 

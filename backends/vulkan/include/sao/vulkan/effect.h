@@ -7,6 +7,7 @@
 //
 //   sao::vk::DeviceContext ctx{instance, physicalDevice, device, vkGetInstanceProcAddr,
 //                              vkGetDeviceProcAddr, queueFamily};
+//   ctx.enabledFeatures = &enabledFeatures;  // what you passed to vkCreateDevice
 //   sao::vk::Config config;            // settings, camera, depth format, output layout, ...
 //   config.camera = camera;
 //   config.depthFormat = VK_FORMAT_D32_SFLOAT;
@@ -19,8 +20,9 @@
 //   sao::vk::OutputImage ao = effect->output();  // R16_SFLOAT, in config.outputLayout
 //
 // Requirements on your device: Vulkan 1.1 or later, the feature shaderStorageImageExtendedFormats
-// enabled (the intermediates are rg32f and the output r16f storage images), and a queue family with
-// compute. Command buffers recorded by record() must be submitted to a queue of the family named
+// enabled (the intermediates are rg32f and the output r16f storage images; tell create() through
+// DeviceContext::enabledFeatures), and a queue family with compute. create() checks each and names
+// the one missing. Command buffers recorded by record() must be submitted to a queue of the family named
 // in DeviceContext::queueFamilyIndex (one queue: the effect's own images are reused every frame
 // and ordered by pipeline barriers in submission order).
 //
@@ -81,6 +83,11 @@ struct DeviceContext {
   // Set when the instance enabled VK_EXT_debug_utils: each pass is recorded inside a
   // vkCmdBeginDebugUtilsLabelEXT / End pair named "sao <pass>" (for captures and validation).
   bool debugUtilsEnabled = false;
+  // Required: the features you enabled at vkCreateDevice (VkDeviceCreateInfo::pEnabledFeatures, or
+  // VkPhysicalDeviceFeatures2::features in its pNext chain), read by create() only. Vulkan cannot
+  // be asked what a VkDevice enabled, so create() refuses (InvalidInput) without it and refuses a
+  // device without a feature the effect needs (DriverError naming it).
+  const VkPhysicalDeviceFeatures* enabledFeatures = nullptr;
 };
 
 // What the images, pipelines and the parameter block depend on.
@@ -118,13 +125,14 @@ struct Config {
 
 // One of your sampled inputs: a view of one mip level, in `layout` (SHADER_READ_ONLY_OPTIMAL,
 // DEPTH_STENCIL_READ_ONLY_OPTIMAL, DEPTH_READ_ONLY_OPTIMAL, DEPTH_READ_ONLY_STENCIL_ATTACHMENT_OPTIMAL,
-// READ_ONLY_OPTIMAL or GENERAL), created with VK_IMAGE_USAGE_SAMPLED_BIT. `extent` must equal
-// plan().inputExtent (viewport + 2 * guard band). `format`, when given, must be the one Config
-// names (Config::depthFormat for depth and depth2, Config::normalsFormat for normals).
+// READ_ONLY_OPTIMAL or GENERAL), created with VK_IMAGE_USAGE_SAMPLED_BIT. `extent` is the view's
+// size (a view cannot tell it): it must be plan().inputExtent (viewport + 2 * guard band) or, with
+// Inputs::region, hold it from there on, and not exceed maxImageDimension2D. `format`, when given, must be the one
+// Config names (Config::depthFormat for depth and depth2, Config::normalsFormat for normals).
 struct InputImage {
   VkImageView view = VK_NULL_HANDLE;
   VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-  Extent extent;
+  Extent extent;  // the whole level the view shows
   VkFormat format = VK_FORMAT_UNDEFINED;  // optional, checked against Config
 };
 
@@ -132,6 +140,14 @@ struct Inputs {
   InputImage depth;    // required
   InputImage depth2;   // when Config::secondLayer
   InputImage normals;  // when Config::normalsFormat != VK_FORMAT_UNDEFINED
+  // Optional: where the region of plan().inputExtent texels starts in depth, depth2 and normals
+  // (they share it): the texel (x along a row, y in rows from row 0) holding the guard band's first
+  // corner. With it the images may be larger (dynamic resolution: the viewport inside a bigger
+  // depth buffer); the region is read in place, no copy. Unset, every input must be exactly
+  // plan().inputExtent. Per record(): changing it needs no update(). A region that does not lie
+  // inside every image given is refused (InvalidInput naming the offset, the extent and the
+  // image's size), never clamped.
+  std::optional<Offset> region;
 };
 
 // The output: VK_FORMAT_R16_SFLOAT, the viewport's extent (plan().aoExtent), one level, usage

@@ -45,6 +45,9 @@ struct Options {
   bool synchronizationValidation = false;  // implies validation
   DevicePreference device = DevicePreference::Auto;
   std::uint32_t apiVersion = VK_API_VERSION_1_3;  // capped to what the instance and device offer (>= 1.1)
+  // Enables shaderStorageImageExtendedFormats, which sao::vk needs; false makes a device without
+  // it (for the test that Effect::create() refuses such a device).
+  bool storageImageExtendedFormats = true;
   const char* applicationName = "sao headless";
   std::vector<std::string> instanceExtensions;  // required, e.g. the window system's (glfwGetRequiredInstanceExtensions)
   // Makes the window's surface on a new instance; called again for the lavapipe retry.
@@ -176,6 +179,8 @@ class Context {
   std::uint32_t apiVersion_ = VK_API_VERSION_1_1;
   VkPhysicalDeviceProperties props_{};
   VkPhysicalDeviceMemoryProperties memory_{};
+  VkPhysicalDeviceFeatures enabled_{};  // what vkCreateDevice enabled (DeviceContext::enabledFeatures)
+  bool storageImageExtendedFormats_ = true;
   VkCommandPool pool_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
   std::string driverFiles_;

@@ -1,0 +1,122 @@
+// The texel reads of ao_sample (effect/sao.glsl, sao_ao_main), replayed per work group for the
+// memory-traffic model of sao-bench (samples/bench/traffic_*). Every address comes from the same
+// functions of sao_math.h that AoSampleInvocation (sao_passes.h) evaluates, in float, so the taps
+// are the ones the shader fetches (compile the includer with -ffp-contract=off, as sao_cpu is).
+// Reads come per instruction ("step") and lane, the order a SIMT machine issues them: step 0 the
+// centre z of every invocation (inside or not), then, for the invocations with geometry, the
+// normal (one normals fetch, or the four csz neighbours of eq. 4), then the s taps.
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "sao_math.h"
+
+namespace sao::cpu::trace {
+
+enum class Surface : std::uint8_t { Csz, Normals };  // the textures ao_sample reads
+
+// A trace writes to a sink: `beginStep()` before each step's reads and once after the last,
+// `read(lane, surface, level, x, y)` per texel fetch (lane = gl_LocalInvocationIndex; level the
+// MIP level, 0 for normals; x, y the texel of that level). samples/bench's GroupReads is one.
+
+// ao_sample of one run: its csz chain, its block (as float, the way the shader sees it), variant.
+class AoSampleTrace {
+ public:
+  // csz: level 0 first, more than params.max_mip levels when zHierarchy (the caller checks).
+  AoSampleTrace(const std::vector<detail::Image<float>>& csz, const gen::SaoParams& params, bool zHierarchy,
+                bool normalsSupplied, int localX = 8, int localY = 8)
+      : csz_(csz), P_(params), zHierarchy_(zHierarchy), normalsSupplied_(normalsSupplied), localX_(localX),
+        localY_(localY) {}
+
+  // ao_raw's extent: the viewport over resolution_divisor, rounded up (the dispatch covers it).
+  int aoWidth() const { return (P_.ao_size.x + divisor() - 1) / divisor(); }
+  int aoHeight() const { return (P_.ao_size.y + divisor() - 1) / divisor(); }
+  int groupsX() const { return (aoWidth() + localX_ - 1) / localX_; }
+  int groupsY() const { return (aoHeight() + localY_ - 1) / localY_; }
+  int lanes() const { return localX_ * localY_; }
+
+  // The reads of work group (gx, gy), appended to `out`.
+  template <typename Sink>
+  void group(int gx, int gy, Sink& out) const;
+
+ private:
+  int divisor() const { return std::max(P_.ao_divisor, 1); }
+
+  struct Lane {  // what one invocation carries from the centre read to its taps
+    bool active = false;  // inside the AO buffer and not sky: it reads its normal and taps
+    int cx = 0, cy = 0;
+    float rPx = 0;
+    std::uint32_t phase = 0;
+  };
+
+  const std::vector<detail::Image<float>>& csz_;
+  const detail::Block<float> P_;
+  const bool zHierarchy_, normalsSupplied_;
+  const int localX_, localY_;
+};
+
+template <typename Sink>
+void AoSampleTrace::group(int gx, int gy, Sink& out) const {
+  using namespace sao::cpu::detail;
+  const Image<float>& z0 = csz_[0];
+  const Block<float>& P = P_;
+  std::vector<Lane> lane(static_cast<std::size_t>(lanes()));
+
+  // Step 0: zc = texelFetch(in_csz, c, 0), by every invocation.
+  out.beginStep();
+  for (int li = 0; li < lanes(); ++li) {
+    const int px = gx * localX_ + li % localX_, py = gy * localY_ + li / localX_;
+    const bool inside = px < std::min(P.ao_size.x, aoWidth()) && py < std::min(P.ao_size.y, aoHeight());
+    Lane& l = lane[std::size_t(li)];
+    // The viewport pixel the (reduced) AO pixel stands for: itself at divisor 1.
+    l.cx = std::clamp(lowRepresentative(px, P.ao_divisor, P.ao_size.x) + P.guard.x, 0, z0.w - 1);
+    l.cy = std::clamp(lowRepresentative(py, P.ao_divisor, P.ao_size.y) + P.guard.y, 0, z0.h - 1);
+    out.read(li, Surface::Csz, 0, l.cx, l.cy);
+    const float zc = z0.at(l.cx, l.cy);
+    l.active = inside && !isSky(zc);
+    if (l.active) {
+      l.rPx = screenRadius(zc, P);
+      l.phase = pixelPhase(std::uint32_t(px), std::uint32_t(py));
+    }
+  }
+
+  // The normal: one fetch of the normals input, or eq. 4's four neighbours (clamped addresses,
+  // fetched even at the border, as sao_reconstruct_normal does).
+  if (normalsSupplied_) {
+    out.beginStep();
+    for (int li = 0; li < lanes(); ++li)
+      if (const Lane& l = lane[std::size_t(li)]; l.active)
+        out.read(li, Surface::Normals, 0, l.cx + P.input_offset.x, l.cy + P.input_offset.y);
+  } else {
+    const int lastX = z0.w - 1, lastY = z0.h - 1;
+    for (int k = 0; k < 4; ++k) {  // zl, zr, zd, zu
+      out.beginStep();
+      for (int li = 0; li < lanes(); ++li) {
+        const Lane& l = lane[std::size_t(li)];
+        if (!l.active) continue;
+        const int x = k == 0 ? std::max(l.cx - 1, 0) : k == 1 ? std::min(l.cx + 1, lastX) : l.cx;
+        const int y = k == 2 ? std::max(l.cy - 1, 0) : k == 3 ? std::min(l.cy + 1, lastY) : l.cy;
+        out.read(li, Surface::Csz, 0, x, y);
+      }
+    }
+  }
+
+  // The s spiral taps (eq. 6-10).
+  const int s = std::clamp(P.samples, 1, gen::SAO_MAX_SAMPLES);
+  for (int i = 0; i < s; ++i) {
+    out.beginStep();
+    for (int li = 0; li < lanes(); ++li) {
+      const Lane& l = lane[std::size_t(li)];
+      if (!l.active) continue;
+      float h;
+      int tx, ty;
+      spiralTap(l.cx, l.cy, i, s, l.phase, l.rPx, P, tx, ty, h);
+      const int m = zHierarchy_ ? mipLevel(h, P.log_q, P.max_mip) : 0;
+      out.read(li, Surface::Csz, m, mipTexel(tx, m, z0.w), mipTexel(ty, m, z0.h));
+    }
+  }
+  out.beginStep();  // closes the last step
+}
+
+}  // namespace sao::cpu::trace
