@@ -1,7 +1,8 @@
 #!/bin/sh
 # The sao-bench smoke test: a --quick run on the cpu backend writes every output, one row per
-# measurement; the preset and two_layer rows carry the errors against both references (ao_* and
-# obscurance_*); the radius sweep has its three curves (with the variants they claim); --sections
+# measurement; the preset and two_layer rows carry the errors against the three references (ao_*,
+# obscurance_*, converged_*), the model error and a signed error map (maps/*.png); the committed
+# presets are monotone in their error against (c) on sphere-plane; the radius sweep has its three curves (with the variants they claim); --sections
 # runs one part only and rejects an unknown one. Every run writes reference_check.csv: reference (a)
 # against the analytic sphere (cos(theta) (R/D)^2 at 0, 45 and 60 degrees), each within 0.01.
 # usage: bench_smoke.sh SAO_BENCH OUT_DIR
@@ -33,7 +34,9 @@ refcheck "$out/all"
 
 csv=$out/all/results.csv
 col() { head -1 "$csv" | tr ',' '\n' | grep -nx "$1" | cut -d: -f1; }
-for c in ao_rmse_raw ao_rmse_fitted obscurance_rmse_raw obscurance_bias_raw obscurance_fitted_scale obscurance_rmse_fitted; do
+for c in ao_rmse_raw ao_rmse_fitted obscurance_rmse_raw obscurance_bias_raw obscurance_fitted_scale obscurance_rmse_fitted \
+         converged_rmse_raw converged_bias_raw converged_ssim_raw converged_blotch_rmse converged_highfreq_rmse \
+         converged_silhouette_rmse model_rmse_vs_ao model_rmse_vs_obscurance error_map; do
   test -n "$(col $c)" || die "results.csv has no column $c"
 done
 count() { awk -F, "$1" "$csv" | wc -l; }
@@ -41,10 +44,46 @@ count() { awk -F, "$1" "$csv" | wc -l; }
 rows() { count "\$1==\"$1\" && \$$(col "$2") $3 \"\""; }
 
 [ "$(rows presets section !=)" -eq 10 ] || die "expected 10 preset rows (2 scenes x 5 presets)"
-for c in ao_rmse_raw ao_rmse_fitted obscurance_rmse_raw obscurance_rmse_fitted; do
+for c in ao_rmse_raw ao_rmse_fitted obscurance_rmse_raw obscurance_rmse_fitted converged_rmse_raw converged_ssim_raw \
+         converged_blotch_rmse converged_highfreq_rmse model_rmse_vs_ao model_rmse_vs_obscurance error_map; do
   [ "$(rows presets $c ==)" -eq 0 ] || die "a preset row has no $c"
   [ "$(rows two_layer $c ==)" -eq 0 ] || die "a two_layer row has no $c"
 done
+# The error vs (c) and its parts are RMSEs in [0, 0.2) (0.2 would be a broken reference: these scenes'
+# presets sit near 0.01), the model error is below 0.3, blotch and high-frequency parts are each
+# at most the whole error's RMSE plus 10%; sphere-plane has silhouette pixels (its sky line and the
+# sphere's outline), the crease none (n/a).
+awk -F, -v r="$(col converged_rmse_raw)" -v b="$(col converged_blotch_rmse)" -v h="$(col converged_highfreq_rmse)" \
+    -v s="$(col converged_silhouette_rmse)" -v ma="$(col model_rmse_vs_ao)" -v mb="$(col model_rmse_vs_obscurance)" \
+    'NR > 1 && $r != "" { n++
+       if (!($r >= 0 && $r < 0.2 && $b >= 0 && $b <= 1.1 * $r && $h >= 0 && $h <= 1.1 * $r && $ma > 0 && $ma < 0.3 &&
+             $mb > 0 && $mb < 0.3)) bad = 1
+       if ($2 == "sphere-plane" && !($s > 0 && $s < 0.2)) bad = 1
+       if ($2 == "crease" && $s != "n/a") bad = 1 }
+     END { exit bad || n == 0 }' "$csv" || die "results.csv: converged_* or model_* values out of range"
+# Every row with errors has its map, a PNG, and each scene a map of its model error.
+m=$(col error_map)
+for f in $(awk -F, -v m="$m" 'NR > 1 && $m != "" {print $m}' "$csv"); do
+  [ "$(head -c 4 "$out/all/$f" | tail -c 3)" = "PNG" ] || die "$f is missing or not a PNG"
+done
+for scene in crease sphere-plane; do
+  ls "$out/all/maps/" | grep -q "_model_${scene}_depth.png$" || die "no model-error map for $scene"
+done
+
+# The committed presets' error against (c) falls with every step up on one scene:
+# low > medium > high > ultra > reference in converged_rmse_raw. Measured at --quick (cpu):
+# sphere-plane 0.0246 > 0.0109 > 0.0079 > 0.0039 > 0.0030 holds; crease 0.0216 > 0.0108 < 0.0113
+# (high) > 0.0096 > 0.0035 does not (yet: the presets are to be retuned, issue 16), so only
+# sphere-plane is checked; `monotone crease` is the check to add once it holds.
+monotone() {
+  awk -F, -v r="$(col converged_rmse_raw)" -v p="$(col preset)" -v scene="$1" '
+    $1 == "presets" && $2 == scene { e[$p] = $r }
+    END { exit !(e["low"] > e["medium"] && e["medium"] > e["high"] && e["high"] > e["ultra"] &&
+                 e["ultra"] > e["reference"] && e["reference"] > 0) }' "$csv" ||
+    die "the presets are not monotone in converged_rmse_raw on $1: $(awk -F, -v r="$(col converged_rmse_raw)" \
+        -v p="$(col preset)" -v scene="$1" '$1 == "presets" && $2 == scene { printf "%s %s; ", $p, $r }' "$csv")"
+}
+monotone sphere-plane
 
 # radius: three curves with two radii each, each curve the variant it says it is.
 v=$(col variant) s=$(col shader_variant) i=$(col inputs)
@@ -70,6 +109,9 @@ awk -F, '$3 ~ /^inf$/ && $6 == 10 && (($2 == "D16" && $4 == "standard") || ($2 =
 
 grep -q '"error_vs_obscurance": {' "$out/all/results.json" || die "results.json has no error_vs_obscurance"
 grep -q '"error_vs_ao": {' "$out/all/results.json" || die "results.json has no error_vs_ao"
+grep -q '"error_vs_converged": {' "$out/all/results.json" || die "results.json has no error_vs_converged"
+grep -q '"model_error": {' "$out/all/results.json" || die "results.json has no model_error"
+grep -q '"converged_\*": ' "$out/all/results.json" || die "results.json does not say what reference (c) is"
 grep -q '"radius: AlchemyAO-style": ' "$out/all/results.json" || die "results.json does not say what the baseline is"
 grep -q '<svg' "$out/all/pareto.svg" || die "pareto.svg is not an SVG"
 
