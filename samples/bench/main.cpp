@@ -3,9 +3,12 @@
 // two-layer variant. Writes CSV, JSON and SVG plots.
 // `sao-bench --help` lists the options; `--quick` is the small run the tests use.
 #include <algorithm>
+#include <cctype>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -18,12 +21,15 @@
 #include "precision_report.h"
 #include "reference_check.h"
 #include "report.h"
+#include "traffic_section.h"
 #include "sao/cli/command_line.h"
 #include "sao/cli/shared_options.h"
 #include "sao/prepass/precision.h"
 #include "sao/prepass/prepass.h"
 #include "sao/presets.h"
+#include "sao/raytrace/converged.h"
 #include "sao/raytrace/raytrace.h"
+#include "sao/samples/error_structure.h"
 #include "sao/scenes/scene.h"
 
 namespace fs = std::filesystem;
@@ -33,15 +39,17 @@ namespace {
 
 constexpr const char* kDescription =
     R"(Measures every preset on every scene and backend (median per-pass time of --runs runs, and the
-error against two ray-traced references: (a) near-field AO, (b) the AlchemyAO obscurance integral),
+error against two ray-traced references, (a) near-field AO and (b) the AlchemyAO obscurance integral,
+and against (c) the converged screen-space estimator, with signed error maps as PNG),
 then the sweeps: samples, MIP and blur on/off, radius (paper Fig. 5: SAO with and without the z
 hierarchy and an AlchemyAO-style baseline), resolution (paper Table 3) and the two-layer variant.
 Every run first checks reference (a) against the analytic sphere case (reference_check.csv).
-Writes results.csv, results.json and SVG plots.)";
+Writes results.csv, results.json and SVG plots; the traffic section (ao_sample's texel reads through
+a cache model: a paper-like GPU and this CPU) writes traffic.csv.)";
 
 // The parts of the run, in the order they run (--sections picks some).
 const std::vector<std::string> kSections = {"presets",    "samples",   "mip_blur", "radius",
-                                            "resolution", "two_layer", "precision"};
+                                            "resolution", "two_layer", "precision", "traffic"};
 
 std::string sectionNames() {
   std::string names;
@@ -56,9 +64,10 @@ constexpr double kSecondLayerSeparation = 0.5;
 struct Options {
   std::string out = "out/bench", backends = "gl,vulkan,cpu", depthSource = "raster";
   std::set<std::string> sections{kSections.begin(), kSections.end()};
-  std::uint32_t runs = 5, rays = 256;
+  std::uint32_t runs = 5, rays = 256, convergedTaps = 4096;
   Extent size{1280, 720};
   bool quick = false;
+  bool convergedNoise = false;  // --converged-noise
   std::optional<scenes::LengthUnit> units;  // --units
 };
 
@@ -90,6 +99,8 @@ Options parse(int argc, char** argv) {
            [&o](const std::string& v) { o.sections = parseSections(v); });
   cli::addRuns(cl, o.runs, 1, "measured runs per point, after one warm-up", "default 5");
   cli::addRays(cl, "--rays", o.rays, "reference rays per pixel", "default 256");
+  cli::addRays(cl, "--converged-taps", o.convergedTaps, "taps per pixel of reference (c), the converged estimator",
+               "default 4096");
   cli::addImageSize(cl, o.size, "size of the preset matrix and sweeps",
                     "default 1280x720; the radius sweep always runs at 1920x1080 unless --quick");
   cl.choice("--depth-source", o.depthSource,
@@ -102,6 +113,9 @@ Options parse(int argc, char** argv) {
             "the scenes' length unit: m | cm | mm | in | ft | auto (default: each scene's own, the built-in scenes' "
             "metres). Settings stay in metres and are converted (Camera::metersToViewUnits); the choice is printed "
             "per scene");
+  cl.flag("--converged-noise", o.convergedNoise,
+          "compute each reference (c) a second time with another seed and report its own noise, the RMS of the "
+          "difference / sqrt(2) over the pixels with geometry (doubles the time (c) takes)");
   cl.flag("--quick", o.quick, "the smoke run: 160x90, 3 runs, 16 rays, two scenes, short sweeps (replaces --size, "
           "--runs and --rays)");
   cl.parse(argc, argv);
@@ -112,6 +126,22 @@ Options parse(int argc, char** argv) {
 // The settings the obscurance reference depends on: radius, intensity, bias, epsilon, contrast.
 using ObscuranceKey = std::tuple<float, float, float, float, float>;
 
+// What the effect is given besides depth; the inputs select the shader variant (NORMALS_SUPPLIED,
+// TWO_LAYER), as in every backend.
+enum class Extra { None, Normals, SecondLayer };
+
+// Reference (c) depends on the obscurance settings and on the inputs (normals, second layer).
+using ConvergedKey = std::tuple<ObscuranceKey, Extra>;
+
+// Reference (c) with its cost and the model error: (c) against (a) and (b), NaN until computed.
+struct Converged {
+  FloatImage ao;
+  double seconds = 0, cpuSeconds = 0;  // wall and CPU (all threads) time
+  double rmseVsAo = NAN, rmseVsObscurance = NAN;
+  double noise = NAN;  // with --converged-noise: (c)'s own per-pixel noise (RMS over the mask)
+  std::string modelMap;  // maps/ PNG of (c) - (a), relative to the output folder
+};
+
 // A scene at one size: its ray caster, primary rays, second layer and references.
 struct Prepared {
   scenes::Scene scene;
@@ -121,6 +151,8 @@ struct Prepared {
   std::vector<unsigned char> mask;
   std::map<double, FloatImage> references;  // (a) near-field AO per radius
   std::map<ObscuranceKey, FloatImage> obscurance;  // (b) per obscurance settings
+  std::map<ConvergedKey, Converged> converged;     // (c) per obscurance settings and inputs
+  std::vector<unsigned char> silhouette;           // samples::silhouetteBand of the primary positions
   std::optional<raytrace::Primary> secondLayer;
 };
 
@@ -159,6 +191,7 @@ Prepared& prepare(std::map<std::string, Prepared>& cache, prepass::Prepass* prep
     fail(s.message);
   }
   p.mask = samples::geometryMask(p.primary.position, 0);
+  p.silhouette = samples::silhouetteBand(p.primary.position, 0);
   p.camera.metersToViewUnits = unit.metersToViewUnits;
   return p;
 }
@@ -198,9 +231,49 @@ const raytrace::Primary& secondLayer(Prepared& p) {
   return *p.secondLayer;
 }
 
-// What the effect is given besides depth; the inputs select the shader variant (NORMALS_SUPPLIED,
-// TWO_LAYER), as in every backend.
-enum class Extra { None, Normals, SecondLayer };
+// Reference (c) for the run's settings and inputs, timed; the model error against (a) and (b)
+// where they are given (both are computed before (c) for rows with errors).
+Converged& convergedReference(Prepared& p, const Settings& s, Extra extra, const samples::RunInputs& inputs,
+                              std::uint32_t taps, bool measureNoise, const FloatImage* nearFieldAo,
+                              const FloatImage* obscurance) {
+  const ConvergedKey key{{s.radius, s.intensity, s.bias, s.epsilon, s.contrast}, extra};
+  auto it = p.converged.find(key);
+  if (it != p.converged.end()) return it->second;
+  Converged& c = p.converged[key];
+  raytrace::ConvergedOptions co;
+  co.taps = taps;
+  co.rings = std::max(1u, taps / 32);  // 128 rings at the default 4096 taps (docs/reference.md)
+  const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpuStart = std::clock();
+  if (Status st = raytrace::convergedEstimator(s, p.camera, {inputs.depth, inputs.depth2, inputs.normals}, co, c.ao); !st)
+    fail("reference (c): " + st.message);
+  c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  c.cpuSeconds = double(std::clock() - cpuStart) / CLOCKS_PER_SEC;
+  if (measureNoise) {  // a second, independent estimate: E[(c1 - c2)^2] / 2 is the variance
+    FloatImage second;
+    co.seed = 2;
+    if (Status st = raytrace::convergedEstimator(s, p.camera, {inputs.depth, inputs.depth2, inputs.normals}, co, second); !st)
+      fail("reference (c): " + st.message);
+    c.noise = samples::compareToReference(second, c.ao, p.mask).raw.rmse / std::sqrt(2.0);
+  }
+  if (nearFieldAo) c.rmseVsAo = samples::compareToReference(c.ao, *nearFieldAo, p.mask).raw.rmse;
+  if (obscurance) c.rmseVsObscurance = samples::compareToReference(c.ao, *obscurance, p.mask).raw.rmse;
+  return c;
+}
+
+// A file name for a row's map: its index, section, scene, backend, preset and variant, with every
+// character but [A-Za-z0-9.-] as '_'.
+std::string mapName(std::size_t index, const std::vector<std::string>& parts) {
+  char prefix[16];
+  std::snprintf(prefix, sizeof prefix, "%03zu", index);
+  std::string name = prefix;
+  for (const std::string& part : parts) {
+    if (part.empty()) continue;
+    name += '_';
+    for (char ch : part) name += std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '-' ? ch : '_';
+  }
+  return name + ".png";
+}
 
 // What the outputs mean, in results.json ("notes") and on stdout.
 std::vector<std::pair<std::string, std::string>> notes(const std::string& depthSource) {
@@ -216,6 +289,27 @@ std::vector<std::pair<std::string, std::string>> notes(const std::string& depthS
                        "first hit along each direction, with the run's radius, intensity, bias, epsilon and contrast "
                        "(raytrace::referenceObscurance, docs/reference.md): the integral the effect's estimator "
                        "(AlchemyAO eq. 10) approximates."},
+      {"converged_*", "error against reference (c), the converged screen-space estimator: the effect's own estimator "
+                      "(same depth, normals rebuilt from depth or the supplied ones, second layer, radius cut, bias, "
+                      "epsilon, intensity, contrast) with every tap on csz level 0, no 2x2 reconstruction, no blur, in "
+                      "double, integrated over the spiral's tap distribution by stratified taps "
+                      "(raytrace::convergedEstimator, --converged-taps per pixel, docs/reference.md). The error vs (c) "
+                      "is what taps, MIP use, blur and resolution trade."},
+      {"converged_blotch_rmse / converged_highfreq_rmse", "the error vs (c) split by a Gaussian low-pass of sigma = 8 px "
+                                                          "(a normalised convolution over the pixels with geometry only): "
+                                                          "RMSE of the low-passed error (blotches, what a blur cannot "
+                                                          "remove) and of the remainder (noise)."},
+      {"converged_silhouette_rmse", "RMSE of the error vs (c) over the pixels with geometry within 3 px (Euclidean) of a "
+                                    "depth discontinuity: 4-neighbours of the depth input where one is sky and the other "
+                                    "geometry, or whose camera-space z differ by more than 10% of the nearer |z| (halos)."},
+      {"model_rmse_vs_ao / model_rmse_vs_obscurance", "the model error, the same on every row of a scene, settings and "
+                                                      "inputs: RMSE of (c) against (a) and against (b). The share of the "
+                                                      "error vs (a) that no preset can fix (the heightfield and the "
+                                                      "estimator's definition)."},
+      {"error_map", "maps/NNN_<row>.png: the signed error of the row's output against (c), white at 0, blue where the "
+                    "output is darker (more occluded), red where lighter, full colour at +-0.1 and beyond (fixed "
+                    "scale), grey without geometry; maps/NNN_model_<scene>_<inputs>.png: (c) - (a) on the same scale. "
+                    "FLIP is not computed (SSIM and the figures above only)."},
       {"raw / fitted", "raw: the effect's output against the reference over the pixels with geometry; fitted: after "
                        "scaling the effect's occlusion 1 - A by the least-squares factor fitted_scale."},
       {"radius: SAO (z hierarchy)", "the effect as shipped: z MIP hierarchy (Z_HIERARCHY=1), normals rebuilt from depth."},
@@ -290,6 +384,7 @@ int main(int argc, char** argv) {
   const std::string mainScene = o.quick ? "sphere-plane" : std::string(scenes::kDefaultScene);
   std::map<std::string, Prepared> cache;
   std::vector<bench::Row> rows;
+  std::vector<std::string> convergedTimes;  // how long each reference (c) took
   int step = 0;
   auto progress = [&](const std::string& what) {
     std::fprintf(stderr, "\r\033[K[%d] %s", ++step, what.c_str());
@@ -307,14 +402,45 @@ int main(int argc, char** argv) {
     if (extra == Extra::Normals) inputs.normals = &p.primary.normal, what = "depth+normals";
     if (extra == Extra::SecondLayer) inputs.depth2 = &secondLayer(p).depth, what = "depth+depth2";
     bench::References refs;
+    Converged* converged = nullptr;
     if (withError) {
       refs.nearFieldAo = &reference(p, s.radius, o.rays);
       refs.obscurance = &obscuranceReference(p, s, o.rays);
+      const bool fresh = !p.converged.count({{s.radius, s.intensity, s.bias, s.epsilon, s.contrast}, extra});
+      converged = &convergedReference(p, s, extra, inputs, o.convergedTaps, o.convergedNoise, refs.nearFieldAo,
+                                      refs.obscurance);
+      if (fresh) {
+        char t[96];
+        std::snprintf(t, sizeof t, ": %.1f s (%.1f s CPU)", converged->seconds, converged->cpuSeconds);
+        convergedTimes.push_back(scene + " (" + what + ")" + t);
+        if (o.convergedNoise) {
+          std::snprintf(t, sizeof t, ", own noise %.2g (RMS)", converged->noise);
+          convergedTimes.back() += t;
+        }
+      }
+      refs.converged = &converged->ao;
       refs.mask = &p.mask;
+      refs.silhouette = &p.silhouette;
     }
-    bench::Row r{section, scene, std::string(b.name()), preset, variant, what, size, s, {}};
+    bench::Row r{section, scene, std::string(b.name()), preset, variant, what, size, s, {}, NAN, NAN, {}};
     if (Status st = bench::measure(b, s, p.camera, inputs, int(o.runs), refs, r.m); !st)
       fail(section + " " + scene + " " + variant + ": " + st.message);
+    if (converged) {
+      if (fs::create_directories(fs::path(o.out) / "maps", ec); ec)
+        fail("cannot create '" + (fs::path(o.out) / "maps").string() + "': " + ec.message());
+      r.modelRmseVsAo = converged->rmseVsAo;
+      r.modelRmseVsObscurance = converged->rmseVsObscurance;
+      r.errorMap = "maps/" + mapName(rows.size(), {section, scene, r.backend, preset, variant});
+      if (Status st = samples::writeErrorMapPng((fs::path(o.out) / r.errorMap).string(), r.m.ao, converged->ao, p.mask); !st)
+        fail(st.message);
+      if (converged->modelMap.empty()) {  // once per scene, settings and inputs: (c) - (a)
+        converged->modelMap = "maps/" + mapName(rows.size(), {"model", scene, what});
+        if (Status st = samples::writeErrorMapPng((fs::path(o.out) / converged->modelMap).string(), converged->ao,
+                                                  *refs.nearFieldAo, p.mask);
+            !st)
+          fail(st.message);
+      }
+    }
     rows.push_back(std::move(r));
   };
   auto want = [&](const char* section) { return o.sections.count(section) > 0; };
@@ -398,8 +524,20 @@ int main(int argc, char** argv) {
 
   std::fprintf(stderr, "\n");
 
+  // traffic: the memory-traffic model on the main scene (traffic_section.h).
+  if (want("traffic"))
+    if (Status s = bench::trafficSection(o.out, mainScene, o.quick, [&](Extent e) {
+          Prepared& p = prepare(cache, depthPrepass.get(), mainScene, e.width, e.height, o.units);
+          return bench::TrafficInput{&p.primary.depth, p.camera};
+        });
+        !s)
+      fail("traffic: " + s.message);
+
   // Reports.
-  const auto legend = notes(depthSource);
+  auto legend = notes(depthSource);
+  std::string times;
+  for (const std::string& t : convergedTimes) times += (times.empty() ? "" : "; ") + t;
+  if (!times.empty()) legend.emplace_back("converged time", "wall (and CPU, all threads) time of each reference (c): " + times);
   bench::writeCsv((fs::path(o.out) / "results.csv").string(), rows);
   bench::writeJson((fs::path(o.out) / "results.json").string(), rows, machine, legend);
   const auto charts = bench::writeCharts(o.out, rows, mainScene, std::string(first.name()));

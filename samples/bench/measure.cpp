@@ -48,6 +48,10 @@ Status measure(samples::BackendRunner& backend, const Settings& settings, const 
   if (const auto* mask = references.mask) {
     if (references.nearFieldAo) out.aoError = samples::compareToReference(out.ao, *references.nearFieldAo, *mask);
     if (references.obscurance) out.obscuranceError = samples::compareToReference(out.ao, *references.obscurance, *mask);
+    if (const FloatImage* c = references.converged) {
+      out.convergedError = samples::compareToReference(out.ao, *c, *mask);
+      if (references.silhouette) out.convergedStructure = samples::errorStructure(out.ao, *c, *mask, *references.silhouette);
+    }
   }
   return Status::success();
 }

@@ -6,16 +6,19 @@
 #include <vector>
 
 #include "sao/samples/backend_runner.h"
+#include "sao/samples/error_structure.h"
 #include "sao/samples/metrics.h"
 
 namespace sao::bench {
 
-// The truths a measurement is compared with, over the pixels where `mask` is non-zero. Either
+// The truths a measurement is compared with, over the pixels where `mask` is non-zero. Any
 // reference may be absent (no error is computed for it); without a mask none is.
 struct References {
   const FloatImage* nearFieldAo = nullptr;  // (a) raytrace::referenceAmbientOcclusion at the run's radius
   const FloatImage* obscurance = nullptr;   // (b) raytrace::referenceObscurance with the run's settings
+  const FloatImage* converged = nullptr;    // (c) raytrace::convergedEstimator with the run's settings and inputs
   const std::vector<unsigned char>* mask = nullptr;
+  const std::vector<unsigned char>* silhouette = nullptr;  // samples::silhouetteBand, for (c)'s structure
 };
 
 struct Measurement {
@@ -28,6 +31,8 @@ struct Measurement {
   std::string shaderVariant;  // the ao_sample variant the plan chose, e.g. "NORMALS_SUPPLIED=1 TWO_LAYER=0 Z_HIERARCHY=0"
   std::optional<samples::ReferenceComparison> aoError;          // against (a)
   std::optional<samples::ReferenceComparison> obscuranceError;  // against (b)
+  std::optional<samples::ReferenceComparison> convergedError;   // against (c)
+  std::optional<samples::ErrorStructure> convergedStructure;    // blotch, high-frequency, silhouette vs (c)
   FloatImage ao;
 };
 

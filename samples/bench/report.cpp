@@ -44,6 +44,18 @@ void csvErrors(std::ofstream& f, const std::optional<samples::ReferenceCompariso
     << m(e->fitted.ssim) << "," << m(e->fitted.fractionOver01);
 }
 
+// (c)'s structure columns, then the model error and the map.
+void csvConverged(std::ofstream& f, const Row& r) {
+  const auto& st = r.m.convergedStructure;
+  if (st)
+    f << "," << csvMetric(st->blotchRmse) << "," << csvMetric(st->highFrequencyRmse) << ","
+      << csvMetric(st->silhouetteRmse);
+  else
+    f << ",,,";
+  auto optional = [](double v) { return samples::isDefined(v) ? csvMetric(v) : std::string(); };
+  f << "," << optional(r.modelRmseVsAo) << "," << optional(r.modelRmseVsObscurance) << "," << csv(r.errorMap);
+}
+
 // One reference's error columns; NaN (undefined) serialises as null.
 Json jsonErrors(const samples::ReferenceComparison& e) {
   return Json{{"pixels", e.raw.pixels},          {"rmse_raw", e.raw.rmse},
@@ -66,9 +78,10 @@ void writeCsv(const std::string& path, const std::vector<Row>& rows) {
   f << "section,scene,backend,preset,variant,inputs,shader_variant,width,height,radius_m,samples,use_z_hierarchy,"
        "blur_radius,runs,timing_method,linear_z_ms,mips_ms,ao_sample_ms,blur_h_ms,blur_v_ms,total_ms,ns_per_pixel,"
        "plan_bytes,csz_levels";
-  for (const char* prefix : {"ao_", "obscurance_"})
+  for (const char* prefix : {"ao_", "obscurance_", "converged_"})
     for (const char* c : kErrorColumns) f << "," << prefix << c;
-  f << "\n";
+  f << ",converged_blotch_rmse,converged_highfreq_rmse,converged_silhouette_rmse,model_rmse_vs_ao,"
+       "model_rmse_vs_obscurance,error_map\n";
   for (const auto& r : rows) {
     const auto& m = r.m;
     f << csv(r.section) << "," << csv(r.scene) << "," << csv(r.backend) << "," << csv(r.preset) << ","
@@ -80,6 +93,8 @@ void writeCsv(const std::string& path, const std::vector<Row>& rows) {
       << m.totalMs * 1e6 / (double(r.size.width) * r.size.height) << "," << m.planBytes << "," << m.cszLevels;
     csvErrors(f, m.aoError);
     csvErrors(f, m.obscuranceError);
+    csvErrors(f, m.convergedError);
+    csvConverged(f, r);
     f << "\n";
   }
 }
@@ -112,6 +127,18 @@ void writeJson(const std::string& path, const std::vector<Row>& rows, const std:
     for (const auto& p : r.m.passes) passMs[p.pass] = p.milliseconds;
     if (r.m.aoError) row["error_vs_ao"] = jsonErrors(*r.m.aoError);
     if (r.m.obscuranceError) row["error_vs_obscurance"] = jsonErrors(*r.m.obscuranceError);
+    if (r.m.convergedError) {
+      Json& c = row["error_vs_converged"] = jsonErrors(*r.m.convergedError);
+      if (const auto& st = r.m.convergedStructure) {
+        c["blotch_rmse"] = st->blotchRmse;
+        c["highfreq_rmse"] = st->highFrequencyRmse;
+        c["silhouette_pixels"] = st->silhouettePixels;
+        c["silhouette_rmse"] = st->silhouetteRmse;
+      }
+      row["model_error"] = Json{{"rmse_converged_vs_ao", r.modelRmseVsAo},
+                                {"rmse_converged_vs_obscurance", r.modelRmseVsObscurance}};
+    }
+    if (!r.errorMap.empty()) row["error_map"] = r.errorMap;
     rowsJson.push_back(std::move(row));
   }
   // Invalid UTF-8 (a machine name, a scene path) is replaced, not thrown.

@@ -1,6 +1,7 @@
 // The bench's outputs: one row per measurement, written as results.csv and results.json, and the
 // SVG charts (pareto, radius, resolution).
 #pragma once
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,13 +16,19 @@ struct Row {
   Extent size;
   Settings settings;
   Measurement m;
+  // Model error, the same for every row of a scene, settings and inputs: RMSE of (c) against (a)
+  // and (b) over the mask; NaN where (c) or that reference was not computed.
+  double modelRmseVsAo = NAN, modelRmseVsObscurance = NAN;
+  std::string errorMap;  // the error-vs-(c) PNG, relative to the output folder; empty: none
 };
 
 // Median time of one pass, 0 when the pass did not run.
 double passMs(const Measurement& m, const char* pass);
 
-// Error columns come in two groups, named by their reference: ao_* against (a) the near-field AO,
-// obscurance_* against (b) the AlchemyAO obscurance; empty where that reference was not computed.
+// Error columns come in three groups, named by their reference: ao_* against (a) the near-field AO,
+// obscurance_* against (b) the AlchemyAO obscurance, converged_* against (c) the converged
+// estimator (with its blotch, high-frequency and silhouette figures); then the model error
+// (model_rmse_vs_ao, model_rmse_vs_obscurance) and error_map. Empty where not computed.
 void writeCsv(const std::string& path, const std::vector<Row>& rows);
 
 // `notes`: (key, text) pairs written as the "notes" object: what the references, the radius-sweep

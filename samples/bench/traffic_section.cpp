@@ -1,0 +1,137 @@
+#include "traffic_section.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+
+#include "sao/presets.h"
+#include "traffic_machines.h"
+#include "traffic_replay.h"
+
+namespace sao::bench {
+
+namespace {
+
+struct Row {
+  std::string section;
+  std::size_t variant;
+  Extent size;
+  double radius;
+  ReplayResult result;
+};
+
+double perPixel(std::uint64_t bytes, const ReplayResult& r) { return r.pixels ? double(bytes) / double(r.pixels) : 0; }
+
+// The row of variant 0 (SAO with the hierarchy) at the same point: the ratios' denominator.
+const Row& saoRow(const std::vector<Row>& rows, const Row& r) {
+  for (const Row& o : rows)
+    if (o.variant == 0 && o.section == r.section && o.size == r.size && o.radius == r.radius) return o;
+  return r;
+}
+
+std::string ratio(double a, double b) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.3g", b > 0 ? a / b : 0.0);
+  return s;
+}
+
+Status writeCsv(const std::string& path, const std::string& scene, const std::vector<Machine>& machines,
+                const std::vector<TrafficVariant>& variants, const std::vector<Row>& rows) {
+  for (const Machine& m : machines)  // plain CSV: names carry no commas
+    if (m.name.find(',') != std::string::npos)
+      return Status::error(StatusCode::InvalidInput, "traffic: machine name '" + m.name + "' has a comma");
+  std::ofstream f(path);
+  if (!f) return Status::error(StatusCode::IoError, "cannot write '" + path + "'");
+  f << "section,scene,machine,variant,width,height,radius_m,max_mip,reads_per_pixel,l1_hit_rate,l2_hit_rate,"
+       "l2_bytes_per_pixel,memory_bytes_per_pixel,l2_bytes_vs_sao,memory_bytes_vs_sao\n";
+  for (std::size_t m = 0; m < machines.size(); ++m)
+    for (const Row& r : rows) {
+      const Traffic& t = r.result.traffic[m];
+      const Traffic& sao = saoRow(rows, r).result.traffic[m];
+      char line[512];
+      std::snprintf(line, sizeof line, "%s,%s,%s,%s,%u,%u,%g,%d,%.4g,%.4f,%.4f,%.4g,%.4g,%s,%s\n", r.section.c_str(),
+                    scene.c_str(), machines[m].name.c_str(), variants[r.variant].label.c_str(), r.size.width,
+                    r.size.height, r.radius, r.result.maxMip, perPixel(t.reads, r.result),
+                    t.reads ? 1.0 - double(t.l1Misses) / double(t.reads) : 0.0,
+                    t.l1Misses ? 1.0 - double(t.l2Misses) / double(t.l1Misses) : 0.0,
+                    perPixel(t.l2Bytes(), r.result), perPixel(t.memoryBytes(), r.result),
+                    ratio(double(t.l2Bytes()), double(sao.l2Bytes())).c_str(),
+                    ratio(double(t.memoryBytes()), double(sao.memoryBytes())).c_str());
+      f << line;
+    }
+  f.close();
+  if (!f) return Status::error(StatusCode::IoError, "cannot write '" + path + "'");
+  return Status::success();
+}
+
+void printSummary(const std::vector<Machine>& machines, const std::vector<TrafficVariant>& variants,
+                  const std::vector<Row>& rows) {
+  for (std::size_t m = 0; m < machines.size(); ++m) {
+    std::printf("traffic, %s: %s\n  bytes per pixel from L2 / from memory, and ÷ SAO (z hierarchy):\n",
+                machines[m].name.c_str(), describe(machines[m]).c_str());
+    for (const Row& r : rows) {
+      const Traffic& t = r.result.traffic[m];
+      const Traffic& sao = saoRow(rows, r).result.traffic[m];
+      std::printf("  %-10s %4ux%-4u r %-4g %-30s %8.1f / %8.1f  (x%s / x%s)\n", r.section.c_str(), r.size.width,
+                  r.size.height, r.radius, variants[r.variant].label.c_str(), perPixel(t.l2Bytes(), r.result),
+                  perPixel(t.memoryBytes(), r.result), ratio(double(t.l2Bytes()), double(sao.l2Bytes())).c_str(),
+                  ratio(double(t.memoryBytes()), double(sao.memoryBytes())).c_str());
+    }
+  }
+}
+
+}  // namespace
+
+Status trafficSection(const std::string& outDir, const std::string& sceneName, bool quick,
+                      const std::function<TrafficInput(Extent)>& sceneAt) {
+  std::string cpuSource;
+  const std::vector<Machine> machines = {paperLikeMachine(), paperLikeMachine(48 * 1024),
+                                         thisCpuMachine(cpuSource)};
+  const std::vector<TrafficVariant> variants = {{"SAO (z hierarchy)", true, false, 4},
+                                                {"SAO (no hierarchy)", false, false, 4},
+                                                {"AlchemyAO-style", false, true, 4},
+                                                {"AlchemyAO float4 positions", false, true, 16}};
+  const std::vector<double> radii = quick ? std::vector<double>{0.1, 1.5}
+                                          : std::vector<double>{0.1, 0.25, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0};
+  const Extent radiusSize = quick ? Extent{160, 90} : Extent{1920, 1080};
+  const std::vector<Extent> sizes = quick ? std::vector<Extent>{{160, 90}, {320, 180}}
+                                          : std::vector<Extent>{{1280, 720}, {1920, 1080}, {2560, 1600}};
+  const Settings base = presetSettings(Preset::Medium);
+
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::unique_ptr<TrafficScene>> scenes;
+  std::vector<Row> rows;
+  auto point = [&](const std::string& section, Extent size, double radius) -> Status {
+    std::unique_ptr<TrafficScene>& scene = scenes[{size.width, size.height}];
+    if (!scene) {
+      const TrafficInput in = sceneAt(size);
+      if (in.depth == nullptr) return Status::error(StatusCode::InvalidInput, "traffic: no depth for the scene");
+      if (Status s = TrafficScene::create(*in.depth, in.camera, scene); !s) return s;
+    }
+    Settings s = base;
+    s.radius = float(radius);
+    for (std::size_t v = 0; v < variants.size(); ++v) {
+      std::fprintf(stderr, "\r\033[Ktraffic: %s %ux%u r %g %s", section.c_str(), size.width, size.height, radius,
+                   variants[v].label.c_str());
+      std::fflush(stderr);
+      Row& r = rows.emplace_back(Row{section, v, size, radius, {}});
+      if (Status st = scene->replay(s, variants[v], machines, r.result); !st) return st;
+    }
+    return Status::success();
+  };
+  for (double r : radii)
+    if (Status s = point("radius", radiusSize, r); !s) return s;
+  for (Extent e : sizes)
+    if (Status s = point("resolution", e, double(base.radius)); !s) return s;
+  std::fprintf(stderr, "\n");
+
+  const std::string path = (std::filesystem::path(outDir) / "traffic.csv").string();
+  if (Status s = writeCsv(path, sceneName, machines, variants, rows); !s) return s;
+  printSummary(machines, variants, rows);
+  std::printf("traffic: scene %s; this CPU's caches from %s; wrote %s\n", sceneName.c_str(), cpuSource.c_str(),
+              path.c_str());
+  return Status::success();
+}
+
+}  // namespace sao::bench
