@@ -273,7 +273,7 @@ int App::run() {
     backend_->newImGuiFrame();
     ImGui::NewFrame();
     if (ui_.showUi) drawPanel(ui_, panelInfo(), camera_);
-    drawOverlay(ui_);
+    drawOverlay(ui_, haveStats_ ? &stats_ : nullptr);
     ImGui::Render();
     if (Status s = handleRequests(buildFrame(fb)); !s) {
       message_ = s.message;

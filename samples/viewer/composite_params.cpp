@@ -15,6 +15,7 @@ constexpr ViewModeInfo kModes[] = {
     {ViewMode::ZMip, "z-mip", "z MIP level"},
     {ViewMode::Normals, "normals", "Reconstructed normals"},
     {ViewMode::Error, "error", "Error vs reference"},
+    {ViewMode::SplitResolution, "split-resolution", "Split: full | reduced resolution"},
 };
 
 }  // namespace
@@ -30,6 +31,18 @@ std::optional<ViewMode> findViewMode(std::string_view name) {
 std::string viewModeNames() {
   std::string s;
   for (const auto& m : kModes) s += (s.empty() ? "" : ", ") + std::string(m.name);
+  return s;
+}
+
+int reducedDivisor(const Settings& settings) {
+  return settings.resolution_divisor > 1 ? settings.resolution_divisor : 2;
+}
+
+// The panel's settings at the other side's divisor: 1 when the panel asks for a reduced one,
+// else 2 (a valid value of resolution_divisor's values=[1,2,4] either way).
+Settings compareSettings(const Settings& settings) {
+  Settings s = settings;
+  s.resolution_divisor = settings.resolution_divisor > 1 ? 1 : 2;
   return s;
 }
 

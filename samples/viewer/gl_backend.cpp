@@ -30,7 +30,8 @@ class GlBackend final : public Backend {
       ImGui_ImplOpenGL3_Shutdown();
       ImGui_ImplGlfw_Shutdown();
     }
-    effect_.reset();  // GL objects go while the context is current
+    compareEffect_.reset();  // GL objects go while the context is current
+    effect_.reset();
   }
 
   Status init() {
@@ -85,6 +86,7 @@ class GlBackend final : public Backend {
     gl::Inputs inputs;
     inputs.depth = {prepass_.depthTexture(), gl::kDepthComponent32F};
     stats.effect = effect_->render(camera, frame.settings, inputs, {frame.measureTime});
+    const GLuint compareAo = renderCompare(frame, inputs, stats.compare);
     GlCompositeInputs in;
     in.depth = prepass_.depthTexture();
     std::uint32_t cszLevels = 0;
@@ -97,6 +99,11 @@ class GlBackend final : public Backend {
       in.csz = effect_->texture(gen::ResourceId::csz);
       cszLevels = in.csz ? stats.plan.cszLevels : 0;
       aoExtent_ = stats.plan.aoExtent;
+    }
+    if (stats.compare.active) {  // left the divisor-1 AO, right the reduced one
+      const bool mainIsFull = frame.settings.resolution_divisor == 1;
+      in.aoReduced = mainIsFull ? compareAo : in.ao;
+      in.ao = mainIsFull ? in.ao : compareAo;
     }
     const glm::ivec2 fb = window_.framebufferSize();
     composite_.draw(makeCompositeParams(frame, false, in.aoRaw != 0, cszLevels), in, fb.x, fb.y);
@@ -120,6 +127,24 @@ class GlBackend final : public Backend {
   }
 
  private:
+  // The split-resolution view's second effect: the same depth and camera at the other divisor,
+  // created when the mode comes on and deleted when it goes (other modes pay nothing). Returns
+  // its AO texture, 0 when it failed (shown white, the error in `out.effect`) or is not needed.
+  GLuint renderCompare(const FrameDesc& frame, const gl::Inputs& inputs, CompareStats& out) {
+    out = {};
+    if (frame.mode != ViewMode::SplitResolution) {
+      compareEffect_.reset();
+      return 0;
+    }
+    out.active = true;
+    if (!compareEffect_)
+      if (out.effect = gl::Effect::create(glfwGetProcAddress, compareEffect_); !out.effect) return 0;
+    out.effect = compareEffect_->render(frame.camera, compareSettings(frame.settings), inputs, {frame.measureTime});
+    if (!out.effect) return 0;
+    out.timings = compareEffect_->timings();
+    return compareEffect_->aoTexture();
+  }
+
   Status screenshot(const std::string& path, int width, int height) {
     std::vector<std::uint8_t> pixels(std::size_t(width) * height * 4);
     glReadBuffer(GL_BACK);
@@ -141,6 +166,7 @@ class GlBackend final : public Backend {
   Window& window_;
   BackendOptions options_;
   std::unique_ptr<gl::Effect> effect_;
+  std::unique_ptr<gl::Effect> compareEffect_;  // split-resolution view only
   GlPrepass prepass_;
   GlComposite composite_;
   bool reversedZ_ = false, imgui_ = false;

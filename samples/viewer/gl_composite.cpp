@@ -4,6 +4,9 @@
 #include "viewer_glsl.h"
 
 namespace sao::viewer {
+namespace {
+constexpr GLuint kTextures = 6;  // units 1..6: depth, ao, ao_raw, csz, reference, reduced-resolution AO
+}
 
 GlComposite::~GlComposite() {
   glDeleteProgram(program_);
@@ -61,9 +64,13 @@ void GlComposite::draw(const CompositeParams& params, const GlCompositeInputs& i
   glBindBuffer(GL_UNIFORM_BUFFER, ubo_);
   glBufferSubData(GL_UNIFORM_BUFFER, 0, sizeof params, &params);
   glBindBufferBase(GL_UNIFORM_BUFFER, 0, ubo_);
-  const GLuint textures[5] = {in.depth, in.ao ? in.ao : white_, in.aoRaw ? in.aoRaw : white_,
-                              in.csz ? in.csz : white_, reference_ ? reference_ : white_};
-  for (GLuint unit = 0; unit < 5; ++unit) {
+  const GLuint textures[kTextures] = {in.depth,
+                                      in.ao ? in.ao : white_,
+                                      in.aoRaw ? in.aoRaw : white_,
+                                      in.csz ? in.csz : white_,
+                                      reference_ ? reference_ : white_,
+                                      in.aoReduced ? in.aoReduced : white_};
+  for (GLuint unit = 0; unit < kTextures; ++unit) {
     glActiveTexture(GL_TEXTURE1 + unit);
     glBindTexture(GL_TEXTURE_2D, textures[unit]);
     glBindSampler(1 + unit, unit == 3 ? nearestMip_ : nearest_);
@@ -75,7 +82,7 @@ void GlComposite::draw(const CompositeParams& params, const GlCompositeInputs& i
   glBindVertexArray(0);
   // Leave no texture bound: the effect reallocates its textures on resize, and a binding kept
   // on a texture it deletes is what it would restore afterwards.
-  for (GLuint unit = 1; unit <= 5; ++unit) {
+  for (GLuint unit = 1; unit <= kTextures; ++unit) {
     glActiveTexture(GL_TEXTURE0 + unit);
     glBindTexture(GL_TEXTURE_2D, 0);
     glBindSampler(unit, 0);

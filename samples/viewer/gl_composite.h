@@ -13,6 +13,7 @@ struct GlCompositeInputs {
   GLuint ao = 0;     // 0: the effect failed, shown as white
   GLuint aoRaw = 0;  // 0: not planned
   GLuint csz = 0;    // 0: not planned
+  GLuint aoReduced = 0;  // split-resolution: the reduced-resolution AO (ao is the full one); 0: white
 };
 
 class GlComposite {

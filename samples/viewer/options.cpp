@@ -11,7 +11,7 @@ constexpr const char* kDescription =
 sao effect on it every frame and shows the result, with a Dear ImGui panel generated from the
 effect's settings metadata, live per-pass timings and the plan.)";
 
-constexpr const char* kFooter = R"(Keys: 1-8 view modes, F12 screenshot (sao-viewer-<time>.png), R compute the reference,
+constexpr const char* kFooter = R"(Keys: 1-9 view modes, F12 screenshot (sao-viewer-<time>.png), R compute the reference,
 H hide/show the panel, Tab orbit/fly camera, Home reset the camera, Esc quit.
 Mouse: drag to rotate, right or middle drag to pan, wheel to dolly; WASD, Q/E to move.
 Exit status: 0 on success, 1 when the run fails, 2 for bad options, 3 when the graphics API
@@ -44,7 +44,9 @@ Options parseOptions(int argc, char** argv) {
   cli::addImageSize(cl, window, "window size", "default 1280x720");
   cli::addSettings(cl, o.settings, "any setting (repeatable), checked against its range");
   cl.choice("--view-mode", o.mode, findViewMode, "one of " + viewModeNames(), "MODE",
-            "ao | lit (default) | lit-no-ao | split | raw-ao | z-mip | normals | error");
+            "ao | lit (default) | lit-no-ao | split | raw-ao | z-mip | normals | error | split-resolution (the AO "
+            "at resolution_divisor 1 left of the divider, at the --set resolution_divisor right of it, 2 when that "
+            "is 1; a second effect runs only in this mode)");
   cl.value("--z-level", "N", "csz MIP level for the z-mip view, 0..15 (default 1)",
            [&o](const std::string& v) { o.zLevel = int(cli::parseWhole("--z-level", v, 0, 15)); });
   cl.flag("--reference", o.reference, "compute the ray-traced reference at start (the error view needs it)");

@@ -58,8 +58,11 @@ void viewSection(UiState& s, const FrameStats* stats) {
     }
     ImGui::EndCombo();
   }
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("keys 1-8");
-  if (s.mode == ViewMode::Split) ImGui::SliderFloat("split", &s.split, 0.0f, 1.0f, "%.2f");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("keys 1-9");
+  if (s.mode == ViewMode::Split || s.mode == ViewMode::SplitResolution)
+    ImGui::SliderFloat("split", &s.split, 0.0f, 1.0f, "%.2f");
+  if (s.mode == ViewMode::SplitResolution)
+    ImGui::TextDisabled("AO: divisor 1 | %d (the panel's, or 2)", reducedDivisor(s.settings));
   if (s.mode == ViewMode::ZMip) {
     const int levels = stats && stats->effect.ok() ? int(stats->plan.cszLevels) : 1;
     ImGui::SliderInt("z MIP level", &s.cszLevel, 0, std::max(levels - 1, 0));
@@ -90,6 +93,9 @@ void referenceSection(UiState& s, const PanelInfo& info) {
 void timingSection(UiState& s, const FrameStats& stats) {
   ImGui::Checkbox("measure per-pass time", &s.measureTime);
   if (!stats.timingNote.empty()) ImGui::TextDisabled("%s", stats.timingNote.c_str());
+  if (stats.compare.active && stats.compare.timings.method != TimingMethod::None)
+    ImGui::TextDisabled("split-resolution's second effect (divisor %d): %.3f ms",
+                        compareSettings(s.settings).resolution_divisor, stats.compare.timings.totalMilliseconds());
   if (stats.timings.method == TimingMethod::None) return;
   ImGui::TextDisabled("method: %s", toString(stats.timings.method));
   if (ImGui::BeginTable("timings", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
@@ -152,6 +158,9 @@ void drawPanel(UiState& s, const PanelInfo& info, CameraController& camera) {
   if (!info.message.empty()) ImGui::TextWrapped("%s", info.message.c_str());
   if (info.stats && !info.stats->effect.ok())
     ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "effect: %s", info.stats->effect.message.c_str());
+  if (info.stats && info.stats->compare.active && !info.stats->compare.effect.ok())
+    ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "split-resolution's second effect: %s",
+                       info.stats->compare.effect.message.c_str());
   if (ImGui::CollapsingHeader("Scene and camera", ImGuiTreeNodeFlags_DefaultOpen)) sceneSection(s, info, camera);
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) viewSection(s, info.stats);
   if (ImGui::CollapsingHeader("Settings", ImGuiTreeNodeFlags_DefaultOpen)) drawSettingsPanel(s.settings, s.settingsPanel);
@@ -164,17 +173,46 @@ void drawPanel(UiState& s, const PanelInfo& info, CameraController& camera) {
   ImGui::End();
 }
 
-void drawOverlay(const UiState& s) {
-  if (s.mode != ViewMode::Split) return;
+namespace {
+
+// "full resolution (divisor 1), 1.234 ms": the divisor and, when measured, the effect's total time.
+std::string halfLabel(const char* what, int divisor, const Status& effect, const Timings& timings) {
+  char text[96];
+  if (!effect.ok())
+    std::snprintf(text, sizeof text, "%s (divisor %d): failed", what, divisor);
+  else if (timings.method != TimingMethod::None)
+    std::snprintf(text, sizeof text, "%s (divisor %d), AO %.3f ms", what, divisor, timings.totalMilliseconds());
+  else
+    std::snprintf(text, sizeof text, "%s (divisor %d)", what, divisor);
+  return text;
+}
+
+}  // namespace
+
+void drawOverlay(const UiState& s, const FrameStats* stats) {
+  if (s.mode != ViewMode::Split && s.mode != ViewMode::SplitResolution) return;
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   const ImVec2 size = ImGui::GetIO().DisplaySize;
   const float x = std::floor(s.split * size.x), y = size.y - ImGui::GetFontSize() - 8.0f;
-  const char* left = "without AO";
+  std::string left = "without AO", right = "with AO";
+  if (s.mode == ViewMode::SplitResolution) {
+    // The main effect runs the panel's divisor, the second one the other side's.
+    const bool mainIsFull = s.settings.resolution_divisor == 1;
+    const Status none;
+    const Timings noTimes;
+    const CompareStats noCompare;
+    const CompareStats& c = stats && stats->compare.active ? stats->compare : noCompare;
+    const Status& mainStatus = stats ? stats->effect : none;
+    const Timings& mainTimes = stats ? stats->timings : noTimes;
+    left = halfLabel("full resolution", 1, mainIsFull ? mainStatus : c.effect, mainIsFull ? mainTimes : c.timings);
+    right = halfLabel("reduced", reducedDivisor(s.settings), mainIsFull ? c.effect : mainStatus,
+                      mainIsFull ? c.timings : mainTimes);
+  }
   const ImU32 color = IM_COL32(255, 255, 255, 230), shadow = IM_COL32(0, 0, 0, 160);
-  const float w = ImGui::CalcTextSize(left).x;
-  for (auto [text, px] : {std::pair{left, x - w - 8.0f}, std::pair{"with AO", x + 8.0f}}) {
-    draw->AddText(ImVec2(px + 1, y + 1), shadow, text);
-    draw->AddText(ImVec2(px, y), color, text);
+  const float w = ImGui::CalcTextSize(left.c_str()).x;
+  for (auto [text, px] : {std::pair{&left, x - w - 8.0f}, std::pair{&right, x + 8.0f}}) {
+    draw->AddText(ImVec2(px + 1, y + 1), shadow, text->c_str());
+    draw->AddText(ImVec2(px, y), color, text->c_str());
   }
 }
 

@@ -44,7 +44,9 @@ struct PanelInfo {
 
 void drawPanel(UiState& state, const PanelInfo& info, CameraController& camera);
 
-// Labels drawn over the scene, under the panel (the split view's "without AO | with AO").
-void drawOverlay(const UiState& state);
+// Labels drawn over the scene, under the panel: the split view's "without AO | with AO", the
+// split-resolution view's divisors and each half's AO time (from `stats`, the last frame's; null
+// before the first).
+void drawOverlay(const UiState& state, const FrameStats* stats);
 
 }  // namespace sao::viewer

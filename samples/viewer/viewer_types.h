@@ -18,7 +18,7 @@
 namespace sao::viewer {
 
 // The order matches the constants in shaders/composite.frag.
-enum class ViewMode : std::int32_t { Ao, Lit, LitNoAo, Split, RawAo, ZMip, Normals, Error };
+enum class ViewMode : std::int32_t { Ao, Lit, LitNoAo, Split, RawAo, ZMip, Normals, Error, SplitResolution };
 
 struct ViewModeInfo {
   ViewMode mode;
@@ -55,11 +55,26 @@ struct FrameDesc {
   std::string screenshotPath;      // non-empty: save the window (with the panel) after this frame
 };
 
+// The split-resolution view: the AO at resolution_divisor 1 left of the divider, at a reduced
+// divisor right of it. The backend runs a second effect with `compareSettings(frame.settings)`
+// only in that mode; the panel's own divisor picks the reduced one (2 when it is 1).
+Settings compareSettings(const Settings& settings);
+int reducedDivisor(const Settings& settings);  // the right half's divisor
+
+// The second effect of the split-resolution view (FrameStats::compare).
+struct CompareStats {
+  bool active = false;   // the mode was on and the second effect ran (or tried to)
+  Status effect;
+  Timings timings;
+  std::string timingNote;
+};
+
 struct FrameStats {
   Status effect;         // what the effect said this frame
   Plan plan;             // of the last successful run
   Timings timings;       // per-pass times, method None when not measured or not ready
   std::string timingNote;
+  CompareStats compare;  // split-resolution view only
 };
 
 // The composite's block for a frame. `topDown`: the framebuffer's row 0 is the top of the window

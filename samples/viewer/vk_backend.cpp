@@ -29,6 +29,35 @@ bool sameCamera(const Camera& a, const Camera& b) {
          a.width == b.width && a.height == b.height && a.guardBand == b.guardBand;
 }
 
+// The effect's configuration for a frame (the main effect with the panel's settings, the
+// split-resolution view's second one with compareSettings()).
+vk::Config effectConfig(const FrameDesc& frame, const Settings& settings) {
+  vk::Config c;
+  c.settings = settings;
+  c.camera = frame.camera;
+  c.depthFormat = VK_FORMAT_D32_SFLOAT;  // DepthFormat::D32F in renderFrame
+  c.outputLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  c.framesInFlight = 1;
+  c.timestamps = frame.measureTime;
+  return c;
+}
+
+// What updateEffect compares (never the view matrix: it is not part of the effect's input).
+bool sameConfig(const vk::Config& a, const vk::Config& b) {
+  return a.settings == b.settings && sameCamera(a.camera, b.camera) && a.timestamps == b.timestamps;
+}
+
+// The split-resolution view's second effect: the same depth and camera at the other divisor,
+// created when the mode comes on and destroyed when it goes (other modes pay nothing).
+struct CompareEffect {
+  std::unique_ptr<vk::Effect> effect;
+  vk::Config config;
+  bool configured = false, pendingTimings = false;
+  Status status;
+  Timings timings;
+  std::string timingNote;
+};
+
 // The instance, the window's surface and a device that presents to it and runs graphics and
 // compute on one queue; --validation adds the layer with synchronization validation.
 Status createContext(GLFWwindow* window, bool validation, std::unique_ptr<vk::headless::Context>& out) {
@@ -76,6 +105,8 @@ class VkBackend final : public Backend {
  private:
   Status initImGui();
   Status updateEffect(const FrameDesc& frame, FrameStats& stats);
+  void updateCompare(const FrameDesc& frame);
+  void readTimings(const FrameDesc& frame);
   Status createEffectViews();
   void destroyEffectViews();
   void recordScreenshot(VkCommandBuffer cmd, VkImage image);
@@ -99,6 +130,7 @@ class VkBackend final : public Backend {
   vk::headless::Buffer shot_;
   Timings lastTimings_;
   std::string timingNote_;
+  CompareEffect compare_;
   mutable std::size_t validationMessages_ = 0;  // warnings and errors, the first 20 printed
 };
 
@@ -121,6 +153,7 @@ VkBackend::~VkBackend() {
     ImGui_ImplGlfw_Shutdown();
   }
   destroyEffectViews();
+  compare_ = {};
   effect_.reset();
   composite_.destroy();
   prepass_.reset();
@@ -209,16 +242,8 @@ Status VkBackend::createEffectViews() {
 // Create or update the effect when the settings, the camera's projection or size, or the timing
 // choice changed (never per camera move: the view matrix is not part of the effect's input).
 Status VkBackend::updateEffect(const FrameDesc& frame, FrameStats& stats) {
-  vk::Config c;
-  c.settings = frame.settings;
-  c.camera = frame.camera;
-  c.depthFormat = VK_FORMAT_D32_SFLOAT;  // DepthFormat::D32F in renderFrame
-  c.outputLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-  c.framesInFlight = 1;
-  c.timestamps = frame.measureTime;
-  if (effect_ && effectConfigured_ && c.settings == config_.settings && sameCamera(c.camera, config_.camera) &&
-      c.timestamps == config_.timestamps)
-    return stats.effect;
+  const vk::Config c = effectConfig(frame, frame.settings);
+  if (effect_ && effectConfigured_ && sameConfig(c, config_)) return stats.effect;
   destroyEffectViews();
   Status s = effect_ ? effect_->update(c) : vk::Effect::create(ctx_->deviceContext(), c, effect_);
   effectConfigured_ = s.ok();
@@ -227,6 +252,37 @@ Status VkBackend::updateEffect(const FrameDesc& frame, FrameStats& stats) {
     if (Status v = createEffectViews(); !v) return v;
   stats.effect = s;
   return Status::success();
+}
+
+// After the previous frame's fence: nothing recorded by the second effect is pending.
+void VkBackend::updateCompare(const FrameDesc& frame) {
+  if (frame.mode != ViewMode::SplitResolution) {
+    compare_ = {};
+    return;
+  }
+  const vk::Config c = effectConfig(frame, compareSettings(frame.settings));
+  if (compare_.effect && compare_.configured && sameConfig(c, compare_.config)) return;
+  compare_.status = compare_.effect ? compare_.effect->update(c)
+                                    : vk::Effect::create(ctx_->deviceContext(), c, compare_.effect);
+  compare_.configured = compare_.status.ok();
+  if (compare_.configured) compare_.config = c;
+}
+
+// The previous frame has completed: its timestamps are readable.
+void VkBackend::readTimings(const FrameDesc& frame) {
+  auto read = [](const vk::Effect& effect, Timings& timings, std::string& note) {
+    Timings t;
+    if (Status s = effect.timings(t); s) timings = t, note.clear();
+    else timings = {}, note = s.message;
+  };
+  if (pendingTimings_) read(*effect_, lastTimings_, timingNote_);
+  if (compare_.pendingTimings) read(*compare_.effect, compare_.timings, compare_.timingNote);
+  pendingTimings_ = compare_.pendingTimings = false;
+  if (!frame.measureTime) {
+    lastTimings_ = compare_.timings = {};
+    timingNote_.clear();
+    compare_.timingNote.clear();
+  }
 }
 
 void VkBackend::recordScreenshot(VkCommandBuffer cmd, VkImage image) {
@@ -255,13 +311,7 @@ Status VkBackend::renderFrame(const FrameDesc& frame, FrameStats& stats) {
   validationErrors();  // prints what the last frame drew, as it comes
   VkDevice d = ctx_->device();
   SAO_VIEWER_VK(vkWaitForFences(d, 1, &fence_, VK_TRUE, UINT64_MAX));
-  if (pendingTimings_) {  // the previous frame has completed: its timestamps are readable
-    pendingTimings_ = false;
-    Timings t;
-    if (Status s = effect_->timings(t); s) lastTimings_ = t, timingNote_.clear();
-    else lastTimings_ = {}, timingNote_ = s.message;
-  }
-  if (!frame.measureTime) lastTimings_ = {}, timingNote_.clear();
+  readTimings(frame);
   const glm::ivec2 fb = window_.framebufferSize();
   if (recreate_ || swapchain_.extent.width != std::uint32_t(fb.x) || swapchain_.extent.height != std::uint32_t(fb.y)) {
     vkDeviceWaitIdle(d);
@@ -270,6 +320,7 @@ Status VkBackend::renderFrame(const FrameDesc& frame, FrameStats& stats) {
     recreate_ = false;
   }
   if (Status s = updateEffect(frame, stats); !s) return s;
+  updateCompare(frame);
   const bool screenshot = !frame.screenshotPath.empty() && swapchain_.transferSrc;
   const VkDeviceSize shotBytes = VkDeviceSize(swapchain_.extent.width) * swapchain_.extent.height * 4;
   if (screenshot && shot_.size != shotBytes) {
@@ -303,6 +354,13 @@ Status VkBackend::renderFrame(const FrameDesc& frame, FrameStats& stats) {
     stats.effect = effect_->record(cmd_, in);
     recorded = stats.effect.ok();
   }
+  bool compared = false;  // the second effect reads the same depth (read-read: no barrier)
+  if (compare_.effect && compare_.configured) {
+    vk::Inputs in;
+    in.depth = {depth.view, depth.layout, compare_.effect->plan().inputExtent, depth.format};
+    compare_.status = compare_.effect->record(cmd_, in);
+    compared = compare_.status.ok();
+  }
   // ao_raw and csz are read by the composite too (the effect's final barrier covers its output).
   VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   mb.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
@@ -315,6 +373,12 @@ Status VkBackend::renderFrame(const FrameDesc& frame, FrameStats& stats) {
     inputs.ao = effect_->output().view;
     inputs.aoRaw = aoRawView_;
     inputs.csz = cszView_;
+  }
+  if (frame.mode == ViewMode::SplitResolution) {  // left the divisor-1 AO, right the reduced one
+    const VkImageView other = compared ? compare_.effect->output().view : VK_NULL_HANDLE;
+    const bool mainIsFull = frame.settings.resolution_divisor == 1;
+    inputs.aoReduced = mainIsFull ? other : inputs.ao;
+    inputs.ao = mainIsFull ? inputs.ao : other;
   }
   composite_.setInputs(inputs);  // before the set is bound in this command buffer
 
@@ -355,6 +419,10 @@ Status VkBackend::renderFrame(const FrameDesc& frame, FrameStats& stats) {
   else SAO_VIEWER_VK(r);
 
   pendingTimings_ = recorded && config_.timestamps;
+  compare_.pendingTimings = compared && compare_.config.timestamps;
+  stats.compare = {};
+  if (frame.mode == ViewMode::SplitResolution)
+    stats.compare = {true, compare_.status, compare_.timings, compare_.timingNote};
   if (effect_ && effectConfigured_) stats.plan = effect_->plan();
   stats.timings = lastTimings_;
   stats.timingNote = timingNote_;

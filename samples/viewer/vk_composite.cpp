@@ -7,7 +7,7 @@
 
 namespace sao::viewer {
 namespace {
-constexpr std::uint32_t kTextures = 5;  // bindings 1..5: depth, ao, ao_raw, csz, reference
+constexpr std::uint32_t kTextures = 6;  // bindings 1..6: depth, ao, ao_raw, csz, reference, reduced-resolution AO
 }
 
 Status VkComposite::init(vk::headless::Context& context, VkRenderPass renderPass) {
@@ -125,7 +125,7 @@ Status VkComposite::setReference(const FloatImage* reference) {
   return context_->uploadColor(*reference, VK_FORMAT_R32_SFLOAT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, reference_);
 }
 
-// Always rewritten (six writes): a destroyed view and its replacement may share a handle.
+// Always rewritten (seven writes): a destroyed view and its replacement may share a handle.
 void VkComposite::setInputs(const VkCompositeInputs& inputs) {
   inputs_ = inputs;
   writeDescriptors();
@@ -143,6 +143,7 @@ void VkComposite::writeDescriptors() {
       inputs_.csz ? VkDescriptorImageInfo{sampler_, inputs_.csz, VK_IMAGE_LAYOUT_GENERAL}
                   : VkDescriptorImageInfo{sampler_, white, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
       {sampler_, reference_.view ? reference_.view : white, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+      {sampler_, inputs_.aoReduced ? inputs_.aoReduced : white, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
   };
   VkWriteDescriptorSet writes[1 + kTextures]{};
   writes[0] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};

@@ -14,6 +14,8 @@ struct VkCompositeInputs {
   VkImageView ao = VK_NULL_HANDLE;     // SHADER_READ_ONLY_OPTIMAL; null: white
   VkImageView aoRaw = VK_NULL_HANDLE;  // GENERAL; null: white
   VkImageView csz = VK_NULL_HANDLE;    // GENERAL, every level; null: white
+  // Split-resolution: the reduced-resolution AO (ao is the full one), SHADER_READ_ONLY_OPTIMAL; null: white
+  VkImageView aoReduced = VK_NULL_HANDLE;
 };
 
 class VkComposite {

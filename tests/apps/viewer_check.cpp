@@ -2,10 +2,14 @@
 // of the luminance above a threshold) and, with --darker, one region must be darker than another
 // by a margin (the AO view's crease or contact shadow against open floor). --min-chroma asks for
 // a colourful image (mean of max - min channel per pixel, the normals view) and --rgb for a
-// region's mean colour within a tolerance per channel (repeatable).
+// region's mean colour within a tolerance per channel (repeatable). --same-as asks that a region
+// equal another screenshot of the same size there, every channel of every pixel exactly, and
+// --differs-from that at least N of a region's pixels differ from another's (the split-resolution
+// view against the AO view at each divisor; both repeatable).
 //
 //   viewer_check IMAGE.png [--min-stddev S] [--darker X0,Y0,X1,Y1 X0,Y0,X1,Y1 MARGIN]
 //                [--min-chroma C] [--rgb X0,Y0,X1,Y1 R,G,B TOLERANCE]...
+//                [--same-as OTHER.png X0,Y0,X1,Y1]... [--differs-from OTHER.png X0,Y0,X1,Y1 N]...
 //
 // Regions are fractions of the image size (0,0 = top left). Luminance and colours are in [0, 1].
 // Exit status 0 when every check holds, 1 when one fails, 2 for bad arguments or unreadable files.
@@ -34,6 +38,13 @@ struct ColourCheck {
   double tolerance;
 };
 
+// A region compared pixel by pixel with another screenshot: `minDiffering` 0 asks for equality.
+struct PixelCheck {
+  std::string other;
+  Region region;
+  long minDiffering = 0;
+};
+
 struct Image {
   int width = 0, height = 0;
   unsigned char* pixels = nullptr;  // RGB
@@ -50,7 +61,8 @@ struct Image {
 [[noreturn]] void usage(const std::string& message) {
   std::fprintf(stderr,
                "viewer_check: %s\nusage: viewer_check IMAGE.png [--min-stddev S] [--darker X0,Y0,X1,Y1 X0,Y0,X1,Y1 MARGIN]"
-               " [--min-chroma C] [--rgb X0,Y0,X1,Y1 R,G,B TOLERANCE]...\n",
+               " [--min-chroma C] [--rgb X0,Y0,X1,Y1 R,G,B TOLERANCE]... [--same-as OTHER.png X0,Y0,X1,Y1]..."
+               " [--differs-from OTHER.png X0,Y0,X1,Y1 N]...\n",
                message.c_str());
   std::exit(2);
 }
@@ -77,10 +89,17 @@ double parseNumber(const std::string& text) {
 }
 
 // The mean of f(x, y) over a region's pixels (at least one).
+// The pixel rectangle of a region, at least one pixel.
+void bounds(const Image& image, const Region& r, int& x0, int& y0, int& x1, int& y1) {
+  x0 = int(r.x0 * image.width), x1 = std::max(x0 + 1, int(r.x1 * image.width));
+  y0 = int(r.y0 * image.height), y1 = std::max(y0 + 1, int(r.y1 * image.height));
+}
+
+
 template <class F>
 double meanOver(const Image& image, const Region& r, F f) {
-  const int x0 = int(r.x0 * image.width), x1 = std::max(x0 + 1, int(r.x1 * image.width));
-  const int y0 = int(r.y0 * image.height), y1 = std::max(y0 + 1, int(r.y1 * image.height));
+  int x0, y0, x1, y1;
+  bounds(image, r, x0, y0, x1, y1);
   double sum = 0;
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) sum += f(x, y);
@@ -89,6 +108,25 @@ double meanOver(const Image& image, const Region& r, F f) {
 
 double mean(const Image& image, const Region& r) {
   return meanOver(image, r, [&](int x, int y) { return image.luminance(x, y); });
+}
+
+// Pixels of the region whose RGB differ between the images (same size), and the largest
+// channel difference among them (0..255).
+long differing(const Image& a, const Image& b, const Region& r, int& maxDelta) {
+  int x0, y0, x1, y1;
+  bounds(a, r, x0, y0, x1, y1);
+  long n = 0;
+  maxDelta = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      const unsigned char* p = a.pixels + (std::size_t(y) * a.width + x) * 3;
+      const unsigned char* q = b.pixels + (std::size_t(y) * b.width + x) * 3;
+      int d = 0;
+      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(p[c]) - int(q[c])));
+      if (d > 0) ++n;
+      maxDelta = std::max(maxDelta, d);
+    }
+  return n;
 }
 
 Rgb meanColour(const Image& image, const Region& r) {
@@ -107,6 +145,7 @@ int main(int argc, char** argv) {
   Region dark{}, bright{};
   double margin = 0, minChroma = -1;
   std::vector<ColourCheck> colours;
+  std::vector<PixelCheck> pixelChecks;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--min-stddev" && i + 1 < argc) minStddev = parseNumber(argv[++i]);
@@ -120,6 +159,15 @@ int main(int argc, char** argv) {
       const Region region = parseRegion(argv[++i]);
       const Rgb want = parseRgb(argv[++i]);
       colours.push_back({region, want, parseNumber(argv[++i])});
+    } else if (a == "--same-as" && i + 2 < argc) {
+      const std::string other = argv[++i];
+      pixelChecks.push_back({other, parseRegion(argv[++i]), 0});
+    } else if (a == "--differs-from" && i + 3 < argc) {
+      const std::string other = argv[++i];
+      const Region region = parseRegion(argv[++i]);
+      const double n = parseNumber(argv[++i]);
+      if (!(n >= 1) || n != std::floor(n)) usage("bad pixel count '" + std::string(argv[i]) + "' (a whole number >= 1)");
+      pixelChecks.push_back({other, region, long(n)});
     } else usage("unknown or incomplete argument '" + a + "'");
   }
   Image image;
@@ -168,6 +216,28 @@ int main(int argc, char** argv) {
       std::printf("FAIL: the region's colour is off\n");
       ok = false;
     }
+  }
+  for (const auto& c : pixelChecks) {
+    Image other;
+    int otherChannels = 0;
+    other.pixels = stbi_load(c.other.c_str(), &other.width, &other.height, &otherChannels, 3);
+    if (!other.pixels) usage("cannot read '" + c.other + "': " + stbi_failure_reason());
+    if (other.width != image.width || other.height != image.height)
+      usage("'" + c.other + "' is " + std::to_string(other.width) + "x" + std::to_string(other.height) + ", not " +
+            std::to_string(image.width) + "x" + std::to_string(image.height));
+    int x0, y0, x1, y1, maxDelta = 0;
+    bounds(image, c.region, x0, y0, x1, y1);
+    const long n = differing(image, other, c.region, maxDelta);
+    std::printf("pixels x %d..%d, y %d..%d against %s: %ld of %ld differ (largest channel difference %d); need %s\n",
+                x0, x1 - 1, y0, y1 - 1, c.other.c_str(), n, long(x1 - x0) * (y1 - y0), maxDelta,
+                c.minDiffering == 0 ? "none" : ("at least " + std::to_string(c.minDiffering)).c_str());
+    if (c.minDiffering == 0 ? n != 0 : n < c.minDiffering) {
+      std::printf(c.minDiffering == 0 ? "FAIL: the region is not the same as in %s\n"
+                                      : "FAIL: the region is too close to %s to tell them apart\n",
+                  c.other.c_str());
+      ok = false;
+    }
+    stbi_image_free(other.pixels);
   }
   stbi_image_free(image.pixels);
   return ok ? 0 : 1;

@@ -1,7 +1,7 @@
 #version 450
 // The viewer's composite: the AO, the scene lit with and without it (hemisphere environment light
 // from normals rebuilt from depth), a split view, the raw AO before the blur, a csz MIP level,
-// the rebuilt normals, or |AO - reference| as a heat map. Texel rows of every input are in ndc-y
+// the rebuilt normals, |AO - reference| as a heat map, or the AO at full | reduced resolution. Texel rows of every input are in ndc-y
 // order (row 0 at ndc y = -1); modes.z flips the window's y when the framebuffer is top-down.
 layout(std140, binding = 0) uniform CompositeParams {
   vec4 projInfo;    // camera-space x = z * (projInfo.x * px + projInfo.y), y = z * (projInfo.z * py + projInfo.w)
@@ -16,9 +16,10 @@ layout(binding = 2) uniform sampler2D aoTex;
 layout(binding = 3) uniform sampler2D aoRawTex;
 layout(binding = 4) uniform sampler2D cszTex;
 layout(binding = 5) uniform sampler2D referenceTex;
+layout(binding = 6) uniform sampler2D aoReducedTex;  // split-resolution: aoTex is the full-resolution AO
 layout(location = 0) out vec4 fragColor;
 
-const int kAo = 0, kLit = 1, kLitNoAo = 2, kSplit = 3, kRawAo = 4, kZMip = 5, kNormals = 6, kError = 7;
+const int kAo = 0, kLit = 1, kLitNoAo = 2, kSplit = 3, kRawAo = 4, kZMip = 5, kNormals = 6, kError = 7, kSplitResolution = 8;
 const vec3 kSky = vec3(0.55, 0.7, 1.0), kGround = vec3(0.25, 0.2, 0.15);
 const float kAlbedo = 0.75;
 
@@ -94,6 +95,11 @@ void main() {
       float e = abs(ao - texelFetch(referenceTex, p, 0).r);
       color = sky ? vec3(0.0) : heat(e / P.display.z);
     }
+  } else if (mode == kSplitResolution) {
+    float reduced = clamp(texelFetch(aoReducedTex, p, 0).r, 0.0, 1.0);
+    color = vec3(gl_FragCoord.x >= P.display.w ? reduced : ao);
+    // An orange divider: white would vanish against unoccluded floor and sky.
+    if (abs(gl_FragCoord.x - P.display.w) < 1.0) color = vec3(1.0, 0.45, 0.1);
   } else {
     bool withAo = mode == kLit || (mode == kSplit && gl_FragCoord.x >= P.display.w);
     color = toSrgb(lit(t, sky, withAo ? ao : 1.0));
