@@ -60,6 +60,7 @@
 #pragma sao variant NORMALS_SUPPLIED values=[0,1] default=0 select=input:normals "0: face normals rebuilt from csz level 0 (eq. 4, explicit neighbour fetches, smaller-|dz| side per axis); 1: read the normals input (camera space, components in [-1,1], e.g. rgba16f)"
 #pragma sao variant TWO_LAYER values=[0,1] default=0 select=input:depth2 "1: deep G-buffer, a second depth layer; each tap takes the larger obscurance of the two layers' points"
 #pragma sao variant Z_HIERARCHY values=[0,1] default=1 select=use_z_hierarchy "1: taps read z MIP level clamp(findMSB(int(h)) - log_q, 0, max_mip) (eq. 9-10); 0: always level 0 (the AlchemyAO / no-MIP baseline)"
+#pragma sao variant OUTPUT_FORMAT values=[0,1,2,3] default=0 select=output:ao "The output image's format, an index into ao's formats=: 0 r16f, 1 r8 (A rounded to the nearest 1/255), 2 rgba8, 3 rgba16f (RGBA: A goes into the channels output_mask selects, the others keep their texels)"
 #pragma sao exclude Z_HIERARCHY=0 TWO_LAYER=1 "the no-hierarchy baseline is a single-layer benchmark path"
 
 // ---------------------------------------------------------------------------------------------
@@ -73,7 +74,7 @@
 #pragma sao resource ao_raw    kind=image  format=rg32f divide_by=resolution_divisor "x: visibility A after the 2x2 reconstruction, y: key = camera-space z (+0.0 = sky); the viewport over resolution_divisor"
 #pragma sao resource ao_blur_h kind=image  format=rg32f divide_by=resolution_divisor "x: A after the horizontal bilateral blur, y: key z"
 #pragma sao resource ao_low    kind=image  format=rg32f divide_by=resolution_divisor "Reduced resolution only: (A, key z) after both blurs, the upsample's input"
-#pragma sao resource ao        kind=output format=r16f "Final ambient visibility A in [0,1] (1 = unoccluded), linear"
+#pragma sao resource ao        kind=output format=r16f formats=[r16f,r8,rgba8,rgba16f] "Final ambient visibility A in [0,1] (1 = unoccluded), linear; r16f unless the caller's output image has another of formats= (OUTPUT_FORMAT)"
 
 // ---------------------------------------------------------------------------------------------
 // Shared library (pure functions; see each file)
@@ -86,11 +87,12 @@
 #include "include/sao_estimator.glsl"
 #include "include/sao_blur.glsl"
 #include "include/sao_upsample.glsl"
+#include "include/sao_output.glsl"
 
 // ---------------------------------------------------------------------------------------------
 // Parameter block: filled by host code from Settings + Camera + extents (docs/effect-math.md,
 // "Parameter block"). Lengths are camera-space (view) units: metres times metersToViewUnits.
-// std140 offsets in brackets; 176 bytes, the last 4 std140's padding to a multiple of 16.
+// std140 offsets in brackets; 176 bytes.
 // ---------------------------------------------------------------------------------------------
 #pragma sao block SaoParams
 layout(std140, binding = 0) uniform SaoParams {
@@ -122,6 +124,7 @@ layout(std140, binding = 0) uniform SaoParams {
     ivec2 guard;                // [152] guard band: AO pixel p is csz / depth texel p + guard
     ivec2 input_offset;         // [160] texel of depth, depth2 and normals that holds csz texel (0, 0): the region inside a larger texture
     int   ao_divisor;           // [168] resolution_divisor d: reduced AO pixel p stands for viewport pixel min(p*d + d/2, ao_size - 1)
+    int   output_mask;          // [172] output channels that receive A, bit 0 = R .. bit 3 = A (15: all); an RGBA output keeps the others
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -262,7 +265,7 @@ void sao_blur_h_main()
 // ---------------------------------------------------------------------------------------------
 // Pass 5: vertical bilateral blur; writes the final A.
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass blur_v entry=sao_blur_v_main local=8x8 reads=ao_blur_h writes=ao skip_when=resolution_divisor>1 alias_when=blur_radius==0:ao_blur_h=ao_raw "Full resolution only: vertical depth-aware Gaussian blur; writes the final visibility A, rounded to binary16 in the shader"
+#pragma sao pass blur_v entry=sao_blur_v_main local=8x8 reads=ao_blur_h writes=ao variants=OUTPUT_FORMAT skip_when=resolution_divisor>1 alias_when=blur_radius==0:ao_blur_h=ao_raw "Full resolution only: vertical depth-aware Gaussian blur; writes the final visibility A, rounded in the shader as the output format holds it"
 void sao_blur_v_main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -270,7 +273,7 @@ void sao_blur_v_main()
         return;
     vec2 r = sao_bilateral_blur(in_ao_blur_h, p, ivec2(0, 1), blur_radius, blur_stride,
                                 blur_edge_sharpness, blur_weights_1_4, blur_weights_5_8);
-    imageStore(out_ao, p, vec4(sao_round_to_half(r.x), 0.0, 0.0, 1.0));
+    SAO_STORE_OUTPUT(p, r.x);
 }
 #pragma sao end
 
@@ -291,9 +294,9 @@ void sao_blur_v_low_main()
 
 // ---------------------------------------------------------------------------------------------
 // Pass 7 (reduced resolution only): joint bilateral upsample of (A, key z) to the viewport,
-// guided by csz level 0; writes the final A, rounded to binary16 in the shader.
+// guided by csz level 0; writes the final A, rounded in the shader as the output format holds it.
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass upsample entry=sao_upsample_main local=8x8 reads=ao_low,csz writes=ao skip_when=resolution_divisor==1 "Reduced resolution only: depth-aware upsample to the full-resolution output (bilinear x relative-z weights over the 2x2 nearest low texels, else the nearest in z of the 3x3)"
+#pragma sao pass upsample entry=sao_upsample_main local=8x8 reads=ao_low,csz writes=ao variants=OUTPUT_FORMAT skip_when=resolution_divisor==1 "Reduced resolution only: depth-aware upsample to the full-resolution output (bilinear x relative-z weights over the 2x2 nearest low texels, else the nearest in z of the 3x3)"
 // The low texels a work group reads, loaded once into shared memory: with d = 2 or 4, the 2x2
 // texels of every pixel and the 3x3 fallback around it lie in the (local / 2 + 2)^2 texels from
 // the group's first q0 on (docs/effect-math.md 6.4).
@@ -367,6 +370,6 @@ void sao_upsample_main()
         return;
     float z = texelFetch(in_csz, x + guard, 0).r;
     float a = sao_upsample(x, z, d, last, origin);
-    imageStore(out_ao, x, vec4(sao_round_to_half(a), 0.0, 0.0, 1.0));
+    SAO_STORE_OUTPUT(x, a);
 }
 #pragma sao end

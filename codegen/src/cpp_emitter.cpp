@@ -125,6 +125,7 @@ const char* selectName(VariantSelect v) {
   switch (v) {
     case VariantSelect::Setting: return "VariantSelect::Setting";
     case VariantSelect::Input: return "VariantSelect::Input";
+    case VariantSelect::Output: return "VariantSelect::Output";
     default: return "VariantSelect::Default";
   }
 }
@@ -266,6 +267,7 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     << "  Default,  // always defaultValue\n"
     << "  Setting,  // the bool setting SettingId(selectIndex): 1 when true\n"
     << "  Input,    // the kind=input resource ResourceId(selectIndex): 1 when the user supplies it\n"
+    << "  Output,   // the kind=output resource ResourceId(selectIndex): the index of its image's format in its formats\n"
     << "};\n"
     << "struct VariantInfo {\n  std::string_view name;\n  std::span<const std::int32_t> values;\n"
     << "  std::int32_t defaultValue;\n  VariantSelect select;\n  std::uint32_t selectIndex;\n"
@@ -304,12 +306,21 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     << "  std::uint32_t scaleDenominator;  // extent = base extent / scaleDenominator\n"
     << "  std::int32_t whenVariant;   // exists only when this variant is non-zero; -1: always\n"
     << "  std::string_view doc;\n"
-    << "  std::int32_t divideBy;  // a SettingId: the AO extent over that int setting, rounded up; -1: none\n};\n"
+    << "  std::int32_t divideBy;  // a SettingId: the AO extent over that int setting, rounded up; -1: none\n"
+    << "  std::span<const Format> formats;  // kind=output: every format it may have (formats=); empty: only `format`\n};\n";
+  for (const auto& r : e.resources) {
+    if (r.formats.empty()) continue;
+    h << "inline constexpr Format kFormats_" << r.name << "[] = {";
+    for (size_t i = 0; i < r.formats.size(); ++i) h << (i ? ", " : "") << formatName(r.formats[i]);
+    h << "};\n";
+  }
+  h
     << "inline constexpr std::array<ResourceInfo, " << e.resources.size() << "> kResources = {{\n";
   for (const auto& r : e.resources)
     h << "  {" << quoted(r.name) << ", " << kindName(r.kind) << ", " << formatName(r.format) << ", "
       << (r.fullMipChain ? "true" : "false") << ", " << (r.inputExtent ? "true" : "false") << ", " << r.scaleDenominator << ", " << r.whenVariant << ", "
-      << quoted(r.doc) << ", " << r.divideBy << "},\n";
+      << quoted(r.doc) << ", " << r.divideBy << ", "
+      << (r.formats.empty() ? std::string("{}") : "kFormats_" + r.name) << "},\n";
   h << "}};\n\n";
 
   // --- passes
@@ -317,7 +328,9 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     << "enum class PassId : std::uint32_t {\n";
   for (const auto& p : e.passes) h << "  " << p.name << ",\n";
   h << "};\nstruct BindingInfo {\n  std::uint32_t binding;  // GL unit and Vulkan set-0 binding\n"
-    << "  ResourceId resource;\n  bool write;  // true: storage image out_<name>; false: sampler in_<name>\n};\n"
+    << "  ResourceId resource;\n  bool write;  // true: storage image out_<name>; false: sampler in_<name>\n"
+    << "  Format format;  // the format the shader declares (a write's storage format)\n"
+    << "  bool readWrite;  // a write the pass also loads from (the unmasked channels of an RGBA output)\n};\n"
     << "struct PassVariantInfo {\n  VariantValues values;  // -1 where the pass does not depend on the variant\n"
     << "  std::span<const BindingInfo> bindings;\n  std::uint32_t glslBlob;\n  std::uint32_t spirvBlob;\n"
     << "  std::string_view fileStem;\n};\n"
@@ -383,7 +396,8 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
       if (cpv.variant.pass != static_cast<int>(p)) continue;
       s << "static constexpr BindingInfo kBindings_" << pass.name << "_" << k++ << "[] = {";
       for (const auto& bd : cpv.variant.bindings)
-        s << "{" << bd.binding << ", ResourceId::" << e.resources[bd.resource].name << ", " << (bd.write ? "true" : "false") << "}, ";
+        s << "{" << bd.binding << ", ResourceId::" << e.resources[bd.resource].name << ", " << (bd.write ? "true" : "false")
+          << ", " << formatName(bd.format) << ", " << (bd.readWrite ? "true" : "false") << "}, ";
       s << "};\n";
     }
     s << "static constexpr PassVariantInfo kCompiled_" << pass.name << "[] = {\n";

@@ -413,9 +413,9 @@ class Parser {
   }
 
   void parseResource(const Directive& d) {
-    auto a = attrs(d, {"kind", "format", "mips", "scale", "when", "extent", "divide_by"});
+    auto a = attrs(d, {"kind", "format", "formats", "mips", "scale", "when", "extent", "divide_by"});
     if (d.words.size() != 1) {
-      diags_.error(d.loc, "expected '#pragma sao resource NAME kind=K format=F [mips=1|auto] [scale=1/N] [divide_by=SETTING] [when=V] \"doc\"'");
+      diags_.error(d.loc, "expected '#pragma sao resource NAME kind=K format=F [formats=[F,...]] [mips=1|auto] [scale=1/N] [divide_by=SETTING] [when=V] \"doc\"'");
       return;
     }
     Resource r;
@@ -442,6 +442,7 @@ class Parser {
       diags_.error(d.loc, "format 'depth' is only for kind=input resources ('" + r.name + "')");
       return;
     }
+    if (a.count("formats") && !parseFormats(d, r, a["formats"])) return;
     const std::string mips = a.count("mips") ? a["mips"] : "1";
     if (mips != "1" && mips != "auto") {
       diags_.error(d.loc, "mips of resource '" + r.name + "' must be 1 or auto, got '" + mips + "'");
@@ -479,6 +480,27 @@ class Parser {
       }
     }
     effect_.resources.push_back(r);
+  }
+
+  // formats=[F,...]: the formats a kind=output resource may have (its format= among them); a
+  // variant with select=output:NAME picks one per plan.
+  bool parseFormats(const Directive& d, Resource& r, const std::string& list) {
+    std::string why;
+    if (r.kind != ResourceKind::Output) why = "is only for kind=output resources";
+    else if (list.size() < 2 || list.front() != '[' || list.back() != ']') why = "must be a list [F,...]";
+    else
+      for (const auto& f : splitList(list.substr(1, list.size() - 2))) {
+        if (!kFormats.count(f) || f == "depth") why = "names '" + f + "', which is not a colour format";
+        else if (std::find(r.formats.begin(), r.formats.end(), f) != r.formats.end()) why = "lists '" + f + "' twice";
+        r.formats.push_back(f);
+      }
+    if (why.empty() && std::find(r.formats.begin(), r.formats.end(), r.format) == r.formats.end())
+      why = "does not list its format= '" + r.format + "'";
+    if (!why.empty()) {
+      diags_.error(d.loc, "formats= of resource '" + r.name + "' " + why);
+      return false;
+    }
+    return true;
   }
 
   // divide_by=SETTING: an effect-owned image of the AO extent whose extent is that over the value
@@ -605,6 +627,18 @@ class Parser {
           diags_.error(d.loc, "pass '" + p.name + "' uses '" + res.name + "', which exists only when " +
                                   effect_.variants[res.whenVariant].name + " != 0, but does not list that variant in variants=");
       }
+    for (int r : p.writes) {
+      const Resource& res = effect_.resources[r];
+      if (res.formats.empty()) continue;
+      int selector = -1;
+      for (size_t v = 0; v < effect_.variants.size(); ++v)
+        if (effect_.variants[v].select == VariantSelect::Output && effect_.variants[v].selectIndex == r) selector = int(v);
+      if (selector < 0)
+        diags_.error(d.loc, "pass '" + p.name + "' writes '" + res.name + "', which lists formats=, but no variant has select=output:" + res.name);
+      else if (std::find(p.variants.begin(), p.variants.end(), selector) == p.variants.end())
+        diags_.error(d.loc, "pass '" + p.name + "' writes '" + res.name + "', whose format variant " +
+                                effect_.variants[selector].name + " it does not list in variants=");
+    }
     resolvePassRules(effect_, p, d.loc, a.count("skip_when") ? &a["skip_when"] : nullptr,
                      a.count("alias_when") ? &a["alias_when"] : nullptr, diags_);
   }

@@ -35,6 +35,7 @@ enum class VariantSelect {
   Default,  // no select=: always the default value
   Setting,  // select=SETTING: a bool setting, 1 when true
   Input,    // select=input:RESOURCE: 1 when the user supplies that kind=input resource
+  Output,   // select=output:RESOURCE: the index, in the kind=output resource's formats=, of its image's format
 };
 
 struct Variant {
@@ -60,6 +61,9 @@ struct Resource {
   std::string name;
   ResourceKind kind = ResourceKind::Image;
   std::string format;      // r32f, rg32f, r16f, rg16f, rgba16f, r8, rgba8, depth
+  // formats=[...] (kind=output only): every format the output may have, `format` among them; the
+  // variant with select=output:NAME picks one, and each pass writing it lists that variant.
+  std::vector<std::string> formats;
   bool fullMipChain = false;  // mips=auto
   bool inputExtent = false;   // extent=input: the depth input's size (viewport + guard band)
   int scaleDenominator = 1;   // scale=1/N of the base extent

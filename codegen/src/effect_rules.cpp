@@ -146,6 +146,32 @@ const ResourceAlias* aliasOf(const std::vector<ResourceAlias>& aliases, int decl
 void resolveVariantSelect(const Effect& e, Variant& v, const SourceLoc& loc, const std::string& text,
                           Diagnostics& diags) {
   const std::string prefix = "input:";
+  const std::string outputPrefix = "output:";
+  if (text.rfind(outputPrefix, 0) == 0) {
+    // The index of the output image's format in the resource's formats=: values 0..n-1.
+    const std::string name = text.substr(outputPrefix.size());
+    const int r = findResource(e, name);
+    if (r < 0 || e.resources[r].kind != ResourceKind::Output || e.resources[r].formats.empty()) {
+      diags.error(loc, "variant '" + v.name + "' is selected by '" + text +
+                           "', which names no kind=output resource with formats=");
+      return;
+    }
+    const size_t n = e.resources[r].formats.size();
+    bool ok = v.values.size() == n;
+    for (size_t i = 0; ok && i < n; ++i) ok = v.values[i] == static_cast<int>(i);
+    const auto& formats = e.resources[r].formats;
+    const int defaultIndex =
+        static_cast<int>(std::find(formats.begin(), formats.end(), e.resources[r].format) - formats.begin());
+    if (!ok || v.defaultValue != defaultIndex) {
+      diags.error(loc, "variant '" + v.name + "' is selected by '" + text + "': its values must be 0.." +
+                           std::to_string(n - 1) + " (one per format of '" + name + "') and its default " +
+                           std::to_string(defaultIndex) + " (the resource's format=)");
+      return;
+    }
+    v.select = VariantSelect::Output;
+    v.selectIndex = r;
+    return;
+  }
   if (text.rfind(prefix, 0) == 0) {
     const std::string name = text.substr(prefix.size());
     const int r = findResource(e, name);

@@ -114,7 +114,8 @@ int main(int argc, char** argv) {
                 std::to_string(c.spirvBlob) + " | 0 block " + effect.block->name;
     for (const auto& b : c.variant.bindings) {
       const Resource& r = effect.resources[b.resource];
-      manifest += ", " + std::to_string(b.binding) + (b.write ? " out " : " in ") + r.name + " " + r.format;
+      manifest += ", " + std::to_string(b.binding) + (b.write ? " out " : " in ") + r.name + " " + b.format +
+                  (b.readWrite ? " rw" : "");
     }
     manifest += "\n";
   }

@@ -4,6 +4,12 @@
 
 namespace sao::codegen {
 
+int formatChannels(const std::string& format) {
+  if (format.rfind("rgba", 0) == 0) return 4;
+  if (format.rfind("rg", 0) == 0) return 2;
+  return 1;
+}
+
 std::vector<std::vector<int>> allowedCombinations(const Effect& effect) {
   std::vector<std::vector<int>> out;
   std::vector<size_t> index(effect.variants.size(), 0);
@@ -48,9 +54,22 @@ std::vector<PassVariant> buildPassVariants(const Effect& effect) {
       };
       int next = 1;  // binding 0 is the parameter block
       for (int r : pass.reads)
-        if (present(r)) pv.bindings.push_back({next++, r, false});
-      for (int r : pass.writes)
-        if (present(r)) pv.bindings.push_back({next++, r, true});
+        if (present(r)) pv.bindings.push_back({next++, r, false, effect.resources[r].format, false});
+      for (int r : pass.writes) {
+        if (!present(r)) continue;
+        const Resource& res = effect.resources[r];
+        Binding b{next++, r, true, res.format, false};
+        // A formats= output: the format its selecting variant gives in this combination (the
+        // parser checked that the pass lists the variant); RGBA formats keep unmasked channels,
+        // so the pass may load them.
+        for (size_t v = 0; v < effect.variants.size(); ++v) {
+          const Variant& var = effect.variants[v];
+          if (var.select != VariantSelect::Output || var.selectIndex != r || values[v] < 0) continue;
+          b.format = res.formats[static_cast<size_t>(values[v])];
+          b.readWrite = formatChannels(b.format) > 1;
+        }
+        pv.bindings.push_back(b);
+      }
       out.push_back(pv);
     }
   }
@@ -73,7 +92,8 @@ std::vector<SourceLine> composeShader(const Effect& effect, const PassVariant& p
   for (const auto& b : pv.bindings) {
     const Resource& r = effect.resources[b.resource];
     const std::string bind = "layout(" + setPrefix + "binding = " + std::to_string(b.binding);
-    if (b.write) gen(bind + ", " + r.format + ") writeonly uniform image2D out_" + r.name + ";");
+    if (b.write)
+      gen(bind + ", " + b.format + ")" + (b.readWrite ? "" : " writeonly") + " uniform image2D out_" + r.name + ";");
     else gen(bind + ") uniform sampler2D in_" + r.name + ";");
   }
   for (const auto& l : effect.commonCode) out.push_back(l);

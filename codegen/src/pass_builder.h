@@ -14,7 +14,12 @@ struct Binding {
   int binding = 0;
   int resource = 0;
   bool write = false;
+  std::string format;      // the storage format of a write (per variant for a formats= output)
+  bool readWrite = false;  // a write the pass may also imageLoad (a multi-channel formats= output)
 };
+
+// Channels of a resource format (r*: 1, rg*: 2, rgba*: 4).
+int formatChannels(const std::string& format);
 
 struct PassVariant {
   int pass = 0;

@@ -348,4 +348,8 @@ inline float roundToHalf(float x) {
   return std::ldexp(std::floor(std::ldexp(x, -q) + 0.5f), q);
 }
 
+// sao_round_to_unorm8 of sao_output.glsl: x clamped to [0, 1], rounded to the nearest multiple of
+// 1/255 (halves up), each operation one binary32 rounding as the shader does it.
+inline float roundToUnorm8(float x) { return std::floor(std::clamp(x, 0.0f, 1.0f) * 255.0f + 0.5f) / 255.0f; }
+
 }  // namespace sao::cpu::detail

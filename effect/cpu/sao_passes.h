@@ -243,8 +243,22 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
   return Status::success();
 }
 
-// Passes blur_h (final = false: writes (A, key)) and blur_v (final = true: writes A, rounded to
-// binary16 in Float precision as sao_round_to_half does, unrounded in Double). The (A, key) image
+// The output texel at (x, y) as sao_output_texel stores it: A quantised as the output's format
+// holds it (Float: binary16 or 1/255 steps; Double: unrounded) into the channels output_mask
+// selects; the other channels keep what the image holds (the caller's contents, Inputs::output).
+template <typename T>
+void storeOutput(const PassContext<T>& ctx, Image<T>& dst, int x, int y, T a) {
+  if constexpr (std::is_same_v<T, float>) {
+    const std::int32_t v = ctx.plan.variants[static_cast<std::size_t>(gen::VariantId::OUTPUT_FORMAT)];
+    const gen::Format f = gen::kResources[static_cast<std::size_t>(gen::ResourceId::ao)].formats[std::size_t(v)];
+    a = f == gen::Format::R8 || f == gen::Format::RGBA8 ? roundToUnorm8(a) : roundToHalf(a);
+  }
+  for (int c = 0; c < dst.ch; ++c)
+    if ((ctx.P.output_mask >> c) & 1) dst.at(x, y, c) = a;
+}
+
+// Passes blur_h (final = false: writes (A, key)) and blur_v (final = true: writes A through
+// storeOutput, rounded as the output's format holds it in Float precision, unrounded in Double). The (A, key) image
 // read is the dispatch's one read binding, aliases resolved (blur_v reads ao_raw when blur_h is
 // skipped); the image written is its one write binding.
 template <typename T>
@@ -263,8 +277,7 @@ Status blurPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const
       T a, key;
       bilateralBlur(src, x, y, dx, dy, ctx.P, a, key);
       if (final) {
-        if constexpr (std::is_same_v<T, float>) a = roundToHalf(a);
-        dst.at(x, y, 0) = a;
+        storeOutput(ctx, dst, x, y, a);
       } else {
         dst.at(x, y, 0) = a;
         dst.at(x, y, 1) = key;
@@ -275,7 +288,7 @@ Status blurPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const
 }
 
 // Pass upsample: the reduced (A, key) image to the viewport-sized output, guided by csz level 0;
-// rounded to binary16 in Float precision as sao_round_to_half does, unrounded in Double.
+// stored through storeOutput (rounded as the output's format holds it in Float, unrounded in Double).
 template <typename T>
 Status upsamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
   const ScheduledBinding* in = binding(d, bindings, gen::ResourceId::ao_low, false);
@@ -296,9 +309,7 @@ Status upsamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
                         "and the viewport's csz");
   parallelFor(dst.h, ctx.threads, [&](int y) {
     for (int x = 0; x < dst.w; ++x) {
-      T a = upsample(low, x, y, z0.at(x + P.guard.x, y + P.guard.y), div, dst.w, dst.h);
-      if constexpr (std::is_same_v<T, float>) a = roundToHalf(a);
-      dst.at(x, y, 0) = a;
+      storeOutput(ctx, dst, x, y, upsample(low, x, y, z0.at(x + P.guard.x, y + P.guard.y), div, dst.w, dst.h));
     }
   });
   return Status::success();

@@ -191,10 +191,11 @@ TEST_F(Inputs, DepthAlsoPassedAsOutput) {
 
 TEST_F(Inputs, OutputFormatAndSize) {
   gl::Inputs in = good();
-  const GLuint rgba = makeTexture(GL_RGBA8, {64, 36});
+  const GLuint rgba = makeTexture(GL_RG16F, {64, 36});  // not an output format (sao/output.h)
   in.output = rgba;
   Status st = render(in);
   EXPECT_EQ(st.code, StatusCode::UnsupportedFormat) << st.message;
+  EXPECT_NE(st.message.find("GL_RG16F"), std::string::npos) << st.message;
   const GLuint small = makeTexture(GL_R16F, {32, 36});
   in.output = small;
   st = render(in);

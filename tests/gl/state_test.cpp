@@ -293,10 +293,21 @@ TEST_F(State, RenderRestoresEverything) {
     const std::string diff = differences(before, after);
     EXPECT_TRUE(diff.empty()) << "GL state changed by render():\n" << diff;
   }
+  // An RGBA8 output keeping channels: its image unit is bound GL_READ_WRITE, and restored too.
+  {
+    gl::Inputs packed = in;
+    packed.output = makeTexture(GL_RGBA8, {160, 90});
+    packed.outputChannels = kChannelA;
+    const Status st = e->render(cam, presetSettings(Preset::High), packed);
+    EXPECT_TRUE(st.ok()) << st.message;
+    deleteTexture(packed.output);
+    const std::string diff = differences(before, snapshot(watched));
+    EXPECT_TRUE(diff.empty()) << "GL state changed by a read-modify-write render():\n" << diff;
+  }
   // A failing render restores the state too (it fails after binding textures for inspection).
   {
     gl::Inputs bad = in;
-    bad.output = makeTexture(GL_RGBA8, {160, 90});
+    bad.output = makeTexture(GL_RG16F, {160, 90});  // not an output format
     const Status st = e->render(cam, Settings{}, bad);
     EXPECT_EQ(st.code, StatusCode::UnsupportedFormat);
     deleteTexture(bad.output);

@@ -104,6 +104,7 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
   p.ao_size = {static_cast<std::int32_t>(c.width), static_cast<std::int32_t>(c.height)};
   p.guard = {static_cast<std::int32_t>(c.guardBand), static_cast<std::int32_t>(c.guardBand)};
   p.ao_divisor = s.resolution_divisor;  // validated: 1, 2 or 4
+  p.output_mask = 15;  // every channel of the output (kAllChannels); backends put the caller's mask here
   return Status::success();
 }
 

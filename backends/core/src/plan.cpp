@@ -1,5 +1,7 @@
 #include "sao/plan.h"
 
+#include "sao/output.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -124,6 +126,16 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
       case gen::VariantSelect::Input:
         out.variants[v] = supplied(static_cast<gen::ResourceId>(info.selectIndex)) ? 1 : 0;
         break;
+      case gen::VariantSelect::Output: {
+        const auto formats = gen::kResources[info.selectIndex].formats;
+        const auto it = std::find(formats.begin(), formats.end(), inputs.outputFormat);
+        if (it == formats.end())
+          return Status::error(StatusCode::UnsupportedFormat, std::string("the output format ") +
+                                                                  formatName(inputs.outputFormat) +
+                                                                  " is not one the effect writes (" + outputFormatList() + ")");
+        out.variants[v] = static_cast<std::int32_t>(it - formats.begin());
+        break;
+      }
       case gen::VariantSelect::Default:
         out.variants[v] = info.defaultValue;
         break;
@@ -169,7 +181,8 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
       if (r.kind == gen::ResourceKind::Output && inputs.userOutput) continue;
       const Extent e = resourceExtent(out, id);  // not planned yet: the declared extent
       const std::uint32_t levels = r.fullMipChain ? out.cszLevels : 1;
-      out.images.push_back({id, r.format, e, levels, imageBytes(r.format, e, levels)});
+      const gen::Format format = r.formats.empty() ? r.format : inputs.outputFormat;  // checked above
+      out.images.push_back({id, format, e, levels, imageBytes(format, e, levels)});
     }
   }
   for (const auto& i : out.images) out.totalBytes += i.bytes;
@@ -184,7 +197,8 @@ std::uint64_t fullAllocationBytes(const Camera& camera, const PlanInputs& inputs
     if (r.kind == gen::ResourceKind::Input) continue;
     if (r.kind == gen::ResourceKind::Output && inputs.userOutput) continue;
     const Extent base = r.inputExtent ? input : ao;
-    total += imageBytes(r.format, base, r.fullMipChain ? fullChainLevels(base) : 1);
+    const gen::Format format = r.formats.empty() ? r.format : inputs.outputFormat;
+    total += imageBytes(format, base, r.fullMipChain ? fullChainLevels(base) : 1);
   }
   return total;
 }

@@ -107,10 +107,12 @@ std::string resourceName(gen::ResourceId id) {
 int channelsOf(gen::Format format) {
   switch (format) {
     case gen::Format::R32F:
-    case gen::Format::R16F: return 1;
+    case gen::Format::R16F:
+    case gen::Format::R8: return 1;
     case gen::Format::RG32F:
     case gen::Format::RG16F: return 2;
-    case gen::Format::RGBA16F: return 4;
+    case gen::Format::RGBA16F:
+    case gen::Format::RGBA8: return 4;
     default: return 0;
   }
 }
@@ -127,13 +129,18 @@ Status allocateImages(PassContext<T>& ctx) {
     if (channels == 0)
       return Status::error(StatusCode::UnsupportedFormat,
                            "the plan's image '" + resourceName(img.resource) +
-                               "' has a format the CPU reference cannot hold (r32f, r16f, rg32f, rg16f, rgba16f)");
+                               "' has a format the CPU reference cannot hold (r32f, r16f, r8, rg32f, rg16f, rgba16f, rgba8)");
     auto& levels = ctx.levels(img.resource);
     levels.clear();
     for (std::uint32_t m = 0; m < img.mipLevels; ++m) {
       const Extent e = levelExtent(img.extent, m);
       levels.emplace_back(int(e.width), int(e.height), channels);
     }
+    // The caller's output contents (checked against the extent and channels): what the final pass
+    // keeps in the channels it does not write.
+    const FloatImage* initial = ctx.in.output;
+    if (gen::kResources[static_cast<std::size_t>(img.resource)].kind == gen::ResourceKind::Output && initial)
+      for (std::size_t i = 0; i < initial->data.size(); ++i) levels[0].v[i] = static_cast<T>(initial->data[i]);
   }
   return Status::success();
 }
@@ -200,8 +207,18 @@ Status validateAndPlan(const Settings& settings, const Camera& camera, const Inp
                          "depth has an unknown format (" + std::to_string(int(in.depth->format)) + ")");
   const DepthEncoding encoding =
       in.depth->format == DepthFormat::LinearZ ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
-  const PlanInputs planInputs{encoding, in.normals != nullptr, in.depth2 != nullptr, false};
+  const PlanInputs planInputs{encoding, in.normals != nullptr, in.depth2 != nullptr, false, in.outputFormat};
   if (Status st = plan(settings, camera, planInputs, r.plan); !st) return st;
+  if (Status st = checkOutputChannels(in.outputFormat, in.outputChannels, "sao::cpu"); !st) return st;
+  if (in.output != nullptr) {
+    const std::uint32_t channels = channelCount(in.outputFormat);
+    if (in.output->extent != r.plan.aoExtent || in.output->channels != channels ||
+        in.output->data.size() != std::size_t(r.plan.aoExtent.width) * r.plan.aoExtent.height * channels)
+      return invalid("the initial output is " + extentText(in.output->extent) + " with " +
+                     std::to_string(in.output->channels) + " channels (" + std::to_string(in.output->data.size()) +
+                     " floats); a " + formatName(in.outputFormat) + " output of the viewport needs " +
+                     extentText(r.plan.aoExtent) + " with " + std::to_string(channels));
+  }
   const Extent expected = r.plan.inputExtent;
   if (Status st = checkDepth("depth", *in.depth, camera, expected, in.region); !st) return st;
   if (in.depth2 != nullptr) {
@@ -219,6 +236,7 @@ Status validateAndPlan(const Settings& settings, const Camera& camera, const Inp
                    ") does not fit the shaders' int (at most 2^31 - 1)");
   if (Status st = computeConstants(settings, camera, encoding, r.params); !st) return st;
   r.params.input_offset = {std::int32_t(offset.x), std::int32_t(offset.y)};
+  r.params.output_mask = outputMaskParam(in.outputChannels);
   // The block and the plan come from the same core functions; check that they agree anyway.
   if (std::uint32_t(r.params.max_mip) + 1 != r.plan.cszLevels)
     return invalid("max_mip " + std::to_string(r.params.max_mip) + " disagrees with the plan's " +
@@ -263,5 +281,6 @@ Status run(const Settings& settings, const Camera& camera, const Inputs& inputs,
 }
 
 float roundToHalfAsShader(float x) { return roundToHalf(x); }
+float roundToUnorm8AsShader(float x) { return roundToUnorm8(x); }
 
 }  // namespace sao::cpu

@@ -48,11 +48,12 @@ void barrier(const GlFunctions& gl, std::span<const Hazard> hazards) {
   if (const GLbitfield bits = barrierBits(hazards)) gl.MemoryBarrier(bits);
 }
 
-void bind(const GlFunctions& gl, const PassResources& r, const ScheduledBinding& b) {
+// `declared`: the pass variant's own binding (the format its shader declares, whether it loads too).
+void bind(const GlFunctions& gl, const PassResources& r, const ScheduledBinding& b, const gen::BindingInfo& declared) {
   const GLuint texture = textureFor(r, b.resource);
   if (b.write) {
-    const GLenum format = glFormat(gen::kResources[static_cast<std::size_t>(b.resource)].format);
-    gl.BindImageTexture(b.binding, texture, GLint(b.baseLevel), GL_FALSE, 0, GL_WRITE_ONLY, format);
+    gl.BindImageTexture(b.binding, texture, GLint(b.baseLevel), GL_FALSE, 0,
+                        declared.readWrite ? GL_READ_WRITE : GL_WRITE_ONLY, glFormat(declared.format));
     return;
   }
   GLuint tex = texture, sampler = r.nearestSampler;
@@ -77,7 +78,8 @@ void runSchedule(const GlFunctions& gl, const Plan& plan, const Schedule& schedu
       gl.UseProgram(programs[d.passIndex]);
     }
     barrier(gl, schedule.hazardsBefore(d));
-    for (const ScheduledBinding& b : schedule.bindingsOf(d)) bind(gl, r, b);
+    const std::span<const ScheduledBinding> bindings = schedule.bindingsOf(d);  // one to one with the variant's
+    for (std::size_t i = 0; i < bindings.size(); ++i) bind(gl, r, bindings[i], d.variant->bindings[i]);
     gl.DispatchCompute(d.groupsX, d.groupsY, 1);
     previous = &d;
   }

@@ -220,6 +220,7 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
   // checkSupplied put the region inside the textures, whose sides GL keeps far below 2^31.
   const Offset offset = checked.region.value_or(Offset{});
   block.input_offset = {static_cast<std::int32_t>(offset.x), static_cast<std::int32_t>(offset.y)};
+  block.output_mask = outputMaskParam(checked.outputChannels);  // per render, like the offset
   if (replan) {
     if (p.inputExtent.width > std::uint32_t(maxTextureSize) || p.inputExtent.height > std::uint32_t(maxTextureSize))
       return Status::error(StatusCode::InvalidExtent, "sao::gl: the depth input " + std::to_string(p.inputExtent.width) +
@@ -285,6 +286,7 @@ Status Effect::render(const Camera& camera, const Settings& settings, const Inpu
 }
 
 std::uint32_t Effect::aoTexture() const { return impl_->aoTexture; }
+std::uint64_t Effect::outputGeneration() const { return impl_->resources->outputGeneration(); }
 std::uint32_t Effect::texture(gen::ResourceId resource) const {
   const auto i = static_cast<std::size_t>(resource);
   return i < impl_->served.size() ? impl_->served[i] : 0;

@@ -50,6 +50,17 @@ Status inspect(const GlFunctions& gl, GLuint unit, GLuint texture, const char* r
   return Status::success();
 }
 
+// The effect's format of a GL output texture; Depth (never an output format) for any other.
+gen::Format outputFormat(GLenum f) {
+  switch (f) {
+    case GL_R16F: return gen::Format::R16F;
+    case GL_R8: return gen::Format::R8;
+    case GL_RGBA8: return gen::Format::RGBA8;
+    case GL_RGBA16F: return gen::Format::RGBA16F;
+    default: return gen::Format::Depth;
+  }
+}
+
 bool isHardwareDepth(GLenum f) {
   switch (f) {
     case GL_DEPTH_COMPONENT16:
@@ -131,12 +142,16 @@ Status checkInputs(const GlFunctions& gl, GLuint unit, const Inputs& inputs, Che
                                                          " is passed both as the output and as the " + clash +
                                                          " input; the output must be a separate texture");
     if (Status st = inspect(gl, unit, o, "output", out.output); !st) return st;
-    if (out.output.internalFormat != GL_R16F)
+    const gen::Format format = outputFormat(out.output.internalFormat);
+    if (!isOutputFormat(format))
       return Status::error(StatusCode::UnsupportedFormat, "sao::gl: the output texture " + std::to_string(o) + " is " +
                                                               glEnumName(out.output.internalFormat) +
-                                                              "; the effect writes GL_R16F");
+                                                              "; the effect writes GL_R16F, GL_R8, GL_RGBA8 or GL_RGBA16F");
     out.planInputs.userOutput = true;
+    out.planInputs.outputFormat = format;
   }
+  if (Status st = checkOutputChannels(out.planInputs.outputFormat, inputs.outputChannels, "sao::gl"); !st) return st;
+  out.outputChannels = inputs.outputChannels;
   return Status::success();
 }
 

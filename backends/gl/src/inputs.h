@@ -17,6 +17,7 @@ struct CheckedInputs {
   TextureInfo depth, depth2, normals, output;  // texture 0 where absent
   std::optional<Offset> region;  // Inputs::region: where the region starts in depth, depth2 and normals
   PlanInputs planInputs;
+  std::uint32_t outputChannels = 15;  // Inputs::outputChannels, checked against the output's format
 };
 
 // Inspects every texture in `inputs` (binding each on `scratchUnit`, whose binding the caller

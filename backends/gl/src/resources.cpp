@@ -42,7 +42,9 @@ Status Resources::update(const Plan& plan, GLuint scratchUnit, GLint maxTextureS
   for (std::size_t r = 0; r < slots_.size(); ++r) {
     Slot& s = slots_[r];
     const PlannedImage* img = wanted[r];
+    const bool isOutput = gen::kResources[r].kind == gen::ResourceKind::Output;
     if (!img) {
+      if (s.texture && isOutput) ++outputGeneration_;  // the owned output goes away
       release(s);
       continue;
     }
@@ -58,6 +60,7 @@ Status Resources::update(const Plan& plan, GLuint scratchUnit, GLint maxTextureS
                                std::to_string(img->extent.height) + ", above GL_MAX_TEXTURE_SIZE " +
                                std::to_string(maxTextureSize));
     gl_.GenTextures(1, &s.texture);
+    if (isOutput) ++outputGeneration_;  // a new texture object serves aoTexture()
     gl_.ActiveTexture(GL_TEXTURE0 + scratchUnit);
     gl_.BindTexture(GL_TEXTURE_2D, s.texture);
     gl_.TexStorage2D(GL_TEXTURE_2D, GLsizei(img->mipLevels), format, GLsizei(img->extent.width),

@@ -26,6 +26,8 @@ class Resources {
   Status update(const Plan& plan, GLuint scratchUnit, GLint maxTextureSize, std::uint64_t& allocations);
 
   GLuint texture(gen::ResourceId id) const { return slot(id).texture; }
+  // Goes up each time an effect-owned output texture is created or deleted.
+  std::uint64_t outputGeneration() const { return outputGeneration_; }
   GLuint levelView(gen::ResourceId id, std::uint32_t level) const;  // single-level view, 0 if none
   void releaseAll();
 
@@ -40,6 +42,7 @@ class Resources {
 
   const GlFunctions& gl_;
   std::array<Slot, gen::kResources.size()> slots_{};
+  std::uint64_t outputGeneration_ = 0;
 };
 
 }  // namespace sao::gl::detail

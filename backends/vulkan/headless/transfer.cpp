@@ -26,6 +26,8 @@ std::uint32_t channelsOf(VkFormat f, std::uint32_t& bytes) {
     case VK_FORMAT_R32G32_SFLOAT: bytes = 8; return 2;
     case VK_FORMAT_R16G16B16A16_SFLOAT: bytes = 8; return 4;
     case VK_FORMAT_R32G32B32A32_SFLOAT: bytes = 16; return 4;
+    case VK_FORMAT_R8_UNORM: bytes = 1; return 1;
+    case VK_FORMAT_R8G8B8A8_UNORM: bytes = 4; return 4;
     default: bytes = 0; return 0;
   }
 }
@@ -195,7 +197,8 @@ Status Context::uploadDepth(const DepthImage& depth, VkFormat format, VkImageLay
   return Status::success();
 }
 
-Status Context::uploadColor(const FloatImage& image, VkFormat format, VkImageLayout layout, Image& out) {
+Status Context::uploadColor(const FloatImage& image, VkFormat format, VkImageLayout layout, Image& out,
+                            VkImageUsageFlags extraUsage) {
   std::uint32_t bytes = 0;
   const std::uint32_t channels = channelsOf(format, bytes);
   const std::size_t n = std::size_t(image.extent.width) * image.extent.height;
@@ -204,13 +207,17 @@ Status Context::uploadColor(const FloatImage& image, VkFormat format, VkImageLay
   Buffer staging;
   if (Status st = createBuffer(n * bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, staging); !st) return st;
   void* mapped = staging.mapped;
-  const bool half = bytes / channels == 2;
+  const std::uint32_t size = bytes / channels;  // 1: 8-bit UNORM, 2: binary16, 4: float
   for (std::size_t i = 0; i < n * channels; ++i) {
-    if (half) static_cast<std::uint16_t*>(mapped)[i] = sao::halfBits(image.data[i]);
+    if (size == 1)
+      static_cast<std::uint8_t*>(mapped)[i] =
+          static_cast<std::uint8_t>(std::lround(std::clamp(image.data[i], 0.0f, 1.0f) * 255.0f));
+    else if (size == 2) static_cast<std::uint16_t*>(mapped)[i] = sao::halfBits(image.data[i]);
     else static_cast<float*>(mapped)[i] = image.data[i];
   }
   if (Status st = createImage(format, image.extent,
-                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                  extraUsage,
                               VK_IMAGE_ASPECT_COLOR_BIT, out);
       !st) {
     destroy(staging);
@@ -276,9 +283,11 @@ Status Context::readback(VkImage image, VkFormat format, Extent levelZero, std::
   }
   out = FloatImage(e, channels);
   void* mapped = staging.mapped;
-  const bool half = bytes / channels == 2;
+  const std::uint32_t size = bytes / channels;
   for (std::size_t i = 0; i < n * channels; ++i)
-    out.data[i] = half ? sao::halfToFloat(static_cast<const std::uint16_t*>(mapped)[i]) : static_cast<const float*>(mapped)[i];
+    out.data[i] = size == 1   ? float(static_cast<const std::uint8_t*>(mapped)[i]) / 255.0f
+                  : size == 2 ? sao::halfToFloat(static_cast<const std::uint16_t*>(mapped)[i])
+                              : static_cast<const float*>(mapped)[i];
   destroy(staging);
   return Status::success();
 }

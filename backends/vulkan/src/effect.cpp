@@ -102,10 +102,28 @@ Status checkConfig(const EffectState& e, const Config& c, Plan& plan, ParamBlock
                              std::to_string(e.ctx.queueFamilyIndex) +
                              " has no graphics (use VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT / TRANSFER_BIT)");
 
+  const gen::Format outputFormat = outputFormatOf(c.outputFormat);
+  if (!isOutputFormat(outputFormat))
+    return Status::error(StatusCode::UnsupportedFormat,
+                         "Config::outputFormat is VkFormat " + std::to_string(static_cast<int>(c.outputFormat)) +
+                             "; the effect writes VK_FORMAT_R16_SFLOAT, R8_UNORM, R8G8B8A8_UNORM or R16G16B16A16_SFLOAT");
+  VkFormatProperties fp{};
+  e.d.vkGetPhysicalDeviceFormatProperties(e.ctx.physicalDevice, c.outputFormat, &fp);
+  if (!(fp.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT))
+    return Status::error(StatusCode::UnsupportedFormat, std::string("Config::outputFormat ") + sao::formatName(outputFormat) +
+                                                            " cannot be an optimal-tiling storage image on this device");
+  if (Status st = checkOutputChannels(outputFormat, c.outputChannels, "sao::vk Config::outputChannels"); !st) return st;
+  if (!c.userOutput && keepsChannels(outputFormat, c.outputChannels))
+    return Status::error(StatusCode::InvalidInput,
+                         "Config::outputChannels " + std::to_string(c.outputChannels) +
+                             " keeps channels of the output, which only your own image has: set Config::userOutput "
+                             "or use kAllChannels");
+
   const DepthEncoding encoding = c.depthFormat == VK_FORMAT_R32_SFLOAT ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
-  PlanInputs pi{encoding, c.normalsFormat != VK_FORMAT_UNDEFINED, c.secondLayer, c.userOutput};
+  PlanInputs pi{encoding, c.normalsFormat != VK_FORMAT_UNDEFINED, c.secondLayer, c.userOutput, outputFormat};
   if (Status st = sao::plan(c.settings, c.camera, pi, plan); !st) return st;
   if (Status st = computeConstants(c.settings, c.camera, encoding, params); !st) return st;
+  params.output_mask = outputMaskParam(c.outputChannels);
   const std::uint32_t maxSide = e.props.limits.maxImageDimension2D;
   const Extent ie = plan.inputExtent;
   if (ie.width > maxSide || ie.height > maxSide)
@@ -192,6 +210,7 @@ Status createEffect(const DeviceContext& context, const Config& config, EffectSt
   if (Status st = createSampler(e); !st) return st;
   if (Status st = ensurePipelines(e, e.plan); !st) return st;
   if (Status st = createResources(e, e.plan, e.res); !st) return st;
+  if (e.res.find(gen::ResourceId::ao)) e.outputGeneration = 1;
   if (Status st = createParamBuffer(e, config.framesInFlight, e.ubo); !st) return st;
   if (Status st = createDescriptors(e, e.schedule, config.framesInFlight, e.desc); !st) return st;
   if (Status st = createQueryPool(e, config.framesInFlight, e.queryPool); !st) return st;
@@ -250,7 +269,11 @@ Status Effect::update(const Config& config) {
       e.nextSlot = 0;
       e.lastTimedRegion = -1;
     }
-    if (newImages) std::swap(e.res, res);
+    if (newImages) {
+      // Every image is new (createResources makes them all): a new owned output, or none now.
+      if (e.res.find(gen::ResourceId::ao) || res.find(gen::ResourceId::ao)) ++e.outputGeneration;
+      std::swap(e.res, res);
+    }
     if (newFrames) {
       std::swap(e.ubo, ubo);
       std::swap(e.queryPool, queries);
@@ -268,6 +291,7 @@ const Config& Effect::config() const { return impl_->config; }
 const Plan& Effect::plan() const { return impl_->plan; }
 const ParamBlock& Effect::params() const { return impl_->params; }
 MemoryStats Effect::memoryStats() const { return impl_->allocator.stats(); }
+std::uint64_t Effect::outputGeneration() const { return impl_->outputGeneration; }
 std::uint32_t Effect::pipelineCount() const { return static_cast<std::uint32_t>(impl_->pipelines.size()); }
 
 OutputImage Effect::output() const {

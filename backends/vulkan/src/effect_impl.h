@@ -84,6 +84,9 @@ struct Descriptors {
 struct OutputTarget {
   VkImage image = VK_NULL_HANDLE;
   VkImageView view = VK_NULL_HANDLE;
+  // Where the prologue transitions it from: UNDEFINED (contents discarded), or the caller's layout
+  // when Config::outputChannels keeps channels.
+  VkImageLayout keepFrom = VK_IMAGE_LAYOUT_UNDEFINED;
 };
 
 inline constexpr std::uint32_t kMaxFramesInFlight = 16;
@@ -115,6 +118,7 @@ struct __attribute__((visibility("hidden"))) EffectState {
   Descriptors desc;
 
   std::uint32_t nextSlot = 0;
+  std::uint64_t outputGeneration = 0;  // Effect::outputGeneration()
   int lastTimedRegion = -1;  // region of the last timestamped record(); its passes are plan.passes
 
   EffectState() = default;
@@ -127,6 +131,8 @@ struct __attribute__((visibility("hidden"))) Effect::Impl : EffectState {};
 
 // ---- resources.cpp
 VkFormat vkFormat(gen::Format format);
+// The effect's format of a VkFormat the output may have; Depth (never an output format) otherwise.
+gen::Format outputFormatOf(VkFormat format);
 Status createResources(EffectState& e, const Plan& plan, Resources& out);  // on error: `out` unchanged
 Status createParamBuffer(EffectState& e, std::uint32_t slots, ParamBuffer& out);  // on error: `out` unchanged
 

@@ -3,7 +3,8 @@
 // Barriers (all VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT unless named):
 //  entry     each image the frame writes: UNDEFINED -> GENERAL (its contents are rewritten every
 //            frame) after the previous frame's compute reads and writes, and for the output after
-//            Config::outputDstStages (where the previous result was read). Inputs the caller wrote
+//            Config::outputDstStages (where the previous result was read); an output whose
+//            channels Config::outputChannels keeps goes from OutputImage::layout instead. Inputs the caller wrote
 //            are the caller's to synchronise (their layouts and barriers come with Inputs).
 // The parameter block is not a device write: record() copies it into its ring slot's region of
 // mapped host-coherent memory, which vkQueueSubmit makes visible (no barrier).
@@ -123,15 +124,27 @@ Status checkInputs(const EffectState& e, const Inputs& in, const OutputImage* us
     out = {ao->image.get(), ao->levelViews[0].get()};
     return Status::success();
   }
-  if (userOutput->format != VK_FORMAT_R16_SFLOAT)
-    return Status::error(StatusCode::UnsupportedFormat, "the output must be VK_FORMAT_R16_SFLOAT (the shader writes r16f), got format " +
-                                                            std::to_string(userOutput->format));
+  if (userOutput->format != c.outputFormat) {
+    const gen::Format f = outputFormatOf(userOutput->format);
+    return Status::error(StatusCode::UnsupportedFormat,
+                         "the output is VkFormat " + std::to_string(userOutput->format) +
+                             (isOutputFormat(f) ? std::string(" (") + sao::formatName(f) + ")" : std::string()) +
+                             " but Config::outputFormat is " + std::to_string(c.outputFormat) +
+                             "; the effect writes VK_FORMAT_R16_SFLOAT, R8_UNORM, R8G8B8A8_UNORM or "
+                             "R16G16B16A16_SFLOAT, the one Config names (its pipelines are built for it)");
+  }
+  const bool keep = keepsChannels(outputFormatOf(c.outputFormat), c.outputChannels);
+  if (keep && (userOutput->layout == VK_IMAGE_LAYOUT_UNDEFINED || userOutput->layout == VK_IMAGE_LAYOUT_PREINITIALIZED))
+    return Status::error(StatusCode::InvalidInput,
+                         "Config::outputChannels keeps channels of the output, but OutputImage::layout is " +
+                             std::to_string(userOutput->layout) +
+                             "; give the layout your image is in when the commands run (its texels are kept)");
   for (const auto& [input, name] : {std::pair{in.depth.view, "depth"}, std::pair{in.depth2.view, "depth2"},
                                      std::pair{in.normals.view, "normals"}})
     if (input != VK_NULL_HANDLE && input == userOutput->view)
       return Status::error(StatusCode::InvalidInput, std::string("the output view is also Inputs::") + name +
                                                          ".view; the output must be a separate image");
-  out = {userOutput->image, userOutput->view};
+  out = {userOutput->image, userOutput->view, keep ? userOutput->layout : VK_IMAGE_LAYOUT_UNDEFINED};
   return Status::success();
 }
 
@@ -186,8 +199,12 @@ void recordPrologue(const EffectState& e, VkCommandBuffer cmd, const OutputTarge
       if (h.kind == HazardKind::CallerWrote) continue;  // the caller's barrier (see above)
       const VkImage image = imageOf(e, h.resource, output);
       const bool isOutput = image == output.image;
-      images.add(imageBarrier(image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_ACCESS_SHADER_WRITE_BIT,
-                              isOutput ? VK_ACCESS_SHADER_WRITE_BIT : VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
+      // The output's kept channels are read by the final pass: its contents must survive.
+      const VkImageLayout from = isOutput ? output.keepFrom : VK_IMAGE_LAYOUT_UNDEFINED;
+      images.add(imageBarrier(image, from, VK_IMAGE_LAYOUT_GENERAL, VK_ACCESS_SHADER_WRITE_BIT,
+                              isOutput && from == VK_IMAGE_LAYOUT_UNDEFINED
+                                  ? VK_ACCESS_SHADER_WRITE_BIT
+                                  : VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
                               h.baseLevel, h.levelCount));
     }
   }

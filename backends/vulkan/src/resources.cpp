@@ -21,6 +21,12 @@ VkFormat vkFormat(gen::Format format) {
   return VK_FORMAT_UNDEFINED;
 }
 
+gen::Format outputFormatOf(VkFormat format) {
+  for (gen::Format f : outputFormats())
+    if (vkFormat(f) == format) return f;
+  return gen::Format::Depth;
+}
+
 namespace {
 
 Status createView(const EffectState& e, VkImage image, VkFormat format, std::uint32_t baseLevel, std::uint32_t levels,

@@ -140,6 +140,7 @@ enum class VariantSelect : std::uint8_t {
   Default,  // always defaultValue
   Setting,  // the bool setting SettingId(selectIndex): 1 when true
   Input,    // the kind=input resource ResourceId(selectIndex): 1 when the user supplies it
+  Output,   // the kind=output resource ResourceId(selectIndex): the index of its image's format in its formats
 };
 struct VariantInfo {
   std::string_view name;
@@ -185,13 +186,14 @@ struct ResourceInfo {
   std::int32_t whenVariant;   // exists only when this variant is non-zero; -1: always
   std::string_view doc;
   std::int32_t divideBy;  // a SettingId: the AO extent over that int setting, rounded up; -1: none
+  std::span<const Format> formats;  // kind=output: every format it may have (formats=); empty: only `format`
 };
 inline constexpr std::array<ResourceInfo, 5> kResources = {{
-  {"src", ResourceKind::Input, Format::Depth, false, true, 1, -1, "Input depth", -1},
-  {"extra", ResourceKind::Input, Format::RGBA16F, false, true, 1, 1, "Extra input", -1},
-  {"mid", ResourceKind::Image, Format::R32F, true, false, 1, -1, "Intermediate chain", -1},
-  {"smooth", ResourceKind::Image, Format::R32F, false, false, 1, -1, "Smoothed intermediate", -1},
-  {"dst", ResourceKind::Output, Format::R16F, false, false, 1, -1, "Result", -1},
+  {"src", ResourceKind::Input, Format::Depth, false, true, 1, -1, "Input depth", -1, {}},
+  {"extra", ResourceKind::Input, Format::RGBA16F, false, true, 1, 1, "Extra input", -1, {}},
+  {"mid", ResourceKind::Image, Format::R32F, true, false, 1, -1, "Intermediate chain", -1, {}},
+  {"smooth", ResourceKind::Image, Format::R32F, false, false, 1, -1, "Smoothed intermediate", -1, {}},
+  {"dst", ResourceKind::Output, Format::R16F, false, false, 1, -1, "Result", -1, {}},
 }};
 
 // ---- Passes, in execution order, and their compiled variants.
@@ -204,6 +206,8 @@ struct BindingInfo {
   std::uint32_t binding;  // GL unit and Vulkan set-0 binding
   ResourceId resource;
   bool write;  // true: storage image out_<name>; false: sampler in_<name>
+  Format format;  // the format the shader declares (a write's storage format)
+  bool readWrite;  // a write the pass also loads from (the unmasked channels of an RGBA output)
 };
 struct PassVariantInfo {
   VariantValues values;  // -1 where the pass does not depend on the variant

@@ -42,6 +42,9 @@ struct PlanInputs {
   bool normals = false;      // the user supplies camera-space normals
   bool secondLayer = false;  // the user supplies a second depth layer (deep G-buffer)
   bool userOutput = false;   // the user supplies the output image (not counted in bytes)
+  // The output image's format (sao/output.h: one of outputFormats()); it selects the final pass's
+  // variant, and an effect-owned output is allocated in it.
+  gen::Format outputFormat = gen::Format::R16F;
   bool operator==(const PlanInputs&) const = default;
 };
 

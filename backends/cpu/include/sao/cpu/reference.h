@@ -47,6 +47,7 @@
 
 #include "sao/camera.h"
 #include "sao/image.h"
+#include "sao/output.h"
 #include "sao/plan.h"
 #include "sao/settings.h"
 #include "sao/status.h"
@@ -74,6 +75,15 @@ struct Inputs {
   // GPU backends' Inputs::region). Unset, every input must be exactly the region's size; a region
   // outside an image is refused, never clamped.
   std::optional<Offset> region;
+  // The output as the engine wants it (sao/output.h): its format (R16F, R8, RGBA8 or RGBA16F) and
+  // the channels that receive A. Result::ao then has the format's channel count, and in Float
+  // precision holds what the GPU backends store (binary16 values or multiples of 1/255).
+  gen::Format outputFormat = gen::Format::R16F;
+  std::uint32_t outputChannels = kAllChannels;
+  // Optional: the output's contents before the run (the viewport's extent, the format's channel
+  // count), kept in the channels outputChannels leaves out, as a GPU backend keeps the caller's
+  // texels. Without it those channels hold 0.
+  const FloatImage* output = nullptr;
 };
 
 struct Options {
@@ -88,7 +98,8 @@ struct Result {
   std::vector<FloatImage> csz, csz2;  // one image per level (1 channel); csz2 only with depth2
   FloatImage aoRaw;    // 2 channels: A after the 2x2 reconstruction, key z (+0.0 = sky)
   FloatImage aoBlurH;  // 2 channels: after blur_h; empty when the plan drops the pass
-  FloatImage ao;       // 1 channel: final A (Float: binary16 values; Double: unrounded)
+  FloatImage ao;       // the output, Inputs::outputFormat's channels: final A (Float: as that format
+                       // rounds it; Double: unrounded) in Inputs::outputChannels, the rest kept
   // Every other image the plan allocates, by gen::ResourceId, one FloatImage per level: what a
   // pass added to the effect writes (the walkthrough's ao_half). Empty for the images above, for
   // inputs and for images the plan does not allocate.
@@ -112,5 +123,9 @@ using sao::quantizeHalf;
 // sao_round_to_half of sao_blur.glsl: x clamped to [0, 1] and rounded to the nearest binary16
 // value with ties away from zero, using only exact operations.
 float roundToHalfAsShader(float x);
+
+// sao_round_to_unorm8 of sao_output.glsl (R8 / RGBA8 outputs): x clamped to [0, 1], rounded to the
+// nearest multiple of 1/255 with halves up, floor(x * 255 + 0.5) / 255 in binary32.
+float roundToUnorm8AsShader(float x);
 
 }  // namespace sao::cpu

@@ -6,6 +6,7 @@
 //   ...
 //   st = effect->render(camera, settings, {.depth = {depthTex, GL_DEPTH_COMPONENT24}});
 //   GLuint ao = effect->aoTexture();   // GL_R16F, viewport size, linear visibility A in [0, 1]
+//   // or your own GL_R8 / GL_R16F / GL_RGBA8 / GL_RGBA16F texture: Inputs::output, ::outputChannels
 //
 // Contract:
 //  - Every call (create, render, the destructor) needs the context the effect was created in to be
@@ -36,6 +37,7 @@
 #include <memory>
 
 #include "sao/camera.h"
+#include "sao/output.h"
 #include "sao/plan.h"
 #include "sao/settings.h"
 #include "sao/status.h"
@@ -68,7 +70,10 @@ inline constexpr std::uint32_t kDepthComponent32F = 0x8CAC;  // GL_DEPTH_COMPONE
 inline constexpr std::uint32_t kDepth24Stencil8 = 0x88F0;    // GL_DEPTH24_STENCIL8
 inline constexpr std::uint32_t kDepth32FStencil8 = 0x8CAD;   // GL_DEPTH32F_STENCIL8
 inline constexpr std::uint32_t kR32F = 0x822E;               // GL_R32F (linear camera-space z)
-inline constexpr std::uint32_t kR16F = 0x822D;               // GL_R16F (the AO output)
+inline constexpr std::uint32_t kR16F = 0x822D;               // GL_R16F (the AO output's default)
+inline constexpr std::uint32_t kR8 = 0x8229;                 // GL_R8 (an output format)
+inline constexpr std::uint32_t kRGBA8 = 0x8058;              // GL_RGBA8 (an output format)
+inline constexpr std::uint32_t kRGBA16F = 0x881A;            // GL_RGBA16F (an output format)
 
 struct DepthInput {
   std::uint32_t texture = 0;  // GL_TEXTURE_2D name
@@ -97,9 +102,16 @@ struct Inputs {
   // is refused (InvalidInput naming the offset, the extent and the texture's size), never clamped.
   // Changing it does not plan again.
   std::optional<Offset> region;
-  // Optional output: a GL_R16F texture of the viewport size whose level 0 receives A. 0: the
-  // effect writes into a texture it owns (aoTexture()). Must not be one of the inputs.
+  // Optional output: your texture of the viewport size whose level 0 receives A, in GL_R16F,
+  // GL_R8, GL_RGBA8 or GL_RGBA16F (sao/output.h says how each rounds A; another format is
+  // refused with UnsupportedFormat naming it and this list). 0: the effect writes into a GL_R16F
+  // texture it owns (aoTexture()). Must not be one of the inputs.
   std::uint32_t output = 0;
+  // Which channels of the output receive A (sao/output.h): kAllChannels (the default: every channel
+  // the format has) or a non-empty set of kChannelR/G/B/A it has. The other channels of an RGBA
+  // output keep their texels (the final pass loads each texel and stores it back with only these
+  // channels replaced), so A can share a texture with your own data. Changing it does not plan again.
+  std::uint32_t outputChannels = kAllChannels;
 };
 
 struct RenderOptions {
@@ -136,6 +148,12 @@ class SAO_GL_API Effect {
   // The texture holding the result of the last successful render(): the caller's output or the
   // effect-owned GL_R16F texture (valid until the next render or the effect's destruction).
   std::uint32_t aoTexture() const;
+  // Counts the changes of the effect-owned output texture object: it goes up whenever render()
+  // creates a new one (first render, a resize, a changed plan) or deletes it (an Inputs::output
+  // given instead). Anything that holds aoTexture()'s name (a descriptor, a bound unit, an FBO
+  // attachment) must be refreshed when it differs from the value seen last (GL reuses names, so
+  // comparing names cannot tell). Starts at 0; the caller's own output never changes it.
+  std::uint64_t outputGeneration() const;
   // The GL texture serving a resource in the last render (intermediates for debugging and tests:
   // csz is GL_R32F with plan().cszLevels levels, ao_raw and ao_blur_h GL_RG32F); 0 if not planned.
   std::uint32_t texture(gen::ResourceId resource) const;

@@ -17,7 +17,7 @@
 //   sao::vk::Inputs in;
 //   in.depth = {depthView, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, effect->plan().inputExtent};
 //   st = effect->record(cmd, in);      // every pass and barrier, into your command buffer
-//   sao::vk::OutputImage ao = effect->output();  // R16_SFLOAT, in config.outputLayout
+//   sao::vk::OutputImage ao = effect->output();  // Config::outputFormat (R16_SFLOAT), in config.outputLayout
 //
 // Requirements on your device: Vulkan 1.1 or later, the feature shaderStorageImageExtendedFormats
 // enabled (the intermediates are rg32f and the output r16f storage images; tell create() through
@@ -32,7 +32,10 @@
 //    layout you name in InputImage::layout before the recorded commands run. The effect never
 //    transitions or writes your inputs; before writing them again, wait for the compute stage.
 //  * Output: record() discards the output's previous contents (a transition from UNDEFINED after
-//    Config::outputDstStages of earlier commands), writes it in VK_IMAGE_LAYOUT_GENERAL and leaves
+//    Config::outputDstStages of earlier commands) unless Config::outputChannels keeps some of its
+//    channels: then it transitions your image from OutputImage::layout (the layout it is in when
+//    the commands run) and you make your writes to it available and visible to
+//    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT / SHADER_READ_BIT, as for inputs. It writes the output in VK_IMAGE_LAYOUT_GENERAL and leaves
 //    it in Config::outputLayout (GENERAL or SHADER_READ_ONLY_OPTIMAL), made visible to
 //    Config::outputDstStages / outputDstAccess. Earlier accesses of your own output image in other
 //    stages must be ordered before outputDstStages by you.
@@ -56,6 +59,7 @@
 #include "sao/camera.h"
 #include "sao/constants.h"
 #include "sao/image.h"
+#include "sao/output.h"
 #include "sao/plan.h"
 #include "sao/settings.h"
 #include "sao/status.h"
@@ -107,6 +111,17 @@ struct Config {
   VkFormat normalsFormat = VK_FORMAT_UNDEFINED;
   bool secondLayer = false;  // a second depth layer (deep G-buffer)
   bool userOutput = false;   // you pass the output image to record(); otherwise the effect owns one
+  // The output's format (yours or the effect's own): VK_FORMAT_R16_SFLOAT (the default),
+  // R8_UNORM, R8G8B8A8_UNORM or R16G16B16A16_SFLOAT, with optimal-tiling storage support on the
+  // device (sao/output.h says how each rounds A). Another is refused with UnsupportedFormat naming
+  // it and this list. It selects the final pass's pipelines: changing it needs update().
+  VkFormat outputFormat = VK_FORMAT_R16_SFLOAT;
+  // Which channels of the output receive A (sao/output.h): kAllChannels (every channel the format
+  // has) or a non-empty set of kChannelR/G/B/A it has. With an RGBA format and a mask that leaves
+  // channels out, the effect keeps them: record() reads your image's texels and stores them back
+  // with only these channels replaced, so the contents must be defined and visible (see the
+  // synchronisation contract: OutputImage::layout). Only with userOutput.
+  std::uint32_t outputChannels = kAllChannels;
   // Layout of the output after record(): VK_IMAGE_LAYOUT_GENERAL or SHADER_READ_ONLY_OPTIMAL.
   VkImageLayout outputLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   // Where you read the output afterwards (the final barrier's destination scope). On a queue family
@@ -150,13 +165,15 @@ struct Inputs {
   std::optional<Offset> region;
 };
 
-// The output: VK_FORMAT_R16_SFLOAT, the viewport's extent (plan().aoExtent), one level, usage
+// The output: Config::outputFormat, the viewport's extent (plan().aoExtent), one level, usage
 // STORAGE (plus whatever you read it with). As returned by Effect::output(), `layout` is where
-// record() leaves it.
+// record() leaves it. Passed to record() with a Config::outputChannels that keeps channels,
+// `layout` is the layout your image is in when the recorded commands run (not UNDEFINED or
+// PREINITIALIZED: its texels are kept); otherwise it is not read.
 struct OutputImage {
   VkImage image = VK_NULL_HANDLE;
   VkImageView view = VK_NULL_HANDLE;  // a single-level colour view
-  VkFormat format = VK_FORMAT_R16_SFLOAT;
+  VkFormat format = VK_FORMAT_R16_SFLOAT;  // must be Config::outputFormat
   Extent extent;
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
 };
@@ -233,6 +250,12 @@ class SAO_VK_API Effect {
   // The effect-owned output (VK_NULL_HANDLE with userOutput); `layout` is where record() leaves it
   // (undefined contents before the first submitted record()).
   OutputImage output() const;
+  // Counts the changes of the effect-owned output image: it goes up whenever create() or update()
+  // makes a new one (a resize, a new output format, any change of the plan's images) or drops it
+  // (userOutput). Descriptors you wrote with output().view must be rewritten when it differs from
+  // the value you saw last (handles can be reused, so comparing them cannot tell). Starts at 1
+  // after a create() with an owned output, 0 with userOutput; your own output never changes it.
+  std::uint64_t outputGeneration() const;
   OwnedImageInfo ownedImage(gen::ResourceId id) const;
   MemoryStats memoryStats() const;  // this effect's device memory
   std::uint32_t pipelineCount() const;  // pipelines built so far (one per pass variant used)

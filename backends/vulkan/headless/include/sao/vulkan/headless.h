@@ -139,8 +139,11 @@ class Context {
   // filled with vkCmdCopyBufferToImage and left in `layout`, visible to compute-shader reads. The
   // view selects the depth aspect only.
   Status uploadDepth(const DepthImage& depth, VkFormat format, VkImageLayout layout, Image& out);
-  // A sampled colour image (e.g. normals, 4 channels) in R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT.
-  Status uploadColor(const FloatImage& image, VkFormat format, VkImageLayout layout, Image& out);
+  // A sampled colour image (e.g. normals, 4 channels) in R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT
+  // (or an output format: R16_SFLOAT, R8_UNORM, R8G8B8A8_UNORM, values rounded to the nearest byte),
+  // with `extraUsage` added (e.g. STORAGE for an output whose channels the effect keeps).
+  Status uploadColor(const FloatImage& image, VkFormat format, VkImageLayout layout, Image& out,
+                     VkImageUsageFlags extraUsage = 0);
   // An image for the effect's output when the caller owns it: STORAGE, SAMPLED, TRANSFER_SRC/DST.
   Status createStorageImage(VkFormat format, Extent extent, Image& out);
   // A 2D image, one level, in device-local memory, with one view of `viewAspect`; left UNDEFINED.
@@ -151,7 +154,7 @@ class Context {
   void destroy(Buffer& buffer);
 
   // Reads level `level` of a colour image (R16_SFLOAT, R32_SFLOAT, R32G32_SFLOAT,
-  // R16G16B16A16_SFLOAT, R32G32B32A32_SFLOAT) into floats. The image is in `layout` and its last
+  // R16G16B16A16_SFLOAT, R32G32B32A32_SFLOAT; R8_UNORM, R8G8B8A8_UNORM as byte / 255) into floats. The image is in `layout` and its last
   // writes happened at `srcStages` / `srcAccess`; it is left in `layout`, row 0 first.
   Status readback(VkImage image, VkFormat format, Extent levelZero, std::uint32_t level, VkImageLayout layout,
                   VkPipelineStageFlags srcStages, VkAccessFlags srcAccess, FloatImage& out);

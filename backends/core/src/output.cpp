@@ -1,0 +1,64 @@
+#include "sao/output.h"
+
+#include <algorithm>
+
+namespace sao {
+
+std::span<const gen::Format> outputFormats() {
+  const auto& ao = gen::kResources[static_cast<std::size_t>(gen::ResourceId::ao)];
+  return ao.formats;
+}
+
+bool isOutputFormat(gen::Format format) {
+  const auto list = outputFormats();
+  return std::find(list.begin(), list.end(), format) != list.end();
+}
+
+std::uint32_t channelCount(gen::Format format) {
+  switch (format) {
+    case gen::Format::RG32F:
+    case gen::Format::RG16F: return 2;
+    case gen::Format::RGBA16F:
+    case gen::Format::RGBA8: return 4;
+    default: return 1;
+  }
+}
+
+const char* formatName(gen::Format format) {
+  switch (format) {
+    case gen::Format::R32F: return "r32f";
+    case gen::Format::RG32F: return "rg32f";
+    case gen::Format::R16F: return "r16f";
+    case gen::Format::RG16F: return "rg16f";
+    case gen::Format::RGBA16F: return "rgba16f";
+    case gen::Format::R8: return "r8";
+    case gen::Format::RGBA8: return "rgba8";
+    case gen::Format::Depth: return "depth";
+  }
+  return "?";
+}
+
+Status checkOutputChannels(gen::Format format, std::uint32_t mask, const char* who) {
+  if (mask == kAllChannels) return Status::success();
+  const std::uint32_t has = (1u << channelCount(format)) - 1u;
+  if (mask != 0 && (mask & ~has) == 0) return Status::success();
+  return Status::error(StatusCode::InvalidInput,
+                       std::string(who) + ": the output channel mask " + std::to_string(mask) + " does not fit a " +
+                           formatName(format) + " output: give kAllChannels (15) or a non-empty set of its channels (" +
+                           (channelCount(format) == 1 ? "R = 1" : "R = 1, G = 2, B = 4, A = 8") + ")");
+}
+
+std::int32_t outputMaskParam(std::uint32_t mask) { return static_cast<std::int32_t>(mask & kAllChannels); }
+
+bool keepsChannels(gen::Format format, std::uint32_t mask) {
+  const std::uint32_t has = (1u << channelCount(format)) - 1u;
+  return (has & ~mask) != 0;
+}
+
+std::string outputFormatList() {
+  std::string s;
+  for (gen::Format f : outputFormats()) s += (s.empty() ? "" : ", ") + std::string(formatName(f));
+  return s;
+}
+
+}  // namespace sao

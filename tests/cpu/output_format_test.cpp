@@ -1,0 +1,122 @@
+// The output as the engine wants it (sao/output.h) on the CPU reference: R8 rounding to the
+// nearest 1/255 exactly as sao_round_to_unorm8 defines it, every format's selected channels
+// holding A as that format rounds it (Float) or unrounded (Double), unselected channels keeping
+// the initial output, and bad formats, masks and initial outputs refused.
+#include <cmath>
+#include <string>
+
+#include "sao/presets.h"
+#include "test_support.h"
+
+namespace sao::test {
+namespace {
+
+using cpu::Precision;
+
+TEST(OutputFormat, Unorm8RoundsToTheNearestStepHalvesUp) {
+  const auto roundToUnorm8 = cpu::roundToUnorm8AsShader;
+  EXPECT_EQ(roundToUnorm8(0.0f), 0.0f);
+  EXPECT_EQ(roundToUnorm8(1.0f), 1.0f);
+  EXPECT_EQ(roundToUnorm8(-0.25f), 0.0f) << "clamped";
+  EXPECT_EQ(roundToUnorm8(1.5f), 1.0f) << "clamped";
+  // floor(x * 255 + 0.5) in binary32: 0.51 of a step up rounds up, 0.49 rounds down.
+  EXPECT_EQ(roundToUnorm8(0.51f / 255.0f), 1.0f / 255.0f);
+  EXPECT_EQ(roundToUnorm8(0.49f / 255.0f), 0.0f);
+  EXPECT_EQ(roundToUnorm8(0.5f), 128.0f / 255.0f) << "127.5 steps: halves go up";
+  for (int k = 0; k <= 255; ++k) {
+    const float step = float(k) / 255.0f;
+    EXPECT_EQ(std::lround(roundToUnorm8(step) * 255.0), k) << "a step is its own value";
+    EXPECT_EQ(std::lround(roundToUnorm8(step + 0.4f / 255.0f) * 255.0), std::min(k, 255)) << k;
+  }
+}
+
+cpu::Result runWith(const DepthImage& depth, const Camera& camera, gen::Format format, std::uint32_t mask,
+                    const FloatImage* initial, Precision precision) {
+  cpu::Inputs in;
+  in.depth = &depth;
+  in.outputFormat = format;
+  in.outputChannels = mask;
+  in.output = initial;
+  cpu::Result r;
+  const Status st = cpu::run(presetSettings(Preset::Medium), camera, in, {precision, 2}, r);
+  EXPECT_TRUE(st.ok()) << st.message;
+  return r;
+}
+
+TEST(OutputFormat, SelectedChannelsHoldAAsTheFormatRoundsIt) {
+  const Camera camera = testCamera(4, 1000.0, ClipDepth::NegativeOneToOne, false, 64, 40);
+  const DepthImage depth = renderDepth(sphereOnPlaneScene(), camera, DepthFormat::D32F);
+  const cpu::Result base = runWith(depth, camera, gen::Format::R16F, kAllChannels, nullptr, Precision::Float);
+  const cpu::Result exact = runWith(depth, camera, gen::Format::R16F, kAllChannels, nullptr, Precision::Double);
+  ASSERT_EQ(base.ao.channels, 1u);
+  // The unrounded A of Float precision: binary16 rounding is within half a binary16 step of it.
+  FloatImage initial(base.ao.extent, 4);
+  for (std::size_t i = 0; i < initial.data.size(); ++i) initial.data[i] = float(i % 7) / 8.0f;
+  for (gen::Format f : outputFormats()) {
+    for (std::uint32_t mask : {kAllChannels, kChannelR, kChannelG | kChannelA}) {
+      const std::uint32_t channels = channelCount(f);
+      if (channels == 1 && mask == (kChannelG | kChannelA)) continue;
+      SCOPED_TRACE(std::string(formatName(f)) + " mask " + std::to_string(mask));
+      FloatImage init(base.ao.extent, channels);
+      for (std::size_t i = 0; i < init.data.size(); ++i) init.data[i] = initial.data[i];
+      const cpu::Result r = runWith(depth, camera, f, mask, &init, Precision::Float);
+      const cpu::Result d = runWith(depth, camera, f, mask, &init, Precision::Double);
+      ASSERT_EQ(r.ao.channels, channels);
+      ASSERT_EQ(d.ao.channels, channels);
+      const bool unorm = f == gen::Format::R8 || f == gen::Format::RGBA8;
+      std::size_t wrong = 0, kept = 0;
+      for (std::size_t p = 0; p < base.ao.data.size(); ++p)
+        for (std::uint32_t c = 0; c < channels; ++c) {
+          const float v = r.ao.data[p * channels + c], dv = d.ao.data[p * channels + c];
+          if (((mask >> c) & 1u) == 0) {
+            kept += v == init.data[p * channels + c] && dv == init.data[p * channels + c];
+            continue;
+          }
+          const float expected = unorm ? std::floor(float(exact.ao.data[p]) * 255.0f + 0.5f) / 255.0f : base.ao.data[p];
+          // Float's A and Double's differ by far less than a step, so the rounded values agree
+          // except where A lies within that difference of a rounding boundary.
+          if (std::fabs(v - expected) > (unorm ? 1.0f / 255.0f : 0.0f) + 1e-7f) ++wrong;
+          if (unorm && v != float(std::lround(v * 255.0)) / 255.0f) ++wrong;  // exactly a step k / 255
+          if (!unorm && v != base.ao.data[p]) ++wrong;  // the binary16 channels are the default output's bits
+          if (std::fabs(dv - exact.ao.data[p]) != 0.0f) ++wrong;  // Double: unrounded A, whatever the format
+        }
+      EXPECT_EQ(wrong, 0u);
+      std::size_t unselected = 0;
+      for (std::uint32_t c = 0; c < channels; ++c) unselected += ((mask >> c) & 1u) == 0;
+      EXPECT_EQ(kept, unselected * base.ao.data.size()) << "unselected channels keep the initial output";
+    }
+  }
+}
+
+TEST(OutputFormat, BadFormatsMasksAndInitialOutputsAreRefused) {
+  const Camera camera = testCamera(0, 1000.0, ClipDepth::NegativeOneToOne, false, 16, 9);
+  const DepthImage depth = renderDepth(planeScene(3.0), camera, DepthFormat::D32F);
+  cpu::Inputs in;
+  in.depth = &depth;
+  cpu::Result r;
+  in.outputFormat = gen::Format::RG16F;
+  Status st = cpu::run(Settings{}, camera, in, {}, r);
+  EXPECT_EQ(st.code, StatusCode::UnsupportedFormat);
+  EXPECT_NE(st.message.find("rg16f"), std::string::npos) << st.message;
+  EXPECT_NE(st.message.find("r16f, r8, rgba8, rgba16f"), std::string::npos) << st.message;
+  in.outputFormat = gen::Format::R8;
+  in.outputChannels = kChannelB;
+  st = cpu::run(Settings{}, camera, in, {}, r);
+  EXPECT_EQ(st.code, StatusCode::InvalidInput) << st.message;
+  in.outputFormat = gen::Format::RGBA8;
+  in.outputChannels = 0;
+  EXPECT_EQ(cpu::run(Settings{}, camera, in, {}, r).code, StatusCode::InvalidInput);
+  in.outputChannels = kChannelA;
+  const FloatImage wrongChannels({16, 9}, 1), wrongSize({16, 8}, 4);
+  in.output = &wrongChannels;
+  EXPECT_EQ(cpu::run(Settings{}, camera, in, {}, r).code, StatusCode::InvalidInput);
+  in.output = &wrongSize;
+  EXPECT_EQ(cpu::run(Settings{}, camera, in, {}, r).code, StatusCode::InvalidInput);
+  const FloatImage right({16, 9}, 4, 0.5f);
+  in.output = &right;
+  st = cpu::run(Settings{}, camera, in, {}, r);
+  EXPECT_TRUE(st.ok()) << st.message;
+}
+
+}  // namespace
+}  // namespace sao::test

@@ -1,0 +1,236 @@
+// The output as the engine wants it (sao/output.h) on Vulkan, under validation and synchronization
+// validation: the caller's R16_SFLOAT, R8_UNORM, R8G8B8A8_UNORM and R16G16B16A16_SFLOAT images with
+// channel masks against the CPU reference (Float) at full and half resolution, untouched channels
+// keeping their sentinel texels (the image transitioned from the caller's layout), the effect's own
+// output in another format, other formats and masks refused, and outputGeneration() following the
+// owned output image through update().
+#include <string>
+
+#include "analytic_scenes.h"
+#include "output_format_check.h"
+#include "sao/cpu/reference.h"
+#include "sao/presets.h"
+#include "vk_support.h"
+
+namespace sao::vktest {
+namespace {
+
+using vk::headless::Image;
+
+VkFormat vkOutput(gen::Format f) {
+  switch (f) {
+    case gen::Format::R16F: return VK_FORMAT_R16_SFLOAT;
+    case gen::Format::R8: return VK_FORMAT_R8_UNORM;
+    case gen::Format::RGBA8: return VK_FORMAT_R8G8B8A8_UNORM;
+    case gen::Format::RGBA16F: return VK_FORMAT_R16G16B16A16_SFLOAT;
+    default: return VK_FORMAT_UNDEFINED;
+  }
+}
+
+Settings settingsFor(int divisor) {
+  Settings s = presetSettings(Preset::Medium);
+  s.resolution_divisor = divisor;
+  return s;
+}
+
+struct Scene {
+  Camera camera;
+  DepthImage depth;
+  Image image;
+  Scene(std::uint32_t w, std::uint32_t h, std::uint32_t guard)
+      : camera(vulkanCamera(w, h, guard, INFINITY, /*reversedZ=*/true)) {
+    depth = test::renderDepth(test::sphereOnPlaneScene(), camera, DepthFormat::D32F);
+    const Status st = context().uploadDepth(depth, VK_FORMAT_D32_SFLOAT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, image);
+    EXPECT_TRUE(st.ok()) << st.message;
+  }
+  ~Scene() { context().destroy(image); }
+  vk::Inputs inputs() const {
+    vk::Inputs in;
+    in.depth = {image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth.extent, VK_FORMAT_D32_SFLOAT};
+    return in;
+  }
+  vk::Config config(int divisor) const {
+    vk::Config c;
+    c.camera = camera;
+    c.settings = settingsFor(divisor);
+    c.depthFormat = VK_FORMAT_D32_SFLOAT;
+    return c;
+  }
+};
+
+std::unique_ptr<vk::Effect> makeEffect(const vk::Config& config) {
+  std::unique_ptr<vk::Effect> e;
+  const Status st = vk::Effect::create(context().deviceContext(), config, e);
+  EXPECT_TRUE(st.ok()) << st.message;
+  return e;
+}
+
+class OutputFormat : public VkTest {};
+
+TEST_F(OutputFormat, EveryFormatAndMaskMatchesTheCpuReference) {
+  const Scene scene(160, 90, 8);
+  for (int divisor : {1, 2}) {
+    for (const test::OutputCase& oc : test::kOutputCases) {
+      const std::string name = "vk_" + test::caseName(oc) + "_d" + std::to_string(divisor);
+      SCOPED_TRACE(name);
+      const VkFormat format = vkOutput(oc.format);
+      vk::Config c = scene.config(divisor);
+      c.userOutput = true;
+      c.outputFormat = format;
+      c.outputChannels = oc.mask;
+      auto effect = makeEffect(c);
+      ASSERT_TRUE(effect);
+      // The sentinel texels, in SHADER_READ_ONLY_OPTIMAL: record() keeps them from that layout.
+      const FloatImage sentinel = test::sentinelOutput({scene.camera.width, scene.camera.height}, oc.format);
+      Image out;
+      ASSERT_TRUE(context()
+                      .uploadColor(sentinel, format, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, out,
+                                   VK_IMAGE_USAGE_STORAGE_BIT)
+                      .ok());
+      const vk::OutputImage o{out.image, out.view, format, sentinel.extent, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+      Status recorded;
+      ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, scene.inputs(), &o); }).ok());
+      ASSERT_TRUE(recorded.ok()) << recorded.message;
+      FloatImage actual;
+      ASSERT_TRUE(context()
+                      .readback(out.image, format, sentinel.extent, 0, c.outputLayout, c.outputDstStages,
+                                c.outputDstAccess, actual)
+                      .ok());
+      cpu::Inputs ci;
+      ci.depth = &scene.depth;
+      ci.outputFormat = oc.format;
+      ci.outputChannels = oc.mask;
+      ci.output = &sentinel;
+      cpu::Result ref;
+      const Status cst = cpu::run(settingsFor(divisor), scene.camera, ci, {cpu::Precision::Float, 2}, ref);
+      ASSERT_TRUE(cst.ok()) << cst.message;
+      EXPECT_EQ(effect->plan().variants, ref.plan.variants) << "the same OUTPUT_FORMAT variant";
+      test::checkOutput(actual, ref.ao, sentinel, oc.format, oc.mask, compare, name);
+      context().destroy(out);
+      expectNoMessages(name.c_str());
+    }
+  }
+}
+
+// The effect's own output may have any of the formats too (every channel written).
+TEST_F(OutputFormat, OwnedOutputInEveryFormat) {
+  const Scene scene(96, 54, 4);
+  for (gen::Format f : outputFormats()) {
+    SCOPED_TRACE(formatName(f));
+    vk::Config c = scene.config(1);
+    c.outputFormat = vkOutput(f);
+    auto effect = makeEffect(c);
+    ASSERT_TRUE(effect);
+    Status recorded;
+    ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, scene.inputs()); }).ok());
+    ASSERT_TRUE(recorded.ok()) << recorded.message;
+    const vk::OutputImage o = effect->output();
+    EXPECT_EQ(o.format, c.outputFormat);
+    FloatImage actual;
+    ASSERT_TRUE(context().readback(o.image, o.format, o.extent, 0, o.layout, c.outputDstStages, c.outputDstAccess, actual).ok());
+    cpu::Inputs ci;
+    ci.depth = &scene.depth;
+    ci.outputFormat = f;
+    cpu::Result ref;
+    ASSERT_TRUE(cpu::run(c.settings, scene.camera, ci, {cpu::Precision::Float, 2}, ref).ok());
+    test::checkOutput(actual, ref.ao, FloatImage(actual.extent, actual.channels), f, kAllChannels, compare,
+                      std::string("vk_owned_") + formatName(f));
+  }
+}
+
+TEST_F(OutputFormat, OtherFormatsAndMasksAreRefused) {
+  const Scene scene(32, 18, 0);
+  for (VkFormat f : {VK_FORMAT_R32_SFLOAT, VK_FORMAT_R16G16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_B8G8R8A8_UNORM,
+                     VK_FORMAT_R8G8B8A8_SRGB}) {
+    vk::Config c = scene.config(1);
+    c.outputFormat = f;
+    std::unique_ptr<vk::Effect> e;
+    const Status st = vk::Effect::create(context().deviceContext(), c, e);
+    EXPECT_EQ(st.code, StatusCode::UnsupportedFormat) << st.message;
+    EXPECT_NE(st.message.find("VkFormat " + std::to_string(static_cast<int>(f))), std::string::npos) << st.message;
+    EXPECT_NE(st.message.find("R16_SFLOAT, R8_UNORM, R8G8B8A8_UNORM or R16G16B16A16_SFLOAT"), std::string::npos)
+        << st.message;
+    EXPECT_FALSE(e);
+  }
+  struct BadMask {
+    VkFormat format;
+    std::uint32_t mask;
+    bool userOutput;
+  };
+  for (const BadMask b : {BadMask{VK_FORMAT_R8_UNORM, kChannelG, true}, BadMask{VK_FORMAT_R16_SFLOAT, 0u, true},
+                          BadMask{VK_FORMAT_R8G8B8A8_UNORM, 16u, true},
+                          BadMask{VK_FORMAT_R8G8B8A8_UNORM, kChannelA, false}}) {
+    vk::Config c = scene.config(1);
+    c.outputFormat = b.format;
+    c.outputChannels = b.mask;
+    c.userOutput = b.userOutput;
+    std::unique_ptr<vk::Effect> e;
+    const Status st = vk::Effect::create(context().deviceContext(), c, e);
+    EXPECT_EQ(st.code, StatusCode::InvalidInput) << st.message;
+    EXPECT_NE(st.message.find("outputChannels"), std::string::npos) << st.message;
+  }
+  // record(): the image's format must be the configured one; kept channels need a real layout.
+  vk::Config c = scene.config(1);
+  c.userOutput = true;
+  c.outputFormat = VK_FORMAT_R8G8B8A8_UNORM;
+  c.outputChannels = kChannelB;
+  auto effect = makeEffect(c);
+  ASSERT_TRUE(effect);
+  Image out;
+  ASSERT_TRUE(context().createStorageImage(VK_FORMAT_R8G8B8A8_UNORM, {32, 18}, out).ok());
+  Status wrongFormat, undefinedLayout;
+  ASSERT_TRUE(context()
+                  .submit([&](VkCommandBuffer cmd) {
+                    const vk::OutputImage f16{out.image, out.view, VK_FORMAT_R16_SFLOAT, {32, 18}, VK_IMAGE_LAYOUT_GENERAL};
+                    wrongFormat = effect->record(cmd, scene.inputs(), &f16);
+                    const vk::OutputImage undef{out.image, out.view, VK_FORMAT_R8G8B8A8_UNORM, {32, 18}};
+                    undefinedLayout = effect->record(cmd, scene.inputs(), &undef);
+                  })
+                  .ok());
+  EXPECT_EQ(wrongFormat.code, StatusCode::UnsupportedFormat) << wrongFormat.message;
+  EXPECT_NE(wrongFormat.message.find("r16f"), std::string::npos) << wrongFormat.message;
+  EXPECT_EQ(undefinedLayout.code, StatusCode::InvalidInput) << undefinedLayout.message;
+  context().destroy(out);
+}
+
+TEST_F(OutputFormat, OutputGenerationFollowsTheOwnedImage) {
+  const Scene small(32, 18, 0);
+  vk::Config c = small.config(1);
+  auto effect = makeEffect(c);
+  ASSERT_TRUE(effect);
+  const std::uint64_t g1 = effect->outputGeneration();
+  EXPECT_EQ(g1, 1u) << "create() made the owned output";
+  c.settings.intensity = 0.7f;  // changes no image
+  ASSERT_TRUE(effect->update(c).ok());
+  EXPECT_EQ(effect->outputGeneration(), g1) << "new settings, same images";
+  c.camera = vulkanCamera(48, 27, 0, INFINITY, true);
+  ASSERT_TRUE(effect->update(c).ok());
+  const std::uint64_t g2 = effect->outputGeneration();
+  EXPECT_GT(g2, g1) << "a resize makes a new output image";
+  EXPECT_EQ(effect->output().extent, (Extent{48, 27}));
+  c.outputFormat = VK_FORMAT_R8_UNORM;
+  ASSERT_TRUE(effect->update(c).ok());
+  const std::uint64_t g3 = effect->outputGeneration();
+  EXPECT_GT(g3, g2) << "a new output format makes a new output image";
+  EXPECT_EQ(effect->output().format, VK_FORMAT_R8_UNORM);
+  vk::Config bad = c;
+  bad.outputFormat = VK_FORMAT_R32_SFLOAT;
+  EXPECT_FALSE(effect->update(bad).ok());
+  EXPECT_EQ(effect->outputGeneration(), g3) << "a failed update() changes nothing";
+  c.userOutput = true;
+  ASSERT_TRUE(effect->update(c).ok());
+  const std::uint64_t g4 = effect->outputGeneration();
+  EXPECT_GT(g4, g3) << "the owned output is dropped for the caller's";
+  EXPECT_EQ(effect->output().image, VK_NULL_HANDLE);
+  c.settings.intensity = 0.9f;
+  ASSERT_TRUE(effect->update(c).ok());
+  EXPECT_EQ(effect->outputGeneration(), g4) << "no owned output, nothing changes";
+  vk::Config own = small.config(1);
+  own.userOutput = true;
+  auto userOnly = makeEffect(own);
+  ASSERT_TRUE(userOnly);
+  EXPECT_EQ(userOnly->outputGeneration(), 0u) << "created without an owned output";
+}
+
+}  // namespace
+}  // namespace sao::vktest
