@@ -14,12 +14,14 @@
 // sky / no geometry.
 
 // ---------------------------------------------------------------------------------------------
-// Settings (host side; the shaders only see block members computed from them)
+// Settings (host side; the shaders only see block members computed from them). The appearance
+// defaults (bias, contrast; intensity 1, epsilon 1e-4) are calibrated against ray-traced near-field AO
+// at radius 1 m over the built-in scenes (`sao-bench --sections calibrate`, docs/BENCHMARKS.md).
 // ---------------------------------------------------------------------------------------------
 #pragma sao setting float radius              default=1.0   range=[0.01,100]       unit=m   "World-space radius r of the obscurance ball (eq. 1, 5)"
-#pragma sao setting float bias                default=0.02  range=[0,0.5]                   "Bias beta of eq. 1: the term v.n + z_C*beta, a unitless multiplier of |z_C|; raise to remove self-occlusion, lower if corners leak light"
+#pragma sao setting float bias                default=0.01  range=[0,0.5]                   "Bias beta of eq. 1: the term v.n + z_C*beta, a unitless multiplier of |z_C|; raise to remove self-occlusion, lower if corners leak light"
 #pragma sao setting float intensity           default=1.0   range=[0,10]                    "Intensity sigma of eq. 1, unitless: the sum is scaled by 2*sigma*r/s with r the radius, so A does not change with the scene's units"
-#pragma sao setting float contrast            default=1.0   range=[0.1,8]                   "Contrast exponent k of eq. 1"
+#pragma sao setting float contrast            default=1.25  range=[0.1,8]                   "Contrast exponent k of eq. 1"
 #pragma sao setting float epsilon             default=0.0001 range=[0.000001,0.01] unit=m^2 "Epsilon of eq. 1 added to v.v against division by zero"
 #pragma sao setting int   samples             default=11    range=[1,64]                    "Direct samples s per pixel (spiral taps)"
 #pragma sao setting int   mip_switch_log2     default=3     range=[0,5]            unit=px  "log2 of q', the tap distance in pixels at which taps move to the next coarser z MIP level (eq. 9)"

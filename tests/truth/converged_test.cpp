@@ -192,8 +192,9 @@ TEST(Converged, CreaseMatchesTheTexelSumOfTheSameEstimator) {
       const glm::dvec3 n = -scene.planes[h->second].n;  // facing the camera
       const double rPx = st.radius * projScale / -h->first.z;
       ASSERT_LT(rPx + 2, double(kGuard));
-      const double expected = std::max(0.0, 1.0 - 2.0 * st.intensity * st.radius *
-                                                      expectedTerm(scene, cx, cy, h->first, n, rPx, st));
+      const double expected = std::pow(std::max(0.0, 1.0 - 2.0 * st.intensity * st.radius *
+                                                                expectedTerm(scene, cx, cy, h->first, n, rPx, st)),
+                                       double(st.contrast));
       const double d1 = c1.at(x, y) - expected, d2 = c2.at(x, y) - expected;
       noise2 += 0.5 * (c1.at(x, y) - c2.at(x, y)) * (c1.at(x, y) - c2.at(x, y));
       error2 += 0.5 * (d1 * d1 + d2 * d2);
