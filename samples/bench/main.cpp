@@ -4,24 +4,24 @@
 // `sao-bench --help` lists the options; `--quick` is the small run the tests use.
 #include <algorithm>
 #include <cctype>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <filesystem>
 #include <map>
 #include <memory>
 #include <optional>
 #include <set>
 #include <sstream>
-#include <tuple>
 
+#include "calibrate.h"
 #include "measure.h"
 #include "precision_report.h"
 #include "reference_check.h"
 #include "report.h"
+#include "scene_cache.h"
 #include "traffic_section.h"
+#include "tune.h"
 #include "sao/cli/command_line.h"
 #include "sao/cli/shared_options.h"
 #include "sao/prepass/precision.h"
@@ -34,6 +34,7 @@
 
 namespace fs = std::filesystem;
 using namespace sao;
+using namespace sao::bench;
 
 namespace {
 
@@ -45,11 +46,16 @@ then the sweeps: samples, MIP and blur on/off, radius (paper Fig. 5: SAO with an
 hierarchy and an AlchemyAO-style baseline), resolution (paper Table 3) and the two-layer variant.
 Every run first checks reference (a) against the analytic sphere case (reference_check.csv).
 Writes results.csv, results.json and SVG plots; the traffic section (ao_sample's texel reads through
-a cache model: a paper-like GPU and this CPU) writes traffic.csv.)";
+a cache model: a paper-like GPU and this CPU) writes traffic.csv; the calibrate section (intensity, contrast,
+bias and epsilon of the medium preset fitted to (a) over a grid) writes calibration.csv.)";
 
 // The parts of the run, in the order they run (--sections picks some).
 const std::vector<std::string> kSections = {"presets",    "samples",   "mip_blur", "radius",
-                                            "resolution", "two_layer", "precision", "traffic"};
+                                            "resolution", "two_layer", "precision", "traffic",
+                                            "calibrate"};
+
+// The calibrate section searches a grid (about 20 minutes at 640x360 here): asked for by name only.
+bool inDefaultRun(const std::string& section) { return section != "calibrate"; }
 
 std::string sectionNames() {
   std::string names;
@@ -57,24 +63,21 @@ std::string sectionNames() {
   return names;
 }
 
-// The two_layer section's second depth layer: the first surface at least this far (metres, in
-// camera-space z) behind the first (depth peeling, or raytrace::castSecondLayer).
-constexpr double kSecondLayerSeparation = 0.5;
-
 struct Options {
   std::string out = "out/bench", backends = "gl,vulkan,cpu", depthSource = "raster";
-  std::set<std::string> sections{kSections.begin(), kSections.end()};
+  std::set<std::string> sections = [] {
+    std::set<std::string> out;
+    for (const auto& s : kSections)
+      if (inDefaultRun(s)) out.insert(s);
+    return out;
+  }();
   std::uint32_t runs = 5, rays = 256, convergedTaps = 4096;
   Extent size{1280, 720};
   bool quick = false;
+  bool tune = false;            // --tune: the preset tuner (tune.h) instead of the sections
   bool convergedNoise = false;  // --converged-noise
   std::optional<scenes::LengthUnit> units;  // --units
 };
-
-[[noreturn]] void fail(const std::string& m) {
-  std::fprintf(stderr, "\nsao-bench: %s\n", m.c_str());
-  std::exit(1);
-}
 
 std::set<std::string> parseSections(const std::string& list) {
   std::set<std::string> out;
@@ -95,7 +98,7 @@ Options parse(int argc, char** argv) {
   cl.text("--out", o.out, "DIR", "output folder (default out/bench)");
   cl.text("--backends", o.backends, "LIST",
           "comma-separated: cpu,gl,vulkan (default: gl,vulkan,cpu, those that start; the others are skipped)");
-  cl.value("--sections", "LIST", "comma-separated parts to run (default: all):\n" + sectionNames(),
+  cl.value("--sections", "LIST", "comma-separated parts to run (default: all but calibrate, a grid search of about 20 minutes):\n" + sectionNames(),
            [&o](const std::string& v) { o.sections = parseSections(v); });
   cli::addRuns(cl, o.runs, 1, "measured runs per point, after one warm-up", "default 5");
   cli::addRays(cl, "--rays", o.rays, "reference rays per pixel", "default 256");
@@ -118,147 +121,20 @@ Options parse(int argc, char** argv) {
           "difference / sqrt(2) over the pixels with geometry (doubles the time (c) takes)");
   cl.flag("--quick", o.quick, "the smoke run: 160x90, 3 runs, 16 rays, two scenes, short sweeps (replaces --size, "
           "--runs and --rays)");
+  cl.flag("--tune", o.tune,
+          "instead of the sections: search a fixed grid of samples, z hierarchy q', blur radius/stride and "
+          "resolution_divisor for the lowest error vs (c) per time, relative to the medium preset, over the built-in "
+          "scenes, and choose presets on that front (tune.csv, resumable; tune_front.csv/.svg, tune_presets.txt). Uses "
+          "the first of --backends that starts (default gl), --size default 640x360, --runs, --converged-taps, --quick");
   cl.parse(argc, argv);
+  if (o.tune) {
+    if (cl.given("--sections") || cl.given("--converged-noise") || cl.given("--rays"))
+      cl.fail("--tune takes --out, --backends, --size, --runs, --converged-taps, --depth-source, --units and --quick only");
+    if (!cl.given("--backends")) o.backends = "gl";
+    if (!cl.given("--size")) o.size = {640, 360};
+  }
   if (o.quick) o.size = {160, 90}, o.runs = 3, o.rays = 16;
   return o;
-}
-
-// The settings the obscurance reference depends on: radius, intensity, bias, epsilon, contrast.
-using ObscuranceKey = std::tuple<float, float, float, float, float>;
-
-// What the effect is given besides depth; the inputs select the shader variant (NORMALS_SUPPLIED,
-// TWO_LAYER), as in every backend.
-enum class Extra { None, Normals, SecondLayer };
-
-// Reference (c) depends on the obscurance settings and on the inputs (normals, second layer).
-using ConvergedKey = std::tuple<ObscuranceKey, Extra>;
-
-// Reference (c) with its cost and the model error: (c) against (a) and (b), NaN until computed.
-struct Converged {
-  FloatImage ao;
-  double seconds = 0, cpuSeconds = 0;  // wall and CPU (all threads) time
-  double rmseVsAo = NAN, rmseVsObscurance = NAN;
-  double noise = NAN;  // with --converged-noise: (c)'s own per-pixel noise (RMS over the mask)
-  std::string modelMap;  // maps/ PNG of (c) - (a), relative to the output folder
-};
-
-// A scene at one size: its ray caster, primary rays, second layer and references.
-struct Prepared {
-  scenes::Scene scene;
-  std::unique_ptr<raytrace::RayScene> rays;
-  Camera camera;
-  raytrace::Primary primary;
-  std::vector<unsigned char> mask;
-  std::map<double, FloatImage> references;  // (a) near-field AO per radius
-  std::map<ObscuranceKey, FloatImage> obscurance;  // (b) per obscurance settings
-  std::map<ConvergedKey, Converged> converged;     // (c) per obscurance settings and inputs
-  std::vector<unsigned char> silhouette;           // samples::silhouetteBand of the primary positions
-  std::optional<raytrace::Primary> secondLayer;
-};
-
-// `prepass` null: the depth comes from Embree primary rays. Otherwise the rasterised depth (and the
-// peeled second layer) of that prepass; the references still trace rays from its visible points.
-Prepared& prepare(std::map<std::string, Prepared>& cache, prepass::Prepass* prepass, const std::string& name,
-                  std::uint32_t w, std::uint32_t h, std::optional<scenes::LengthUnit> units) {
-  const std::string key = name + "@" + std::to_string(w) + "x" + std::to_string(h);
-  auto it = cache.find(key);
-  if (it != cache.end()) return it->second;
-  Prepared& p = cache[key];
-  if (Status s = scenes::loadScene(name, p.scene); !s) fail(s.message);
-  for (const std::string& w : p.scene.warnings) std::fprintf(stderr, "sao-bench: warning: %s\n", w.c_str());
-  if (Status s = raytrace::RayScene::create(p.scene.mesh, p.rays); !s) fail(s.message);
-  p.camera = scenes::makeCamera(p.scene.views[0], w, h, INFINITY, ClipDepth::ZeroToOne, true);
-  const scenes::UnitChoice unit = scenes::chooseUnits(p.scene.mesh, p.scene.units, units);
-  if (units) std::fprintf(stderr, "\nsao-bench: %s: units %s\n", name.c_str(), unit.note.c_str());
-  // The depth is drawn with a factor of 1 (the scene's world is in its own units, the view units;
-  // the prepass would scale a world in metres); the effect and the references get the scene's.
-  if (prepass) {
-    prepass::PrepassOptions po;
-    po.format = DepthFormat::D32F;
-    po.secondLayer = true;
-    po.minSeparation = kSecondLayerSeparation * unit.metersToViewUnits;
-    prepass::PrepassResult r;
-    if (Status s = prepass->render(p.scene.mesh, p.scene.views[0], p.camera, po, r); !s)
-      fail(std::string(prepass->name()) + " prepass of " + name + ": " + s.message);
-    p.primary.depth = std::move(r.depth);
-    p.primary.position = std::move(r.position);
-    p.primary.normal = std::move(r.normal);
-    p.secondLayer.emplace();
-    p.secondLayer->depth = std::move(r.depth2);
-    p.secondLayer->position = std::move(r.position2);
-    p.secondLayer->normal = std::move(r.normal2);
-  } else if (Status s = raytrace::castPrimary(*p.rays, p.scene.views[0], p.camera, DepthFormat::D32F, p.primary); !s) {
-    fail(s.message);
-  }
-  p.mask = samples::geometryMask(p.primary.position, 0);
-  p.silhouette = samples::silhouetteBand(p.primary.position, 0);
-  p.camera.metersToViewUnits = unit.metersToViewUnits;
-  return p;
-}
-
-const FloatImage& reference(Prepared& p, double radius, std::uint32_t rays) {
-  auto it = p.references.find(radius);
-  if (it != p.references.end()) return it->second;
-  raytrace::ReferenceOptions o;
-  o.radius = radius * p.camera.metersToViewUnits;  // radius is in metres, the scene in its own units
-  o.rays = rays;
-  FloatImage& ref = p.references[radius];
-  if (Status s = raytrace::referenceAmbientOcclusion(*p.rays, p.camera, p.primary, p.scene.views[0], o, ref); !s)
-    fail(s.message);
-  return ref;
-}
-
-const FloatImage& obscuranceReference(Prepared& p, const Settings& s, std::uint32_t rays) {
-  const ObscuranceKey key{s.radius, s.intensity, s.bias, s.epsilon, s.contrast};
-  auto it = p.obscurance.find(key);
-  if (it != p.obscurance.end()) return it->second;
-  FloatImage& ref = p.obscurance[key];
-  if (Status st = raytrace::referenceObscurance(*p.rays, p.camera, p.primary, p.scene.views[0],
-                                                raytrace::obscuranceOptions(s, rays), ref);
-      !st)
-    fail(st.message);
-  return ref;
-}
-
-const raytrace::Primary& secondLayer(Prepared& p) {
-  if (!p.secondLayer) {
-    p.secondLayer.emplace();
-    if (Status s = raytrace::castSecondLayer(*p.rays, p.scene.views[0], p.camera, DepthFormat::D32F,
-                                             kSecondLayerSeparation * p.camera.metersToViewUnits, *p.secondLayer);
-        !s)
-      fail(s.message);
-  }
-  return *p.secondLayer;
-}
-
-// Reference (c) for the run's settings and inputs, timed; the model error against (a) and (b)
-// where they are given (both are computed before (c) for rows with errors).
-Converged& convergedReference(Prepared& p, const Settings& s, Extra extra, const samples::RunInputs& inputs,
-                              std::uint32_t taps, bool measureNoise, const FloatImage* nearFieldAo,
-                              const FloatImage* obscurance) {
-  const ConvergedKey key{{s.radius, s.intensity, s.bias, s.epsilon, s.contrast}, extra};
-  auto it = p.converged.find(key);
-  if (it != p.converged.end()) return it->second;
-  Converged& c = p.converged[key];
-  raytrace::ConvergedOptions co;
-  co.taps = taps;
-  co.rings = std::max(1u, taps / 32);  // 128 rings at the default 4096 taps (docs/reference.md)
-  const auto start = std::chrono::steady_clock::now();
-  const std::clock_t cpuStart = std::clock();
-  if (Status st = raytrace::convergedEstimator(s, p.camera, {inputs.depth, inputs.depth2, inputs.normals}, co, c.ao); !st)
-    fail("reference (c): " + st.message);
-  c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  c.cpuSeconds = double(std::clock() - cpuStart) / CLOCKS_PER_SEC;
-  if (measureNoise) {  // a second, independent estimate: E[(c1 - c2)^2] / 2 is the variance
-    FloatImage second;
-    co.seed = 2;
-    if (Status st = raytrace::convergedEstimator(s, p.camera, {inputs.depth, inputs.depth2, inputs.normals}, co, second); !st)
-      fail("reference (c): " + st.message);
-    c.noise = samples::compareToReference(second, c.ao, p.mask).raw.rmse / std::sqrt(2.0);
-  }
-  if (nearFieldAo) c.rmseVsAo = samples::compareToReference(c.ao, *nearFieldAo, p.mask).raw.rmse;
-  if (obscurance) c.rmseVsObscurance = samples::compareToReference(c.ao, *obscurance, p.mask).raw.rmse;
-  return c;
 }
 
 // A file name for a row's map: its index, section, scene, backend, preset and variant, with every
@@ -336,6 +212,7 @@ std::vector<std::pair<std::string, std::string>> notes(const std::string& depthS
 
 int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
+  if (o.tune) return bench::runTune({o.out, o.backends, o.depthSource, o.units, o.size, o.runs, o.convergedTaps, o.quick});
   std::error_code ec;
   fs::create_directories(o.out, ec);
   if (ec) fail("cannot create '" + o.out + "': " + ec.message());
@@ -382,7 +259,7 @@ int main(int argc, char** argv) {
       o.quick ? std::vector<std::string>{"crease", "sphere-plane"}
               : std::vector<std::string>{"sponza-like", "sphere-plane", "crease", "thin", "gears"};
   const std::string mainScene = o.quick ? "sphere-plane" : std::string(scenes::kDefaultScene);
-  std::map<std::string, Prepared> cache;
+  SceneCache cache(depthPrepass.get(), o.units);
   std::vector<bench::Row> rows;
   std::vector<std::string> convergedTimes;  // how long each reference (c) took
   int step = 0;
@@ -396,19 +273,16 @@ int main(int argc, char** argv) {
                  bool withError, Extra extra = Extra::None) {
     progress(section + ": " + scene + " " + std::string(b.name()) + " " + preset + " " + variant + " " +
              std::to_string(size.width) + "x" + std::to_string(size.height));
-    Prepared& p = prepare(cache, depthPrepass.get(), scene, size.width, size.height, o.units);
-    samples::RunInputs inputs{&p.primary.depth, nullptr, nullptr};
-    std::string what = "depth";
-    if (extra == Extra::Normals) inputs.normals = &p.primary.normal, what = "depth+normals";
-    if (extra == Extra::SecondLayer) inputs.depth2 = &secondLayer(p).depth, what = "depth+depth2";
+    Prepared& p = cache.prepare(scene, size.width, size.height);
+    const samples::RunInputs inputs = runInputs(p, extra);
+    const std::string what = inputsName(extra);
     bench::References refs;
     Converged* converged = nullptr;
     if (withError) {
-      refs.nearFieldAo = &reference(p, s.radius, o.rays);
+      refs.nearFieldAo = &nearFieldReference(p, s.radius, o.rays);
       refs.obscurance = &obscuranceReference(p, s, o.rays);
-      const bool fresh = !p.converged.count({{s.radius, s.intensity, s.bias, s.epsilon, s.contrast}, extra});
-      converged = &convergedReference(p, s, extra, inputs, o.convergedTaps, o.convergedNoise, refs.nearFieldAo,
-                                      refs.obscurance);
+      const bool fresh = !p.converged.count({obscuranceKey(s), extra});
+      converged = &convergedReference(p, s, extra, {o.convergedTaps, o.convergedNoise, refs.nearFieldAo, refs.obscurance});
       if (fresh) {
         char t[96];
         std::snprintf(t, sizeof t, ": %.1f s (%.1f s CPU)", converged->seconds, converged->cpuSeconds);
@@ -524,10 +398,17 @@ int main(int argc, char** argv) {
 
   std::fprintf(stderr, "\n");
 
+  // calibrate: the appearance defaults fitted to reference (a) at --size, confirmed at 1280x720 (calibrate.h).
+  if (want("calibrate"))
+    if (Status s = bench::calibrateSection({o.out, sceneNames, size, o.quick ? size : Extent{1280, 720}, o.rays,
+                                            int(o.runs), o.quick}, first, cache);
+        !s)
+      fail("calibrate: " + s.message);
+
   // traffic: the memory-traffic model on the main scene (traffic_section.h).
   if (want("traffic"))
     if (Status s = bench::trafficSection(o.out, mainScene, o.quick, [&](Extent e) {
-          Prepared& p = prepare(cache, depthPrepass.get(), mainScene, e.width, e.height, o.units);
+          Prepared& p = cache.prepare(mainScene, e.width, e.height);
           return bench::TrafficInput{&p.primary.depth, p.camera};
         });
         !s)

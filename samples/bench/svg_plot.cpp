@@ -70,14 +70,15 @@ std::string renderSvg(const Chart& c, int W, int H) {
     << escape(c.yLabel) << "</text>\n";
   for (std::size_t k = 0; k < c.series.size(); ++k) {
     const auto& s = c.series[k];
-    const char* colour = kColours[k % 8];
+    const std::string colour = s.colour.empty() ? kColours[k % 8] : s.colour;
+    const std::string faint = s.opacity < 1 ? " opacity=\"" + number(s.opacity) + "\"" : "";
     if (s.lines && s.x.size() > 1) {
-      o << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"2\" points=\"";
+      o << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"2\"" << faint << " points=\"";
       for (std::size_t i = 0; i < s.x.size(); ++i) o << px(s.x[i]) << "," << py(s.y[i]) << " ";
       o << "\"/>\n";
     }
     for (std::size_t i = 0; i < s.x.size(); ++i) {
-      o << "<circle cx=\"" << px(s.x[i]) << "\" cy=\"" << py(s.y[i]) << "\" r=\"4\" fill=\"" << colour << "\"/>\n";
+      o << "<circle cx=\"" << px(s.x[i]) << "\" cy=\"" << py(s.y[i]) << "\" r=\"4\" fill=\"" << colour << "\"" << faint << "/>\n";
       if (i < s.pointLabels.size())
         o << "<text x=\"" << px(s.x[i]) + 6 << "\" y=\"" << py(s.y[i]) - 6 << "\" font-size=\"10\">"
           << escape(s.pointLabels[i]) << "</text>\n";

@@ -10,6 +10,8 @@ struct Series {
   std::vector<double> x, y;
   bool lines = true;  // false: points only (a scatter)
   std::vector<std::string> pointLabels;  // optional, one per point
+  std::string colour;    // empty: the palette's next colour
+  double opacity = 1;    // below 1: faint points and line (a background of many points)
 };
 
 struct Chart {

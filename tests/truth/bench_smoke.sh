@@ -88,9 +88,9 @@ monotone sphere-plane
 # radius: three curves with two radii each, each curve the variant it says it is.
 v=$(col variant) s=$(col shader_variant) i=$(col inputs)
 curve() { count "\$1==\"radius\" && \$$v==\"$1\" && \$$s==\"$2\" && \$$i==\"$3\""; }
-[ "$(curve 'SAO (z hierarchy)' 'NORMALS_SUPPLIED=0 TWO_LAYER=0 Z_HIERARCHY=1' depth)" -eq 2 ] || die "radius: SAO (z hierarchy) curve"
-[ "$(curve 'SAO (no hierarchy)' 'NORMALS_SUPPLIED=0 TWO_LAYER=0 Z_HIERARCHY=0' depth)" -eq 2 ] || die "radius: SAO (no hierarchy) curve"
-[ "$(curve 'AlchemyAO-style' 'NORMALS_SUPPLIED=1 TWO_LAYER=0 Z_HIERARCHY=0' depth+normals)" -eq 2 ] || die "radius: AlchemyAO-style curve"
+[ "$(curve 'SAO (z hierarchy)' 'NORMALS_SUPPLIED=0 TWO_LAYER=0 Z_HIERARCHY=1 OUTPUT_FORMAT=0' depth)" -eq 2 ] || die "radius: SAO (z hierarchy) curve"
+[ "$(curve 'SAO (no hierarchy)' 'NORMALS_SUPPLIED=0 TWO_LAYER=0 Z_HIERARCHY=0 OUTPUT_FORMAT=0' depth)" -eq 2 ] || die "radius: SAO (no hierarchy) curve"
+[ "$(curve 'AlchemyAO-style' 'NORMALS_SUPPLIED=1 TWO_LAYER=0 Z_HIERARCHY=0 OUTPUT_FORMAT=0' depth+normals)" -eq 2 ] || die "radius: AlchemyAO-style curve"
 [ "$(rows radius section !=)" -eq 6 ] || die "expected 6 radius rows"
 for label in 'SAO (z hierarchy)' 'SAO (no hierarchy)' 'AlchemyAO-style'; do
   grep -qF ">$label<" "$out/all/radius.svg" || die "radius.svg has no curve '$label'"
@@ -107,6 +107,19 @@ awk -F, '$3 ~ /^inf$/ && $6 == 10 && (($2 == "D16" && $4 == "standard") || ($2 =
   END { n = 0; for (k in z) if (k ~ /D32F/) { b = k; sub(/D32F/, "D16", b); if (!(b in z) || z[k] * 100 > z[b]) exit 1; n++ } exit n == 0 }' \
   "$out/all/precision.csv" || die "precision.csv: D32F reversed-Z is not 100x better than D16 at 10 m"
 
+# calibrate (--quick: the default and 1.5x intensity x contrast, on the two scenes): every row has an
+# RMSE vs (a) in [0, 0.3) and a fitted scale in (0.2, 5) (measured: 0.048-0.080 and 0.88-1.83; an
+# AO of all 0 gives RMSE 0.97 and scale 0.04), four points.
+test ! -e "$out/all/calibration.csv" || die "the default sections ran calibrate (it is asked for by name)"
+"$bench" --quick --backends cpu --sections calibrate --out "$out/cal" >/dev/null 2>"$out.stderr" || die "--sections calibrate failed: $(tail -2 "$out.stderr")"
+cal=$out/cal/calibration.csv
+[ "$(head -1 "$cal")" = "stage,radius_m,width,height,intensity,contrast,bias,epsilon,scene,ao_rmse_raw,ao_fitted_scale,ao_rmse_fitted,ao_bias_raw,total_ms,mean_ao_rmse_raw,max_abs_scale_minus_1" ] ||
+  die "calibration.csv: unexpected header $(head -1 "$cal")"
+[ "$(awk -F, 'NR > 1 && $1 == "search" && $10 >= 0 && $10 < 0.3 && $11 > 0.2 && $11 < 5' "$cal" | wc -l)" -eq 8 ] ||
+  die "calibration.csv: expected 8 search rows with an RMSE vs (a) in [0, 0.3) and a scale in (0.2, 5): $(cat "$cal")"
+[ "$(awk -F, 'NR > 1 {print $5, $6, $7, $8}' "$cal" | sort -u | wc -l)" -eq 4 ] ||
+  die "calibration.csv: expected four grid points"
+
 grep -q '"error_vs_obscurance": {' "$out/all/results.json" || die "results.json has no error_vs_obscurance"
 grep -q '"error_vs_ao": {' "$out/all/results.json" || die "results.json has no error_vs_ao"
 grep -q '"error_vs_converged": {' "$out/all/results.json" || die "results.json has no error_vs_converged"
@@ -120,6 +133,7 @@ grep -q '<svg' "$out/all/pareto.svg" || die "pareto.svg is not an SVG"
 [ "$(awk -F, 'NR > 1 && $1 != "two_layer"' "$out/one/results.csv" | wc -l)" -eq 0 ] || die "--sections two_layer ran other sections"
 [ "$(awk -F, '$1 == "two_layer"' "$out/one/results.csv" | wc -l)" -eq 2 ] || die "--sections two_layer: expected 2 rows"
 test ! -e "$out/one/radius.svg" || die "--sections two_layer wrote radius.svg"
+test ! -e "$out/one/calibration.csv" || die "--sections two_layer wrote calibration.csv"
 refcheck "$out/one"
 if "$bench" --quick --sections presets,nope --out "$out/bad" >/dev/null 2>"$out.stderr"; then die "--sections nope was accepted"; fi
 grep -q "unknown section 'nope'" "$out.stderr" || die "--sections nope: unclear error: $(cat "$out.stderr")"

@@ -1,0 +1,96 @@
+// The scenes sao-bench measures, prepared once per size: the ray caster, the depth every backend is
+// given (rasterised by a prepass or ray-cast), and the three references, each computed on first use
+// and cached by the settings it depends on. Shared by the sections and the tuner.
+#pragma once
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "sao/prepass/prepass.h"
+#include "sao/raytrace/raytrace.h"
+#include "sao/samples/backend_runner.h"
+#include "sao/scenes/scene.h"
+
+namespace sao::bench {
+
+// Prints "sao-bench: <message>" and exits with status 1 (the tool stops at its first failure).
+[[noreturn]] void fail(const std::string& message);
+
+// The two_layer section's second depth layer: the first surface at least this far (metres, in
+// camera-space z) behind the first (depth peeling, or raytrace::castSecondLayer).
+constexpr double kSecondLayerSeparation = 0.5;
+
+// The settings the obscurance reference depends on: radius, intensity, bias, epsilon, contrast.
+using ObscuranceKey = std::tuple<float, float, float, float, float>;
+ObscuranceKey obscuranceKey(const Settings& s);
+
+// What the effect is given besides depth; the inputs select the shader variant (NORMALS_SUPPLIED,
+// TWO_LAYER), as in every backend.
+enum class Extra { None, Normals, SecondLayer };
+
+// Reference (c) depends on the obscurance settings and on the inputs (normals, second layer).
+using ConvergedKey = std::tuple<ObscuranceKey, Extra>;
+
+// Reference (c) with its cost and the model error: (c) against (a) and (b), NaN until computed.
+struct Converged {
+  FloatImage ao;
+  double seconds = 0, cpuSeconds = 0;  // wall and CPU (all threads) time
+  double rmseVsAo = NAN, rmseVsObscurance = NAN;
+  double noise = NAN;  // measured with a second seed: (c)'s own per-pixel noise (RMS over the mask)
+  std::string modelMap;  // maps/ PNG of (c) - (a), relative to the output folder
+};
+
+// A scene at one size: its ray caster, primary rays, second layer and references.
+struct Prepared {
+  scenes::Scene scene;
+  std::unique_ptr<raytrace::RayScene> rays;
+  Camera camera;
+  raytrace::Primary primary;
+  std::vector<unsigned char> mask;
+  std::map<double, FloatImage> references;  // (a) near-field AO per radius
+  std::map<ObscuranceKey, FloatImage> obscurance;  // (b) per obscurance settings
+  std::map<ConvergedKey, Converged> converged;     // (c) per obscurance settings and inputs
+  std::vector<unsigned char> silhouette;           // samples::silhouetteBand of the primary positions
+  std::optional<raytrace::Primary> secondLayer;
+};
+
+// Prepared scenes by name and size. `prepass` null: the depth comes from Embree primary rays.
+// Otherwise the rasterised depth (and the peeled second layer) of that prepass; the references
+// still trace rays from its visible points.
+class SceneCache {
+ public:
+  SceneCache(prepass::Prepass* prepass, std::optional<scenes::LengthUnit> units) : prepass_(prepass), units_(units) {}
+  Prepared& prepare(const std::string& name, std::uint32_t width, std::uint32_t height);
+
+ private:
+  prepass::Prepass* prepass_;
+  std::optional<scenes::LengthUnit> units_;
+  std::map<std::string, Prepared> scenes_;
+};
+
+// (a) near-field AO at `radius` metres.
+const FloatImage& nearFieldReference(Prepared& p, double radius, std::uint32_t rays);
+// (b) the obscurance integral with the settings' radius, intensity, bias, epsilon and contrast.
+const FloatImage& obscuranceReference(Prepared& p, const Settings& s, std::uint32_t rays);
+// The second depth layer (the prepass's peeled one, or ray-cast on first use).
+const raytrace::Primary& secondLayer(Prepared& p);
+
+// The inputs the effect is given for `extra`, and a word for them ("depth", "depth+normals", ...).
+samples::RunInputs runInputs(Prepared& p, Extra extra);
+const char* inputsName(Extra extra);
+
+struct ConvergedOptions {
+  std::uint32_t taps = 4096;
+  bool measureNoise = false;
+  const FloatImage* nearFieldAo = nullptr;  // given: the model error (c) vs (a) is computed
+  const FloatImage* obscurance = nullptr;   // given: (c) vs (b)
+};
+// Reference (c) for the settings and inputs, timed; cached per ConvergedKey (the first call's
+// options decide the taps and which model errors are filled in).
+Converged& convergedReference(Prepared& p, const Settings& s, Extra extra, const ConvergedOptions& options);
+
+}  // namespace sao::bench

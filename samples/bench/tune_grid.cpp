@@ -1,0 +1,112 @@
+#include "tune_grid.h"
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "sao/presets.h"
+
+namespace sao::bench {
+
+const std::vector<std::string> kTunedSettings = {"samples",           "blur_radius",        "blur_stride",
+                                                 "use_z_hierarchy",   "mip_switch_log2",    "resolution_divisor",
+                                                 "blur_edge_sharpness"};
+
+std::vector<Candidate> tuneGrid(bool quick) {
+  struct Blur {
+    int radius, stride;
+  };
+  const std::vector<int> divisors = quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 4};
+  const std::vector<int> hierarchy = quick ? std::vector<int>{3, -1} : std::vector<int>{3, 4, -1};  // -1: off
+  const std::vector<Blur> blurs = quick ? std::vector<Blur>{{0, 1}, {3, 2}} : std::vector<Blur>{{0, 1}, {2, 2}, {3, 2}, {4, 1}};
+  const std::vector<int> samples = quick ? std::vector<int>{4, 16, 64} : std::vector<int>{3, 4, 6, 8, 11, 16, 24, 32, 48, 64};
+  std::vector<Candidate> out;
+  for (int d : divisors)
+    for (int q : hierarchy)
+      for (const Blur& b : blurs)
+        for (int s : samples) {
+          Candidate c{"grid", "", Settings{}, Extra::None};
+          c.settings.resolution_divisor = d;
+          c.settings.use_z_hierarchy = q >= 0;
+          if (q >= 0) c.settings.mip_switch_log2 = q;  // off: the default, unused
+          c.settings.blur_radius = b.radius;
+          c.settings.blur_stride = b.stride;
+          c.settings.samples = s;
+          out.push_back(c);
+        }
+  return out;
+}
+
+Candidate timeAnchor(std::size_t index) {
+  return {"anchor", "medium-" + std::to_string(index), presetSettings(Preset::Medium), Extra::None};
+}
+
+std::vector<Candidate> tuneReferences() {
+  std::vector<Candidate> out;
+  for (const PresetInfo& p : presets()) out.push_back({"preset", std::string(p.name), presetSettings(p.preset), Extra::None});
+  Settings baseline = presetSettings(Preset::Medium);
+  baseline.use_z_hierarchy = false;
+  out.push_back({"baseline", "alchemyao-style", baseline, Extra::Normals});
+  return out;
+}
+
+std::string tunedSettingValue(const Settings& s, const std::string& name) {
+  char b[32];
+  if (name == "samples") return std::to_string(s.samples);
+  if (name == "blur_radius") return std::to_string(s.blur_radius);
+  if (name == "blur_stride") return std::to_string(s.blur_stride);
+  if (name == "use_z_hierarchy") return s.use_z_hierarchy ? "true" : "false";
+  if (name == "mip_switch_log2") return std::to_string(s.mip_switch_log2);
+  if (name == "resolution_divisor") return std::to_string(s.resolution_divisor);
+  if (name == "blur_edge_sharpness") {
+    std::snprintf(b, sizeof b, "%g", double(s.blur_edge_sharpness));
+    return b;
+  }
+  return "";
+}
+
+bool setTunedSetting(Settings& s, const std::string& name, const std::string& value) {
+  if (name == "use_z_hierarchy") {
+    if (value != "true" && value != "false") return false;
+    s.use_z_hierarchy = value == "true";
+    return true;
+  }
+  char* end = nullptr;
+  const double v = std::strtod(value.c_str(), &end);
+  if (value.empty() || *end) return false;
+  if (name == "blur_edge_sharpness") {
+    s.blur_edge_sharpness = float(v);
+    return true;
+  }
+  const int i = int(v);
+  if (double(i) != v) return false;
+  if (name == "samples") s.samples = i;
+  else if (name == "blur_radius") s.blur_radius = i;
+  else if (name == "blur_stride") s.blur_stride = i;
+  else if (name == "mip_switch_log2") s.mip_switch_log2 = i;
+  else if (name == "resolution_divisor") s.resolution_divisor = i;
+  else return false;
+  return true;
+}
+
+std::string settingsWords(const Settings& s) {
+  std::string out;
+  for (const std::string& name : kTunedSettings) {
+    if (name == "mip_switch_log2" && !s.use_z_hierarchy) continue;  // unused without the hierarchy
+    if (name == "blur_edge_sharpness" && s.blur_edge_sharpness == Settings{}.blur_edge_sharpness) continue;
+    out += (out.empty() ? "" : " ") + name + "=" + tunedSettingValue(s, name);
+  }
+  return out;
+}
+
+std::string describeSettings(const Settings& s) {
+  std::string d = std::to_string(s.samples) + " taps, 2x2";
+  if (s.blur_radius == 0) d += ", no blur";
+  else d += " + " + std::to_string(2 * s.blur_radius + 1) + "-tap blur (stride " + std::to_string(s.blur_stride) + ")";
+  if (s.use_z_hierarchy) d += ", z hierarchy (q' = " + std::to_string(1 << s.mip_switch_log2) + " px)";
+  else d += ", no z hierarchy";
+  if (s.resolution_divisor == 1) d += ", full resolution";
+  else d += ", 1/" + std::to_string(s.resolution_divisor) + " resolution";
+  return d;
+}
+
+}  // namespace sao::bench

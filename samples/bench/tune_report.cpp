@@ -1,0 +1,176 @@
+#include "tune_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "scene_cache.h"
+#include "svg_plot.h"
+#include "tune_grid.h"
+
+namespace sao::bench {
+namespace {
+
+std::string number(double v, const char* format = "%.4g") {
+  char b[40];
+  std::snprintf(b, sizeof b, format, v);
+  return b;
+}
+
+// Mean over the scenes that have the figure (silhouette: NaN where a scene has no band).
+double meanOf(const TuneRow& r, double SceneFigures::*field) {
+  double sum = 0;
+  int n = 0;
+  for (const SceneFigures& s : r.scenes)
+    if (!std::isnan(s.*field)) sum += s.*field, ++n;
+  return n ? sum / n : NAN;
+}
+
+void writeFile(const std::string& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary);
+  f << text;
+  f.close();
+  if (!f) fail("cannot write " + path);
+}
+
+std::string frontCsv(const TuneResult& r) {
+  std::string o = "role,name,time_x_medium,total_ms,mean_rmse_vs_c";
+  for (const char* what : {"rmse_vs_c", "blotch", "silhouette", "ms", "x_medium"})
+    for (const std::string& s : r.scenes) o += "," + s + "_" + what;
+  o += ",inputs";
+  for (const std::string& s : kTunedSettings) o += "," + s;
+  o += "\n";
+  auto row = [&](const std::string& role, const std::string& name, const TunePoint& p) {
+    o += role + "," + name + "," + number(p.timeX) + "," + number(p.row->totalMs()) + "," + number(p.meanRmse);
+    for (double SceneFigures::*f : {&SceneFigures::rmse, &SceneFigures::blotch, &SceneFigures::silhouette, &SceneFigures::ms})
+      for (const SceneFigures& s : p.row->scenes) o += "," + number(s.*f, "%.9g");  // as in tune.csv
+    for (double x : p.sceneX) o += "," + number(x, "%.9g");
+    o += "," + p.row->inputs;
+    for (const std::string& s : kTunedSettings) o += "," + tunedSettingValue(p.row->settings, s);
+    o += "\n";
+  };
+  auto chainName = [&](std::size_t i) -> std::string {
+    for (std::size_t c = 0; c < r.chain.size(); ++c)
+      if (r.chain[c] == i) return r.chainNames[c];
+    return "";
+  };
+  for (std::size_t i : r.front) {
+    const std::string name = chainName(i);
+    row(name.empty() ? "front" : "front+tuned", name, r.grid[i]);
+  }
+  for (std::size_t c = 0; c < r.chain.size(); ++c)
+    if (std::find(r.front.begin(), r.front.end(), r.chain[c]) == r.front.end()) row("tuned", r.chainNames[c], r.grid[r.chain[c]]);
+  for (const TunePoint& p : r.references) row(p.row->kind == "baseline" ? "baseline" : "current", p.row->name, p);
+  return o;
+}
+
+std::string frontSvg(const TuneResult& r) {
+  Chart c;
+  c.title = "sao-bench --tune: " + r.backend + ", " + std::to_string(r.size.width) + "x" + std::to_string(r.size.height) +
+            ", " + std::to_string(r.scenes.size()) + " scenes";
+  c.xLabel = "time, x today's medium preset (sum over the scenes of the median totals)";
+  c.yLabel = "RMSE vs (c), mean over the scenes";
+  c.logX = c.logY = true;
+  Series all{"candidates (" + std::to_string(r.grid.size()) + ")", {}, {}, false, {}, "#7f7f7f", 0.25};
+  for (const TunePoint& p : r.grid) all.x.push_back(p.timeX), all.y.push_back(p.meanRmse);
+  Series front{"Pareto front", {}, {}, true, {}, "#1f77b4", 1};
+  for (std::size_t i : r.front) front.x.push_back(r.grid[i].timeX), front.y.push_back(r.grid[i].meanRmse);
+  Series tuned{"tuned presets", {}, {}, true, {}, "#d62728", 1};
+  for (std::size_t k = 0; k < r.chain.size(); ++k) {
+    tuned.x.push_back(r.grid[r.chain[k]].timeX), tuned.y.push_back(r.grid[r.chain[k]].meanRmse);
+    tuned.pointLabels.push_back(r.chainNames[k]);
+  }
+  Series today{"today's presets", {}, {}, false, {}, "#2ca02c", 1};
+  Series baseline{"AlchemyAO-style baseline", {}, {}, false, {}, "#9467bd", 1};
+  for (const TunePoint& p : r.references) {
+    Series& s = p.row->kind == "baseline" ? baseline : today;
+    s.x.push_back(p.timeX), s.y.push_back(p.meanRmse);
+    s.pointLabels.push_back(p.row->kind == "baseline" ? "AlchemyAO-style" : p.row->name + " (today)");
+  }
+  c.series = {all, front, tuned, today, baseline};
+  return renderSvg(c, 900, 560);
+}
+
+std::string presetsText(const TuneResult& r) {
+  std::string o = "// Presets chosen by `sao-bench --tune` on " + r.backend + " at " + std::to_string(r.size.width) + "x" +
+                  std::to_string(r.size.height) + " over";
+  for (const std::string& s : r.scenes) o += " " + s;
+  o += ": each step up is slower and has a lower RMSE vs (c) on every scene. Time x today's medium preset,\n"
+       "// RMSE vs (c) mean over the scenes. Ready to paste into effect/sao.glsl.\n";
+  for (std::size_t k = 0; k < r.chain.size(); ++k) {
+    const TunePoint& p = r.grid[r.chain[k]];
+    o += "// " + r.chainNames[k] + ": budget " + number(r.chainBudgets[k], "%g") + "x, measured " + number(p.timeX, "%.3g") +
+         "x, RMSE vs (c) " + number(p.meanRmse, "%.4f") + "\n";
+  }
+  for (std::size_t k = 0; k < r.chain.size(); ++k) {
+    const Settings& s = r.grid[r.chain[k]].row->settings;
+    char name[32];
+    std::snprintf(name, sizeof name, "%-9s", r.chainNames[k].c_str());
+    o += "#pragma sao preset " + std::string(name) + " " + settingsWords(s) + " \"" + describeSettings(s) + "\"\n";
+  }
+  return o;
+}
+
+void printTable(const TuneResult& r, const std::string& title, const std::vector<std::pair<std::string, const TunePoint*>>& rows) {
+  std::printf("\n%s\n%-16s %9s", title.c_str(), "preset", "x medium");
+  for (const std::string& s : r.scenes) std::printf(" %12.12s", s.c_str());
+  std::printf(" %8s %8s %10s  settings\n", "mean", "blotch", "silhouette");
+  for (const auto& [name, p] : rows) {
+    std::printf("%-16s %9.3f", name.c_str(), p->timeX);
+    for (const SceneFigures& s : p->row->scenes) std::printf(" %12.4f", s.rmse);
+    std::printf(" %8.4f %8.4f %10.4f  %s%s\n", p->meanRmse, meanOf(*p->row, &SceneFigures::blotch),
+                meanOf(*p->row, &SceneFigures::silhouette), settingsWords(p->row->settings).c_str(),
+                p->row->inputs == "depth" ? "" : (" (" + p->row->inputs + ")").c_str());
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> writeTuneOutputs(const std::string& dir, const TuneResult& r) {
+  namespace fs = std::filesystem;
+  writeFile((fs::path(dir) / "tune_front.csv").string(), frontCsv(r));
+  writeFile((fs::path(dir) / "tune_front.svg").string(), frontSvg(r));
+  writeFile((fs::path(dir) / "tune_presets.txt").string(), presetsText(r));
+  return {"tune.csv", "tune_front.csv", "tune_front.svg", "tune_presets.txt"};
+}
+
+void printTuneSummary(const TuneResult& r) {
+  std::vector<std::pair<std::string, const TunePoint*>> tuned, today;
+  for (std::size_t k = 0; k < r.chain.size(); ++k) tuned.emplace_back(r.chainNames[k], &r.grid[r.chain[k]]);
+  for (const TunePoint& p : r.references) today.emplace_back(p.row->kind == "baseline" ? "AlchemyAO-style" : p.row->name, &p);
+  std::printf("\nRMSE vs (c) per scene; blotch (low-passed error) and silhouette (within 3 px of a depth edge) RMSE are "
+              "means over the scenes; time is x today's medium preset (%.3g ms summed over the scenes).",
+              r.medium->totalMs());
+  printTable(r, "tuned presets (the chain; " + std::to_string(r.front.size()) + " of " + std::to_string(r.grid.size()) +
+                    " candidates on the front)", tuned);
+  printTable(r, "today's presets and the AlchemyAO-style baseline (medium without the z hierarchy, supplied normals; "
+                "its (c) is computed with the same normals)", today);
+  if (r.chain.size() >= 2) {
+    const TuneRow& lo = *r.grid[r.chain.front()].row;
+    const TuneRow& hi = *r.grid[r.chain.back()].row;
+    const double timeSpan = hi.totalMs() / lo.totalMs(), rmseSpan = lo.meanRmse() / hi.meanRmse();
+    double worstTime = INFINITY, worstRmse = INFINITY;
+    for (std::size_t s = 0; s < r.scenes.size(); ++s) {
+      worstTime = std::min(worstTime, hi.scenes[s].ms / lo.scenes[s].ms);
+      worstRmse = std::min(worstRmse, lo.scenes[s].rmse / hi.scenes[s].rmse);
+    }
+    std::printf("\ntargets: %zu presets (>= 5: %s), monotone on every scene by construction; cheapest to most accurate: "
+                "time x%.2f (>= 8: %s; the smallest per scene x%.2f), RMSE vs (c) falls x%.2f (>= 3: %s; the smallest per "
+                "scene x%.2f: %s)\n",
+                r.chain.size(), r.chain.size() >= 5 ? "met" : "NOT met", timeSpan, timeSpan >= 8 ? "met" : "NOT met", worstTime,
+                rmseSpan, rmseSpan >= 3 ? "met" : "NOT met", worstRmse, worstRmse >= 3 ? "met on every scene" : "not on every scene");
+  } else {
+    std::printf("\ntargets: NOT met: no chain of two or more presets steps up on every scene\n");
+  }
+  std::printf("\nErrors are deterministic on a backend (a rerun gives the same figures); times are medians of the runs "
+              "measured when each row was evaluated (a resumed run keeps the times in tune.csv), on a shared machine. "
+              "Each time is divided by medium's, interpolated between the %zu measurements of medium around it (the "
+              "anchors; their totals ranged over %.2fx to %.2fx the first one's: the machine's drift over the run). The "
+              "front and the chain follow those times: points within ~10%% in time can swap places between runs, and a "
+              "step must be slower on every scene.\n",
+              r.anchors, r.driftMin, r.driftMax);
+}
+
+}  // namespace sao::bench
