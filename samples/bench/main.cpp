@@ -255,9 +255,7 @@ int main(int argc, char** argv) {
                   "), D32F reversed-Z [0,1] infinite far";
   }
 
-  const std::vector<std::string> sceneNames =
-      o.quick ? std::vector<std::string>{"crease", "sphere-plane"}
-              : std::vector<std::string>{"sponza-like", "sphere-plane", "crease", "thin", "gears"};
+  const std::vector<std::string> sceneNames = benchScenes(o.quick);
   const std::string mainScene = o.quick ? "sphere-plane" : std::string(scenes::kDefaultScene);
   SceneCache cache(depthPrepass.get(), o.units);
   std::vector<bench::Row> rows;

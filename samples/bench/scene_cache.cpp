@@ -18,6 +18,11 @@ void fail(const std::string& message) {
   std::exit(1);
 }
 
+std::vector<std::string> benchScenes(bool quick) {
+  if (quick) return {"crease", "sphere-plane"};
+  return {"sponza-like", "sphere-plane", "crease", "thin", "gears"};
+}
+
 ObscuranceKey obscuranceKey(const Settings& s) { return {s.radius, s.intensity, s.bias, s.epsilon, s.contrast}; }
 
 Prepared& SceneCache::prepare(const std::string& name, std::uint32_t w, std::uint32_t h) {

@@ -20,6 +20,9 @@ namespace sao::bench {
 // Prints "sao-bench: <message>" and exits with status 1 (the tool stops at its first failure).
 [[noreturn]] void fail(const std::string& message);
 
+// The built-in scenes every section and the tuner measure (--quick: two small ones).
+std::vector<std::string> benchScenes(bool quick);
+
 // The two_layer section's second depth layer: the first surface at least this far (metres, in
 // camera-space z) behind the first (depth peeling, or raytrace::castSecondLayer).
 constexpr double kSecondLayerSeparation = 0.5;

@@ -75,9 +75,7 @@ int runTune(const TuneOptions& o) {
   if (o.depthSource == "raster")
     if (Status s = prepass::createPrepass("auto", depthPrepass); !s) fail(s.message + " (--depth-source raytrace works without one)");
 
-  const std::vector<std::string> sceneNames =
-      o.quick ? std::vector<std::string>{"crease", "sphere-plane"}
-              : std::vector<std::string>{"sponza-like", "sphere-plane", "crease", "thin", "gears"};
+  const std::vector<std::string> sceneNames = benchScenes(o.quick);
   TuneCsv csv;
   const std::string csvPath = (fs::path(o.out) / "tune.csv").string();
   if (Status s = csv.open(csvPath, sceneNames); !s) fail("--tune: " + s.message);
