@@ -39,7 +39,7 @@ generator=()
 if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
 
 # -fno-sanitize=vptr: glslang (Debian) is built without RTTI, the vptr check needs its typeinfo.
-flags="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined,fuzzer-no-link -fno-sanitize=vptr -fno-sanitize-recover=all"
+flags="-O1 -g1 -fno-omit-frame-pointer -fsanitize=address,undefined,fuzzer-no-link -fno-sanitize=vptr -fno-sanitize-recover=all"
 if [ ! -f "$build/CMakeCache.txt" ]; then
   mkdir -p "$build"
   cmake -S . -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=None \
