@@ -8,8 +8,9 @@ namespace sao {
 enum class TimingMethod {
   None,            // timing was not requested
   GpuTimestamps,   // GL timer queries / Vulkan vkCmdWriteTimestamp
-  FinishAndClock,  // glFinish / fence wait around each pass plus a steady clock (when the GPU
-                   // timers return zero, as GL_TIME_ELAPSED does on llvmpipe)
+  FinishAndClock,  // a steady clock around each pass, the GPU idle at both ends: glFinish (when the
+                   // GL timers return zero, as GL_TIME_ELAPSED does on llvmpipe) or, in Vulkan's
+                   // measure(), one fenced submission per pass
   CpuClock,        // the CPU reference: wall time of each pass
 };
 
@@ -21,6 +22,8 @@ struct PassTiming {
 };
 
 struct Timings {
+  // How every pass below was timed: a backend times all passes of one frame the same way. Each
+  // method puts a pass's time on that pass (ctest -R TimingAttribution: llvmpipe, zink, lavapipe).
   TimingMethod method = TimingMethod::None;
   std::vector<PassTiming> passes;
   double totalMilliseconds() const {
