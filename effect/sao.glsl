@@ -24,6 +24,7 @@
 #pragma sao setting float contrast            default=1.25  range=[0.1,8]                   "Contrast exponent k of eq. 1"
 #pragma sao setting float epsilon             default=0.0001 range=[0.000001,0.01] unit=m^2 "Epsilon of eq. 1 added to v.v against division by zero"
 #pragma sao setting int   samples             default=11    range=[1,64]                    "Direct samples s per pixel (spiral taps)"
+#pragma sao setting int   spiral_turns        default=0     range=[0,64]                    "Turns tau of the tap spiral (eq. 6); 0: the built-in choice for the sample count (docs/effect-math.md 2.4)"
 #pragma sao setting int   mip_switch_log2     default=3     range=[0,5]            unit=px  "log2 of q', the tap distance in pixels at which taps move to the next coarser z MIP level (eq. 9)"
 #pragma sao setting bool  use_z_hierarchy     default=true                                  "Read taps from the z MIP hierarchy (false: always level 0, the no-MIP baseline)"
 #pragma sao setting int   blur_radius         default=4     range=[0,8]                     "Bilateral blur taps on each side of the centre (0: no blur)"

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "calibrate.h"
+#include "spiral_section.h"
 #include "measure.h"
 #include "precision_report.h"
 #include "reference_check.h"
@@ -47,15 +48,17 @@ hierarchy and an AlchemyAO-style baseline), resolution (paper Table 3) and the t
 Every run first checks reference (a) against the analytic sphere case (reference_check.csv).
 Writes results.csv, results.json and SVG plots; the traffic section (ao_sample's texel reads through
 a cache model: a paper-like GPU and this CPU) writes traffic.csv; the calibrate section (intensity, contrast,
-bias and epsilon of the medium preset fitted to (a) over a grid) writes calibration.csv.)";
+bias and epsilon of the medium preset fitted to (a) over a grid) writes calibration.csv; the spiral section
+(our former lattice criterion against G3D's table, the shipped one, by error against (c)) writes spiral.csv.)";
 
 // The parts of the run, in the order they run (--sections picks some).
 const std::vector<std::string> kSections = {"presets",    "samples",   "mip_blur", "radius",
                                             "resolution", "two_layer", "precision", "traffic",
-                                            "calibrate"};
+                                            "spiral",     "calibrate"};
 
-// The calibrate section searches a grid (about 20 minutes at 640x360 here): asked for by name only.
-bool inDefaultRun(const std::string& section) { return section != "calibrate"; }
+// The calibrate section searches a grid (about 20 minutes at 640x360 here), the spiral section
+// every differing sample count (about 5): asked for by name only.
+bool inDefaultRun(const std::string& section) { return section != "calibrate" && section != "spiral"; }
 
 std::string sectionNames() {
   std::string names;
@@ -98,7 +101,7 @@ Options parse(int argc, char** argv) {
   cl.text("--out", o.out, "DIR", "output folder (default out/bench)");
   cl.text("--backends", o.backends, "LIST",
           "comma-separated: cpu,gl,vulkan (default: gl,vulkan,cpu, those that start; the others are skipped)");
-  cl.value("--sections", "LIST", "comma-separated parts to run (default: all but calibrate, a grid search of about 20 minutes):\n" + sectionNames(),
+  cl.value("--sections", "LIST", "comma-separated parts to run (default: all but calibrate and spiral, grid searches of about 20 and 5 minutes):\n" + sectionNames(),
            [&o](const std::string& v) { o.sections = parseSections(v); });
   cli::addRuns(cl, o.runs, 1, "measured runs per point, after one warm-up", "default 5");
   cli::addRays(cl, "--rays", o.rays, "reference rays per pixel", "default 256");
@@ -403,6 +406,17 @@ int main(int argc, char** argv) {
         !s)
       fail("calibrate: " + s.message);
 
+  // spiral: the lattice criterion against G3D's table (shipped), by error vs (c) (spiral_section.h).
+  if (want("spiral")) {
+    bench::SpiralOptions so;
+    so.outDir = o.out;
+    so.scenes = sceneNames;
+    so.size = size;
+    so.convergedTaps = o.convergedTaps;
+    if (o.quick) so.sampleCounts = {16};
+    if (Status s = bench::spiralSection(so, first, cache); !s) fail("spiral: " + s.message);
+  }
+
   // traffic: the memory-traffic model on the main scene (traffic_section.h).
   if (want("traffic"))
     if (Status s = bench::trafficSection(o.out, mainScene, o.quick, [&](Extent e) {
@@ -426,6 +440,8 @@ int main(int argc, char** argv) {
     bench::writePrecision(o.out, precision);
     files += ",precision.csv,precision.txt";
   }
+  for (const auto& [section, file] : {std::pair{"spiral", ",spiral.csv"}, {"calibrate", ",calibration.csv"}, {"traffic", ",traffic.csv"}})
+    if (want(section)) files += file;
   std::printf("sao-bench: %zu measurements on %s\nwrote %s/{%s}\n", rows.size(), machine.c_str(),
               fs::absolute(o.out).lexically_normal().string().c_str(), files.c_str());
   for (const auto& [key, text] : legend) std::printf("  %s: %s\n", key.c_str(), text.c_str());

@@ -163,6 +163,10 @@ TEST(Constants, Eq5ProjectionScaleAndSettingScales) {
   EXPECT_FLOAT_EQ(p.inv_samples, 1.0f / 16.0f);
   EXPECT_NEAR(p.epsilon, 1e-4 * 1e4, 1e-6) << "epsilon is an area: scales with units squared";
   EXPECT_EQ(p.spiral_turns, sao::spiralTurns(16));
+  s.spiral_turns = 5;  // an explicit tau replaces the built-in choice
+  ASSERT_TRUE(sao::computeConstants(s, cam, sao::DepthEncoding::Hardware, p).ok());
+  EXPECT_EQ(p.spiral_turns, 5);
+  s.spiral_turns = 0;
   EXPECT_FLOAT_EQ(p.quad_edge_threshold, s.quad_edge_threshold * 100.0f);
   EXPECT_FLOAT_EQ(p.blur_edge_sharpness, s.blur_edge_sharpness / 100.0f);
   EXPECT_EQ(p.ao_size.x, 1280);
@@ -197,8 +201,17 @@ TEST(Spiral, TurnsAreCoprimeAndMatchKnownGoodValues) {
     EXPECT_EQ(std::gcd(t, s), 1) << "s=" << s;
   }
   EXPECT_EQ(sao::spiralTurns(1), 1);
-  // The lattice criterion lands on the values G3D's table uses for these counts (design notes).
+  // G3D's table (the shipped choice): the paper's s = 9 (tau 2, the mirror image of its 7) and 16.
   EXPECT_EQ(sao::spiralTurns(9), 2);
+  EXPECT_EQ(sao::spiralTurns(16), 7);
+  // The lattice criterion: coprime and below s too, and the same lattice as the table at 9, 11, 32.
+  for (int s = 2; s <= 64; ++s) {
+    const int t = sao::latticeSpiralTurns(s);
+    EXPECT_LT(t, s);
+    EXPECT_EQ(std::gcd(t, s), 1) << "s=" << s;
+  }
+  for (int s : {9, 11, 32}) EXPECT_EQ(sao::latticeSpiralTurns(s), sao::spiralTurns(s)) << "s=" << s;
+  EXPECT_EQ(sao::latticeSpiralTurns(16), 3);
 }
 
 // The matrix alone cannot tell [-1,1] from [0,1]: a standard GL matrix read as [0,1] is a valid

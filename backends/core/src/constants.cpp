@@ -84,7 +84,7 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
   p.proj_scale = f(projScale(c));
   p.inv_samples = f(1.0 / s.samples);
   p.samples = s.samples;
-  p.spiral_turns = spiralTurns(s.samples);
+  p.spiral_turns = s.spiral_turns > 0 ? s.spiral_turns : spiralTurns(s.samples);  // 0: the built-in choice
   p.log_q = s.mip_switch_log2;
   p.max_mip = static_cast<std::int32_t>(mipLevelsNeeded(s, c, m)) - 1;
   p.quad_edge_threshold = f(s.quad_edge_threshold * u);
