@@ -410,13 +410,16 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
         << quoted(cpv.variant.stem) << "},\n";
     }
     s << "};\n";
-    s << "static constexpr ResourceId kReads_" << pass.name << "[] = {";
-    for (int r : pass.reads) s << "ResourceId::" << e.resources[r].name << ", ";
-    s << "};\nstatic constexpr ResourceId kWrites_" << pass.name << "[] = {";
-    for (int r : pass.writes) s << "ResourceId::" << e.resources[r].name << ", ";
-    s << "};\nstatic constexpr VariantId kVariants_" << pass.name << "[] = {";
-    for (int v : pass.variants) s << "VariantId::" << e.variants[v].name << ", ";
-    s << "};\n";
+    // Empty lists get no array (a zero-length array is an extension; kPasses names {} instead).
+    auto list = [&](const char* type, const char* prefix, const std::vector<int>& ids, auto name) {
+      if (ids.empty()) return;
+      s << "static constexpr " << type << " " << prefix << pass.name << "[] = {";
+      for (int id : ids) s << type << "::" << name(id) << ", ";
+      s << "};\n";
+    };
+    list("ResourceId", "kReads_", pass.reads, [&](int r) { return e.resources[r].name; });
+    list("ResourceId", "kWrites_", pass.writes, [&](int r) { return e.resources[r].name; });
+    list("VariantId", "kVariants_", pass.variants, [&](int v) { return e.variants[v].name; });
     if (!pass.aliases.empty()) {
       s << "static constexpr ResourceAlias kAliases_" << pass.name << "[] = {";
       for (const auto& a : pass.aliases)
