@@ -32,6 +32,8 @@
 #pragma sao setting float blur_edge_sharpness default=10.0  range=[0,1000]         unit=1/m "Bilateral blur depth weight max(0, 1 - sharpness*|dz|): taps 1/sharpness apart in z get weight 0"
 #pragma sao setting float quad_edge_threshold default=0.02  range=[0,10]           unit=m   "2x2 reconstruction: quad neighbours average only when their z differ by less than this"
 #pragma sao setting int   resolution_divisor  default=1     values=[1,2,4]                  "AO resolution per axis: 1 full, 2 half, 4 quarter. ao_sample, the 2x2 reconstruction and the blurs run at the viewport over it (rounded up) and a depth-aware upsample writes the full-resolution output"
+#pragma sao setting float fade_start          default=0.0   range=[0,100000]       unit=m   "Distance fade: camera distance -z where the AO starts to fade towards 1 (unoccluded); used only when fade_end > 0, and must then be below fade_end"
+#pragma sao setting float fade_end            default=0.0   range=[0,100000]       unit=m   "Distance fade: camera distance -z from which A = 1, linear in distance from fade_start on; 0 = no fade"
 
 // ---------------------------------------------------------------------------------------------
 // Presets (speed against accuracy; sao-bench measures both). Unlisted settings keep their
@@ -56,11 +58,15 @@
 #pragma sao constant int  SAO_DEPTH_MODE_ORTHOGRAPHIC=1 "depth_mode: hardware depth of an orthographic projection, z = d*c1 + c2"
 #pragma sao constant float SAO_UPSAMPLE_Z_SHARPNESS=16.0 "upsample depth weight max(0, 1 - SHARPNESS*|z - z_low|/|z|): low-resolution texels 1/16 (6.25%) apart in relative z get weight 0"
 #pragma sao constant int  SAO_DEPTH_MODE_LINEAR=2 "depth_mode: the input already holds linear camera-space z (R32F), z = d*c1 + c2 (normally c1 = 1, c2 = 0)"
+#pragma sao constant int  SAO_NORMALS_CAMERA_XYZ=0 "normals_encoding: camera-space normal in .xyz (sao::NormalsEncoding::CameraXyz)"
+#pragma sao constant int  SAO_NORMALS_WORLD_XYZ=1 "normals_encoding: world-space normal in .xyz, rotated by view_x/y/z (WorldXyz)"
+#pragma sao constant int  SAO_NORMALS_CAMERA_OCTAHEDRAL=2 "normals_encoding: camera-space normal, signed octahedral map in .xy (CameraOctahedral)"
+#pragma sao constant int  SAO_NORMALS_WORLD_OCTAHEDRAL=3 "normals_encoding: world-space normal, signed octahedral map in .xy, rotated by view_x/y/z (WorldOctahedral)"
 
 // ---------------------------------------------------------------------------------------------
 // Variants
 // ---------------------------------------------------------------------------------------------
-#pragma sao variant NORMALS_SUPPLIED values=[0,1] default=0 select=input:normals "0: face normals rebuilt from csz level 0 (eq. 4, explicit neighbour fetches, smaller-|dz| side per axis); 1: read the normals input (camera space, components in [-1,1], e.g. rgba16f)"
+#pragma sao variant NORMALS_SUPPLIED values=[0,1] default=0 select=input:normals "0: face normals rebuilt from csz level 0 (eq. 4, explicit neighbour fetches, smaller-|dz| side per axis); 1: read the normals input (e.g. rgba16f), encoded as normals_encoding says (camera or world space, xyz or octahedral .xy)"
 #pragma sao variant TWO_LAYER values=[0,1] default=0 select=input:depth2 "1: deep G-buffer, a second depth layer; each tap takes the larger obscurance of the two layers' points"
 #pragma sao variant Z_HIERARCHY values=[0,1] default=1 select=use_z_hierarchy "1: taps read z MIP level clamp(findMSB(int(h)) - log_q, 0, max_mip) (eq. 9-10); 0: always level 0 (the AlchemyAO / no-MIP baseline)"
 #pragma sao variant OUTPUT_FORMAT values=[0,1,2,3] default=0 select=output:ao "The output image's format, an index into ao's formats=: 0 r16f, 1 r8 (A rounded to the nearest 1/255), 2 rgba8, 3 rgba16f (RGBA: A goes into the channels output_mask selects, the others keep their texels)"
@@ -71,7 +77,7 @@
 // ---------------------------------------------------------------------------------------------
 #pragma sao resource depth     kind=input  format=depth "The user's depth: hardware depth (D16/D24/D32F, standard or reversed) or R32F linear camera-space z; AO-buffer size plus the guard band"
 #pragma sao resource depth2    kind=input  format=depth when=TWO_LAYER "Second depth layer (deep G-buffer), same size and convention as depth"
-#pragma sao resource normals   kind=input  format=rgba16f when=NORMALS_SUPPLIED "Camera-space normals in .xyz (components in [-1,1]), same size as depth"
+#pragma sao resource normals   kind=input  format=rgba16f when=NORMALS_SUPPLIED "Normals, same size as depth: camera- or world-space .xyz (components in [-1,1]) or their signed octahedral map in .xy (sao::Camera::normalsEncoding)"
 #pragma sao resource csz       kind=image  format=r32f mips=auto extent=input "Camera-space z MIP chain (z < 0, +0.0 = sky), the depth input's size including the guard band"
 #pragma sao resource csz2      kind=image  format=r32f mips=auto extent=input when=TWO_LAYER "Camera-space z MIP chain of the second layer"
 #pragma sao resource ao_raw    kind=image  format=rg32f divide_by=resolution_divisor "x: visibility A after the 2x2 reconstruction, y: key = camera-space z (+0.0 = sky); the viewport over resolution_divisor"
@@ -95,7 +101,7 @@
 // ---------------------------------------------------------------------------------------------
 // Parameter block: filled by host code from Settings + Camera + extents (docs/effect-math.md,
 // "Parameter block"). Lengths are camera-space (view) units: metres times metersToViewUnits.
-// std140 offsets in brackets; 176 bytes.
+// std140 offsets in brackets; 240 bytes.
 // ---------------------------------------------------------------------------------------------
 #pragma sao block SaoParams
 layout(std140, binding = 0) uniform SaoParams {
@@ -128,6 +134,13 @@ layout(std140, binding = 0) uniform SaoParams {
     ivec2 input_offset;         // [160] texel of depth, depth2 and normals that holds csz texel (0, 0): the region inside a larger texture
     int   ao_divisor;           // [168] resolution_divisor d: reduced AO pixel p stands for viewport pixel min(p*d + d/2, ao_size - 1)
     int   output_mask;          // [172] output channels that receive A, bit 0 = R .. bit 3 = A (15: all); an RGBA output keeps the others
+    float fade_start;           // [176] distance fade start, view units (-z); used only when fade_end > 0
+    float fade_end;             // [180] distance fade end, view units: A = 1 from -z >= fade_end on; 0 = no fade
+    float fade_inv_range;       // [184] 1/(fade_end - fade_start), 1/view units; 0 when there is no fade
+    int   normals_encoding;     // [188] SAO_NORMALS_CAMERA_XYZ / _WORLD_XYZ / _CAMERA_OCTAHEDRAL / _WORLD_OCTAHEDRAL: how the normals input holds a normal
+    vec4  view_x;               // [192] world -> camera rotation R, column 0 (.w = 0): n_camera = R n_world for the world encodings; identity otherwise
+    vec4  view_y;               // [208] column 1
+    vec4  view_z;               // [224] column 2
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -200,7 +213,8 @@ void sao_ao_main()
     if (inside && !sao_is_sky(zc)) {
         vec3 C = sao_position(vec2(c) + 0.5, zc, proj_info, ortho);
 #if NORMALS_SUPPLIED
-        vec3 n = sao_decode_normal(texelFetch(in_normals, c + input_offset, 0).xyz);
+        vec3 n = sao_supplied_normal(texelFetch(in_normals, c + input_offset, 0), normals_encoding, view_x, view_y,
+                                     view_z);
 #else
         vec3 n = sao_reconstruct_normal(in_csz, c, C, proj_info, ortho);
 #endif
@@ -226,7 +240,7 @@ void sao_ao_main()
 #endif
             sum += o;
         }
-        A = sao_visibility(sum, intensity_div_s, contrast);
+        A = sao_fade(sao_visibility(sum, intensity_div_s, contrast), zc, fade_start, fade_end, fade_inv_range);
         key = zc;
     }
 

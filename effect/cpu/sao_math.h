@@ -133,6 +133,31 @@ Vec3<T> decodeNormal(Vec3<T> n) {
   return {T(0), T(0), T(0)};
 }
 
+template <typename T>
+Vec3<T> octahedralDecode(T ex, T ey) {
+  Vec3<T> n{ex, ey, (T(1) - std::abs(ex)) - std::abs(ey)};
+  if (n.z < T(0)) {
+    const T sx = ex >= T(0) ? T(1) : T(-1);
+    const T sy = ey >= T(0) ? T(1) : T(-1);
+    n.x = (T(1) - std::abs(ey)) * sx;
+    n.y = (T(1) - std::abs(ex)) * sy;
+  }
+  return n;
+}
+
+// sao_supplied_normal: t = the texel's (x, y, z) as the shader reads it.
+template <typename T>
+Vec3<T> suppliedNormal(Vec3<T> t, const Block<T>& P) {
+  const int e = P.normals_encoding;
+  const bool octahedral = e == gen::SAO_NORMALS_CAMERA_OCTAHEDRAL || e == gen::SAO_NORMALS_WORLD_OCTAHEDRAL;
+  Vec3<T> v = octahedral ? octahedralDecode(t.x, t.y) : t;
+  if (e == gen::SAO_NORMALS_WORLD_XYZ || e == gen::SAO_NORMALS_WORLD_OCTAHEDRAL)
+    v = {(P.view_x.x * v.x + P.view_y.x * v.y) + P.view_z.x * v.z,
+         (P.view_x.y * v.x + P.view_y.y * v.y) + P.view_z.y * v.z,
+         (P.view_x.z * v.x + P.view_y.z * v.y) + P.view_z.z * v.z};
+  return decodeNormal(v);
+}
+
 // One axis of eq. 4 (sx, sy: the step (1,0) or (0,1)).
 template <typename T>
 Vec3<T> axisTangent(Vec3<T> C, T pcx, T pcy, T sx, T sy, T zm, T zp, const Block<T>& P) {
@@ -241,6 +266,15 @@ template <typename T>
 T visibility(T sum, const Block<T>& P) {
   const T a = glslMax(T(0), T(1) - P.intensity_div_s * sum);
   return (P.contrast == T(1)) ? a : std::pow(a, P.contrast);
+}
+
+template <typename T>
+T fade(T a, T z, const Block<T>& P) {
+  const T d = -z;
+  if (P.fade_end <= T(0) || d <= P.fade_start) return a;
+  if (d >= P.fade_end) return T(1);
+  const T t = (d - P.fade_start) * P.fade_inv_range;
+  return a + (T(1) - a) * t;
 }
 
 template <typename T>

@@ -144,8 +144,9 @@ class AoSampleInvocation {
     if (normalsSupplied_) {
       const FloatImage& ni = *in_.normals;  // texel c + input_offset (inside: checked by the host)
       const auto nx = std::uint32_t(cx + P_.input_offset.x), ny = std::uint32_t(cy + P_.input_offset.y);
-      n = decodeNormal(Vec3<T>{T(quantizeHalf(ni.at(nx, ny, 0))), T(quantizeHalf(ni.at(nx, ny, 1))),
-                               T(quantizeHalf(ni.at(nx, ny, 2)))});
+      n = suppliedNormal(Vec3<T>{T(quantizeHalf(ni.at(nx, ny, 0))), T(quantizeHalf(ni.at(nx, ny, 1))),
+                                 T(quantizeHalf(ni.at(nx, ny, 2)))},
+                         P_);
     } else {
       n = reconstructNormal(z0, cx, cy, C, P_);
     }
@@ -164,7 +165,7 @@ class AoSampleInvocation {
       if (twoLayer_) o = glslMax(o, tapObscurance(C, n, qx, qy, csz2_[std::size_t(m)].at(mx, my), P_));
       sum += o;
     }
-    A = visibility(sum, P_);
+    A = fade(visibility(sum, P_), zc, P_);
     key = zc;
   }
 

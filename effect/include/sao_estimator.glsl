@@ -28,6 +28,21 @@ float sao_visibility(float sum, float intensity_div_s, float contrast)
     return (contrast == 1.0) ? a : pow(a, contrast);
 }
 
+// The distance fade: A unchanged up to -z = fade_start, 1 from -z >= fade_end on (an explicit test,
+// so that rounding of t can never leave it a hair below 1), linear in between: A + (1 - A)*t with
+// t = (-z - fade_start)/(fade_end - fade_start). fade_end = 0 turns it off. At t = 0 the result is
+// A exactly (with or without a fused multiply-add).
+float sao_fade(float a, float z, float fade_start, float fade_end, float fade_inv_range)
+{
+    float d = -z;
+    if (fade_end <= 0.0 || d <= fade_start)
+        return a;
+    if (d >= fade_end)
+        return 1.0;
+    float t = (d - fade_start) * fade_inv_range;
+    return a + (1.0 - a) * t;
+}
+
 // One step of the 2x2 reconstruction: average with the quad neighbour when both are geometry
 // and their z differ by less than threshold; sky never mixes.
 float sao_quad_mix(float a, float z, float a_n, float z_n, float threshold)

@@ -1,4 +1,5 @@
-// sao_normal.glsl -- camera-space normals: decoded from the user's normals texture, or the face
+// sao_normal.glsl -- camera-space normals: decoded from the user's normals texture (camera or world
+// space, xyz or octahedral; normals_encoding), or the face
 // normal of eq. 4 rebuilt from csz level 0 with explicit neighbour fetches (compute shaders have
 // no dFdx/dFdy, and their coarse/fine choice differs between drivers anyway).
 // Library code: depends on sao_depth.glsl and sao_position.glsl. Math: docs/effect-math.md, "Normals".
@@ -12,6 +13,33 @@ vec3 sao_decode_normal(vec3 n)
 {
     float l2 = dot(n, n);
     return (sao_is_finite(l2) && l2 > 0.0) ? n * inversesqrt(l2) : vec3(0.0);
+}
+
+// The signed octahedral map back to a direction (not unit length: sao_decode_normal normalises).
+// e in [-1,1]^2: the upper hemisphere (z >= 0) is the diamond |e.x| + |e.y| <= 1, the lower one
+// is folded out into the four corners, mirrored across the diamond's edges.
+vec3 sao_octahedral_decode(vec2 e)
+{
+    vec3 n = vec3(e.x, e.y, (1.0 - abs(e.x)) - abs(e.y));
+    if (n.z < 0.0) {
+        float sx = e.x >= 0.0 ? 1.0 : -1.0;
+        float sy = e.y >= 0.0 ? 1.0 : -1.0;
+        n.x = (1.0 - abs(e.y)) * sx;
+        n.y = (1.0 - abs(e.x)) * sy;
+    }
+    return n;
+}
+
+// A texel of the normals input as a unit camera-space normal, per normals_encoding: .xyz or the
+// octahedral .xy, in camera space or in world space (then rotated into camera space by R, whose
+// columns are view_x/y/z; R n = (col0*n.x + col1*n.y) + col2*n.z, in that order).
+vec3 sao_supplied_normal(vec4 t, int encoding, vec4 view_x, vec4 view_y, vec4 view_z)
+{
+    bool octahedral = encoding == SAO_NORMALS_CAMERA_OCTAHEDRAL || encoding == SAO_NORMALS_WORLD_OCTAHEDRAL;
+    vec3 v = octahedral ? sao_octahedral_decode(t.xy) : t.xyz;
+    if (encoding == SAO_NORMALS_WORLD_XYZ || encoding == SAO_NORMALS_WORLD_OCTAHEDRAL)
+        v = (view_x.xyz * v.x + view_y.xyz * v.y) + view_z.xyz * v.z;
+    return sao_decode_normal(v);
 }
 
 // One axis of eq. 4: the camera-space step to the neighbour on the side with the smaller |dz|.

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "sao/constants.h"
 #include "sao/presets.h"
 #include "sao/spiral.h"
 #include "sao/settings.h"
@@ -265,4 +266,52 @@ TEST(Settings, AllowedValuesAloneAreAccepted) {
   EXPECT_EQ(sao::clamped(three).resolution_divisor, 1);
   for (const auto& p : sao::gen::kPresets)
     EXPECT_EQ(sao::presetSettings(p.preset).resolution_divisor, 1) << p.name << ": presets stay at full resolution";
+}
+
+// The distance fade is on when fade_end > 0 and then needs fade_start < fade_end; a refusal names
+// both settings and their values, through validate() and --set alike, and changes nothing.
+TEST(Settings, FadeStartMustLieBelowFadeEnd) {
+  const std::string expected = "settings 'fade_start' = 6 and 'fade_end' = 4: the distance fade needs "
+                               "fade_start < fade_end (or fade_end = 0 for no fade)";
+  sao::Settings s;
+  EXPECT_EQ(s.fade_end, 0.0f) << "no fade by default";
+  s.fade_start = 6.0f;
+  s.fade_end = 4.0f;
+  sao::Status st = sao::validate(s);
+  EXPECT_EQ(st.code, StatusCode::InvalidSetting);
+  EXPECT_EQ(st.message, expected);
+  s.fade_end = 6.0f;
+  EXPECT_EQ(sao::validate(s).code, StatusCode::InvalidSetting) << "equal ends are no range";
+  s.fade_end = 0.0f;
+  EXPECT_TRUE(sao::validate(s).ok()) << "fade_start alone is ignored while the fade is off";
+  s.fade_end = 6.5f;
+  EXPECT_TRUE(sao::validate(s).ok());
+
+  // --set in either order: the second assignment is checked against the first.
+  sao::Settings t;
+  ASSERT_TRUE(sao::setFromAssignment(t, "fade_end=4").ok());
+  const sao::Settings before = t;
+  st = sao::setFromAssignment(t, "fade_start=6");
+  EXPECT_EQ(st.message, expected);
+  EXPECT_EQ(t, before) << "a refused assignment changes nothing";
+  sao::Settings u;
+  ASSERT_TRUE(sao::setFromAssignment(u, "fade_start=6").ok());
+  EXPECT_EQ(sao::setFromAssignment(u, "fade_end=4").message, expected);
+  EXPECT_EQ(u.fade_end, 0.0f);
+  EXPECT_TRUE(sao::setFromAssignment(u, "fade_end=8").ok());
+  EXPECT_TRUE(sao::setFromAssignment(u, "fade_end=0").ok()) << "turning the fade off is always allowed";
+
+  // computeConstants refuses as well (every backend fills its block through it).
+  sao::Settings bad;
+  bad.fade_start = 6.0f;
+  bad.fade_end = 4.0f;
+  sao::ParamBlock p;
+  const sao::Camera cam =
+      sao::perspectiveCamera(1.0, 64, 32, 0.1, 100.0, sao::ClipDepth::NegativeOneToOne, false);
+  EXPECT_EQ(sao::computeConstants(bad, cam, sao::DepthEncoding::Hardware, p).message, expected);
+  // clamped() stops fade_start just below fade_end.
+  const sao::Settings c = sao::clamped(bad);
+  EXPECT_TRUE(sao::validate(c).ok());
+  EXPECT_EQ(c.fade_end, 4.0f);
+  EXPECT_EQ(c.fade_start, std::nextafter(4.0f, 0.0f));
 }

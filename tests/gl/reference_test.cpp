@@ -13,6 +13,7 @@
 #include <numbers>
 
 #include "analytic_scenes.h"
+#include "normal_encodings.h"
 #include <ostream>
 
 #include "gl_support.h"
@@ -36,9 +37,10 @@ struct Inputs {
   GlDepth format = GlDepth::D32F;
 };
 
-// One GL render and one CPU float render of the same inputs; compares final and raw AO.
+// One GL render and one CPU float render of the same inputs; compares final and raw AO (and the
+// final AO with `alsoFinal` when given: another CPU result it must agree with).
 void compareWithCpu(gl::Effect& effect, const Camera& cam, const Settings& settings, const Inputs& in,
-                    const std::string& name) {
+                    const std::string& name, const FloatImage* alsoFinal = nullptr) {
   cpu::Result ref;
   cpu::Inputs ci;
   ci.depth = in.depth;
@@ -86,6 +88,13 @@ void compareWithCpu(gl::Effect& effect, const Camera& cam, const Settings& setti
   EXPECT_TRUE(acceptable(r)) << name << " raw AO: max |diff| " << r.maxAbs * 255 << "/255, "
                              << r.fractionWithin * 100 << "% within 2/255, " << r.beyond << " beyond 4/255, "
                              << r.nonFinite << " non-finite; " << noteRaw;
+  if (alsoFinal != nullptr) {
+    const Agreement a = compare(ao, *alsoFinal, 0, kWithin, kNever, name + "_also");
+    std::printf("AGREEMENT %-30s against the camera-space normals' CPU result: final max %.4f/255 p99.9 %.4f/255\n",
+                name.c_str(), a.maxAbs * 255, a.p999 * 255);
+    EXPECT_TRUE(acceptable(a)) << name << " against the camera-space run: max " << a.maxAbs * 255 << "/255, p99.9 "
+                               << a.p999 * 255 << "/255";
+  }
   // The key (camera-space z) of the raw image is computed identically.
   std::size_t keyMismatch = 0;
   for (std::uint32_t y = 0; y < raw.extent.height; ++y)
@@ -132,8 +141,9 @@ INSTANTIATE_TEST_SUITE_P(ScenesFormats, Matrix, ::testing::ValuesIn(matrixCases(
 
 class Variants : public GlTest {
  protected:
+  // fadeEnd > 0: the presets with the distance fade from fadeStart to fadeEnd metres on.
   void check(const Camera& cam, GlDepth format, bool normals, bool twoLayer, const std::string& name,
-             const char* sceneName = "sphere") {
+             const char* sceneName = "sphere", float fadeStart = 0.0f, float fadeEnd = 0.0f) {
     const test::Scene scene = sceneByName(sceneName);
     const DepthImage depth = test::renderDepth(scene, cam, cpuFormat(format));
     const DepthImage depth2 = test::renderDepth(scene, cam, cpuFormat(format), 1);
@@ -142,7 +152,10 @@ class Variants : public GlTest {
     for (Preset p : {Preset::Medium, Preset::Reference}) {
       if (twoLayer && p == Preset::Reference) continue;  // TWO_LAYER needs the z hierarchy
       SCOPED_TRACE(std::to_string(int(p)));
-      compareWithCpu(*effect, cam, presetSettings(p),
+      Settings settings = presetSettings(p);
+      settings.fade_start = fadeStart;
+      settings.fade_end = fadeEnd;
+      compareWithCpu(*effect, cam, settings,
                      {&depth, twoLayer ? &depth2 : nullptr, normals ? &n : nullptr, format},
                      name + (p == Preset::Medium ? "_medium" : "_reference"));
     }
@@ -175,7 +188,54 @@ TEST_F(Variants, FlippedRows) {
   c.flipY = true;
   check(c, GlDepth::D32F, false, false, "flipy", "stairs");
 }
+TEST_F(Variants, DistanceFade) {
+  check(camera(kWidth, kHeight, kGuard), GlDepth::D24, false, false, "fade_3_6", "sphere", 3.0f, 6.0f);
+  check(camera(kWidth, kHeight, kGuard), GlDepth::D32F, true, false, "fade_2_4_normals", "stairs", 2.0f, 4.0f);
+}
 TEST_F(Variants, OddSizeWithoutGuard) { check(camera(97, 61, 0), GlDepth::D24, false, false, "odd_97x61", "rods"); }
+
+// ---- Normals in world space and octahedral (Camera::normalsEncoding): GL agrees with the CPU
+// reference on the encoded input and with the CPU's result for the camera-space normals; a
+// world-space encoding without a view rotation is refused.
+
+TEST_F(GlTest, EncodedNormalsMatchTheCameraSpaceResult) {
+  const Camera base = camera(kWidth, kHeight, kGuard);
+  auto effect = makeEffect();
+  for (const char* sceneName : {"stairs", "sphere"}) {
+    const test::Scene scene = sceneByName(sceneName);
+    const DepthImage depth = test::renderDepth(scene, base, cpuFormat(GlDepth::D32F));
+    const FloatImage n = test::renderNormals(scene, base);
+    cpu::Inputs ci;
+    ci.depth = &depth;
+    ci.normals = &n;
+    cpu::Result cameraSpace;
+    ASSERT_TRUE(cpu::run(presetSettings(Preset::Medium), base, ci, {cpu::Precision::Float, 2}, cameraSpace).ok());
+    for (NormalsEncoding e :
+         {NormalsEncoding::WorldXyz, NormalsEncoding::CameraOctahedral, NormalsEncoding::WorldOctahedral}) {
+      Camera cam = base;
+      cam.normalsEncoding = e;
+      cam.viewRotation = test::viewRotation(0.7, -0.4, 0.25);
+      const FloatImage encoded = test::encodeNormals(n, e, *cam.viewRotation);
+      SCOPED_TRACE(int(e));
+      compareWithCpu(*effect, cam, presetSettings(Preset::Medium), {&depth, nullptr, &encoded, GlDepth::D32F},
+                     std::string("normals_enc") + std::to_string(int(e)) + "_" + sceneName, &cameraSpace.ao);
+    }
+  }
+  Camera noRotation = base;
+  noRotation.normalsEncoding = NormalsEncoding::WorldXyz;
+  const DepthImage depth = test::renderDepth(sceneByName("plane"), base, cpuFormat(GlDepth::D32F));
+  const FloatImage n = test::renderNormals(sceneByName("plane"), base);
+  const GLuint depthTex = uploadDepth(depth, GlDepth::D32F);
+  const GLuint normalTex = uploadNormals(n);
+  gl::Inputs gi;
+  gi.depth = {depthTex, internalFormat(GlDepth::D32F)};
+  gi.normals = normalTex;
+  const Status st = effect->render(noRotation, Settings{}, gi);
+  EXPECT_EQ(st.code, StatusCode::InvalidCamera) << st.message;
+  EXPECT_NE(st.message.find("needs Camera::viewRotation"), std::string::npos) << st.message;
+  deleteTexture(depthTex);
+  deleteTexture(normalTex);
+}
 
 // ---- Orientation: an occluder only in the top-left darkens the top-left, where the CPU does.
 

@@ -80,7 +80,8 @@ TEST(UBSan, ExtremeDepthValuesAndSettings) {
              gen::setSettingValue(lo, gen::SettingId(i), gen::kSettings[i].minValue);
              gen::setSettingValue(hi, gen::SettingId(i), gen::kSettings[i].maxValue);
            }
-           return std::vector<Settings>{Settings{}, lo, hi};
+           // clamped(): fade_start = fade_end (both at their max) breaks their rule; start just below.
+           return std::vector<Settings>{Settings{}, lo, clamped(hi)};
          }())
       runBoth("extreme depth " + std::to_string(v), s, c, d);
   }

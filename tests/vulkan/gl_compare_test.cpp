@@ -115,7 +115,7 @@ class Summary : public ::testing::Environment {
 };
 const auto* const kSummary = ::testing::AddGlobalTestEnvironment(new Summary);
 
-class VkVsGl : public VkTest, public ::testing::WithParamInterface<std::tuple<Preset, DepthFormat>> {
+class WithGl : public VkTest {
  protected:
   void SetUp() override {
     VkTest::SetUp();
@@ -127,6 +127,7 @@ class VkVsGl : public VkTest, public ::testing::WithParamInterface<std::tuple<Pr
     VkTest::TearDown();
   }
 };
+class VkVsGl : public WithGl, public ::testing::WithParamInterface<std::tuple<Preset, DepthFormat>> {};
 
 TEST_P(VkVsGl, SameOutput) {
   const auto [preset, format] = GetParam();
@@ -173,6 +174,37 @@ TEST_P(VkVsGl, SameOutput) {
     worst.pixels += vk.ao.data.size();
   }
   gTable[presetName + "/" + toString(format)] = worst;
+}
+
+// The distance fade on (3 to 6 m, the floors recede through it): the same output as well.
+TEST_F(WithGl, DistanceFadeSameOutput) {
+  Settings settings = presetSettings(Preset::Medium);
+  settings.fade_start = 3.0f;
+  settings.fade_end = 6.0f;
+  const Camera cam = openglCamera(kW, kH, kGuard, 1000.0);
+  std::unique_ptr<gl::Effect> glEffect;
+  ASSERT_TRUE(gl::Effect::create(gl::HeadlessContext::getProcAddress(), glEffect).ok());
+  for (const char* sceneName : {"sphere", "stairs"}) {
+    SCOPED_TRACE(sceneName);
+    const DepthImage depth = test::renderDepth(sceneByName(sceneName), cam, DepthFormat::D32F);
+    const GLuint tex = uploadGlDepth(depth);
+    gl::Inputs gi;
+    gi.depth = {tex, glFormat(DepthFormat::D32F)};
+    const Status rs = glEffect->render(cam, settings, gi);
+    ASSERT_TRUE(rs.ok()) << rs.message;
+    const FloatImage glAo = readGl(glEffect->aoTexture(), 1);
+    const FloatImage glRaw = readGl(glEffect->texture(gen::ResourceId::ao_raw), 2);
+    glDeleteTextures(1, &tex);
+    RunResult vk;
+    const Status vs = runEffect(settings, cam, depth, VkDepth::D32F, vk);
+    ASSERT_TRUE(vs.ok()) << vs.message;
+    EXPECT_EQ(std::memcmp(&vk.params, &glEffect->params(), sizeof(ParamBlock)), 0) << "same parameter block";
+    const Diff f = diff(vk.ao, glAo, 0), r = diff(vk.aoRaw, glRaw, 0);
+    std::printf("fade 3-6 m medium D32F %-7s final max %.4f/255 (%zu pixels differ) | raw max %.4f/255 (%zu differ)\n",
+                sceneName, f.max * 255, f.differing, r.max * 255, r.differing);
+    EXPECT_LE(f.max, kLimit) << "final AO";
+    EXPECT_LE(r.max, kLimit) << "raw AO";
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(

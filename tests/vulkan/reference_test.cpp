@@ -11,6 +11,7 @@
 #include <mutex>
 
 #include "analytic_scenes.h"
+#include "normal_encodings.h"
 #include "sao/cpu/reference.h"
 #include "sao/presets.h"
 #include "vk_support.h"
@@ -150,6 +151,91 @@ TEST_F(VkTest, LinearZAndCombinedFormatsAgree) {
                   f.maxAbs * 255, r.maxAbs * 255);
     }
   }
+}
+
+// The distance fade (fade_start 3 m, fade_end 6 m: the floors recede through it) agrees too, at
+// full and at half resolution.
+TEST_F(VkTest, DistanceFadeAgrees) {
+  const Camera camera = vulkanCamera(kW, kH, kGuard, 100.0);
+  for (const int divisor : {1, 2}) {
+    for (const auto& scene : {test::sphereOnPlaneScene(), test::stairsScene()}) {
+      SCOPED_TRACE(scene.name + " divisor " + std::to_string(divisor));
+      Settings s = presetSettings(Preset::Medium);
+      s.fade_start = 3.0f;
+      s.fade_end = 6.0f;
+      s.resolution_divisor = divisor;
+      const DepthImage depth = test::renderDepth(scene, camera, DepthFormat::D32F);
+      RunResult vk;
+      ASSERT_TRUE(runEffect(s, camera, depth, VkDepth::D32F, vk).ok());
+      cpu::Result ref;
+      cpu::Inputs in;
+      in.depth = &depth;
+      ASSERT_TRUE(cpu::run(s, camera, in, {cpu::Precision::Float, 2}, ref).ok());
+      EXPECT_EQ(std::memcmp(&vk.params, &ref.params, sizeof(ParamBlock)), 0) << "same parameter block";
+      const std::string name = "vk_cpu_fade_d" + std::to_string(divisor) + "_" + scene.name;
+      const Agreement f = compare(vk.ao, ref.ao, 0, kWithin, kNever, name + "_final");
+      const Agreement r = compare(vk.aoRaw, ref.aoRaw, 0, kWithin, kNever, name + "_raw");
+      EXPECT_TRUE(acceptable(f)) << f.maxAbs * 255;
+      EXPECT_TRUE(acceptable(r)) << r.maxAbs * 255;
+      std::printf("fade 3-6 m d=%d %-16s final max %.4f p999 %.4f | raw max %.4f p999 %.4f (1/255)\n", divisor,
+                  scene.name.c_str(), f.maxAbs * 255, f.p999 * 255, r.maxAbs * 255, r.p999 * 255);
+    }
+  }
+}
+
+// Normals in world space and octahedral (Camera::normalsEncoding): Vulkan agrees with the CPU
+// reference on the encoded input and with the CPU's result for the camera-space normals; a
+// world-space encoding without a view rotation is refused.
+TEST_F(VkTest, EncodedNormalsMatchTheCameraSpaceResult) {
+  const Camera base = vulkanCamera(kW, kH, kGuard, 100.0);
+  for (const auto& scene : {test::stairsScene(), test::sphereOnPlaneScene()}) {
+    const DepthImage depth = test::renderDepth(scene, base, DepthFormat::D32F);
+    const FloatImage n = test::renderNormals(scene, base);
+    cpu::Inputs ci;
+    ci.depth = &depth;
+    ci.normals = &n;
+    cpu::Result cameraSpace;
+    ASSERT_TRUE(cpu::run(presetSettings(Preset::Medium), base, ci, {cpu::Precision::Float, 2}, cameraSpace).ok());
+    for (NormalsEncoding e :
+         {NormalsEncoding::WorldXyz, NormalsEncoding::CameraOctahedral, NormalsEncoding::WorldOctahedral}) {
+      SCOPED_TRACE(scene.name + " encoding " + std::to_string(int(e)));
+      Camera cam = base;
+      cam.normalsEncoding = e;
+      cam.viewRotation = test::viewRotation(0.7, -0.4, 0.25);
+      const FloatImage encoded = test::encodeNormals(n, e, *cam.viewRotation);
+      RunResult vk;
+      RunOptions o;
+      o.normals = &encoded;
+      const Status st = runEffect(presetSettings(Preset::Medium), cam, depth, VkDepth::D32F, vk, o);
+      ASSERT_TRUE(st.ok()) << st.message;
+      cpu::Result ref;
+      cpu::Inputs ei = ci;
+      ei.normals = &encoded;
+      ASSERT_TRUE(cpu::run(presetSettings(Preset::Medium), cam, ei, {cpu::Precision::Float, 2}, ref).ok());
+      EXPECT_EQ(std::memcmp(&vk.params, &ref.params, sizeof(ParamBlock)), 0) << "same parameter block";
+      const std::string name = "vk_cpu_normals_enc" + std::to_string(int(e)) + "_" + scene.name;
+      const Agreement f = compare(vk.ao, ref.ao, 0, kWithin, kNever, name + "_final");
+      const Agreement r = compare(vk.aoRaw, ref.aoRaw, 0, kWithin, kNever, name + "_raw");
+      const Agreement c = compare(vk.ao, cameraSpace.ao, 0, kWithin, kNever, name + "_vs_camera_space");
+      EXPECT_TRUE(acceptable(f)) << f.maxAbs * 255;
+      EXPECT_TRUE(acceptable(r)) << r.maxAbs * 255;
+      EXPECT_TRUE(acceptable(c)) << "against the camera-space run: max " << c.maxAbs * 255 << "/255, p99.9 "
+                                 << c.p999 * 255 << "/255";
+      std::printf("normals encoding %d %-16s vs CPU same input: final max %.4f raw max %.4f | vs CPU camera-space "
+                  "normals: final max %.4f p999 %.4f (1/255)\n",
+                  int(e), scene.name.c_str(), f.maxAbs * 255, r.maxAbs * 255, c.maxAbs * 255, c.p999 * 255);
+    }
+  }
+  Camera noRotation = base;
+  noRotation.normalsEncoding = NormalsEncoding::WorldOctahedral;
+  const DepthImage depth = test::renderDepth(test::planeScene(2.0), base, DepthFormat::D32F);
+  const FloatImage n = test::renderNormals(test::planeScene(2.0), base);
+  RunResult vk;
+  RunOptions o;
+  o.normals = &n;
+  const Status st = runEffect(Settings{}, noRotation, depth, VkDepth::D32F, vk, o);
+  EXPECT_EQ(st.code, StatusCode::InvalidCamera) << st.message;
+  EXPECT_NE(st.message.find("needs Camera::viewRotation"), std::string::npos) << st.message;
 }
 
 // ---- Orientation: a box against a wall, only in the camera's top-left. With Vulkan's usual

@@ -1,7 +1,11 @@
 #include "sao/constants.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
 
 #include "sao/spiral.h"
 
@@ -14,6 +18,55 @@ double at(const Camera& c, int row, int col) { return c.projection[col * 4 + row
 double projScale(const Camera& c) { return 0.5 * c.height * std::fabs(at(c, 1, 1)); }
 
 float f(double v) { return static_cast<float>(v); }
+
+static_assert(int(NormalsEncoding::CameraXyz) == gen::SAO_NORMALS_CAMERA_XYZ &&
+              int(NormalsEncoding::WorldXyz) == gen::SAO_NORMALS_WORLD_XYZ &&
+              int(NormalsEncoding::CameraOctahedral) == gen::SAO_NORMALS_CAMERA_OCTAHEDRAL &&
+              int(NormalsEncoding::WorldOctahedral) == gen::SAO_NORMALS_WORLD_OCTAHEDRAL,
+              "NormalsEncoding is the block's normals_encoding");
+
+// 1e-4: far looser than a float-stored rotation's rounding (~1e-7), far tighter than a scaled or
+// sheared matrix.
+constexpr double kRotationTolerance = 1e-4;
+
+// The normals encoding and the view rotation: a world-space encoding needs a rotation, and a
+// rotation that is set must be one (a scale or shear would bend every normal, a mirror would turn
+// the normals away from the viewer).
+Status checkNormalsEncoding(const Camera& c) {
+  auto bad = [](const std::string& what) { return Status::error(StatusCode::InvalidCamera, what); };
+  const int e = int(c.normalsEncoding);
+  if (e < gen::SAO_NORMALS_CAMERA_XYZ || e > gen::SAO_NORMALS_WORLD_OCTAHEDRAL)
+    return bad("Camera::normalsEncoding = " + std::to_string(e) + " is not a NormalsEncoding");
+  const bool world = c.normalsEncoding == NormalsEncoding::WorldXyz || c.normalsEncoding == NormalsEncoding::WorldOctahedral;
+  if (world && !c.viewRotation)
+    return bad(std::string("Camera::normalsEncoding = ") +
+               (c.normalsEncoding == NormalsEncoding::WorldXyz ? "WorldXyz" : "WorldOctahedral") +
+               " (world-space normals) needs Camera::viewRotation, the world -> camera rotation; none is set");
+  if (!c.viewRotation) return Status::success();
+  const auto& r = *c.viewRotation;
+  for (double v : r)
+    if (!std::isfinite(v)) return bad("Camera::viewRotation has a non-finite element");
+  auto col = [&](int i, int k) { return r[std::size_t(i * 3 + k)]; };
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) {
+      const double d = col(i, 0) * col(j, 0) + col(i, 1) * col(j, 1) + col(i, 2) * col(j, 2);
+      const double want = i == j ? 1.0 : 0.0;
+      if (std::fabs(d - want) > kRotationTolerance) {
+        char text[200];
+        if (i == j)
+          std::snprintf(text, sizeof text, "column %d has length %.9g", i, std::sqrt(d));
+        else
+          std::snprintf(text, sizeof text, "columns %d and %d have the dot product %.9g", i, j, d);
+        return bad(std::string("Camera::viewRotation is not a rotation: ") + text +
+                   " (the columns must be orthonormal to 1e-4)");
+      }
+    }
+  const double det = col(0, 0) * (col(1, 1) * col(2, 2) - col(2, 1) * col(1, 2)) -
+                     col(1, 0) * (col(0, 1) * col(2, 2) - col(2, 1) * col(0, 2)) +
+                     col(2, 0) * (col(0, 1) * col(1, 2) - col(1, 1) * col(0, 2));
+  if (det < 0) return bad("Camera::viewRotation is a reflection (determinant -1), not a rotation");
+  return Status::success();
+}
 
 }  // namespace
 
@@ -36,6 +89,7 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
   if (Status st = validate(s); !st) return st;
   DepthModel m;
   if (Status st = analyze(c, m); !st) return st;
+  if (Status st = checkNormalsEncoding(c); !st) return st;
   p = ParamBlock{};
   const bool ortho = c.kind == ProjectionKind::Orthographic;
   const double u = c.metersToViewUnits;
@@ -104,6 +158,21 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
   p.ao_size = {static_cast<std::int32_t>(c.width), static_cast<std::int32_t>(c.height)};
   p.guard = {static_cast<std::int32_t>(c.guardBand), static_cast<std::int32_t>(c.guardBand)};
   p.ao_divisor = s.resolution_divisor;  // validated: 1, 2 or 4
+  // Distance fade (off when fade_end is 0): lengths in view units like the radius; validate()
+  // checked fade_start < fade_end when it is on.
+  if (s.fade_end > 0.0f) {
+    const double start = double(s.fade_start) * u, end = double(s.fade_end) * u;
+    p.fade_start = f(start);
+    p.fade_end = f(end);
+    // At most FLT_MAX, so that t stays finite even for a range of a few denormals.
+    p.fade_inv_range = f(std::min(1.0 / (end - start), double(std::numeric_limits<float>::max())));
+  }
+  p.normals_encoding = int(c.normalsEncoding);
+  // Columns of R (identity without one: the camera encodings never read it).
+  const std::array<double, 9> R = c.viewRotation.value_or(std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1});
+  p.view_x = {f(R[0]), f(R[1]), f(R[2]), 0.0f};
+  p.view_y = {f(R[3]), f(R[4]), f(R[5]), 0.0f};
+  p.view_z = {f(R[6]), f(R[7]), f(R[8]), 0.0f};
   p.output_mask = 15;  // every channel of the output (kAllChannels); backends put the caller's mask here
   return Status::success();
 }

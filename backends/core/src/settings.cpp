@@ -60,6 +60,17 @@ Status checkValue(const SettingInfo& info, double v, bool exactBounds) {
   return Status::success();
 }
 
+// Rules between settings, after each is in its range. The distance fade is on when fade_end > 0
+// and then needs fade_start below it (fade_start is ignored while the fade is off).
+Status checkTogether(const Settings& s) {
+  if (s.fade_end > 0.0f && !(s.fade_start < s.fade_end))
+    return Status::error(StatusCode::InvalidSetting,
+                         "settings 'fade_start' = " + describe(s.fade_start) + " and 'fade_end' = " +
+                             describe(s.fade_end) +
+                             ": the distance fade needs fade_start < fade_end (or fade_end = 0 for no fade)");
+  return Status::success();
+}
+
 }  // namespace
 
 Status validate(const Settings& settings) {
@@ -67,7 +78,7 @@ Status validate(const Settings& settings) {
     Status s = checkValue(gen::kSettings[i], gen::settingValue(settings, static_cast<SettingId>(i)), false);
     if (!s) return s;
   }
-  return Status::success();
+  return checkTogether(settings);
 }
 
 Settings clamped(const Settings& settings) {
@@ -88,6 +99,8 @@ Settings clamped(const Settings& settings) {
     }
     gen::setSettingValue(out, id, v);
   }
+  // fade_start at or beyond fade_end: the largest start below the end (a slider pushed past it stops).
+  if (out.fade_end > 0.0f && !(out.fade_start < out.fade_end)) out.fade_start = std::nextafter(out.fade_end, 0.0f);
   return out;
 }
 
@@ -122,7 +135,12 @@ Status setFromText(Settings& settings, std::string_view name, std::string_view v
                            "setting '" + std::string(name) + "': '" + text + "' is not a number");
   }
   if (Status s = checkValue(info, v, true); !s) return s;
-  gen::setSettingValue(settings, *id, v);
+  // An accepted fade value leaves valid settings: the rule between the two holds for the result.
+  Settings next = settings;
+  gen::setSettingValue(next, *id, v);
+  if (*id == SettingId::fade_start || *id == SettingId::fade_end)
+    if (Status s = checkTogether(next); !s) return s;
+  settings = next;
   return Status::success();
 }
 

@@ -72,7 +72,7 @@ Status checkNormals(const FloatImage& n, const Camera& camera, Extent expected, 
   if (n.channels != 4)
     return Status::error(StatusCode::UnsupportedFormat,
                          "normals have " + std::to_string(n.channels) +
-                             " channels; 4 are expected (rgba16f, camera-space normal in .xyz)");
+                             " channels; 4 are expected (rgba16f: the normal in .xyz, or octahedral in .xy, per Camera::normalsEncoding)");
   if (n.extent.width == 0 || n.extent.height == 0)
     return invalid("normals are empty (" + extentText(n.extent) + "); expected " + expectedText(camera, expected));
   if (!holdsInput(n.extent, region, expected))

@@ -2,6 +2,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <optional>
 
 #include "sao/status.h"
 
@@ -13,6 +14,18 @@ enum class ClipDepth : std::uint8_t {
 };
 
 enum class ProjectionKind : std::uint8_t { Perspective, Orthographic };
+
+// How a supplied normals texture (the normals input, NORMALS_SUPPLIED) holds each normal; the
+// values are the effect's SAO_NORMALS_* constants. Camera space is the one of the projection
+// (right-handed, looking down -z). World-space encodings need Camera::viewRotation. Octahedral:
+// the unit normal's signed octahedral map in .xy, in [-1, 1]^2 (docs/effect-math.md, section 5.2);
+// .zw are ignored (the texture keeps a normals format, e.g. rgba16f).
+enum class NormalsEncoding : std::uint8_t {
+  CameraXyz,         // camera-space normal in .xyz (the default)
+  WorldXyz,          // world-space normal in .xyz
+  CameraOctahedral,  // camera-space normal, octahedral in .xy
+  WorldOctahedral,   // world-space normal, octahedral in .xy
+};
 
 struct Camera {
   // Column-major like GLM: element (row r, column c) is projection[c * 4 + r]. Right-handed view
@@ -36,6 +49,13 @@ struct Camera {
   // analyze() rejects a camera whose matrix, read with the declared conventions, disagrees.
   double expectedNear = 0;
   double expectedFar = 0;
+  // The normals input's encoding (G-buffer convention, like the depth conventions above).
+  NormalsEncoding normalsEncoding = NormalsEncoding::CameraXyz;
+  // The world -> camera rotation (the view matrix's upper-left 3x3, a pure rotation), column-major
+  // like `projection`: element (row r, column c) is viewRotation[c * 3 + r]; n_camera = R n_world.
+  // Required by the world-space encodings; whenever set, computeConstants() refuses anything but a
+  // rotation (columns of unit length and mutually orthogonal to 1e-4, determinant +1, finite).
+  std::optional<std::array<double, 9>> viewRotation;
   bool operator==(const Camera&) const = default;
 };
 

@@ -19,7 +19,8 @@ enum class DepthEncoding : std::uint8_t {
 // - log2 q', 0, ...), r'max = r S' / near (perspective) or r S' (orthographic); 1 without the hierarchy.
 std::uint32_t mipLevelsNeeded(const Settings& settings, const Camera& camera, const DepthModel& model);
 
-// Fills every member of the block (docs/effect-math.md, section 2). Validates settings and camera.
+// Fills every member of the block (docs/effect-math.md, section 2). Validates settings and camera
+// (also its normals encoding: a world-space one needs viewRotation, which must be a rotation).
 Status computeConstants(const Settings& settings, const Camera& camera, DepthEncoding encoding, ParamBlock& out);
 
 }  // namespace sao

@@ -14,11 +14,13 @@ using SettingInfo = gen::SettingInfo;
 using SettingId = gen::SettingId;
 
 // Ok, or InvalidSetting naming the first offending setting, its value and the allowed range (or
-// the allowed values, for a setting declared with values=[...]). A
+// the allowed values, for a setting declared with values=[...]), or naming both settings of a
+// broken rule between them (the distance fade: fade_start < fade_end when fade_end > 0). A
 // float setting holding the float nearest a bound (0.01 is stored as 0.0099999998f) is in range.
 Status validate(const Settings& settings);
 
-// Every value pulled into its range, or to its nearest allowed value (NaN becomes the default).
+// Every value pulled into its range, or to its nearest allowed value (NaN becomes the default);
+// a fade_start at or beyond a non-zero fade_end becomes the largest float below fade_end.
 // For sliders, never implicit.
 Settings clamped(const Settings& settings);
 
@@ -26,7 +28,8 @@ Settings clamped(const Settings& settings);
 std::optional<SettingId> findSetting(std::string_view name);
 
 // Parses `value` for the named setting ("true"/"false"/"1"/"0" for bools) and stores it if it is
-// valid; otherwise returns InvalidSetting and leaves `settings` unchanged. The number as written
+// valid (for fade_start / fade_end: also together with the other one); otherwise returns
+// InvalidSetting and leaves `settings` unchanged. The number as written
 // must lie in [min, max] exactly as the metadata (and every refusal) prints them: each bound is
 // accepted, the next double beyond it is not.
 Status setFromText(Settings& settings, std::string_view name, std::string_view value);

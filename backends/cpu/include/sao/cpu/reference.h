@@ -66,8 +66,9 @@ struct Inputs {
   const DepthImage* depth = nullptr;
   // Optional second depth layer (deep G-buffer, TWO_LAYER): same format as depth, the same region.
   const DepthImage* depth2 = nullptr;
-  // Optional camera-space normals (NORMALS_SUPPLIED): 4 channels (.xyz used, components in
-  // [-1, 1]), the same region as depth. They are read as the rgba16f texture would hold them: each
+  // Optional normals (NORMALS_SUPPLIED): 4 channels, encoded as Camera::normalsEncoding says
+  // (camera-space .xyz by default, components in [-1, 1]; world space and octahedral .xy too),
+  // the same region as depth. They are read as the rgba16f texture would hold them: each
   // component rounded to the nearest binary16 value (ties to even, see quantizeHalf() and
   // halfBits()).
   const FloatImage* normals = nullptr;

@@ -92,7 +92,8 @@ struct Inputs {
   DepthInput depth;
   // Optional second depth layer (deep G-buffer): same format as depth, the same region.
   DepthInput depth2;
-  // Optional camera-space normals in .xyz, components in [-1, 1] (GL_RGBA16F recommended; also
+  // Optional normals, encoded as Camera::normalsEncoding says (camera-space .xyz by default,
+  // components in [-1, 1]; world space and octahedral .xy too) (GL_RGBA16F recommended; also
   // GL_RGBA32F, GL_RGB16F, GL_RGB32F, GL_RGBA8_SNORM, GL_RGBA16_SNORM); the same region as depth.
   std::uint32_t normals = 0;
   // Optional: the inputs hold the camera's image as a region of larger textures (dynamic

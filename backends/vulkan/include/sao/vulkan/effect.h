@@ -106,7 +106,8 @@ struct Config {
   // D32_SFLOAT with VK_EXT_depth_range_unrestricted or a buffer copy) is read as sky, like the
   // clear value, bit for bit as on the other backends; -0.0 is 0. The depth is not scanned.
   VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;
-  // Camera-space normals in .xyz (components in [-1,1]), any sampled colour format, e.g.
+  // Normals as Camera::normalsEncoding says (camera-space .xyz by default, components in [-1,1];
+  // world space and octahedral .xy too), any sampled colour format, e.g.
   // VK_FORMAT_R16G16B16A16_SFLOAT; VK_FORMAT_UNDEFINED: no normals (rebuilt from depth).
   VkFormat normalsFormat = VK_FORMAT_UNDEFINED;
   bool secondLayer = false;  // a second depth layer (deep G-buffer)
