@@ -348,6 +348,45 @@ TEST_F(State, RenderRestoresEverything) {
 
 // ---- The caller's texture parameters do not change the result.
 
+// The caller left the effect's own output bound (texture and image unit) and the next render()
+// reallocates it for a new size: the restore must not bind the deleted name again (a GL error);
+// the units end up as GL leaves a unit whose texture was deleted, empty. Found by the windowed
+// integration example (samples/integration/gl_glfw_window.cpp).
+TEST_F(State, TheEffectsOldOutputLeftBoundSurvivesAResize) {
+  auto effect = makeEffect();
+  ASSERT_TRUE(effect);
+  Settings s = presetSettings(Preset::Low);
+  for (const auto& [w, h] : {std::pair{96u, 64u}, std::pair{128u, 72u}}) {
+    const Camera cam = camera(w, h, 0);
+    const GLuint depthTex = uploadDepth(test::renderDepth(test::sphereOnPlaneScene(), cam, DepthFormat::D24), GlDepth::D24S8);
+    gl::Inputs in;
+    in.depth = {depthTex, gl::kDepth24Stencil8};
+    const GLuint before = effect->aoTexture();
+    ASSERT_TRUE(effect->render(cam, s, in).ok());
+    deleteTexture(depthTex);
+    if (before == 0) {  // first frame: bind its output everywhere the effect binds things
+      for (GLuint u = 0; u < 8; ++u) {
+        glActiveTexture(GL_TEXTURE0 + u);
+        glBindTexture(GL_TEXTURE_2D, effect->aoTexture());
+        glBindImageTexture(u, effect->aoTexture(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R16F);
+      }
+      glActiveTexture(GL_TEXTURE0);
+      continue;
+    }
+    ASSERT_NE(effect->aoTexture(), before) << "the resize did not reallocate the output";
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    for (GLuint u = 0; u < 8; ++u) {
+      GLint texture = -1, image = -1;
+      glActiveTexture(GL_TEXTURE0 + u);
+      glGetIntegerv(GL_TEXTURE_BINDING_2D, &texture);
+      glGetIntegeri_v(GL_IMAGE_BINDING_NAME, u, &image);
+      EXPECT_EQ(texture, 0) << "texture unit " << u;
+      EXPECT_EQ(image, 0) << "image unit " << u;
+    }
+    glActiveTexture(GL_TEXTURE0);
+  }
+}
+
 struct ParamCase {
   const char* name;
   GlDepth format;

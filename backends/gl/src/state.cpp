@@ -34,15 +34,19 @@ StateGuard::StateGuard(const GlFunctions& gl, const std::vector<GLuint>& texture
 
 StateGuard::~StateGuard() {
   const GlFunctions& gl = gl_;
+  // A saved texture the effect deleted meanwhile (its own output, reallocated by a resize, which the
+  // caller had left bound) is restored as 0: what GL itself leaves on a unit whose texture is
+  // deleted, where binding the dead name again would be GL_INVALID_OPERATION / _VALUE.
+  auto alive = [&gl](GLint name) { return name != 0 && gl.IsTexture(GLuint(name)) ? GLuint(name) : 0u; };
   for (std::size_t k = 0; k < imageCount_; ++k) {
     const ImageUnit& i = images_[k];
-    gl.BindImageTexture(i.unit, GLuint(i.name), i.level, i.layered ? GL_TRUE : GL_FALSE, i.layer, GLenum(i.access),
+    gl.BindImageTexture(i.unit, alive(i.name), i.level, i.layered ? GL_TRUE : GL_FALSE, i.layer, GLenum(i.access),
                         GLenum(i.format));
   }
   for (std::size_t k = 0; k < textureCount_; ++k) {
     const TextureUnit& t = textures_[k];
     gl.ActiveTexture(GL_TEXTURE0 + t.unit);
-    gl.BindTexture(GL_TEXTURE_2D, GLuint(t.texture2D));
+    gl.BindTexture(GL_TEXTURE_2D, alive(t.texture2D));
     gl.BindSampler(t.unit, GLuint(t.sampler));
   }
   gl.ActiveTexture(GLenum(activeTexture_));
