@@ -79,6 +79,7 @@ struct Options {
   bool quick = false;
   bool tune = false;            // --tune: the preset tuner (tune.h) instead of the sections
   bool convergedNoise = false;  // --converged-noise
+  bool ortho = false;           // --ortho: every scene's view made orthographic
   std::optional<scenes::LengthUnit> units;  // --units
 };
 
@@ -122,6 +123,10 @@ Options parse(int argc, char** argv) {
   cl.flag("--converged-noise", o.convergedNoise,
           "compute each reference (c) a second time with another seed and report its own noise, the RMS of the "
           "difference / sqrt(2) over the pixels with geometry (doubles the time (c) takes)");
+  cl.flag("--ortho", o.ortho,
+          "orthographic cameras: each scene's view made orthographic, as tall as its field of view spans at the "
+          "target (scenes::toOrthographic: the eye moved back clear of the scene, a finite far plane just beyond it); "
+          "the report's depth note says so");
   cl.flag("--quick", o.quick, "the smoke run: 160x90, 3 runs, 16 rays, two scenes, short sweeps (replaces --size, "
           "--runs and --rays)");
   cl.flag("--tune", o.tune,
@@ -131,7 +136,7 @@ Options parse(int argc, char** argv) {
           "the first of --backends that starts (default gl), --size default 640x360, --runs, --converged-taps, --quick");
   cl.parse(argc, argv);
   if (o.tune) {
-    if (cl.given("--sections") || cl.given("--converged-noise") || cl.given("--rays"))
+    if (cl.given("--sections") || cl.given("--converged-noise") || cl.given("--rays") || cl.given("--ortho"))
       cl.fail("--tune takes --out, --backends, --size, --runs, --converged-taps, --depth-source, --units and --quick only");
     if (!cl.given("--backends")) o.backends = "gl";
     if (!cl.given("--size")) o.size = {640, 360};
@@ -261,6 +266,12 @@ int main(int argc, char** argv) {
   const std::vector<std::string> sceneNames = benchScenes(o.quick);
   const std::string mainScene = o.quick ? "sphere-plane" : std::string(scenes::kDefaultScene);
   SceneCache cache(depthPrepass.get(), o.units);
+  if (o.ortho) {
+    cache.setOrthographic(true);
+    const std::size_t at = depthSource.find("infinite far");
+    if (at != std::string::npos)
+      depthSource.replace(at, 12, "finite far: orthographic views (--ortho), the far plane just beyond each scene");
+  }
   std::vector<bench::Row> rows;
   std::vector<std::string> convergedTimes;  // how long each reference (c) took
   int step = 0;

@@ -33,6 +33,7 @@ Prepared& SceneCache::prepare(const std::string& name, std::uint32_t w, std::uin
   if (Status s = scenes::loadScene(name, p.scene); !s) fail(s.message);
   for (const std::string& warning : p.scene.warnings) std::fprintf(stderr, "sao-bench: warning: %s\n", warning.c_str());
   if (Status s = raytrace::RayScene::create(p.scene.mesh, p.rays); !s) fail(s.message);
+  if (orthographic_) p.scene.views[0] = scenes::toOrthographic(p.scene.views[0], p.scene.mesh);
   p.camera = scenes::makeCamera(p.scene.views[0], w, h, INFINITY, ClipDepth::ZeroToOne, true);
   const scenes::UnitChoice unit = scenes::chooseUnits(p.scene.mesh, p.scene.units, units_);
   if (units_) std::fprintf(stderr, "\nsao-bench: %s: units %s\n", name.c_str(), unit.note.c_str());

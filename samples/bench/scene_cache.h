@@ -68,10 +68,13 @@ class SceneCache {
  public:
   SceneCache(prepass::Prepass* prepass, std::optional<scenes::LengthUnit> units) : prepass_(prepass), units_(units) {}
   Prepared& prepare(const std::string& name, std::uint32_t width, std::uint32_t height);
+  // Every scene's first view made orthographic (scenes::toOrthographic) from then on.
+  void setOrthographic(bool on) { orthographic_ = on; }
 
  private:
   prepass::Prepass* prepass_;
   std::optional<scenes::LengthUnit> units_;
+  bool orthographic_ = false;
   std::map<std::string, Prepared> scenes_;
 };
 

@@ -57,6 +57,21 @@ struct StagedOutputs {
   std::exit(1);
 }
 
+// The projection in words for the summary: its kind, fovy or view height, near and far.
+std::string describeProjection(const Camera& camera) {
+  DepthModel model;
+  if (!analyze(camera, model)) return "?";
+  char text[160];
+  const double p11 = camera.projection[5];
+  if (camera.kind == ProjectionKind::Orthographic)
+    std::snprintf(text, sizeof text, "orthographic, view height %g (view units), near %g, far %g", 2.0 / p11,
+                  model.nearDistance, model.farDistance);
+  else
+    std::snprintf(text, sizeof text, "perspective, fovy %g degrees, near %g, far %g",
+                  2.0 * std::atan(1.0 / p11) * 180.0 / std::numbers::pi, model.nearDistance, model.farDistance);
+  return text;
+}
+
 Camera cameraFromFlags(const Options& o, Extent inputExtent) {
   if (!(o.fovyDegrees > 0 && o.fovyDegrees < 180)) usageError("--fovy must be in (0, 180) degrees");
   // The viewport is the file's size less the guard band: a band as wide as the file leaves none.
@@ -64,13 +79,19 @@ Camera cameraFromFlags(const Options& o, Extent inputExtent) {
     usageError("--guard " + std::to_string(o.guard) + " leaves no viewport inside the " +
                std::to_string(inputExtent.width) + "x" + std::to_string(inputExtent.height) +
                " depth file: at most " + std::to_string((std::min(inputExtent.width, inputExtent.height) - 1) / 2));
-  if (Status s = checkPerspectiveArguments(o.fovyDegrees * std::numbers::pi / 180.0, inputExtent.width - 2 * o.guard,
-                                           inputExtent.height - 2 * o.guard, o.nearDistance, o.far);
-      !s)
+  const std::uint32_t w = inputExtent.width - 2 * o.guard, h = inputExtent.height - 2 * o.guard;
+  const ClipDepth clip = o.clip == "gl" ? ClipDepth::NegativeOneToOne : ClipDepth::ZeroToOne;
+  if (o.orthoHeight) {
+    if (Status s = checkOrthographicArguments(0.5 * *o.orthoHeight, w, h, o.nearDistance, o.far); !s)
+      usageError("--ortho/--near/--far: " + s.message);
+    Camera c = orthographicCamera(0.5 * *o.orthoHeight, w, h, o.nearDistance, o.far, clip, o.reversedZ);
+    c.guardBand = o.guard;
+    return c;
+  }
+  if (Status s = checkPerspectiveArguments(o.fovyDegrees * std::numbers::pi / 180.0, w, h, o.nearDistance, o.far); !s)
     usageError("--fovy/--near/--far: " + s.message);
-  Camera c = perspectiveCamera(o.fovyDegrees * std::numbers::pi / 180.0, inputExtent.width - 2 * o.guard,
-                               inputExtent.height - 2 * o.guard, o.nearDistance, o.far,
-                               o.clip == "gl" ? ClipDepth::NegativeOneToOne : ClipDepth::ZeroToOne, o.reversedZ);
+  Camera c = perspectiveCamera(o.fovyDegrees * std::numbers::pi / 180.0, w, h, o.nearDistance, o.far, clip,
+                               o.reversedZ);
   c.guardBand = o.guard;
   return c;
 }
@@ -201,13 +222,13 @@ int main(int argc, char** argv) {
     if (Status s = readDepthExr(o.depthPath, depth, camera, hasCamera); !s) runError(s);
     progress.end();
     if (hasCamera) {
-      for (const char* flag : {"--fovy", "--near", "--far", "--clip", "--reversed-z", "--guard", "--units"})
+      for (const char* flag : {"--fovy", "--ortho", "--near", "--far", "--clip", "--reversed-z", "--guard", "--units"})
         if (o.has(flag))
           usageError(std::string(flag) + " has no effect: '" + o.depthPath +
                      "' carries its own camera (its sao.* attributes)");
     } else {
       if (!o.cameraFlags)
-        usageError("'" + o.depthPath + "' carries no sao.* camera: give --fovy, --near, --far, --clip (and --reversed-z)");
+        usageError("'" + o.depthPath + "' carries no sao.* camera: give --fovy (or --ortho), --near, --far, --clip (and --reversed-z)");
       camera = cameraFromFlags(o, depth.extent);
       if (o.units) camera.metersToViewUnits = scenes::metersToViewUnits(*o.units);
     }
@@ -238,6 +259,10 @@ int main(int argc, char** argv) {
       v.target = *o.target;
       v.fovyRadians = o.fovyDegrees * std::numbers::pi / 180.0;
       v.nearDistance = o.nearDistance;
+      if (o.orthoHeight) {
+        v.orthoHeight = *o.orthoHeight;
+        scenes::fitOrthoFar(v, scene.mesh);
+      }
       scene.views.push_back(v);
       viewIndex = std::uint32_t(scene.views.size() - 1);
     }
@@ -261,8 +286,11 @@ int main(int argc, char** argv) {
     depth = primary.depth;
     havePrimary = true;
     summary.input = "scene " + o.scene + ", view " + std::to_string(viewIndex) + " '" + view.name + "', " +
-                    toString(depth.format) + " reversed-Z [0,1] infinite far, depth " + how;
+                    toString(depth.format) + " reversed-Z [0,1] " +
+                    (view.orthographic() ? "finite far" : "infinite far") +
+                    ", depth " + how;
   }
+  summary.projection = describeProjection(camera);
   summary.prepareSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (g_staged.depth || !paths.saveDepth.empty())
     if (Status s = writeDepthExr(g_staged.depth ? g_staged.depth->stagedPath() : paths.saveDepth, depth, camera); !s)

@@ -59,16 +59,18 @@ void refuseIneffectiveOptions(const Options& o) {
     if (o.units == scenes::LengthUnit::Auto)
       usageError("--units auto needs a scene's bounding box: a --depth file takes m, cm, mm, in or ft");
   } else {
-    for (const char* flag : {"--fovy", "--near"})
+    for (const char* flag : {"--fovy", "--near", "--ortho"})
       if (o.has(flag) && !o.has("--eye"))
         usageError(std::string(flag) + " has no effect without --eye: a scene's view has its own camera");
     for (const char* flag : {"--far", "--clip", "--reversed-z"})
       if (o.has(flag))
         usageError(std::string(flag) + " is for a --depth file without a camera: a scene's depth is always "
-                   "reversed-Z, [0,1] clip, infinite far");
+                   "reversed-Z, [0,1] clip, infinite far (orthographic: a far plane just beyond the scene)");
     if (o.has("--view") && o.has("--eye"))
       usageError("--view has no effect with --eye/--target, which replace the view");
   }
+  if (o.has("--ortho") && o.has("--fovy"))
+    usageError("--ortho and --fovy exclude each other: an orthographic camera has a view height, not a field of view");
   if (o.has("--reference-rays") && !o.reference) usageError("--reference-rays has no effect without --reference");
 }
 
@@ -114,7 +116,7 @@ Options parseOptions(int argc, char** argv) {
            });
   cli::addDepthFormat(cl, "--depth-format", o.depthFormat,
                       "D16 | D24 | D32F: the precision of a scene's depth (default D32F; always reversed-Z, [0,1] "
-                      "clip, infinite far)");
+                      "clip, infinite far; orthographic views: a far plane just beyond the scene)");
   cl.choice("--depth-source", o.depthSource, oneOf({"raster", "raytrace", "auto"}), "raster, raytrace or auto", "S",
             "how a scene's depth is made: raster (the rasterising prepass of the backend's API; cpu uses GL, else "
             "Vulkan), raytrace (Embree primary rays), auto (default: raster when a prepass starts, else raytrace; the "
@@ -125,6 +127,15 @@ Options parseOptions(int argc, char** argv) {
   cl.value("--fovy", "DEG", "vertical field of view in degrees, in (0, 180) (default 60): with --eye, or for a "
            "--depth file without a camera",
            [&o](const std::string& v) { o.fovyDegrees = cli::parseNumber("--fovy", v); });
+  cl.value("--ortho", "HEIGHT",
+           "an orthographic camera instead of a perspective one, HEIGHT units tall (the full view height, > 0; the "
+           "width follows the aspect): with --eye (scene units; replaces --fovy, far just beyond the scene), or for a "
+           "--depth file without a camera (with a finite --far). A .scene view takes `ortho HEIGHT`",
+           [&o](const std::string& v) {
+             const double h = cli::parseNumber("--ortho", v);
+             if (!(h > 0)) cli::reject("--ortho expects a view height > 0, got '" + v + "'");
+             o.orthoHeight = h;
+           });
   cl.value("--near", "D", "near distance (default 0.1): with --eye, or for a --depth file without a camera",
            [&o](const std::string& v) { o.nearDistance = cli::parseNumber("--near", v); });
   cl.value("--far", "D|inf", "far distance of a --depth file without a camera (default inf)",
@@ -155,7 +166,7 @@ Options parseOptions(int argc, char** argv) {
   cl.parse(argc, argv);
 
   o.given = cl.givenNames();
-  for (const char* flag : {"--fovy", "--near", "--far", "--clip", "--reversed-z"}) o.cameraFlags |= o.has(flag);
+  for (const char* flag : {"--fovy", "--ortho", "--near", "--far", "--clip", "--reversed-z"}) o.cameraFlags |= o.has(flag);
   refuseIneffectiveOptions(o);
   if (o.eye.has_value() != o.target.has_value()) usageError("--eye and --target go together");
   // Refused here, not after the AO was written: a depth file has no geometry to trace.

@@ -24,6 +24,7 @@ struct Options {
   DepthFormat depthFormat = DepthFormat::D32F;
   double fovyDegrees = 60, nearDistance = 0.1, far = INFINITY;
   std::optional<glm::dvec3> eye, target;
+  std::optional<double> orthoHeight;  // --ortho: an orthographic camera this tall (view units), not --fovy
   bool reversedZ = false, cameraFlags = false, reference = false, json = false;
   Settings settings;  // from --preset and --set, validated
   std::uint32_t runs = 1;

@@ -26,7 +26,7 @@ std::string Summary::text() const {
   std::ostringstream s;
   s.setf(std::ios::fixed);
   s.precision(3);
-  s << "backend: " << backend << "\ninput: " << input << "\nsize: " << size.width << "x" << size.height
+  s << "backend: " << backend << "\ninput: " << input << "\nprojection: " << projection << "\nsize: " << size.width << "x" << size.height
     << " (guard band " << guard << ")\nsettings:";
   for (std::size_t i = 0; i < gen::kSettings.size(); ++i) {
     // As the metadata types them: ints and bools as integers, floats to 6 significant digits
@@ -79,6 +79,7 @@ std::string Summary::json() const {
   Json j;
   j["backend"] = backend;
   j["input"] = input;
+  j["projection"] = projection;
   j["width"] = size.width;
   j["height"] = size.height;
   j["guard_band"] = guard;

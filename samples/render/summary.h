@@ -16,6 +16,7 @@ namespace sao::samples {
 
 struct Summary {
   std::string backend, input;
+  std::string projection;  // "perspective, fovy 60 degrees, ..." or "orthographic, view height 4 ..."
   Extent size;
   std::uint32_t guard = 0;
   Settings settings;

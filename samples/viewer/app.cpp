@@ -103,6 +103,7 @@ Status App::start() {
                                                        std::to_string(scene_.views.size() - 1));
   ui_.view = int(options_.view);
   camera_.reset(scene_.views[options_.view]);
+  if (options_.ortho) camera_.orthographic = true;
   return Status::success();
 }
 
@@ -125,6 +126,7 @@ Status App::adoptScene(scenes::Scene&& scene, int index, std::optional<scenes::L
   }
   ui_.scene = index;
   ui_.view = 0;
+  camera_.setSceneBounds(boundsMin_, boundsMax_);
   camera_.reset(scene_.views[0]);
   reference_.setScene(&scene_);
   haveMetrics_ = false;
@@ -140,6 +142,7 @@ void App::handleKeys() {
   if (w.keyPressed(GLFW_KEY_R)) ui_.computeReference = true;
   if (w.keyPressed(GLFW_KEY_H)) ui_.showUi = !ui_.showUi;
   if (w.keyPressed(GLFW_KEY_HOME)) ui_.resetCamera = true;
+  if (w.keyPressed(GLFW_KEY_O)) camera_.orthographic = !camera_.orthographic;
   if (w.keyPressed(GLFW_KEY_TAB))
     camera_.mode = camera_.mode == CameraController::Mode::Orbit ? CameraController::Mode::Fly
                                                                   : CameraController::Mode::Orbit;

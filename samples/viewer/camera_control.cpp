@@ -20,6 +20,9 @@ void CameraController::reset(const scenes::View& view) {
   pitch_ = std::asin(std::clamp(f.y, -1.0, 1.0));
   yaw_ = std::atan2(f.x, -f.z);
   speed = std::clamp(distance_ * 0.5, 0.5, 20.0);
+  // An orthographic view keeps its height: the field of view that spans it at the target distance.
+  orthographic = view.orthographic();
+  if (orthographic) base_.fovyRadians = 2.0 * std::atan(0.5 * view.orthoHeight / distance_);
 }
 
 glm::dvec3 CameraController::forward() const {
@@ -65,13 +68,16 @@ scenes::View CameraController::view() const {
   v.eye = eye_;
   v.target = eye_ + forward() * distance_;
   v.up = {0, 1, 0};
+  v.orthoHeight = 0;
+  // As tall as the field of view spans at the target; the eye pulled back clear of the scene.
+  if (orthographic) return scenes::toOrthographic(v, boundsMin_, boundsMax_);
   return v;
 }
 
 bool CameraController::changedSince(const scenes::View& v) const {
   const scenes::View c = view();
   return glm::length(c.eye - v.eye) > 1e-9 || glm::length(c.target - v.target) > 1e-9 ||
-         c.fovyRadians != v.fovyRadians || c.nearDistance != v.nearDistance;
+         c.fovyRadians != v.fovyRadians || c.nearDistance != v.nearDistance || c.orthoHeight != v.orthoHeight;
 }
 
 }  // namespace sao::viewer

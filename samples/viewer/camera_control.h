@@ -13,7 +13,9 @@ class CameraController {
  public:
   enum class Mode { Orbit, Fly };
 
-  void reset(const scenes::View& view);  // eye, target, field of view and near plane of the view
+  void reset(const scenes::View& view);  // eye, target, field of view (or view height) and near plane
+  // The scene's bounding box: an orthographic view's far plane lies just beyond it.
+  void setSceneBounds(glm::dvec3 lo, glm::dvec3 hi) { boundsMin_ = lo, boundsMax_ = hi; }
   // Applies this frame's input (pass an empty Input and keys=false while the UI has the mouse).
   void update(const Input& input, const Window& window, bool keys, double seconds);
   scenes::View view() const;             // the current view (y up)
@@ -21,12 +23,16 @@ class CameraController {
 
   Mode mode = Mode::Orbit;
   double speed = 2.0;  // metres per second for WASD (Shift: 4x)
+  // Orthographic (O key): the view height is what the field of view spans at the target distance,
+  // so the toggle keeps the framing of the target; the orbit wheel then zooms.
+  bool orthographic = false;
 
  private:
   glm::dvec3 forward() const;
   scenes::View base_;
   glm::dvec3 eye_{0, 1, 5};
   double yaw_ = 0, pitch_ = 0, distance_ = 5;
+  glm::dvec3 boundsMin_{-1}, boundsMax_{1};
 };
 
 }  // namespace sao::viewer

@@ -54,10 +54,19 @@ CompositeParams makeCompositeParams(const FrameDesc& f, bool topDown, bool rawAo
   // Camera-space x of depth texel centre px: -z (ndc.x + P20) / P00 with ndc.x = 2 (px - g) / W - 1.
   const double w = c.width, h = c.height, g = c.guardBand;
   const auto& m = c.projection;
-  p.projInfo[0] = float(-2.0 / (w * m[0]));
-  p.projInfo[1] = float((1.0 - m[8] + 2.0 * g / w) / m[0]);
-  p.projInfo[2] = float(-2.0 / (h * m[5]));
-  p.projInfo[3] = float((1.0 - m[9] + 2.0 * g / h) / m[5]);
+  const bool ortho = c.kind == ProjectionKind::Orthographic;
+  if (ortho) {  // x = (ndc.x - P30) / P00, without z
+    p.projInfo[0] = float(2.0 / (w * m[0]));
+    p.projInfo[1] = float(-(1.0 + m[12] + 2.0 * g / w) / m[0]);
+    p.projInfo[2] = float(2.0 / (h * m[5]));
+    p.projInfo[3] = float(-(1.0 + m[13] + 2.0 * g / h) / m[5]);
+  } else {
+    p.projInfo[0] = float(-2.0 / (w * m[0]));
+    p.projInfo[1] = float((1.0 - m[8] + 2.0 * g / w) / m[0]);
+    p.projInfo[2] = float(-2.0 / (h * m[5]));
+    p.projInfo[3] = float((1.0 - m[9] + 2.0 * g / h) / m[5]);
+  }
+  p.projection[0] = ortho ? 1 : 0;
   p.depthModel[0] = float(model.c0);
   p.depthModel[1] = float(model.c1);
   p.depthModel[2] = float(model.c2);

@@ -12,7 +12,8 @@ sao effect on it every frame and shows the result, with a Dear ImGui panel gener
 effect's settings metadata, live per-pass timings and the plan.)";
 
 constexpr const char* kFooter = R"(Keys: 1-9 view modes, F12 screenshot (sao-viewer-<time>.png), R compute the reference,
-H hide/show the panel, Tab orbit/fly camera, Home reset the camera, Esc quit.
+H hide/show the panel, Tab orbit/fly camera, O perspective/orthographic, Home reset the camera,
+Esc quit.
 Mouse: drag to rotate, right or middle drag to pan, wheel to dolly; WASD, Q/E to move.
 Exit status: 0 on success, 1 when the run fails, 2 for bad options, 3 when the graphics API
 reported errors (GL errors, or Vulkan validation messages with --validation).
@@ -54,6 +55,9 @@ Options parseOptions(int argc, char** argv) {
   cl.text("--screenshot", o.screenshot, "FILE", "with --frames: save the window as PNG after the last frame and exit");
   cl.whole("--frames", o.frames, 0, 1000000000, "N", "render N frames, then exit (0: until the window closes)");
   cl.flag("--hide-ui", o.hideUi, "start with the panel hidden (H toggles)");
+  cl.flag("--ortho", o.ortho,
+          "start with the orthographic camera, as tall as the view's field of view spans at its target (O "
+          "toggles; a .scene view with `ortho H` starts orthographic anyway)");
   cl.flag("--standard-depth", o.standardDepth, "gl: no glClipControl; standard depth, [-1,1] clip, finite far plane");
   cl.flag("--validation", o.validation,
           "vulkan: VK_LAYER_KHRONOS_validation with synchronization validation (messages on stderr; exit status 3 "

@@ -22,6 +22,7 @@ struct Options {
   std::string screenshot;  // with --frames: save after the last frame and exit
   std::uint32_t frames = 0;  // 0: run until the window closes
   bool hideUi = false, standardDepth = false, validation = false, vsync = true;
+  bool ortho = false;  // --ortho: start with the orthographic camera
   Settings settings;  // from --preset and --set, validated
 };
 

@@ -36,7 +36,7 @@ Status Reference::compute(const scenes::View& view, const Camera& camera, double
 
 bool Reference::matches(const scenes::View& view, const Camera& camera, double radius) const {
   return available() && camera.width == width_ && camera.height == height_ && radius == radius_ &&
-         view.eye == view_.eye && view.target == view_.target && view.fovyRadians == view_.fovyRadians &&
+         view.eye == view_.eye && view.target == view_.target && view.fovyRadians == view_.fovyRadians && view.orthoHeight == view_.orthoHeight &&
          view.nearDistance == view_.nearDistance;
 }
 

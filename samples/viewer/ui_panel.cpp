@@ -42,10 +42,12 @@ void sceneSection(UiState& s, const PanelInfo& info, CameraController& camera) {
   camera.mode = mode == 0 ? CameraController::Mode::Orbit : CameraController::Mode::Fly;
   ImGui::SameLine();
   if (ImGui::Button("reset camera")) s.resetCamera = true;
+  ImGui::Checkbox("orthographic (O)", &camera.orthographic);
   float speed = float(camera.speed);
   if (ImGui::SliderFloat("move speed [m/s]", &speed, 0.1f, 50.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
     camera.speed = speed;
-  ImGui::TextDisabled("drag: rotate, right drag: pan, wheel: dolly, WASD QE: move");
+  ImGui::TextDisabled(camera.orthographic ? "drag: rotate, right drag: pan, wheel: zoom (orbit), WASD QE: move"
+                                           : "drag: rotate, right drag: pan, wheel: dolly, WASD QE: move");
 }
 
 void viewSection(UiState& s, const FrameStats* stats) {

@@ -37,8 +37,9 @@ struct CompositeParams {
   float display[4];
   std::int32_t modes[4];
   std::int32_t extra[4];
+  std::int32_t projection[4];  // x: 1 for an orthographic camera (z and x, y linear in the texel)
 };
-static_assert(sizeof(CompositeParams) == 96);
+static_assert(sizeof(CompositeParams) == 112);
 
 // What the viewer shows this frame, independent of the backend.
 struct FrameDesc {

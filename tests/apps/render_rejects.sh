@@ -102,6 +102,7 @@ check 2 "--near has no effect: 'good.exr' carries its own camera" --depth good.e
 check 2 "--far has no effect: 'good.exr' carries its own camera" --depth good.exr --far 100
 check 2 "--clip has no effect: 'good.exr' carries its own camera" --depth good.exr --clip gl
 check 2 "--reversed-z has no effect: 'good.exr' carries its own camera" --depth good.exr --reversed-z
+check 2 "--ortho has no effect: 'good.exr' carries its own camera" --depth good.exr --ortho 3
 check 2 "--guard has no effect: 'good.exr' carries its own camera" --depth good.exr --guard 2
 check 2 "--units has no effect: 'good.exr' carries its own camera" --depth good.exr --units cm
 check 2 "--fovy has no effect without --eye" --scene crease --fovy 40

@@ -57,6 +57,7 @@ void checkSceneText(std::string_view text) {
     SAO_FUZZ_CHECK(finite(v.view.eye) && finite(v.view.target) && v.view.eye != v.view.target);
     SAO_FUZZ_CHECK(v.view.fovyRadians > 0 && v.view.fovyRadians < 3.14159266);
     SAO_FUZZ_CHECK(!v.nearDistance || *v.nearDistance > 0);
+    SAO_FUZZ_CHECK(v.view.orthoHeight == 0 || (v.view.orthoHeight > 0 && std::isfinite(v.view.orthoHeight)));
     const glm::dmat4 m = viewMatrix(v.view);
     for (int c = 0; c < 4; ++c) SAO_FUZZ_CHECK(finite(glm::dvec3(m[c])), "view '%s' has a non-finite matrix", v.view.name.c_str());
   }

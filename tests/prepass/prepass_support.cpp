@@ -118,7 +118,8 @@ double depthQuantum(DepthFormat format, double d) {
   }
 }
 
-double dzdd(const DepthModel& m, double z) { return z * z * std::abs(m.c1 / m.c0); }
+// Orthographic models have c0 = 0 and a linear z = d c1 + c2.
+double dzdd(const DepthModel& m, double z) { return m.c0 == 0 ? std::abs(m.c1) : z * z * std::abs(m.c1 / m.c0); }
 
 double worldScale(const scenes::Mesh& mesh, const scenes::View& view) {
   double r = std::max({std::abs(view.eye.x), std::abs(view.eye.y), std::abs(view.eye.z)});
@@ -130,7 +131,13 @@ double zBound(const Camera& c, const DepthModel& model, DepthFormat format, doub
   constexpr double kUlp = 0x1p-24;
   const double p22 = c.projection[2 * 4 + 2], p23 = c.projection[3 * 4 + 2];
   const bool half = c.clipDepth == ClipDepth::NegativeOneToOne;
-  const double terms = (half ? 0.5 : 1.0) * (std::abs(p22) + std::abs(p23) / std::abs(z)) + (half ? 1.0 : 0.0);
+  // The rounding of ndc.z = (p22 z + p23) / -z, or p22 z + p23 for an orthographic camera. The
+  // rasteriser interpolates the vertices' depths, which may lie anywhere in the depth range: the
+  // perspective terms are ~1 (|p22| ~ 1), and an orthographic depth, linear in z with small
+  // p22 z + p23 near the near plane, gets that 1 added.
+  const double ndcTerms = c.kind == ProjectionKind::Orthographic ? 1.0 + std::abs(p22 * z) + std::abs(p23)
+                                                                 : std::abs(p22) + std::abs(p23) / std::abs(z);
+  const double terms = (half ? 0.5 : 1.0) * ndcTerms + (half ? 1.0 : 0.0);
   const double dd = depthQuantum(format, d) + 8.0 * kUlp * terms;
   return dzdd(model, z) * dd + 1e-6 * std::abs(z) + 8.0 * kUlp * scale;
 }
@@ -145,7 +152,8 @@ glm::dvec3 vec(const FloatImage& img, int x, int y) {
 }
 
 double windowDepth(const Camera& c, double z) {
-  const double ndc = (c.projection[10] * z + c.projection[14]) / (-z);
+  const double ndc = c.kind == ProjectionKind::Orthographic ? c.projection[10] * z + c.projection[14]
+                                                            : (c.projection[10] * z + c.projection[14]) / (-z);
   return c.clipDepth == ClipDepth::ZeroToOne ? ndc : 0.5 * ndc + 0.5;
 }
 

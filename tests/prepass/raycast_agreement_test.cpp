@@ -1,7 +1,9 @@
 // The rasterised prepass against raytrace::castPrimary on the same view and camera: coverage,
 // camera-space z decoded from the stored depth, positions and face normals; three scenes, guard
-// bands 0 and 8, D16 / D24 / D32F, standard and reversed depth with finite and infinite far planes.
+// bands 0 and 8, D16 / D24 / D32F, standard and reversed depth with finite and infinite far planes;
+// and the same for an orthographic view of each scene (parallel primary rays, finite far planes).
 #include <cmath>
+#include <span>
 #include <cstdio>
 #include <ostream>
 
@@ -19,6 +21,14 @@ const Convention kConventions[] = {
     {"reversed [0,1] far 1000", ClipDepth::ZeroToOne, true, 1000.0},
     {"standard [0,1] infinite", ClipDepth::ZeroToOne, false, INFINITY},
 };
+// Orthographic cameras need a finite far plane: "fitted" is INFINITY to makeCamera, which then
+// takes the view's orthoFar (just beyond the scene, scenes::fitOrthoFar).
+const Convention kOrthoConventions[] = {
+    {"ortho reversed [0,1] fitted", ClipDepth::ZeroToOne, true, INFINITY},
+    {"ortho standard [0,1] fitted", ClipDepth::ZeroToOne, false, INFINITY},
+    {"ortho standard [-1,1] far 200", ClipDepth::NegativeOneToOne, false, 200.0},
+    {"ortho reversed [0,1] far 200", ClipDepth::ZeroToOne, true, 200.0},
+};
 constexpr DepthFormat kFormats[] = {DepthFormat::D16, DepthFormat::D24, DepthFormat::D32F};
 
 struct Case {
@@ -30,13 +40,10 @@ void PrintTo(const Case& c, std::ostream* os) { *os << c.backend << " " << c.sce
 
 class RayCastAgreement : public PrepassTest, public ::testing::WithParamInterface<Case> {};
 
-TEST_P(RayCastAgreement, CoverageDepthNormals) {
-  const Case& c = GetParam();
-  prepass::Prepass& prepass = backend(c.backend);
-  const LoadedScene& ls = loadScene(c.scene);
-  const scenes::View& view = ls.scene.views.front();
+void agreeWithRayCast(const Case& c, prepass::Prepass& prepass, const LoadedScene& ls, const scenes::View& view,
+                      std::span<const Convention> conventions) {
   const double scale = worldScale(ls.scene.mesh, view);
-  for (const Convention& conv : kConventions) {
+  for (const Convention& conv : conventions) {
     if (!prepass.supportsClip(conv.clip)) continue;
     const Camera camera = scenes::makeCamera(view, kWidth, kHeight, conv.farDistance, conv.clip, conv.reversed, c.guard);
     raytrace::Primary ray;
@@ -76,6 +83,27 @@ TEST_P(RayCastAgreement, CoverageDepthNormals) {
       EXPECT_EQ(badSky, 0u);
     }
   }
+}
+
+TEST_P(RayCastAgreement, CoverageDepthNormals) {
+  const Case& c = GetParam();
+  const LoadedScene& ls = loadScene(c.scene);
+  agreeWithRayCast(c, backend(c.backend), ls, ls.scene.views.front(), kConventions);
+}
+
+// The scene's view made orthographic (scenes::toOrthographic: the eye pulled back clear of the
+// scene, as the viewer does), half as tall as its field of view spans at the target distance, so
+// that the scene rather than the sky fills the image.
+TEST_P(RayCastAgreement, CoverageDepthNormalsOrthographic) {
+  const Case& c = GetParam();
+  const LoadedScene& ls = loadScene(c.scene);
+  scenes::View view = ls.scene.views.front();
+  view.orthoHeight = glm::length(view.target - view.eye) * std::tan(0.5 * view.fovyRadians);
+  view = scenes::toOrthographic(view, ls.scene.mesh);
+  ASSERT_LT(view.orthoFar, 200.0);  // the explicit far plane of kOrthoConventions lies beyond the scene
+  ASSERT_EQ(scenes::makeCamera(view, kWidth, kHeight, INFINITY, ClipDepth::ZeroToOne, true).kind,
+            ProjectionKind::Orthographic);
+  agreeWithRayCast(c, backend(c.backend), ls, view, kOrthoConventions);
 }
 
 std::vector<Case> cases() {

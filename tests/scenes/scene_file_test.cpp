@@ -99,6 +99,42 @@ TEST(SceneFile, CommittedExampleLoads) {
   EXPECT_FLOAT_EQ(bottom, -0.1f);
 }
 
+// An `ortho H` view: H is the full view height in scene units; the camera is orthographic with a
+// finite far plane just beyond the mesh (fitOrthoFar), and a perspective view of the same file
+// stays perspective.
+TEST(SceneFile, OrthographicViewParsesAndMakesAnOrthographicCamera) {
+  TempDir dir;
+  dir.write("cube.obj", kCubeObj);
+  const std::string path = dir.write("ortho.scene",
+                                     "mesh cube.obj\n"
+                                     "view top eye 0.5 10 0.6 target 0.5 0 0.5 ortho 3 near 0.5\n"
+                                     "view persp eye 0 2 8 target 0 0.5 0\n");
+  Scene scene;
+  const Status s = loadScene(path, scene);
+  ASSERT_TRUE(s) << s.message;
+  ASSERT_EQ(scene.views.size(), 2u);
+  const View& top = scene.views[0];
+  EXPECT_TRUE(top.orthographic());
+  EXPECT_EQ(top.orthoHeight, 3.0);
+  EXPECT_EQ(top.nearDistance, 0.5);
+  // The cube's lowest corner (y = 0) lies ~10 below the eye: the far plane 1% beyond it.
+  EXPECT_GT(top.orthoFar, 10.0);
+  EXPECT_LT(top.orthoFar, 10.2);
+  EXPECT_FALSE(scene.views[1].orthographic());
+
+  const Camera cam = makeCamera(top, 64, 32, INFINITY, ClipDepth::ZeroToOne, true);
+  EXPECT_EQ(cam.kind, ProjectionKind::Orthographic);
+  DepthModel model;
+  ASSERT_TRUE(analyze(cam, model));
+  EXPECT_NEAR(model.nearDistance, 0.5, 1e-9);
+  EXPECT_NEAR(model.farDistance, top.orthoFar, 1e-9);
+  // Orthographic: y_ndc = y / halfHeight, halfHeight = 1.5; the aspect 2 widens x.
+  EXPECT_NEAR(cam.projection[5], 1.0 / 1.5, 1e-12);
+  EXPECT_NEAR(cam.projection[0], 1.0 / 3.0, 1e-12);
+  EXPECT_EQ(makeCamera(scene.views[1], 64, 32, INFINITY, ClipDepth::ZeroToOne, true).kind,
+            ProjectionKind::Perspective);
+}
+
 // ---- syntax: each text with the exact message parseSceneFile gives for it
 
 struct SyntaxCase {
@@ -169,7 +205,15 @@ INSTANTIATE_TEST_SUITE_P(
         SyntaxCase{kM + "view v eye 0 0 1 2 target 0 0 0\n", ":2: eye takes 3 numbers, got 4"},
         SyntaxCase{kM + "view v eye 0 0 1 target\n", ":2: target takes 3 numbers, got 0"},
         SyntaxCase{kM + "view v eye 0 0 1 eye 0 0 2 target 0 0 0\n", ":2: view property 'eye' given twice"},
-        SyntaxCase{kM + kV + " zoom 2\n", ":2: unknown view property 'zoom' (expected eye, target, fovy, near)"},
+        SyntaxCase{kM + kV + " zoom 2\n", ":2: unknown view property 'zoom' (expected eye, target, fovy, ortho, near)"},
+        SyntaxCase{kM + kV + " ortho 0\n", ":2: ortho 0: the view height must be greater than 0"},
+        SyntaxCase{kM + kV + " ortho -2\n", ":2: ortho -2: the view height must be greater than 0"},
+        SyntaxCase{kM + kV + " ortho\n", ":2: ortho takes 1 number, got 0"},
+        SyntaxCase{kM + kV + " ortho inf\n", ":2: 'inf' is not a finite number"},
+        SyntaxCase{kM + kV + " ortho 2 ortho 3\n", ":2: view property 'ortho' given twice"},
+        SyntaxCase{kM + kV + " ortho 2 fovy 40\n",
+                   ":2: view 'v' has both fovy and ortho (a perspective or an orthographic view: pick one)"},
+        SyntaxCase{kM + "transform ortho 2\n", ":2: unknown transform 'ortho' (expected scale, rotate-y, translate or matrix)"},
         SyntaxCase{kM + kV + " fovy 180\n", ":2: fovy 180 is outside (0, 180) degrees"},
         SyntaxCase{kM + kV + " fovy 0\n", ":2: fovy 0 is outside (0, 180) degrees"},
         SyntaxCase{kM + kV + " fovy 30 fovy 40\n", ":2: view property 'fovy' given twice"},

@@ -98,15 +98,28 @@ using cpu::parallelFor;
 
 double P(const Camera& c, int row, int col) { return c.projection[col * 4 + row]; }
 
-// Camera-space direction (z = -1) through the centre of depth-input texel (x, y).
-glm::dvec3 cameraRay(const Camera& c, std::uint32_t x, std::uint32_t y) {
+// The camera-space primary ray through the centre of depth-input texel (x, y), with direction
+// z = -1 (so the ray parameter t is -z): perspective rays leave the eye; orthographic rays are
+// parallel, from the point of the plane z = 0 (the view plane through the eye) under the texel.
+struct CameraRay {
+  glm::dvec3 origin{0, 0, 0};
+  glm::dvec3 direction{0, 0, -1};
+};
+
+CameraRay cameraRay(const Camera& c, std::uint32_t x, std::uint32_t y) {
   const double ndcX = 2.0 * (double(x) - c.guardBand + 0.5) / c.width - 1.0;
   const double ndcY = (c.flipY ? -1.0 : 1.0) * (2.0 * (double(y) - c.guardBand + 0.5) / c.height - 1.0);
-  return {(ndcX + P(c, 0, 2)) / P(c, 0, 0), (ndcY + P(c, 1, 2)) / P(c, 1, 1), -1.0};
+  CameraRay r;
+  if (c.kind == ProjectionKind::Orthographic)  // ndc = P00 x + P03 (no division by -z)
+    r.origin = {(ndcX - P(c, 0, 3)) / P(c, 0, 0), (ndcY - P(c, 1, 3)) / P(c, 1, 1), 0.0};
+  else
+    r.direction = {(ndcX + P(c, 0, 2)) / P(c, 0, 0), (ndcY + P(c, 1, 2)) / P(c, 1, 1), -1.0};
+  return r;
 }
 
 double windowDepth(const Camera& c, double z) {
-  const double ndc = (P(c, 2, 2) * z + P(c, 2, 3)) / (-z);
+  const double ndc = c.kind == ProjectionKind::Orthographic ? P(c, 2, 2) * z + P(c, 2, 3)
+                                                            : (P(c, 2, 2) * z + P(c, 2, 3)) / (-z);
   return c.clipDepth == ClipDepth::ZeroToOne ? ndc : 0.5 * ndc + 0.5;
 }
 
@@ -118,12 +131,9 @@ Status castLayer(const RayScene& scene, const scenes::View& view, const Camera& 
                  double minSeparation, Primary& out, unsigned threads) {
   DepthModel model;
   if (Status s = analyze(camera, model); !s) return s;
-  if (camera.kind != ProjectionKind::Perspective)
-    return Status::error(StatusCode::InvalidCamera, "castPrimary and castSecondLayer support perspective cameras only");
   const Extent e{camera.width + 2 * camera.guardBand, camera.height + 2 * camera.guardBand};
   const glm::dmat4 toCamera = scenes::viewMatrix(view);
   const glm::dmat4 toWorld = glm::inverse(toCamera);
-  const glm::dvec3 eye = view.eye;
   const double clearDepth = camera.reversedZ ? 0.0 : 1.0;
   const double farT = std::isinf(model.farDistance) ? std::numeric_limits<float>::max() : model.farDistance;
 
@@ -135,20 +145,21 @@ Status castLayer(const RayScene& scene, const scenes::View& view, const Camera& 
   out.normal = FloatImage(e, 4, 0.0f);
   parallelFor(e.height, threads, [&](std::uint32_t y) {
     for (std::uint32_t x = 0; x < e.width; ++x) {
-      const glm::dvec3 dirCam = cameraRay(camera, x, y);
-      const glm::dvec3 dirWorld = glm::dvec3(toWorld * glm::dvec4(dirCam, 0.0));
-      auto hit = scene.intersect(eye, dirWorld, farT);
+      const CameraRay ray = cameraRay(camera, x, y);
+      const glm::dvec3 originWorld = glm::dvec3(toWorld * glm::dvec4(ray.origin, 1.0));
+      const glm::dvec3 dirWorld = glm::dvec3(toWorld * glm::dvec4(ray.direction, 0.0));
+      auto hit = scene.intersect(originWorld, dirWorld, farT);
       // Depth clipping as a rasteriser would: nothing nearer than the near plane or beyond the far.
       if (!hit.hit || hit.t < model.nearDistance) continue;
       if (minSeparation >= 0) {
         const double tNear = hit.t + minSeparation;
         if (!(tNear < farT)) continue;
-        hit = scene.intersect(eye, dirWorld, farT, tNear);
+        hit = scene.intersect(originWorld, dirWorld, farT, tNear);
         if (!hit.hit) continue;
       }
-      const glm::dvec3 pc = dirCam * hit.t;
+      const glm::dvec3 pc = ray.origin + ray.direction * hit.t;
       glm::dvec3 nc = glm::normalize(glm::dvec3(toCamera * glm::dvec4(hit.normal, 0.0)));
-      if (glm::dot(nc, pc) > 0) nc = -nc;  // face the camera
+      if (glm::dot(nc, ray.direction) > 0) nc = -nc;  // face the camera
       const std::size_t i = std::size_t(y) * e.width + x;
       out.depth.texels[i] = format == DepthFormat::LinearZ ? encodeDepth(format, pc.z) : encodeDepth(format, windowDepth(camera, pc.z));
       out.position.at(x, y, 0) = float(pc.x);

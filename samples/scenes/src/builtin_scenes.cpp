@@ -1,4 +1,6 @@
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "sao/scenes/scene.h"
@@ -147,9 +149,68 @@ Camera makeCamera(const View& v, std::uint32_t width, std::uint32_t height, doub
                   bool reversedZ, std::uint32_t guardBand) {
   // The projection covers the viewport; the guard band extends the frustum by guardBand pixels on
   // each side, so the depth input is rendered with a wider frustum of the same pixel scale.
-  Camera c = perspectiveCamera(v.fovyRadians, width, height, v.nearDistance, farDistance, clip, reversedZ);
+  Camera c;
+  if (v.orthographic()) {
+    const double fallback = 1000.0 * std::max(glm::length(v.target - v.eye), v.nearDistance);
+    const double far = std::isfinite(farDistance) ? farDistance : v.orthoFar > v.nearDistance ? v.orthoFar : fallback;
+    c = orthographicCamera(0.5 * v.orthoHeight, width, height, v.nearDistance, far, clip, reversedZ);
+  } else {
+    c = perspectiveCamera(v.fovyRadians, width, height, v.nearDistance, farDistance, clip, reversedZ);
+  }
   c.guardBand = guardBand;
   return c;
+}
+
+namespace {
+
+void meshBounds(const Mesh& mesh, glm::dvec3 fallback, glm::dvec3& lo, glm::dvec3& hi) {
+  lo = glm::dvec3(std::numeric_limits<double>::max());
+  hi = -lo;
+  for (const glm::vec3& p : mesh.positions) {
+    lo = glm::min(lo, glm::dvec3(p));
+    hi = glm::max(hi, glm::dvec3(p));
+  }
+  if (mesh.positions.empty()) lo = hi = fallback;
+}
+
+}  // namespace
+
+void fitOrthoFar(View& v, const Mesh& mesh) {
+  glm::dvec3 lo, hi;
+  meshBounds(mesh, v.target, lo, hi);
+  fitOrthoFar(v, lo, hi);
+}
+
+View toOrthographic(View v, glm::dvec3 lo, glm::dvec3 hi) {
+  const glm::dvec3 d = v.target - v.eye;
+  const double distance = glm::length(d);
+  const glm::dvec3 f = d / distance;
+  if (!v.orthographic()) v.orthoHeight = 2.0 * distance * std::tan(0.5 * v.fovyRadians);
+  double back = 0;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::dvec3 q((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z);
+    back = std::max(back, 2.0 * v.nearDistance - glm::dot(q - v.eye, f));
+  }
+  v.eye -= f * back;
+  fitOrthoFar(v, lo, hi);
+  return v;
+}
+
+View toOrthographic(const View& v, const Mesh& mesh) {
+  glm::dvec3 lo, hi;
+  meshBounds(mesh, v.target, lo, hi);
+  return toOrthographic(v, lo, hi);
+}
+
+void fitOrthoFar(View& v, glm::dvec3 lo, glm::dvec3 hi) {
+  const glm::dvec3 forward = glm::normalize(v.target - v.eye);
+  double deepest = 0;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::dvec3 q((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z);
+    deepest = std::max(deepest, glm::dot(q - v.eye, forward));
+  }
+  // 1% beyond the mesh: nothing of it is clipped by the far plane.
+  v.orthoFar = std::max(2.0 * v.nearDistance, 1.01 * deepest);
 }
 
 }  // namespace sao::scenes

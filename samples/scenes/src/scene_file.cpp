@@ -79,7 +79,7 @@ Status parseNumber(const std::string& token, const Where& where, double& out) {
 
 // The words that start a transform operation or a view property.
 bool isKeyword(std::string_view t) {
-  for (std::string_view k : {"scale", "rotate-y", "translate", "matrix", "eye", "target", "fovy", "near"})
+  for (std::string_view k : {"scale", "rotate-y", "translate", "matrix", "eye", "target", "fovy", "near", "ortho"})
     if (t == k) return true;
   return false;
 }
@@ -127,7 +127,7 @@ Status parseTransform(const std::vector<std::string>& tokens, const Where& where
   std::size_t i = 1;
   while (i < tokens.size()) {
     const std::string& op = tokens[i];
-    if (!isKeyword(op) || op == "eye" || op == "target" || op == "fovy" || op == "near")
+    if (!isKeyword(op) || op == "eye" || op == "target" || op == "fovy" || op == "near" || op == "ortho")
       return where.error("unknown transform " + shown(op) + " (expected scale, rotate-y, translate or matrix)");
     double a[16] = {};
     std::size_t n = 0;
@@ -162,7 +162,7 @@ Status parseTransform(const std::vector<std::string>& tokens, const Where& where
   return Status::success();
 }
 
-// view NAME eye X Y Z target X Y Z [fovy DEG] [near M]
+// view NAME eye X Y Z target X Y Z [fovy DEG | ortho HEIGHT] [near M]
 Status parseView(const std::vector<std::string>& tokens, const Where& where, SceneFileView& out) {
   if (tokens.size() < 2) return where.error("view needs a name");
   SceneFileView v;
@@ -170,16 +170,17 @@ Status parseView(const std::vector<std::string>& tokens, const Where& where, Sce
   v.view.up = {0, 1, 0};
   v.view.fovyRadians = std::numbers::pi / 3;
   v.line = where.line;
-  bool haveEye = false, haveTarget = false, haveFovy = false;
+  bool haveEye = false, haveTarget = false, haveFovy = false, haveOrtho = false;
   std::size_t i = 2;
   while (i < tokens.size()) {
     const std::string& key = tokens[i];
     const bool triple = key == "eye" || key == "target";
-    if (!triple && key != "fovy" && key != "near")
-      return where.error("unknown view property " + shown(key) + " (expected eye, target, fovy, near)");
+    if (!triple && key != "fovy" && key != "near" && key != "ortho")
+      return where.error("unknown view property " + shown(key) + " (expected eye, target, fovy, ortho, near)");
     const bool repeated = key == "eye"      ? haveEye
                           : key == "target" ? haveTarget
                           : key == "fovy"   ? haveFovy
+                          : key == "ortho"  ? haveOrtho
                                             : v.nearDistance.has_value();
     if (repeated) return where.error("view property '" + key + "' given twice");
     double a[3] = {};
@@ -192,12 +193,19 @@ Status parseView(const std::vector<std::string>& tokens, const Where& where, Sce
       if (!(a[0] > 0 && a[0] < 180)) return where.error("fovy " + formatNumber(a[0]) + " is outside (0, 180) degrees");
       v.view.fovyRadians = a[0] * std::numbers::pi / 180.0;
       haveFovy = true;
+    } else if (key == "ortho") {
+      // The full height of the view in scene units; the width follows the image's aspect.
+      if (!(a[0] > 0)) return where.error("ortho " + formatNumber(a[0]) + ": the view height must be greater than 0");
+      v.view.orthoHeight = a[0];
+      haveOrtho = true;
     } else {
       if (!(a[0] > 0)) return where.error("near " + formatNumber(a[0]) + " must be greater than 0");
       v.nearDistance = a[0];
     }
     i += n + 1;
   }
+  if (haveFovy && haveOrtho)
+    return where.error("view " + shown(v.view.name) + " has both fovy and ortho (a perspective or an orthographic view: pick one)");
   if (!haveEye) return where.error("view " + shown(v.view.name) + " has no eye");
   if (!haveTarget) return where.error("view " + shown(v.view.name) + " has no target");
   const glm::dvec3 d = v.view.target - v.view.eye;
@@ -306,6 +314,7 @@ Status loadSceneFile(const std::string& path, Scene& out) {
   for (const SceneFileView& v : file.views) {
     scene.views.push_back(v.view);
     scene.views.back().nearDistance = v.nearDistance.value_or(near);
+    if (scene.views.back().orthographic()) fitOrthoFar(scene.views.back(), scene.mesh);
   }
   if (scene.views.empty()) scene.views.push_back(defaultView(scene.mesh));
   scene.units = file.units;

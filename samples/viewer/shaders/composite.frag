@@ -4,12 +4,13 @@
 // the rebuilt normals, |AO - reference| as a heat map, or the AO at full | reduced resolution. Texel rows of every input are in ndc-y
 // order (row 0 at ndc y = -1); modes.z flips the window's y when the framebuffer is top-down.
 layout(std140, binding = 0) uniform CompositeParams {
-  vec4 projInfo;    // camera-space x = z * (projInfo.x * px + projInfo.y), y = z * (projInfo.z * py + projInfo.w)
+  vec4 projInfo;    // camera-space x = z * (projInfo.x * px + projInfo.y), y = z * (projInfo.z * py + projInfo.w); no z when orthographic
   vec4 depthModel;  // z = c0 / (d * c1 + c2); w: the stored depth of the far plane (sky)
   vec4 worldUp;     // world up in camera space
   vec4 display;     // near and far distance of the csz view, error of full heat, split x in pixels
   ivec4 modes;      // view mode, csz level, flip y, reference present
   ivec4 extra;      // guard band, viewport height, raw AO present, csz levels
+  ivec4 projection; // x: 1 orthographic (z = d * c1 + c2, and x, y without the factor z)
 } P;
 layout(binding = 1) uniform sampler2D depthTex;
 layout(binding = 2) uniform sampler2D aoTex;
@@ -28,9 +29,11 @@ bool finite3(vec3 v) { return all(lessThan(abs(v), vec3(1e30))); }
 vec3 positionAt(ivec2 t) {
   t = clamp(t, ivec2(0), textureSize(depthTex, 0) - 1);
   float d = texelFetch(depthTex, t, 0).r;
-  float z = P.depthModel.x / (d * P.depthModel.y + P.depthModel.z);
+  bool ortho = P.projection.x != 0;
+  float z = ortho ? d * P.depthModel.y + P.depthModel.z : P.depthModel.x / (d * P.depthModel.y + P.depthModel.z);
   vec2 px = vec2(t) + 0.5;
-  return vec3(z * (P.projInfo.x * px.x + P.projInfo.y), z * (P.projInfo.z * px.y + P.projInfo.w), z);
+  float k = ortho ? 1.0 : z;
+  return vec3(k * (P.projInfo.x * px.x + P.projInfo.y), k * (P.projInfo.z * px.y + P.projInfo.w), z);
 }
 
 // The neighbour difference with the smaller |dz| (skips depth edges), ignoring sky neighbours.
@@ -47,7 +50,7 @@ vec3 normalAt(ivec2 t) {
   vec3 n = cross(dx, dy);
   if (!(dot(n, n) > 0.0) || !finite3(n)) return vec3(0.0, 0.0, 1.0);
   n = normalize(n);
-  return dot(n, c) > 0.0 ? -n : n;
+  return dot(n, P.projection.x != 0 ? vec3(0.0, 0.0, -1.0) : c) > 0.0 ? -n : n;
 }
 
 vec3 toSrgb(vec3 c) {

@@ -45,7 +45,8 @@ struct Primary {
   FloatImage normal;       // 4 channels: camera-space geometric normal facing the camera, 0
 };
 
-// Casts the primary rays of `camera` (perspective) for `view`. Rows: row 0 at ndc y = -1.
+// Casts the primary rays of `camera` for `view`: from the eye (perspective) or parallel, from the
+// view plane through the eye (orthographic). Rows: row 0 at ndc y = -1.
 Status castPrimary(const RayScene& scene, const scenes::View& view, const Camera& camera, DepthFormat format,
                    Primary& out, unsigned threads = 0);
 

@@ -22,6 +22,13 @@ struct View {
   glm::dvec3 up{0, 1, 0};
   double fovyRadians = 1.0;
   double nearDistance = 0.1;
+  // Orthographic when > 0: the full height of the view in scene units (fovyRadians is then
+  // unused; the width follows the aspect). Primary rays are parallel, from the view plane.
+  double orthoHeight = 0;
+  // The far plane of an orthographic view, which needs a finite one (fitOrthoFar sets it just
+  // beyond the mesh); 0: makeCamera falls back to 1000 x the eye-target distance.
+  double orthoFar = 0;
+  bool orthographic() const { return orthoHeight > 0; }
 };
 
 struct Scene {
@@ -56,8 +63,23 @@ Status loadScene(std::string_view nameOrPath, Scene& out);
 glm::dmat4 viewMatrix(const View& view);
 
 // The camera for a view at a size, with the depth conventions given (a finite far plane when
-// farDistance is finite).
+// farDistance is finite). An orthographic view always gets a finite far plane: farDistance when
+// finite, else view.orthoFar (or its fallback).
 Camera makeCamera(const View& view, std::uint32_t width, std::uint32_t height, double farDistance, ClipDepth clip,
                   bool reversedZ, std::uint32_t guardBand = 0);
+
+// Sets view.orthoFar to just beyond the farthest corner of the mesh's bounding box along the view
+// direction (at least twice the near distance), so that an orthographic depth keeps its linear
+// precision for the scene. loadScene does this for every orthographic view it returns.
+void fitOrthoFar(View& view, const Mesh& mesh);
+// The same from the mesh's bounding box (lo, hi), for callers that keep it.
+void fitOrthoFar(View& view, glm::dvec3 lo, glm::dvec3 hi);
+
+// A perspective view made orthographic with the same framing at its target: as tall as its field
+// of view spans at the target distance (an orthographic view keeps its height). The rays being
+// parallel, the eye only decides what the near plane cuts: it moves back along the view direction
+// until the bounding box (lo, hi) lies beyond the near plane; the far plane is fitted to it.
+View toOrthographic(View view, glm::dvec3 lo, glm::dvec3 hi);
+View toOrthographic(const View& view, const Mesh& mesh);
 
 }  // namespace sao::scenes
