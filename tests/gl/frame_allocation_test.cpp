@@ -1,7 +1,7 @@
 // render() allocates nothing per frame: 100 frames with one configuration (effect-owned output,
 // the caller's output, timed frames), counting every operator new called from libsao_gl.so's code
 // (tests/common/library_allocations.h). A changed setting makes the next render() plan again and
-// allocate, which shows the counter sees the library.
+// allocate, which shows the counter sees the library. Supplied normals (checked every frame) too.
 #include <epoxy/gl.h>
 
 #include <cstdio>
@@ -32,6 +32,7 @@ class FrameAllocations : public GlTest {
     gl::Inputs in;
     in.depth = {texture, gl::kDepthComponent24};
     in.output = output;
+    in.normals = normals;
     return in;
   }
   // Renders once (the configuration's first frame), then counts the library allocations of kFrames.
@@ -53,6 +54,7 @@ class FrameAllocations : public GlTest {
   Camera cam;
   DepthImage depth;
   GLuint texture = 0;
+  GLuint normals = 0;  // passed by inputs() when set
 };
 
 TEST_F(FrameAllocations, RenderAllocatesNothingPerFrame) {
@@ -79,6 +81,23 @@ TEST_F(FrameAllocations, RenderIntoTheCallersOutputAllocatesNothing) {
   const GLuint output = makeTexture(GL_R16F, {cam.width, cam.height});
   EXPECT_EQ(steadyFrames(*e, Settings{}, output, false), 0);
   deleteTexture(output);
+}
+
+// Supplied normals are checked on every render() (their format against the camera's encoding):
+// an accepted texture costs no allocation either, two-channel octahedral or four-channel xyz.
+TEST_F(FrameAllocations, RenderWithSuppliedNormalsAllocatesNothing) {
+  auto e = makeEffect();
+  ASSERT_TRUE(e);
+  for (auto [format, encoding] : {std::pair{GLenum(GL_RG16F), NormalsEncoding::CameraOctahedral},
+                                  std::pair{GLenum(GL_RGBA16F), NormalsEncoding::CameraXyz}}) {
+    normals = makeTexture(format, depth.extent);
+    const float facing[4] = {0, 0, 1, 0};  // +z either way: octahedral (0, 0) in RG, xyz (0, 0, 1)
+    glClearTexImage(normals, 0, format == GL_RG16F ? GL_RG : GL_RGBA, GL_FLOAT, facing);
+    cam.normalsEncoding = encoding;
+    EXPECT_EQ(steadyFrames(*e, Settings{}, 0, false), 0) << "internal format " << format;
+    deleteTexture(normals);
+    normals = 0;
+  }
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include <ostream>
 
 #include "gl_support.h"
+#include "image_compare.h"
 #include "sao/cpu/reference.h"
 #include "sao/presets.h"
 
@@ -235,6 +236,47 @@ TEST_F(GlTest, EncodedNormalsMatchTheCameraSpaceResult) {
   EXPECT_NE(st.message.find("needs Camera::viewRotation"), std::string::npos) << st.message;
   deleteTexture(depthTex);
   deleteTexture(normalTex);
+}
+
+// ---- Octahedral normals in a two-channel texture (the .xy the decode reads): GL_RG16F and
+// GL_RG32F holding the same values as the GL_RGBA16F texture's .xy give the same output, bit for bit.
+
+TEST_F(GlTest, TwoChannelOctahedralNormalsMatchFourChannel) {
+  Camera cam = camera(kWidth, kHeight, kGuard);
+  cam.viewRotation = test::viewRotation(0.7, -0.4, 0.25);
+  auto effect = makeEffect();
+  const test::Scene scene = sceneByName("stairs");
+  const DepthImage depth = test::renderDepth(scene, cam, cpuFormat(GlDepth::D32F));
+  const GLuint depthTex = uploadDepth(depth, GlDepth::D32F);
+  const FloatImage n = test::renderNormals(scene, cam);
+  for (NormalsEncoding e : {NormalsEncoding::CameraOctahedral, NormalsEncoding::WorldOctahedral}) {
+    SCOPED_TRACE(int(e));
+    cam.normalsEncoding = e;
+    const GLuint rgba = uploadNormals(test::encodeNormals(n, e, *cam.viewRotation));  // halves, nearest-even
+    const FloatImage xy = readTexture(rgba, 2);  // the very halves, exact in float
+    gl::Inputs in;
+    in.depth = {depthTex, internalFormat(GlDepth::D32F)};
+    in.normals = rgba;
+    ASSERT_TRUE(effect->render(cam, presetSettings(Preset::Medium), in).ok());
+    const FloatImage four = readTexture(effect->aoTexture(), 1);
+    const FloatImage fourRaw = readTexture(effect->texture(gen::ResourceId::ao_raw), 2);
+    EXPECT_LT(*std::min_element(four.data.begin(), four.data.end()), 0.5f) << "the scene is occluded somewhere";
+    for (GLenum format : {GLenum(GL_RG16F), GLenum(GL_RG32F)}) {
+      const GLuint rg = makeTexture(format, xy.extent);
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+      glTextureSubImage2D(rg, 0, 0, 0, GLsizei(xy.extent.width), GLsizei(xy.extent.height), GL_RG, GL_FLOAT,
+                          xy.data.data());
+      EXPECT_TRUE(test::sameBits(readTexture(rg, 2), xy)) << "the two-channel texture holds the same .xy";
+      in.normals = rg;
+      const Status st = effect->render(cam, presetSettings(Preset::Medium), in);
+      ASSERT_TRUE(st.ok()) << st.message;
+      EXPECT_TRUE(test::sameBits(readTexture(effect->aoTexture(), 1), four)) << format;
+      EXPECT_TRUE(test::sameBits(readTexture(effect->texture(gen::ResourceId::ao_raw), 2), fourRaw)) << format;
+      deleteTexture(rg);
+    }
+    deleteTexture(rgba);
+  }
+  deleteTexture(depthTex);
 }
 
 // ---- Orientation: an occluder only in the top-left darkens the top-left, where the CPU does.

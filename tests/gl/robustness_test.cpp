@@ -15,6 +15,7 @@
 #include "image_compare.h"
 #include "analytic_scenes.h"
 #include "gl_support.h"
+#include "normal_encodings.h"
 
 namespace sao::gltest {
 namespace {
@@ -158,6 +159,48 @@ TEST_F(Robustness, StencilOnlyAndIntegerTexturesAreUnsupported) {
     gl::Inputs in;
     in.depth = {t, 0};
     expectRejected(render(in), StatusCode::UnsupportedFormat, "depth must be", 0);
+    deleteTexture(t);
+  }
+}
+
+// Normals texture channels against Camera::normalsEncoding: a two-channel texture holds only the
+// octahedral .xy, so an xyz encoding (which would read z = 0) is refused naming the format and the
+// encoding; one channel is never a normals format. Every two-channel format is then accepted with
+// an octahedral encoding, by the same effect.
+TEST_F(Robustness, TwoChannelNormalsNeedAnOctahedralEncoding) {
+  const GLuint rg16f = makeTexture(GL_RG16F, depth.extent);
+  gl::Inputs in = good();
+  in.normals = rg16f;
+  Camera cam = camera;
+  cam.viewRotation = test::viewRotation(0.7, -0.4, 0.25);
+  for (auto [encoding, name] :
+       {std::pair{NormalsEncoding::CameraXyz, "CameraXyz"}, std::pair{NormalsEncoding::WorldXyz, "WorldXyz"}}) {
+    cam.normalsEncoding = encoding;
+    expectRejected(effect->render(cam, Settings{}, in), StatusCode::UnsupportedFormat,
+                   "sao::gl: the normals texture " + std::to_string(rg16f) + " is GL_RG16F (two channels) but " +
+                       "Camera::normalsEncoding is " + name +
+                       ", which reads .xyz: use an octahedral encoding or a three- or four-channel texture",
+                   0);
+  }
+  const GLuint r16f = makeTexture(GL_R16F, depth.extent);
+  in.normals = r16f;
+  cam.normalsEncoding = NormalsEncoding::CameraOctahedral;
+  expectRejected(effect->render(cam, Settings{}, in), StatusCode::UnsupportedFormat,
+                 "is GL_R16F; normals must be GL_RGBA16F, GL_RGBA32F, GL_RGB16F, GL_RGB32F, GL_RGBA8_SNORM, "
+                 "GL_RGBA16_SNORM or (octahedral encodings only) GL_RG16F, GL_RG32F, GL_RG8_SNORM, GL_RG16_SNORM",
+                 0);
+  deleteTexture(r16f);
+  deleteTexture(rg16f);
+  for (GLenum format : {GLenum(GL_RG16F), GLenum(GL_RG32F), GLenum(GL_RG8_SNORM), GLenum(GL_RG16_SNORM)}) {
+    const GLuint t = makeTexture(format, depth.extent);
+    const float zero[2] = {0, 0};  // (0, 0): the octahedral +z, facing the camera
+    glClearTexImage(t, 0, GL_RG, GL_FLOAT, zero);
+    in.normals = t;
+    for (NormalsEncoding e : {NormalsEncoding::CameraOctahedral, NormalsEncoding::WorldOctahedral}) {
+      cam.normalsEncoding = e;
+      const Status st = effect->render(cam, Settings{}, in);
+      EXPECT_TRUE(st.ok()) << format << " " << int(e) << ": " << st.message;
+    }
     deleteTexture(t);
   }
 }

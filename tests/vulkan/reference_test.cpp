@@ -238,6 +238,38 @@ TEST_F(VkTest, EncodedNormalsMatchTheCameraSpaceResult) {
   EXPECT_NE(st.message.find("needs Camera::viewRotation"), std::string::npos) << st.message;
 }
 
+// Octahedral normals in a two-channel image (the .xy the decode reads): R16G16_SFLOAT holding the
+// same halves as the R16G16B16A16_SFLOAT image's .xy gives the same output, bit for bit.
+TEST_F(VkTest, TwoChannelOctahedralNormalsMatchFourChannel) {
+  Camera cam = vulkanCamera(kW, kH, kGuard, 100.0);
+  cam.viewRotation = test::viewRotation(0.7, -0.4, 0.25);
+  const test::Scene scene = test::stairsScene();
+  const DepthImage depth = test::renderDepth(scene, cam, DepthFormat::D32F);
+  const FloatImage n = test::renderNormals(scene, cam);
+  for (NormalsEncoding e : {NormalsEncoding::CameraOctahedral, NormalsEncoding::WorldOctahedral}) {
+    SCOPED_TRACE(int(e));
+    cam.normalsEncoding = e;
+    const FloatImage four = test::encodeNormals(n, e, *cam.viewRotation);
+    FloatImage two(four.extent, 2);
+    for (std::size_t i = 0; i < two.data.size() / 2; ++i) {
+      two.data[2 * i] = four.data[4 * i];
+      two.data[2 * i + 1] = four.data[4 * i + 1];
+    }
+    RunResult a, b;
+    RunOptions o;
+    o.normals = &four;
+    Status st = runEffect(presetSettings(Preset::Medium), cam, depth, VkDepth::D32F, a, o);
+    ASSERT_TRUE(st.ok()) << st.message;
+    o.normals = &two;
+    o.normalsFormat = VK_FORMAT_R16G16_SFLOAT;
+    st = runEffect(presetSettings(Preset::Medium), cam, depth, VkDepth::D32F, b, o);
+    ASSERT_TRUE(st.ok()) << st.message;
+    EXPECT_LT(*std::min_element(a.ao.data.begin(), a.ao.data.end()), 0.5f) << "the scene is occluded somewhere";
+    EXPECT_TRUE(test::sameBits(b.ao, a.ao));
+    EXPECT_TRUE(test::sameBits(b.aoRaw, a.aoRaw));
+  }
+}
+
 // ---- Orientation: a box against a wall, only in the camera's top-left. With Vulkan's usual
 // conventions (a flipped viewport, Camera::flipY, or a projection with a negative y scale) row 0
 // of the depth image is the top of the screen, and the darkening must appear in the top-left of

@@ -6,12 +6,14 @@
 // also passed as the output view, a null output view, measure() on a null queue. Every case must
 // return the documented code with a message, raise no validation message (the fixture fails on
 // any), allocate no device memory, and leave the device and the effect usable.
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
 
 #include "image_compare.h"
 #include "analytic_scenes.h"
+#include "normal_encodings.h"
 #include "vk_support.h"
 
 namespace sao::vktest {
@@ -35,12 +37,15 @@ class VkRobustness : public VkTest {
     config.depthFormat = VK_FORMAT_D32_SFLOAT;
   }
   void TearDown() override {
+    context().destroy(normalsImage);
     context().destroy(image);
     VkTest::TearDown();
   }
   vk::Inputs inputs() const {
     vk::Inputs in;
     in.depth = {image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth.extent, VK_FORMAT_D32_SFLOAT};
+    if (normalsImage.view != VK_NULL_HANDLE)
+      in.normals = {normalsImage.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth.extent, normalsFormat};
     return in;
   }
   // create() fails with `code`, names `needle`, leaves `out` empty and no device memory behind.
@@ -69,6 +74,8 @@ class VkRobustness : public VkTest {
   Camera camera;
   DepthImage depth;
   Image image;
+  Image normalsImage;  // passed by inputs() when set
+  VkFormat normalsFormat = VK_FORMAT_UNDEFINED;
   vk::Config config;
 };
 
@@ -215,6 +222,60 @@ TEST_F(VkRobustness, FailedUpdateKeepsThePreviousConfiguration) {
     EXPECT_EQ(e->memoryStats().liveBytes, memory.liveBytes);
   }
   EXPECT_TRUE(sameBits(run(*e), before)) << "the effect renders as before the failed updates";
+}
+
+// Config::normalsFormat channels against Camera::normalsEncoding, at create() and update(): a
+// two-channel format holds only the octahedral .xy, so an xyz encoding (which would read z = 0) is
+// refused naming the format and the encoding; one channel is refused for every encoding. A failed
+// update() keeps the octahedral configuration, which renders from R16G16_SFLOAT as before.
+TEST_F(VkRobustness, NormalsFormatChannelsFollowTheEncoding) {
+  const std::array<double, 9> rotation = test::viewRotation(0.7, -0.4, 0.25);
+  vk::Config c = config;
+  c.camera.viewRotation = rotation;
+  c.normalsFormat = VK_FORMAT_R16G16_SFLOAT;
+  for (auto [encoding, name] :
+       {std::pair{NormalsEncoding::CameraXyz, "CameraXyz"}, std::pair{NormalsEncoding::WorldXyz, "WorldXyz"}}) {
+    c.camera.normalsEncoding = encoding;
+    expectCreateFails(context().deviceContext(), c, StatusCode::UnsupportedFormat,
+                      std::string("Config::normalsFormat VK_FORMAT_R16G16_SFLOAT (two channels) but "
+                                  "Camera::normalsEncoding is ") +
+                          name + ", which reads .xyz: use an octahedral encoding or a three- or four-channel format");
+  }
+  c.normalsFormat = VK_FORMAT_R16_SFLOAT;
+  c.camera.normalsEncoding = NormalsEncoding::CameraOctahedral;
+  expectCreateFails(context().deviceContext(), c, StatusCode::UnsupportedFormat,
+                    "Config::normalsFormat VK_FORMAT_R16_SFLOAT (one channel) but Camera::normalsEncoding is "
+                    "CameraOctahedral, which reads .xy: use a two-, three- or four-channel format");
+  c.camera.normalsEncoding = NormalsEncoding::CameraXyz;
+  expectCreateFails(context().deviceContext(), c, StatusCode::UnsupportedFormat,
+                    "(one channel) but Camera::normalsEncoding is CameraXyz, which reads .xyz");
+
+  // Octahedral normals of the scene in R16G16_SFLOAT: accepted, and kept through a refused update.
+  c.normalsFormat = normalsFormat = VK_FORMAT_R16G16_SFLOAT;
+  c.camera.normalsEncoding = NormalsEncoding::WorldOctahedral;
+  const FloatImage four = test::encodeNormals(test::renderNormals(test::sphereOnPlaneScene(), camera),
+                                              NormalsEncoding::WorldOctahedral, rotation);
+  FloatImage two(four.extent, 2);
+  for (std::size_t i = 0; i < two.data.size() / 2; ++i) {
+    two.data[2 * i] = four.data[4 * i];
+    two.data[2 * i + 1] = four.data[4 * i + 1];
+  }
+  ASSERT_TRUE(context().uploadColor(two, normalsFormat, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, normalsImage).ok());
+  std::unique_ptr<vk::Effect> e;
+  const Status created = vk::Effect::create(context().deviceContext(), c, e);
+  ASSERT_TRUE(created.ok()) << created.message;
+  const FloatImage before = run(*e);
+  const vk::MemoryStats memory = e->memoryStats();
+  vk::Config bad = c;
+  bad.camera.normalsEncoding = NormalsEncoding::WorldXyz;
+  const Status st = e->update(bad);
+  EXPECT_EQ(st.code, StatusCode::UnsupportedFormat) << st.message;
+  EXPECT_NE(st.message.find("VK_FORMAT_R16G16_SFLOAT (two channels) but Camera::normalsEncoding is WorldXyz"),
+            std::string::npos)
+      << st.message;
+  EXPECT_EQ(e->config().camera.normalsEncoding, NormalsEncoding::WorldOctahedral);
+  EXPECT_EQ(e->memoryStats().liveBytes, memory.liveBytes);
+  EXPECT_TRUE(sameBits(run(*e), before)) << "the effect renders as before the failed update";
 }
 
 // A feedback loop (an input's view passed as the output view) and null output handles are refused

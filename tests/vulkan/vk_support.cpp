@@ -111,11 +111,11 @@ Status runEffect(const Settings& settings, const Camera& camera, const DepthImag
     in.depth2 = {depth2Image.view, options.depthLayout, options.depth2->extent};
   }
   if (options.normals) {
-    if (Status st = ctx.uploadColor(*options.normals, VK_FORMAT_R16G16B16A16_SFLOAT,
-                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, normalsImage);
+    if (Status st = ctx.uploadColor(*options.normals, options.normalsFormat, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                                    normalsImage);
         !st)
       return st;
-    config.normalsFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+    config.normalsFormat = options.normalsFormat;
     in.normals = {normalsImage.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, options.normals->extent};
   }
   std::unique_ptr<vk::Effect> effect;

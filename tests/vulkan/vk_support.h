@@ -41,7 +41,8 @@ DepthFormat cpuFormat(VkDepth f);
 
 struct RunOptions {
   VkImageLayout depthLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-  const FloatImage* normals = nullptr;  // uploaded as R16G16B16A16_SFLOAT
+  const FloatImage* normals = nullptr;  // uploaded as normalsFormat (its channels: 4, or 2 for RG)
+  VkFormat normalsFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
   const DepthImage* depth2 = nullptr;
   bool readIntermediates = true;        // ao_raw (and csz level 0)
   std::optional<Offset> region;                              // vk::Inputs::offset: the region inside larger inputs

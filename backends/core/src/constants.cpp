@@ -68,7 +68,43 @@ Status checkNormalsEncoding(const Camera& c) {
   return Status::success();
 }
 
+const char* encodingName(NormalsEncoding e) {
+  switch (e) {
+    case NormalsEncoding::CameraXyz: return "CameraXyz";
+    case NormalsEncoding::WorldXyz: return "WorldXyz";
+    case NormalsEncoding::CameraOctahedral: return "CameraOctahedral";
+    case NormalsEncoding::WorldOctahedral: return "WorldOctahedral";
+  }
+  return nullptr;
+}
+
 }  // namespace
+
+std::uint32_t normalsChannelsRead(NormalsEncoding encoding) {
+  switch (encoding) {
+    case NormalsEncoding::CameraXyz:
+    case NormalsEncoding::WorldXyz: return 3;
+    case NormalsEncoding::CameraOctahedral:
+    case NormalsEncoding::WorldOctahedral: return 2;
+  }
+  return 0;  // computeConstants names a value outside the enum
+}
+
+Status checkNormalsChannels(NormalsEncoding encoding, std::uint32_t channels, const std::string& format,
+                            const char* noun) {
+  if (channels >= normalsChannelsRead(encoding)) return Status::success();
+  const char* name = encodingName(encoding);
+  const bool xyz = normalsChannelsRead(encoding) == 3;
+  const char* count = channels == 0 ? "no channels" : channels == 1 ? "one channel" : "two channels";
+  const std::string advice =
+      xyz ? (channels == 2 ? std::string("use an octahedral encoding or a three- or four-channel ") + noun
+                           : std::string("use a three- or four-channel ") + noun +
+                                 " (or an octahedral encoding with a two-channel one)")
+          : std::string("use a two-, three- or four-channel ") + noun;
+  return Status::error(StatusCode::UnsupportedFormat, format + " (" + count + ") but Camera::normalsEncoding is " +
+                                                          name + ", which reads " + (xyz ? ".xyz" : ".xy") + ": " +
+                                                          advice);
+}
 
 std::uint32_t mipLevelsNeeded(const Settings& s, const Camera& c, const DepthModel& m) {
   if (!s.use_z_hierarchy) return 1;

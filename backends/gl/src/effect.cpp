@@ -199,7 +199,7 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
   StateGuard guard(gl, textureUnits, imageUnits);
 
   CheckedInputs checked;
-  if (Status st = checkInputs(gl, scratchUnit, inputs, checked); !st) return st;
+  if (Status st = checkInputs(gl, scratchUnit, inputs, camera.normalsEncoding, checked); !st) return st;
   // A new configuration is planned into these (and committed at the end); an unchanged one
   // reuses what the last render derived, so a steady frame allocates nothing.
   const bool replan = !planned || !(settings == plannedSettings) || !(camera == plannedCamera) ||

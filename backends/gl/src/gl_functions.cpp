@@ -53,6 +53,8 @@ const char* glEnumName(GLenum e) {
     case GL_R16F: return "GL_R16F";
     case GL_RG32F: return "GL_RG32F";
     case GL_RG16F: return "GL_RG16F";
+    case GL_RG8_SNORM: return "GL_RG8_SNORM";
+    case GL_RG16_SNORM: return "GL_RG16_SNORM";
     case GL_RGBA16F: return "GL_RGBA16F";
     case GL_RGBA32F: return "GL_RGBA32F";
     case GL_RGB16F: return "GL_RGB16F";

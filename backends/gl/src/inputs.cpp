@@ -74,15 +74,20 @@ bool isHardwareDepth(GLenum f) {
   }
 }
 
-bool isNormalFormat(GLenum f) {
+// The channels of a normals format the effect reads; 0 for any other format.
+std::uint32_t normalChannels(GLenum f) {
   switch (f) {
     case GL_RGBA16F:
     case GL_RGBA32F:
-    case GL_RGB16F:
-    case GL_RGB32F:
     case GL_RGBA8_SNORM:
-    case GL_RGBA16_SNORM: return true;
-    default: return false;
+    case GL_RGBA16_SNORM: return 4;
+    case GL_RGB16F:
+    case GL_RGB32F: return 3;
+    case GL_RG16F:  // octahedral encodings only (checkNormalsChannels)
+    case GL_RG32F:
+    case GL_RG8_SNORM:
+    case GL_RG16_SNORM: return 2;
+    default: return 0;
   }
 }
 
@@ -105,7 +110,8 @@ Status depthInput(const GlFunctions& gl, GLuint unit, const DepthInput& in, cons
 
 }  // namespace
 
-Status checkInputs(const GlFunctions& gl, GLuint unit, const Inputs& inputs, CheckedInputs& out) {
+Status checkInputs(const GlFunctions& gl, GLuint unit, const Inputs& inputs, NormalsEncoding normalsEncoding,
+                   CheckedInputs& out) {
   out = CheckedInputs{};
   out.region = inputs.region;
   DepthEncoding encoding{};
@@ -123,12 +129,19 @@ Status checkInputs(const GlFunctions& gl, GLuint unit, const Inputs& inputs, Che
   }
   if (inputs.normals != 0) {
     if (Status st = inspect(gl, unit, inputs.normals, "normals", out.normals); !st) return st;
-    if (!isNormalFormat(out.normals.internalFormat))
+    const std::uint32_t channels = normalChannels(out.normals.internalFormat);
+    // Built only for an error, like inspect()'s: render() allocates nothing per frame.
+    auto what = [&] {
+      return "sao::gl: the normals texture " + std::to_string(inputs.normals) + " is " +
+             glEnumName(out.normals.internalFormat);
+    };
+    if (channels == 0)
       return Status::error(StatusCode::UnsupportedFormat,
-                           "sao::gl: the normals texture " + std::to_string(inputs.normals) + " is " +
-                               glEnumName(out.normals.internalFormat) +
-                               "; normals must be GL_RGBA16F, GL_RGBA32F, GL_RGB16F, GL_RGB32F, GL_RGBA8_SNORM or "
-                               "GL_RGBA16_SNORM");
+                           what() + "; normals must be GL_RGBA16F, GL_RGBA32F, GL_RGB16F, GL_RGB32F, GL_RGBA8_SNORM, "
+                                    "GL_RGBA16_SNORM or (octahedral encodings only) GL_RG16F, GL_RG32F, GL_RG8_SNORM, "
+                                    "GL_RG16_SNORM");
+    if (channels < normalsChannelsRead(normalsEncoding))
+      return checkNormalsChannels(normalsEncoding, channels, what(), "texture");
     out.planInputs.normals = true;
   }
   if (inputs.output != 0) {

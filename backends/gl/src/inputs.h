@@ -21,8 +21,10 @@ struct CheckedInputs {
 };
 
 // Inspects every texture in `inputs` (binding each on `scratchUnit`, whose binding the caller
-// saves) and derives the plan inputs. InvalidInput / UnsupportedFormat naming the texture's role.
-Status checkInputs(const GlFunctions& gl, GLuint scratchUnit, const Inputs& inputs, CheckedInputs& out);
+// saves) and derives the plan inputs. InvalidInput / UnsupportedFormat naming the texture's role;
+// the normals texture's channels are checked against the camera's `normalsEncoding`.
+Status checkInputs(const GlFunctions& gl, GLuint scratchUnit, const Inputs& inputs, NormalsEncoding normalsEncoding,
+                   CheckedInputs& out);
 
 // The textures as sao::checkSupplied sees them (sizes against the plan are checked there).
 SuppliedImages supplied(const CheckedInputs& in);

@@ -23,6 +23,7 @@ std::uint32_t channelsOf(VkFormat f, std::uint32_t& bytes) {
   switch (f) {
     case VK_FORMAT_R16_SFLOAT: bytes = 2; return 1;
     case VK_FORMAT_R32_SFLOAT: bytes = 4; return 1;
+    case VK_FORMAT_R16G16_SFLOAT: bytes = 4; return 2;
     case VK_FORMAT_R32G32_SFLOAT: bytes = 8; return 2;
     case VK_FORMAT_R16G16B16A16_SFLOAT: bytes = 8; return 4;
     case VK_FORMAT_R32G32B32A32_SFLOAT: bytes = 16; return 4;

@@ -22,6 +22,14 @@ const char* formatName(VkFormat f) {
     case VK_FORMAT_R32_SFLOAT: return "VK_FORMAT_R32_SFLOAT";
     case VK_FORMAT_S8_UINT: return "VK_FORMAT_S8_UINT";
     case VK_FORMAT_D16_UNORM_S8_UINT: return "VK_FORMAT_D16_UNORM_S8_UINT";
+    case VK_FORMAT_R8_UNORM: return "VK_FORMAT_R8_UNORM";
+    case VK_FORMAT_R8_SNORM: return "VK_FORMAT_R8_SNORM";
+    case VK_FORMAT_R16_SNORM: return "VK_FORMAT_R16_SNORM";
+    case VK_FORMAT_R16_SFLOAT: return "VK_FORMAT_R16_SFLOAT";
+    case VK_FORMAT_R8G8_SNORM: return "VK_FORMAT_R8G8_SNORM";
+    case VK_FORMAT_R16G16_SNORM: return "VK_FORMAT_R16G16_SNORM";
+    case VK_FORMAT_R16G16_SFLOAT: return "VK_FORMAT_R16G16_SFLOAT";
+    case VK_FORMAT_R32G32_SFLOAT: return "VK_FORMAT_R32G32_SFLOAT";
     default: return nullptr;
   }
 }
@@ -41,6 +49,68 @@ bool isDepthStencilFormat(VkFormat f) {
     case VK_FORMAT_D24_UNORM_S8_UINT:
     case VK_FORMAT_D32_SFLOAT_S8_UINT: return true;
     default: return false;
+  }
+}
+
+// The colour channels a sampled read of `f` returns when it has fewer than three (1 or 2), else 3
+// (three, four, or a format not listed here). Only the count below three matters: it decides
+// whether .xy or .xyz of a normal would read a missing channel as 0.
+std::uint32_t channelsUpToThree(VkFormat f) {
+  switch (f) {
+    case VK_FORMAT_R8_UNORM:
+    case VK_FORMAT_R8_SNORM:
+    case VK_FORMAT_R8_USCALED:
+    case VK_FORMAT_R8_SSCALED:
+    case VK_FORMAT_R8_UINT:
+    case VK_FORMAT_R8_SINT:
+    case VK_FORMAT_R8_SRGB:
+    case VK_FORMAT_R16_UNORM:
+    case VK_FORMAT_R16_SNORM:
+    case VK_FORMAT_R16_USCALED:
+    case VK_FORMAT_R16_SSCALED:
+    case VK_FORMAT_R16_UINT:
+    case VK_FORMAT_R16_SINT:
+    case VK_FORMAT_R16_SFLOAT:
+    case VK_FORMAT_R32_UINT:
+    case VK_FORMAT_R32_SINT:
+    case VK_FORMAT_R32_SFLOAT:
+    case VK_FORMAT_R64_UINT:
+    case VK_FORMAT_R64_SINT:
+    case VK_FORMAT_R64_SFLOAT:
+    case VK_FORMAT_BC4_UNORM_BLOCK:
+    case VK_FORMAT_BC4_SNORM_BLOCK:
+    case VK_FORMAT_EAC_R11_UNORM_BLOCK:
+    case VK_FORMAT_EAC_R11_SNORM_BLOCK:
+    case VK_FORMAT_R10X6_UNORM_PACK16:
+    case VK_FORMAT_R12X4_UNORM_PACK16: return 1;
+    case VK_FORMAT_R4G4_UNORM_PACK8:
+    case VK_FORMAT_R8G8_UNORM:
+    case VK_FORMAT_R8G8_SNORM:
+    case VK_FORMAT_R8G8_USCALED:
+    case VK_FORMAT_R8G8_SSCALED:
+    case VK_FORMAT_R8G8_UINT:
+    case VK_FORMAT_R8G8_SINT:
+    case VK_FORMAT_R8G8_SRGB:
+    case VK_FORMAT_R16G16_UNORM:
+    case VK_FORMAT_R16G16_SNORM:
+    case VK_FORMAT_R16G16_USCALED:
+    case VK_FORMAT_R16G16_SSCALED:
+    case VK_FORMAT_R16G16_UINT:
+    case VK_FORMAT_R16G16_SINT:
+    case VK_FORMAT_R16G16_SFLOAT:
+    case VK_FORMAT_R32G32_UINT:
+    case VK_FORMAT_R32G32_SINT:
+    case VK_FORMAT_R32G32_SFLOAT:
+    case VK_FORMAT_R64G64_UINT:
+    case VK_FORMAT_R64G64_SINT:
+    case VK_FORMAT_R64G64_SFLOAT:
+    case VK_FORMAT_BC5_UNORM_BLOCK:
+    case VK_FORMAT_BC5_SNORM_BLOCK:
+    case VK_FORMAT_EAC_R11G11_UNORM_BLOCK:
+    case VK_FORMAT_EAC_R11G11_SNORM_BLOCK:
+    case VK_FORMAT_R10X6G10X6_UNORM_2PACK16:
+    case VK_FORMAT_R12X4G12X4_UNORM_2PACK16: return 2;
+    default: return 3;
   }
 }
 
@@ -82,6 +152,10 @@ Status checkConfig(const EffectState& e, const Config& c, Plan& plan, ParamBlock
     if (isDepthStencilFormat(c.normalsFormat))
       return Status::error(StatusCode::UnsupportedFormat,
                            "Config::normalsFormat " + formatText(c.normalsFormat) + " is a depth/stencil format");
+    if (Status st = checkNormalsChannels(c.camera.normalsEncoding, channelsUpToThree(c.normalsFormat),
+                                         "Config::normalsFormat " + formatText(c.normalsFormat), "format");
+        !st)
+      return st;
     if (Status st = checkSampled(e, c.normalsFormat, "the normals"); !st) return st;
   }
   if (c.outputLayout != VK_IMAGE_LAYOUT_GENERAL && c.outputLayout != VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)

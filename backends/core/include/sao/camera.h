@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string>
 
 #include "sao/status.h"
 
@@ -19,7 +20,9 @@ enum class ProjectionKind : std::uint8_t { Perspective, Orthographic };
 // values are the effect's SAO_NORMALS_* constants. Camera space is the one of the projection
 // (right-handed, looking down -z). World-space encodings need Camera::viewRotation. Octahedral:
 // the unit normal's signed octahedral map in .xy, in [-1, 1]^2 (docs/effect-math.md, section 5.2);
-// .zw are ignored (the texture keeps a normals format, e.g. rgba16f).
+// .zw are ignored. Texture channels, one contract on every backend (checkNormalsChannels): the xyz
+// encodings need three or four channels (rgba16f recommended); the octahedral ones two or more
+// (e.g. rg16f, rg16_snorm), since a channel the texture lacks would read 0, a silently wrong normal.
 enum class NormalsEncoding : std::uint8_t {
   CameraXyz,         // camera-space normal in .xyz (the default)
   WorldXyz,          // world-space normal in .xyz
@@ -58,6 +61,18 @@ struct Camera {
   std::optional<std::array<double, 9>> viewRotation;
   bool operator==(const Camera&) const = default;
 };
+
+// The normals texture contract above: the channels `encoding` reads (3 for the xyz encodings, 2
+// for the octahedral ones; 0 for a value outside the enum, which computeConstants names).
+std::uint32_t normalsChannelsRead(NormalsEncoding encoding);
+
+// The contract for a texture of `channels` colour channels: Ok, or UnsupportedFormat "<format> (two channels) but Camera::normalsEncoding is CameraXyz, which reads
+// .xyz: use an octahedral encoding or a three- or four-channel <noun>". `format` names the texture
+// as the backend does ("sao::gl: the normals texture 7 is GL_RG16F"), `noun` is "texture" or
+// "format". An encoding outside the enum passes here. Builds the message only on failure, but the
+// caller builds `format`: a per-frame caller tests normalsChannelsRead() first.
+Status checkNormalsChannels(NormalsEncoding encoding, std::uint32_t channels, const std::string& format,
+                            const char* noun);
 
 // What the projection says about itself, derived in double precision.
 struct DepthModel {

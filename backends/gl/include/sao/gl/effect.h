@@ -94,7 +94,10 @@ struct Inputs {
   DepthInput depth2;
   // Optional normals, encoded as Camera::normalsEncoding says (camera-space .xyz by default,
   // components in [-1, 1]; world space and octahedral .xy too) (GL_RGBA16F recommended; also
-  // GL_RGBA32F, GL_RGB16F, GL_RGB32F, GL_RGBA8_SNORM, GL_RGBA16_SNORM); the same region as depth.
+  // GL_RGBA32F, GL_RGB16F, GL_RGB32F, GL_RGBA8_SNORM, GL_RGBA16_SNORM; for the octahedral
+  // encodings, which read .xy, also GL_RG16F, GL_RG32F, GL_RG8_SNORM, GL_RG16_SNORM: render()
+  // refuses a two-channel texture with an xyz encoding, UnsupportedFormat naming both); the same
+  // region as depth.
   std::uint32_t normals = 0;
   // Optional: the inputs hold the camera's image as a region of larger textures (dynamic
   // resolution). The texel (x along a row, y in rows from row 0, i.e. storage order) of depth,

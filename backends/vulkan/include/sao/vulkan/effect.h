@@ -108,7 +108,10 @@ struct Config {
   VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;
   // Normals as Camera::normalsEncoding says (camera-space .xyz by default, components in [-1,1];
   // world space and octahedral .xy too), any sampled colour format, e.g.
-  // VK_FORMAT_R16G16B16A16_SFLOAT; VK_FORMAT_UNDEFINED: no normals (rebuilt from depth).
+  // VK_FORMAT_R16G16B16A16_SFLOAT, with three or more channels for the xyz encodings and two or
+  // more for the octahedral ones, which read .xy (e.g. VK_FORMAT_R16G16_SFLOAT); create() and
+  // update() refuse fewer (UnsupportedFormat naming the format and the encoding): a missing
+  // channel would read 0. VK_FORMAT_UNDEFINED: no normals (rebuilt from depth).
   VkFormat normalsFormat = VK_FORMAT_UNDEFINED;
   bool secondLayer = false;  // a second depth layer (deep G-buffer)
   bool userOutput = false;   // you pass the output image to record(); otherwise the effect owns one

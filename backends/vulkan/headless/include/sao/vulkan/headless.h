@@ -140,6 +140,7 @@ class Context {
   // view selects the depth aspect only.
   Status uploadDepth(const DepthImage& depth, VkFormat format, VkImageLayout layout, Image& out);
   // A sampled colour image (e.g. normals, 4 channels) in R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT
+  // (octahedral normals, 2 channels: R16G16_SFLOAT or R32G32_SFLOAT)
   // (or an output format: R16_SFLOAT, R8_UNORM, R8G8B8A8_UNORM, values rounded to the nearest byte),
   // with `extraUsage` added (e.g. STORAGE for an output whose channels the effect keeps).
   Status uploadColor(const FloatImage& image, VkFormat format, VkImageLayout layout, Image& out,
