@@ -1,7 +1,8 @@
 // Whether per-pass timings put the time into the pass that did the work (issue 19), shared by the
 // GL and Vulkan timing attribution tests. Each test times a light and a heavy configuration that
 // differ only in one pass's work, by a large factor; the checks are about attribution, not speed.
-// Why they do not fail by chance on a loaded 2-core machine:
+// Not registered with ctest (CI's verdict may not depend on timing): under the sanitizers with a
+// loaded machine, the Vulkan fence+clock run once measured 4.95x against the 5x asked. Margins:
 // - runs are interleaved (a b a b ...), so load from other processes falls on both alike;
 // - each pass keeps the fastest of its runs: another process can only add time to a pass, never
 //   take work away, so the minimum is the estimate closest to the pass's own work;

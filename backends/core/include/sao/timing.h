@@ -23,7 +23,7 @@ struct PassTiming {
 
 struct Timings {
   // How every pass below was timed: a backend times all passes of one frame the same way. Each
-  // method puts a pass's time on that pass (ctest -R TimingAttribution: llvmpipe, zink, lavapipe).
+  // method puts a pass's time on that pass (gl_ / vk_timing_attribution_test, run by hand: llvmpipe, zink, lavapipe).
   TimingMethod method = TimingMethod::None;
   std::vector<PassTiming> passes;
   double totalMilliseconds() const {
