@@ -31,8 +31,12 @@ set(sao_install_cmakedir ${CMAKE_INSTALL_LIBDIR}/cmake/sao)
 #   gl         sao_gl                 sao::gl         none (GL comes from the caller's loader)
 #   vulkan     sao_vulkan             sao::vulkan     Vulkan (Vulkan::Headers)
 set(sao_package_components core)
+# What `cmake --install` needs built, and nothing else: `cmake --build build --target
+# sao_installed_libraries` (CI's release stage builds it, not the samples and tests).
+add_custom_target(sao_installed_libraries)
 # sao_export_component(COMPONENT TARGET [TARGET...]): exports the targets as sao::<EXPORT_NAME>.
 function(sao_export_component component)
+  add_dependencies(sao_installed_libraries ${ARGN})
   foreach(target IN LISTS ARGN)
     target_include_directories(${target} PUBLIC $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   endforeach()
