@@ -381,20 +381,24 @@ DeviceContext Context::deviceContext() const {
   return c;
 }
 
+// One command buffer, allocated once and re-begun (the pool resets it), not one allocated and
+// freed per call: the validation layer of Debian 12 (1.3.239) can destroy a freed command buffer's
+// state on its queue-retire thread, erasing its debug labels without the lock that guards them
+// while the next call records labels on this thread (a heap use after free under ASan;
+// KhronosGroup/Vulkan-ValidationLayers#5172, fixed in 1.3.243). A command buffer that is never
+// freed is never destroyed there.
 Status Context::submit(const std::function<void(VkCommandBuffer)>& record) {
-  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  ai.commandPool = pool_;
-  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  ai.commandBufferCount = 1;
-  VkCommandBuffer cmd = VK_NULL_HANDLE;
-  if (VkResult r = vkAllocateCommandBuffers(device_, &ai, &cmd); r != VK_SUCCESS)
-    return vkFail("vkAllocateCommandBuffers", r);
-  struct Free {
-    VkDevice d;
-    VkCommandPool p;
-    VkCommandBuffer c;
-    ~Free() { vkFreeCommandBuffers(d, p, 1, &c); }
-  } freeLater{device_, pool_, cmd};
+  if (submitCmd_ == VK_NULL_HANDLE) {
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = pool_;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    if (VkResult r = vkAllocateCommandBuffers(device_, &ai, &submitCmd_); r != VK_SUCCESS) {
+      submitCmd_ = VK_NULL_HANDLE;
+      return vkFail("vkAllocateCommandBuffers", r);
+    }
+  }
+  const VkCommandBuffer cmd = submitCmd_;
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   if (VkResult r = vkBeginCommandBuffer(cmd, &bi); r != VK_SUCCESS) return vkFail("vkBeginCommandBuffer", r);

@@ -186,6 +186,7 @@ class Context {
   VkPhysicalDeviceFeatures enabled_{};  // what vkCreateDevice enabled (DeviceContext::enabledFeatures)
   bool storageImageExtendedFormats_ = true;
   VkCommandPool pool_ = VK_NULL_HANDLE;
+  VkCommandBuffer submitCmd_ = VK_NULL_HANDLE;  // submit()'s one command buffer, reused (see there)
   VkFence fence_ = VK_NULL_HANDLE;
   std::string driverFiles_;
   std::string how_;
