@@ -62,6 +62,8 @@
 #pragma sao constant int  SAO_NORMALS_WORLD_XYZ=1 "normals_encoding: world-space normal in .xyz, rotated by view_x/y/z (WorldXyz)"
 #pragma sao constant int  SAO_NORMALS_CAMERA_OCTAHEDRAL=2 "normals_encoding: camera-space normal, signed octahedral map in .xy (CameraOctahedral)"
 #pragma sao constant int  SAO_NORMALS_WORLD_OCTAHEDRAL=3 "normals_encoding: world-space normal, signed octahedral map in .xy, rotated by view_x/y/z (WorldOctahedral)"
+#pragma sao constant int  SAO_OUTPUT_BLEND_REPLACE=0 "output_blend: the output's selected channels receive A (sao::OutputBlend::Replace)"
+#pragma sao constant int  SAO_OUTPUT_BLEND_MULTIPLY=1 "output_blend: the output's selected channels are multiplied by A, the apply step of an engine's colour or occlusion target (sao::OutputBlend::Multiply)"
 
 // ---------------------------------------------------------------------------------------------
 // Variants
@@ -83,7 +85,7 @@
 #pragma sao resource ao_raw    kind=image  format=rg32f divide_by=resolution_divisor "x: visibility A after the 2x2 reconstruction, y: key = camera-space z (+0.0 = sky); the viewport over resolution_divisor"
 #pragma sao resource ao_blur_h kind=image  format=rg32f divide_by=resolution_divisor "x: A after the horizontal bilateral blur, y: key z"
 #pragma sao resource ao_low    kind=image  format=rg32f divide_by=resolution_divisor "Reduced resolution only: (A, key z) after both blurs, the upsample's input"
-#pragma sao resource ao        kind=output format=r16f formats=[r16f,r8,rgba8,rgba16f] "Final ambient visibility A in [0,1] (1 = unoccluded), linear; r16f unless the caller's output image has another of formats= (OUTPUT_FORMAT)"
+#pragma sao resource ao        kind=output format=r16f formats=[r16f,r8,rgba8,rgba16f] "Final ambient visibility A in [0,1] (1 = unoccluded), linear; r16f unless the caller's output image has another of formats= (OUTPUT_FORMAT); with output_blend multiply, the caller's texels times A"
 
 // ---------------------------------------------------------------------------------------------
 // Shared library (pure functions; see each file)
@@ -101,7 +103,7 @@
 // ---------------------------------------------------------------------------------------------
 // Parameter block: filled by host code from Settings + Camera + extents (docs/effect-math.md,
 // "Parameter block"). Lengths are camera-space (view) units: metres times metersToViewUnits.
-// std140 offsets in brackets; 240 bytes.
+// std140 offsets in brackets; 256 bytes.
 // ---------------------------------------------------------------------------------------------
 #pragma sao block SaoParams
 layout(std140, binding = 0) uniform SaoParams {
@@ -141,6 +143,7 @@ layout(std140, binding = 0) uniform SaoParams {
     vec4  view_x;               // [192] world -> camera rotation R, column 0 (.w = 0): n_camera = R n_world for the world encodings; identity otherwise
     vec4  view_y;               // [208] column 1
     vec4  view_z;               // [224] column 2
+    int   output_blend;         // [240] SAO_OUTPUT_BLEND_REPLACE / _MULTIPLY: how the output's selected channels take A
 };
 
 // ---------------------------------------------------------------------------------------------

@@ -330,7 +330,7 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
   h << "};\nstruct BindingInfo {\n  std::uint32_t binding;  // GL unit and Vulkan set-0 binding\n"
     << "  ResourceId resource;\n  bool write;  // true: storage image out_<name>; false: sampler in_<name>\n"
     << "  Format format;  // the format the shader declares (a write's storage format)\n"
-    << "  bool readWrite;  // a write the pass also loads from (the unmasked channels of an RGBA output)\n};\n"
+    << "  bool readWrite;  // a write the pass may also load from (a formats= output: kept channels, a multiply)\n};\n"
     << "struct PassVariantInfo {\n  VariantValues values;  // -1 where the pass does not depend on the variant\n"
     << "  std::span<const BindingInfo> bindings;\n  std::uint32_t glslBlob;\n  std::uint32_t spirvBlob;\n"
     << "  std::string_view fileStem;\n};\n"

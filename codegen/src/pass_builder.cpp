@@ -4,12 +4,6 @@
 
 namespace sao::codegen {
 
-int formatChannels(const std::string& format) {
-  if (format.rfind("rgba", 0) == 0) return 4;
-  if (format.rfind("rg", 0) == 0) return 2;
-  return 1;
-}
-
 std::vector<std::vector<int>> allowedCombinations(const Effect& effect) {
   std::vector<std::vector<int>> out;
   std::vector<size_t> index(effect.variants.size(), 0);
@@ -60,13 +54,13 @@ std::vector<PassVariant> buildPassVariants(const Effect& effect) {
         const Resource& res = effect.resources[r];
         Binding b{next++, r, true, res.format, false};
         // A formats= output: the format its selecting variant gives in this combination (the
-        // parser checked that the pass lists the variant); RGBA formats keep unmasked channels,
-        // so the pass may load them.
+        // parser checked that the pass lists the variant); the pass may load its texels (the
+        // unmasked channels of an RGBA format, or any format's texel for a multiply blend).
         for (size_t v = 0; v < effect.variants.size(); ++v) {
           const Variant& var = effect.variants[v];
           if (var.select != VariantSelect::Output || var.selectIndex != r || values[v] < 0) continue;
           b.format = res.formats[static_cast<size_t>(values[v])];
-          b.readWrite = formatChannels(b.format) > 1;
+          b.readWrite = true;
         }
         pv.bindings.push_back(b);
       }

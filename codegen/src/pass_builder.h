@@ -15,11 +15,10 @@ struct Binding {
   int resource = 0;
   bool write = false;
   std::string format;      // the storage format of a write (per variant for a formats= output)
-  bool readWrite = false;  // a write the pass may also imageLoad (a multi-channel formats= output)
+  bool readWrite = false;  // a write the pass may also imageLoad (a formats= output: kept channels, multiply)
 };
 
 // Channels of a resource format (r*: 1, rg*: 2, rgba*: 4).
-int formatChannels(const std::string& format);
 
 struct PassVariant {
   int pass = 0;

@@ -386,4 +386,26 @@ inline float roundToHalf(float x) {
 // 1/255 (halves up), each operation one binary32 rounding as the shader does it.
 inline float roundToUnorm8(float x) { return std::floor(std::clamp(x, 0.0f, 1.0f) * 255.0f + 0.5f) / 255.0f; }
 
+// sao_round_to_half_signed of sao_output.glsl: roundToHalf's steps on |x|, sign kept, not clamped.
+inline float roundToHalfSigned(float x) {
+  const float m = std::fabs(x);
+  if (m == 0.0f) return x;
+  int e = 0;
+  (void)std::frexp(m, &e);
+  const int q = std::max(e - 11, -24);
+  const float r = std::ldexp(std::floor(std::ldexp(m, -q) + 0.5f), q);
+  return x < 0.0f ? -r : r;
+}
+
+// sao_output_multiply of sao_output.glsl (output blend multiply): channel c times A clamped to
+// [0, 1]; Float rounds it once as the format holds it (unorm8: 1/255 steps; else binary16),
+// Double leaves it unrounded; an infinite or NaN channel stays as it is.
+template <typename T>
+T outputMultiply(T c, T a, bool unorm8) {
+  if (!std::isfinite(c)) return c;
+  const T m = c * std::clamp(a, T(0), T(1));
+  if constexpr (std::is_same_v<T, float>) return unorm8 ? roundToUnorm8(m) : roundToHalfSigned(m);
+  return m;
+}
+
 }  // namespace sao::cpu::detail

@@ -244,16 +244,21 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
   return Status::success();
 }
 
-// The output texel at (x, y) as sao_output_texel stores it: A quantised as the output's format
-// holds it (Float: binary16 or 1/255 steps; Double: unrounded) into the channels output_mask
-// selects; the other channels keep what the image holds (the caller's contents, Inputs::output).
+// The output texel at (x, y) as sao_output_texel stores it: into the channels output_mask selects,
+// A quantised as the output's format holds it (Float: binary16 or 1/255 steps; Double: unrounded),
+// or with output_blend multiply the channel's value times A (outputMultiply); the other channels
+// keep what the image holds (the caller's contents, Inputs::output).
 template <typename T>
 void storeOutput(const PassContext<T>& ctx, Image<T>& dst, int x, int y, T a) {
-  if constexpr (std::is_same_v<T, float>) {
-    const std::int32_t v = ctx.plan.variants[static_cast<std::size_t>(gen::VariantId::OUTPUT_FORMAT)];
-    const gen::Format f = gen::kResources[static_cast<std::size_t>(gen::ResourceId::ao)].formats[std::size_t(v)];
-    a = f == gen::Format::R8 || f == gen::Format::RGBA8 ? roundToUnorm8(a) : roundToHalf(a);
+  const std::int32_t v = ctx.plan.variants[static_cast<std::size_t>(gen::VariantId::OUTPUT_FORMAT)];
+  const gen::Format f = gen::kResources[static_cast<std::size_t>(gen::ResourceId::ao)].formats[std::size_t(v)];
+  const bool unorm8 = f == gen::Format::R8 || f == gen::Format::RGBA8;
+  if (ctx.P.output_blend == gen::SAO_OUTPUT_BLEND_MULTIPLY) {
+    for (int c = 0; c < dst.ch; ++c)
+      if ((ctx.P.output_mask >> c) & 1) dst.at(x, y, c) = outputMultiply(dst.at(x, y, c), a, unorm8);
+    return;
   }
+  if constexpr (std::is_same_v<T, float>) a = unorm8 ? roundToUnorm8(a) : roundToHalf(a);
   for (int c = 0; c < dst.ch; ++c)
     if ((ctx.P.output_mask >> c) & 1) dst.at(x, y, c) = a;
 }

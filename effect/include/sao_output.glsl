@@ -17,25 +17,60 @@ float sao_round_to_unorm8(float x)
     return floor(clamp(x, 0.0, 1.0) * 255.0 + 0.5) / 255.0;
 }
 
-// The stored texel: channel c gets the quantised A when bit c of mask is set (bit 0 = R), else
-// keeps `kept` (the texel's previous value for an RGBA output; ignored channels of an R output).
-vec4 sao_output_texel(float a, bool unorm8, vec4 kept, int mask)
+// x rounded to the nearest binary16 value (ties away from zero), of either sign and not clamped:
+// sao_round_to_half's exact steps on |x|, for |x| <= 65504 (a binary16 texel times A in [0, 1]).
+float sao_round_to_half_signed(float x)
 {
-    float q = unorm8 ? sao_round_to_unorm8(a) : sao_round_to_half(a);
+    float m = abs(x);
+    if (m == 0.0)
+        return x;
+    int e;
+    frexp(m, e);
+    int q = max(e - 11, -24);
+    float r = ldexp(floor(ldexp(m, -q) + 0.5), q);
+    return x < 0.0 ? -r : r;
+}
+
+// Output blend multiply: the texel's channel c times A (clamped to [0, 1]), rounded once as the
+// format holds it (binary16 of either sign, or a multiple of 1/255); an infinite or NaN channel is
+// stored back as it is (exponent bits all ones: exact, whatever the compiler assumes about NaN).
+float sao_output_multiply(float c, float a, bool unorm8)
+{
+    if ((floatBitsToUint(c) & 0x7F800000u) == 0x7F800000u)
+        return c;
+    float m = c * clamp(a, 0.0, 1.0);
+    return unorm8 ? sao_round_to_unorm8(m) : sao_round_to_half_signed(m);
+}
+
+// The stored texel: channel c, when bit c of mask is set (bit 0 = R), gets the quantised A
+// (SAO_OUTPUT_BLEND_REPLACE) or kept.c times A (SAO_OUTPUT_BLEND_MULTIPLY); the others keep `kept`
+// (the texel's previous value when the pass loaded it; ignored channels of an R output).
+vec4 sao_output_texel(float a, bool unorm8, vec4 kept, int mask, int blend)
+{
+    vec4 v;
+    if (blend == SAO_OUTPUT_BLEND_MULTIPLY) {
+        v = vec4(sao_output_multiply(kept.x, a, unorm8), sao_output_multiply(kept.y, a, unorm8),
+                 sao_output_multiply(kept.z, a, unorm8), sao_output_multiply(kept.w, a, unorm8));
+    } else {
+        v = vec4(unorm8 ? sao_round_to_unorm8(a) : sao_round_to_half(a));
+    }
     bvec4 take = bvec4((mask & 1) != 0, (mask & 2) != 0, (mask & 4) != 0, (mask & 8) != 0);
-    return mix(kept, vec4(q), take);
+    return mix(kept, v, take);
 }
 
 // Stores A at pixel p of the pass's `out_ao` binding (a macro: each pass declares its own), loading
-// the texel first only for an RGBA output whose mask keeps channels. Defined only in the passes
-// that have the OUTPUT_FORMAT variant.
+// the texel first only when it is needed: an RGBA output whose mask keeps channels, or a multiply.
+// Defined only in the passes that have the OUTPUT_FORMAT variant.
 #if defined(OUTPUT_FORMAT) && SAO_OUTPUT_IS_RGBA(OUTPUT_FORMAT)
 #define SAO_STORE_OUTPUT(p, a) \
     imageStore(out_ao, (p), sao_output_texel((a), SAO_OUTPUT_IS_UNORM8(OUTPUT_FORMAT), \
-        output_mask == SAO_OUTPUT_ALL_CHANNELS ? vec4(0.0) : imageLoad(out_ao, (p)), output_mask))
+        output_mask == SAO_OUTPUT_ALL_CHANNELS && output_blend == SAO_OUTPUT_BLEND_REPLACE ? vec4(0.0) \
+            : imageLoad(out_ao, (p)), output_mask, output_blend))
 #elif defined(OUTPUT_FORMAT)
 #define SAO_STORE_OUTPUT(p, a) \
-    imageStore(out_ao, (p), sao_output_texel((a), SAO_OUTPUT_IS_UNORM8(OUTPUT_FORMAT), vec4(0.0, 0.0, 0.0, 1.0), output_mask))
+    imageStore(out_ao, (p), sao_output_texel((a), SAO_OUTPUT_IS_UNORM8(OUTPUT_FORMAT), \
+        output_blend == SAO_OUTPUT_BLEND_REPLACE ? vec4(0.0, 0.0, 0.0, 1.0) : imageLoad(out_ao, (p)), output_mask, \
+        output_blend))
 #endif
 
 #endif // SAO_OUTPUT_GLSL

@@ -1,12 +1,14 @@
 // A windowed OpenGL engine with SAO: GLFW, GL 4.5 core. The engine draws its own scene (boxes on
-// a floor) into its own FBO with a depth texture; sao::gl::Effect turns that depth into AO; the
-// engine's own pass composites AO into its colour on the window (sao has no apply pass yet, so the
-// engine writes this one). A resize recreates the FBO and the effect follows the camera's new size.
+// a floor) into its own FBO with a depth texture; sao::gl::Effect turns that depth into AO and
+// multiplies it into the FBO's colour (the apply step: Inputs::output with OutputBlend::Multiply,
+// no composite pass of the engine's own); the engine blits the colour to the window. A resize
+// recreates the FBO and the effect follows the camera's new size.
 // Uses only the installed sao::gl, GLFW and the GL header (tests/package builds it against the
 // package).
 //   sao-example-gl-window [--frames N] [--resize WxH]
-//   --frames N: exit after N frames (default: until the window is closed); then the last frame's AO
-//               is read back and must show open floor (A near 1) and contact shadow (A below 0.8).
+//   --frames N: exit after N frames (default: until the window is closed); then the last frame's
+//               colour is read back before and after the apply, and their ratio (A) must show open
+//               floor (A near 1) and contact shadow (A below 0.8).
 //   --resize WxH: resize the window to WxH after a third of the frames (or after 100 frames);
 //                 with --frames it must have taken effect by the last frame.
 // Exit status 1 on any failure, a GL debug message of type error included.
@@ -46,7 +48,7 @@
   X(PFNGLVERTEXARRAYATTRIBBINDINGPROC, glVertexArrayAttribBinding)                              \
   X(PFNGLBINDVERTEXARRAYPROC, glBindVertexArray) X(PFNGLCREATETEXTURESPROC, glCreateTextures)   \
   X(PFNGLTEXTURESTORAGE2DPROC, glTextureStorage2D) X(PFNGLDELETETEXTURESPROC, glDeleteTextures) \
-  X(PFNGLBINDTEXTUREUNITPROC, glBindTextureUnit) X(PFNGLGETTEXTUREIMAGEPROC, glGetTextureImage) \
+  X(PFNGLGETTEXTUREIMAGEPROC, glGetTextureImage)                                                \
   X(PFNGLCREATEFRAMEBUFFERSPROC, glCreateFramebuffers)                                          \
   X(PFNGLNAMEDFRAMEBUFFERTEXTUREPROC, glNamedFramebufferTexture)                                \
   X(PFNGLCHECKNAMEDFRAMEBUFFERSTATUSPROC, glCheckNamedFramebufferStatus)                        \
@@ -54,7 +56,8 @@
   X(PFNGLBINDFRAMEBUFFERPROC, glBindFramebuffer)                                                \
   X(PFNGLCLEARNAMEDFRAMEBUFFERFVPROC, glClearNamedFramebufferfv)                                \
   X(PFNGLVIEWPORTPROC, glViewport) X(PFNGLENABLEPROC, glEnable) X(PFNGLDISABLEPROC, glDisable)  \
-  X(PFNGLDRAWARRAYSPROC, glDrawArrays) X(PFNGLDEBUGMESSAGECALLBACKPROC, glDebugMessageCallback)
+  X(PFNGLDRAWARRAYSPROC, glDrawArrays) X(PFNGLDEBUGMESSAGECALLBACKPROC, glDebugMessageCallback) \
+  X(PFNGLBLITNAMEDFRAMEBUFFERPROC, glBlitNamedFramebuffer)
 #define SAO_EXAMPLE_GL_DECLARE(type, name) static type name;
 SAO_EXAMPLE_GL(SAO_EXAMPLE_GL_DECLARE)
 
@@ -73,19 +76,6 @@ void main() {
   float sun = max(dot(normalize(worldNormal), normalize(vec3(0.4, 1.0, 0.3))), 0.0);
   colour = vec4(vec3(0.75, 0.7, 0.6) * (0.45 + 0.55 * sun), 1.0);
 })";
-// The engine's composite: a full-screen triangle, colour times AO (a real engine would apply AO to
-// its ambient light only).
-const char* const kCompositeVertex = R"(#version 450 core
-void main() { gl_Position = vec4(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0, 0.0, 1.0); })";
-const char* const kCompositeFragment = R"(#version 450 core
-layout(binding = 0) uniform sampler2D colourTexture;
-layout(binding = 1) uniform sampler2D aoTexture;
-out vec4 colour;
-void main() {
-  ivec2 texel = ivec2(gl_FragCoord.xy);
-  colour = vec4(texelFetch(colourTexture, texel, 0).rgb * texelFetch(aoTexture, texel, 0).r, 1.0);
-})";
-
 GLuint compile(const char* vertex, const char* fragment) {
   const GLuint program = glCreateProgram();
   for (auto [type, source] : {std::pair{GL_VERTEX_SHADER, vertex}, std::pair{GL_FRAGMENT_SHADER, fragment}}) {
@@ -178,15 +168,24 @@ void GLAPIENTRY onDebugMessage(GLenum, GLenum type, GLuint, GLenum, GLsizei, con
   if (type == GL_DEBUG_TYPE_ERROR) ++glErrors, std::fprintf(stderr, "GL error: %s\n", message);
 }
 
-// The last frame's AO must show both open floor and contact shadow.
-bool aoLooksRight(GLuint texture, int width, int height) {
-  std::vector<float> ao(std::size_t(width) * height);
-  glGetTextureImage(texture, 0, GL_RED, GL_FLOAT, GLsizei(ao.size() * sizeof(float)), ao.data());
-  std::size_t open = 0, shadowed = 0;
-  for (float a : ao) open += a > 0.97f, shadowed += a < 0.8f;
-  std::printf("AO %dx%d: %.1f%% above 0.97, %.1f%% below 0.8\n", width, height, 100.0 * open / ao.size(),
-              100.0 * shadowed / ao.size());
-  return open > ao.size() / 10 && shadowed > ao.size() / 100;
+std::vector<float> readRed(GLuint texture, int width, int height) {
+  std::vector<float> red(std::size_t(width) * height);
+  glGetTextureImage(texture, 0, GL_RED, GL_FLOAT, GLsizei(red.size() * sizeof(float)), red.data());
+  return red;
+}
+
+// The last frame's AO, as the applied colour over the colour before: both open floor and contact
+// shadow (sky and dark texels, below 0.2, say nothing).
+bool aoLooksRight(const std::vector<float>& before, const std::vector<float>& after) {
+  std::size_t open = 0, shadowed = 0, lit = 0;
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    if (before[i] < 0.2f) continue;
+    const float a = after[i] / before[i];
+    ++lit, open += a > 0.97f, shadowed += a < 0.8f;
+  }
+  std::printf("AO over %zu lit texels: %.1f%% above 0.97, %.1f%% below 0.8\n", lit, 100.0 * open / lit,
+              100.0 * shadowed / lit);
+  return lit > before.size() / 4 && open > lit / 10 && shadowed > lit / 100;
 }
 
 }  // namespace
@@ -220,13 +219,11 @@ int main(int argc, char** argv) {
   glDebugMessageCallback(onDebugMessage, nullptr);
 
   const GLuint sceneProgram = compile(kSceneVertex, kSceneFragment);
-  const GLuint compositeProgram = compile(kCompositeVertex, kCompositeFragment);
   const std::vector<float> triangles = sceneTriangles();
-  GLuint vertexBuffer = 0, sceneVao = 0, emptyVao = 0;
+  GLuint vertexBuffer = 0, sceneVao = 0;
   glCreateBuffers(1, &vertexBuffer);
   glNamedBufferStorage(vertexBuffer, GLsizeiptr(triangles.size() * sizeof(float)), triangles.data(), 0);
   glCreateVertexArrays(1, &sceneVao);
-  glCreateVertexArrays(1, &emptyVao);
   glVertexArrayVertexBuffer(sceneVao, 0, vertexBuffer, 0, 6 * sizeof(float));
   for (GLuint attribute : {0u, 1u}) {
     glEnableVertexArrayAttrib(sceneVao, attribute);
@@ -242,7 +239,7 @@ int main(int argc, char** argv) {
 
   Target target;
   sao::Camera camera;
-  bool ok = sceneProgram && compositeProgram && status;
+  bool ok = sceneProgram && status;
   long frame = 0;
   for (; ok && !glfwWindowShouldClose(window) && frame != frames; ++frame) {
     if (frame == resizeFrame && resizeWidth > 0) glfwSetWindowSize(window, resizeWidth, resizeHeight);
@@ -269,21 +266,24 @@ int main(int argc, char** argv) {
     glDrawArrays(GL_TRIANGLES, 0, GLsizei(triangles.size() / 6));
     glDisable(GL_DEPTH_TEST);
 
-    // SAO from its depth texture (the effect follows the camera's size: a resize reallocates).
+    const bool last = frame + 1 == frames;
+    std::vector<float> before;
+    if (last) before = readRed(target.colour, width, height);
+
+    // SAO from its depth texture, multiplied into the colour's RGB (the effect follows the
+    // camera's size: a resize reallocates).
     sao::gl::Inputs inputs;
     inputs.depth = {target.depth, sao::gl::kDepthComponent32F};
+    inputs.output = target.colour;
+    inputs.outputChannels = sao::kChannelR | sao::kChannelG | sao::kChannelB;
+    inputs.outputBlend = sao::OutputBlend::Multiply;
     if (!(status = ao->render(camera, settings, inputs))) break;
 
-    // The engine's composite onto the window.
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glUseProgram(compositeProgram);
-    glBindTextureUnit(0, target.colour);
-    glBindTextureUnit(1, ao->aoTexture());
-    glBindVertexArray(emptyVao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    // The colour onto the window.
+    glBlitNamedFramebuffer(target.fbo, 0, 0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
     glfwSwapBuffers(window);
-    if (frame + 1 == frames) {
-      ok = aoLooksRight(ao->aoTexture(), width, height);
+    if (last) {
+      ok = aoLooksRight(before, readRed(target.colour, width, height));
       if (resizeWidth > 0 && (width != resizeWidth || height != resizeHeight))
         ok = false, std::fprintf(stderr, "the window never became %dx%d\n", resizeWidth, resizeHeight);
     }
@@ -292,10 +292,8 @@ int main(int argc, char** argv) {
   ao.reset();
   target.release();
   glDeleteVertexArrays(1, &sceneVao);
-  glDeleteVertexArrays(1, &emptyVao);
   glDeleteBuffers(1, &vertexBuffer);
   glDeleteProgram(sceneProgram);
-  glDeleteProgram(compositeProgram);
   glfwDestroyWindow(window);
   glfwTerminate();
   std::printf("%ld frames, %d GL errors\n", frame, glErrors);

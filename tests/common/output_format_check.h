@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <cmath>
 
 #include "image_compare.h"
 #include "sao/output.h"
@@ -86,11 +87,13 @@ OutputCheck checkOutput(const FloatImage& actual, const FloatImage& expected, co
   return r;
 }
 
-// The format x mask cases every backend runs: each format with all its channels, and the RGBA
-// formats with masks that keep some channels.
+// The format x mask cases every backend runs: each format with all its channels, the RGBA formats
+// with masks that keep some channels, and the multiply blend (the apply step: the sentinel texels,
+// all in [0, 1), times A, so the selected channels' differences stay within A's bounds).
 struct OutputCase {
   gen::Format format;
   std::uint32_t mask;
+  OutputBlend blend = OutputBlend::Replace;
 };
 inline constexpr OutputCase kOutputCases[] = {
     {gen::Format::R16F, kAllChannels},
@@ -102,10 +105,64 @@ inline constexpr OutputCase kOutputCases[] = {
     {gen::Format::RGBA16F, kAllChannels},
     {gen::Format::RGBA16F, kChannelG},
     {gen::Format::RGBA16F, kChannelG | kChannelB | kChannelA},
+    {gen::Format::R16F, kAllChannels, OutputBlend::Multiply},
+    {gen::Format::R8, kAllChannels, OutputBlend::Multiply},
+    {gen::Format::RGBA8, kChannelR | kChannelG | kChannelB, OutputBlend::Multiply},
+    {gen::Format::RGBA16F, kChannelR | kChannelG | kChannelB, OutputBlend::Multiply},
 };
 
 inline std::string caseName(const OutputCase& c) {
-  return std::string(formatName(c.format)) + "_mask" + std::to_string(c.mask);
+  return std::string(formatName(c.format)) + "_mask" + std::to_string(c.mask) +
+         (c.blend == OutputBlend::Multiply ? "_multiply" : "");
+}
+
+// An RGBA16F colour target as an engine's lit HDR buffer holds it, for the multiply blend: values
+// from -8 to 55.75 in steps of 1/4 (exact in binary16), and in every 97th texel an infinity or a
+// NaN in channel R, which the blend stores back unchanged.
+inline FloatImage hdrColour(Extent e) {
+  FloatImage img(e, 4);
+  for (std::uint32_t y = 0; y < e.height; ++y)
+    for (std::uint32_t x = 0; x < e.width; ++x)
+      for (std::uint32_t c = 0; c < 4; ++c) img.at(x, y, c) = float(int((x * 7 + y * 13 + c * 61) % 256) - 32) / 4.0f;
+  for (std::size_t i = 0; i < img.data.size() / 4; i += 97)
+    img.data[i * 4] = (i / 97) % 3 == 0 ? INFINITY : (i / 97) % 3 == 1 ? -INFINITY : NAN;
+  return img;
+}
+
+// The multiply blend on the HDR colour: channel A kept bit for bit, non-finite R texels stored back
+// as they were (NaN as a NaN), and elsewhere the product within the agreement bounds scaled by the
+// texel's magnitude (A's own bounds, 2/255 for 99.9% and 4/255 for all, times |colour|) plus half a
+// binary16 step of the product, against the CPU reference (Float). Returns the number of texels
+// outside those bounds.
+inline std::size_t checkHdrMultiply(const FloatImage& actual, const FloatImage& expected, const FloatImage& colour,
+                                    const std::string& name) {
+  std::size_t bad = 0, beyondP999 = 0, selected = 0, nonFinite = 0, changed = 0;
+  double worst = 0;
+  for (std::size_t i = 0; i < actual.data.size(); ++i) {
+    const std::size_t c = i % 4;
+    const float a = actual.data[i], e = expected.data[i], s = colour.data[i];
+    if (c == 3 || !std::isfinite(s)) {
+      const bool same = std::isnan(s) ? std::isnan(a) && std::isnan(e) : a == s && e == s;
+      bad += !same;
+      nonFinite += c != 3;
+      continue;
+    }
+    ++selected;
+    changed += a != s;
+    const double step = std::ldexp(1.0, std::max(std::ilogb(std::max(std::fabs(e), 6.1e-5f)) - 10, -24));
+    const double d = std::fabs(double(a) - double(e)) - 0.5 * step;
+    const double scale = std::max(double(std::fabs(s)), 1e-30);
+    worst = std::max(worst, d / scale);
+    bad += d > 4.0 / 255.0 * scale;
+    beyondP999 += d > 2.0 / 255.0 * scale;
+  }
+  EXPECT_GT(nonFinite, 0u) << name;
+  EXPECT_GT(changed, selected / 10) << name << ": the multiply left nearly every texel as it was";
+  EXPECT_LE(beyondP999, selected / 1000) << name;
+  EXPECT_EQ(bad, 0u) << name;
+  std::printf("HDR MULTIPLY %-24s worst |difference| / |colour| %.3f/255, %zu non-finite texels kept\n", name.c_str(),
+              worst * 255, nonFinite);
+  return bad;
 }
 
 }  // namespace sao::test

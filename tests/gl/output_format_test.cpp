@@ -1,8 +1,10 @@
 // The output as the engine wants it (sao/output.h) on OpenGL: the caller's GL_R16F, GL_R8,
-// GL_RGBA8 and GL_RGBA16F textures with channel masks against the CPU reference (Float) at full
-// and half resolution (blur_v and upsample write the output), untouched channels keeping their
-// sentinel texels, other formats and masks refused, and outputGeneration() following the owned
-// output texture.
+// GL_RGBA8 and GL_RGBA16F textures with channel masks and the multiply blend (the apply step, also
+// on an HDR colour target with infinities and NaNs) against the CPU reference (Float) at full and
+// half resolution (blur_v and upsample write the output), untouched channels keeping their
+// sentinel texels, other formats, masks and a multiply without the caller's texture refused, and
+// outputGeneration() following the owned output texture.
+#include <cmath>
 #include <epoxy/gl.h>
 
 #include <string>
@@ -35,11 +37,14 @@ GLuint uploadOutput(gen::Format format, const FloatImage& texels) {
   glTextureSubImage2D(tex, 0, 0, 0, GLsizei(texels.extent.width), GLsizei(texels.extent.height), layout, GL_FLOAT,
                       texels.data.data());
   const FloatImage back = readTexture(tex, texels.channels);
+  const bool unorm = format == gen::Format::R8 || format == gen::Format::RGBA8;
+  auto held = [&](float got, float want) {
+    if (std::isnan(want)) return std::isnan(got);
+    if (unorm) return test::unormByte(got) == test::unormByte(want);
+    return got == want;
+  };
   std::size_t differ = 0;
-  for (std::size_t i = 0; i < back.data.size(); ++i)
-    if (test::unormByte(back.data[i]) != test::unormByte(texels.data[i]) ||
-        (format != gen::Format::R8 && format != gen::Format::RGBA8 && back.data[i] != texels.data[i]))
-      ++differ;
+  for (std::size_t i = 0; i < back.data.size(); ++i) differ += !held(back.data[i], texels.data[i]);
   EXPECT_EQ(differ, 0u) << "the sentinel upload did not hold its texels";
   return tex;
 }
@@ -68,6 +73,7 @@ TEST_F(OutputFormat, EveryFormatAndMaskMatchesTheCpuReference) {
       gi.depth = {depthTex, gl::kDepthComponent32F};
       gi.output = out;
       gi.outputChannels = oc.mask;
+      gi.outputBlend = oc.blend;
       const Status st = effect->render(cam, settingsFor(divisor), gi);
       ASSERT_TRUE(st.ok()) << st.message;
       EXPECT_EQ(effect->aoTexture(), out);
@@ -75,6 +81,7 @@ TEST_F(OutputFormat, EveryFormatAndMaskMatchesTheCpuReference) {
       ci.depth = &depth;
       ci.outputFormat = oc.format;
       ci.outputChannels = oc.mask;
+      ci.outputBlend = oc.blend;
       ci.output = &sentinel;
       cpu::Result ref;
       const Status cst = cpu::run(settingsFor(divisor), cam, ci, cpu::Options{cpu::Precision::Float, 2}, ref);
@@ -84,6 +91,40 @@ TEST_F(OutputFormat, EveryFormatAndMaskMatchesTheCpuReference) {
       test::checkOutput(actual, ref.ao, sentinel, oc.format, oc.mask, compare, name);
       deleteTexture(out);
     }
+  }
+  deleteTexture(depthTex);
+}
+
+// The apply step on an engine's HDR colour target: RGB multiplied by A, not clamped, infinities and
+// NaNs stored back, alpha kept, at full and half resolution.
+TEST_F(OutputFormat, MultiplyIntoAnHdrColourTarget) {
+  const Camera cam = camera(160, 90, 8);
+  const DepthImage depth = test::renderDepth(sceneByName("sphere"), cam, DepthFormat::D32F);
+  const GLuint depthTex = uploadDepth(depth, GlDepth::D32F);
+  const FloatImage colour = test::hdrColour({cam.width, cam.height});
+  auto effect = makeEffect();
+  ASSERT_TRUE(effect);
+  for (int divisor : {1, 2}) {
+    const std::string name = "gl_hdr_d" + std::to_string(divisor);
+    const GLuint out = uploadOutput(gen::Format::RGBA16F, colour);
+    gl::Inputs gi;
+    gi.depth = {depthTex, gl::kDepthComponent32F};
+    gi.output = out;
+    gi.outputChannels = kChannelR | kChannelG | kChannelB;
+    gi.outputBlend = OutputBlend::Multiply;
+    const Status st = effect->render(cam, settingsFor(divisor), gi);
+    ASSERT_TRUE(st.ok()) << st.message;
+    cpu::Inputs ci;
+    ci.depth = &depth;
+    ci.outputFormat = gen::Format::RGBA16F;
+    ci.outputChannels = gi.outputChannels;
+    ci.outputBlend = OutputBlend::Multiply;
+    ci.output = &colour;
+    cpu::Result ref;
+    const Status cst = cpu::run(settingsFor(divisor), cam, ci, cpu::Options{cpu::Precision::Float, 2}, ref);
+    ASSERT_TRUE(cst.ok()) << cst.message;
+    test::checkHdrMultiply(readTexture(out, 4), ref.ao, colour, name);
+    deleteTexture(out);
   }
   deleteTexture(depthTex);
 }
@@ -139,11 +180,21 @@ TEST_F(OutputFormat, OtherFormatsAndMasksAreRefused) {
     EXPECT_NE(st.message.find("channel mask " + std::to_string(b.mask)), std::string::npos) << st.message;
     deleteTexture(out);
   }
-  // The owned output is GL_R16F: a mask keeping channels has nothing to keep there.
+  // The owned output is GL_R16F: a mask keeping channels has nothing to keep there, and a
+  // multiply nothing to multiply.
   gi.output = 0;
   gi.outputChannels = kChannelG;
   EXPECT_EQ(effect->render(cam, settingsFor(1), gi).code, StatusCode::InvalidInput);
   gi.outputChannels = kAllChannels;
+  gi.outputBlend = OutputBlend::Multiply;
+  Status st = effect->render(cam, settingsFor(1), gi);
+  EXPECT_EQ(st.code, StatusCode::InvalidInput);
+  EXPECT_NE(st.message.find("output blend multiply needs your own output"), std::string::npos) << st.message;
+  gi.outputBlend = static_cast<OutputBlend>(7);
+  st = effect->render(cam, settingsFor(1), gi);
+  EXPECT_EQ(st.code, StatusCode::InvalidInput);
+  EXPECT_NE(st.message.find("unknown output blend 7"), std::string::npos) << st.message;
+  gi.outputBlend = OutputBlend::Replace;
   EXPECT_TRUE(effect->render(cam, settingsFor(1), gi).ok()) << "the effect stays usable";
   deleteTexture(depthTex);
 }

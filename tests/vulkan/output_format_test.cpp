@@ -1,9 +1,10 @@
 // The output as the engine wants it (sao/output.h) on Vulkan, under validation and synchronization
 // validation: the caller's R16_SFLOAT, R8_UNORM, R8G8B8A8_UNORM and R16G16B16A16_SFLOAT images with
-// channel masks against the CPU reference (Float) at full and half resolution, untouched channels
-// keeping their sentinel texels (the image transitioned from the caller's layout), the effect's own
-// output in another format, other formats and masks refused, and outputGeneration() following the
-// owned output image through update().
+// channel masks and the multiply blend (the apply step, also on an HDR colour target with
+// infinities and NaNs) against the CPU reference (Float) at full and half resolution, untouched
+// channels keeping their sentinel texels (the image transitioned from the caller's layout), the
+// effect's own output in another format, other formats, masks and a multiply without the caller's
+// image refused, and outputGeneration() following the owned output image through update().
 #include <string>
 
 #include "analytic_scenes.h"
@@ -65,6 +66,31 @@ std::unique_ptr<vk::Effect> makeEffect(const vk::Config& config) {
   return e;
 }
 
+// Creates the effect for `c` (a user output), uploads `texels` into a new storage image in
+// SHADER_READ_ONLY_OPTIMAL (record() keeps or multiplies them from that layout), records once and
+// reads the output back into `actual` (and the plan's variants into `variants`). Returns false
+// (after failed expectations) on any error.
+bool recordIntoUserOutput(const Scene& scene, const vk::Config& c, const FloatImage& texels, FloatImage& actual,
+                          gen::VariantValues* variants = nullptr) {
+  auto effect = makeEffect(c);
+  if (!effect) return false;
+  if (variants) *variants = effect->plan().variants;
+  Image out;
+  const Status up = context().uploadColor(texels, c.outputFormat, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, out,
+                                          VK_IMAGE_USAGE_STORAGE_BIT);
+  EXPECT_TRUE(up.ok()) << up.message;
+  if (!up.ok()) return false;
+  const vk::OutputImage o{out.image, out.view, c.outputFormat, texels.extent, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  Status recorded;
+  const Status submitted = context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, scene.inputs(), &o); });
+  EXPECT_TRUE(submitted.ok() && recorded.ok()) << submitted.message << recorded.message;
+  const Status read = context().readback(out.image, c.outputFormat, texels.extent, 0, c.outputLayout, c.outputDstStages,
+                                         c.outputDstAccess, actual);
+  EXPECT_TRUE(read.ok()) << read.message;
+  context().destroy(out);
+  return submitted.ok() && recorded.ok() && read.ok();
+}
+
 class OutputFormat : public VkTest {};
 
 TEST_F(OutputFormat, EveryFormatAndMaskMatchesTheCpuReference) {
@@ -78,37 +104,52 @@ TEST_F(OutputFormat, EveryFormatAndMaskMatchesTheCpuReference) {
       c.userOutput = true;
       c.outputFormat = format;
       c.outputChannels = oc.mask;
-      auto effect = makeEffect(c);
-      ASSERT_TRUE(effect);
-      // The sentinel texels, in SHADER_READ_ONLY_OPTIMAL: record() keeps them from that layout.
+      c.outputBlend = oc.blend;
       const FloatImage sentinel = test::sentinelOutput({scene.camera.width, scene.camera.height}, oc.format);
-      Image out;
-      ASSERT_TRUE(context()
-                      .uploadColor(sentinel, format, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, out,
-                                   VK_IMAGE_USAGE_STORAGE_BIT)
-                      .ok());
-      const vk::OutputImage o{out.image, out.view, format, sentinel.extent, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-      Status recorded;
-      ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, scene.inputs(), &o); }).ok());
-      ASSERT_TRUE(recorded.ok()) << recorded.message;
       FloatImage actual;
-      ASSERT_TRUE(context()
-                      .readback(out.image, format, sentinel.extent, 0, c.outputLayout, c.outputDstStages,
-                                c.outputDstAccess, actual)
-                      .ok());
+      gen::VariantValues variants{};
+      ASSERT_TRUE(recordIntoUserOutput(scene, c, sentinel, actual, &variants));
       cpu::Inputs ci;
       ci.depth = &scene.depth;
       ci.outputFormat = oc.format;
       ci.outputChannels = oc.mask;
+      ci.outputBlend = oc.blend;
       ci.output = &sentinel;
       cpu::Result ref;
       const Status cst = cpu::run(settingsFor(divisor), scene.camera, ci, {cpu::Precision::Float, 2}, ref);
       ASSERT_TRUE(cst.ok()) << cst.message;
-      EXPECT_EQ(effect->plan().variants, ref.plan.variants) << "the same OUTPUT_FORMAT variant";
+      EXPECT_EQ(variants, ref.plan.variants) << "the same OUTPUT_FORMAT variant";
       test::checkOutput(actual, ref.ao, sentinel, oc.format, oc.mask, compare, name);
-      context().destroy(out);
       expectNoMessages(name.c_str());
     }
+  }
+}
+
+// The apply step on an engine's HDR colour target: RGB multiplied by A, not clamped, infinities and
+// NaNs stored back, alpha kept, at full and half resolution.
+TEST_F(OutputFormat, MultiplyIntoAnHdrColourTarget) {
+  const Scene scene(160, 90, 8);
+  const FloatImage colour = test::hdrColour({scene.camera.width, scene.camera.height});
+  const VkFormat format = VK_FORMAT_R16G16B16A16_SFLOAT;
+  for (int divisor : {1, 2}) {
+    const std::string name = "vk_hdr_d" + std::to_string(divisor);
+    vk::Config c = scene.config(divisor);
+    c.userOutput = true;
+    c.outputFormat = format;
+    c.outputChannels = kChannelR | kChannelG | kChannelB;
+    c.outputBlend = OutputBlend::Multiply;
+    FloatImage actual;
+    ASSERT_TRUE(recordIntoUserOutput(scene, c, colour, actual));
+    cpu::Inputs ci;
+    ci.depth = &scene.depth;
+    ci.outputFormat = gen::Format::RGBA16F;
+    ci.outputChannels = c.outputChannels;
+    ci.outputBlend = OutputBlend::Multiply;
+    ci.output = &colour;
+    cpu::Result ref;
+    ASSERT_TRUE(cpu::run(c.settings, scene.camera, ci, {cpu::Precision::Float, 2}, ref).ok());
+    test::checkHdrMultiply(actual, ref.ao, colour, name);
+    expectNoMessages(name.c_str());
   }
 }
 
@@ -169,6 +210,19 @@ TEST_F(OutputFormat, OtherFormatsAndMasksAreRefused) {
     EXPECT_EQ(st.code, StatusCode::InvalidInput) << st.message;
     EXPECT_NE(st.message.find("outputChannels"), std::string::npos) << st.message;
   }
+  {  // A multiply needs the caller's image; an unknown blend is named.
+    vk::Config m = scene.config(1);
+    m.outputBlend = OutputBlend::Multiply;
+    std::unique_ptr<vk::Effect> e;
+    Status st = vk::Effect::create(context().deviceContext(), m, e);
+    EXPECT_EQ(st.code, StatusCode::InvalidInput) << st.message;
+    EXPECT_NE(st.message.find("output blend multiply needs your own output"), std::string::npos) << st.message;
+    m.outputBlend = static_cast<OutputBlend>(7);
+    m.userOutput = true;
+    st = vk::Effect::create(context().deviceContext(), m, e);
+    EXPECT_EQ(st.code, StatusCode::InvalidInput) << st.message;
+    EXPECT_NE(st.message.find("unknown output blend 7"), std::string::npos) << st.message;
+  }
   // record(): the image's format must be the configured one; kept channels need a real layout.
   vk::Config c = scene.config(1);
   c.userOutput = true;
@@ -190,6 +244,20 @@ TEST_F(OutputFormat, OtherFormatsAndMasksAreRefused) {
   EXPECT_EQ(wrongFormat.code, StatusCode::UnsupportedFormat) << wrongFormat.message;
   EXPECT_NE(wrongFormat.message.find("r16f"), std::string::npos) << wrongFormat.message;
   EXPECT_EQ(undefinedLayout.code, StatusCode::InvalidInput) << undefinedLayout.message;
+  // A multiply reads every texel: an undefined layout is refused, naming the blend.
+  c.outputChannels = kAllChannels;
+  c.outputBlend = OutputBlend::Multiply;
+  ASSERT_TRUE(effect->update(c).ok());
+  Status multiplyUndefined;
+  ASSERT_TRUE(context()
+                  .submit([&](VkCommandBuffer cmd) {
+                    const vk::OutputImage undef{out.image, out.view, VK_FORMAT_R8G8B8A8_UNORM, {32, 18}};
+                    multiplyUndefined = effect->record(cmd, scene.inputs(), &undef);
+                  })
+                  .ok());
+  EXPECT_EQ(multiplyUndefined.code, StatusCode::InvalidInput) << multiplyUndefined.message;
+  EXPECT_NE(multiplyUndefined.message.find("Config::outputBlend is multiply"), std::string::npos)
+      << multiplyUndefined.message;
   context().destroy(out);
 }
 

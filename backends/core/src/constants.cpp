@@ -210,6 +210,7 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
   p.view_y = {f(R[3]), f(R[4]), f(R[5]), 0.0f};
   p.view_z = {f(R[6]), f(R[7]), f(R[8]), 0.0f};
   p.output_mask = 15;  // every channel of the output (kAllChannels); backends put the caller's mask here
+  p.output_blend = gen::SAO_OUTPUT_BLEND_REPLACE;  // and the caller's blend (sao/output.h) here
   return Status::success();
 }
 

@@ -50,9 +50,28 @@ Status checkOutputChannels(gen::Format format, std::uint32_t mask, const char* w
 
 std::int32_t outputMaskParam(std::uint32_t mask) { return static_cast<std::int32_t>(mask & kAllChannels); }
 
-bool keepsChannels(gen::Format format, std::uint32_t mask) {
+bool keepsChannels(gen::Format format, std::uint32_t mask, OutputBlend blend) {
   const std::uint32_t has = (1u << channelCount(format)) - 1u;
-  return (has & ~mask) != 0;
+  return blend == OutputBlend::Multiply || (has & ~mask) != 0;
+}
+
+const char* toString(OutputBlend blend) {
+  switch (blend) {
+    case OutputBlend::Replace: return "replace";
+    case OutputBlend::Multiply: return "multiply";
+  }
+  return "?";
+}
+
+Status checkOutputBlend(OutputBlend blend, bool userOutput, const char* who) {
+  if (blend != OutputBlend::Replace && blend != OutputBlend::Multiply)
+    return Status::error(StatusCode::InvalidInput, std::string(who) + ": unknown output blend " +
+                                                       std::to_string(int(blend)) + " (replace 0, multiply 1)");
+  if (blend == OutputBlend::Multiply && !userOutput)
+    return Status::error(StatusCode::InvalidInput,
+                         std::string(who) + ": output blend multiply needs your own output (it multiplies A into "
+                                            "its texels); an effect-owned output holds nothing to multiply");
+  return Status::success();
 }
 
 std::string outputFormatList() {

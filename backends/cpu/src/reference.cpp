@@ -210,6 +210,7 @@ Status validateAndPlan(const Settings& settings, const Camera& camera, const Inp
   const PlanInputs planInputs{encoding, in.normals != nullptr, in.depth2 != nullptr, false, in.outputFormat};
   if (Status st = plan(settings, camera, planInputs, r.plan); !st) return st;
   if (Status st = checkOutputChannels(in.outputFormat, in.outputChannels, "sao::cpu"); !st) return st;
+  if (Status st = checkOutputBlend(in.outputBlend, in.output != nullptr, "sao::cpu"); !st) return st;
   if (in.output != nullptr) {
     const std::uint32_t channels = channelCount(in.outputFormat);
     if (in.output->extent != r.plan.aoExtent || in.output->channels != channels ||
@@ -237,6 +238,7 @@ Status validateAndPlan(const Settings& settings, const Camera& camera, const Inp
   if (Status st = computeConstants(settings, camera, encoding, r.params); !st) return st;
   r.params.input_offset = {std::int32_t(offset.x), std::int32_t(offset.y)};
   r.params.output_mask = outputMaskParam(in.outputChannels);
+  r.params.output_blend = static_cast<std::int32_t>(in.outputBlend);
   // The block and the plan come from the same core functions; check that they agree anyway.
   if (std::uint32_t(r.params.max_mip) + 1 != r.plan.cszLevels)
     return invalid("max_mip " + std::to_string(r.params.max_mip) + " disagrees with the plan's " +
@@ -282,5 +284,6 @@ Status run(const Settings& settings, const Camera& camera, const Inputs& inputs,
 
 float roundToHalfAsShader(float x) { return roundToHalf(x); }
 float roundToUnorm8AsShader(float x) { return roundToUnorm8(x); }
+float outputMultiplyAsShader(float c, float a, bool unorm8) { return outputMultiply(c, a, unorm8); }
 
 }  // namespace sao::cpu

@@ -2,6 +2,7 @@
 // (glGetTexLevelParameteriv on level 0), never taken on trust.
 #pragma once
 #include "gl_functions.h"
+#include "sao/output.h"
 #include "sao/schedule.h"
 
 namespace sao::gl::detail {
@@ -18,6 +19,7 @@ struct CheckedInputs {
   std::optional<Offset> region;  // Inputs::region: where the region starts in depth, depth2 and normals
   PlanInputs planInputs;
   std::uint32_t outputChannels = 15;  // Inputs::outputChannels, checked against the output's format
+  OutputBlend outputBlend = OutputBlend::Replace;  // Inputs::outputBlend, checked (multiply needs Inputs::output)
 };
 
 // Inspects every texture in `inputs` (binding each on `scratchUnit`, whose binding the caller

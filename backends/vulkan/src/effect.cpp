@@ -187,6 +187,7 @@ Status checkConfig(const EffectState& e, const Config& c, Plan& plan, ParamBlock
     return Status::error(StatusCode::UnsupportedFormat, std::string("Config::outputFormat ") + sao::formatName(outputFormat) +
                                                             " cannot be an optimal-tiling storage image on this device");
   if (Status st = checkOutputChannels(outputFormat, c.outputChannels, "sao::vk Config::outputChannels"); !st) return st;
+  if (Status st = checkOutputBlend(c.outputBlend, c.userOutput, "sao::vk Config::outputBlend"); !st) return st;
   if (!c.userOutput && keepsChannels(outputFormat, c.outputChannels))
     return Status::error(StatusCode::InvalidInput,
                          "Config::outputChannels " + std::to_string(c.outputChannels) +
@@ -198,6 +199,7 @@ Status checkConfig(const EffectState& e, const Config& c, Plan& plan, ParamBlock
   if (Status st = sao::plan(c.settings, c.camera, pi, plan); !st) return st;
   if (Status st = computeConstants(c.settings, c.camera, encoding, params); !st) return st;
   params.output_mask = outputMaskParam(c.outputChannels);
+  params.output_blend = static_cast<std::int32_t>(c.outputBlend);
   const std::uint32_t maxSide = e.props.limits.maxImageDimension2D;
   const Extent ie = plan.inputExtent;
   if (ie.width > maxSide || ie.height > maxSide)

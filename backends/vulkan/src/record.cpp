@@ -133,10 +133,12 @@ Status checkInputs(const EffectState& e, const Inputs& in, const OutputImage* us
                              "; the effect writes VK_FORMAT_R16_SFLOAT, R8_UNORM, R8G8B8A8_UNORM or "
                              "R16G16B16A16_SFLOAT, the one Config names (its pipelines are built for it)");
   }
-  const bool keep = keepsChannels(outputFormatOf(c.outputFormat), c.outputChannels);
+  const bool keep = keepsChannels(outputFormatOf(c.outputFormat), c.outputChannels, c.outputBlend);
   if (keep && (userOutput->layout == VK_IMAGE_LAYOUT_UNDEFINED || userOutput->layout == VK_IMAGE_LAYOUT_PREINITIALIZED))
     return Status::error(StatusCode::InvalidInput,
-                         "Config::outputChannels keeps channels of the output, but OutputImage::layout is " +
+                         std::string(c.outputBlend == OutputBlend::Multiply ? "Config::outputBlend is multiply"
+                                                                            : "Config::outputChannels keeps channels of the output") +
+                             ", but OutputImage::layout is " +
                              std::to_string(userOutput->layout) +
                              "; give the layout your image is in when the commands run (its texels are kept)");
   for (const auto& [input, name] : {std::pair{in.depth.view, "depth"}, std::pair{in.depth2.view, "depth2"},

@@ -207,7 +207,7 @@ struct BindingInfo {
   ResourceId resource;
   bool write;  // true: storage image out_<name>; false: sampler in_<name>
   Format format;  // the format the shader declares (a write's storage format)
-  bool readWrite;  // a write the pass also loads from (the unmasked channels of an RGBA output)
+  bool readWrite;  // a write the pass may also load from (a formats= output: kept channels, a multiply)
 };
 struct PassVariantInfo {
   VariantValues values;  // -1 where the pass does not depend on the variant

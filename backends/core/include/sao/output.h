@@ -20,6 +20,23 @@
 
 namespace sao {
 
+// How the channels the mask selects take A. Replace (the default) stores A. Multiply stores the
+// texel's own value times A: the apply step, AO multiplied into an existing target (a lit colour
+// buffer, best before tone mapping since the product is taken on the stored values; or an
+// occlusion texture, e.g. baked AO in an R8 channel), as HBAO+'s multiply blend mode, with no pass
+// of the engine's own. The product is rounded once as the format holds it (binary16 of either sign,
+// or a multiple of 1/255 clamped to [0, 1]); an infinite or NaN channel is stored back unchanged.
+// It needs the caller's output (an effect-owned one holds nothing to multiply) and makes the final
+// pass load every texel (as a mask that keeps channels does).
+enum class OutputBlend : std::uint8_t { Replace = 0, Multiply = 1 };
+static_assert(int(OutputBlend::Replace) == gen::SAO_OUTPUT_BLEND_REPLACE &&
+              int(OutputBlend::Multiply) == gen::SAO_OUTPUT_BLEND_MULTIPLY);
+// "replace" / "multiply".
+const char* toString(OutputBlend blend);
+// Ok for Replace, or for Multiply with the caller's output; otherwise InvalidInput naming the blend
+// (and an unknown value), prefixed by `who`.
+Status checkOutputBlend(OutputBlend blend, bool userOutput, const char* who);
+
 // Channel bits of an output mask.
 inline constexpr std::uint32_t kChannelR = 1, kChannelG = 2, kChannelB = 4, kChannelA = 8;
 // Every channel the output's format has (the default): R of a one-channel output, RGBA of an RGBA one.
@@ -39,9 +56,10 @@ Status checkOutputChannels(gen::Format format, std::uint32_t mask, const char* w
 // The parameter block's output_mask for a checked mask: kAllChannels stays 15 (every channel the
 // format has; a one-channel image drops G, B and A).
 std::int32_t outputMaskParam(std::uint32_t mask);
-// Whether a checked mask leaves some channel of `format` untouched (the final pass then loads the
-// texel first, and the Vulkan backend keeps the image's contents across its layout transition).
-bool keepsChannels(gen::Format format, std::uint32_t mask);
+// Whether the final pass reads the output's previous texels: a checked mask that leaves some channel
+// of `format` untouched, or a Multiply blend (the Vulkan backend then keeps the image's contents
+// across its layout transition).
+bool keepsChannels(gen::Format format, std::uint32_t mask, OutputBlend blend = OutputBlend::Replace);
 
 // "r16f, r8, rgba8, rgba16f": for messages that name the supported list.
 std::string outputFormatList();

@@ -81,9 +81,12 @@ struct Inputs {
   // precision holds what the GPU backends store (binary16 values or multiples of 1/255).
   gen::Format outputFormat = gen::Format::R16F;
   std::uint32_t outputChannels = kAllChannels;
+  // How those channels take A (sao/output.h): Replace, or Multiply (the texel's value times A; needs
+  // `output` below, refused without it as the GPU backends refuse it without the caller's output).
+  OutputBlend outputBlend = OutputBlend::Replace;
   // Optional: the output's contents before the run (the viewport's extent, the format's channel
   // count), kept in the channels outputChannels leaves out, as a GPU backend keeps the caller's
-  // texels. Without it those channels hold 0.
+  // texels (and multiplied in the others with OutputBlend::Multiply). Without it those channels hold 0.
   const FloatImage* output = nullptr;
 };
 
@@ -128,5 +131,10 @@ float roundToHalfAsShader(float x);
 // sao_round_to_unorm8 of sao_output.glsl (R8 / RGBA8 outputs): x clamped to [0, 1], rounded to the
 // nearest multiple of 1/255 with halves up, floor(x * 255 + 0.5) / 255 in binary32.
 float roundToUnorm8AsShader(float x);
+// sao_output_multiply of sao_output.glsl (OutputBlend::Multiply, Float precision): the channel c
+// times A clamped to [0, 1], rounded once as the format holds it (unorm8: roundToUnorm8AsShader;
+// else the nearest binary16 of either sign, ties away from zero, not clamped); an infinite or NaN
+// c is returned as it is.
+float outputMultiplyAsShader(float c, float a, bool unorm8);
 
 }  // namespace sao::cpu

@@ -116,6 +116,11 @@ struct Inputs {
   // output keep their texels (the final pass loads each texel and stores it back with only these
   // channels replaced), so A can share a texture with your own data. Changing it does not plan again.
   std::uint32_t outputChannels = kAllChannels;
+  // How those channels take A (sao/output.h): Replace (the default), or Multiply: each is multiplied
+  // by A, the apply step in the effect's final pass (e.g. output = your lit GL_RGBA16F colour target,
+  // outputChannels = kChannelR | kChannelG | kChannelB). Multiply needs `output` (InvalidInput
+  // without it). Changing it does not plan again.
+  OutputBlend outputBlend = OutputBlend::Replace;
 };
 
 struct RenderOptions {

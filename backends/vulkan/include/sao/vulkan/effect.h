@@ -126,6 +126,12 @@ struct Config {
   // with only these channels replaced, so the contents must be defined and visible (see the
   // synchronisation contract: OutputImage::layout). Only with userOutput.
   std::uint32_t outputChannels = kAllChannels;
+  // How those channels take A (sao/output.h): Replace (the default), or Multiply: each texel's
+  // channel is multiplied by A, the apply step in the effect's final pass (e.g. your lit
+  // R16G16B16A16_SFLOAT colour target with outputChannels = kChannelR | kChannelG | kChannelB). Only
+  // with userOutput; like a mask that keeps channels, record() reads the texels, so the contents
+  // must be defined and visible (OutputImage::layout). A block value: changing it needs update().
+  OutputBlend outputBlend = OutputBlend::Replace;
   // Layout of the output after record(): VK_IMAGE_LAYOUT_GENERAL or SHADER_READ_ONLY_OPTIMAL.
   VkImageLayout outputLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   // Where you read the output afterwards (the final barrier's destination scope). On a queue family
