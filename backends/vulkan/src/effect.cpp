@@ -152,10 +152,7 @@ Status checkConfig(const EffectState& e, const Config& c, Plan& plan, ParamBlock
     if (isDepthStencilFormat(c.normalsFormat))
       return Status::error(StatusCode::UnsupportedFormat,
                            "Config::normalsFormat " + formatText(c.normalsFormat) + " is a depth/stencil format");
-    if (Status st = checkNormalsChannels(c.camera.normalsEncoding, channelsUpToThree(c.normalsFormat),
-                                         "Config::normalsFormat " + formatText(c.normalsFormat), "format");
-        !st)
-      return st;
+    if (Status st = checkNormalsFormat(c.normalsFormat, c.camera.normalsEncoding); !st) return st;
     if (Status st = checkSampled(e, c.normalsFormat, "the normals"); !st) return st;
   }
   if (c.outputLayout != VK_IMAGE_LAYOUT_GENERAL && c.outputLayout != VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
@@ -194,7 +191,7 @@ Status checkConfig(const EffectState& e, const Config& c, Plan& plan, ParamBlock
                              " keeps channels of the output, which only your own image has: set Config::userOutput "
                              "or use kAllChannels");
 
-  const DepthEncoding encoding = c.depthFormat == VK_FORMAT_R32_SFLOAT ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
+  const DepthEncoding encoding = depthEncodingOf(c.depthFormat);
   PlanInputs pi{encoding, c.normalsFormat != VK_FORMAT_UNDEFINED, c.secondLayer, c.userOutput, outputFormat};
   if (Status st = sao::plan(c.settings, c.camera, pi, plan); !st) return st;
   if (Status st = computeConstants(c.settings, c.camera, encoding, params); !st) return st;
@@ -216,6 +213,13 @@ bool sameDispatches(const Schedule& a, const Schedule& b) {
 }
 
 }  // namespace
+
+Status checkNormalsFormat(VkFormat normalsFormat, NormalsEncoding encoding) {
+  if (normalsFormat == VK_FORMAT_UNDEFINED) return Status::success();
+  const std::uint32_t channels = channelsUpToThree(normalsFormat);
+  if (channels >= normalsChannelsRead(encoding)) return Status::success();  // no message to build
+  return checkNormalsChannels(encoding, channels, "Config::normalsFormat " + formatText(normalsFormat), "format");
+}
 
 VkFormat depthVkFormat(DepthFormat format) {
   switch (format) {

@@ -154,7 +154,15 @@ void recordDispatches(const EffectState& e, VkCommandBuffer cmd, std::uint32_t s
                       int timingRegion, int onlyPass = -1) noexcept;
 void recordEpilogue(const EffectState& e, VkCommandBuffer cmd, const OutputTarget& output) noexcept;
 Status checkInputs(const EffectState& e, const Inputs& inputs, const OutputImage* userOutput, OutputTarget& out);
-std::uint32_t acquireSlot(EffectState& e, const Inputs& inputs, const OutputTarget& output);
+// The next ring slot, its descriptor sets and its copy of the parameter block: `cameraBlock` (from
+// cameraParams, Inputs::camera) when given, else the Config camera's e.params; this record's
+// region offset goes into either.
+std::uint32_t acquireSlot(EffectState& e, const Inputs& inputs, const OutputTarget& output, ParamBlock* cameraBlock);
+
+// ---- frame_camera.cpp
+// The parameter block of a record with Inputs::camera: Ok only for a valid camera (create()'s
+// checks and messages) that plans exactly as Config::camera does. Allocates nothing on success.
+Status cameraParams(const EffectState& e, const Camera& camera, ParamBlock& out);
 
 // ---- timing.cpp
 // The timestamp pool for `framesInFlight` ring slots; none (and success) where the queue family
@@ -164,6 +172,13 @@ std::uint32_t queriesPerRegion();
 bool familyHasTimestamps(const EffectState& e);
 
 // ---- effect.cpp
+// What the depth input holds: R32_SFLOAT is linear z, every other depth format hardware depth.
+inline DepthEncoding depthEncodingOf(VkFormat depthFormat) {
+  return depthFormat == VK_FORMAT_R32_SFLOAT ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
+}
+// The normals contract (sao::checkNormalsChannels) of Config::normalsFormat for `encoding`; Ok
+// without normals. Builds a message only on failure (record() with Inputs::camera calls it).
+Status checkNormalsFormat(VkFormat normalsFormat, NormalsEncoding encoding);
 // DriverError "<where>: <what>"; without memory for that, a message that needs none.
 Status exceptionStatus(const char* where, const char* what) noexcept;
 

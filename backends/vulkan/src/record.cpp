@@ -150,7 +150,7 @@ Status checkInputs(const EffectState& e, const Inputs& in, const OutputImage* us
   return Status::success();
 }
 
-std::uint32_t acquireSlot(EffectState& e, const Inputs& in, const OutputTarget& output) {
+std::uint32_t acquireSlot(EffectState& e, const Inputs& in, const OutputTarget& output, ParamBlock* cameraBlock) {
   const std::uint32_t slot = e.nextSlot;
   e.nextSlot = (slot + 1) % e.config.framesInFlight;
   // Always rewritten: a caller may destroy a view and create another that gets the same handle
@@ -162,11 +162,17 @@ std::uint32_t acquireSlot(EffectState& e, const Inputs& in, const OutputTarget& 
   // most maxImageDimension2D, so it fits the shader's int).
   const Offset offset = in.region.value_or(Offset{});
   e.params.input_offset = {static_cast<std::int32_t>(offset.x), static_cast<std::int32_t>(offset.y)};
+  // This record's camera (Inputs::camera) goes into this slot only; e.params stays Config's.
+  const ParamBlock* block = &e.params;
+  if (cameraBlock) {
+    cameraBlock->input_offset = e.params.input_offset;
+    block = cameraBlock;
+  }
   // The slot's copy of the parameter block (its previous command buffer has completed: the ring
   // contract), written only when it changed.
-  if (!e.ubo.valid[slot] || std::memcmp(&e.ubo.written[slot], &e.params, sizeof(ParamBlock)) != 0) {
-    std::memcpy(e.ubo.mapped + slot * e.ubo.stride, &e.params, sizeof(ParamBlock));
-    e.ubo.written[slot] = e.params;
+  if (!e.ubo.valid[slot] || std::memcmp(&e.ubo.written[slot], block, sizeof(ParamBlock)) != 0) {
+    std::memcpy(e.ubo.mapped + slot * e.ubo.stride, block, sizeof(ParamBlock));
+    e.ubo.written[slot] = *block;
     e.ubo.valid[slot] = true;
   }
   return slot;
@@ -271,8 +277,11 @@ Status Effect::record(VkCommandBuffer cmd, const Inputs& inputs, const OutputIma
       return Status::error(StatusCode::InvalidInput, "record(): the command buffer is VK_NULL_HANDLE");
     OutputTarget output;
     if (Status st = checkInputs(e, inputs, userOutput, output); !st) return st;
+    ParamBlock cameraBlock{};
+    if (inputs.camera)
+      if (Status st = cameraParams(e, *inputs.camera, cameraBlock); !st) return st;
     // The only step that allocates, before the first command: a failure records nothing.
-    const std::uint32_t slot = acquireSlot(e, inputs, output);
+    const std::uint32_t slot = acquireSlot(e, inputs, output, inputs.camera ? &cameraBlock : nullptr);
     const int region = e.config.timestamps && e.queryPool ? static_cast<int>(slot) : -1;
     recordPrologue(e, cmd, output, region);
     recordDispatches(e, cmd, slot, output, region);

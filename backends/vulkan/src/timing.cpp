@@ -125,11 +125,14 @@ Status Effect::measure(VkQueue queue, const Inputs& inputs, const OutputImage* u
       return Status::error(StatusCode::InvalidInput, "measure(): the queue is VK_NULL_HANDLE");
     OutputTarget output;
     if (Status st = checkInputs(e, inputs, userOutput, output); !st) return st;
+    ParamBlock cameraBlock{};
+    if (inputs.camera)
+      if (Status st = cameraParams(e, *inputs.camera, cameraBlock); !st) return st;
     Submitter sub(e);
     if (Status st = sub.init(); !st) return st;
     Timings t;
     t.passes.reserve(e.plan.passes.size());
-    const std::uint32_t slot = acquireSlot(e, inputs, output);
+    const std::uint32_t slot = acquireSlot(e, inputs, output, inputs.camera ? &cameraBlock : nullptr);
 
     if (method == MeasureMethod::Auto && familyHasTimestamps(e) && e.queryPool) {
       const int region = static_cast<int>(e.config.framesInFlight);  // measure()'s own region

@@ -48,6 +48,10 @@
 //    descriptor sets (a destroyed view's handle value can come back for a new view, so handles
 //    cannot tell a set is still valid). The effect's images are shared by all slots; the barriers
 //    order them in submission order on the one queue.
+//  * Per-record camera: Inputs::camera (a jittered projection, another field of view, a new view
+//    rotation) is written into the record's own slot of the parameter block, so the frames in
+//    flight each keep their camera: no update(), no wait. A camera that would change the plan
+//    (size, guard band, csz levels) is refused and needs update().
 //  * create(), update() and the destructor must not run while a command buffer recorded by the
 //    effect is pending (wait for its fence, or vkDeviceWaitIdle).
 #pragma once
@@ -97,7 +101,7 @@ struct DeviceContext {
 // What the images, pipelines and the parameter block depend on.
 struct Config {
   Settings settings;
-  Camera camera;
+  Camera camera;  // what the plan is made for; Inputs::camera may replace it per record
   // The depth input: VK_FORMAT_D16_UNORM, X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT, D32_SFLOAT,
   // D32_SFLOAT_S8_UINT (hardware depth per the camera's conventions; views of the combined
   // formats must select VK_IMAGE_ASPECT_DEPTH_BIT only) or VK_FORMAT_R32_SFLOAT (linear
@@ -173,6 +177,18 @@ struct Inputs {
   // inside every image given is refused (InvalidInput naming the offset, the extent and the
   // image's size), never clamped.
   std::optional<Offset> region;
+  // Optional: this record's camera (TAA jitter, an animated field of view, a new view rotation for
+  // world-space normals). It must plan exactly as Config::camera does — same width, height, guard
+  // band, and the same plan (the same images, levels and variants: e.g. the same csz MIP levels,
+  // which the projection scale, near distance, projection kind and metersToViewUnits select);
+  // anything that changes the plan is refused with InvalidInput naming what differs, and needs
+  // update(). An invalid camera is refused as create() refuses it (InvalidCamera, create()'s
+  // message after "record(): Inputs::camera: "), and so is a normals encoding that
+  // Config::normalsFormat cannot hold (UnsupportedFormat). measure() takes it the same way.
+  // Its parameter block (Config's settings and depth encoding) goes into this record's ring slot
+  // only: Config::camera and params() stay what update() set. Per record: no update(), no
+  // allocation, no wait. Null: Config::camera.
+  const Camera* camera = nullptr;
 };
 
 // The output: Config::outputFormat, the viewport's extent (plan().aoExtent), one level, usage
