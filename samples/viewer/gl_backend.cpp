@@ -51,7 +51,8 @@ class GlBackend final : public Backend {
     imgui_ = true;
     description_ = std::string("OpenGL ") + reinterpret_cast<const char*>(glGetString(GL_VERSION)) + ", " +
                    reinterpret_cast<const char*>(glGetString(GL_RENDERER)) +
-                   (reversedZ_ ? "; depth: D32F reversed-Z, glClipControl [0,1], infinite far"
+                   (reversedZ_ ? "; depth: D32F reversed-Z, glClipControl [0,1], infinite far (orthographic: a far "
+                                 "plane just beyond the scene)"
                                : "; depth: D32F standard, [-1,1] clip, finite far");
     return drainErrors("initialisation");
   }

@@ -82,7 +82,8 @@ class VkBackend final : public Backend {
 
   std::string description() const override {
     return "Vulkan: " + ctx_->description() +
-           "; presents through a VK_KHR_swapchain; depth: D32_SFLOAT reversed-Z, [0,1], infinite far";
+           "; presents through a VK_KHR_swapchain; depth: D32_SFLOAT reversed-Z, [0,1], infinite far (orthographic: a "
+           "far plane just beyond the scene)";
   }
   ClipDepth clipDepth() const override { return ClipDepth::ZeroToOne; }
   bool reversedZ() const override { return true; }

@@ -198,9 +198,7 @@ int main(int argc, char** argv) {
   VkDevice device = ctx->device();
   VkCommandBuffer cmds[2]{};
   VkFence fences[2]{};
-  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, ctx->commandPool(),
-                                 VK_COMMAND_BUFFER_LEVEL_PRIMARY, 2};
-  if (vkAllocateCommandBuffers(device, &ai, cmds) != VK_SUCCESS) return fail("vkAllocateCommandBuffers");
+  if (!ctx->allocateCommandBuffers(cmds, 2)) return fail("vkAllocateCommandBuffers");
   for (VkFence& f : fences) {
     VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, nullptr, VK_FENCE_CREATE_SIGNALED_BIT};
     if (vkCreateFence(device, &fi, nullptr, &f) != VK_SUCCESS) return fail("vkCreateFence");

@@ -50,11 +50,7 @@ TEST_F(VkFrameLoop, RecordedOnceResubmitted2000FramesHoldsHostMemory) {
 
   const VkDevice device = ctx.device();
   VkCommandBuffer cmds[2]{};
-  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  ai.commandPool = ctx.commandPool();
-  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  ai.commandBufferCount = 2;
-  ASSERT_EQ(vkAllocateCommandBuffers(device, &ai, cmds), VK_SUCCESS);
+  ASSERT_TRUE(ctx.allocateCommandBuffers(cmds, 2).ok());
   VkFence fences[2]{};
   for (VkFence& f : fences) {
     VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};

@@ -216,11 +216,7 @@ TEST_F(PerRecordCamera, TwoFramesInFlightKeepTheirCameras) {
   ASSERT_TRUE(ctx.createStorageImage(VK_FORMAT_R16_SFLOAT, {kW, kH}, outB).ok());
   ASSERT_TRUE(ctx.createStorageImage(VK_FORMAT_R16_SFLOAT, {kW, kH}, outC).ok());
   VkCommandBuffer cmds[2]{};
-  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  ai.commandPool = ctx.commandPool();
-  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  ai.commandBufferCount = 2;
-  ASSERT_EQ(vkAllocateCommandBuffers(device, &ai, cmds), VK_SUCCESS);
+  ASSERT_TRUE(ctx.allocateCommandBuffers(cmds, 2).ok());
   VkFence fence = VK_NULL_HANDLE;
   VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   ASSERT_EQ(vkCreateFence(device, &fi, nullptr, &fence), VK_SUCCESS);

@@ -381,6 +381,15 @@ DeviceContext Context::deviceContext() const {
   return c;
 }
 
+Status Context::allocateCommandBuffers(VkCommandBuffer* out, std::uint32_t count) {
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  ai.commandPool = pool_;
+  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  ai.commandBufferCount = count;
+  if (VkResult r = vkAllocateCommandBuffers(device_, &ai, out); r != VK_SUCCESS) return vkFail("vkAllocateCommandBuffers", r);
+  return Status::success();
+}
+
 // One command buffer, allocated once and re-begun (the pool resets it), not one allocated and
 // freed per call: the validation layer of Debian 12 (1.3.239) can destroy a freed command buffer's
 // state on its queue-retire thread, erasing its debug labels without the lock that guards them
@@ -389,13 +398,9 @@ DeviceContext Context::deviceContext() const {
 // freed is never destroyed there.
 Status Context::submit(const std::function<void(VkCommandBuffer)>& record) {
   if (submitCmd_ == VK_NULL_HANDLE) {
-    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ai.commandPool = pool_;
-    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    ai.commandBufferCount = 1;
-    if (VkResult r = vkAllocateCommandBuffers(device_, &ai, &submitCmd_); r != VK_SUCCESS) {
+    if (Status st = allocateCommandBuffers(&submitCmd_, 1); !st) {
       submitCmd_ = VK_NULL_HANDLE;
-      return vkFail("vkAllocateCommandBuffers", r);
+      return st;
     }
   }
   const VkCommandBuffer cmd = submitCmd_;

@@ -48,7 +48,7 @@ Scene sponzaLike() {
   b.stairs({halfLength - 4.5, 0, -1.5}, 3.0, 0.35, 0.2, 8);
   b.box({-3, 0, -1}, {-1.8, 0.8, 1});  // a plinth and a sphere in the nave
   b.sphere({1.5, 0.7, 0.3}, 0.7, 16, 32);
-  Scene s{"sponza-like", b.build(), {}, {}};
+  Scene s{"sponza-like", b.build(), {}, {}, {}};
   s.views.push_back({"nave", {-12.0, 1.7, 0.8}, {4.0, 2.5, -0.5}, {0, 1, 0}, 1.2, 0.1});
   s.views.push_back({"gallery", {-10.0, 7.0, -6.5}, {6.0, 4.0, 2.0}, {0, 1, 0}, 1.1, 0.1});
   s.views.push_back({"stairs", {2.0, 1.5, 2.5}, {11.0, 0.8, 0.0}, {0, 1, 0}, 1.0, 0.1});
@@ -59,7 +59,7 @@ Scene spherePlane() {
   MeshBuilder b;
   b.box({-10, -0.1, -10}, {10, 0, 10});
   b.sphere({0, 1.0, 0}, 1.0, 48, 96);
-  Scene s{"sphere-plane", b.build(), {}, {}};
+  Scene s{"sphere-plane", b.build(), {}, {}, {}};
   s.views.push_back({"front", {0, 2.2, 5.0}, {0, 0.6, 0}, {0, 1, 0}, 0.9, 0.1});
   s.views.push_back({"top", {0.01, 7.0, 0.5}, {0, 0, 0}, {0, 1, 0}, 0.9, 0.1});
   return s;
@@ -69,7 +69,7 @@ Scene crease() {
   MeshBuilder b;
   b.box({-10, -0.1, -10}, {10, 0, 10});   // floor
   b.box({-10, 0, -10.1}, {10, 10, -10});  // wall: a 90 degree crease with the floor along z = -10
-  Scene s{"crease", b.build(), {}, {}};
+  Scene s{"crease", b.build(), {}, {}, {}};
   s.views.push_back({"corner", {0, 3.0, -4.0}, {0, 0, -10.0}, {0, 1, 0}, 1.0, 0.1});
   return s;
 }
@@ -89,7 +89,7 @@ Scene thin() {
     b.blade(base, 0.03 + 0.02 * rnd(), 0.3 + 0.4 * rnd(), {0.15 * (rnd() - 0.5), 0, 0.15 * (rnd() - 0.5)}, kPi * rnd());
   }
   for (int i = 0; i < 9; ++i) b.cylinder({-2.4 + 0.6 * i, 0, -2.6}, 0.02, 2.5, 8);  // thin rods
-  Scene s{"thin", b.build(), {}, {}};
+  Scene s{"thin", b.build(), {}, {}, {}};
   s.views.push_back({"front", {0, 1.2, 3.0}, {0, 0.6, -2.0}, {0, 1, 0}, 0.9, 0.05});
   return s;
 }
@@ -104,7 +104,7 @@ Scene gears() {
   b.cylinder({0.6, 0.8, 0.4}, 0.25, 0.8, 24);  // axle
   b.gear({2.6, 0, 1.8}, 0.7, 0.9, 0.25, 12);
   b.box({1.8, 0.25, 1.0}, {3.4, 0.35, 2.6});
-  Scene s{"gears", b.build(), {}, {}};
+  Scene s{"gears", b.build(), {}, {}, {}};
   s.views.push_back({"oblique", {6.5, 5.5, 7.5}, {0.5, 0.2, 0.5}, {0, 1, 0}, 0.75, 0.1});
   return s;
 }

@@ -110,6 +110,8 @@ class Context {
   VkSurfaceKHR surface() const { return surface_; }  // with Options::createSurface, else null
   // Resettable command buffers of the queue's family, for callers that record their own frames.
   VkCommandPool commandPool() const { return pool_; }
+  // `count` primary command buffers from commandPool() into `out` (free them with vkFreeCommandBuffers).
+  Status allocateCommandBuffers(VkCommandBuffer* out, std::uint32_t count);
   std::uint32_t queueFamily() const { return family_; }
   std::uint32_t apiVersion() const { return apiVersion_; }
   const VkPhysicalDeviceProperties& properties() const { return props_; }
