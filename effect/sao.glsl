@@ -144,6 +144,8 @@ layout(std140, binding = 0) uniform SaoParams {
     vec4  view_y;               // [208] column 1
     vec4  view_z;               // [224] column 2
     int   output_blend;         // [240] SAO_OUTPUT_BLEND_REPLACE / _MULTIPLY: how the output's selected channels take A
+    uint  frame_phase;          // [244] the frame's rotation of every pixel's spiral, in 2^-32 turns (0 at frame 0; sao::frameSpiral)
+    float frame_alpha_offset;   // [248] the frame's radial tap position: alpha_i = (i + offset) / s (0.5 at frame 0, the paper's)
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -222,12 +224,12 @@ void sao_ao_main()
         vec3 n = sao_reconstruct_normal(in_csz, c, C, proj_info, ortho);
 #endif
         float r_px = sao_screen_radius(radius, proj_scale, zc, ortho);
-        uint phase = sao_pixel_phase(uvec2(p));
+        uint phase = sao_pixel_phase(uvec2(p)) + frame_phase;  // eq. 8, turned by the frame's rotation
         int s = clamp(SAO_TAP_COUNT, 1, SAO_MAX_SAMPLES);
         float sum = 0.0;
         for (int i = 0; i < s; ++i) {
             float h;
-            ivec2 tap = sao_spiral_tap(c, i, s, inv_samples, spiral_turns, phase, r_px, h);
+            ivec2 tap = sao_spiral_tap(c, i, s, inv_samples, frame_alpha_offset, spiral_turns, phase, r_px, h);
 #if Z_HIERARCHY
             int m = sao_mip_level(h, log_q, max_mip);
 #else

@@ -242,7 +242,7 @@ void turnDirection(std::uint32_t turn, T& ux, T& uy) {
 template <typename T>
 void spiralTap(int cx, int cy, int i, int s, std::uint32_t phase, T r_px, const Block<T>& P, int& tx, int& ty,
                T& h) {
-  const T alpha = (T(i) + T(0.5)) * P.inv_samples;
+  const T alpha = (T(i) + P.frame_alpha_offset) * P.inv_samples;  // offset 0.5 at frame 0
   h = r_px * alpha;
   T ux, uy;
   turnDirection<T>(spiralPhase(i, s, P.spiral_turns) + phase, ux, uy);

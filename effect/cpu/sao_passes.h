@@ -151,7 +151,7 @@ class AoSampleInvocation {
       n = reconstructNormal(z0, cx, cy, C, P_);
     }
     const T r_px = screenRadius(zc, P_);
-    const std::uint32_t phase = pixelPhase(std::uint32_t(px), std::uint32_t(py));
+    const std::uint32_t phase = pixelPhase(std::uint32_t(px), std::uint32_t(py)) + P_.frame_phase;
     const int s = std::clamp(P_.samples, 1, gen::SAO_MAX_SAMPLES);
     T sum = T(0);
     for (int i = 0; i < s; ++i) {

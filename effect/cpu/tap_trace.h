@@ -77,7 +77,7 @@ void AoSampleTrace::group(int gx, int gy, Sink& out) const {
     l.active = inside && !isSky(zc);
     if (l.active) {
       l.rPx = screenRadius(zc, P);
-      l.phase = pixelPhase(std::uint32_t(px), std::uint32_t(py));
+      l.phase = pixelPhase(std::uint32_t(px), std::uint32_t(py)) + P.frame_phase;
     }
   }
 

@@ -32,12 +32,13 @@ vec2 sao_turn_direction(uint turn)
     return vec2(cos(theta), sin(theta));
 }
 
-// Eq. 6-7 for tap i of s at csz texel c: alpha = (i + 0.5) * inv_s, h = r_px * alpha,
+// Eq. 6-7 for tap i of s at csz texel c: alpha = (i + alpha_offset) * inv_s (alpha_offset 0.5 is
+// the paper's; other frames move the taps radially, sao::frameSpiral), h = r_px * alpha,
 // theta = 2*pi*alpha*tau + phi; returns the full-resolution tap pixel c + ivec2(h * u)
-// (conversion truncates toward zero) and h.
-ivec2 sao_spiral_tap(ivec2 c, int i, int s, float inv_s, int tau, uint phase, float r_px, out float h)
+// (conversion truncates toward zero) and h. The angle keeps the paper's (2i+1)/(2s) position.
+ivec2 sao_spiral_tap(ivec2 c, int i, int s, float inv_s, float alpha_offset, int tau, uint phase, float r_px, out float h)
 {
-    float alpha = (float(i) + 0.5) * inv_s;
+    float alpha = (float(i) + alpha_offset) * inv_s;
     h = r_px * alpha;
     vec2 u = sao_turn_direction(sao_spiral_phase(i, s, tau) + phase);
     return c + ivec2(h * u);

@@ -211,7 +211,14 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
   p.view_z = {f(R[6]), f(R[7]), f(R[8]), 0.0f};
   p.output_mask = 15;  // every channel of the output (kAllChannels); backends put the caller's mask here
   p.output_blend = gen::SAO_OUTPUT_BLEND_REPLACE;  // and the caller's blend (sao/output.h) here
+  setFrameIndex(p, 0);  // the paper's spiral; backends set the caller's frame
   return Status::success();
+}
+
+void setFrameIndex(ParamBlock& block, std::uint32_t frameIndex) {
+  const FrameSpiral f = frameSpiral(frameIndex);
+  block.frame_phase = f.phase;
+  block.frame_alpha_offset = f.alphaOffset;
 }
 
 }  // namespace sao

@@ -1,5 +1,6 @@
 #include "sao/spiral.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -44,6 +45,23 @@ int latticeSpiralTurns(int s) {
     }
   }
   return best;
+}
+
+FrameSpiral frameSpiral(std::uint32_t k) {
+  constexpr std::uint32_t goldenStep = 2654435769u;  // round(2^32 / golden ratio)
+  FrameSpiral f;
+  f.phase = k * goldenStep;  // modulo 2^32: a turn
+  // The van der Corput radical inverse of k (its bits mirrored), exact in double.
+  std::uint32_t r = k;
+  r = (r << 16) | (r >> 16);
+  r = ((r & 0x00FF00FFu) << 8) | ((r & 0xFF00FF00u) >> 8);
+  r = ((r & 0x0F0F0F0Fu) << 4) | ((r & 0xF0F0F0F0u) >> 4);
+  r = ((r & 0x33333333u) << 2) | ((r & 0xCCCCCCCCu) >> 2);
+  r = ((r & 0x55555555u) << 1) | ((r & 0xAAAAAAAAu) >> 1);
+  const double offset = 0.5 + double(r) / 4294967296.0;
+  // frac, as a float below 1 (a value within half a float ulp of 1 would round up to 1).
+  f.alphaOffset = std::min(static_cast<float>(offset - std::floor(offset)), std::nextafter(1.0f, 0.0f));
+  return f;
 }
 
 }  // namespace sao

@@ -239,6 +239,7 @@ Status validateAndPlan(const Settings& settings, const Camera& camera, const Inp
   r.params.input_offset = {std::int32_t(offset.x), std::int32_t(offset.y)};
   r.params.output_mask = outputMaskParam(in.outputChannels);
   r.params.output_blend = static_cast<std::int32_t>(in.outputBlend);
+  setFrameIndex(r.params, in.frameIndex);
   // The block and the plan come from the same core functions; check that they agree anyway.
   if (std::uint32_t(r.params.max_mip) + 1 != r.plan.cszLevels)
     return invalid("max_mip " + std::to_string(r.params.max_mip) + " disagrees with the plan's " +

@@ -222,6 +222,7 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
   block.input_offset = {static_cast<std::int32_t>(offset.x), static_cast<std::int32_t>(offset.y)};
   block.output_mask = outputMaskParam(checked.outputChannels);  // per render, like the offset
   block.output_blend = static_cast<std::int32_t>(checked.outputBlend);
+  setFrameIndex(block, inputs.frameIndex);  // the frame's spiral (sao/spiral.h)
   if (replan) {
     if (p.inputExtent.width > std::uint32_t(maxTextureSize) || p.inputExtent.height > std::uint32_t(maxTextureSize))
       return Status::error(StatusCode::InvalidExtent, "sao::gl: the depth input " + std::to_string(p.inputExtent.width) +

@@ -162,10 +162,13 @@ std::uint32_t acquireSlot(EffectState& e, const Inputs& in, const OutputTarget& 
   // most maxImageDimension2D, so it fits the shader's int).
   const Offset offset = in.region.value_or(Offset{});
   e.params.input_offset = {static_cast<std::int32_t>(offset.x), static_cast<std::int32_t>(offset.y)};
+  setFrameIndex(e.params, in.frameIndex);  // the frame's spiral, per record like the offset
   // This record's camera (Inputs::camera) goes into this slot only; e.params stays Config's.
   const ParamBlock* block = &e.params;
   if (cameraBlock) {
     cameraBlock->input_offset = e.params.input_offset;
+    cameraBlock->frame_phase = e.params.frame_phase;
+    cameraBlock->frame_alpha_offset = e.params.frame_alpha_offset;
     block = cameraBlock;
   }
   // The slot's copy of the parameter block (its previous command buffer has completed: the ring

@@ -22,5 +22,9 @@ std::uint32_t mipLevelsNeeded(const Settings& settings, const Camera& camera, co
 // Fills every member of the block (docs/effect-math.md, section 2). Validates settings and camera
 // (also its normals encoding: a world-space one needs viewRotation, which must be a rotation).
 Status computeConstants(const Settings& settings, const Camera& camera, DepthEncoding encoding, ParamBlock& out);
+// The frame's spiral (sao/spiral.h, frameSpiral) into the block: frame_phase and
+// frame_alpha_offset. computeConstants leaves frame 0's; backends set the caller's frame index per
+// render / record.
+void setFrameIndex(ParamBlock& block, std::uint32_t frameIndex);
 
 }  // namespace sao

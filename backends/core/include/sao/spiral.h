@@ -1,7 +1,23 @@
-// The number of spiral turns tau for s taps (paper eq. 6-7).
+// The number of spiral turns tau for s taps (paper eq. 6-7), and the spiral's per-frame variation.
 #pragma once
+#include <cstdint>
 
 namespace sao {
+
+// How frame `frameIndex` moves every pixel's spiral, for an engine that accumulates frames (TAA,
+// or its own temporal filter; G3D's temporallyVarySamples): a rotation of all taps (added to the
+// per-pixel phase of eq. 8, in 2^-32 turns) and the taps' radial position alpha_i = (i + offset)/s.
+// Frame 0 is the paper's spiral (rotation 0, offset 0.5): the output of frame 0 is that of an
+// effect without frames. Frame k rotates by frac(k / golden ratio) turns (exact integer
+// arithmetic: k times round(2^32 / golden ratio), modulo 2^32) and sets the offset to
+// frac(0.5 + vdc(k)), vdc the van der Corput radical inverse (k's bits mirrored), a float in
+// [0, 1). Any N consecutive frames then cover the disk's angles with gaps below 1.9/N and its radii
+// with gaps below 3/N (the first 2^m frames: exactly 1/N).
+struct FrameSpiral {
+  std::uint32_t phase = 0;    // the block's frame_phase
+  float alphaOffset = 0.5f;   // the block's frame_alpha_offset
+};
+FrameSpiral frameSpiral(std::uint32_t frameIndex);
 
 // tau for s taps, the one the effect uses when the setting spiral_turns is 0: G3D's
 // minimum-discrepancy table for s = 1..99 (it covers the samples setting's range), else

@@ -84,6 +84,9 @@ struct Inputs {
   // How those channels take A (sao/output.h): Replace, or Multiply (the texel's value times A; needs
   // `output` below, refused without it as the GPU backends refuse it without the caller's output).
   OutputBlend outputBlend = OutputBlend::Replace;
+  // The frame's number (sao::frameSpiral): frame k turns and shifts every pixel's spiral, as the
+  // GPU backends' Inputs::frameIndex; frame 0 is the paper's spiral.
+  std::uint32_t frameIndex = 0;
   // Optional: the output's contents before the run (the viewport's extent, the format's channel
   // count), kept in the channels outputChannels leaves out, as a GPU backend keeps the caller's
   // texels (and multiplied in the others with OutputBlend::Multiply). Without it those channels hold 0.

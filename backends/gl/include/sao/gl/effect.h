@@ -121,6 +121,11 @@ struct Inputs {
   // outputChannels = kChannelR | kChannelG | kChannelB). Multiply needs `output` (InvalidInput
   // without it). Changing it does not plan again.
   OutputBlend outputBlend = OutputBlend::Replace;
+  // The frame's number, for an engine that accumulates frames (TAA or its own temporal filter):
+  // frame k turns and shifts every pixel's spiral (sao::frameSpiral, sao/spiral.h), so N
+  // consecutive frames sample the disk evenly; frame 0 (the default) is the paper's spiral. Count
+  // it up by one per frame. Changing it does not plan again.
+  std::uint32_t frameIndex = 0;
 };
 
 struct RenderOptions {

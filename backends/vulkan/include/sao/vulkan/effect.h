@@ -189,6 +189,11 @@ struct Inputs {
   // only: Config::camera and params() stay what update() set. Per record: no update(), no
   // allocation, no wait. Null: Config::camera.
   const Camera* camera = nullptr;
+  // The frame's number, for an engine that accumulates frames (TAA or its own temporal filter):
+  // frame k turns and shifts every pixel's spiral (sao::frameSpiral, sao/spiral.h), so N
+  // consecutive frames sample the disk evenly; frame 0 (the default) is the paper's spiral. Count
+  // it up by one per frame. Per record, in the ring slot's block: no update().
+  std::uint32_t frameIndex = 0;
 };
 
 // The output: Config::outputFormat, the viewport's extent (plan().aoExtent), one level, usage
