@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "calibrate.h"
+#include "frames_section.h"
 #include "spiral_section.h"
 #include "measure.h"
 #include "precision_report.h"
@@ -49,16 +50,21 @@ Every run first checks reference (a) against the analytic sphere case (reference
 Writes results.csv, results.json and SVG plots; the traffic section (ao_sample's texel reads through
 a cache model: a paper-like GPU and this CPU) writes traffic.csv; the calibrate section (intensity, contrast,
 bias and epsilon of the medium preset fitted to (a) over a grid) writes calibration.csv; the spiral section
-(our former lattice criterion against G3D's table, the shipped one, by error against (c)) writes spiral.csv.)";
+(our former lattice criterion against G3D's table, the shipped one, by error against (c)) writes spiral.csv;
+the frames section (a static camera's frames averaged, Inputs::frameIndex, against one frame with 4x
+the taps, by error against (c)) writes frames.csv.)";
 
 // The parts of the run, in the order they run (--sections picks some).
 const std::vector<std::string> kSections = {"presets",    "samples",   "mip_blur", "radius",
                                             "resolution", "two_layer", "precision", "traffic",
-                                            "spiral",     "calibrate"};
+                                            "spiral",     "frames",    "calibrate"};
 
 // The calibrate section searches a grid (about 20 minutes at 640x360 here), the spiral section
-// every differing sample count (about 5): asked for by name only.
-bool inDefaultRun(const std::string& section) { return section != "calibrate" && section != "spiral"; }
+// every differing sample count (about 5), the frames section 16 frames of three presets per scene:
+// asked for by name only.
+bool inDefaultRun(const std::string& section) {
+  return section != "calibrate" && section != "spiral" && section != "frames";
+}
 
 std::string sectionNames() {
   std::string names;
@@ -102,7 +108,7 @@ Options parse(int argc, char** argv) {
   cl.text("--out", o.out, "DIR", "output folder (default out/bench)");
   cl.text("--backends", o.backends, "LIST",
           "comma-separated: cpu,gl,vulkan (default: gl,vulkan,cpu, those that start; the others are skipped)");
-  cl.value("--sections", "LIST", "comma-separated parts to run (default: all but calibrate and spiral, grid searches of about 20 and 5 minutes):\n" + sectionNames(),
+  cl.value("--sections", "LIST", "comma-separated parts to run (default: all but calibrate, spiral and frames, grid searches of about 20 and 5 minutes and a frame accumulation):\n" + sectionNames(),
            [&o](const std::string& v) { o.sections = parseSections(v); });
   cli::addRuns(cl, o.runs, 1, "measured runs per point, after one warm-up", "default 5");
   cli::addRays(cl, "--rays", o.rays, "reference rays per pixel", "default 256");
@@ -428,6 +434,17 @@ int main(int argc, char** argv) {
     if (Status s = bench::spiralSection(so, first, cache); !s) fail("spiral: " + s.message);
   }
 
+  // frames: a static camera's frames averaged against 4x the taps, by error vs (c) (frames_section.h).
+  if (want("frames")) {
+    bench::FramesOptions fo;
+    fo.outDir = o.out;
+    fo.scenes = sceneNames;
+    fo.size = size;
+    fo.convergedTaps = o.convergedTaps;
+    if (o.quick) fo.frames = 4, fo.presets = {Preset::Medium};
+    if (Status s = bench::framesSection(fo, first, cache); !s) fail("frames: " + s.message);
+  }
+
   // traffic: the memory-traffic model on the main scene (traffic_section.h).
   if (want("traffic"))
     if (Status s = bench::trafficSection(o.out, mainScene, o.quick, [&](Extent e) {
@@ -451,7 +468,8 @@ int main(int argc, char** argv) {
     bench::writePrecision(o.out, precision);
     files += ",precision.csv,precision.txt";
   }
-  for (const auto& [section, file] : {std::pair{"spiral", ",spiral.csv"}, {"calibrate", ",calibration.csv"}, {"traffic", ",traffic.csv"}})
+  for (const auto& [section, file] : {std::pair{"spiral", ",spiral.csv"}, {"frames", ",frames.csv"},
+                                     {"calibrate", ",calibration.csv"}, {"traffic", ",traffic.csv"}})
     if (want(section)) files += file;
   std::printf("sao-bench: %zu measurements on %s\nwrote %s/{%s}\n", rows.size(), machine.c_str(),
               fs::absolute(o.out).lexically_normal().string().c_str(), files.c_str());

@@ -17,6 +17,7 @@ class CpuRunner final : public BackendRunner {
   Status run(const Settings& settings, const Camera& camera, const RunInputs& in, bool measureTime, bool dumpPasses,
              RunOutputs& out) override {
     cpu::Inputs inputs{in.depth, in.depth2, in.normals};
+    inputs.frameIndex = in.frameIndex;
     cpu::Options options;
     options.precision = precision_;
     options.measureTime = measureTime;

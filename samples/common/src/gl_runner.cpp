@@ -51,6 +51,7 @@ class GlRunner final : public BackendRunner {
     inputs.depth = {up.depth, gl::internalFormat(format)};
     if (in.depth2) inputs.depth2 = {up.depth2, gl::internalFormat(glFormat(in.depth2->format))};
     inputs.normals = up.normals;
+    inputs.frameIndex = in.frameIndex;
     if (Status s = effect_->render(camera, settings, inputs, {measureTime}); !s) return s;
     out.plan = effect_->plan();
     out.timings = effect_->timings();

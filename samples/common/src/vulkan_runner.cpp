@@ -47,6 +47,7 @@ class VulkanRunner final : public BackendRunner {
       if (Status s = ctx.uploadColor(*in.normals, config.normalsFormat, readLayout, normals); !s) return s;
       inputs.normals = {normals.view, readLayout, in.normals->extent};
     }
+    inputs.frameIndex = in.frameIndex;
     if (!effect_) {
       if (Status s = vk::Effect::create(ctx.deviceContext(), config, effect_); !s) return s;
     } else if (Status s = effect_->update(config); !s) {

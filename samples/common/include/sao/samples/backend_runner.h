@@ -1,6 +1,7 @@
 // One interface over the three backends for the samples: run the effect on a depth image that
 // lives on the CPU, get the AO and the intermediates back.
 #pragma once
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -17,6 +18,7 @@ struct RunInputs {
   const DepthImage* depth = nullptr;
   const FloatImage* normals = nullptr;  // optional, 4 channels, camera space
   const DepthImage* depth2 = nullptr;   // optional second layer
+  std::uint32_t frameIndex = 0;         // the backend's Inputs::frameIndex (sao::frameSpiral)
 };
 
 struct RunOutputs {
