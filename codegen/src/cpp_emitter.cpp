@@ -126,6 +126,7 @@ const char* selectName(VariantSelect v) {
     case VariantSelect::Setting: return "VariantSelect::Setting";
     case VariantSelect::Input: return "VariantSelect::Input";
     case VariantSelect::Output: return "VariantSelect::Output";
+    case VariantSelect::Multisampled: return "VariantSelect::Multisampled";
     default: return "VariantSelect::Default";
   }
 }
@@ -268,6 +269,7 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     << "  Setting,  // the bool setting SettingId(selectIndex): 1 when true\n"
     << "  Input,    // the kind=input resource ResourceId(selectIndex): 1 when the user supplies it\n"
     << "  Output,   // the kind=output resource ResourceId(selectIndex): the index of its image's format in its formats\n"
+    << "  Multisampled,  // the kind=input resource ResourceId(selectIndex): 1 when it has several samples per texel\n"
     << "};\n"
     << "struct VariantInfo {\n  std::string_view name;\n  std::span<const std::int32_t> values;\n"
     << "  std::int32_t defaultValue;\n  VariantSelect select;\n  std::uint32_t selectIndex;\n"

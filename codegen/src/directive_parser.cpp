@@ -627,6 +627,12 @@ class Parser {
           diags_.error(d.loc, "pass '" + p.name + "' uses '" + res.name + "', which exists only when " +
                                   effect_.variants[res.whenVariant].name + " != 0, but does not list that variant in variants=");
       }
+    for (int r : p.reads)
+      for (size_t v = 0; v < effect_.variants.size(); ++v)
+        if (effect_.variants[v].select == VariantSelect::Multisampled && effect_.variants[v].selectIndex == r &&
+            std::find(p.variants.begin(), p.variants.end(), int(v)) == p.variants.end())
+          diags_.error(d.loc, "pass '" + p.name + "' reads '" + effect_.resources[r].name + "', whose sample-count variant " +
+                                  effect_.variants[v].name + " it does not list in variants=");
     for (int r : p.writes) {
       const Resource& res = effect_.resources[r];
       if (res.formats.empty()) continue;

@@ -36,6 +36,8 @@ enum class VariantSelect {
   Setting,  // select=SETTING: a bool setting, 1 when true
   Input,    // select=input:RESOURCE: 1 when the user supplies that kind=input resource
   Output,   // select=output:RESOURCE: the index, in the kind=output resource's formats=, of its image's format
+  Multisampled,  // select=multisampled:RESOURCE: 1 when the user's kind=input resource has more than one sample
+                 // per texel; the passes that list the variant then read it as sampler2DMS
 };
 
 struct Variant {

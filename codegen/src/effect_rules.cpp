@@ -147,6 +147,31 @@ void resolveVariantSelect(const Effect& e, Variant& v, const SourceLoc& loc, con
                           Diagnostics& diags) {
   const std::string prefix = "input:";
   const std::string outputPrefix = "output:";
+  const std::string multisampledPrefix = "multisampled:";
+  if (text.rfind(multisampledPrefix, 0) == 0) {
+    // 1 when the input has several samples per texel: its sampler becomes sampler2DMS.
+    const std::string name = text.substr(multisampledPrefix.size());
+    const int r = findResource(e, name);
+    if (r < 0 || e.resources[r].kind != ResourceKind::Input || e.resources[r].whenVariant >= 0) {
+      diags.error(loc, "variant '" + v.name + "' is selected by '" + text +
+                           "', which names no kind=input resource that always exists");
+      return;
+    }
+    for (const Variant& other : e.variants)
+      if (other.select == VariantSelect::Multisampled && other.selectIndex == r && other.name != v.name) {
+        diags.error(loc, "variant '" + v.name + "' is selected by '" + text + "', which variant '" + other.name +
+                             "' already selects");
+        return;
+      }
+    if (v.values != std::vector<int>{0, 1} || v.defaultValue != 0) {
+      diags.error(loc, "variant '" + v.name + "' is selected by '" + text +
+                           "': its values must be [0,1] and its default 0 (single-sample)");
+      return;
+    }
+    v.select = VariantSelect::Multisampled;
+    v.selectIndex = r;
+    return;
+  }
   if (text.rfind(outputPrefix, 0) == 0) {
     // The index of the output image's format in the resource's formats=: values 0..n-1.
     const std::string name = text.substr(outputPrefix.size());

@@ -47,8 +47,16 @@ std::vector<PassVariant> buildPassVariants(const Effect& effect) {
         return when < 0 || values[when] != 0;
       };
       int next = 1;  // binding 0 is the parameter block
+      // A read whose select=multisampled: variant is 1 here (the parser checked that the pass lists it).
+      auto multisampled = [&](int r) {
+        for (size_t v = 0; v < effect.variants.size(); ++v)
+          if (effect.variants[v].select == VariantSelect::Multisampled && effect.variants[v].selectIndex == r &&
+              values[v] == 1)
+            return true;
+        return false;
+      };
       for (int r : pass.reads)
-        if (present(r)) pv.bindings.push_back({next++, r, false, effect.resources[r].format, false});
+        if (present(r)) pv.bindings.push_back({next++, r, false, effect.resources[r].format, false, multisampled(r)});
       for (int r : pass.writes) {
         if (!present(r)) continue;
         const Resource& res = effect.resources[r];
@@ -88,7 +96,7 @@ std::vector<SourceLine> composeShader(const Effect& effect, const PassVariant& p
     const std::string bind = "layout(" + setPrefix + "binding = " + std::to_string(b.binding);
     if (b.write)
       gen(bind + ", " + b.format + ")" + (b.readWrite ? "" : " writeonly") + " uniform image2D out_" + r.name + ";");
-    else gen(bind + ") uniform sampler2D in_" + r.name + ";");
+    else gen(bind + ") uniform " + (b.multisampled ? "sampler2DMS" : "sampler2D") + " in_" + r.name + ";");
   }
   for (const auto& l : effect.commonCode) out.push_back(l);
   for (const auto& l : pass.code) out.push_back(l);

@@ -16,6 +16,7 @@ struct Binding {
   bool write = false;
   std::string format;      // the storage format of a write (per variant for a formats= output)
   bool readWrite = false;  // a write the pass may also imageLoad (a formats= output: kept channels, multiply)
+  bool multisampled = false;  // a read of an input whose select=multisampled: variant is 1: sampler2DMS
 };
 
 // Channels of a resource format (r*: 1, rg*: 2, rgba*: 4).

@@ -141,6 +141,7 @@ enum class VariantSelect : std::uint8_t {
   Setting,  // the bool setting SettingId(selectIndex): 1 when true
   Input,    // the kind=input resource ResourceId(selectIndex): 1 when the user supplies it
   Output,   // the kind=output resource ResourceId(selectIndex): the index of its image's format in its formats
+  Multisampled,  // the kind=input resource ResourceId(selectIndex): 1 when it has several samples per texel
 };
 struct VariantInfo {
   std::string_view name;

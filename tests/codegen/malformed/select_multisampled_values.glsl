@@ -1,0 +1,11 @@
+#pragma sao effect bad version=1
+#pragma sao variant MS values=[0,1,2] select=multisampled:src "sample count"
+#pragma sao resource src kind=input format=depth "in"
+#pragma sao block P
+layout(std140, binding = 0) uniform P {
+  vec4 a;
+};
+#pragma sao resource dst kind=output format=r16f "out"
+#pragma sao pass main entry=run local=8x8 reads=src writes=dst variants=MS "p"
+void run() { imageStore(out_dst, ivec2(0), a); }
+#pragma sao end
