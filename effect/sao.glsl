@@ -63,6 +63,8 @@
 #pragma sao constant int  SAO_NORMALS_CAMERA_OCTAHEDRAL=2 "normals_encoding: camera-space normal, signed octahedral map in .xy (CameraOctahedral)"
 #pragma sao constant int  SAO_NORMALS_WORLD_OCTAHEDRAL=3 "normals_encoding: world-space normal, signed octahedral map in .xy, rotated by view_x/y/z (WorldOctahedral)"
 #pragma sao constant int  SAO_OUTPUT_BLEND_REPLACE=0 "output_blend: the output's selected channels receive A (sao::OutputBlend::Replace)"
+#pragma sao constant int  SAO_DEPTH_SAMPLE_0=0 "depth_sample_policy: a multisampled depth input's sample 0 stands for its texel (sao::DepthSamplePolicy::Sample0)"
+#pragma sao constant int  SAO_DEPTH_SAMPLE_NEAREST=1 "depth_sample_policy: the sample nearest to the camera (the largest geometry z; sky only when every sample is sky) stands for its texel (Nearest)"
 #pragma sao constant int  SAO_OUTPUT_BLEND_MULTIPLY=1 "output_blend: the output's selected channels are multiplied by A, the apply step of an engine's colour or occlusion target (sao::OutputBlend::Multiply)"
 
 // ---------------------------------------------------------------------------------------------
@@ -72,6 +74,8 @@
 #pragma sao variant TWO_LAYER values=[0,1] default=0 select=input:depth2 "1: deep G-buffer, a second depth layer; each tap takes the larger obscurance of the two layers' points"
 #pragma sao variant Z_HIERARCHY values=[0,1] default=1 select=use_z_hierarchy "1: taps read z MIP level clamp(findMSB(int(h)) - log_q, 0, max_mip) (eq. 9-10); 0: always level 0 (the AlchemyAO / no-MIP baseline)"
 #pragma sao variant OUTPUT_FORMAT values=[0,1,2,3] default=0 select=output:ao "The output image's format, an index into ao's formats=: 0 r16f, 1 r8 (A rounded to the nearest 1/255), 2 rgba8, 3 rgba16f (RGBA: A goes into the channels output_mask selects, the others keep their texels)"
+#pragma sao variant DEPTH_MULTISAMPLE values=[0,1] default=0 select=multisampled:depth "1: the depth input is multisampled (sampler2DMS, depth_samples per texel); linear_z keeps one sample per texel as depth_sample_policy says (sample 0, or the nearest to the camera)"
+#pragma sao exclude DEPTH_MULTISAMPLE=1 TWO_LAYER=1 "a multisampled depth input has no second layer: give depth peeling's layers single-sample, or resolve the depth first"
 #pragma sao exclude Z_HIERARCHY=0 TWO_LAYER=1 "the no-hierarchy baseline is a single-layer benchmark path"
 
 // ---------------------------------------------------------------------------------------------
@@ -103,7 +107,7 @@
 // ---------------------------------------------------------------------------------------------
 // Parameter block: filled by host code from Settings + Camera + extents (docs/effect-math.md,
 // "Parameter block"). Lengths are camera-space (view) units: metres times metersToViewUnits.
-// std140 offsets in brackets; 256 bytes.
+// std140 offsets in brackets; 260 bytes.
 // ---------------------------------------------------------------------------------------------
 #pragma sao block SaoParams
 layout(std140, binding = 0) uniform SaoParams {
@@ -146,19 +150,33 @@ layout(std140, binding = 0) uniform SaoParams {
     int   output_blend;         // [240] SAO_OUTPUT_BLEND_REPLACE / _MULTIPLY: how the output's selected channels take A
     uint  frame_phase;          // [244] the frame's rotation of every pixel's spiral, in 2^-32 turns (0 at frame 0; sao::frameSpiral)
     float frame_alpha_offset;   // [248] the frame's radial tap position: alpha_i = (i + offset) / s (0.5 at frame 0, the paper's)
+    int   depth_samples;        // [252] samples per texel of the depth input (1: single-sample; DEPTH_MULTISAMPLE reads 0..n-1)
+    int   depth_sample_policy;  // [256] SAO_DEPTH_SAMPLE_0 / _NEAREST: which sample of a multisampled depth texel linear_z keeps
 };
 
 // ---------------------------------------------------------------------------------------------
 // Pass 1: hardware depth -> camera-space z, MIP level 0 (eq. 2). One invocation per depth texel.
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass linear_z entry=sao_linear_z_main local=8x8 reads=depth,depth2 writes=csz,csz2 variants=TWO_LAYER "Camera-space z (eq. 2) into csz level 0; sky and invalid depth become +0.0"
+#pragma sao pass linear_z entry=sao_linear_z_main local=8x8 reads=depth,depth2 writes=csz,csz2 variants=TWO_LAYER,DEPTH_MULTISAMPLE "Camera-space z (eq. 2) into csz level 0; sky and invalid depth become +0.0; a multisampled depth texel gives the sample its policy picks"
 void sao_linear_z_main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, imageSize(out_csz))))
         return;
     ivec2 t = p + input_offset;  // the host checked that the region lies inside the textures
+#if DEPTH_MULTISAMPLE
+    // One sample stands for the texel: sample 0, or the nearest geometry (the largest z < 0; csz's
+    // sky marker +0.0 is larger, so it is kept only when every sample is sky).
     float z = sao_z_from_depth(texelFetch(in_depth, t, 0).r, clip_info, depth_mode, far_dir, far_lim);
+    if (depth_sample_policy == SAO_DEPTH_SAMPLE_NEAREST) {
+        for (int s = 1; s < depth_samples; ++s) {
+            float zs = sao_z_from_depth(texelFetch(in_depth, t, s).r, clip_info, depth_mode, far_dir, far_lim);
+            z = sao_nearer_z(z, zs);
+        }
+    }
+#else
+    float z = sao_z_from_depth(texelFetch(in_depth, t, 0).r, clip_info, depth_mode, far_dir, far_lim);
+#endif
     imageStore(out_csz, p, vec4(z, 0.0, 0.0, 0.0));
 #if TWO_LAYER
     float z2 = sao_z_from_depth(texelFetch(in_depth2, t, 0).r, clip_info, depth_mode, far_dir, far_lim);

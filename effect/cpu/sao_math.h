@@ -99,6 +99,15 @@ T zFromDepth(T d, const Block<T>& P) {
   return isSky(z) ? T(0) : z;
 }
 
+// sao_nearer_z: the nearer to the camera of two csz values (the larger geometry z; sky only when
+// both are sky).
+template <typename T>
+T nearerZ(T a, T b) {
+  if (isSky(a)) return b;
+  if (isSky(b)) return a;
+  return a < b ? b : a;
+}
+
 // ---- sao_position.glsl
 
 // Eq. 3: pixel is a csz level-0 pixel centre.

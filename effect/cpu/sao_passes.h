@@ -41,9 +41,9 @@ inline constexpr float kUnorm24Scale = float(1.0 / 16777215.0);
 // correctly: the two differ by one ulp on about half of the D24 texels, and D24 2^24 - 2 reads
 // as 1.0 (the clear value, so sky). Other GPUs may round either way.
 template <typename T>
-T texel(const DepthImage& d, int x, int y) {
+T texel(const DepthImage& d, int x, int y, int sample = 0) {
   if constexpr (std::is_same_v<T, float>) {
-    const std::uint32_t t = d.texels[std::size_t(y) * d.extent.width + std::size_t(x)];
+    const std::uint32_t t = d.raw(std::uint32_t(x), std::uint32_t(y), std::uint32_t(sample));
     switch (d.format) {
       case DepthFormat::D16: return float(t & 0xFFFFu) * kUnorm16Scale;
       case DepthFormat::D24: return float(t & 0xFFFFFFu) * kUnorm24Scale;
@@ -51,7 +51,7 @@ T texel(const DepthImage& d, int x, int y) {
       case DepthFormat::LinearZ: break;
     }
   }
-  return static_cast<T>(d.value(std::uint32_t(x), std::uint32_t(y)));
+  return static_cast<T>(d.value(std::uint32_t(x), std::uint32_t(y), std::uint32_t(sample)));
 }
 
 // Whether `d` holds w x h texels from (ox, oy) on (the region the host checked; in 64 bits).
@@ -76,9 +76,18 @@ Status linearZPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<co
       (twoLayer && (ctx.in.depth2 == nullptr || !holdsRegion(*ctx.in.depth2, ox, oy, w, h))))
     return passError(d, "needs the depth input(s) to hold csz's extent " + std::to_string(w) + "x" +
                             std::to_string(h) + " at offset (" + std::to_string(ox) + ", " + std::to_string(oy) + ")");
+  // DEPTH_MULTISAMPLE: sample 0, or the nearest of the samples (sao_nearer_z).
+  const bool multisampled = ctx.variant(gen::VariantId::DEPTH_MULTISAMPLE);
+  const bool nearest = multisampled && ctx.P.depth_sample_policy == gen::SAO_DEPTH_SAMPLE_NEAREST;
+  if (multisampled && std::int64_t(ctx.P.depth_samples) != std::int64_t(ctx.in.depth->samples))
+    return passError(d, "reads " + std::to_string(ctx.P.depth_samples) + " samples per texel, but depth has " +
+                            std::to_string(ctx.in.depth->samples));
   parallelFor(h, ctx.threads, [&](int y) {
     for (int x = 0; x < w; ++x) {
-      csz.at(x, y) = zFromDepth(texel<T>(*ctx.in.depth, x + ox, y + oy), ctx.P);
+      T z = zFromDepth(texel<T>(*ctx.in.depth, x + ox, y + oy), ctx.P);
+      for (int s = 1; nearest && s < ctx.P.depth_samples; ++s)
+        z = nearerZ(z, zFromDepth(texel<T>(*ctx.in.depth, x + ox, y + oy, s), ctx.P));
+      csz.at(x, y) = z;
       if (twoLayer) csz2->at(x, y) = zFromDepth(texel<T>(*ctx.in.depth2, x + ox, y + oy), ctx.P);
     }
   });

@@ -43,4 +43,15 @@ float sao_z_from_depth(float d, vec4 clip_info, int depth_mode, float far_dir, f
     return sao_is_sky(z) ? 0.0 : z;
 }
 
+// The nearer to the camera of two csz values (geometry z < 0 or the sky marker +0.0): the larger
+// geometry z; sky only when both are sky.
+float sao_nearer_z(float a, float b)
+{
+    if (sao_is_sky(a))
+        return b;
+    if (sao_is_sky(b))
+        return a;
+    return max(a, b);
+}
+
 #endif // SAO_DEPTH_GLSL

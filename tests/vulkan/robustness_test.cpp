@@ -118,12 +118,22 @@ TEST_F(VkRobustness, DeviceWithoutRequiredFeatureIsRefused) {
   EXPECT_TRUE(st.ok()) << st.message;
 }
 
-// Multisampled depth is rejected with a clear error (documented: resolve it first).
-TEST_F(VkRobustness, MultisampledDepthIsRejected) {
-  for (VkSampleCountFlagBits samples : {VK_SAMPLE_COUNT_2_BIT, VK_SAMPLE_COUNT_4_BIT, VK_SAMPLE_COUNT_64_BIT}) {
+// Multisampled depth is read directly (msaa_depth_test.cpp); sample counts that are not one
+// VkSampleCountFlagBits, or that the device cannot sample for the depth format, are refused.
+TEST_F(VkRobustness, BadDepthSampleCountsAreRefused) {
+  for (int n : {0, 3, 5, 128}) {
+    vk::Config c = config;
+    c.depthSamples = static_cast<VkSampleCountFlagBits>(n);
+    expectCreateFails(context().deviceContext(), c, StatusCode::InvalidInput, "it must be one VkSampleCountFlagBits");
+  }
+  VkPhysicalDeviceProperties props{};
+  vkGetPhysicalDeviceProperties(context().deviceContext().physicalDevice, &props);
+  for (VkSampleCountFlagBits samples : {VK_SAMPLE_COUNT_2_BIT, VK_SAMPLE_COUNT_4_BIT, VK_SAMPLE_COUNT_8_BIT,
+                                        VK_SAMPLE_COUNT_16_BIT, VK_SAMPLE_COUNT_32_BIT, VK_SAMPLE_COUNT_64_BIT}) {
+    if (props.limits.sampledImageDepthSampleCounts & samples) continue;  // supported: the MSAA tests run it
     vk::Config c = config;
     c.depthSamples = samples;
-    expectCreateFails(context().deviceContext(), c, StatusCode::UnsupportedFormat, "resolve multisampled depth first");
+    expectCreateFails(context().deviceContext(), c, StatusCode::UnsupportedFormat, "sampledImageDepthSampleCounts");
   }
 }
 
@@ -209,7 +219,7 @@ TEST_F(VkRobustness, FailedUpdateKeepsThePreviousConfiguration) {
   std::vector<vk::Config> bad(6, config);
   bad[0].settings.radius = float(kNaN);
   bad[1].camera.width = 0xFFFFFFFFu;
-  bad[2].depthSamples = VK_SAMPLE_COUNT_8_BIT;
+  bad[2].depthSamples = static_cast<VkSampleCountFlagBits>(3);
   bad[3].framesInFlight = 0;
   bad[4].camera.projection[0] = kInf;
   bad[5].depthFormat = VK_FORMAT_R8G8B8A8_UNORM;

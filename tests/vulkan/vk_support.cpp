@@ -97,13 +97,18 @@ Status runEffect(const Settings& settings, const Camera& camera, const DepthImag
     }
   } cleanup{ctx, {&depthImage, &depth2Image, &normalsImage}};
 
-  if (Status st = ctx.uploadDepth(depth, vkFormat(format), options.depthLayout, depthImage); !st) return st;
   vk::Config config;
   config.settings = settings;
   config.camera = camera;
   config.depthFormat = vkFormat(format);
+  config.depthSamples = options.depthSamples;
   vk::Inputs in;
-  in.depth = {depthImage.view, options.depthLayout, depth.extent};
+  if (options.depthImage) {
+    in.depth = *options.depthImage;
+  } else {
+    if (Status st = ctx.uploadDepth(depth, vkFormat(format), options.depthLayout, depthImage); !st) return st;
+    in.depth = {depthImage.view, options.depthLayout, depth.extent};
+  }
   in.region = options.region;
   if (options.depth2) {
     if (Status st = ctx.uploadDepth(*options.depth2, vkFormat(format), options.depthLayout, depth2Image); !st) return st;

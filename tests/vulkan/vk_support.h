@@ -46,6 +46,10 @@ struct RunOptions {
   const DepthImage* depth2 = nullptr;
   bool readIntermediates = true;        // ao_raw (and csz level 0)
   std::optional<Offset> region;                              // vk::Inputs::offset: the region inside larger inputs
+  // A depth image the test made itself (e.g. multisampled), bound instead of uploading `depth`
+  // (runEffect then does not read `depth`); depthSamples goes into Config::depthSamples.
+  std::optional<vk::InputImage> depthImage;
+  VkSampleCountFlagBits depthSamples = VK_SAMPLE_COUNT_1_BIT;
 };
 
 struct RunResult {

@@ -24,6 +24,9 @@ static_assert(int(NormalsEncoding::CameraXyz) == gen::SAO_NORMALS_CAMERA_XYZ &&
               int(NormalsEncoding::CameraOctahedral) == gen::SAO_NORMALS_CAMERA_OCTAHEDRAL &&
               int(NormalsEncoding::WorldOctahedral) == gen::SAO_NORMALS_WORLD_OCTAHEDRAL,
               "NormalsEncoding is the block's normals_encoding");
+static_assert(int(DepthSamplePolicy::Sample0) == gen::SAO_DEPTH_SAMPLE_0 &&
+                  int(DepthSamplePolicy::Nearest) == gen::SAO_DEPTH_SAMPLE_NEAREST,
+              "DepthSamplePolicy is the block's depth_sample_policy");
 
 // 1e-4: far looser than a float-stored rotation's rounding (~1e-7), far tighter than a scaled or
 // sheared matrix.
@@ -42,6 +45,8 @@ Status checkNormalsEncoding(const Camera& c) {
     return bad(std::string("Camera::normalsEncoding = ") +
                (c.normalsEncoding == NormalsEncoding::WorldXyz ? "WorldXyz" : "WorldOctahedral") +
                " (world-space normals) needs Camera::viewRotation, the world -> camera rotation; none is set");
+  if (const int d = int(c.depthSamplePolicy); d != gen::SAO_DEPTH_SAMPLE_0 && d != gen::SAO_DEPTH_SAMPLE_NEAREST)
+    return bad("Camera::depthSamplePolicy = " + std::to_string(d) + " is not a DepthSamplePolicy");
   if (!c.viewRotation) return Status::success();
   const auto& r = *c.viewRotation;
   for (double v : r)
@@ -211,6 +216,8 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
   p.view_z = {f(R[6]), f(R[7]), f(R[8]), 0.0f};
   p.output_mask = 15;  // every channel of the output (kAllChannels); backends put the caller's mask here
   p.output_blend = gen::SAO_OUTPUT_BLEND_REPLACE;  // and the caller's blend (sao/output.h) here
+  p.depth_sample_policy = int(c.depthSamplePolicy);
+  p.depth_samples = 1;  // backends put the depth input's sample count here
   setFrameIndex(p, 0);  // the paper's spiral; backends set the caller's frame
   return Status::success();
 }

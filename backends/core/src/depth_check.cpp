@@ -51,12 +51,14 @@ std::string likelyCause(const BadTexels& b) {
 }  // namespace
 
 Status checkDepthValues(const DepthImage& depth) {
-  const std::size_t n = std::size_t(depth.extent.width) * depth.extent.height;
+  if (depth.samples == 0) return Status::error(StatusCode::InvalidInput, "depth image has 0 samples per texel");
+  const std::size_t n = std::size_t(depth.extent.width) * depth.extent.height * depth.samples;
   if (depth.texels.size() != n)
-    return Status::error(StatusCode::InvalidInput, "depth image holds " + std::to_string(depth.texels.size()) +
-                                                       " texels, its extent " + std::to_string(depth.extent.width) +
-                                                       "x" + std::to_string(depth.extent.height) + " needs " +
-                                                       std::to_string(n));
+    return Status::error(StatusCode::InvalidInput,
+                         "depth image holds " + std::to_string(depth.texels.size()) + " texels, its extent " +
+                             std::to_string(depth.extent.width) + "x" + std::to_string(depth.extent.height) +
+                             (depth.samples > 1 ? " with " + std::to_string(depth.samples) + " samples per texel" : "") +
+                             " needs " + std::to_string(n));
   BadTexels bad;
   auto note = [&](std::size_t& kind, std::size_t i) {
     if (bad.count() == 0) bad.first = i;
@@ -79,9 +81,11 @@ Status checkDepthValues(const DepthImage& depth) {
     }
   }
   if (bad.count() == 0) return Status::success();
-  const auto x = std::uint32_t(bad.first % depth.extent.width), y = std::uint32_t(bad.first / depth.extent.width);
-  const std::string where = "the first is (" + std::to_string(x) + ", " + std::to_string(y) + ") = ";
-  const std::string counted = std::to_string(bad.count()) + " of " + std::to_string(n) + " texels ";
+  const std::size_t texel = bad.first / depth.samples;
+  const auto x = std::uint32_t(texel % depth.extent.width), y = std::uint32_t(texel / depth.extent.width);
+  const std::string where = "the first is (" + std::to_string(x) + ", " + std::to_string(y) + ")" +
+                            (depth.samples > 1 ? " sample " + std::to_string(bad.first % depth.samples) : "") + " = ";
+  const std::string counted = std::to_string(bad.count()) + " of " + std::to_string(n) + (depth.samples > 1 ? " samples " : " texels ");
   std::string message;
   if (depth.format == DepthFormat::D16 || depth.format == DepthFormat::D24)
     message = counted + "are above " + std::to_string(depth.format == DepthFormat::D16 ? 0xffffu : 0xffffffu) +

@@ -44,8 +44,8 @@ double decodeDepth(DepthFormat format, std::uint32_t t) {
   return 0;
 }
 
-double DepthImage::value(std::uint32_t x, std::uint32_t y) const {
-  return decodeDepth(format, texels[std::size_t(y) * extent.width + x]);
+double DepthImage::value(std::uint32_t x, std::uint32_t y, std::uint32_t sample) const {
+  return decodeDepth(format, raw(x, y, sample));
 }
 
 // Imath's float -> binary16 rounds to nearest even, overflows to +-Inf and keeps subnormals, as a

@@ -110,6 +110,8 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
   DepthModel model;
   if (Status st = analyze(camera, model); !st) return st;
   if (Status st = checkExtents(camera, out.inputExtent, out.aoExtent); !st) return st;
+  if (inputs.depthSamples == 0)
+    return Status::error(StatusCode::InvalidInput, "the depth input has 0 samples per texel (1: single-sample)");
   // Each variant as the effect's `select=` says: a bool setting, a supplied input, or its default.
   // PlanInputs names the optional inputs; depth is always supplied.
   const auto supplied = [&](gen::ResourceId input) {
@@ -136,6 +138,10 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
         out.variants[v] = static_cast<std::int32_t>(it - formats.begin());
         break;
       }
+      case gen::VariantSelect::Multisampled:
+        // Only the depth input may be multisampled (the effect's select=multisampled:depth).
+        out.variants[v] = static_cast<gen::ResourceId>(info.selectIndex) == gen::ResourceId::depth && inputs.depthSamples > 1 ? 1 : 0;
+        break;
       case gen::VariantSelect::Default:
         out.variants[v] = info.defaultValue;
         break;

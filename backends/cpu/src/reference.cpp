@@ -61,10 +61,13 @@ Status checkDepth(const char* name, const DepthImage& d, const Camera& camera, E
   if (!holdsInput(d.extent, region, expected))
     return invalid(std::string(name) + " is " + extentText(d.extent) + ", but the plan expects " +
                    regionText(camera, expected, region));
-  const std::size_t texels = std::size_t(d.extent.width) * d.extent.height;
+  if (d.samples == 0) return invalid(std::string(name) + " has 0 samples per texel (1: single-sample)");
+  const std::size_t texels = std::size_t(d.extent.width) * d.extent.height * d.samples;
   if (d.texels.size() != texels)
     return invalid(std::string(name) + " holds " + std::to_string(d.texels.size()) + " texels, but its extent " +
-                   extentText(d.extent) + " needs " + std::to_string(texels));
+                   extentText(d.extent) +
+                   (d.samples > 1 ? " with " + std::to_string(d.samples) + " samples per texel" : std::string()) +
+                   " needs " + std::to_string(texels));
   return Status::success();
 }
 
@@ -207,7 +210,9 @@ Status validateAndPlan(const Settings& settings, const Camera& camera, const Inp
                          "depth has an unknown format (" + std::to_string(int(in.depth->format)) + ")");
   const DepthEncoding encoding =
       in.depth->format == DepthFormat::LinearZ ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
-  const PlanInputs planInputs{encoding, in.normals != nullptr, in.depth2 != nullptr, false, in.outputFormat};
+  if (in.depth->samples == 0) return invalid("depth has 0 samples per texel (1: single-sample)");
+  const PlanInputs planInputs{encoding, in.normals != nullptr, in.depth2 != nullptr, false, in.outputFormat,
+                              in.depth->samples};
   if (Status st = plan(settings, camera, planInputs, r.plan); !st) return st;
   if (Status st = checkOutputChannels(in.outputFormat, in.outputChannels, "sao::cpu"); !st) return st;
   if (Status st = checkOutputBlend(in.outputBlend, in.output != nullptr, "sao::cpu"); !st) return st;
@@ -239,6 +244,7 @@ Status validateAndPlan(const Settings& settings, const Camera& camera, const Inp
   r.params.input_offset = {std::int32_t(offset.x), std::int32_t(offset.y)};
   r.params.output_mask = outputMaskParam(in.outputChannels);
   r.params.output_blend = static_cast<std::int32_t>(in.outputBlend);
+  r.params.depth_samples = static_cast<std::int32_t>(in.depth->samples);
   setFrameIndex(r.params, in.frameIndex);
   // The block and the plan come from the same core functions; check that they agree anyway.
   if (std::uint32_t(r.params.max_mip) + 1 != r.plan.cszLevels)

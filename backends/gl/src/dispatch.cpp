@@ -60,7 +60,9 @@ void bind(const GlFunctions& gl, const PassResources& r, const ScheduledBinding&
   if (b.wholeChain) sampler = r.mipSampler;
   else if (const GLuint view = r.owned->levelView(b.resource, b.baseLevel)) tex = view;  // one level of a chain
   gl.ActiveTexture(GL_TEXTURE0 + b.binding);
-  gl.BindTexture(GL_TEXTURE_2D, tex);
+  // The caller's depth may be multisampled (sampler2DMS in linear_z's DEPTH_MULTISAMPLE variant).
+  const bool depth = b.resource == gen::ResourceId::depth;
+  gl.BindTexture(depth ? r.inputs->depth.target : GLenum(GL_TEXTURE_2D), tex);
   gl.BindSampler(b.binding, sampler);
 }
 

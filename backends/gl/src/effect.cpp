@@ -222,6 +222,7 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
   block.input_offset = {static_cast<std::int32_t>(offset.x), static_cast<std::int32_t>(offset.y)};
   block.output_mask = outputMaskParam(checked.outputChannels);  // per render, like the offset
   block.output_blend = static_cast<std::int32_t>(checked.outputBlend);
+  block.depth_samples = static_cast<std::int32_t>(checked.depth.samples);  // DEPTH_MULTISAMPLE's sample count
   setFrameIndex(block, inputs.frameIndex);  // the frame's spiral (sao/spiral.h)
   if (replan) {
     if (p.inputExtent.width > std::uint32_t(maxTextureSize) || p.inputExtent.height > std::uint32_t(maxTextureSize))
@@ -236,10 +237,11 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
   // Texture parameters of the caller's textures that would change what texelFetch returns or
   // whether an image store lands (restored before the StateGuard restores the bindings).
   TextureParamGuard depthParams, depth2Params, normalParams, outputParams;
-  depthParams.apply(gl, scratchUnit, checked.depth.texture, true, checked.depth.hasStencil);
-  if (checked.depth2.texture) depth2Params.apply(gl, scratchUnit, checked.depth2.texture, true, checked.depth2.hasStencil);
-  if (checked.normals.texture) normalParams.apply(gl, scratchUnit, checked.normals.texture, false, false);
-  if (checked.output.texture) outputParams.apply(gl, scratchUnit, checked.output.texture, false, false);
+  depthParams.apply(gl, scratchUnit, checked.depth.texture, checked.depth.target, true, checked.depth.hasStencil);
+  if (checked.depth2.texture)
+    depth2Params.apply(gl, scratchUnit, checked.depth2.texture, GL_TEXTURE_2D, true, checked.depth2.hasStencil);
+  if (checked.normals.texture) normalParams.apply(gl, scratchUnit, checked.normals.texture, GL_TEXTURE_2D, false, false);
+  if (checked.output.texture) outputParams.apply(gl, scratchUnit, checked.output.texture, GL_TEXTURE_2D, false, false);
 
   gl.BindBuffer(GL_UNIFORM_BUFFER, ubo);
   if (!haveParams || std::memcmp(&uploaded, &block, sizeof block) != 0) {

@@ -1,48 +1,61 @@
 #include "inputs.h"
 
+#include <algorithm>
 #include <string>
 
 namespace sao::gl::detail {
 namespace {
 
-Status inspect(const GlFunctions& gl, GLuint unit, GLuint texture, const char* role, TextureInfo& out) {
+// `multisampleAllowed`: the depth input, which the effect reads as sampler2DMS when it is
+// multisampled (DEPTH_MULTISAMPLE); every other texture must be a single-sample GL_TEXTURE_2D.
+Status inspect(const GlFunctions& gl, GLuint unit, GLuint texture, const char* role, TextureInfo& out,
+               bool multisampleAllowed = false) {
   // Built only for an error: render() allocates nothing per frame.
   auto who = [&] { return std::string("sao::gl: the ") + role + " texture " + std::to_string(texture); };
   if (texture == 0)
     return Status::error(StatusCode::InvalidInput, std::string("sao::gl: the ") + role + " texture is 0");
   if (!gl.IsTexture(texture))
     return Status::error(StatusCode::InvalidInput, who() + " is not a texture object (never bound, or deleted)");
+  GLenum target = GL_TEXTURE_2D;
   if (gl.hasDsa) {
-    GLint target = 0;
-    gl.GetTextureParameteriv(texture, GL_TEXTURE_TARGET, &target);
-    if (target == GL_TEXTURE_2D_MULTISAMPLE || target == GL_TEXTURE_2D_MULTISAMPLE_ARRAY)
-      return Status::error(StatusCode::UnsupportedFormat, who() + " is multisampled (" + glEnumName(GLenum(target)) +
-                                                              "); resolve it to a single-sample GL_TEXTURE_2D first "
-                                                              "(glBlitFramebuffer of GL_DEPTH_BUFFER_BIT, GL_NEAREST)");
-    if (target != GL_TEXTURE_2D)
-      return Status::error(StatusCode::InvalidInput, who() + " is a " + glEnumName(GLenum(target)) +
+    GLint t = 0;
+    gl.GetTextureParameteriv(texture, GL_TEXTURE_TARGET, &t);
+    target = GLenum(t);
+    if (target == GL_TEXTURE_2D_MULTISAMPLE_ARRAY || (target == GL_TEXTURE_2D_MULTISAMPLE && !multisampleAllowed))
+      return Status::error(StatusCode::UnsupportedFormat,
+                           who() + " is multisampled (" + glEnumName(target) +
+                               "); only the depth input may be a GL_TEXTURE_2D_MULTISAMPLE (read per "
+                               "Camera::depthSamplePolicy); this texture must be a single-sample GL_TEXTURE_2D");
+    if (target != GL_TEXTURE_2D && target != GL_TEXTURE_2D_MULTISAMPLE)
+      return Status::error(StatusCode::InvalidInput, who() + " is a " + glEnumName(target) +
                                                          "; the effect reads and writes GL_TEXTURE_2D level 0");
   }
   // Without DSA (GL 4.3 / 4.4) the target cannot be queried without binding: a texture of another
   // target (multisampled, array, 3D, ...) fails to bind (a GL error the caller's debug output
   // shows) and leaves the binding unchanged, which is checked below. The unit is cleared first so
   // that a failed bind cannot leave the caller's own texture there to be inspected instead.
+  const bool multisampled = target == GL_TEXTURE_2D_MULTISAMPLE;
+  const GLenum binding = multisampled ? GL_TEXTURE_BINDING_2D_MULTISAMPLE : GL_TEXTURE_BINDING_2D;
   gl.ActiveTexture(GL_TEXTURE0 + unit);
-  gl.BindTexture(GL_TEXTURE_2D, 0);
-  gl.BindTexture(GL_TEXTURE_2D, texture);
+  gl.BindTexture(target, 0);
+  gl.BindTexture(target, texture);
   GLint bound = 0;
-  gl.GetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+  gl.GetIntegerv(binding, &bound);
   if (GLuint(bound) != texture)
     return Status::error(StatusCode::InvalidInput,
                          who() + " cannot be bound as GL_TEXTURE_2D (multisampled, an array, 3D or a cube map?); the "
-                               "effect reads and writes GL_TEXTURE_2D level 0 (resolve multisampled depth first)");
-  GLint format = 0, w = 0, h = 0, stencil = 0;
-  gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
-  gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &w);
-  gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &h);
-  gl.GetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_STENCIL_SIZE, &stencil);
-  gl.BindTexture(GL_TEXTURE_2D, 0);
+                               "effect reads and writes GL_TEXTURE_2D level 0 (a multisampled depth input needs GL 4.5 "
+                               "or ARB_direct_state_access, to be recognised without a failing bind)");
+  GLint format = 0, w = 0, h = 0, stencil = 0, samples = 0;
+  gl.GetTexLevelParameteriv(target, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+  gl.GetTexLevelParameteriv(target, 0, GL_TEXTURE_WIDTH, &w);
+  gl.GetTexLevelParameteriv(target, 0, GL_TEXTURE_HEIGHT, &h);
+  gl.GetTexLevelParameteriv(target, 0, GL_TEXTURE_STENCIL_SIZE, &stencil);
+  if (multisampled) gl.GetTexLevelParameteriv(target, 0, GL_TEXTURE_SAMPLES, &samples);
+  gl.BindTexture(target, 0);
   if (w <= 0 || h <= 0) return Status::error(StatusCode::InvalidInput, who() + " has no level 0 image");
+  out.target = target;
+  out.samples = multisampled ? std::uint32_t(std::max(samples, 1)) : 1u;
   out.texture = texture;
   out.internalFormat = GLenum(format);
   out.hasStencil = stencil > 0;
@@ -92,8 +105,8 @@ std::uint32_t normalChannels(GLenum f) {
 }
 
 Status depthInput(const GlFunctions& gl, GLuint unit, const DepthInput& in, const char* role, TextureInfo& out,
-                  DepthEncoding& encoding) {
-  if (Status st = inspect(gl, unit, in.texture, role, out); !st) return st;
+                  DepthEncoding& encoding, bool multisampleAllowed) {
+  if (Status st = inspect(gl, unit, in.texture, role, out, multisampleAllowed); !st) return st;
   auto who = [&] { return std::string("sao::gl: the ") + role + " texture " + std::to_string(in.texture); };
   const GLenum f = out.internalFormat;
   if (!isHardwareDepth(f) && f != GL_R32F)
@@ -115,11 +128,13 @@ Status checkInputs(const GlFunctions& gl, GLuint unit, const Inputs& inputs, Nor
   out = CheckedInputs{};
   out.region = inputs.region;
   DepthEncoding encoding{};
-  if (Status st = depthInput(gl, unit, inputs.depth, "depth", out.depth, encoding); !st) return st;
+  if (Status st = depthInput(gl, unit, inputs.depth, "depth", out.depth, encoding, true); !st) return st;
   out.planInputs.depthEncoding = encoding;
+  out.planInputs.depthSamples = out.depth.samples;
   if (inputs.depth2.texture != 0) {
     DepthEncoding encoding2{};
-    if (Status st = depthInput(gl, unit, inputs.depth2, "second-layer depth", out.depth2, encoding2); !st) return st;
+    if (Status st = depthInput(gl, unit, inputs.depth2, "second-layer depth", out.depth2, encoding2, false); !st)
+      return st;
     if (encoding2 != encoding)
       return Status::error(StatusCode::InvalidInput,
                            std::string("sao::gl: the second depth layer is ") + glEnumName(out.depth2.internalFormat) +

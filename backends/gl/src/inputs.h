@@ -12,6 +12,8 @@ struct TextureInfo {
   GLenum internalFormat = 0;
   bool hasStencil = false;
   Extent extent;  // level 0
+  GLenum target = GL_TEXTURE_2D;  // GL_TEXTURE_2D_MULTISAMPLE only for a multisampled depth input
+  std::uint32_t samples = 1;
 };
 
 struct CheckedInputs {

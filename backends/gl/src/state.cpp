@@ -13,9 +13,10 @@ StateGuard::StateGuard(const GlFunctions& gl, const std::vector<GLuint>& texture
   gl.GetInteger64i_v(GL_UNIFORM_BUFFER_SIZE, 0, &uniformSize0_);
   for (GLuint u : textureUnits) {
     if (textureCount_ == kMaxUnits) break;
-    TextureUnit t{u, 0, 0};
+    TextureUnit t{u, 0, 0, 0};
     gl.ActiveTexture(GL_TEXTURE0 + u);
     gl.GetIntegerv(GL_TEXTURE_BINDING_2D, &t.texture2D);
+    gl.GetIntegerv(GL_TEXTURE_BINDING_2D_MULTISAMPLE, &t.texture2DMultisample);
     gl.GetIntegerv(GL_SAMPLER_BINDING, &t.sampler);
     textures_[textureCount_++] = t;
   }
@@ -47,6 +48,7 @@ StateGuard::~StateGuard() {
     const TextureUnit& t = textures_[k];
     gl.ActiveTexture(GL_TEXTURE0 + t.unit);
     gl.BindTexture(GL_TEXTURE_2D, alive(t.texture2D));
+    gl.BindTexture(GL_TEXTURE_2D_MULTISAMPLE, alive(t.texture2DMultisample));
     gl.BindSampler(t.unit, GLuint(t.sampler));
   }
   gl.ActiveTexture(GLenum(activeTexture_));
@@ -60,19 +62,21 @@ StateGuard::~StateGuard() {
   gl.UseProgram(GLuint(program_));
 }
 
-void TextureParamGuard::apply(const GlFunctions& gl, GLuint unit, GLuint texture, bool depthInput, bool hasStencil) {
+void TextureParamGuard::apply(const GlFunctions& gl, GLuint unit, GLuint texture, GLenum target, bool depthInput,
+                              bool hasStencil) {
   restore();
   gl_ = &gl;
   unit_ = unit;
   texture_ = texture;
+  target_ = target;
   gl.ActiveTexture(GL_TEXTURE0 + unit);
-  gl.BindTexture(GL_TEXTURE_2D, texture);
+  gl.BindTexture(target, texture);
   auto set = [&](GLenum pname, GLint wanted) {
     GLint current = 0;
-    gl.GetTexParameteriv(GL_TEXTURE_2D, pname, &current);
+    gl.GetTexParameteriv(target, pname, &current);
     if (current == wanted) return;
     changed_[changedCount_++] = {pname, current};
-    gl.TexParameteri(GL_TEXTURE_2D, pname, wanted);
+    gl.TexParameteri(target, pname, wanted);
   };
   // texelFetch's lod is relative to the base level: read level 0 whatever the caller set.
   set(GL_TEXTURE_BASE_LEVEL, 0);
@@ -89,10 +93,10 @@ void TextureParamGuard::restore() {
   }
   const GlFunctions& gl = *gl_;
   gl.ActiveTexture(GL_TEXTURE0 + unit_);
-  gl.BindTexture(GL_TEXTURE_2D, texture_);
+  gl.BindTexture(target_, texture_);
   while (changedCount_ > 0) {
     const Param& p = changed_[--changedCount_];
-    gl.TexParameteri(GL_TEXTURE_2D, p.pname, p.saved);
+    gl.TexParameteri(target_, p.pname, p.saved);
   }
 }
 

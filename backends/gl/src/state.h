@@ -9,8 +9,8 @@
 namespace sao::gl::detail {
 
 // Saves, on construction, the state render() may change and restores it on destruction:
-// the current program, the active texture unit, GL_TEXTURE_BINDING_2D and the sampler binding of
-// each listed texture unit, every field of each listed image unit, and the uniform-buffer bindings
+// the current program, the active texture unit, GL_TEXTURE_BINDING_2D, _2D_MULTISAMPLE (a
+// multisampled depth input) and the sampler binding of each listed texture unit, every field of each listed image unit, and the uniform-buffer bindings
 // (generic and index 0, with its range).
 class StateGuard {
  public:
@@ -25,7 +25,7 @@ class StateGuard {
  private:
   struct TextureUnit {
     GLuint unit;
-    GLint texture2D, sampler;
+    GLint texture2D, texture2DMultisample, sampler;
   };
   struct ImageUnit {
     GLuint unit;
@@ -52,7 +52,9 @@ class TextureParamGuard {
 
   // Sets base level 0, and for depth inputs swizzle R = GL_RED and, when the texture has a stencil
   // part, GL_DEPTH_STENCIL_TEXTURE_MODE = GL_DEPTH_COMPONENT. Only values that differ are written.
-  void apply(const GlFunctions& gl, GLuint unit, GLuint texture, bool depthInput, bool hasStencil);
+  // `target`: GL_TEXTURE_2D, or GL_TEXTURE_2D_MULTISAMPLE for a multisampled depth input (whose
+  // base level is always 0; swizzle and depth-stencil mode are texture state there too).
+  void apply(const GlFunctions& gl, GLuint unit, GLuint texture, GLenum target, bool depthInput, bool hasStencil);
   void restore();
 
  private:
@@ -62,6 +64,7 @@ class TextureParamGuard {
   };
   const GlFunctions* gl_ = nullptr;
   GLuint unit_ = 0, texture_ = 0;
+  GLenum target_ = GL_TEXTURE_2D;
   std::array<Param, 3> changed_{};  // at most the three parameters apply() sets
   std::size_t changedCount_ = 0;
 };

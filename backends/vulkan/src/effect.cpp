@@ -123,6 +123,30 @@ Status checkSampled(const EffectState& e, VkFormat format, const char* what) {
   return Status::success();
 }
 
+// A multisampled depth input is read directly (sampler2DMS, DEPTH_MULTISAMPLE): one sample count
+// bit, which the device can sample for the format (and never with a second layer).
+Status checkDepthSamples(const EffectState& e, const Config& c) {
+  const auto n = static_cast<std::uint32_t>(c.depthSamples);
+  if (n == 0 || n > 64 || (n & (n - 1)) != 0)
+    return Status::error(StatusCode::InvalidInput, "Config::depthSamples is " + std::to_string(n) +
+                                                       "; it must be one VkSampleCountFlagBits (1, 2, 4, .. 64)");
+  if (n == 1) return Status::success();
+  const bool colour = c.depthFormat == VK_FORMAT_R32_SFLOAT;
+  const VkSampleCountFlags counts =
+      colour ? e.props.limits.sampledImageColorSampleCounts : e.props.limits.sampledImageDepthSampleCounts;
+  if (!(counts & c.depthSamples))
+    return Status::error(StatusCode::UnsupportedFormat,
+                         "Config::depthSamples is " + std::to_string(n) + " but this device samples " +
+                             (colour ? "colour" : "depth") + " images with " + std::to_string(counts) +
+                             " (sampledImage" + (colour ? "Color" : "Depth") + "SampleCounts bits) only");
+  if (c.secondLayer)
+    return Status::error(StatusCode::InvalidInput,
+                         "Config::depthSamples is " + std::to_string(n) +
+                             " with Config::secondLayer: a multisampled depth input has no second layer (give both "
+                             "layers single-sample)");
+  return Status::success();
+}
+
 // Everything a configuration needs that does not allocate: format and layout checks, the plan, the
 // parameter block, device limits.
 Status checkConfig(const EffectState& e, const Config& c, Plan& plan, ParamBlock& params) {
@@ -143,11 +167,7 @@ Status checkConfig(const EffectState& e, const Config& c, Plan& plan, ParamBlock
                                "D24_UNORM_S8_UINT, D32_SFLOAT, D32_SFLOAT_S8_UINT, or R32_SFLOAT linear z)");
   }
   if (Status st = checkSampled(e, c.depthFormat, "the depth"); !st) return st;
-  if (c.depthSamples != VK_SAMPLE_COUNT_1_BIT)
-    return Status::error(StatusCode::UnsupportedFormat,
-                         "Config::depthSamples is " + std::to_string(static_cast<int>(c.depthSamples)) +
-                             "; the effect reads single-sample depth: resolve multisampled depth first (e.g. "
-                             "VK_KHR_depth_stencil_resolve with VK_RESOLVE_MODE_SAMPLE_ZERO_BIT)");
+  if (Status st = checkDepthSamples(e, c); !st) return st;
   if (c.normalsFormat != VK_FORMAT_UNDEFINED) {
     if (isDepthStencilFormat(c.normalsFormat))
       return Status::error(StatusCode::UnsupportedFormat,
@@ -192,11 +212,14 @@ Status checkConfig(const EffectState& e, const Config& c, Plan& plan, ParamBlock
                              "or use kAllChannels");
 
   const DepthEncoding encoding = depthEncodingOf(c.depthFormat);
-  PlanInputs pi{encoding, c.normalsFormat != VK_FORMAT_UNDEFINED, c.secondLayer, c.userOutput, outputFormat};
+  PlanInputs pi{encoding,     c.normalsFormat != VK_FORMAT_UNDEFINED,
+                c.secondLayer, c.userOutput,
+                outputFormat, static_cast<std::uint32_t>(c.depthSamples)};
   if (Status st = sao::plan(c.settings, c.camera, pi, plan); !st) return st;
   if (Status st = computeConstants(c.settings, c.camera, encoding, params); !st) return st;
   params.output_mask = outputMaskParam(c.outputChannels);
   params.output_blend = static_cast<std::int32_t>(c.outputBlend);
+  params.depth_samples = static_cast<std::int32_t>(c.depthSamples);
   const std::uint32_t maxSide = e.props.limits.maxImageDimension2D;
   const Extent ie = plan.inputExtent;
   if (ie.width > maxSide || ie.height > maxSide)

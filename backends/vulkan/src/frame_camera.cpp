@@ -47,9 +47,10 @@ Status cameraParams(const EffectState& e, const Camera& camera, ParamBlock& out)
                              " (the largest projected radius, from the projection scale, near distance, projection "
                              "kind and metersToViewUnits, selects them): this camera changes the plan; call update()");
   // The members the backend sets from Config after computeConstants (checkConfig): the output's
-  // channel mask and blend.
+  // channel mask, blend and the depth input's sample count.
   out.output_mask = e.params.output_mask;
   out.output_blend = e.params.output_blend;
+  out.depth_samples = e.params.depth_samples;
   return Status::success();
 }
 

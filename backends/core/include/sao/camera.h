@@ -30,6 +30,15 @@ enum class NormalsEncoding : std::uint8_t {
   WorldOctahedral,   // world-space normal, octahedral in .xy
 };
 
+// Which sample of a multisampled depth texel stands for the texel (the values are the effect's
+// SAO_DEPTH_SAMPLE_* constants). The effect reads MSAA depth directly, with no resolve pass;
+// single-sample depth has one sample, and both policies read it.
+enum class DepthSamplePolicy : std::uint8_t {
+  Sample0,  // sample 0 (the default): what a blit of a multisampled depth buffer gives on most drivers
+  Nearest,  // the sample nearest to the camera (sky only when every sample is sky): a silhouette
+            // texel takes the foreground, as a min/max depth resolve would
+};
+
 struct Camera {
   // Column-major like GLM: element (row r, column c) is projection[c * 4 + r]. Right-handed view
   // space looking down -z, as the paper assumes.
@@ -59,6 +68,8 @@ struct Camera {
   // Required by the world-space encodings; whenever set, computeConstants() refuses anything but a
   // rotation (columns of unit length and mutually orthogonal to 1e-4, determinant +1, finite).
   std::optional<std::array<double, 9>> viewRotation;
+  // A multisampled depth input's sample per texel (the depth buffer's convention, like clipDepth).
+  DepthSamplePolicy depthSamplePolicy = DepthSamplePolicy::Sample0;
   bool operator==(const Camera&) const = default;
 };
 

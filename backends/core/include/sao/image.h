@@ -14,15 +14,21 @@ enum class DepthFormat : std::uint8_t { D16, D24, D32F, LinearZ };
 
 const char* toString(DepthFormat format);
 
-// One channel of depth as the GPU would hold it. `texels` holds the raw value per texel, row 0
-// first: the integer for D16/D24, the float's bits for D32F and LinearZ.
+// One channel of depth as the GPU would hold it. `texels` holds the raw value per sample, row 0
+// first and a texel's samples together (sample s of texel (x, y) at (y * width + x) * samples + s):
+// the integer for D16/D24, the float's bits for D32F and LinearZ. `samples` > 1 is a multisampled
+// depth buffer (the CPU reference reads it as Camera::depthSamplePolicy says, like the GPU backends).
 struct DepthImage {
   Extent extent;
   DepthFormat format = DepthFormat::D32F;
   std::vector<std::uint32_t> texels;
+  std::uint32_t samples = 1;
 
-  // The value a shader reads (texelFetch(...).r), computed in double.
-  double value(std::uint32_t x, std::uint32_t y) const;
+  // The value a shader reads (texelFetch(..., sample).r), computed in double.
+  double value(std::uint32_t x, std::uint32_t y, std::uint32_t sample = 0) const;
+  std::uint32_t raw(std::uint32_t x, std::uint32_t y, std::uint32_t sample = 0) const {
+    return texels[(std::size_t(y) * extent.width + x) * samples + sample];
+  }
 };
 
 // The one contract for depth values, on every backend (cpu, gl, vulkan):

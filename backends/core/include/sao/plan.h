@@ -45,6 +45,8 @@ struct PlanInputs {
   // The output image's format (sao/output.h: one of outputFormats()); it selects the final pass's
   // variant, and an effect-owned output is allocated in it.
   gen::Format outputFormat = gen::Format::R16F;
+  // Samples per texel of the depth input: more than 1 selects the multisampled read (DEPTH_MULTISAMPLE).
+  std::uint32_t depthSamples = 1;
   bool operator==(const PlanInputs&) const = default;
 };
 

@@ -29,9 +29,11 @@
 //    passes it issues only the barrier bits the schedule's hazards need (sao/schedule.h).
 //  - Allocation: a render() with the same settings, camera and kinds of input as the previous
 //    successful one allocates nothing (host or GL); a changed one plans again.
-//  - Textures are GL_TEXTURE_2D; level 0 is read and written. Multisampled depth
-//    (GL_TEXTURE_2D_MULTISAMPLE) is rejected with UnsupportedFormat: resolve it first (a
-//    glBlitFramebuffer of GL_DEPTH_BUFFER_BIT with GL_NEAREST into a single-sample texture).
+//  - Textures are GL_TEXTURE_2D; level 0 is read and written. The depth input may also be a
+//    GL_TEXTURE_2D_MULTISAMPLE (GL 4.5 or ARB_direct_state_access): it is read directly, one
+//    sample per texel as Camera::depthSamplePolicy says (sample 0, or the one nearest to the
+//    camera), with no resolve pass. Every other texture multisampled is refused (UnsupportedFormat),
+//    and so is a multisampled depth with a second layer.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -76,7 +78,7 @@ inline constexpr std::uint32_t kRGBA8 = 0x8058;              // GL_RGBA8 (an out
 inline constexpr std::uint32_t kRGBA16F = 0x881A;            // GL_RGBA16F (an output format)
 
 struct DepthInput {
-  std::uint32_t texture = 0;  // GL_TEXTURE_2D name
+  std::uint32_t texture = 0;  // GL_TEXTURE_2D name (the depth input: or GL_TEXTURE_2D_MULTISAMPLE)
   // One of the k* depth formats above (hardware depth per the Camera's conventions) or kR32F
   // (linear camera-space z, negative in front of the camera, view units). The effect queries the
   // texture's real internal format and rejects a mismatch; 0 accepts whatever the texture holds.

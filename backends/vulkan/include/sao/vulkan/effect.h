@@ -144,11 +144,14 @@ struct Config {
   VkAccessFlags outputDstAccess = VK_ACCESS_SHADER_READ_BIT;
   std::uint32_t framesInFlight = 2;  // descriptor-set ring size, 1..16 (see the contract above)
   bool timestamps = false;  // record() writes per-pass timestamps where the queue family has them
-  // Samples of the depth (and depth2) images. Only VK_SAMPLE_COUNT_1_BIT is read: create() and
-  // update() reject anything else with UnsupportedFormat. Resolve multisampled depth first (e.g.
-  // VK_KHR_depth_stencil_resolve with VK_RESOLVE_MODE_SAMPLE_ZERO_BIT, or a copy of sample 0 in a
-  // shader of your own). A VkImageView does not tell its sample count, so a multisampled view
-  // passed while this says 1 is not detected by the library (the validation layer reports it).
+  // Samples of the depth image. A multisampled depth buffer is read directly, no resolve pass:
+  // linear_z keeps one sample per texel as Camera::depthSamplePolicy says (sample 0, or the one
+  // nearest to the camera). create() and update() refuse a count that is not one
+  // VkSampleCountFlagBits, one the device cannot sample for depthFormat
+  // (sampledImageDepthSampleCounts, or sampledImageColorSampleCounts for R32_SFLOAT), and more than
+  // one with secondLayer (depth2 is single-sample only). A VkImageView does not tell its sample
+  // count, so a view whose count differs from this is not detected by the library (the validation
+  // layer reports it).
   VkSampleCountFlagBits depthSamples = VK_SAMPLE_COUNT_1_BIT;
 };
 
