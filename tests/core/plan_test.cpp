@@ -158,4 +158,40 @@ TEST(Plan, RejectsBadExtentsAndIsDeterministic) {
   EXPECT_EQ(a.totalBytes, b.totalBytes);
 }
 
+// cameraKeepsPlan: jitter and a mirrored stereo eye keep the plan (and plan() agrees), a new size,
+// guard band, kind or csz level count does not, nor an invalid camera.
+TEST(Plan, CameraKeepsPlanExactlyWhenThePlanIsTheSame) {
+  const sao::Settings s;
+  const sao::Camera base = sao::perspectiveCamera(std::numbers::pi / 3.0, 320, 180, 0.1, 100, sao::ClipDepth::ZeroToOne, false);
+  auto shifted = [&](double x, double y) {
+    sao::Camera c = base;
+    c.projection[8] += x;
+    c.projection[9] += y;
+    return c;
+  };
+  auto samePlan = [&](const sao::Camera& c) {
+    sao::Plan a, b;
+    if (!sao::plan(s, base, {}, a).ok() || !sao::plan(s, c, {}, b).ok()) return false;
+    return a.describe() == b.describe();
+  };
+  for (const sao::Camera& c : {shifted(0.001, -0.002), shifted(0.04, 0), shifted(-0.04, 0)}) {
+    EXPECT_TRUE(sao::cameraKeepsPlan(s, base, c));
+    EXPECT_TRUE(samePlan(c));
+  }
+  sao::Camera wider = base;
+  wider.width = 321;
+  sao::Camera guarded = base;
+  guarded.guardBand = 4;
+  sao::Camera nearer = sao::perspectiveCamera(std::numbers::pi / 3.0, 320, 180, 0.01, 100, sao::ClipDepth::ZeroToOne, false);
+  sao::Camera ortho = sao::orthographicCamera(2.0, 320, 180, 0.1, 100, sao::ClipDepth::ZeroToOne, false);
+  sao::Camera broken = base;
+  broken.projection[0] = NAN;
+  for (const sao::Camera& c : {wider, guarded, ortho, broken}) EXPECT_FALSE(sao::cameraKeepsPlan(s, base, c));
+  // A nearer near plane projects the radius larger: more csz levels, unless the chain is capped.
+  EXPECT_EQ(sao::cameraKeepsPlan(s, base, nearer), samePlan(nearer));
+  sao::Settings noHierarchy = s;
+  noHierarchy.use_z_hierarchy = false;
+  EXPECT_TRUE(sao::cameraKeepsPlan(noHierarchy, base, nearer)) << "one level either way";
+}
+
 }  // namespace

@@ -5,6 +5,7 @@
 #include <epoxy/gl.h>
 
 #include <cstdio>
+#include <vector>
 
 #include "analytic_scenes.h"
 #include "gl_support.h"
@@ -98,6 +99,45 @@ TEST_F(FrameAllocations, RenderWithSuppliedNormalsAllocatesNothing) {
     deleteTexture(normals);
     normals = 0;
   }
+}
+
+// Stereo with TAA jitter: each frame renders two layers of array textures (Inputs::layer), each
+// eye's camera jittered; no library allocation and no new plan after the first frame.
+TEST_F(FrameAllocations, JitteredStereoLayersAllocateNothing) {
+  std::vector<float> values(depth.texels.size());
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = float(decodeDepth(depth.format, depth.texels[i]));
+  GLuint depthArray = 0, outArray = 0;
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &depthArray);
+  glTextureStorage3D(depthArray, 1, GL_DEPTH_COMPONENT24, GLsizei(depth.extent.width), GLsizei(depth.extent.height), 2);
+  for (GLint l = 0; l < 2; ++l)
+    glTextureSubImage3D(depthArray, 0, 0, 0, l, GLsizei(depth.extent.width), GLsizei(depth.extent.height), 1,
+                        GL_DEPTH_COMPONENT, GL_FLOAT, values.data());
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &outArray);
+  glTextureStorage3D(outArray, 1, GL_R16F, GLsizei(cam.width), GLsizei(cam.height), 2);
+  auto e = makeEffect();
+  ASSERT_TRUE(e);
+  const Settings settings;
+  long counted = 0;
+  for (int f = 0; f <= kFrames; ++f)
+    for (std::uint32_t eye = 0; eye < 2; ++eye) {
+      Camera c = cam;
+      c.projection[2 * 4 + 0] += (eye == 0 ? 0.04 : -0.04) + 0.0005 * (f % 8);
+      gl::Inputs in;
+      in.depth = {depthArray, gl::kDepthComponent24};
+      in.output = outArray;
+      in.layer = eye;
+      if (f > 0) test::startCountingAllocations();  // frame 0 plans
+      const Status st = e->render(c, settings, in);
+      if (f > 0) {
+        test::stopCountingAllocations();
+        counted += test::countedAllocations();
+      }
+      ASSERT_TRUE(st.ok()) << st.message;
+    }
+  EXPECT_EQ(counted, 0) << "library allocations in " << 2 * kFrames << " jittered stereo render() calls";
+  EXPECT_EQ(e->stats().plans, 1u);
+  glDeleteTextures(1, &depthArray);
+  glDeleteTextures(1, &outArray);
 }
 
 }  // namespace

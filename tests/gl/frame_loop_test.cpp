@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <vector>
 
 #include "analytic_scenes.h"
 #include "gl_support.h"
@@ -55,6 +56,53 @@ TEST_F(GlFrameLoop, Render2000FramesHoldsHostMemory) {
   std::printf("[frame loop] OpenGL (%s): %+.1f heap bytes/frame over %d frames after %d\n",
               reinterpret_cast<const char*>(glGetString(GL_RENDERER)), perFrame, kFrames - kWarmUp, kWarmUp);
   EXPECT_LT(perFrame, kAllowedBytesPerFrame) << "host memory grows with rendered frames";
+}
+
+// A stereo engine's loop: per frame two renders of one effect, one per layer of 2-layer arrays
+// (Inputs::layer: a texture view per input made and deleted in each render), each eye's camera
+// jittered per frame as TAA does. Neither plans again (one plan in all) nor grows host memory.
+TEST_F(GlFrameLoop, StereoJitteredFramesHoldHostMemoryAndPlanOnce) {
+  if (sanitized()) GTEST_SKIP() << "heap figures are meaningless under the sanitizers' allocator";
+  const Camera base = camera(64, 64, 4);
+  const DepthImage depth = test::renderDepth(test::sphereOnPlaneScene(), base, DepthFormat::D32F);
+  std::vector<float> values(depth.texels.size());
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = float(decodeDepth(depth.format, depth.texels[i]));
+  GLuint depthArray = 0, outArray = 0;
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &depthArray);
+  glTextureStorage3D(depthArray, 1, GL_DEPTH_COMPONENT32F, GLsizei(depth.extent.width), GLsizei(depth.extent.height), 2);
+  for (GLint l = 0; l < 2; ++l)
+    glTextureSubImage3D(depthArray, 0, 0, 0, l, GLsizei(depth.extent.width), GLsizei(depth.extent.height), 1,
+                        GL_DEPTH_COMPONENT, GL_FLOAT, values.data());
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &outArray);
+  glTextureStorage3D(outArray, 1, GL_R16F, GLsizei(base.width), GLsizei(base.height), 2);
+  auto effect = makeEffect();
+  ASSERT_TRUE(effect);
+  const Settings settings;
+  const int frames = kFrames / 2;  // two renders per frame: kFrames renders in all
+  std::size_t warm = 0;
+  for (int f = 0; f < frames; ++f) {
+    if (f == kWarmUp) warm = mallinfo2().uordblks;
+    for (std::uint32_t eye = 0; eye < 2; ++eye) {
+      Camera c = base;
+      c.projection[2 * 4 + 0] += (eye == 0 ? 0.04 : -0.04) + 0.001 * ((f * 7) % 16 - 8) / 8.0;  // eye + jitter
+      c.projection[2 * 4 + 1] += 0.001 * ((f * 5) % 16 - 8) / 8.0;
+      gl::Inputs in;
+      in.depth = {depthArray, gl::kDepthComponent32F};
+      in.output = outArray;
+      in.layer = eye;
+      const Status st = effect->render(c, settings, in);
+      ASSERT_TRUE(st.ok()) << "frame " << f << " eye " << eye << ": " << st.message;
+    }
+    glFinish();
+  }
+  const double perFrame = (double(mallinfo2().uordblks) - double(warm)) / (frames - kWarmUp);
+  EXPECT_EQ(effect->stats().plans, 1u) << "jittered eyes plan alike";
+  effect.reset();
+  glDeleteTextures(1, &depthArray);
+  glDeleteTextures(1, &outArray);
+  std::printf("[frame loop] OpenGL stereo: %+.1f heap bytes/frame (2 renders each) over %d frames after %d\n", perFrame,
+              frames - kWarmUp, kWarmUp);
+  EXPECT_LT(perFrame, kAllowedBytesPerFrame) << "host memory grows with rendered stereo frames";
 }
 
 }  // namespace

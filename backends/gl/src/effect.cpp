@@ -198,12 +198,12 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
                             const RenderOptions& options) {
   StateGuard guard(gl, textureUnits, imageUnits);
 
-  CheckedInputs checked;
+  CheckedInputs checked(gl);
   if (Status st = checkInputs(gl, scratchUnit, inputs, camera.normalsEncoding, checked); !st) return st;
   // A new configuration is planned into these (and committed at the end); an unchanged one
   // reuses what the last render derived, so a steady frame allocates nothing.
-  const bool replan = !planned || !(settings == plannedSettings) || !(camera == plannedCamera) ||
-                      !(checked.planInputs == plannedInputs);
+  const bool replan = !planned || !(settings == plannedSettings) || !(checked.planInputs == plannedInputs) ||
+                      (!(camera == plannedCamera) && !cameraKeepsPlan(settings, plannedCamera, camera));
   Plan newPlan;
   Schedule newSchedule;
   std::vector<GLuint> newPrograms;
@@ -274,6 +274,7 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
     plannedCamera = camera;
     plannedInputs = checked.planInputs;
     planned = true;
+    ++stats.plans;
   }
   params = block;
   ++stats.renders;

@@ -1,6 +1,8 @@
 // Checking the caller's textures: the real internal format and size are queried from the GL
 // (glGetTexLevelParameteriv on level 0), never taken on trust.
 #pragma once
+#include <array>
+
 #include "gl_functions.h"
 #include "sao/output.h"
 #include "sao/schedule.h"
@@ -16,8 +18,31 @@ struct TextureInfo {
   std::uint32_t samples = 1;
 };
 
+// Texture views of one layer of the caller's array textures (Inputs::layer), made by checkInputs
+// for this render only and deleted with the CheckedInputs (after the dispatches are issued; the GL
+// keeps a view's storage alive while commands still use it).
+class LayerViews {
+ public:
+  explicit LayerViews(const GlFunctions& gl) : gl_(gl) {}
+  ~LayerViews() {
+    if (count_) gl_.DeleteTextures(GLsizei(count_), views_.data());
+  }
+  LayerViews(const LayerViews&) = delete;
+  LayerViews& operator=(const LayerViews&) = delete;
+  // A GL_TEXTURE_2D (or _2D_MULTISAMPLE) view of level 0, layer `layer` of `texture`; 0 when the
+  // GL made none (the caller reports it).
+  GLuint make(GLuint texture, GLenum viewTarget, GLenum internalFormat, GLuint layer);
+
+ private:
+  const GlFunctions& gl_;
+  std::array<GLuint, 4> views_{};  // at most one per input (depth, depth2, normals, output)
+  std::size_t count_ = 0;
+};
+
 struct CheckedInputs {
-  TextureInfo depth, depth2, normals, output;  // texture 0 where absent
+  explicit CheckedInputs(const GlFunctions& gl) : views(gl) {}
+  LayerViews views;                            // per-render views of array layers (Inputs::layer)
+  TextureInfo depth, depth2, normals, output;  // texture 0 where absent; a layer's view for an array
   std::optional<Offset> region;  // Inputs::region: where the region starts in depth, depth2 and normals
   PlanInputs planInputs;
   std::uint32_t outputChannels = 15;  // Inputs::outputChannels, checked against the output's format
@@ -25,7 +50,8 @@ struct CheckedInputs {
 };
 
 // Inspects every texture in `inputs` (binding each on `scratchUnit`, whose binding the caller
-// saves) and derives the plan inputs. InvalidInput / UnsupportedFormat naming the texture's role;
+// saves) and derives the plan inputs; an array texture is replaced by a view of Inputs::layer.
+// `out` must be freshly constructed. InvalidInput / UnsupportedFormat naming the texture's role;
 // the normals texture's channels are checked against the camera's `normalsEncoding`.
 Status checkInputs(const GlFunctions& gl, GLuint scratchUnit, const Inputs& inputs, NormalsEncoding normalsEncoding,
                    CheckedInputs& out);

@@ -13,10 +13,12 @@ StateGuard::StateGuard(const GlFunctions& gl, const std::vector<GLuint>& texture
   gl.GetInteger64i_v(GL_UNIFORM_BUFFER_SIZE, 0, &uniformSize0_);
   for (GLuint u : textureUnits) {
     if (textureCount_ == kMaxUnits) break;
-    TextureUnit t{u, 0, 0, 0};
+    TextureUnit t{u, 0, 0, 0, 0, 0};
     gl.ActiveTexture(GL_TEXTURE0 + u);
     gl.GetIntegerv(GL_TEXTURE_BINDING_2D, &t.texture2D);
     gl.GetIntegerv(GL_TEXTURE_BINDING_2D_MULTISAMPLE, &t.texture2DMultisample);
+    gl.GetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &t.texture2DArray);
+    gl.GetIntegerv(GL_TEXTURE_BINDING_2D_MULTISAMPLE_ARRAY, &t.texture2DMultisampleArray);
     gl.GetIntegerv(GL_SAMPLER_BINDING, &t.sampler);
     textures_[textureCount_++] = t;
   }
@@ -49,6 +51,8 @@ StateGuard::~StateGuard() {
     gl.ActiveTexture(GL_TEXTURE0 + t.unit);
     gl.BindTexture(GL_TEXTURE_2D, alive(t.texture2D));
     gl.BindTexture(GL_TEXTURE_2D_MULTISAMPLE, alive(t.texture2DMultisample));
+    gl.BindTexture(GL_TEXTURE_2D_ARRAY, alive(t.texture2DArray));
+    gl.BindTexture(GL_TEXTURE_2D_MULTISAMPLE_ARRAY, alive(t.texture2DMultisampleArray));
     gl.BindSampler(t.unit, GLuint(t.sampler));
   }
   gl.ActiveTexture(GLenum(activeTexture_));

@@ -10,7 +10,8 @@ namespace sao::gl::detail {
 
 // Saves, on construction, the state render() may change and restores it on destruction:
 // the current program, the active texture unit, GL_TEXTURE_BINDING_2D, _2D_MULTISAMPLE (a
-// multisampled depth input) and the sampler binding of each listed texture unit, every field of each listed image unit, and the uniform-buffer bindings
+// multisampled depth input), _2D_ARRAY and _2D_MULTISAMPLE_ARRAY (inspected for Inputs::layer) and
+// the sampler binding of each listed texture unit, every field of each listed image unit, and the uniform-buffer bindings
 // (generic and index 0, with its range).
 class StateGuard {
  public:
@@ -25,7 +26,7 @@ class StateGuard {
  private:
   struct TextureUnit {
     GLuint unit;
-    GLint texture2D, texture2DMultisample, sampler;
+    GLint texture2D, texture2DMultisample, texture2DArray, texture2DMultisampleArray, sampler;
   };
   struct ImageUnit {
     GLuint unit;

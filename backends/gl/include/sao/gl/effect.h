@@ -27,9 +27,11 @@
 //    last pass, the barriers needed to read the result by texture fetch, image load, framebuffer
 //    read, glGetTexImage or a copy. Depth written by rendering needs no barrier. Between its
 //    passes it issues only the barrier bits the schedule's hazards need (sao/schedule.h).
-//  - Allocation: a render() with the same settings, camera and kinds of input as the previous
-//    successful one allocates nothing (host or GL); a changed one plans again.
-//  - Textures are GL_TEXTURE_2D; level 0 is read and written. The depth input may also be a
+//  - Allocation: a render() with the same settings and kinds of input as the previous successful
+//    one, and a camera that plans like its camera (sao::cameraKeepsPlan), allocates nothing (host
+//    or GL storage; Inputs::layer's views are names without storage); anything else plans again.
+//  - Textures are GL_TEXTURE_2D (or a layer of a GL_TEXTURE_2D_ARRAY: Inputs::layer); level 0 is
+//    read and written. The depth input may also be a
 //    GL_TEXTURE_2D_MULTISAMPLE (GL 4.5 or ARB_direct_state_access): it is read directly, one
 //    sample per texel as Camera::depthSamplePolicy says (sample 0, or the one nearest to the
 //    camera), with no resolve pass. Every other texture multisampled is refused (UnsupportedFormat),
@@ -128,6 +130,16 @@ struct Inputs {
   // consecutive frames sample the disk evenly; frame 0 (the default) is the paper's spiral. Count
   // it up by one per frame. Changing it does not plan again.
   std::uint32_t frameIndex = 0;
+  // Stereo / multiview: the array layer to read and write when the textures are
+  // GL_TEXTURE_2D_ARRAYs (the depth also GL_TEXTURE_2D_MULTISAMPLE_ARRAY) with immutable storage
+  // (glTexStorage3D). Render each eye with its own camera and layer on ONE effect: programs and
+  // intermediate textures are shared, and a camera that plans like the previous one (the other eye
+  // of a symmetric pair: the same viewport, guard band, kind and csz levels) does not plan again.
+  // Every texture given must then be an array with more than `layer` layers; with GL_TEXTURE_2D
+  // textures it must be 0. Needs GL 4.5 (DSA). The effect reads a layer through a texture view it
+  // creates and deletes within render() (a name, no storage); the layers' texture parameters are
+  // the views' own, so the caller's are never touched.
+  std::uint32_t layer = 0;
 };
 
 struct RenderOptions {
@@ -139,6 +151,9 @@ struct Stats {
   std::uint64_t renders = 0;
   std::uint64_t textureAllocations = 0;  // effect-owned textures created so far (views excluded)
   std::uint64_t programsCompiled = 0;
+  // Configurations planned: render() plans again only when the settings, the kinds of input or a
+  // plan-changing camera change (sao::cameraKeepsPlan), never for TAA jitter or the other eye.
+  std::uint64_t plans = 0;
 };
 
 class SAO_GL_API Effect {
