@@ -400,7 +400,7 @@ std::uint32_t Effect::pipelineCount() const { return static_cast<std::uint32_t>(
 OutputImage Effect::output() const {
   const OwnedImage* ao = impl_->res.find(gen::ResourceId::ao);
   if (!ao) return {};
-  return {ao->image.get(), ao->levelViews[0].get(), ao->format, ao->extent, impl_->config.outputLayout};
+  return {ao->image.get(), ao->levelViews[0].get(), ao->format, ao->extent, impl_->config.outputLayout, 0};
 }
 
 OwnedImageInfo Effect::ownedImage(gen::ResourceId id) const {

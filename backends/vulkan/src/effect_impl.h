@@ -87,6 +87,7 @@ struct OutputTarget {
   // Where the prologue transitions it from: UNDEFINED (contents discarded), or the caller's layout
   // when Config::outputChannels keeps channels.
   VkImageLayout keepFrom = VK_IMAGE_LAYOUT_UNDEFINED;
+  std::uint32_t layer = 0;  // the array layer `view` shows (OutputImage::layer); 0 for the effect's own
 };
 
 inline constexpr std::uint32_t kMaxFramesInFlight = 16;

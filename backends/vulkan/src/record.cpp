@@ -12,6 +12,10 @@
 //            sampled read (SHADER_WRITE -> SHADER_READ), a read then a write (execution only), two
 //            writes (SHADER_WRITE -> SHADER_WRITE), on exactly the levels concerned.
 //  exit      the output GENERAL -> Config::outputLayout, SHADER_WRITE -> outputDstStages/Access.
+// Barriers on the caller's output cover its layer OutputImage::layer only: the other layers of an
+// array may belong to another record of the same command buffer (stereo, one layer per eye). The
+// entry barriers of a second record in one command buffer order its writes of the shared
+// intermediates after the first record's reads and writes, as between frames.
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -23,8 +27,10 @@
 namespace sao::vk {
 namespace {
 
-VkImageMemoryBarrier imageBarrier(VkImage image, VkImageLayout from, VkImageLayout to, VkAccessFlags src,
-                                  VkAccessFlags dst, std::uint32_t baseLevel, std::uint32_t levels) {
+// `layer`: the array layer; the caller's output may be one layer of an array (OutputImage::layer),
+// the effect's own images have one.
+VkImageMemoryBarrier imageBarrier(VkImage image, std::uint32_t layer, VkImageLayout from, VkImageLayout to,
+                                  VkAccessFlags src, VkAccessFlags dst, std::uint32_t baseLevel, std::uint32_t levels) {
   VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
   b.srcAccessMask = src;
   b.dstAccessMask = dst;
@@ -32,7 +38,7 @@ VkImageMemoryBarrier imageBarrier(VkImage image, VkImageLayout from, VkImageLayo
   b.newLayout = to;
   b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.image = image;
-  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, baseLevel, levels, 0, 1};
+  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, baseLevel, levels, layer, 1};
   return b;
 }
 
@@ -146,7 +152,13 @@ Status checkInputs(const EffectState& e, const Inputs& in, const OutputImage* us
     if (input != VK_NULL_HANDLE && input == userOutput->view)
       return Status::error(StatusCode::InvalidInput, std::string("the output view is also Inputs::") + name +
                                                          ".view; the output must be a separate image");
-  out = {userOutput->image, userOutput->view, keep ? userOutput->layout : VK_IMAGE_LAYOUT_UNDEFINED};
+  // The layer cannot be checked against the image (Vulkan cannot tell its layer count); beyond the
+  // device's limit it cannot be one.
+  if (userOutput->layer >= e.props.limits.maxImageArrayLayers)
+    return Status::error(StatusCode::InvalidInput, "OutputImage::layer " + std::to_string(userOutput->layer) +
+                                                       " exceeds this device's maxImageArrayLayers " +
+                                                       std::to_string(e.props.limits.maxImageArrayLayers));
+  out = {userOutput->image, userOutput->view, keep ? userOutput->layout : VK_IMAGE_LAYOUT_UNDEFINED, userOutput->layer};
   return Status::success();
 }
 
@@ -183,17 +195,23 @@ std::uint32_t acquireSlot(EffectState& e, const Inputs& in, const OutputTarget& 
 
 namespace {
 
-// The image behind a resource this frame: owned, or the caller's output.
-VkImage imageOf(const EffectState& e, gen::ResourceId id, const OutputTarget& output) {
-  if (const OwnedImage* img = e.res.find(id)) return img->image.get();
-  return gen::kResources[static_cast<std::size_t>(id)].kind == gen::ResourceKind::Output ? output.image : VK_NULL_HANDLE;
+// The image (and array layer) behind a resource this frame: owned (layer 0), or the caller's output.
+struct Target {
+  VkImage image = VK_NULL_HANDLE;
+  std::uint32_t layer = 0;
+};
+Target imageOf(const EffectState& e, gen::ResourceId id, const OutputTarget& output) {
+  if (const OwnedImage* img = e.res.find(id)) return {img->image.get(), 0};
+  if (gen::kResources[static_cast<std::size_t>(id)].kind == gen::ResourceKind::Output) return {output.image, output.layer};
+  return {};
 }
 
-VkImageMemoryBarrier hazardBarrier(VkImage image, const Hazard& h) {
+VkImageMemoryBarrier hazardBarrier(Target t, const Hazard& h) {
   VkAccessFlags src = VK_ACCESS_SHADER_WRITE_BIT, dst = VK_ACCESS_SHADER_WRITE_BIT;
   if (h.kind == HazardKind::ReadAfterWrite) dst = VK_ACCESS_SHADER_READ_BIT;
   if (h.kind == HazardKind::WriteAfterRead) src = 0;  // an execution dependency is enough
-  return imageBarrier(image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL, src, dst, h.baseLevel, h.levelCount);
+  return imageBarrier(t.image, t.layer, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL, src, dst, h.baseLevel,
+                      h.levelCount);
 }
 
 }  // namespace
@@ -208,11 +226,11 @@ void recordPrologue(const EffectState& e, VkCommandBuffer cmd, const OutputTarge
                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
     for (const Hazard& h : e.schedule.entryHazards()) {
       if (h.kind == HazardKind::CallerWrote) continue;  // the caller's barrier (see above)
-      const VkImage image = imageOf(e, h.resource, output);
-      const bool isOutput = image == output.image;
+      const Target t = imageOf(e, h.resource, output);
+      const bool isOutput = t.image == output.image;
       // The output's kept channels are read by the final pass: its contents must survive.
       const VkImageLayout from = isOutput ? output.keepFrom : VK_IMAGE_LAYOUT_UNDEFINED;
-      images.add(imageBarrier(image, from, VK_IMAGE_LAYOUT_GENERAL, VK_ACCESS_SHADER_WRITE_BIT,
+      images.add(imageBarrier(t.image, t.layer, from, VK_IMAGE_LAYOUT_GENERAL, VK_ACCESS_SHADER_WRITE_BIT,
                               isOutput && from == VK_IMAGE_LAYOUT_UNDEFINED
                                   ? VK_ACCESS_SHADER_WRITE_BIT
                                   : VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
@@ -249,7 +267,7 @@ void recordDispatches(const EffectState& e, VkCommandBuffer cmd, std::uint32_t s
     {
       BarrierBatch hazards(e, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
       for (const Hazard& h : e.schedule.hazardsBefore(d))
-        if (const VkImage image = imageOf(e, h.resource, output)) hazards.add(hazardBarrier(image, h));
+        if (const Target t = imageOf(e, h.resource, output); t.image) hazards.add(hazardBarrier(t, h));
     }
     e.d.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe->layout.get(), 0, 1,
                                 &e.desc.sets[slot * e.desc.setsPerSlot + k], 0, nullptr);
@@ -265,9 +283,10 @@ void recordDispatches(const EffectState& e, VkCommandBuffer cmd, std::uint32_t s
 
 void recordEpilogue(const EffectState& e, VkCommandBuffer cmd, const OutputTarget& output) noexcept {
   for (const Hazard& h : e.schedule.exitHazards()) {
-    const VkImageMemoryBarrier b = imageBarrier(imageOf(e, h.resource, output), VK_IMAGE_LAYOUT_GENERAL,
-                                                e.config.outputLayout, VK_ACCESS_SHADER_WRITE_BIT,
-                                                e.config.outputDstAccess, h.baseLevel, h.levelCount);
+    const Target t = imageOf(e, h.resource, output);
+    const VkImageMemoryBarrier b = imageBarrier(t.image, t.layer, VK_IMAGE_LAYOUT_GENERAL, e.config.outputLayout,
+                                                VK_ACCESS_SHADER_WRITE_BIT, e.config.outputDstAccess, h.baseLevel,
+                                                h.levelCount);
     e.d.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, e.config.outputDstStages, 0, 0, nullptr, 0,
                              nullptr, 1, &b);
   }

@@ -19,6 +19,14 @@
 //   st = effect->record(cmd, in);      // every pass and barrier, into your command buffer
 //   sao::vk::OutputImage ao = effect->output();  // Config::outputFormat (R16_SFLOAT), in config.outputLayout
 //
+// Stereo (VR: two eyes in array layers of one depth image): one effect, recorded once per eye into
+// the same command buffer. Make a VK_IMAGE_VIEW_TYPE_2D view per layer of your depth (and normals)
+// array and of your output array (Config::userOutput: the effect's own output has one layer), give
+// each record its eye's views, OutputImage::layer = the eye and Inputs::camera = the eye's camera
+// (it must plan as Config::camera does: a mirrored off-axis eye projection does). The pipelines and
+// the intermediate images are shared by the eyes (one set of memory, not two); the second record's
+// barriers order it after the first. Each record takes a ring slot: see framesInFlight below.
+//
 // Requirements on your device: Vulkan 1.1 or later, the feature shaderStorageImageExtendedFormats
 // enabled (the intermediates are rg32f and the output r16f storage images; tell create() through
 // DeviceContext::enabledFeatures), and a queue family with compute. create() checks each and names
@@ -42,12 +50,13 @@
 //  * Effect-owned intermediates stay in VK_IMAGE_LAYOUT_GENERAL after record().
 //  * Frames in flight: record() uses the next of Config::framesInFlight ring slots, each with its
 //    own descriptor sets and its own copy of the parameter block (gen::SaoParams memcpy'd as is
-//    into host-coherent memory, made visible by vkQueueSubmit). At most framesInFlight command
-//    buffers recorded by one Effect may be pending (recorded and not completed) at a time, and one
-//    command buffer may hold at most framesInFlight records: every record() rewrites its slot's
-//    descriptor sets (a destroyed view's handle value can come back for a new view, so handles
-//    cannot tell a set is still valid). The effect's images are shared by all slots; the barriers
-//    order them in submission order on the one queue.
+//    into host-coherent memory, made visible by vkQueueSubmit). framesInFlight counts record()
+//    calls, not frames: at most framesInFlight record() (and measure()) calls of one Effect may be
+//    pending (recorded, their command buffer not completed) at a time, whether they share a command
+//    buffer or not, since every record() rewrites its slot's descriptor sets (a destroyed view's
+//    handle value can come back for a new view, so handles cannot tell a set is still valid). A
+//    stereo frame records twice: 2 frames in flight x 2 eyes needs framesInFlight = 4. The effect's
+//    images are shared by all slots; the barriers order them in submission order on the one queue.
 //  * Per-record camera: Inputs::camera (a jittered projection, another field of view, a new view
 //    rotation) is written into the record's own slot of the parameter block, so the frames in
 //    flight each keep their camera: no update(), no wait. A camera that would change the plan
@@ -118,7 +127,9 @@ struct Config {
   // channel would read 0. VK_FORMAT_UNDEFINED: no normals (rebuilt from depth).
   VkFormat normalsFormat = VK_FORMAT_UNDEFINED;
   bool secondLayer = false;  // a second depth layer (deep G-buffer)
-  bool userOutput = false;   // you pass the output image to record(); otherwise the effect owns one
+  // You pass the output image to record(); otherwise the effect owns one, which every record()
+  // writes: stereo (several records per frame) needs your output, one layer (or image) per eye.
+  bool userOutput = false;
   // The output's format (yours or the effect's own): VK_FORMAT_R16_SFLOAT (the default),
   // R8_UNORM, R8G8B8A8_UNORM or R16G16B16A16_SFLOAT, with optimal-tiling storage support on the
   // device (sao/output.h says how each rounds A). Another is refused with UnsupportedFormat naming
@@ -142,7 +153,8 @@ struct Config {
   // without graphics, leave out the graphics stages (create() says so otherwise).
   VkPipelineStageFlags outputDstStages = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
   VkAccessFlags outputDstAccess = VK_ACCESS_SHADER_READ_BIT;
-  std::uint32_t framesInFlight = 2;  // descriptor-set ring size, 1..16 (see the contract above)
+  // Ring size, 1..16: record() calls that may be pending at once (the contract above; stereo: x 2).
+  std::uint32_t framesInFlight = 2;
   bool timestamps = false;  // record() writes per-pass timestamps where the queue family has them
   // Samples of the depth image. A multisampled depth buffer is read directly, no resolve pass:
   // linear_z keeps one sample per texel as Camera::depthSamplePolicy says (sample 0, or the one
@@ -206,10 +218,16 @@ struct Inputs {
 // PREINITIALIZED: its texels are kept); otherwise it is not read.
 struct OutputImage {
   VkImage image = VK_NULL_HANDLE;
-  VkImageView view = VK_NULL_HANDLE;  // a single-level colour view
+  VkImageView view = VK_NULL_HANDLE;  // a single-level colour view (VK_IMAGE_VIEW_TYPE_2D)
   VkFormat format = VK_FORMAT_R16_SFLOAT;  // must be Config::outputFormat
   Extent extent;
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  // The array layer `view` shows, for an output array image (stereo / multiview: one layer per
+  // eye); record()'s barriers on your image cover this layer only, its other layers are left alone.
+  // A view cannot tell its layer, so it must match the view's baseArrayLayer: the library cannot
+  // check it (refused only beyond maxImageArrayLayers); a wrong one is reported by the validation
+  // layer. 0 for a single-layer image and for Effect::output().
+  std::uint32_t layer = 0;
 };
 
 // An effect-owned image (for debugging and tests): VK_IMAGE_LAYOUT_GENERAL after record(), usage
