@@ -10,13 +10,17 @@
 // an error is InvalidInput "NAME:" or "NAME:LINE: ..." and leaves the output untouched; a success
 // has at least one mesh with a mesh extension and a finite, invertible transform, and views whose
 // eye and target differ, with fovy in (0, pi) and a positive near plane when given. Mesh: an error
-// is IoError or InvalidInput naming the data and leaves the output untouched; a success passes
-// validateMesh, and its default view is finite with a positive near plane.
+// is IoError or InvalidInput naming the data and leaves the outputs untouched; a success passes
+// validateMesh, its default view is finite with a positive near plane, and a glTF's camera views
+// have unique one-line names other than "default", a finite view matrix, and a fovy in (0, pi)
+// with a near plane > 0 or an orthographic height > 0 with 0 <= near < far, all finite.
 #include <cmath>
 #include <cstdint>
+#include <set>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "fuzz_support.h"
 #include "sao/scenes/default_view.h"
@@ -71,17 +75,35 @@ const char* formatOf(std::string_view bytes) {
   return "obj";
 }
 
+void checkCameraView(const View& v, std::set<std::string>& names) {
+  SAO_FUZZ_CHECK(!v.name.empty() && v.name != "default" && names.insert(v.name).second, "view name '%s'",
+                 v.name.c_str());
+  for (char c : v.name) SAO_FUZZ_CHECK(static_cast<unsigned char>(c) >= 0x20 && c != 0x7f, "control character in a name");
+  SAO_FUZZ_CHECK(finite(v.eye) && finite(v.target) && finite(v.up) && v.eye != v.target, "view '%s'", v.name.c_str());
+  if (v.orthographic())
+    SAO_FUZZ_CHECK(std::isfinite(v.orthoHeight) && v.nearDistance >= 0 && v.orthoFar > v.nearDistance &&
+                   std::isfinite(v.orthoFar), "orthographic view '%s'", v.name.c_str());
+  else
+    SAO_FUZZ_CHECK(v.fovyRadians > 0 && v.fovyRadians < 3.14159266 && v.nearDistance > 0 &&
+                   std::isfinite(v.nearDistance), "perspective view '%s'", v.name.c_str());
+  const glm::dmat4 m = viewMatrix(v);
+  for (int c = 0; c < 4; ++c) SAO_FUZZ_CHECK(finite(glm::dvec3(m[c])), "view '%s' has a non-finite matrix", v.name.c_str());
+}
+
 void checkMesh(std::span<const std::uint8_t> bytes, const char* format) {
   Mesh mesh;
   mesh.positions = {{4, 5, 6}};
-  const sao::Status st = loadMeshFromMemory(bytes, format, kMeshName, mesh);
+  std::vector<View> cameras(1);
+  const sao::Status st = loadMeshFromMemory(bytes, format, kMeshName, mesh, &cameras);
   if (!st) {
     SAO_FUZZ_CHECK(st.code == sao::StatusCode::IoError || st.code == sao::StatusCode::InvalidInput, "%s: %s",
                    sao::toString(st.code), st.message.c_str());
     SAO_FUZZ_CHECK(startsWith(st.message, std::string(kMeshName) + ": "), "%s", st.message.c_str());
-    SAO_FUZZ_CHECK(mesh.positions.size() == 1 && mesh.indices.empty(), "outputs changed on error");
+    SAO_FUZZ_CHECK(mesh.positions.size() == 1 && mesh.indices.empty() && cameras.size() == 1, "outputs changed on error");
     return;
   }
+  std::set<std::string> names;
+  for (const View& v : cameras) checkCameraView(v, names);
   const sao::Status valid = validateMesh(mesh, kMeshName);
   SAO_FUZZ_CHECK(valid.ok(), "%s", valid.message.c_str());
   const View v = defaultView(mesh);

@@ -9,6 +9,7 @@
 
 #include "file_checks.h"
 #include "gltf_accessors.h"
+#include "gltf_cameras.h"
 #include "gltf_schema.h"
 
 namespace sao::scenes::detail {
@@ -244,6 +245,7 @@ Status checkGltfJson(std::string_view text, std::string_view name, const std::op
   if (Status s = checkGltfTypes(doc, name); !s) return s;
   if (Status s = checkUris(doc, name, folder); !s) return s;
   if (Status s = checkPrimitives(doc, name); !s) return s;
+  if (Status s = checkGltfCameras(doc, name); !s) return s;
   return checkGltfAccessors(doc, name);
 }
 

@@ -30,6 +30,7 @@ Status checkGlb(std::string_view bytes, std::string_view name, const std::option
 //     memory, which opens no file);
 //   - every mesh primitive has a POSITION attribute, a mode from 0 to 6 other than a line loop (2),
 //     no Draco compression, and sets of TEXCOORD_n, COLOR_n, JOINTS_n and WEIGHTS_n numbered from 0;
+//   - every camera has the values sao can use (checkGltfCameras, gltf_cameras.h);
 //   - its buffer views and accessors pass checkGltfAccessors (gltf_accessors.h).
 Status checkGltfJson(std::string_view text, std::string_view name,
                      const std::optional<std::filesystem::path>& folder = std::nullopt);

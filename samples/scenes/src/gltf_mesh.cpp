@@ -3,6 +3,7 @@
 // of them), transformed and appended.
 #include "gltf_mesh.h"
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
 #include <unordered_map>
@@ -169,9 +170,10 @@ struct Instance {
   glm::dmat4 world;
 };
 
-// The meshes of scene `sceneIndex` with their world matrices. The nodes must form trees (one
-// parent each, no cycle) whose roots the scene lists once each.
-Status instances(const Model& model, int sceneIndex, const Reader& reader, std::vector<Instance>& out) {
+// The meshes and cameras of scene `sceneIndex` with their world matrices. The nodes must form
+// trees (one parent each, no cycle) whose roots the scene lists once each.
+Status instances(const Model& model, int sceneIndex, const Reader& reader, std::vector<Instance>& out,
+                 std::vector<GltfCameraNode>& cameras) {
   const std::size_t count = model.nodes.size();
   std::vector<int> parent(count, -1);
   for (std::size_t n = 0; n < count; ++n)
@@ -220,6 +222,12 @@ Status instances(const Model& model, int sceneIndex, const Reader& reader, std::
       if (!item(model.meshes, node.mesh))
         return reader.error("nodes[" + std::to_string(n) + "].mesh is " + std::to_string(node.mesh) + ", which does not exist");
       out.push_back({node.mesh, world});
+    }
+    if (node.camera != -1) {
+      if (!item(model.cameras, node.camera))
+        return reader.error("nodes[" + std::to_string(n) + "].camera is " + std::to_string(node.camera) +
+                            ", which does not exist");
+      cameras.push_back({n, node.camera, world});
     }
     for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.emplace_back(*c, world);
   }
@@ -309,14 +317,17 @@ Status appendPrimitive(const Model& model, int m, std::size_t p, const glm::dmat
 
 }  // namespace
 
-Status gltfTriangles(const Model& model, std::string_view name, Mesh& out) {
+Status gltfTriangles(const Model& model, std::string_view name, Mesh& out, std::vector<GltfCameraNode>* cameras) {
   const Reader reader(model, name);
   if (model.scenes.empty()) return reader.error("there is no scene (no \"scenes\"), so nothing would be drawn");
   const int scene = model.defaultScene < 0 ? 0 : model.defaultScene;
   if (std::size_t(scene) >= model.scenes.size())
     return reader.error("\"scene\" is " + std::to_string(scene) + ", which does not exist");
   std::vector<Instance> meshes;
-  if (Status s = instances(model, scene, reader, meshes); !s) return s;
+  std::vector<GltfCameraNode> cameraNodes;
+  if (Status s = instances(model, scene, reader, meshes, cameraNodes); !s) return s;
+  // The walk is depth first; the views follow the nodes' own order.
+  std::sort(cameraNodes.begin(), cameraNodes.end(), [](const auto& a, const auto& b) { return a.node < b.node; });
 
   // The triangles first, to refuse too many before reading any.
   std::uint64_t triangles = 0;
@@ -347,6 +358,7 @@ Status gltfTriangles(const Model& model, std::string_view name, Mesh& out) {
         if (Status s = appendPrimitive(model, instance.mesh, p, instance.world, reader, mesh); !s) return s;
   }
   out = std::move(mesh);
+  if (cameras) *cameras = std::move(cameraNodes);
   return Status::success();
 }
 

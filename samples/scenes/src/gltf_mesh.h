@@ -1,6 +1,9 @@
 // Private to sao_scenes: the triangles of a parsed glTF 2.0 model, in world space.
 #pragma once
 #include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include "sao/scenes/mesh.h"
 #include "sao/status.h"
@@ -17,6 +20,14 @@ namespace sao::scenes::detail {
 // indices that are not unsigned integers, and an index out of range ("glTF: mesh M primitive P:
 // index I (element K of accessor A) is out of range: its POSITION, accessor B, has N vertices").
 // InvalidInput for more triangles than kMaxMeshTriangles. `out` is not checked with validateMesh.
-Status gltfTriangles(const tinygltf::Model& model, std::string_view name, Mesh& out);
+// A node's camera must exist ("glTF: nodes[N].camera is C, which does not exist"); when `cameras`
+// is given, it receives the default scene's camera nodes in node order.
+struct GltfCameraNode {
+  int node;          // index into model.nodes
+  int camera;        // index into model.cameras
+  glm::dmat4 world;  // the node's world matrix
+};
+Status gltfTriangles(const tinygltf::Model& model, std::string_view name, Mesh& out,
+                     std::vector<GltfCameraNode>* cameras = nullptr);
 
 }  // namespace sao::scenes::detail

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "file_checks.h"
 #include "sao/scenes/default_view.h"
@@ -20,10 +21,13 @@ Status loadScene(std::string_view nameOrPath, Scene& out) {
   if (ext == ".scene") return loadSceneFile(path, out);
   if (isMeshFileExtension(path)) {
     Scene scene;
-    if (Status s = loadMeshFile(path, scene.mesh); !s) return s;
+    std::vector<View> cameras;
+    if (Status s = loadMeshFile(path, scene.mesh, &cameras); !s) return s;
     removeDegenerateTriangles(scene.mesh, path, scene.warnings);
     scene.name = std::filesystem::path(path).filename().string();
+    // The default view first: view 0 of a mesh file is the same whether it has cameras or not.
     scene.views.push_back(defaultView(scene.mesh));
+    scene.views.insert(scene.views.end(), cameras.begin(), cameras.end());
     if (ext == ".gltf" || ext == ".glb") scene.units = DeclaredUnits{LengthUnit::Metre, "glTF: metres by its specification"};
     out = std::move(scene);
     return Status::success();

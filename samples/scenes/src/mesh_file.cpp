@@ -13,6 +13,7 @@
 #include <string>
 
 #include "file_checks.h"
+#include "gltf_cameras.h"
 #include "gltf_checks.h"
 #include "gltf_load.h"
 #include "gltf_mesh.h"
@@ -54,17 +55,20 @@ Status validated(Mesh& mesh, std::string_view name, Mesh& out) {
   return Status::success();
 }
 
-// OBJ and PLY go to our own readers (obj_reader.h, ply_reader.h).
-Status fromOwnReader(bool obj, std::string_view bytes, std::string_view name, Mesh& out) {
+// OBJ and PLY go to our own readers (obj_reader.h, ply_reader.h); they have no cameras.
+Status fromOwnReader(bool obj, std::string_view bytes, std::string_view name, Mesh& out, std::vector<View>* cameras) {
   Mesh mesh;
   if (Status s = obj ? detail::readObj(bytes, name, mesh) : detail::readPly(bytes, name, mesh); !s) return s;
-  return validated(mesh, name, out);
+  if (Status s = validated(mesh, name, out); !s) return s;
+  if (cameras) cameras->clear();
+  return Status::success();
 }
 
 // glTF (`binary`: a .glb): sao's checks (gltf_checks.h), then tinygltf, then the triangles of its
-// model. `folder`: where a file's external buffers are; none for data in memory.
+// model and, when asked for, the views of its cameras. `folder`: where a file's external buffers
+// are; none for data in memory.
 Status fromGltf(std::string_view bytes, bool binary, const std::optional<std::filesystem::path>& folder,
-                std::string_view name, Mesh& out) {
+                std::string_view name, Mesh& out, std::vector<View>* cameras) {
   // The glTF 2.0 specification lets readers ignore a byte-order mark before a .gltf's JSON.
   if (!binary && bytes.starts_with(detail::kUtf8ByteOrderMark)) bytes.remove_prefix(detail::kUtf8ByteOrderMark.size());
   if (Status s = binary ? detail::checkGlb(bytes, name, folder) : detail::checkGltfJson(bytes, name, folder); !s)
@@ -72,8 +76,15 @@ Status fromGltf(std::string_view bytes, bool binary, const std::optional<std::fi
   tinygltf::Model model;
   if (Status s = detail::parseGltf(bytes, binary, folder, name, model); !s) return s;
   Mesh mesh;
-  if (Status s = detail::gltfTriangles(model, name, mesh); !s) return s;
-  return validated(mesh, name, out);
+  std::vector<detail::GltfCameraNode> nodes;
+  if (Status s = detail::gltfTriangles(model, name, mesh, &nodes); !s) return s;
+  if (Status s = validateMesh(mesh, name); !s) return s;
+  std::vector<View> views;
+  if (cameras)
+    if (Status s = detail::gltfCameraViews(model, nodes, mesh, name, views); !s) return s;
+  out = std::move(mesh);
+  if (cameras) *cameras = std::move(views);
+  return Status::success();
 }
 
 }  // namespace
@@ -85,7 +96,7 @@ bool isMeshFileExtension(std::string_view path) {
   return false;
 }
 
-Status loadMeshFile(const std::string& path, Mesh& out) {
+Status loadMeshFile(const std::string& path, Mesh& out, std::vector<View>* cameras) {
   if (!isMeshFileExtension(path)) {
     const std::string ext = detail::lowerExtension(path);
     return fileError(StatusCode::UnsupportedFormat, path,
@@ -99,13 +110,13 @@ Status loadMeshFile(const std::string& path, Mesh& out) {
   std::string bytes;
   if (Status s = detail::readWholeFile(path, kMaxMeshFileBytes, bytes); !s) return s;
   return guarded(path, [&] {
-    if (ext == ".ply" || ext == ".obj") return fromOwnReader(ext == ".obj", bytes, path, out);
-    return fromGltf(bytes, ext == ".glb", std::filesystem::path(path).parent_path(), path, out);
+    if (ext == ".ply" || ext == ".obj") return fromOwnReader(ext == ".obj", bytes, path, out, cameras);
+    return fromGltf(bytes, ext == ".glb", std::filesystem::path(path).parent_path(), path, out, cameras);
   });
 }
 
 Status loadMeshFromMemory(std::span<const std::uint8_t> bytes, std::string_view formatHint, std::string_view name,
-                          Mesh& out) {
+                          Mesh& out, std::vector<View>* cameras) {
   const std::string hint(formatHint);
   if (!isMeshFileExtension("x." + hint))
     return fileError(StatusCode::UnsupportedFormat, name,
@@ -113,8 +124,8 @@ Status loadMeshFromMemory(std::span<const std::uint8_t> bytes, std::string_view 
   if (bytes.empty()) return fileError(StatusCode::IoError, name, "is empty");
   const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   return guarded(name, [&] {
-    if (hint == "ply" || hint == "obj") return fromOwnReader(hint == "obj", text, name, out);
-    return fromGltf(text, hint == "glb", std::nullopt, name, out);
+    if (hint == "ply" || hint == "obj") return fromOwnReader(hint == "obj", text, name, out, cameras);
+    return fromGltf(text, hint == "glb", std::nullopt, name, out, cameras);
   });
 }
 

@@ -15,7 +15,7 @@
 // .gltf files, refused in PLY and in a .glb's JSON chunk.
 //
 // No exception escapes these functions: every problem is a Status whose message starts with the
-// file's name. Files a glTF refers to (its .bin buffers) are opened only when they are regular
+// file's name, and the outputs are left untouched. Files a glTF refers to (its .bin buffers) are opened only when they are regular
 // files; from memory, never. An OBJ's material libraries are not opened.
 #pragma once
 #include <cstddef>
@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "sao/scenes/mesh.h"
+#include "sao/scenes/scene.h"
 #include "sao/status.h"
 
 namespace sao::scenes {
@@ -44,13 +45,18 @@ bool isMeshFileExtension(std::string_view path);
 //                      file that cannot be read
 //   UnsupportedFormat  an extension other than the four above
 //   InvalidInput       a mesh that fails validateMesh
-Status loadMeshFile(const std::string& path, Mesh& out);
+// When `cameras` is given, it receives the views of a glTF's cameras: one for each node of the
+// default scene that holds a camera, in node order (src/gltf_cameras.h; docs/scene-format.md, "glTF
+// cameras"); a camera whose world matrix leaves it no direction is then an IoError. None for OBJ
+// and PLY. A glTF's camera values are checked either way (a camera that is not valid glTF 2.0, or
+// not usable by sao, is an IoError).
+Status loadMeshFile(const std::string& path, Mesh& out, std::vector<View>* cameras = nullptr);
 
 // The same from bytes in memory; `formatHint` is an extension without the dot ("gltf", "glb",
 // "obj", "ply") and `name` names the data in error messages. Files the data refers to are not
 // opened (a glTF with an external buffer fails).
 Status loadMeshFromMemory(std::span<const std::uint8_t> bytes, std::string_view formatHint, std::string_view name,
-                          Mesh& out);
+                          Mesh& out, std::vector<View>* cameras = nullptr);
 
 // InvalidInput "NAME: PROBLEM" unless the mesh has at least one and at most maxTriangles
 // triangles, a whole number of triangles, finite positions, indices below the vertex count and

@@ -26,7 +26,8 @@ struct View {
   // unused; the width follows the aspect). Primary rays are parallel, from the view plane.
   double orthoHeight = 0;
   // The far plane of an orthographic view, which needs a finite one (fitOrthoFar sets it just
-  // beyond the mesh); 0: makeCamera falls back to 1000 x the eye-target distance.
+  // beyond the mesh; a glTF camera brings its zfar); 0: makeCamera falls back to 1000 x the
+  // eye-target distance.
   double orthoFar = 0;
   bool orthographic() const { return orthoHeight > 0; }
 };
@@ -52,8 +53,9 @@ Status makeBuiltinScene(std::string_view name, Scene& out);
 // The entry point of the programs' --scene: a built-in scene's name goes to makeBuiltinScene;
 // otherwise nameOrPath is a file (src/load_scene.cpp):
 //   .scene                   a scene file (scene_file.h, docs/scene-format.md)
-//   .gltf .glb .obj .ply     a mesh file (mesh_file.h) in the file's units (Scene::units), with one
-//                            view, "default" (default_view.h)
+//   .gltf .glb .obj .ply     a mesh file (mesh_file.h) in the file's units (Scene::units), with the
+//                            view "default" (default_view.h) first, then a glTF's cameras in node
+//                            order (mesh_file.h)
 // Errors: the built-in scenes' "unknown built-in scene" for a name that is no file either,
 // UnsupportedFormat for another extension, and the file readers' errors, each naming the file.
 // out is left untouched on error.
@@ -70,7 +72,8 @@ Camera makeCamera(const View& view, std::uint32_t width, std::uint32_t height, d
 
 // Sets view.orthoFar to just beyond the farthest corner of the mesh's bounding box along the view
 // direction (at least twice the near distance), so that an orthographic depth keeps its linear
-// precision for the scene. loadScene does this for every orthographic view it returns.
+// precision for the scene. loadScene does this for every orthographic view of a scene file (a
+// glTF camera keeps the zfar of its file).
 void fitOrthoFar(View& view, const Mesh& mesh);
 // The same from the mesh's bounding box (lo, hi), for callers that keep it.
 void fitOrthoFar(View& view, glm::dvec3 lo, glm::dvec3 hi);
