@@ -23,6 +23,7 @@
 #include "sao/samples/shading.h"
 #include "sao/scenes/scene.h"
 #include "options.h"
+#include "frames.h"
 #include "output_folder.h"
 #include "progress.h"
 #include "run_timing.h"
@@ -266,7 +267,7 @@ int main(int argc, char** argv) {
       scene.views.push_back(v);
       viewIndex = std::uint32_t(scene.views.size() - 1);
     }
-    const scenes::View& view = scene.views[viewIndex];
+    scenes::View view = scene.views[viewIndex];  // with --frames: the path's last frame below
     camera = scenes::makeCamera(view, o.size.width, o.size.height, INFINITY, ClipDepth::ZeroToOne, true, o.guard);
     const scenes::UnitChoice units = scenes::chooseUnits(scene.mesh, scene.units, o.units);
     camera.metersToViewUnits = units.metersToViewUnits;
@@ -276,11 +277,24 @@ int main(int argc, char** argv) {
     progress.begin("building the ray-tracing structure");
     if (Status s = raytrace::RayScene::create(scene.mesh, rayScene); !s) runError(s);
     std::string how;
-    progress.begin("rendering the depth");
     // The scene's world is already in its own units, the view units: the depth is drawn with a factor
     // of 1 (the prepass would scale a world in metres by metersToViewUnits; ray casting never does).
     Camera depthCamera = camera;
     depthCamera.metersToViewUnits = 1.0;
+    if (o.frames > 1) {
+      progress.begin("running " + std::to_string(o.frames) + " frames along the " +
+                     std::string(scenes::toString(o.path)) + " path");
+      const render::DepthMaker makeDepth = [&](const scenes::View& v, raytrace::Primary& out) {
+        return makeSceneDepth(o, *backend, scene, v, depthCamera, *rayScene, out, how);
+      };
+      render::FramesSummary frames;
+      if (Status s = render::runFramePath(o, *backend, settings, view, camera, makeDepth, *g_staged.out, frames); !s)
+        runError(s);
+      progress.end();
+      summary.frames = frames;
+      view = scenes::pathView(view, o.path, o.frames - 1, o.frames);
+    }
+    progress.begin("rendering the depth");
     if (Status s = makeSceneDepth(o, *backend, scene, view, depthCamera, *rayScene, primary, how); !s) runError(s);
     progress.end();
     depth = primary.depth;
@@ -335,7 +349,9 @@ int main(int argc, char** argv) {
     ro.progress = [&](std::uint32_t rows, std::uint32_t of) { progress.fraction(double(rows) / of); };
     FloatImage ref;
     progress.begin("tracing the reference (" + std::to_string(o.referenceRays) + " rays/pixel)");
-    if (Status s = raytrace::referenceAmbientOcclusion(*rayScene, camera, primary, scene.views[viewIndex], ro, ref); !s)
+    const scenes::View referenceView =
+        o.frames > 1 ? scenes::pathView(scene.views[viewIndex], o.path, o.frames - 1, o.frames) : scene.views[viewIndex];
+    if (Status s = raytrace::referenceAmbientOcclusion(*rayScene, camera, primary, referenceView, ro, ref); !s)
       runError(s);
     progress.end();
     if (Status s = writeAoPng(paths.reference, ref); !s) runError(s);

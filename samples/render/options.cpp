@@ -1,5 +1,6 @@
 #include "options.h"
 
+#include <cmath>
 #include <initializer_list>
 #include <optional>
 
@@ -72,6 +73,8 @@ void refuseIneffectiveOptions(const Options& o) {
   if (o.has("--ortho") && o.has("--fovy"))
     usageError("--ortho and --fovy exclude each other: an orthographic camera has a view height, not a field of view");
   if (o.has("--reference-rays") && !o.reference) usageError("--reference-rays has no effect without --reference");
+  if (o.has("--path") && !o.has("--frames")) usageError("--path has no effect without --frames");
+  if (o.has("--frames") && o.has("--depth")) usageError("--frames needs a scene: a --depth file has one view");
 }
 
 }  // namespace
@@ -162,6 +165,20 @@ Options parseOptions(int argc, char** argv) {
              if (!(o.progressSeconds >= 0 && o.progressSeconds <= 3600))
                cli::reject("--progress expects seconds in [0, 3600], got '" + v + "'");
            });
+  cl.value("--frames", "N",
+           "a camera path of N frames, 2..10000 (a scene only): the view moved along --path, each frame's depth "
+           "rendered and the effect run on it, its AO written as frames/ao_NNNN.png and a line in frames.csv (eye, "
+           "effect time, flicker: mean |A_t - A_t-1| on the same surface after reprojection); the other outputs are "
+           "the last frame's",
+           [&o](const std::string& v) {
+             const double n = cli::parseNumber("--frames", v);
+             if (!(n >= 2 && n <= 10000 && n == std::floor(n)))
+               cli::reject("--frames expects a whole number of frames in 2..10000, got '" + v + "'");
+             o.frames = std::uint32_t(n);
+           });
+  cl.choice("--path", o.path, scenes::parsePathKind, "orbit, dolly or strafe", "P",
+            "the camera path of --frames: orbit (30 degrees about the target's vertical, default), dolly (towards "
+            "the target, to 60 % of its distance) or strafe (sideways, 30 % of the distance)");
   cl.flag("--json", o.json, "write summary.json too");
   cl.parse(argc, argv);
 

@@ -10,6 +10,7 @@
 
 #include "sao/image.h"
 #include "sao/plan.h"
+#include "sao/scenes/camera_path.h"
 #include "sao/scenes/scene.h"
 #include "sao/settings.h"
 
@@ -28,6 +29,8 @@ struct Options {
   bool reversedZ = false, cameraFlags = false, reference = false, json = false;
   Settings settings;  // from --preset and --set, validated
   std::uint32_t runs = 1;
+  std::uint32_t frames = 1;                          // --frames: a camera path of this many frames
+  scenes::PathKind path = scenes::PathKind::Orbit;  // --path
   double progressSeconds = 2;
   std::optional<scenes::LengthUnit> units;  // --units
   std::set<std::string> given;              // the options on the command line

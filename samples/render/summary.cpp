@@ -48,6 +48,7 @@ std::string Summary::text() const {
   s << "depth preparation: " << prepareSeconds << " s\n";
   if (!units.empty()) s << "units: " << units << "\n";
   for (const std::string& w : inputWarnings) s << "warning: " << w << "\n";
+  if (frames) s << frames->text();
   if (scale) {
     std::ostringstream g;
     g << "geometry: " << scale->geometryPixels << " pixels; AO min " << scale->aoMin << ", mean " << scale->aoMean
@@ -80,6 +81,9 @@ std::string Summary::json() const {
   j["backend"] = backend;
   j["input"] = input;
   j["projection"] = projection;
+  if (frames)
+    j["frames"] = {{"count", frames->frames}, {"path", frames->path}, {"flicker", frames->meanFlicker},
+                   {"compared_fraction", frames->comparedFraction}, {"effect_ms_median", frames->medianEffectMs}};
   j["width"] = size.width;
   j["height"] = size.height;
   j["guard_band"] = guard;

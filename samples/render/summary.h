@@ -12,6 +12,20 @@
 #include "run_timing.h"
 #include "sao/settings.h"
 
+namespace sao::render {
+
+// sao-render --frames: the camera path's figures (frames.h).
+struct FramesSummary {
+  std::uint32_t frames = 0;
+  std::string path;
+  double meanFlicker = 0;       // mean |A_t - A_{t-1}| over frames 1..N-1, weighted by their compared pixels
+  double comparedFraction = 0;  // compared pixels / pixels with geometry, frames 1..N-1
+  double medianEffectMs = 0;    // the effect's total time per frame (one run each)
+  std::string text() const;     // one summary line
+};
+
+}  // namespace sao::render
+
 namespace sao::samples {
 
 struct Summary {
@@ -29,6 +43,7 @@ struct Summary {
   double metersToViewUnits = 1.0;
   std::optional<ScaleCheck> scale;  // the radius against the scene's scale, and its warnings
   std::vector<std::string> inputWarnings;  // from loading the input (e.g. degenerate triangles left out)
+  std::optional<render::FramesSummary> frames;  // --frames
 
   std::string text() const;
   // Through nlohmann-json: any path is a valid string, and an undefined metric (NaN, see
