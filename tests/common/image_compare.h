@@ -1,6 +1,7 @@
 // Image comparison for the tests of every backend: bit-for-bit equality, and the agreement of one
 // channel within a tolerance, with failure images to look at when it does not hold.
 #pragma once
+#include <algorithm>
 #include <bit>
 #include <cstddef>
 #include <cstdint>
@@ -16,6 +17,16 @@ inline bool sameBits(const FloatImage& a, const FloatImage& b) {
   for (std::size_t i = 0; i < a.data.size(); ++i)
     if (std::bit_cast<std::uint32_t>(a.data[i]) != std::bit_cast<std::uint32_t>(b.data[i])) return false;
   return true;
+}
+
+// How many values differ in their bits (every value of the larger image when the shapes differ).
+inline std::size_t differingValues(const FloatImage& a, const FloatImage& b) {
+  if (a.extent != b.extent || a.channels != b.channels || a.data.size() != b.data.size())
+    return std::max(a.data.size(), b.data.size());
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < a.data.size(); ++i)
+    n += std::bit_cast<std::uint32_t>(a.data[i]) != std::bit_cast<std::uint32_t>(b.data[i]);
+  return n;
 }
 
 struct Agreement {

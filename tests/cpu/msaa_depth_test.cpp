@@ -32,12 +32,6 @@ cpu::Result run(const Camera& camera, const DepthImage& depth, Precision precisi
   return runOrFail(presetSettings(Preset::Medium), camera, in, precision);
 }
 
-std::size_t differing(const FloatImage& a, const FloatImage& b) {
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < a.data.size(); ++i) n += std::bit_cast<std::uint32_t>(a.data[i]) != std::bit_cast<std::uint32_t>(b.data[i]);
-  return n + (a.data.size() != b.data.size() ? 1 : 0);
-}
-
 TEST(MsaaDepth, Sample0IsTheSingleSampleRunOnSampleZero) {
   for (DepthFormat format : {DepthFormat::D16, DepthFormat::D24, DepthFormat::D32F, DepthFormat::LinearZ}) {
     SCOPED_TRACE(toString(format));
@@ -48,8 +42,8 @@ TEST(MsaaDepth, Sample0IsTheSingleSampleRunOnSampleZero) {
       EXPECT_EQ(ms.plan.variants[std::size_t(gen::VariantId::DEPTH_MULTISAMPLE)], 1);
       EXPECT_EQ(s0.plan.variants[std::size_t(gen::VariantId::DEPTH_MULTISAMPLE)], 0);
       EXPECT_EQ(ms.params.depth_samples, std::int32_t(kSamples));
-      EXPECT_EQ(differing(ms.csz[0], s0.csz[0]), 0u);
-      EXPECT_EQ(differing(ms.ao, s0.ao), 0u);
+      EXPECT_EQ(differingValues(ms.csz[0], s0.csz[0]), 0u);
+      EXPECT_EQ(differingValues(ms.ao, s0.ao), 0u);
     }
   }
 }
@@ -89,11 +83,11 @@ TEST(MsaaDepth, NearestKeepsTheNearestSampleOfEachTexel) {
     EXPECT_GT(mixedSky, 0u);
     // The whole effect after linear_z is the single-sample effect on the chosen samples.
     const cpu::Result one = run(l.camera, chosen, Precision::Float);
-    EXPECT_EQ(differing(ms.ao, one.ao), 0u);
+    EXPECT_EQ(differingValues(ms.ao, one.ao), 0u);
     // Double precision picks the same samples here (no two samples of a texel within float rounding).
     const cpu::Result msd = run(nearest, l.msaa, Precision::Double);
     const cpu::Result oned = run(l.camera, chosen, Precision::Double);
-    EXPECT_EQ(differing(msd.ao, oned.ao), 0u);
+    EXPECT_EQ(differingValues(msd.ao, oned.ao), 0u);
   }
 }
 
@@ -105,7 +99,7 @@ TEST(MsaaDepth, OneSampleIsTheSingleSamplePath) {
   const cpu::Result a = run(nearest, one, Precision::Float);
   const cpu::Result b = run(l.camera, l.sphere, Precision::Float);
   EXPECT_EQ(a.plan.variants[std::size_t(gen::VariantId::DEPTH_MULTISAMPLE)], 0);
-  EXPECT_EQ(differing(a.ao, b.ao), 0u);
+  EXPECT_EQ(differingValues(a.ao, b.ao), 0u);
 }
 
 TEST(MsaaDepth, BadInputsAreRefused) {

@@ -104,16 +104,8 @@ TEST_F(FrameAllocations, RenderWithSuppliedNormalsAllocatesNothing) {
 // Stereo with TAA jitter: each frame renders two layers of array textures (Inputs::layer), each
 // eye's camera jittered; no library allocation and no new plan after the first frame.
 TEST_F(FrameAllocations, JitteredStereoLayersAllocateNothing) {
-  std::vector<float> values(depth.texels.size());
-  for (std::size_t i = 0; i < values.size(); ++i) values[i] = float(decodeDepth(depth.format, depth.texels[i]));
-  GLuint depthArray = 0, outArray = 0;
-  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &depthArray);
-  glTextureStorage3D(depthArray, 1, GL_DEPTH_COMPONENT24, GLsizei(depth.extent.width), GLsizei(depth.extent.height), 2);
-  for (GLint l = 0; l < 2; ++l)
-    glTextureSubImage3D(depthArray, 0, 0, 0, l, GLsizei(depth.extent.width), GLsizei(depth.extent.height), 1,
-                        GL_DEPTH_COMPONENT, GL_FLOAT, values.data());
-  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &outArray);
-  glTextureStorage3D(outArray, 1, GL_R16F, GLsizei(cam.width), GLsizei(cam.height), 2);
+  const GLuint depthArray = uploadDepthArray(GL_DEPTH_COMPONENT24, {&depth, &depth});
+  const GLuint outArray = makeTextureArray(GL_R16F, {cam.width, cam.height}, 2);
   auto e = makeEffect();
   ASSERT_TRUE(e);
   const Settings settings;

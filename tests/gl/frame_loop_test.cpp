@@ -65,16 +65,8 @@ TEST_F(GlFrameLoop, StereoJitteredFramesHoldHostMemoryAndPlanOnce) {
   if (sanitized()) GTEST_SKIP() << "heap figures are meaningless under the sanitizers' allocator";
   const Camera base = camera(64, 64, 4);
   const DepthImage depth = test::renderDepth(test::sphereOnPlaneScene(), base, DepthFormat::D32F);
-  std::vector<float> values(depth.texels.size());
-  for (std::size_t i = 0; i < values.size(); ++i) values[i] = float(decodeDepth(depth.format, depth.texels[i]));
-  GLuint depthArray = 0, outArray = 0;
-  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &depthArray);
-  glTextureStorage3D(depthArray, 1, GL_DEPTH_COMPONENT32F, GLsizei(depth.extent.width), GLsizei(depth.extent.height), 2);
-  for (GLint l = 0; l < 2; ++l)
-    glTextureSubImage3D(depthArray, 0, 0, 0, l, GLsizei(depth.extent.width), GLsizei(depth.extent.height), 1,
-                        GL_DEPTH_COMPONENT, GL_FLOAT, values.data());
-  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &outArray);
-  glTextureStorage3D(outArray, 1, GL_R16F, GLsizei(base.width), GLsizei(base.height), 2);
+  const GLuint depthArray = uploadDepthArray(GL_DEPTH_COMPONENT32F, {&depth, &depth});
+  const GLuint outArray = makeTextureArray(GL_R16F, {base.width, base.height}, 2);
   auto effect = makeEffect();
   ASSERT_TRUE(effect);
   const Settings settings;

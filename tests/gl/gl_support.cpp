@@ -21,6 +21,26 @@ std::uint32_t uploadNormals(const FloatImage& normals) {
   return t;
 }
 
+std::uint32_t makeTextureArray(std::uint32_t internalFormat, Extent extent, std::uint32_t layers) {
+  GLuint t = 0;
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &t);
+  glTextureStorage3D(t, 1, GLenum(internalFormat), GLsizei(extent.width), GLsizei(extent.height), GLsizei(layers));
+  return t;
+}
+
+std::uint32_t uploadDepthArray(std::uint32_t internalFormat, const std::vector<const DepthImage*>& layers) {
+  const Extent e = layers.front()->extent;
+  const GLuint t = makeTextureArray(internalFormat, e, std::uint32_t(layers.size()));
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  for (std::size_t l = 0; l < layers.size(); ++l) {
+    std::vector<float> values(layers[l]->texels.size());
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = float(decodeDepth(layers[l]->format, layers[l]->texels[i]));
+    glTextureSubImage3D(t, 0, 0, 0, GLint(l), GLsizei(e.width), GLsizei(e.height), 1, GL_DEPTH_COMPONENT, GL_FLOAT,
+                        values.data());
+  }
+  return t;
+}
+
 gl::HeadlessContext& context() {
   static std::unique_ptr<gl::HeadlessContext> ctx = [] {
     std::unique_ptr<gl::HeadlessContext> c;

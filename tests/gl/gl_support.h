@@ -42,6 +42,11 @@ using gl::readTextureLevel;
 using gl::toString;
 std::uint32_t uploadDepth(const DepthImage& depth, GlDepth format);
 std::uint32_t uploadNormals(const FloatImage& normals);  // GL_RGBA16F, nearest-even halves
+// An immutable GL_TEXTURE_2D_ARRAY of `layers` layers (stereo: Inputs::layer), contents undefined.
+std::uint32_t makeTextureArray(std::uint32_t internalFormat, Extent extent, std::uint32_t layers);
+// An immutable depth array of `internalFormat` (GL_DEPTH_COMPONENT24 / 32F), layer i holding
+// layers[i]'s values (decoded to floats, exact for D32F).
+std::uint32_t uploadDepthArray(std::uint32_t internalFormat, const std::vector<const DepthImage*>& layers);
 
 // A 60-degree perspective camera, near 0.1, far `farDistance` (inf: infinite), OpenGL depth.
 inline Camera camera(std::uint32_t width, std::uint32_t height, std::uint32_t guard, double farDistance = 1000.0,

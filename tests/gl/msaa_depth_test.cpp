@@ -30,12 +30,6 @@ class MsaaDepth : public GlTest {
   DepthImage msaa = test::interleaveSamples({&sphere, &rods, &sky}, kSamples);
 };
 
-std::size_t differing(const FloatImage& a, const FloatImage& b) {
-  std::size_t n = a.data.size() != b.data.size();
-  for (std::size_t i = 0; i < std::min(a.data.size(), b.data.size()); ++i) n += a.data[i] != b.data[i];
-  return n;
-}
-
 TEST_F(MsaaDepth, BothPoliciesMatchTheCpuReference) {
   const GLuint ms = writeSamples(msaa.extent, test::sampleValues(msaa));
   auto effect = makeEffect();
@@ -59,7 +53,7 @@ TEST_F(MsaaDepth, BothPoliciesMatchTheCpuReference) {
     const Status cst = cpu::run(settings, c, ci, cpu::Options{cpu::Precision::Float, 2}, ref);
     ASSERT_TRUE(cst.ok()) << cst.message;
     csz[k] = readTexture(effect->texture(gen::ResourceId::csz), 1);
-    EXPECT_EQ(differing(csz[k], ref.csz[0]), 0u) << "csz level 0, bit for bit";
+    EXPECT_EQ(test::differingValues(csz[k], ref.csz[0]), 0u) << "csz level 0, bit for bit";
     const std::string name = std::string("gl_msaa_") + (k == 0 ? "sample0" : "nearest");
     // The output within the GL reference tests' bound (99.9 % within 2/255, none beyond 4/255): the
     // passes after linear_z are the single-sample ones, whose float arithmetic llvmpipe may contract.
@@ -69,7 +63,7 @@ TEST_F(MsaaDepth, BothPoliciesMatchTheCpuReference) {
     EXPECT_TRUE(acceptable(a)) << name << ": max " << a.maxAbs * 255 << "/255";
   }
   // Not vacuous: the policies keep other samples on many texels.
-  EXPECT_GT(differing(csz[0], csz[1]), csz[0].data.size() / 4);
+  EXPECT_GT(test::differingValues(csz[0], csz[1]), csz[0].data.size() / 4);
   deleteTexture(ms);
 }
 

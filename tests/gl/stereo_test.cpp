@@ -29,35 +29,12 @@ Camera eyeCamera(double shift) {
   return c;
 }
 
-// A 2-layer immutable array of `internal` holding each eye's values (one float per texel).
-GLuint arrayTexture(GLenum internal, Extent e, const std::vector<std::vector<float>>& layers, GLenum format) {
-  GLuint t = 0;
-  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &t);
-  glTextureStorage3D(t, 1, internal, GLsizei(e.width), GLsizei(e.height), kEyes);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  for (GLsizei l = 0; l < GLsizei(layers.size()); ++l)
-    glTextureSubImage3D(t, 0, 0, 0, l, GLsizei(e.width), GLsizei(e.height), 1, format, GL_FLOAT, layers[l].data());
-  return t;
-}
-
-std::vector<float> depthValues(const DepthImage& d) {
-  std::vector<float> v(d.texels.size());
-  for (std::size_t i = 0; i < v.size(); ++i) v[i] = float(decodeDepth(d.format, d.texels[i]));
-  return v;
-}
-
 FloatImage readLayer(GLuint t, Extent e, GLint layer) {
   FloatImage img(e, 1);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glGetTextureSubImage(t, 0, 0, 0, layer, GLsizei(e.width), GLsizei(e.height), 1, GL_RED, GL_FLOAT,
                        GLsizei(img.data.size() * sizeof(float)), img.data.data());
   return img;
-}
-
-std::size_t differing(const FloatImage& a, const FloatImage& b) {
-  std::size_t n = a.data.size() != b.data.size();
-  for (std::size_t i = 0; i < std::min(a.data.size(), b.data.size()); ++i) n += a.data[i] != b.data[i];
-  return n;
 }
 
 class Stereo : public GlTest {
@@ -75,9 +52,8 @@ TEST_F(Stereo, OneEffectRendersBothLayersAsTwoEffectsWould) {
   ASSERT_TRUE(plan(settings, eyes[1], {}, b).ok());
   ASSERT_EQ(a.describe(), b.describe()) << "mirrored eyes plan alike";
   EXPECT_TRUE(cameraKeepsPlan(settings, eyes[0], eyes[1]));
-  const GLuint depthArray = arrayTexture(GL_DEPTH_COMPONENT32F, depth[0].extent, {depthValues(depth[0]), depthValues(depth[1])},
-                                         GL_DEPTH_COMPONENT);
-  const GLuint outArray = arrayTexture(GL_R16F, viewport, {}, GL_RED);
+  const GLuint depthArray = uploadDepthArray(GL_DEPTH_COMPONENT32F, {&depth[0], &depth[1]});
+  const GLuint outArray = makeTextureArray(GL_R16F, viewport, kEyes);
   auto stereo = makeEffect();
   ASSERT_TRUE(stereo);
   gl::Stats afterFirstFrame{};
@@ -107,7 +83,7 @@ TEST_F(Stereo, OneEffectRendersBothLayersAsTwoEffectsWould) {
     gl::Inputs in;
     in.depth = {depthTex, gl::kDepthComponent32F};
     ASSERT_TRUE(single->render(eyes[eye], settings, in).ok());
-    EXPECT_EQ(differing(layer, readTexture(single->aoTexture(), 1)), 0u) << "bit for bit the single-eye effect's";
+    EXPECT_EQ(test::differingValues(layer, readTexture(single->aoTexture(), 1)), 0u) << "bit for bit the single-eye effect's";
     singleBytes += single->plan().totalBytes;
     singlePrograms += single->stats().programsCompiled;
     singleTextures += single->stats().textureAllocations;
@@ -158,16 +134,15 @@ TEST_F(Stereo, MultisampledDepthArrayLayers) {
     ci.depth = &ms[eye];
     cpu::Result ref;
     ASSERT_TRUE(cpu::run(settings, c, ci, cpu::Options{cpu::Precision::Float, 2}, ref).ok());
-    EXPECT_EQ(differing(readTexture(effect->texture(gen::ResourceId::csz), 1), ref.csz[0]), 0u) << "eye " << eye;
+    EXPECT_EQ(test::differingValues(readTexture(effect->texture(gen::ResourceId::csz), 1), ref.csz[0]), 0u) << "eye " << eye;
   }
   EXPECT_EQ(effect->stats().plans, 1u);
   deleteTexture(t);
 }
 
 TEST_F(Stereo, CallersArrayBindingsAreRestored) {
-  const GLuint depthArray = arrayTexture(GL_DEPTH_COMPONENT32F, depth[0].extent, {depthValues(depth[0]), depthValues(depth[1])},
-                                         GL_DEPTH_COMPONENT);
-  const GLuint other = arrayTexture(GL_R16F, viewport, {}, GL_RED);
+  const GLuint depthArray = uploadDepthArray(GL_DEPTH_COMPONENT32F, {&depth[0], &depth[1]});
+  const GLuint other = makeTextureArray(GL_R16F, viewport, kEyes);
   for (GLuint unit = 0; unit < 8; ++unit) {
     glActiveTexture(GL_TEXTURE0 + unit);
     glBindTexture(GL_TEXTURE_2D_ARRAY, other);
@@ -191,8 +166,7 @@ TEST_F(Stereo, CallersArrayBindingsAreRestored) {
 }
 
 TEST_F(Stereo, BadLayersAreRefused) {
-  const GLuint depthArray = arrayTexture(GL_DEPTH_COMPONENT32F, depth[0].extent, {depthValues(depth[0]), depthValues(depth[1])},
-                                         GL_DEPTH_COMPONENT);
+  const GLuint depthArray = uploadDepthArray(GL_DEPTH_COMPONENT32F, {&depth[0], &depth[1]});
   const GLuint plain = uploadDepth(depth[0], GlDepth::D32F);
   const GLuint plainOut = makeTexture(GL_R16F, viewport);
   GLuint mutableArray = 0;
