@@ -23,7 +23,7 @@ std::string FramesSummary::text() const {
 
 Status runFramePath(const Options& o, samples::BackendRunner& backend, const Settings& settings,
                     const scenes::View& base, const Camera& camera, const DepthMaker& makeDepth, OutputFolder& out,
-                    FramesSummary& summary) {
+                    FramesSummary& summary, raytrace::Primary& last) {
   summary = FramesSummary{};
   summary.frames = o.frames;
   summary.path = std::string(scenes::toString(o.path));
@@ -75,6 +75,7 @@ Status runFramePath(const Options& o, samples::BackendRunner& backend, const Set
   summary.medianEffectMs = times[times.size() / 2];
   summary.meanFlicker = compared ? flickerSum / double(compared) : 0.0;
   summary.comparedFraction = geometry ? double(compared) / double(geometry) : 0.0;
+  last = std::move(previous);
   return Status::success();
 }
 

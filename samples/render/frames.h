@@ -23,8 +23,10 @@ using DepthMaker = std::function<Status(const scenes::View& view, raytrace::Prim
 // Reserves frames.csv and frames/ao_NNNN.png in `out`, runs every frame and writes them. Frame
 // index `frameIndex` of the effect stays 0: the spiral is the same in every frame, so the
 // flicker is the camera's motion's alone (temporal accumulation is not part of the effect yet).
+// `last` receives the last frame's depth, positions and normals, so that the run's usual outputs
+// (ao.png, lit.png, the reference) are made from it without rendering it again.
 Status runFramePath(const Options& o, samples::BackendRunner& backend, const Settings& settings,
                     const scenes::View& base, const Camera& camera, const DepthMaker& makeDepth, OutputFolder& out,
-                    FramesSummary& summary);
+                    FramesSummary& summary, raytrace::Primary& last);
 
 }  // namespace sao::render

@@ -212,6 +212,7 @@ int main(int argc, char** argv) {
   bool havePrimary = false;
   scenes::Scene scene;
   std::uint32_t viewIndex = o.view;  // or the explicit --eye/--target view, appended
+  scenes::View renderedView;         // the scene view the outputs show (--frames: the path's last)
   std::unique_ptr<raytrace::RayScene> rayScene;
   render::Progress progress(o.progressSeconds);
   const OutputPaths paths = stageOutputs(o);  // before rendering: a bad path costs no render
@@ -288,17 +289,21 @@ int main(int argc, char** argv) {
         return makeSceneDepth(o, *backend, scene, v, depthCamera, *rayScene, out, how);
       };
       render::FramesSummary frames;
-      if (Status s = render::runFramePath(o, *backend, settings, view, camera, makeDepth, *g_staged.out, frames); !s)
+      if (Status s = render::runFramePath(o, *backend, settings, view, camera, makeDepth, *g_staged.out, frames,
+                                          primary);
+          !s)
         runError(s);
       progress.end();
       summary.frames = frames;
       view = scenes::pathView(view, o.path, o.frames - 1, o.frames);
+    } else {
+      progress.begin("rendering the depth");
+      if (Status s = makeSceneDepth(o, *backend, scene, view, depthCamera, *rayScene, primary, how); !s) runError(s);
+      progress.end();
     }
-    progress.begin("rendering the depth");
-    if (Status s = makeSceneDepth(o, *backend, scene, view, depthCamera, *rayScene, primary, how); !s) runError(s);
-    progress.end();
     depth = primary.depth;
     havePrimary = true;
+    renderedView = view;
     summary.input = "scene " + o.scene + ", view " + std::to_string(viewIndex) + " '" + view.name + "', " +
                     toString(depth.format) + " reversed-Z [0,1] " +
                     (view.orthographic() ? "finite far" : "infinite far") +
@@ -349,9 +354,7 @@ int main(int argc, char** argv) {
     ro.progress = [&](std::uint32_t rows, std::uint32_t of) { progress.fraction(double(rows) / of); };
     FloatImage ref;
     progress.begin("tracing the reference (" + std::to_string(o.referenceRays) + " rays/pixel)");
-    const scenes::View referenceView =
-        o.frames > 1 ? scenes::pathView(scene.views[viewIndex], o.path, o.frames - 1, o.frames) : scene.views[viewIndex];
-    if (Status s = raytrace::referenceAmbientOcclusion(*rayScene, camera, primary, referenceView, ro, ref); !s)
+    if (Status s = raytrace::referenceAmbientOcclusion(*rayScene, camera, primary, renderedView, ro, ref); !s)
       runError(s);
     progress.end();
     if (Status s = writeAoPng(paths.reference, ref); !s) runError(s);

@@ -14,7 +14,7 @@ for f in 0000 0001 0002 0003; do
   [ -s "$out/strafe/frames/ao_$f.png" ] || fail "frames/ao_$f.png missing"
 done
 [ ! -e "$out/strafe/frames/ao_0004.png" ] || fail "a fifth frame was written"
-[ -s "$out/strafe/ao.png" ] || fail "ao.png (the last frame) missing"
+cmp -s "$out/strafe/ao.png" "$out/strafe/frames/ao_0003.png" || fail "ao.png is not the last frame's AO"
 [ "$(wc -l < "$out/strafe/frames.csv")" -eq 5 ] || fail "frames.csv has not 1 + 4 lines"
 head -1 "$out/strafe/frames.csv" | grep -q '^frame,eye_x' || fail "frames.csv header"
 # Frame 0 has no flicker, frames 1..3 one in [0, 1] with compared pixels.

@@ -196,7 +196,7 @@ Status Effect::createImpl(GetProcAddressFn getProcAddress, std::unique_ptr<Effec
 
 Status Effect::Impl::render(const Camera& camera, const Settings& settings, const Inputs& inputs,
                             const RenderOptions& options) {
-  StateGuard guard(gl, textureUnits, imageUnits);
+  StateGuard guard(gl, textureUnits, imageUnits, scratchUnit);
 
   CheckedInputs checked(gl);
   if (Status st = checkInputs(gl, scratchUnit, inputs, camera.normalsEncoding, checked); !st) return st;

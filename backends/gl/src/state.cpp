@@ -3,8 +3,8 @@
 namespace sao::gl::detail {
 
 StateGuard::StateGuard(const GlFunctions& gl, const std::vector<GLuint>& textureUnits,
-                       const std::vector<GLuint>& imageUnits)
-    : gl_(gl) {
+                       const std::vector<GLuint>& imageUnits, GLuint inspectUnit)
+    : gl_(gl), inspectUnit_(inspectUnit) {
   gl.GetIntegerv(GL_CURRENT_PROGRAM, &program_);
   gl.GetIntegerv(GL_ACTIVE_TEXTURE, &activeTexture_);
   gl.GetIntegerv(GL_UNIFORM_BUFFER_BINDING, &uniformBuffer_);
@@ -13,13 +13,15 @@ StateGuard::StateGuard(const GlFunctions& gl, const std::vector<GLuint>& texture
   gl.GetInteger64i_v(GL_UNIFORM_BUFFER_SIZE, 0, &uniformSize0_);
   for (GLuint u : textureUnits) {
     if (textureCount_ == kMaxUnits) break;
-    TextureUnit t{u, 0, 0, 0, 0, 0};
+    TextureUnit t{u, 0, 0, 0};
     gl.ActiveTexture(GL_TEXTURE0 + u);
     gl.GetIntegerv(GL_TEXTURE_BINDING_2D, &t.texture2D);
     gl.GetIntegerv(GL_TEXTURE_BINDING_2D_MULTISAMPLE, &t.texture2DMultisample);
-    gl.GetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &t.texture2DArray);
-    gl.GetIntegerv(GL_TEXTURE_BINDING_2D_MULTISAMPLE_ARRAY, &t.texture2DMultisampleArray);
     gl.GetIntegerv(GL_SAMPLER_BINDING, &t.sampler);
+    if (u == inspectUnit) {
+      gl.GetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &inspectArray_);
+      gl.GetIntegerv(GL_TEXTURE_BINDING_2D_MULTISAMPLE_ARRAY, &inspectMultisampleArray_);
+    }
     textures_[textureCount_++] = t;
   }
   for (GLuint u : imageUnits) {
@@ -51,8 +53,10 @@ StateGuard::~StateGuard() {
     gl.ActiveTexture(GL_TEXTURE0 + t.unit);
     gl.BindTexture(GL_TEXTURE_2D, alive(t.texture2D));
     gl.BindTexture(GL_TEXTURE_2D_MULTISAMPLE, alive(t.texture2DMultisample));
-    gl.BindTexture(GL_TEXTURE_2D_ARRAY, alive(t.texture2DArray));
-    gl.BindTexture(GL_TEXTURE_2D_MULTISAMPLE_ARRAY, alive(t.texture2DMultisampleArray));
+    if (t.unit == inspectUnit_) {
+      gl.BindTexture(GL_TEXTURE_2D_ARRAY, alive(inspectArray_));
+      gl.BindTexture(GL_TEXTURE_2D_MULTISAMPLE_ARRAY, alive(inspectMultisampleArray_));
+    }
     gl.BindSampler(t.unit, GLuint(t.sampler));
   }
   gl.ActiveTexture(GLenum(activeTexture_));

@@ -10,15 +10,17 @@ namespace sao::gl::detail {
 
 // Saves, on construction, the state render() may change and restores it on destruction:
 // the current program, the active texture unit, GL_TEXTURE_BINDING_2D, _2D_MULTISAMPLE (a
-// multisampled depth input), _2D_ARRAY and _2D_MULTISAMPLE_ARRAY (inspected for Inputs::layer) and
-// the sampler binding of each listed texture unit, every field of each listed image unit, and the uniform-buffer bindings
+// multisampled depth input) and the sampler binding of each listed texture unit, _2D_ARRAY and
+// _2D_MULTISAMPLE_ARRAY of `inspectUnit` only (the one unit an array texture is bound on, to be
+// inspected for Inputs::layer), every field of each listed image unit, and the uniform-buffer bindings
 // (generic and index 0, with its range).
 class StateGuard {
  public:
   // Units it can save: fixed storage, so that render() allocates nothing (create() checks the
   // effect's units fit).
   static constexpr std::size_t kMaxUnits = 32;
-  StateGuard(const GlFunctions& gl, const std::vector<GLuint>& textureUnits, const std::vector<GLuint>& imageUnits);
+  StateGuard(const GlFunctions& gl, const std::vector<GLuint>& textureUnits, const std::vector<GLuint>& imageUnits,
+             GLuint inspectUnit);
   ~StateGuard();
   StateGuard(const StateGuard&) = delete;
   StateGuard& operator=(const StateGuard&) = delete;
@@ -26,7 +28,7 @@ class StateGuard {
  private:
   struct TextureUnit {
     GLuint unit;
-    GLint texture2D, texture2DMultisample, texture2DArray, texture2DMultisampleArray, sampler;
+    GLint texture2D, texture2DMultisample, sampler;
   };
   struct ImageUnit {
     GLuint unit;
@@ -34,6 +36,8 @@ class StateGuard {
   };
   const GlFunctions& gl_;
   GLint program_ = 0, activeTexture_ = GL_TEXTURE0;
+  GLuint inspectUnit_ = 0;
+  GLint inspectArray_ = 0, inspectMultisampleArray_ = 0;  // inspectUnit's array bindings
   GLint uniformBuffer_ = 0, uniformBuffer0_ = 0;
   GLint64 uniformStart0_ = 0, uniformSize0_ = 0;
   std::array<TextureUnit, kMaxUnits> textures_{};
