@@ -87,6 +87,7 @@ struct Options {
   bool convergedNoise = false;  // --converged-noise
   bool ortho = false;           // --ortho: every scene's view made orthographic
   std::optional<scenes::LengthUnit> units;  // --units
+  std::vector<std::string> scenes;          // --scenes; empty: benchScenes(quick)
 };
 
 std::set<std::string> parseSections(const std::string& list) {
@@ -126,6 +127,15 @@ Options parse(int argc, char** argv) {
             "the scenes' length unit: m | cm | mm | in | ft | auto (default: each scene's own, the built-in scenes' "
             "metres). Settings stay in metres and are converted (Camera::metersToViewUnits); the choice is printed "
             "per scene");
+  cl.value("--scenes", "LIST",
+           "comma-separated scenes instead of the built-in set: built-in names or mesh/scene files (.obj, .ply, "
+           ".gltf, .glb, .scene; each file's first view), e.g. a hold-out mesh not used in tuning",
+           [&o](const std::string& v) {
+             std::stringstream in(v);
+             for (std::string name; std::getline(in, name, ',');)
+               if (!name.empty()) o.scenes.push_back(name);
+             if (o.scenes.empty()) cli::reject("--scenes needs at least one scene");
+           });
   cl.flag("--converged-noise", o.convergedNoise,
           "compute each reference (c) a second time with another seed and report its own noise, the RMS of the "
           "difference / sqrt(2) over the pixels with geometry (doubles the time (c) takes)");
@@ -142,7 +152,8 @@ Options parse(int argc, char** argv) {
           "the first of --backends that starts (default gl), --size default 640x360, --runs, --converged-taps, --quick");
   cl.parse(argc, argv);
   if (o.tune) {
-    if (cl.given("--sections") || cl.given("--converged-noise") || cl.given("--rays") || cl.given("--ortho"))
+    if (cl.given("--sections") || cl.given("--converged-noise") || cl.given("--rays") || cl.given("--ortho") ||
+        cl.given("--scenes"))
       cl.fail("--tune takes --out, --backends, --size, --runs, --converged-taps, --depth-source, --units and --quick only");
     if (!cl.given("--backends")) o.backends = "gl";
     if (!cl.given("--size")) o.size = {640, 360};
@@ -198,8 +209,11 @@ std::vector<std::pair<std::string, std::string>> notes(const std::string& depthS
                                                       "estimator's definition)."},
       {"error_map", "maps/NNN_<row>.png: the signed error of the row's output against (c), white at 0, blue where the "
                     "output is darker (more occluded), red where lighter, full colour at +-0.1 and beyond (fixed "
-                    "scale), grey without geometry; maps/NNN_model_<scene>_<inputs>.png: (c) - (a) on the same scale. "
-                    "FLIP is not computed (SSIM and the figures above only)."},
+                    "scale), grey without geometry; maps/NNN_model_<scene>_<inputs>.png: (c) - (a) on the same scale."},
+      {"*_flip_raw / *_flip_fitted", "mean FLIP (Andersson et al., HPG 2020, LDR; samples/flip.h) over the pixels with "
+                                     "geometry: the difference a viewer flipping between output and reference would "
+                                     "notice, 0 none to 1, at 67 pixels per degree, AO values read as the sRGB greys "
+                                     "ao.png stores; sky set to 1 in both images first."},
       {"raw / fitted", "raw: the effect's output against the reference over the pixels with geometry; fitted: after "
                        "scaling the effect's occlusion 1 - A by the least-squares factor fitted_scale."},
       {"radius: SAO (z hierarchy)", "the effect as shipped: z MIP hierarchy (Z_HIERARCHY=1), normals rebuilt from depth."},
@@ -269,8 +283,9 @@ int main(int argc, char** argv) {
                   "), D32F reversed-Z [0,1] infinite far";
   }
 
-  const std::vector<std::string> sceneNames = benchScenes(o.quick);
-  const std::string mainScene = o.quick ? "sphere-plane" : std::string(scenes::kDefaultScene);
+  const std::vector<std::string> sceneNames = o.scenes.empty() ? benchScenes(o.quick) : o.scenes;
+  const std::string mainScene =
+      !o.scenes.empty() ? o.scenes.front() : o.quick ? "sphere-plane" : std::string(scenes::kDefaultScene);
   SceneCache cache(depthPrepass.get(), o.units);
   if (o.ortho) {
     cache.setOrthographic(true);

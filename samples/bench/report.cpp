@@ -23,7 +23,8 @@ std::string csv(const std::string& s) {
 }
 
 const char* kErrorColumns[] = {"rmse_raw", "bias_raw", "ssim_raw", "over_0_1_raw", "fitted_scale",
-                               "rmse_fitted", "bias_fitted", "ssim_fitted", "over_0_1_fitted"};
+                               "rmse_fitted", "bias_fitted", "ssim_fitted", "over_0_1_fitted",
+                               "flip_raw",  "flip_fitted"};
 
 // A metric as CSV text: "n/a" where it is NaN (samples/metrics.h).
 std::string csvMetric(double v) {
@@ -41,7 +42,7 @@ void csvErrors(std::ofstream& f, const std::optional<samples::ReferenceCompariso
   const auto m = csvMetric;
   f << "," << m(e->raw.rmse) << "," << m(e->raw.meanBias) << "," << m(e->raw.ssim) << "," << m(e->raw.fractionOver01)
     << "," << m(e->fittedIntensity) << "," << m(e->fitted.rmse) << "," << m(e->fitted.meanBias) << ","
-    << m(e->fitted.ssim) << "," << m(e->fitted.fractionOver01);
+    << m(e->fitted.ssim) << "," << m(e->fitted.fractionOver01) << "," << m(e->raw.flip) << "," << m(e->fitted.flip);
 }
 
 // (c)'s structure columns, then the model error and the map.
@@ -62,7 +63,8 @@ Json jsonErrors(const samples::ReferenceComparison& e) {
               {"bias_raw", e.raw.meanBias},       {"ssim_raw", e.raw.ssim},
               {"over_0_1_raw", e.raw.fractionOver01}, {"fitted_scale", e.fittedIntensity},
               {"rmse_fitted", e.fitted.rmse},     {"bias_fitted", e.fitted.meanBias},
-              {"ssim_fitted", e.fitted.ssim},     {"over_0_1_fitted", e.fitted.fractionOver01}};
+              {"ssim_fitted", e.fitted.ssim},     {"over_0_1_fitted", e.fitted.fractionOver01},
+              {"flip_raw", e.raw.flip},           {"flip_fitted", e.fitted.flip}};
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "sao/samples/flip.h"
+
 namespace sao::samples {
 namespace {
 
@@ -53,6 +55,10 @@ ErrorMetrics measure(const FloatImage& ao, const FloatImage& ref, const std::vec
       ++windows;
     }
   m.ssim = windows && !(aoConstant && refConstant) ? ssimSum / windows : NAN;  // undefined: see metrics.h
+  FloatImage scaled(e, 1);
+  for (std::uint32_t y = 0; y < e.height; ++y)
+    for (std::uint32_t x = 0; x < e.width; ++x) scaled.at(x, y) = float(value(x, y));
+  m.flip = meanFlip(scaled, ref, mask);
   return m;
 }
 

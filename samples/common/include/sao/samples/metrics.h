@@ -21,6 +21,7 @@ struct ErrorMetrics {
   double meanBias = NAN;        // mean(ao - reference): negative = darker than the reference
   double ssim = NAN;            // mean SSIM over 8x8 windows fully inside the mask (data range 1)
   double fractionOver01 = NAN;  // share of pixels off by more than 0.1
+  double flip = NAN;            // mean FLIP over the mask (flip.h: the perceptual difference, 0 = none)
 };
 
 struct ReferenceComparison {
