@@ -23,6 +23,11 @@ def g(x, digits=3):
     return "" if x in ("", None) else f"{float(x):.{digits}g}"
 
 
+def gn(x, digits=3):
+    """g() that passes "n/a" (a metric undefined for the images at hand) through."""
+    return x if x == "n/a" else g(x, digits)
+
+
 def table(header, rows):
     out = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     out += ["| " + " | ".join(str(c) for c in r) + " |" for r in rows]
@@ -47,6 +52,22 @@ def tables(folder):
                       g(r["obscurance_bias_raw"], 2), g(r["obscurance_over_0_1_raw"], 2), g(r["obscurance_rmse_fitted"]),
                       g(r["obscurance_fitted_scale"])]
                      for r in sec("presets")]))
+        converged = [r for r in sec("presets") if r.get("converged_rmse_raw", "") not in ("", "n/a")]
+        if converged:
+            print("\n### Presets against (c), the converged estimator: sampling and reconstruction error\n")
+            print("Blotch: RMSE of the error vs (c) low-passed (Gaussian, sigma 8 px); silhouette: within 3 px of a "
+                  "depth edge; FLIP: mean FLIP vs (c) (0 = no visible difference); model: RMSE of (c) itself vs (a), "
+                  "and its share of the preset's RMSE vs (a), what no preset can change.\n")
+            print(table(["scene", "backend", "preset", "total ms", "RMSE (c)", "blotch (c)", "high-freq (c)",
+                         "silhouette (c)", "SSIM (c)", "FLIP (c)", "FLIP (a)", "model (c vs a)", "model share of (a)"],
+                        [[r["scene"], r["backend"], r["preset"], f(r["total_ms"]), gn(r["converged_rmse_raw"]),
+                          gn(r.get("converged_blotch_rmse", "")), gn(r.get("converged_highfreq_rmse", "")),
+                          gn(r.get("converged_silhouette_rmse", "")), gn(r.get("converged_ssim_raw", "")),
+                          gn(r.get("converged_flip_raw", "")), gn(r.get("ao_flip_raw", "")),
+                          gn(r.get("model_rmse_vs_ao", "")),
+                          f(100 * float(r["model_rmse_vs_ao"]) / float(r["ao_rmse_raw"]), 0) + " %"
+                          if r.get("model_rmse_vs_ao") and r.get("ao_rmse_raw") else ""]
+                         for r in converged]))
 
     for name, title in (("samples", "Sample count"), ("mip_blur", "z hierarchy and blur on/off")):
         if not sec(name):
@@ -180,7 +201,8 @@ def key_figures(runs):
             ["the same, AlchemyAO-style", per_backend(lambda by: by[(alch, 4.0)] / by[(alch, 0.1)]), "grows"],
         ]
 
-    main = runs[0][1]
+    full = [folder for name, folder in runs if name.startswith("full-")]
+    main = full[-1] if full else runs[0][1]  # the latest full run (names end in their date)
     presets = [r for r in read_csv(os.path.join(main, "results.csv")) if r["section"] == "presets"]
     if presets:
         scene = presets[0]["scene"]

@@ -43,9 +43,12 @@ void choose(TuneResult& r) {
     std::vector<std::size_t> pick;  // budget indices
     for (std::size_t i = 0; i < k; ++i)
       pick.push_back(k == 1 ? 2 : (i * (kTuneBudgets.size() - 1) + (k - 1) / 2) / (k - 1));
-    std::vector<double> budgets;
-    for (std::size_t i : pick) budgets.push_back(kTuneBudgets[i]);
-    r.chain = chooseChain(r.grid, budgets);
+    std::vector<double> budgets, maxBlotch;
+    for (std::size_t i : pick) {
+      budgets.push_back(kTuneBudgets[i]);
+      maxBlotch.push_back(i == kDefaultPreset ? r.blotchLimit : INFINITY);
+    }
+    r.chain = chooseChain(r.grid, budgets, maxBlotch);
     if (r.chain.empty()) continue;
     if (k < kTuneBudgets.size())
       std::fprintf(stderr, "sao-bench: --tune: no chain of %zu presets steps up on every scene; choosing %zu\n",
@@ -80,14 +83,11 @@ int runTune(const TuneOptions& o) {
   const std::string csvPath = (fs::path(o.out) / "tune.csv").string();
   if (Status s = csv.open(csvPath, sceneNames); !s) fail("--tune: " + s.message);
 
-  // Today's presets first (medium is the time unit), then the baseline, then the grid with medium
-  // again after every kAnchorEvery points and at the end (the anchors).
+  // The untuned rows first (the untuned medium is the time unit), today's presets, the baseline,
+  // then the grid with the untuned medium again after every kAnchorEvery points and at the end (the anchors).
   std::vector<Candidate> candidates = tuneReferences();
   const std::size_t referenceCount = candidates.size();
-  std::vector<std::size_t> anchors;
-  for (std::size_t i = 0; i < referenceCount; ++i)
-    if (candidates[i].kind == "preset" && candidates[i].name == "medium") anchors.push_back(i);
-  if (anchors.empty()) fail("--tune: the effect has no medium preset, the time unit");
+  std::vector<std::size_t> anchors{0};  // tuneReferences() starts with the untuned medium
   std::size_t gridCount = 0;
   for (Candidate& c : tuneGrid(o.quick)) {
     candidates.push_back(std::move(c));
@@ -151,6 +151,7 @@ int runTune(const TuneOptions& o) {
   std::vector<const TuneRow*> rows;
   for (const Candidate& c : candidates) rows.push_back(csv.find(templateRow(c).key()));
   r.medium = rows[anchors.front()];
+  r.defaults = rows[1];
   r.driftMin = r.driftMax = 1;
   for (std::size_t a : anchors) {
     for (const SceneFigures& s : rows[a]->scenes)
@@ -171,7 +172,8 @@ int runTune(const TuneOptions& o) {
   };
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     if (candidates[i].kind == "anchor") continue;
-    TunePoint p{rows[i], 0, rows[i]->meanRmse(), {}};
+    TunePoint p{rows[i], 0, rows[i]->meanRmse(), {}, 0};
+    for (const SceneFigures& s : rows[i]->scenes) p.meanBlotch += s.blotch / double(rows[i]->scenes.size());
     double unit = 0;
     for (std::size_t s = 0; s < sceneNames.size(); ++s) {
       unit += mediumAt(i, s);
@@ -183,6 +185,7 @@ int runTune(const TuneOptions& o) {
     (i < referenceCount ? r.references : r.grid).push_back(p);
   }
   r.front = paretoFront(r.grid);
+  r.blotchLimit = kDefaultBlotchShare * r.references[1].meanBlotch;
   choose(r);
   const std::vector<std::string> files = writeTuneOutputs(o.out, r);
 
@@ -192,7 +195,7 @@ int runTune(const TuneOptions& o) {
               duration(wall).c_str(), o.convergedTaps);
   for (const TunePoint& p : r.grid)
     if (p.row->settings == r.medium->settings)  // the grid's copy of medium, timed against the anchors around it
-      std::printf("the grid's copy of the medium preset: %.3gx medium (1 but for noise)\n", p.timeX);
+      std::printf("the grid's copy of the untuned medium: %.3gx (1 but for noise)\n", p.timeX);
   printTuneSummary(r);
   std::string names;
   for (const std::string& f : files) names += (names.empty() ? "" : ",") + f;

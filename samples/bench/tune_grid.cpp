@@ -16,34 +16,53 @@ std::vector<Candidate> tuneGrid(bool quick) {
     int radius, stride;
   };
   const std::vector<int> divisors = quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 4};
-  const std::vector<int> hierarchy = quick ? std::vector<int>{3, -1} : std::vector<int>{3, 4, -1};  // -1: off
-  const std::vector<Blur> blurs = quick ? std::vector<Blur>{{0, 1}, {3, 2}} : std::vector<Blur>{{0, 1}, {2, 2}, {3, 2}, {4, 1}};
+  const std::vector<Blur> blurs = quick ? std::vector<Blur>{{0, 1}, {3, 2}}
+                                        : std::vector<Blur>{{0, 1}, {1, 1}, {2, 1}, {2, 2}, {3, 2}, {4, 1}};
   const std::vector<int> samples = quick ? std::vector<int>{4, 16, 64} : std::vector<int>{3, 4, 6, 8, 11, 16, 24, 32, 48, 64};
   std::vector<Candidate> out;
-  for (int d : divisors)
+  for (int d : divisors) {
+    // log2 q': 8 and 16 px everywhere; 32 px (nearly level 0 for every tap) at full resolution only,
+    // where projected radii are largest.
+    std::vector<int> hierarchy{3, 4};
+    if (!quick && d == 1) hierarchy.push_back(5);
     for (int q : hierarchy)
       for (const Blur& b : blurs)
         for (int s : samples) {
           Candidate c{"grid", "", Settings{}, Extra::None};
           c.settings.resolution_divisor = d;
-          c.settings.use_z_hierarchy = q >= 0;
-          if (q >= 0) c.settings.mip_switch_log2 = q;  // off: the default, unused
+          c.settings.use_z_hierarchy = true;
+          c.settings.mip_switch_log2 = q;
           c.settings.blur_radius = b.radius;
           c.settings.blur_stride = b.stride;
           c.settings.samples = s;
           out.push_back(c);
         }
+  }
   return out;
 }
 
+Settings untunedMedium() {
+  Settings s;
+  s.samples = 11, s.blur_radius = 3, s.blur_stride = 2, s.use_z_hierarchy = true, s.mip_switch_log2 = 3;
+  s.resolution_divisor = 1;
+  return s;
+}
+
+Settings untunedDefaults() {
+  Settings s = untunedMedium();
+  s.blur_radius = 4;
+  return s;
+}
+
 Candidate timeAnchor(std::size_t index) {
-  return {"anchor", "medium-" + std::to_string(index), presetSettings(Preset::Medium), Extra::None};
+  return {"anchor", "medium-" + std::to_string(index), untunedMedium(), Extra::None};
 }
 
 std::vector<Candidate> tuneReferences() {
-  std::vector<Candidate> out;
+  std::vector<Candidate> out{{"unit", "untuned-medium", untunedMedium(), Extra::None},
+                             {"unit", "untuned-defaults", untunedDefaults(), Extra::None}};
   for (const PresetInfo& p : presets()) out.push_back({"preset", std::string(p.name), presetSettings(p.preset), Extra::None});
-  Settings baseline = presetSettings(Preset::Medium);
+  Settings baseline = untunedMedium();
   baseline.use_z_hierarchy = false;
   out.push_back({"baseline", "alchemyao-style", baseline, Extra::Normals});
   return out;

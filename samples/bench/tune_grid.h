@@ -18,20 +18,31 @@ struct Candidate {
 };
 
 // The grid in its documented order, outermost first: resolution_divisor {1, 2, 4}, then the z
-// hierarchy {q' = 2^3, 2^4, off}, then blur (radius, stride) {(0,1), (2,2), (3,2), (4,1)}, then
-// samples {3, 4, 6, 8, 11, 16, 24, 32, 48, 64}: 360 points. Every other setting keeps its default
-// (blur_edge_sharpness included). Pruned from q' {2^2, 2^3, 2^4, off} x blur {(0,1), (2,2), (3,2),
-// (4,2), (4,1), (6,1), (8,1)} (840 points, over an hour here): in a first partial run over the
-// full-resolution q' = 2^2 and 2^3 points, blur (6,1) and (8,1) never reached the front, and blur
-// (4,2) and q' = 2^2 once, together, at 3 taps (that run's times drifted up to 2x: a rough guide). `quick`: samples {4, 16, 64} x blur {(0,1), (3,2)} x {q' = 2^3, off} x divisor {1, 2}.
+// hierarchy q' = 2^3, 2^4 px (and 2^5 at divisor 1), then blur (radius, stride) {(0,1), (1,1), (2,1),
+// (2,2), (3,2), (4,1)}, then samples {3, 4, 6, 8, 11, 16, 24, 32, 48, 64}: 420 points. Every other
+// setting keeps its default (blur_edge_sharpness included). Every point keeps the z hierarchy: on
+// llvmpipe scattered level-0 taps are cheap (the CPU's caches hold the whole z buffer), but on a GPU
+// the hierarchy is what keeps SAO's cost flat in the radius (the paper's 7x, the traffic model's
+// 4x from L2), so presets tuned without it on this machine's clock would be slow where users run
+// them. The first grid (2026-12-02: q' {8, 16, off} x blur {(0,1), (2,2), (3,2), (4,1)}, itself
+// pruned from 840 points) lacked the light blurs (1,1) and (2,1) that the accurate end needs.
+// `quick`: samples {4, 16, 64} x blur {(0,1), (3,2)} x q' {8, 16} x divisor {1, 2}.
 std::vector<Candidate> tuneGrid(bool quick);
 
-// The medium preset measured again between grid points (kind "anchor", name "medium-<index>"):
-// the time unit is interpolated between anchors, so that the machine's drift over a long run cancels.
+// The time unit and the blotch baseline, fixed: the medium preset and the settings' defaults as they
+// were before the first tuning (2026-12-02; the appearance settings are today's defaults). Presets
+// tuned against them do not move the unit they were tuned in, so a rerun after adopting them finds
+// the same chain.
+Settings untunedMedium();    // 11 taps, 2x2 + 7-tap blur (stride 2), q' = 8 px, full resolution
+Settings untunedDefaults();  // 11 taps, 2x2 + 9-tap blur (stride 2), q' = 8 px, full resolution
+
+// untunedMedium() measured again between grid points (kind "anchor", name "medium-<index>"): the
+// time unit is interpolated between anchors, so that the machine's drift over a long run cancels.
 Candidate timeAnchor(std::size_t index);
 
-// Today's presets (effect/sao.glsl, declaration order), then the AlchemyAO-style baseline: the
-// medium preset without the z hierarchy, given the ray-cast normals (the radius section's third curve).
+// The two untuned rows (kind "unit": "untuned-medium", the first anchor, and "untuned-defaults"),
+// today's presets (effect/sao.glsl, declaration order), then the AlchemyAO-style baseline: the
+// untuned medium without the z hierarchy, given the ray-cast normals (the radius section's third curve).
 std::vector<Candidate> tuneReferences();
 
 // The tuned settings as `k=v` words, in kTunedSettings order ("samples=11 blur_radius=3 ..."), as a

@@ -62,7 +62,8 @@ std::string frontCsv(const TuneResult& r) {
   }
   for (std::size_t c = 0; c < r.chain.size(); ++c)
     if (std::find(r.front.begin(), r.front.end(), r.chain[c]) == r.front.end()) row("tuned", r.chainNames[c], r.grid[r.chain[c]]);
-  for (const TunePoint& p : r.references) row(p.row->kind == "baseline" ? "baseline" : "current", p.row->name, p);
+  for (const TunePoint& p : r.references)
+    row(p.row->kind == "baseline" ? "baseline" : p.row->kind == "unit" ? "untuned" : "current", p.row->name, p);
   return o;
 }
 
@@ -70,7 +71,7 @@ std::string frontSvg(const TuneResult& r) {
   Chart c;
   c.title = "sao-bench --tune: " + r.backend + ", " + std::to_string(r.size.width) + "x" + std::to_string(r.size.height) +
             ", " + std::to_string(r.scenes.size()) + " scenes";
-  c.xLabel = "time, x today's medium preset (sum over the scenes of the median totals)";
+  c.xLabel = "time, x the untuned medium preset (sum over the scenes of the median totals)";
   c.yLabel = "RMSE vs (c), mean over the scenes";
   c.logX = c.logY = true;
   Series all{"candidates (" + std::to_string(r.grid.size()) + ")", {}, {}, false, {}, "#7f7f7f", 0.25};
@@ -83,13 +84,16 @@ std::string frontSvg(const TuneResult& r) {
     tuned.pointLabels.push_back(r.chainNames[k]);
   }
   Series today{"today's presets", {}, {}, false, {}, "#2ca02c", 1};
+  Series untuned{"untuned medium and defaults", {}, {}, false, {}, "#ff7f0e", 1};
   Series baseline{"AlchemyAO-style baseline", {}, {}, false, {}, "#9467bd", 1};
   for (const TunePoint& p : r.references) {
-    Series& s = p.row->kind == "baseline" ? baseline : today;
+    Series& s = p.row->kind == "baseline" ? baseline : p.row->kind == "unit" ? untuned : today;
     s.x.push_back(p.timeX), s.y.push_back(p.meanRmse);
-    s.pointLabels.push_back(p.row->kind == "baseline" ? "AlchemyAO-style" : p.row->name + " (today)");
+    s.pointLabels.push_back(p.row->kind == "baseline" ? "AlchemyAO-style"
+                            : p.row->kind == "unit"   ? p.row->name
+                                                      : p.row->name + " (today)");
   }
-  c.series = {all, front, tuned, today, baseline};
+  c.series = {all, front, tuned, today, untuned, baseline};
   return renderSvg(c, 900, 560);
 }
 
@@ -97,8 +101,9 @@ std::string presetsText(const TuneResult& r) {
   std::string o = "// Presets chosen by `sao-bench --tune` on " + r.backend + " at " + std::to_string(r.size.width) + "x" +
                   std::to_string(r.size.height) + " over";
   for (const std::string& s : r.scenes) o += " " + s;
-  o += ": each step up is slower and has a lower RMSE vs (c) on every scene. Time x today's medium preset,\n"
-       "// RMSE vs (c) mean over the scenes. Ready to paste into effect/sao.glsl.\n";
+  o += ": each step up is slower and has a lower RMSE vs (c) on every scene. Time x the untuned medium preset,\n"
+       "// RMSE vs (c) mean over the scenes. Ready to paste into effect/sao.glsl; the settings' defaults there are the " +
+       kTuneNames[kDefaultPreset] + " preset's.\n";
   for (std::size_t k = 0; k < r.chain.size(); ++k) {
     const TunePoint& p = r.grid[r.chain[k]];
     o += "// " + r.chainNames[k] + ": budget " + number(r.chainBudgets[k], "%g") + "x, measured " + number(p.timeX, "%.3g") +
@@ -114,7 +119,7 @@ std::string presetsText(const TuneResult& r) {
 }
 
 void printTable(const TuneResult& r, const std::string& title, const std::vector<std::pair<std::string, const TunePoint*>>& rows) {
-  std::printf("\n%s\n%-16s %9s", title.c_str(), "preset", "x medium");
+  std::printf("\n%s\n%-16s %9s", title.c_str(), "preset", "x unit");
   for (const std::string& s : r.scenes) std::printf(" %12.12s", s.c_str());
   std::printf(" %8s %8s %10s  settings\n", "mean", "blotch", "silhouette");
   for (const auto& [name, p] : rows) {
@@ -141,12 +146,21 @@ void printTuneSummary(const TuneResult& r) {
   for (std::size_t k = 0; k < r.chain.size(); ++k) tuned.emplace_back(r.chainNames[k], &r.grid[r.chain[k]]);
   for (const TunePoint& p : r.references) today.emplace_back(p.row->kind == "baseline" ? "AlchemyAO-style" : p.row->name, &p);
   std::printf("\nRMSE vs (c) per scene; blotch (low-passed error) and silhouette (within 3 px of a depth edge) RMSE are "
-              "means over the scenes; time is x today's medium preset (%.3g ms summed over the scenes).",
+              "means over the scenes; time is x the untuned medium preset (%.3g ms summed over the scenes).",
               r.medium->totalMs());
   printTable(r, "tuned presets (the chain; " + std::to_string(r.front.size()) + " of " + std::to_string(r.grid.size()) +
                     " candidates on the front)", tuned);
-  printTable(r, "today's presets and the AlchemyAO-style baseline (medium without the z hierarchy, supplied normals; "
-                "its (c) is computed with the same normals)", today);
+  printTable(r, "the untuned medium and defaults, today's presets and the AlchemyAO-style baseline (the untuned medium "
+                "without the z hierarchy, supplied normals; its (c) is computed with the same normals)", today);
+  for (std::size_t k = 0; k < r.chain.size(); ++k)
+    if (r.chainNames[k] == kTuneNames[kDefaultPreset]) {
+      const TunePoint& p = r.grid[r.chain[k]];
+      std::printf("\nthe default preset (%s): blotch %.4f against the untuned defaults' %.4f (x%.2f; <= %.2f: %s), time "
+                  "x%.3f of the untuned defaults' (<= 1: %s)\n",
+                  r.chainNames[k].c_str(), p.meanBlotch, r.references[1].meanBlotch, p.meanBlotch / r.references[1].meanBlotch,
+                  kDefaultBlotchShare, p.meanBlotch <= r.blotchLimit ? "met" : "NOT met", p.timeX / r.references[1].timeX,
+                  p.timeX <= r.references[1].timeX ? "met" : "NOT met");
+    }
   if (r.chain.size() >= 2) {
     const TuneRow& lo = *r.grid[r.chain.front()].row;
     const TuneRow& hi = *r.grid[r.chain.back()].row;

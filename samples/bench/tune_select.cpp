@@ -33,9 +33,11 @@ bool stepsUp(const TunePoint& a, const TunePoint& b) {
   return true;
 }
 
-std::vector<std::size_t> chooseChain(const std::vector<TunePoint>& points, const std::vector<double>& budgets) {
+std::vector<std::size_t> chooseChain(const std::vector<TunePoint>& points, const std::vector<double>& budgets,
+                                     const std::vector<double>& maxBlotch) {
   const std::size_t n = points.size(), k = budgets.size();
-  if (k == 0 || n < k) return {};
+  if (k == 0 || n < k || (!maxBlotch.empty() && maxBlotch.size() != k)) return {};
+  auto allowed = [&](std::size_t budget, const TunePoint& p) { return maxBlotch.empty() || p.meanBlotch <= maxBlotch[budget]; };
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(),
@@ -49,9 +51,10 @@ std::vector<std::size_t> chooseChain(const std::vector<TunePoint>& points, const
   std::vector<std::vector<double>> f(k, std::vector<double>(n, inf));
   std::vector<std::vector<std::size_t>> from(k, std::vector<std::size_t>(n, n));
   for (std::size_t j = 0; j < n; ++j)
-    if (std::isfinite(std::log(points[order[j]].meanRmse))) f[0][j] = cost(0, points[order[j]]);
+    if (std::isfinite(std::log(points[order[j]].meanRmse)) && allowed(0, points[order[j]])) f[0][j] = cost(0, points[order[j]]);
   for (std::size_t i = 1; i < k; ++i)
     for (std::size_t j = 0; j < n; ++j) {
+      if (!allowed(i, points[order[j]])) continue;
       double best = inf;
       for (std::size_t m = 0; m < j; ++m)  // sorted by time: only earlier points can step up to j
         if (f[i - 1][m] < best && stepsUp(points[order[m]], points[order[j]])) {
