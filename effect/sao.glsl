@@ -23,28 +23,30 @@
 #pragma sao setting float intensity           default=1.0   range=[0,10]                    "Intensity sigma of eq. 1, unitless: the sum is scaled by 2*sigma*r/s with r the radius, so A does not change with the scene's units"
 #pragma sao setting float contrast            default=1.25  range=[0.1,8]                   "Contrast exponent k of eq. 1"
 #pragma sao setting float epsilon             default=0.0001 range=[0.000001,0.01] unit=m^2 "Epsilon of eq. 1 added to v.v against division by zero"
-#pragma sao setting int   samples             default=11    range=[1,64]                    "Direct samples s per pixel (spiral taps)"
+#pragma sao setting int   samples             default=48    range=[1,64]                    "Direct samples s per pixel (spiral taps)"
 #pragma sao setting int   spiral_turns        default=0     range=[0,64]                    "Turns tau of the tap spiral (eq. 6); 0: the built-in choice for the sample count (docs/effect-math.md 2.4)"
-#pragma sao setting int   mip_switch_log2     default=3     range=[0,5]            unit=px  "log2 of q', the tap distance in pixels at which taps move to the next coarser z MIP level (eq. 9)"
+#pragma sao setting int   mip_switch_log2     default=4     range=[0,5]            unit=px  "log2 of q', the tap distance in pixels at which taps move to the next coarser z MIP level (eq. 9)"
 #pragma sao setting bool  use_z_hierarchy     default=true                                  "Read taps from the z MIP hierarchy (false: always level 0, the no-MIP baseline)"
-#pragma sao setting int   blur_radius         default=4     range=[0,8]                     "Bilateral blur taps on each side of the centre (0: no blur)"
-#pragma sao setting int   blur_stride         default=2     range=[1,4]            unit=px  "Pixels between bilateral blur taps"
+#pragma sao setting int   blur_radius         default=1     range=[0,8]                     "Bilateral blur taps on each side of the centre (0: no blur)"
+#pragma sao setting int   blur_stride         default=1     range=[1,4]            unit=px  "Pixels between bilateral blur taps"
 #pragma sao setting float blur_edge_sharpness default=10.0  range=[0,1000]         unit=1/m "Bilateral blur depth weight max(0, 1 - sharpness*|dz|): taps 1/sharpness apart in z get weight 0"
 #pragma sao setting float quad_edge_threshold default=0.02  range=[0,10]           unit=m   "2x2 reconstruction: quad neighbours average only when their z differ by less than this"
-#pragma sao setting int   resolution_divisor  default=1     values=[1,2,4]                  "AO resolution per axis: 1 full, 2 half, 4 quarter. ao_sample, the 2x2 reconstruction and the blurs run at the viewport over it (rounded up) and a depth-aware upsample writes the full-resolution output"
+#pragma sao setting int   resolution_divisor  default=2     values=[1,2,4]                  "AO resolution per axis: 1 full, 2 half, 4 quarter. ao_sample, the 2x2 reconstruction and the blurs run at the viewport over it (rounded up) and a depth-aware upsample writes the full-resolution output"
 #pragma sao setting float fade_start          default=0.0   range=[0,100000]       unit=m   "Distance fade: camera distance -z where the AO starts to fade towards 1 (unoccluded); used only when fade_end > 0, and must then be below fade_end"
 #pragma sao setting float fade_end            default=0.0   range=[0,100000]       unit=m   "Distance fade: camera distance -z from which A = 1, linear in distance from fade_start on; 0 = no fade"
-
 // ---------------------------------------------------------------------------------------------
-// Presets (speed against accuracy; sao-bench measures both). Unlisted settings keep their
-// defaults. Low switches to coarser z levels from q' = 4 px on (fewer cache misses, less z
-// detail); medium and high use the paper's q' = 8.
+// Presets: the chain `sao-bench --tune` chose on the Pareto front of time against error vs the
+// converged estimator (c), over the built-in scenes (docs/BENCHMARKS.md, "Tuning"; 2026-12-03, gl,
+// 640x360): time budgets 0.2/0.5/1/2/4 x the untuned medium (11 taps, 7-tap blur, full resolution),
+// each step slower and more accurate on every scene; every one keeps the z hierarchy (what keeps
+// the cost flat in the radius on a GPU). The settings' defaults above are the high preset: the
+// untuned defaults' cost or less (0.71x) with 0.41x their blotch error. Unlisted settings keep their defaults.
 // ---------------------------------------------------------------------------------------------
-#pragma sao preset low       samples=6  blur_radius=2 blur_stride=2 use_z_hierarchy=true  mip_switch_log2=2 "6 taps, 2x2 + 5-tap blur, z hierarchy with an early MIP switch (q' = 4 px)"
-#pragma sao preset medium    samples=11 blur_radius=3 blur_stride=2 use_z_hierarchy=true  mip_switch_log2=3 "11 taps, 2x2 + 7-tap blur, z hierarchy (q' = 8 px)"
-#pragma sao preset high      samples=16 blur_radius=4 blur_stride=2 use_z_hierarchy=true  mip_switch_log2=3 "16 taps, 2x2 + 9-tap blur, z hierarchy (q' = 8 px)"
-#pragma sao preset ultra     samples=32 blur_radius=6 blur_stride=1 use_z_hierarchy=true  mip_switch_log2=4 "32 taps, 2x2 + 13-tap blur, z hierarchy with a later MIP switch (q' = 16 px)"
-#pragma sao preset reference samples=64 blur_radius=2 blur_stride=1 use_z_hierarchy=false "64 taps at full resolution (no z hierarchy), light blur"
+#pragma sao preset low       samples=11 blur_radius=0 blur_stride=1 use_z_hierarchy=true mip_switch_log2=4 resolution_divisor=4 "11 taps, 2x2, no blur, z hierarchy (q' = 16 px), 1/4 resolution"
+#pragma sao preset medium    samples=16 blur_radius=2 blur_stride=1 use_z_hierarchy=true mip_switch_log2=4 resolution_divisor=2 "16 taps, 2x2 + 5-tap blur, z hierarchy (q' = 16 px), 1/2 resolution"
+#pragma sao preset high      samples=48 blur_radius=1 blur_stride=1 use_z_hierarchy=true mip_switch_log2=4 resolution_divisor=2 "48 taps, 2x2 + 3-tap blur, z hierarchy (q' = 16 px), 1/2 resolution: the settings' defaults"
+#pragma sao preset ultra     samples=32 blur_radius=2 blur_stride=1 use_z_hierarchy=true mip_switch_log2=5 resolution_divisor=1 "32 taps, 2x2 + 5-tap blur, z hierarchy (q' = 32 px), full resolution"
+#pragma sao preset reference samples=64 blur_radius=2 blur_stride=1 use_z_hierarchy=true mip_switch_log2=5 resolution_divisor=1 "64 taps, 2x2 + 5-tap blur, z hierarchy (q' = 32 px), full resolution"
 
 // ---------------------------------------------------------------------------------------------
 // Constants

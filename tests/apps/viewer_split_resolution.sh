@@ -23,11 +23,11 @@ shot() {  # NAME VIEWER ARGS...: a screenshot after 5 frames, or the log and exi
   fi
 }
 
-# $@ (the backend's flags) goes to every run.
-shot full "$@" --view-mode ao
+# $@ (the backend's flags) goes to every run. The divisor is always given: the defaults' is 2.
+shot full "$@" --view-mode ao --set resolution_divisor=1
 shot half "$@" --view-mode ao --set resolution_divisor=2
 shot quarter "$@" --view-mode ao --set resolution_divisor=4
-shot split_1 "$@" --view-mode split-resolution
+shot split_1 "$@" --view-mode split-resolution --set resolution_divisor=1
 shot split_4 "$@" --view-mode split-resolution --set resolution_divisor=4
 
 left=0,0,0.498,0.94 right=0.502,0,1,0.94

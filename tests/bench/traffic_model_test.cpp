@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "untuned_settings.h"
 #include "sao/presets.h"
 #include "traffic_model.h"
 #include "traffic_replay.h"
@@ -125,7 +126,7 @@ TEST(TrafficReplay, TheHierarchyReadsFewerLinesAtALargeRadius) {
   const Plane plane;
   std::unique_ptr<TrafficScene> scene;
   ASSERT_TRUE(TrafficScene::create(plane.depth, plane.camera, scene));
-  Settings s = presetSettings(Preset::Medium);  // 11 taps
+  Settings s = test::untunedMedium();  // 11 taps
   s.radius = 1.0f;                              // ~110 px at 2 m: taps up to MIP level 3
   Machine m = tinyMachine(2, true);
   m.warpLanes = 32;
@@ -154,7 +155,7 @@ TEST(TrafficReplay, AReducedResolutionSamplesOnePixelPerBlock) {
   const Plane plane;
   std::unique_ptr<TrafficScene> scene;
   ASSERT_TRUE(TrafficScene::create(plane.depth, plane.camera, scene));
-  Settings s = presetSettings(Preset::Medium);
+  Settings s = test::untunedMedium();  // 11 taps
   s.resolution_divisor = 2;  // ao_sample runs on 128x128, each pixel at its block's representative
   const std::vector<Machine> machines = {tinyMachine(1, true)};
   ReplayResult r;

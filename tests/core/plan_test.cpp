@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "untuned_settings.h"
 #include "sao/plan.h"
 
 namespace {
@@ -24,7 +25,7 @@ bool hasPass(const sao::Plan& p, PassId id) {
 
 TEST(Plan, DefaultSceneAt720p) {
   sao::Plan p;
-  ASSERT_TRUE(sao::plan(sao::Settings{}, camera720(), {}, p).ok());
+  ASSERT_TRUE(sao::plan(sao::test::untunedDefaults(), camera720(), {}, p).ok());
   // r' max = r S' / n = 1 * 623.5 / 0.1 = 6235 px -> floor(log2) = 12; minus log q' 3 = 9,
   // capped by SAO_MAX_MIP_LEVELS - 1 = 7 -> 8 levels.
   EXPECT_EQ(p.cszLevels, 8u);
@@ -52,7 +53,7 @@ TEST(Plan, DefaultSceneAt720p) {
 }
 
 TEST(Plan, SmallRadiusWithoutBlurAllocatesLittle) {
-  sao::Settings s;
+  sao::Settings s = sao::test::untunedDefaults();
   s.radius = 0.01f;  // r' max 62 px: 3 csz levels
   s.blur_radius = 0;  // no blur_h, no ao_blur_h
   sao::Plan p;
@@ -66,7 +67,7 @@ TEST(Plan, SmallRadiusWithoutBlurAllocatesLittle) {
 }
 
 TEST(Plan, SmallRadiusNeedsFewerLevels) {
-  sao::Settings s;
+  sao::Settings s = sao::test::untunedDefaults();
   sao::Plan big, small;
   ASSERT_TRUE(sao::plan(s, camera720(), {}, big).ok());
   s.radius = 0.01f;  // r' max = 62 px -> 5 - 3 = 2 -> 3 levels
@@ -76,27 +77,27 @@ TEST(Plan, SmallRadiusNeedsFewerLevels) {
   EXPECT_LT(small.totalBytes, big.totalBytes);
   auto cam = camera720();
   cam.projection[14] *= 100.0;  // near plane at 10 m: r' max = 62 px as well
-  ASSERT_TRUE(sao::plan(sao::Settings{}, cam, {}, small).ok());
+  ASSERT_TRUE(sao::plan(sao::test::untunedDefaults(), cam, {}, small).ok());
   EXPECT_EQ(small.cszLevels, 3u);
 }
 
 TEST(Plan, VariantsFollowTheInputs) {
   sao::Plan p;
-  ASSERT_TRUE(sao::plan(sao::Settings{}, camera720(), {}, p).ok());
+  ASSERT_TRUE(sao::plan(sao::test::untunedDefaults(), camera720(), {}, p).ok());
   EXPECT_EQ(p.variants[static_cast<std::size_t>(sao::gen::VariantId::NORMALS_SUPPLIED)], 0);
   sao::PlanInputs in;
   in.normals = true;
-  ASSERT_TRUE(sao::plan(sao::Settings{}, camera720(), in, p).ok());
+  ASSERT_TRUE(sao::plan(sao::test::untunedDefaults(), camera720(), in, p).ok());
   EXPECT_EQ(p.variants[static_cast<std::size_t>(sao::gen::VariantId::NORMALS_SUPPLIED)], 1)
       << "supplying normals removes the reconstruction variant";
   for (const auto& pass : p.passes) EXPECT_EQ(pass.variant, sao::gen::findPassVariant(pass.pass, p.variants));
 
   in.secondLayer = true;
-  ASSERT_TRUE(sao::plan(sao::Settings{}, camera720(), in, p).ok());
+  ASSERT_TRUE(sao::plan(sao::test::untunedDefaults(), camera720(), in, p).ok());
   ASSERT_NE(p.image(ResourceId::csz2), nullptr);
   EXPECT_EQ(p.image(ResourceId::csz2)->mipLevels, p.cszLevels);
 
-  sao::Settings flat;
+  sao::Settings flat = sao::test::untunedDefaults();
   flat.use_z_hierarchy = false;
   const sao::Status st = sao::plan(flat, camera720(), in, p);
   EXPECT_EQ(st.code, sao::StatusCode::InvalidInput);
@@ -104,7 +105,7 @@ TEST(Plan, VariantsFollowTheInputs) {
 }
 
 TEST(Plan, NoHierarchyMeansNoMipPassAndOneLevel) {
-  sao::Settings s;
+  sao::Settings s = sao::test::untunedDefaults();
   s.use_z_hierarchy = false;
   sao::Plan p;
   ASSERT_TRUE(sao::plan(s, camera720(), {}, p).ok());
@@ -114,7 +115,7 @@ TEST(Plan, NoHierarchyMeansNoMipPassAndOneLevel) {
 }
 
 TEST(Plan, BlurZeroDropsTheHorizontalPassAndItsImage) {
-  sao::Settings s;
+  sao::Settings s = sao::test::untunedDefaults();
   s.blur_radius = 0;
   sao::Plan p;
   ASSERT_TRUE(sao::plan(s, camera720(), {}, p).ok());
@@ -128,9 +129,9 @@ TEST(Plan, BlurZeroDropsTheHorizontalPassAndItsImage) {
 TEST(Plan, GuardBandSizesOnlyTheDepthSideImages) {
   auto cam = camera720();
   sao::Plan plain, guarded;
-  ASSERT_TRUE(sao::plan(sao::Settings{}, cam, {}, plain).ok());
+  ASSERT_TRUE(sao::plan(sao::test::untunedDefaults(), cam, {}, plain).ok());
   cam.guardBand = 64;
-  ASSERT_TRUE(sao::plan(sao::Settings{}, cam, {}, guarded).ok());
+  ASSERT_TRUE(sao::plan(sao::test::untunedDefaults(), cam, {}, guarded).ok());
   EXPECT_EQ(guarded.inputExtent, (sao::Extent{1280 + 128, 720 + 128}));
   EXPECT_EQ(guarded.image(ResourceId::csz)->extent, guarded.inputExtent);
   EXPECT_EQ(guarded.image(ResourceId::ao_raw)->extent, (sao::Extent{1280, 720}));
@@ -142,7 +143,7 @@ TEST(Plan, UserOutputIsNotAllocated) {
   sao::PlanInputs in;
   in.userOutput = true;
   sao::Plan p;
-  ASSERT_TRUE(sao::plan(sao::Settings{}, camera720(), in, p).ok());
+  ASSERT_TRUE(sao::plan(sao::test::untunedDefaults(), camera720(), in, p).ok());
   EXPECT_EQ(p.image(ResourceId::ao), nullptr);
 }
 
@@ -150,10 +151,10 @@ TEST(Plan, RejectsBadExtentsAndIsDeterministic) {
   auto cam = camera720();
   cam.guardBand = 8000;
   sao::Plan p;
-  EXPECT_EQ(sao::plan(sao::Settings{}, cam, {}, p).code, sao::StatusCode::InvalidExtent);
+  EXPECT_EQ(sao::plan(sao::test::untunedDefaults(), cam, {}, p).code, sao::StatusCode::InvalidExtent);
   sao::Plan a, b;
-  ASSERT_TRUE(sao::plan(sao::Settings{}, camera720(), {}, a).ok());
-  ASSERT_TRUE(sao::plan(sao::Settings{}, camera720(), {}, b).ok());
+  ASSERT_TRUE(sao::plan(sao::test::untunedDefaults(), camera720(), {}, a).ok());
+  ASSERT_TRUE(sao::plan(sao::test::untunedDefaults(), camera720(), {}, b).ok());
   EXPECT_EQ(a.describe(), b.describe());
   EXPECT_EQ(a.totalBytes, b.totalBytes);
 }
@@ -161,7 +162,7 @@ TEST(Plan, RejectsBadExtentsAndIsDeterministic) {
 // cameraKeepsPlan: jitter and a mirrored stereo eye keep the plan (and plan() agrees), a new size,
 // guard band, kind or csz level count does not, nor an invalid camera.
 TEST(Plan, CameraKeepsPlanExactlyWhenThePlanIsTheSame) {
-  const sao::Settings s;
+  const sao::Settings s = sao::test::untunedDefaults();
   const sao::Camera base = sao::perspectiveCamera(std::numbers::pi / 3.0, 320, 180, 0.1, 100, sao::ClipDepth::ZeroToOne, false);
   auto shifted = [&](double x, double y) {
     sao::Camera c = base;

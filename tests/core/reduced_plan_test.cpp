@@ -8,6 +8,7 @@
 #include <numbers>
 #include <string>
 
+#include "untuned_settings.h"
 #include "sao/constants.h"
 #include "sao/schedule.h"
 
@@ -49,7 +50,7 @@ TEST(Plan, ResolutionDivisorSizesTheReducedImagesAndTheirBytes) {
   };
   std::uint64_t cszBytes = 0;
   for (const Expected& c : cases) {
-    sao::Settings s;
+    sao::Settings s = sao::test::untunedDefaults();
     s.resolution_divisor = c.divisor;
     sao::Plan p;
     ASSERT_TRUE(sao::plan(s, camera, {}, p).ok()) << c.divisor;
@@ -76,11 +77,11 @@ TEST(Plan, ResolutionDivisorSizesTheReducedImagesAndTheirBytes) {
   }
   // By hand at 641x359: full 2 x 1,840,952 + 460,238 = 4,142,142 bytes besides csz; half
   // 3 x 462,240 + 460,238 = 1,846,958; quarter 3 x 115,920 + 460,238 = 807,998.
-  sao::Settings half, quarter;
+  sao::Settings half = sao::test::untunedDefaults(), quarter = sao::test::untunedDefaults();
   half.resolution_divisor = 2;
   quarter.resolution_divisor = 4;
   sao::Plan full, h, q;
-  ASSERT_TRUE(sao::plan(sao::Settings{}, camera, {}, full).ok());
+  ASSERT_TRUE(sao::plan(sao::test::untunedDefaults(), camera, {}, full).ok());
   ASSERT_TRUE(sao::plan(half, camera, {}, h).ok());
   ASSERT_TRUE(sao::plan(quarter, camera, {}, q).ok());
   EXPECT_EQ(full.totalBytes - cszBytes, 4142142u);
@@ -89,7 +90,7 @@ TEST(Plan, ResolutionDivisorSizesTheReducedImagesAndTheirBytes) {
 }
 
 TEST(Plan, ResolutionDivisorThreeIsRefused) {
-  sao::Settings s;
+  sao::Settings s = sao::test::untunedDefaults();
   s.resolution_divisor = 3;
   sao::Plan p;
   const sao::Status st = sao::plan(s, camera641(0), {}, p);
@@ -100,7 +101,7 @@ TEST(Plan, ResolutionDivisorThreeIsRefused) {
 // Without blur the reduced path keeps its shape: blur_v_low reads ao_raw in place of the skipped
 // blur_h's image and writes ao_low.
 TEST(Plan, ReducedResolutionWithoutBlurAliasesTheBlurInput) {
-  sao::Settings s;
+  sao::Settings s = sao::test::untunedDefaults();
   s.resolution_divisor = 2;
   s.blur_radius = 0;
   sao::Plan p;
@@ -114,7 +115,7 @@ TEST(Plan, ReducedResolutionWithoutBlurAliasesTheBlurInput) {
 // The dispatches cover the reduced extent up to blur_v_low and the viewport in upsample, which
 // waits for ao_low (and csz, already visible since ao_sample read it).
 TEST(Schedule, ReducedResolutionDispatchSizes) {
-  sao::Settings s;
+  sao::Settings s = sao::test::untunedDefaults();
   s.resolution_divisor = 4;
   sao::Plan p;
   ASSERT_TRUE(sao::plan(s, camera641(0), {}, p).ok());
@@ -140,7 +141,7 @@ TEST(Schedule, ReducedResolutionDispatchSizes) {
 // The block member the shaders read: ao_divisor is the setting, for every allowed value.
 TEST(Constants, AoDivisorIsTheResolutionDivisor) {
   for (int d : {1, 2, 4}) {
-    sao::Settings s;
+    sao::Settings s = sao::test::untunedDefaults();
     s.resolution_divisor = d;
     sao::ParamBlock p;
     ASSERT_TRUE(sao::computeConstants(s, camera641(2), sao::DepthEncoding::Hardware, p).ok());

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "untuned_settings.h"
 #include "sao/schedule.h"
 
 namespace {
@@ -29,7 +30,7 @@ sao::Schedule scheduleOf(const sao::Settings& s, const sao::Camera& c, const sao
 }
 
 TEST(Schedule, DefaultSettings) {
-  const sao::Settings settings;
+  const sao::Settings settings = sao::test::untunedDefaults();
   sao::Plan p;
   ASSERT_TRUE(sao::plan(settings, camera(100, 60, 4), {}, p).ok());
   const sao::Schedule s = sao::makeSchedule(p);
@@ -110,7 +111,7 @@ TEST(Schedule, DefaultSettings) {
 }
 
 TEST(Schedule, NoBlurReadsTheAliasedImage) {
-  sao::Settings settings;
+  sao::Settings settings = sao::test::untunedDefaults();
   settings.blur_radius = 0;
   const sao::Schedule s = scheduleOf(settings, camera(64, 32, 0));
   const auto& last = s.dispatches.back();
@@ -122,7 +123,7 @@ TEST(Schedule, NoBlurReadsTheAliasedImage) {
 }
 
 TEST(Schedule, WithoutTheHierarchyThereIsNoMipDispatch) {
-  sao::Settings settings;
+  sao::Settings settings = sao::test::untunedDefaults();
   settings.use_z_hierarchy = false;
   const sao::Schedule s = scheduleOf(settings, camera(64, 32, 0));
   ASSERT_EQ(s.dispatches.size(), 4u);
@@ -133,7 +134,7 @@ TEST(Schedule, WithoutTheHierarchyThereIsNoMipDispatch) {
 }
 
 TEST(Schedule, SecondLayerAndNormalsAreReadAndWrittenInTheSameDispatches) {
-  const sao::Schedule s = scheduleOf(sao::Settings{}, camera(64, 32, 2), {sao::DepthEncoding::Hardware, true, true});
+  const sao::Schedule s = scheduleOf(sao::test::untunedDefaults(), camera(64, 32, 2), {sao::DepthEncoding::Hardware, true, true});
   int callerWrote = 0;
   for (const auto& h : s.entryHazards()) callerWrote += h.kind == HazardKind::CallerWrote;
   EXPECT_EQ(callerWrote, 3) << "depth, depth2, normals";
@@ -143,7 +144,7 @@ TEST(Schedule, SecondLayerAndNormalsAreReadAndWrittenInTheSameDispatches) {
 
 TEST(Schedule, SuppliedImagesAreCheckedAgainstThePlan) {
   sao::Plan p;
-  ASSERT_TRUE(sao::plan(sao::Settings{}, camera(64, 32, 2), {}, p).ok());
+  ASSERT_TRUE(sao::plan(sao::test::untunedDefaults(), camera(64, 32, 2), {}, p).ok());
   sao::SuppliedImages in{};
   in[static_cast<std::size_t>(ResourceId::depth)] = {true, {68, 36}};
   EXPECT_TRUE(sao::checkSupplied(p, in, false, "test").ok());

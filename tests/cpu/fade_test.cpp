@@ -20,6 +20,7 @@ Settings unmixed() {
   Settings s;
   s.quad_edge_threshold = 0.0f;  // |dz| < 0 never holds: no quad averaging
   s.blur_radius = 0;             // the blur passes copy
+  s.resolution_divisor = 1;      // no upsample mixing neighbours either
   return s;
 }
 

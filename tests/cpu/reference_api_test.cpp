@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "untuned_settings.h"
 #include "test_support.h"
 
 namespace sao::test {
@@ -144,7 +145,7 @@ TEST_F(BadInput, ExcludedVariantCombination) {
 TEST(Passes, FollowThePlan) {
   const Camera camera = testCamera(8);
   const DepthImage depth = renderDepth(stairsScene(), camera, DepthFormat::D32F);
-  Settings s;
+  Settings s = test::untunedDefaults();
   {
     const cpu::Result r = runOrFail(s, camera, {&depth}, Precision::Float);
     ASSERT_GT(r.plan.cszLevels, 1u);
@@ -173,7 +174,7 @@ TEST(Passes, FollowThePlan) {
     EXPECT_EQ(r.plan.cszLevels, 1u);
     EXPECT_EQ(r.csz.size(), 1u) << "no mips pass without the hierarchy";
   }
-  s = Settings{};
+  s = test::untunedDefaults();
   s.blur_radius = 0;  // blur_h dropped, blur_v reads ao_raw and copies it
   for (Precision precision : {Precision::Float, Precision::Double}) {
     const cpu::Result r = runOrFail(s, camera, {&depth}, precision);
@@ -281,7 +282,7 @@ TEST(Reconstruction, KeysAreTheCentreDepthInsideAndAtOddEdges) {
   // An odd viewport leaves half-empty quads and work groups at the right and top edges.
   const Camera camera = testCamera(3, 1000.0, ClipDepth::NegativeOneToOne, false, 95, 53);
   const DepthImage depth = renderDepth(rodsScene(), camera, DepthFormat::D32F);
-  const cpu::Result r = runOrFail(Settings{}, camera, {&depth}, Precision::Float);
+  const cpu::Result r = runOrFail(test::untunedDefaults(), camera, {&depth}, Precision::Float);  // full resolution
   for (std::uint32_t y = 0; y < r.aoRaw.extent.height; ++y)
     for (std::uint32_t x = 0; x < r.aoRaw.extent.width; ++x) {
       ASSERT_EQ(r.aoRaw.at(x, y, 1), r.csz[0].at(x + 3, y + 3));

@@ -150,15 +150,16 @@ class Variants : public GlTest {
     const DepthImage depth2 = test::renderDepth(scene, cam, cpuFormat(format), 1);
     const FloatImage n = test::renderNormals(scene, cam);
     auto effect = makeEffect();
-    for (Preset p : {Preset::Medium, Preset::Reference}) {
-      if (twoLayer && p == Preset::Reference) continue;  // TWO_LAYER needs the z hierarchy
-      SCOPED_TRACE(std::to_string(int(p)));
-      Settings settings = presetSettings(p);
+    Settings flat = presetSettings(Preset::Reference);
+    flat.use_z_hierarchy = false;  // the Z_HIERARCHY=0 variant
+    for (const auto& [label, base] : {std::pair{"medium", presetSettings(Preset::Medium)}, std::pair{"no_hierarchy", flat}}) {
+      if (twoLayer && !base.use_z_hierarchy) continue;  // TWO_LAYER needs the z hierarchy
+      SCOPED_TRACE(label);
+      Settings settings = base;
       settings.fade_start = fadeStart;
       settings.fade_end = fadeEnd;
       compareWithCpu(*effect, cam, settings,
-                     {&depth, twoLayer ? &depth2 : nullptr, normals ? &n : nullptr, format},
-                     name + (p == Preset::Medium ? "_medium" : "_reference"));
+                     {&depth, twoLayer ? &depth2 : nullptr, normals ? &n : nullptr, format}, name + "_" + label);
     }
   }
 };

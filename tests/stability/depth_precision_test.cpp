@@ -100,7 +100,7 @@ std::vector<RoundTrip> roundTrip(const Camera& cam, DepthFormat format, const st
                                                             : storeDepth(format, gpuWindowDepth(c, z)));
     }
 
-  Settings settings;
+  Settings settings = fullResolution();
   settings.samples = 1;
   settings.blur_radius = 0;
   ParamBlock block;
@@ -271,11 +271,11 @@ TEST(DepthPrecision, FarNotBeyondNearIsRejected) {
   depth.extent = {8, 8};
   depth.format = DepthFormat::D32F;
   depth.texels.assign(64, std::bit_cast<std::uint32_t>(0.5f));
-  const std::string msg = expectRejected("near = far = 10 m", Settings{}, cam, {&depth, nullptr, nullptr}, StatusCode::InvalidCamera);
+  const std::string msg = expectRejected("near = far = 10 m", fullResolution(), cam, {&depth, nullptr, nullptr}, StatusCode::InvalidCamera);
   // An infinite far plane is a perspective-only notion.
   Camera ortho = orthoCamera(8, 8, 1.0, 10.0, ClipDepth::ZeroToOne, false);
   ortho.infiniteFar = true;
-  const std::string msg2 = expectRejected("orthographic with infinite far", Settings{}, ortho, {&depth, nullptr, nullptr},
+  const std::string msg2 = expectRejected("orthographic with infinite far", fullResolution(), ortho, {&depth, nullptr, nullptr},
                                           StatusCode::InvalidCamera);
   report("far <= near; orthographic with an infinite far plane", "rejected with InvalidCamera",
          "'" + msg + "'; '" + msg2 + "'");
@@ -437,8 +437,8 @@ TEST(DepthPrecision, ReversedZThroughGLMinusOneOneWithoutClipControl) {
   const std::vector<bool> sky = skyMaskOf(scene, cGl);
   CaseOptions o;
   o.skyMask = &sky;
-  const CaseRuns rGl = runCase("sphere-on-plane, reversed D32F GL [-1,1]", Settings{}, cGl, {&dGl, nullptr, nullptr}, o);
-  const CaseRuns rZo = runCase("sphere-on-plane, reversed D32F [0,1]", Settings{}, cZo, {&dZo, nullptr, nullptr}, o);
+  const CaseRuns rGl = runCase("sphere-on-plane, reversed D32F GL [-1,1]", fullResolution(), cGl, {&dGl, nullptr, nullptr}, o);
+  const CaseRuns rZo = runCase("sphere-on-plane, reversed D32F [0,1]", fullResolution(), cZo, {&dZo, nullptr, nullptr}, o);
   double worst = 0;
   for (const BackendRun& x : rGl.runs)
     if (const BackendRun* y = rZo.find(x.name)) {

@@ -58,7 +58,7 @@ TEST(FloatVsDouble, DefaultSceneWorstAODifference) {
     for (std::uint32_t x = 0; x < cam.width; ++x) sky[std::size_t(y) * cam.width + x] = primary.position.at(x, y, 3) == 0.0f;
   CaseOptions o;
   o.skyMask = &sky;
-  const CaseRuns runs = runCase("sponza-like 320x180, default settings", Settings{}, cam, {&primary.depth, nullptr, nullptr}, o);
+  const CaseRuns runs = runCase("sponza-like 320x180, default settings", fullResolution(), cam, {&primary.depth, nullptr, nullptr}, o);
   const BackendRun* dbl = runs.find("cpu-double");
   const BackendRun* flt = runs.find("cpu");
   ASSERT_TRUE(dbl && flt);

@@ -39,7 +39,7 @@ TEST(Resolution, TinyAndOddSizesRun) {
         const std::vector<bool> sky = skyMaskOf(scene, cam);
         CaseOptions o;
         o.skyMask = &sky;
-        const CaseRuns r = runCase(fmt("%ux%u guard %u %s", w, h, g, describe(cam).c_str()), Settings{}, cam,
+        const CaseRuns r = runCase(fmt("%ux%u guard %u %s", w, h, g, describe(cam).c_str()), fullResolution(), cam,
                                    {&depth, nullptr, nullptr}, o);
         if (g == 0 && reversed && !r.runs.empty()) {
           const Range a = range(r.runs.front().out.ao);
@@ -57,12 +57,12 @@ TEST(Resolution, LargestSideIsEnforcedWithAClearError) {
   depth.extent = {16385, 1};
   depth.texels.assign(16385, std::bit_cast<std::uint32_t>(0.5f));
   // The GL runner uploads before the effect validates: the texture upload fails first (finding F6).
-  const std::string m1 = expectRejected("16385x1", Settings{}, cam, {&depth, nullptr, nullptr}, StatusCode::InvalidExtent,
+  const std::string m1 = expectRejected("16385x1", fullResolution(), cam, {&depth, nullptr, nullptr}, StatusCode::InvalidExtent,
                                         /*gpuUploadMayFailFirst=*/true);
   cam = camera(16, 16, 0.1, kInf, ClipDepth::ZeroToOne, true, 0x80000000u);  // guard band 2^31: 64-bit sum
   depth.extent = {16, 16};
   depth.texels.assign(256, std::bit_cast<std::uint32_t>(0.5f));
-  const std::string m2 = expectRejected("guard 2^31", Settings{}, cam, {&depth, nullptr, nullptr}, StatusCode::InvalidExtent);
+  const std::string m2 = expectRejected("guard 2^31", fullResolution(), cam, {&depth, nullptr, nullptr}, StatusCode::InvalidExtent);
   report("largest side 16384: a 16385-wide viewport; a 2^31 guard band", "rejected with InvalidExtent",
          "'" + m1 + "'; '" + m2 + "'");
 }
@@ -96,7 +96,7 @@ TEST(Resolution, EightKRotationKeepsFullPrecision) {
   const std::uint32_t lo = std::bit_cast<std::uint32_t>(-1.0f), hi = std::bit_cast<std::uint32_t>(-1.0f + 0.002f);
   for (std::uint32_t y = 0; y < H; ++y)
     for (std::uint32_t x = 0; x < W; ++x) depth.texels[std::size_t(y) * W + x] = ((x + y) & 1) ? hi : lo;
-  Settings s;
+  Settings s = fullResolution();
   s.radius = 0.012f;
   s.bias = 0.0f;
   s.intensity = 0.05f / 0.012f;  // sigma*r = 0.05 m, the block's value from before sigma became unitless
@@ -277,7 +277,7 @@ TEST(Backends, RepeatedRunsReuseOneRunner) {
     FloatImage first;
     for (int i = 0; i < 6; ++i) {
       samples::RunOutputs out;
-      if (!runner->run(Settings{}, cam, {&depth, nullptr, nullptr}, false, false, out).ok()) std::_Exit(2);
+      if (!runner->run(fullResolution(), cam, {&depth, nullptr, nullptr}, false, false, out).ok()) std::_Exit(2);
       if (i == 0) first = out.ao;
       else if (maxAbsDiff(first, out.ao) != 0.0) std::_Exit(3);
     }

@@ -12,6 +12,7 @@
 #include <numbers>
 
 #include "analytic_scenes.h"
+#include "untuned_settings.h"
 #include "gl_support.h"
 #include "sao/gl/effect.h"
 #include "sao/gl/headless.h"
@@ -127,16 +128,16 @@ class WithGl : public VkTest {
     VkTest::TearDown();
   }
 };
-class VkVsGl : public WithGl, public ::testing::WithParamInterface<std::tuple<Preset, DepthFormat>> {};
+class VkVsGl : public WithGl, public ::testing::WithParamInterface<std::tuple<std::size_t, DepthFormat>> {};
 
 TEST_P(VkVsGl, SameOutput) {
-  const auto [preset, format] = GetParam();
-  const Settings settings = presetSettings(preset);
+  const auto [index, format] = GetParam();
+  const Settings settings = test::agreementSettings()[index].settings;
   const Camera cam = openglCamera(kW, kH, kGuard, 1000.0);
   std::unique_ptr<gl::Effect> glEffect;
   const Status gs = gl::Effect::create(gl::HeadlessContext::getProcAddress(), glEffect);
   ASSERT_TRUE(gs.ok()) << gs.message;
-  const std::string presetName(presets()[static_cast<std::size_t>(preset)].name);
+  const std::string presetName = test::agreementSettings()[index].name;
   Worst worst;
   for (const char* sceneName : {"plane", "crease", "sphere", "stairs", "rods"}) {
     SCOPED_TRACE(sceneName);
@@ -209,10 +210,10 @@ TEST_F(WithGl, DistanceFadeSameOutput) {
 
 INSTANTIATE_TEST_SUITE_P(
     Matrix, VkVsGl,
-    ::testing::Combine(::testing::Values(Preset::Low, Preset::Medium, Preset::High, Preset::Ultra, Preset::Reference),
+    ::testing::Combine(::testing::Range(std::size_t{0}, test::agreementSettings().size()),
                        ::testing::Values(DepthFormat::D16, DepthFormat::D24, DepthFormat::D32F)),
     [](const auto& info) {
-      return std::string(presets()[static_cast<std::size_t>(std::get<0>(info.param))].name) + "_" +
+      return test::agreementSettings()[std::get<0>(info.param)].name + "_" +
              toString(std::get<1>(info.param));
     });
 

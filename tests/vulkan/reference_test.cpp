@@ -11,6 +11,7 @@
 #include <mutex>
 
 #include "analytic_scenes.h"
+#include "untuned_settings.h"
 #include "normal_encodings.h"
 #include "sao/cpu/reference.h"
 #include "sao/presets.h"
@@ -68,13 +69,13 @@ class Summary : public ::testing::Environment {
 };
 const auto* const kSummary = ::testing::AddGlobalTestEnvironment(new Summary);
 
-class VkVsCpu : public VkTest, public ::testing::WithParamInterface<std::tuple<Preset, VkDepth>> {};
+class VkVsCpu : public VkTest, public ::testing::WithParamInterface<std::tuple<std::size_t, VkDepth>> {};
 
 TEST_P(VkVsCpu, FinalAndRawAoAgree) {
-  const auto [preset, format] = GetParam();
-  const Settings settings = presetSettings(preset);
+  const auto [index, format] = GetParam();
+  const Settings settings = test::agreementSettings()[index].settings;
   const Camera camera = cameraFor(format);
-  const std::string presetName(presets()[static_cast<std::size_t>(preset)].name);
+  const std::string presetName = test::agreementSettings()[index].name;
   Worst worst;
   for (const auto& scene : scenes()) {
     SCOPED_TRACE(scene.name);
@@ -119,10 +120,10 @@ TEST_P(VkVsCpu, FinalAndRawAoAgree) {
 
 INSTANTIATE_TEST_SUITE_P(
     Matrix, VkVsCpu,
-    ::testing::Combine(::testing::Values(Preset::Low, Preset::Medium, Preset::High, Preset::Ultra, Preset::Reference),
+    ::testing::Combine(::testing::Range(std::size_t{0}, test::agreementSettings().size()),
                        ::testing::Values(VkDepth::D16, VkDepth::X8D24, VkDepth::D32F)),
     [](const auto& info) {
-      return std::string(presets()[static_cast<std::size_t>(std::get<0>(info.param))].name) + "_" +
+      return test::agreementSettings()[std::get<0>(info.param)].name + "_" +
              toString(std::get<1>(info.param));
     });
 

@@ -26,7 +26,8 @@ struct Case {
 // Blurred (ao_halve reads ao_blur_h), and blur_radius 0 (blur_h is skipped and ao_halve reads
 // ao_raw through its alias_when).
 inline std::array<Case, 2> cases() {
-  const Settings medium = presetSettings(Preset::Medium);
+  Settings medium = presetSettings(Preset::Medium);
+  medium.resolution_divisor = 1;  // the new pass reads ao_blur_h at the output's size: full resolution
   Settings unblurred = medium;
   unblurred.blur_radius = 0;
   return {Case{"medium", medium}, Case{"blur_radius_0", unblurred}};

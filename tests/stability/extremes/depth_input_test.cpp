@@ -63,7 +63,7 @@ ValueCase runValues(const std::string& what, const Camera& cam, DepthFormat fm, 
   ValueCase vc;
   vc.convention = describe(cam);
   ParamBlock p;
-  EXPECT_TRUE(computeConstants(Settings{}, cam, fm == DepthFormat::LinearZ ? DepthEncoding::LinearZ : DepthEncoding::Hardware, p).ok());
+  EXPECT_TRUE(computeConstants(fullResolution(), cam, fm == DepthFormat::LinearZ ? DepthEncoding::LinearZ : DepthEncoding::Hardware, p).ok());
   const test::Scene plane = test::planeScene(2.0);
   for (int mode = 0; mode < 2; ++mode) {  // 0: planted in a plane; 1: per value, a whole frame
     const std::size_t frames = mode == 0 ? 1 : texels.size();
@@ -105,7 +105,7 @@ ValueCase runValues(const std::string& what, const Camera& cam, DepthFormat fm, 
       o.skyMask = &sky;
       const std::string label = fmt("%s, %s %s, %s", what.c_str(), vc.convention.c_str(), toString(fm),
                                     mode == 0 ? "planted" : valueName(std::bit_cast<float>(texels[f])).c_str());
-      const CaseRuns runs = runCase(label, Settings{}, cam, {&depth, nullptr, nullptr}, o);
+      const CaseRuns runs = runCase(label, fullResolution(), cam, {&depth, nullptr, nullptr}, o);
       for (const BackendRun& b : runs.runs) {
         const FloatImage* csz = b.intermediate("csz_level0");
         if (!csz) continue;

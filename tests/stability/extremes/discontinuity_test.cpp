@@ -18,7 +18,7 @@ TEST(Discontinuity, NoOnePixelLineAfterTheBlur) {
         const Camera cam = ortho ? orthoCamera(64, 48, 0.1, 100.0, ws.clip, ws.reversed, 8, 1.0)
                                  : camera(64, 48, 0.1, kInf, ws.clip, ws.reversed, 8);
         const test::Scene scene = cardOverWall(2.0, wallD, 0.5);
-        const SceneRun r = runScene(fmt("card at 2 m over wall at %g m, %s", wallD, describe(cam).c_str()), Settings{}, cam,
+        const SceneRun r = runScene(fmt("card at 2 m over wall at %g m, %s", wallD, describe(cam).c_str()), fullResolution(), cam,
                                     scene, ws.fm);
         const int W = int(cam.width), H = int(cam.height);
         for (const BackendRun& b : r.runs.runs) {

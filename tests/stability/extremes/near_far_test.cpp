@@ -21,7 +21,7 @@ TEST(Cameras, NearFarGridThroughTheEffectIsFinite) {
           DepthModel m;
           // Finite far/near >= 1e6 runs as it is (finding F1, fixed).
           ASSERT_TRUE(analyze(cam, m).ok()) << describe(cam);
-          const SceneRun r = runScene(fmt("near/far grid %s %s", describe(cam).c_str(), toString(fm)), Settings{}, cam, scene, fm);
+          const SceneRun r = runScene(fmt("near/far grid %s %s", describe(cam).c_str(), toString(fm)), fullResolution(), cam, scene, fm);
           runs += r.runs.runs.size();
         }
     }

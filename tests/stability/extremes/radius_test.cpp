@@ -40,7 +40,7 @@ std::vector<bool> unoccludedMask(const Camera& cam, const std::vector<double>& z
                                  OtherDistance others) {
   std::vector<bool> m(z.size(), false);
   ParamBlock pb;
-  Settings s;
+  Settings s = fullResolution();
   s.radius = float(radius);
   EXPECT_TRUE(computeConstants(s, cam, DepthEncoding::Hardware, pb).ok());
   const int W = int(cam.width), H = int(cam.height), g = int(cam.guardBand);
@@ -83,12 +83,12 @@ TEST(Radius, SubPixelRadiusFadesSmoothlyToOne) {
     const Camera cam = su.ortho ? orthoCamera(64, 48, 0.1, 100.0, ClipDepth::ZeroToOne, true, 8, 2.0)
                                 : camera(64, 48, 0.1, kInf, ClipDepth::ZeroToOne, true, 8);
     ParamBlock pb;
-    ASSERT_TRUE(computeConstants(Settings{}, cam, DepthEncoding::Hardware, pb).ok());
+    ASSERT_TRUE(computeConstants(fullResolution(), cam, DepthEncoding::Hardware, pb).ok());
     std::map<std::string, double> prevDark;
     std::string measured;
     std::size_t falseOcclusion = 0;
     for (double r : su.radii) {
-      Settings s;
+      Settings s = fullResolution();
       s.radius = float(r);
       s.intensity = su.intensity;
       const SceneRun run = runScene(fmt("radius %g, scene x%g, %s", r, su.k, describe(cam).c_str()), s, cam, scene, DepthFormat::D32F);
@@ -147,7 +147,7 @@ TEST(Radius, HugeRadiusAtTheNearPlaneIsClampedAndFinite) {
       for (const Conv& cv : {kConvs[1], kConvs[4]})
         for (bool hierarchy : {true, false}) {
           Camera cam = camera(w, h, n, cv.far, cv.clip, cv.reversed, g);
-          Settings s;
+          Settings s = fullResolution();
           s.radius = 100.0f;
           s.use_z_hierarchy = hierarchy;
           ParamBlock pb;
@@ -168,7 +168,7 @@ TEST(Radius, HugeRadiusAtTheNearPlaneIsClampedAndFinite) {
   // Orthographic: r' = r·S' = 100 m · 1200 px/m = 1.2e5 px, clamped as well.
   {
     const Camera cam = orthoCamera(64, 48, 0.01, 10.0, ClipDepth::ZeroToOne, true, 8, 0.02);
-    Settings s;
+    Settings s = fullResolution();
     s.radius = 100.0f;
     runScene("radius 100 m, orthographic 4 cm view of a crease 5 cm away", s, cam, test::creaseScene(0.05), DepthFormat::D32F);
   }

@@ -37,7 +37,7 @@ TEST(Settings, BothEndsOfEveryRangeStayInZeroOne) {
       for (double in : {settingMin(SettingId::intensity), settingMax(SettingId::intensity)})
         for (double ct : {settingMin(SettingId::contrast), settingMax(SettingId::contrast)})
           for (bool o : {false, true}) {
-            Settings s;
+            Settings s = fullResolution();
             gen::setSettingValue(s, SettingId::samples, sm);
             gen::setSettingValue(s, SettingId::blur_radius, br);
             gen::setSettingValue(s, SettingId::intensity, in);
@@ -53,7 +53,7 @@ TEST(Settings, BothEndsOfEveryRangeStayInZeroOne) {
     gen::setSettingValue(allMax, id, settingMax(id));
     gen::setSettingValue(allMin, id, settingMin(id));
     for (double v : {settingMin(id), settingMax(id)}) {
-      Settings s;
+      Settings s = fullResolution();
       gen::setSettingValue(s, id, v);
       ASSERT_TRUE(validate(s).ok()) << gen::kSettings[i].name << " = " << v;
       check(fmt("%s = %g", std::string(gen::kSettings[i].name).c_str(), v), s, persp, DepthFormat::D24);
@@ -84,7 +84,7 @@ TEST(Settings, OutOfRangeIsRejectedNotClamped) {
     std::vector<double> bad = {info.minValue - step, info.maxValue + step};
     if (info.type == gen::SettingType::Float) bad.insert(bad.end(), {double(NAN), kInf, -kInf});
     for (double v : bad) {
-      Settings s;
+      Settings s = fullResolution();
       gen::setSettingValue(s, SettingId(i), v);
       const std::string msg = expectRejected(fmt("%s = %g", std::string(info.name).c_str(), v), s, cam,
                                              {&depth, nullptr, nullptr}, StatusCode::InvalidSetting);

@@ -19,7 +19,7 @@ TEST(Sky, AllSkyFrameIsOneEverywhere) {
         const Camera cam = convCamera(cv, 64, 48, 4, ortho);
         CaseOptions o;
         o.dumpPasses = true;
-        const SceneRun r = runScene(fmt("all sky, %s %s", describe(cam).c_str(), toString(fm)), Settings{}, cam,
+        const SceneRun r = runScene(fmt("all sky, %s %s", describe(cam).c_str(), toString(fm)), fullResolution(), cam,
                                     test::skyScene(), fm, o);
         for (const BackendRun& b : r.runs.runs) {
           ++runs;
@@ -49,7 +49,7 @@ TEST(Sky, SkyNextToGeometryWithInfiniteFar) {
       const Camera cam = convCamera(cv, 64, 48, 4);
       CaseOptions o;
       o.dumpPasses = true;
-      const SceneRun r = runScene(fmt("sky next to geometry, %s %s", describe(cam).c_str(), toString(fm)), Settings{}, cam,
+      const SceneRun r = runScene(fmt("sky next to geometry, %s %s", describe(cam).c_str(), toString(fm)), fullResolution(), cam,
                                   scene, fm, o);
       const std::vector<bool> geom = notMask(r.sky);
       for (const BackendRun& b : r.runs.runs) {
@@ -73,7 +73,7 @@ TEST(Sky, SkyNextToGeometryWithInfiniteFar) {
     CaseOptions o;
     o.skyMask = &sky;
     o.dumpPasses = true;
-    const CaseRuns runsCb = runCase(fmt("sky checkerboard, %s", describe(cam).c_str()), Settings{}, cam, {&depth, nullptr, nullptr}, o);
+    const CaseRuns runsCb = runCase(fmt("sky checkerboard, %s", describe(cam).c_str()), fullResolution(), cam, {&depth, nullptr, nullptr}, o);
     for (const BackendRun& b : runsCb.runs) {
       ++runs;
       for (const auto& [name, img] : b.out.intermediates) EXPECT_TRUE(allFinite(img)) << b.name << " " << name;

@@ -39,7 +39,7 @@ TEST(Walls, FacingAndGrazingWallNeedNoMoreThanTheDefaultBias) {
   // wall pixels whose taps stay inside the input. Grazing walls also run without the z hierarchy,
   // which separates depth precision from the MIP approximation (eq. 9-10: a tap at h >= 2^log_q
   // px reads z from a neighbouring texel of a coarser level, while Q keeps the tap pixel's centre).
-  const float defaultBias = Settings{}.bias;
+  const float defaultBias = fullResolution().bias;
   // Per condition (facing; grazing with the z hierarchy; grazing without), over every backend.
   double worstNeeded[3] = {0, 0, 0}, minAtDefaultAll[3] = {1, 1, 1};
   std::string failing;
@@ -57,7 +57,7 @@ TEST(Walls, FacingAndGrazingWallNeedNoMoreThanTheDefaultBias) {
             const double radius = scaledRadius ? std::clamp(8.0 * D / (0.5 * 48 * std::sqrt(3.0)), 0.01, 100.0) : 1.0;
             std::map<std::string, double> needed, minAtDefault;
             for (double bias : kBiases) {
-              Settings s;
+              Settings s = fullResolution();
               s.radius = float(radius);
               s.bias = float(bias);
               s.use_z_hierarchy = hierarchy;
@@ -124,7 +124,7 @@ TEST(Walls, OrthographicFacingAndGrazingWall) {
           const Camera cam = orthoCamera(64, 48, 0.1, 2 * D + 10, ws.clip, ws.reversed, 8, 0.05);
           double need = INFINITY, minDefault = 1;
           for (double bias : kBiases) {
-            Settings s;
+            Settings s = fullResolution();
             s.radius = 0.05f;
             s.bias = float(bias);
             s.use_z_hierarchy = hierarchy;
@@ -135,9 +135,9 @@ TEST(Walls, OrthographicFacingAndGrazingWall) {
                                         s, cam, turnedWall(D, angle), ws.fm);
             double m = 1;
             for (const BackendRun& b : r.runs.runs) m = std::min(m, wallMinA(b, r, cam, p));
-            if (s.bias == Settings{}.bias) minDefault = m;
+            if (s.bias == fullResolution().bias) minDefault = m;
             if (m >= 1.0 - k255 && std::isinf(need)) need = bias;
-            if (!std::isinf(need) && s.bias >= Settings{}.bias) break;
+            if (!std::isinf(need) && s.bias >= fullResolution().bias) break;
           }
           if (angle == 0.0 || !hierarchy) {
             EXPECT_GE(minDefault, 1.0 - k255) << ws.name << " " << angle << " deg D = " << D;

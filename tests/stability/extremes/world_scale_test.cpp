@@ -39,8 +39,8 @@ bool intensityScalesWithUnits() {
   Camera c1 = camera(16, 16, 0.1, kInf, ClipDepth::ZeroToOne, true), c2 = c1;
   c2.metersToViewUnits = 1000.0;
   ParamBlock p1, p2;
-  EXPECT_TRUE(computeConstants(Settings{}, c1, DepthEncoding::Hardware, p1).ok());
-  EXPECT_TRUE(computeConstants(Settings{}, c2, DepthEncoding::Hardware, p2).ok());
+  EXPECT_TRUE(computeConstants(fullResolution(), c1, DepthEncoding::Hardware, p1).ok());
+  EXPECT_TRUE(computeConstants(fullResolution(), c2, DepthEncoding::Hardware, p2).ok());
   return std::fabs(double(p2.intensity_div_s) / p1.intensity_div_s - 1000.0) < 1e-3;
 }
 
@@ -55,9 +55,9 @@ TEST(WorldScale, MilliAndKiloUnitsLeaveAUnchanged) {
   for (const ScaleSetup& su : kScaleSetups) {
     // Orthographic views along -z see the floor edge-on: they look at the 90° crease instead.
     const test::Scene scene = su.ortho ? test::creaseScene(5.0) : test::sphereOnPlaneScene();
-    const SceneRun r1 = runScene(fmt("world scale 1, %s", su.name), Settings{}, scaleCamera(su, 1.0), scene, su.fm);
+    const SceneRun r1 = runScene(fmt("world scale 1, %s", su.name), fullResolution(), scaleCamera(su, 1.0), scene, su.fm);
     for (double u : {1e-3, 1e3}) {
-      const SceneRun ru = runScene(fmt("world scale %g, %s", u, su.name), Settings{}, scaleCamera(su, u),
+      const SceneRun ru = runScene(fmt("world scale %g, %s", u, su.name), fullResolution(), scaleCamera(su, u),
                                    scaledScene(scene, u), su.fm);
       double worst = 0;
       std::size_t compared = 0;
@@ -84,10 +84,10 @@ TEST(WorldScale, PhysicalScaleWithTheRadiusLeavesAUnchanged) {
   // tell the two apart.
   const test::Scene scene = test::sphereOnPlaneScene();
   const Camera cam = camera(64, 48, 0.1, kInf, ClipDepth::ZeroToOne, true, 8);
-  const SceneRun r1 = runScene("physical scale 1", Settings{}, cam, scene, DepthFormat::D32F);
+  const SceneRun r1 = runScene("physical scale 1", fullResolution(), cam, scene, DepthFormat::D32F);
   std::string measured;
   for (double k : {0.1, 10.0}) {
-    Settings s;
+    Settings s = fullResolution();
     s.radius = float(1.0 * k);
     s.epsilon = float(1e-4 * k * k);
     s.quad_edge_threshold = float(0.02 * k);
@@ -127,7 +127,7 @@ TEST(WorldScale, UnitsSweepFindsTheRangeThatHolds) {
   std::size_t rejected = 0;
   CaseOptions refs;
   refs.only = {"cpu-double", "cpu"};
-  const SceneRun b1 = runScene("units sweep base", Settings{}, scaleCamera(su, 1.0), scene, su.fm, refs);
+  const SceneRun b1 = runScene("units sweep base", fullResolution(), scaleCamera(su, 1.0), scene, su.fm, refs);
   for (int sign : {-1, 1})
     for (int e = 1; e <= 20; ++e) {
       const int k = sign * e;
@@ -144,7 +144,7 @@ TEST(WorldScale, UnitsSweepFindsTheRangeThatHolds) {
         continue;
       }
       ASSERT_TRUE(ast.ok()) << "u = 1e" << k << " is inside " << kRangeText << " but rejected: " << ast.message;
-      const SceneRun r = runScene(fmt("units sweep u=1e%d", k), Settings{}, cu, scaledScene(scene, u), su.fm, refs);
+      const SceneRun r = runScene(fmt("units sweep u=1e%d", k), fullResolution(), cu, scaledScene(scene, u), su.fm, refs);
       double worst = 0;
       for (const BackendRun& b : r.runs.runs)
         if (const BackendRun* x = b1.runs.find(b.name)) worst = std::max(worst, maxAbsDiff(b.out.ao, x->out.ao));
@@ -171,7 +171,7 @@ TEST(WorldScale, UnitsSweepFindsTheRangeThatHolds) {
   const DepthImage probe = renderGpuDepth(scene, scaleCamera(su, 1.0), su.fm);
   std::string messages;
   for (double u : {1e-7, 1e7}) {
-    const std::string msg = expectRejected(fmt("metersToViewUnits %g", u), Settings{}, scaleCamera(su, u),
+    const std::string msg = expectRejected(fmt("metersToViewUnits %g", u), fullResolution(), scaleCamera(su, u),
                                            {&probe, nullptr, nullptr}, StatusCode::InvalidCamera);
     EXPECT_NE(msg.find(kRangeText), std::string::npos) << "u = " << u << ": '" << msg << "'";
     messages += fmt("%s'%s'", messages.empty() ? "" : "; ", msg.c_str());
