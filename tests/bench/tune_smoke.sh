@@ -1,7 +1,7 @@
 #!/bin/sh
 # The sao-bench --tune smoke test (--quick: two scenes, 24 grid candidates, the untuned medium and defaults, today's 5 presets, the
 # AlchemyAO-style baseline and 3 more measurements of medium (the time anchors), on the cpu
-# backend): it writes tune.csv (one row per candidate, a header with the scenes), tune_front.csv/.svg and tune_presets.txt with five pasteable preset
+# backend): it writes tune.csv (one row per candidate, a header with the scenes), tune_front.csv/.svg and tune_presets.txt with pasteable preset
 # lines; the chosen chain steps up on every scene (slower, lower RMSE vs (c)); a second run into
 # the same folder evaluates nothing, leaves tune.csv as it was and writes the same tune_presets.txt;
 # a run after losing rows evaluates exactly the lost ones; a tune.csv with another header is refused.
@@ -25,9 +25,14 @@ for label in "Pareto front" "tuned presets" "today's presets" "AlchemyAO-style b
   grep -qF ">$label<" "$out/t/tune_front.svg" || die "tune_front.svg has no series '$label'"
 done
 
-# Five preset lines, in the effect's format, named as today's presets.
-[ "$(grep -c '^#pragma sao preset ' "$out/t/tune_presets.txt")" -eq 5 ] || die "expected 5 preset lines: $(cat "$out/t/tune_presets.txt")"
-[ "$(awk '/^#pragma sao preset/ { printf "%s ", $4 }' "$out/t/tune_presets.txt")" = "low medium high ultra reference " ] ||
+# Preset lines in the effect's format, named as today's presets, cheapest first. Five when a chain
+# of five steps up on every scene; the tuner falls back to the longest shorter chain (and says so)
+# when the run's times allow none: how many depends on timing (under the sanitizers four were
+# chosen once), so at least two are asked for here, in budget order.
+[ "$(grep -c '^#pragma sao preset ' "$out/t/tune_presets.txt")" -ge 2 ] || die "expected at least 2 preset lines: $(cat "$out/t/tune_presets.txt")"
+awk '/^#pragma sao preset/ { print $4 }' "$out/t/tune_presets.txt" | awk '
+  BEGIN { rank["low"] = 1; rank["medium"] = 2; rank["high"] = 3; rank["ultra"] = 4; rank["reference"] = 5 }
+  { if (!($1 in rank) || rank[$1] <= last) bad = 1; last = rank[$1] } END { exit bad }' ||
   die "preset names: $(cat "$out/t/tune_presets.txt")"
 grep '^#pragma sao preset' "$out/t/tune_presets.txt" | grep -qv ' samples=[0-9]* blur_radius=[0-9] blur_stride=[0-9] use_z_hierarchy=\(true mip_switch_log2=[0-9]\|false\) resolution_divisor=[124] "[^"]*"$' &&
   die "a preset line is not in the effect's format: $(grep '^#pragma' "$out/t/tune_presets.txt")"
@@ -38,11 +43,15 @@ awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
   $1 == "tuned" || $1 == "front+tuned" { rank["low"] = 1; rank["medium"] = 2; rank["high"] = 3; rank["ultra"] = 4; rank["reference"] = 5
     k = rank[$2]; n++
     for (s = 1; s <= 2; s++) { sc = s == 1 ? "crease" : "sphere-plane"; t[k, s] = $col[sc "_x_medium"]; e[k, s] = $col[sc "_rmse_vs_c"] } }
-  END { if (n != 5) exit 1
-    for (k = 2; k <= 5; k++) for (s = 1; s <= 2; s++)
-      if (!(t[k, s] > t[k - 1, s] && e[k, s] < e[k - 1, s])) { print "step " k " scene " s > "/dev/stderr"; exit 1 } }' \
+  END { if (n < 2) exit 1
+    prev = 0
+    for (k = 1; k <= 5; k++) {
+      if (!((k, 1) in t)) continue
+      if (prev) for (s = 1; s <= 2; s++)
+        if (!(t[k, s] > t[prev, s] && e[k, s] < e[prev, s])) { print "step " k " scene " s > "/dev/stderr"; exit 1 }
+      prev = k } }' \
   "$out/t/tune_front.csv" || die "the chosen chain does not step up on every scene: $(grep '^\(front+\)\?tuned,' "$out/t/tune_front.csv")"
-grep -q '^targets: 5 presets' "$out/stdout" || die "no targets line: $(tail -5 "$out/stdout")"
+grep -q '^targets: [2-5] presets' "$out/stdout" || die "no targets line: $(tail -5 "$out/stdout")"
 
 # Resumed: nothing new, the same record and the same presets.
 cp "$out/t/tune.csv" "$out/tune.csv.first"
