@@ -151,7 +151,6 @@ int runTune(const TuneOptions& o) {
   std::vector<const TuneRow*> rows;
   for (const Candidate& c : candidates) rows.push_back(csv.find(templateRow(c).key()));
   r.medium = rows[anchors.front()];
-  r.defaults = rows[1];
   r.driftMin = r.driftMax = 1;
   for (std::size_t a : anchors) {
     for (const SceneFigures& s : rows[a]->scenes)
@@ -172,8 +171,7 @@ int runTune(const TuneOptions& o) {
   };
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     if (candidates[i].kind == "anchor") continue;
-    TunePoint p{rows[i], 0, rows[i]->meanRmse(), {}, 0};
-    for (const SceneFigures& s : rows[i]->scenes) p.meanBlotch += s.blotch / double(rows[i]->scenes.size());
+    TunePoint p{rows[i], 0, rows[i]->meanRmse(), {}};
     double unit = 0;
     for (std::size_t s = 0; s < sceneNames.size(); ++s) {
       unit += mediumAt(i, s);
@@ -185,7 +183,7 @@ int runTune(const TuneOptions& o) {
     (i < referenceCount ? r.references : r.grid).push_back(p);
   }
   r.front = paretoFront(r.grid);
-  r.blotchLimit = kDefaultBlotchShare * r.references[1].meanBlotch;
+  r.blotchLimit = kDefaultBlotchShare * rows[1]->meanBlotch();  // rows[1]: the untuned defaults
   choose(r);
   const std::vector<std::string> files = writeTuneOutputs(o.out, r);
 

@@ -73,6 +73,12 @@ double TuneRow::meanRmse() const {
   return scenes.empty() ? NAN : e / double(scenes.size());
 }
 
+double TuneRow::meanBlotch() const {
+  double e = 0;
+  for (const SceneFigures& s : scenes) e += s.blotch;
+  return scenes.empty() ? NAN : e / double(scenes.size());
+}
+
 TuneCsv::~TuneCsv() {
   if (file_) std::fclose(file_);
 }

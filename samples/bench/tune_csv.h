@@ -32,6 +32,7 @@ struct TuneRow {
   std::string key() const;  // every column but runs and the figures
   double totalMs() const;
   double meanRmse() const;
+  double meanBlotch() const;  // the blotch RMSE (error_structure.h), mean over the scenes
 };
 
 class TuneCsv {

@@ -125,7 +125,7 @@ void printTable(const TuneResult& r, const std::string& title, const std::vector
   for (const auto& [name, p] : rows) {
     std::printf("%-16s %9.3f", name.c_str(), p->timeX);
     for (const SceneFigures& s : p->row->scenes) std::printf(" %12.4f", s.rmse);
-    std::printf(" %8.4f %8.4f %10.4f  %s%s\n", p->meanRmse, meanOf(*p->row, &SceneFigures::blotch),
+    std::printf(" %8.4f %8.4f %10.4f  %s%s\n", p->meanRmse, p->row->meanBlotch(),
                 meanOf(*p->row, &SceneFigures::silhouette), settingsWords(p->row->settings).c_str(),
                 p->row->inputs == "depth" ? "" : (" (" + p->row->inputs + ")").c_str());
   }
@@ -157,8 +157,9 @@ void printTuneSummary(const TuneResult& r) {
       const TunePoint& p = r.grid[r.chain[k]];
       std::printf("\nthe default preset (%s): blotch %.4f against the untuned defaults' %.4f (x%.2f; <= %.2f: %s), time "
                   "x%.3f of the untuned defaults' (<= 1: %s)\n",
-                  r.chainNames[k].c_str(), p.meanBlotch, r.references[1].meanBlotch, p.meanBlotch / r.references[1].meanBlotch,
-                  kDefaultBlotchShare, p.meanBlotch <= r.blotchLimit ? "met" : "NOT met", p.timeX / r.references[1].timeX,
+                  r.chainNames[k].c_str(), p.row->meanBlotch(), r.references[1].row->meanBlotch(),
+                  p.row->meanBlotch() / r.references[1].row->meanBlotch(), kDefaultBlotchShare,
+                  p.row->meanBlotch() <= r.blotchLimit ? "met" : "NOT met", p.timeX / r.references[1].timeX,
                   p.timeX <= r.references[1].timeX ? "met" : "NOT met");
     }
   if (r.chain.size() >= 2) {

@@ -15,7 +15,6 @@ struct TuneResult {
   std::string backend, depth;
   Extent size{0, 0};
   const TuneRow* medium = nullptr;       // the untuned medium (tune_grid.h), the time unit
-  const TuneRow* defaults = nullptr;     // the untuned defaults, the blotch baseline
   std::vector<TunePoint> grid;           // every grid candidate
   std::vector<std::size_t> front;        // paretoFront(grid)
   std::vector<std::size_t> chain;        // chooseChain(grid, ...): the tuned presets, cheapest first

@@ -37,7 +37,7 @@ std::vector<std::size_t> chooseChain(const std::vector<TunePoint>& points, const
                                      const std::vector<double>& maxBlotch) {
   const std::size_t n = points.size(), k = budgets.size();
   if (k == 0 || n < k || (!maxBlotch.empty() && maxBlotch.size() != k)) return {};
-  auto allowed = [&](std::size_t budget, const TunePoint& p) { return maxBlotch.empty() || p.meanBlotch <= maxBlotch[budget]; };
+  auto allowed = [&](std::size_t budget, const TunePoint& p) { return maxBlotch.empty() || p.row->meanBlotch() <= maxBlotch[budget]; };
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(),

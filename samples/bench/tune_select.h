@@ -14,7 +14,6 @@ struct TunePoint {
   const TuneRow* row = nullptr;
   double timeX = 0, meanRmse = 0;
   std::vector<double> sceneX;
-  double meanBlotch = 0;  // blotch RMSE (error_structure.h), mean over the scenes
 };
 
 // Indices of the points no other point beats in both time and mean RMSE (ties: the first), by time.
@@ -28,7 +27,7 @@ bool stepsUp(const TunePoint& a, const TunePoint& b);
 // by which the point's time lies outside its budget's window (budget/2, budget]: within the window
 // the lowest error wins, outside it the nearest time. Dynamic programme over the points sorted by
 // time, O(budgets x points^2 x scenes); ties go to the earlier point (grid order). `maxBlotch`
-// (empty, or one per budget; infinity for none) excludes points whose meanBlotch exceeds it from
+// (empty, or one per budget; infinity for none) excludes points whose row's meanBlotch() exceeds it from
 // that budget's place. Empty when no chain of that length exists.
 inline constexpr double kOutsidePenalty = 10;
 std::vector<std::size_t> chooseChain(const std::vector<TunePoint>& points, const std::vector<double>& budgets,
