@@ -58,7 +58,7 @@
 #pragma sao constant uint SAO_PHASE_MUL=1270342730 "Eq. 8 rotation: 2*SAO_PHASE_MUL/2^32 = frac(10/(2*pi)), turning the hash times 10 radians into 2^-32 turns"
 #pragma sao constant int  SAO_DEPTH_MODE_PERSPECTIVE=0 "depth_mode: hardware depth of a perspective projection, z = c0/(d*c1 + c2) (eq. 2)"
 #pragma sao constant int  SAO_DEPTH_MODE_ORTHOGRAPHIC=1 "depth_mode: hardware depth of an orthographic projection, z = d*c1 + c2"
-#pragma sao constant float SAO_UPSAMPLE_Z_SHARPNESS=16.0 "upsample depth weight max(0, 1 - SHARPNESS*|z - z_low|/|z|): low-resolution texels 1/16 (6.25%) apart in relative z get weight 0"
+#pragma sao constant float SAO_UPSAMPLE_Z_SHARPNESS=16.0 "upsample depth weight max(0, 1 - SHARPNESS*|z - z_low|/|z|): low-resolution texels 1/16 (6.25%) apart in relative z get weight 0 (64 and 256 compared in docs/BENCHMARKS.md, Reduced resolution)"
 #pragma sao constant int  SAO_DEPTH_MODE_LINEAR=2 "depth_mode: the input already holds linear camera-space z (R32F), z = d*c1 + c2 (normally c1 = 1, c2 = 0)"
 #pragma sao constant int  SAO_NORMALS_CAMERA_XYZ=0 "normals_encoding: camera-space normal in .xyz (sao::NormalsEncoding::CameraXyz)"
 #pragma sao constant int  SAO_NORMALS_WORLD_XYZ=1 "normals_encoding: world-space normal in .xyz, rotated by view_x/y/z (WorldXyz)"
@@ -353,9 +353,9 @@ vec2 sao_up_low(ivec2 q, ivec2 origin)
 
 // A at viewport pixel x (csz z): the 2x2 low texels whose representative pixels bracket x, weighted
 // bilinearly by x's place between those pixels times the depth weight; when none matches x's z (a
-// silhouette, or a thin object the reduced image missed), the A of the texel nearest in z among
-// the 3x3 around the one holding x (first in row order on ties), so no average of the two sides
-// makes a halo; all sky gives 1. d is a power of two: shifts stand for its divisions and products.
+// silhouette, or a thin object the reduced image missed), the A of the texels nearest in z among
+// the 3x3 around the one holding x (below), so no average of the two sides makes a halo; all sky
+// gives 1. d is a power of two: shifts stand for its divisions and products.
 float sao_upsample(ivec2 x, float z, int d, ivec2 last, ivec2 origin)
 {
     if (sao_is_sky(z))
@@ -378,19 +378,32 @@ float sao_upsample(ivec2 x, float z, int d, ivec2 last, ivec2 origin)
     float wsum = ((w00 + w10) + w01) + w11;
     if (wsum > 0.0)
         return (((w00 * s00.x + w10 * s10.x) + w01 * s01.x) + w11 * s11.x) / wsum;
+    // No texel matches: the 3x3 around the texel holding x, each within 1/SHARPNESS (relative) of
+    // the nearest z weighted linearly down to 0 at that distance. Texels of equal z (a receding
+    // floor's row) share the pixel: a single nearest texel, first in row order on ties, made
+    // the choice hang on the last bit of z (the same scene in mm gave other texels' A).
     ivec2 c = min(x >> sh, last);
-    float a = 1.0;
     float best = -1.0;
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
+            float zl = sao_up_low(clamp(c + ivec2(dx, dy), ivec2(0), last), origin).y;
+            if (!sao_is_sky(zl))
+                best = (best < 0.0) ? abs(z - zl) : min(best, abs(z - zl));
+        }
+    if (best < 0.0)
+        return 1.0;
+    float sum = 0.0;
+    float vsum = 0.0;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
             vec2 s = sao_up_low(clamp(c + ivec2(dx, dy), ivec2(0), last), origin);
-            float e = abs(z - s.y);
-            if (!sao_is_sky(s.y) && (best < 0.0 || e < best)) {
-                best = e;
-                a = s.x;
+            if (!sao_is_sky(s.y)) {
+                float v = max(0.0, 1.0 - k * (abs(z - s.y) - best));
+                sum += v * s.x;
+                vsum += v;
             }
         }
-    return a;
+    return sum / vsum;
 }
 
 void sao_upsample_main()

@@ -366,19 +366,27 @@ T upsample(const Image<T>& low, int x, int y, T z, int d, int fullW, int fullH) 
     return (((w00 * low.at(q0x, q0y, 0) + w10 * low.at(q1x, q0y, 0)) + w01 * low.at(q0x, q1y, 0)) +
             w11 * low.at(q1x, q1y, 0)) /
            wsum;
+  // The 3x3 around the texel holding x, within 1/SHARPNESS (relative) of the nearest z, weighted
+  // linearly down to 0 (texels of equal z share the pixel).
   const int cx = std::min(x >> sh, lastX), cy = std::min(y >> sh, lastY);
-  T a = T(1), best = T(-1);
+  T best = T(-1);
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const T zl = low.at(std::clamp(cx + dx, 0, lastX), std::clamp(cy + dy, 0, lastY), 1);
+      if (!isSky(zl)) best = best < T(0) ? std::abs(z - zl) : glslMin(best, std::abs(z - zl));
+    }
+  if (best < T(0)) return T(1);
+  T sum = T(0), vsum = T(0);
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
       const int qx = std::clamp(cx + dx, 0, lastX), qy = std::clamp(cy + dy, 0, lastY);
       const T zl = low.at(qx, qy, 1);
-      const T e = std::abs(z - zl);
-      if (!isSky(zl) && (best < T(0) || e < best)) {
-        best = e;
-        a = low.at(qx, qy, 0);
-      }
+      if (isSky(zl)) continue;
+      const T v = glslMax(T(0), T(1) - k * (std::abs(z - zl) - best));
+      sum += v * low.at(qx, qy, 0);
+      vsum += v;
     }
-  return a;
+  return sum / vsum;
 }
 
 // sao_round_to_half (float only: the shader's own rounding).

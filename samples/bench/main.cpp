@@ -52,18 +52,20 @@ a cache model: a paper-like GPU and this CPU) writes traffic.csv; the calibrate 
 bias and epsilon of the medium preset fitted to (a) over a grid) writes calibration.csv; the spiral section
 (our former lattice criterion against G3D's table, the shipped one, by error against (c)) writes spiral.csv;
 the frames section (a static camera's frames averaged, Inputs::frameIndex, against one frame with 4x
-the taps, by error against (c)) writes frames.csv.)";
+the taps, by error against (c)) writes frames.csv; the divisor section (every preset at resolution_divisor 1, 2
+and 4: error vs (c) on every scene at --size on the first backend, time at 1920x1080 on every backend) writes
+rows "divisor" and "divisor_time" into results.csv.)";
 
 // The parts of the run, in the order they run (--sections picks some).
 const std::vector<std::string> kSections = {"presets",    "samples",   "mip_blur", "radius",
                                             "resolution", "two_layer", "precision", "traffic",
-                                            "spiral",     "frames",    "calibrate"};
+                                            "divisor",    "spiral",    "frames",    "calibrate"};
 
 // The calibrate section searches a grid (about 20 minutes at 640x360 here), the spiral section
-// every differing sample count (about 5), the frames section 16 frames of three presets per scene:
-// asked for by name only.
+// every differing sample count (about 5), the frames section 16 frames of three presets per scene,
+// the divisor section every preset at three divisors on every scene: asked for by name only.
 bool inDefaultRun(const std::string& section) {
-  return section != "calibrate" && section != "spiral" && section != "frames";
+  return section != "calibrate" && section != "spiral" && section != "frames" && section != "divisor";
 }
 
 std::string sectionNames() {
@@ -109,7 +111,7 @@ Options parse(int argc, char** argv) {
   cl.text("--out", o.out, "DIR", "output folder (default out/bench)");
   cl.text("--backends", o.backends, "LIST",
           "comma-separated: cpu,gl,vulkan (default: gl,vulkan,cpu, those that start; the others are skipped)");
-  cl.value("--sections", "LIST", "comma-separated parts to run (default: all but calibrate, spiral and frames, grid searches of about 20 and 5 minutes and a frame accumulation):\n" + sectionNames(),
+  cl.value("--sections", "LIST", "comma-separated parts to run (default: all but calibrate, spiral, frames and divisor: grid searches of about 20 and 5 minutes, a frame accumulation and a preset x divisor matrix):\n" + sectionNames(),
            [&o](const std::string& v) { o.sections = parseSections(v); });
   cli::addRuns(cl, o.runs, 1, "measured runs per point, after one warm-up", "default 5");
   cli::addRays(cl, "--rays", o.rays, "reference rays per pixel", "default 256");
@@ -403,6 +405,25 @@ int main(int argc, char** argv) {
     for (Extent e : o.quick ? std::vector<Extent>{{160, 90}, {320, 180}}
                             : std::vector<Extent>{{1280, 720}, {1920, 1080}, {2560, 1600}})
       for (auto& b : backends) run("resolution", mainScene, *b, "medium", "", base, e, false);
+
+  // divisor ([resolution]): every preset at resolution_divisor 1, 2 and 4, the rest of the preset
+  // unchanged. Error vs (c) on every scene at --size (first backend); time on the main scene at
+  // 1920x1080 on every backend, the three divisors of a preset one after another so that their
+  // ratios come from the same minute of this noisy machine.
+  if (want("divisor")) {
+    const std::vector<int> divisors = o.quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 4};
+    const Extent timeSize = o.quick ? size : Extent{1920, 1080};
+    for (const auto& p : presets()) {
+      if (o.quick && p.preset != Preset::High) continue;
+      for (int d : divisors) {
+        Settings t = presetSettings(p.preset);
+        t.resolution_divisor = d;
+        const std::string variant = "divisor=" + std::to_string(d);
+        for (const auto& scene : sceneNames) run("divisor", scene, first, std::string(p.name), variant, t, size, true);
+        for (auto& b : backends) run("divisor_time", mainScene, *b, std::string(p.name), variant, t, timeSize, false);
+      }
+    }
+  }
 
   // two_layer: the default scene with and without the second depth layer, every backend.
   if (want("two_layer"))

@@ -104,6 +104,55 @@ def tables(folder):
                       f(r["ao_sample_ms"]), f(r["blur_h_ms"]), f(r["blur_v_ms"]), f(r["total_ms"]),
                       f(r["ns_per_pixel"]), r["timing_method"]] for r in res]))
 
+    div = sec("divisor")
+    if div:
+        err = {(r["scene"], r["preset"], r["resolution_divisor"]): r for r in div}
+        divisors = sorted({r["resolution_divisor"] for r in div}, key=int)
+        scenes = list(dict.fromkeys(r["scene"] for r in div))
+        names = list(dict.fromkeys(r["preset"] for r in div))
+        r0 = div[0]
+        print(f"\n### Resolution divisor: error vs (c) per preset at divisors {', '.join(divisors)} "
+              f"({r0['backend']}, {r0['width']}x{r0['height']})\n")
+        print("Each preset as it is, only resolution_divisor changed. +: the RMSE over the same preset at full "
+              "resolution; silhouette: the error within 3 px of a depth edge, over full resolution's.\n")
+        hdr = ["scene", "preset", "RMSE (c) 1/1"]
+        for d in divisors[1:]:
+            hdr += [f"+ at 1/{d}", f"silhouette 1/{d}"]
+        out_rows = []
+        for sc in scenes:
+            for p in names:
+                full = err.get((sc, p, "1"))
+                if not full:
+                    continue
+                row = [sc, p, gn(full["converged_rmse_raw"], 4)]
+                for d in divisors[1:]:
+                    r = err.get((sc, p, d))
+                    if not r:
+                        row += ["", ""]
+                        continue
+                    row.append(f"{float(r['converged_rmse_raw']) - float(full['converged_rmse_raw']):+.4f}")
+                    sil, sil1 = r["converged_silhouette_rmse"], full["converged_silhouette_rmse"]
+                    row.append(f"{float(sil) / float(sil1):.2f}×" if sil not in ("", "n/a") and sil1 not in ("", "n/a")
+                               and float(sil1) > 0 else "n/a")
+                out_rows.append(row)
+        print(table(hdr, out_rows))
+    times = sec("divisor_time")
+    if times:
+        t = {(r["backend"], r["preset"], r["resolution_divisor"]): r for r in times}
+        divisors = sorted({r["resolution_divisor"] for r in times}, key=int)
+        r0 = times[0]
+        print(f"\n### Resolution divisor: time per preset ({r0['scene']}, {r0['width']}x{r0['height']}, median ms; "
+              "a preset's divisors measured one after another)\n")
+        hdr = ["backend", "preset"] + [f"total 1/{d}" for d in divisors] + [f"1/{d} ÷ 1/1" for d in divisors[1:]] + \
+              [f"upsample 1/{d}" for d in divisors[1:]]
+        out_rows = []
+        for (b, p) in dict.fromkeys((r["backend"], r["preset"]) for r in times):
+            full = float(t[(b, p, "1")]["total_ms"])
+            out_rows.append([b, p] + [f(t[(b, p, d)]["total_ms"]) for d in divisors] +
+                            [f"{float(t[(b, p, d)]['total_ms']) / full:.2f}" for d in divisors[1:]] +
+                            [f(t[(b, p, d)]["upsample_ms"]) for d in divisors[1:]])
+        print(table(hdr, out_rows))
+
     two = sec("two_layer")
     if two:
         print("\n### Two depth layers (medium)\n")

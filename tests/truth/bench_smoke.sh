@@ -111,6 +111,7 @@ awk -F, '$3 ~ /^inf$/ && $6 == 10 && (($2 == "D16" && $4 == "standard") || ($2 =
 # RMSE vs (a) in [0, 0.3) and a fitted scale in (0.2, 5) (measured: 0.048-0.080 and 0.88-1.83; an
 # AO of all 0 gives RMSE 0.97 and scale 0.04), four points.
 test ! -e "$out/all/calibration.csv" || die "the default sections ran calibrate (it is asked for by name)"
+[ "$(awk -F, '$1 ~ /^divisor/' "$csv" | wc -l)" -eq 0 ] || die "the default sections ran divisor (it is asked for by name)"
 "$bench" --quick --backends cpu --sections calibrate --out "$out/cal" >/dev/null 2>"$out.stderr" || die "--sections calibrate failed: $(tail -2 "$out.stderr")"
 cal=$out/cal/calibration.csv
 [ "$(head -1 "$cal")" = "stage,radius_m,width,height,intensity,contrast,bias,epsilon,scene,ao_rmse_raw,ao_fitted_scale,ao_rmse_fitted,ao_bias_raw,total_ms,mean_ao_rmse_raw,max_abs_scale_minus_1" ] ||
