@@ -58,7 +58,7 @@
 #pragma sao constant uint SAO_PHASE_MUL=1270342730 "Eq. 8 rotation: 2*SAO_PHASE_MUL/2^32 = frac(10/(2*pi)), turning the hash times 10 radians into 2^-32 turns"
 #pragma sao constant int  SAO_DEPTH_MODE_PERSPECTIVE=0 "depth_mode: hardware depth of a perspective projection, z = c0/(d*c1 + c2) (eq. 2)"
 #pragma sao constant int  SAO_DEPTH_MODE_ORTHOGRAPHIC=1 "depth_mode: hardware depth of an orthographic projection, z = d*c1 + c2"
-#pragma sao constant float SAO_UPSAMPLE_Z_SHARPNESS=16.0 "upsample depth weight max(0, 1 - SHARPNESS*|z - z_low|/|z|): low-resolution texels 1/16 (6.25%) apart in relative z get weight 0 (64 and 256 compared in docs/BENCHMARKS.md, Reduced resolution)"
+#pragma sao constant float SAO_UPSAMPLE_Z_SHARPNESS=32.0 "upsample depth weight max(0, 1 - SHARPNESS*|z - z_low|/|z|): low-resolution texels 1/32 (3.1%) apart in relative z get weight 0 (16, 64 and 256 compared in docs/BENCHMARKS.md, Reduced resolution)"
 #pragma sao constant int  SAO_DEPTH_MODE_LINEAR=2 "depth_mode: the input already holds linear camera-space z (R32F), z = d*c1 + c2 (normally c1 = 1, c2 = 0)"
 #pragma sao constant int  SAO_NORMALS_CAMERA_XYZ=0 "normals_encoding: camera-space normal in .xyz (sao::NormalsEncoding::CameraXyz)"
 #pragma sao constant int  SAO_NORMALS_WORLD_XYZ=1 "normals_encoding: world-space normal in .xyz, rotated by view_x/y/z (WorldXyz)"
