@@ -154,6 +154,7 @@ layout(std140, binding = 0) uniform SaoParams {
     float frame_alpha_offset;   // [248] the frame's radial tap position: alpha_i = (i + offset) / s (0.5 at frame 0, the paper's)
     int   depth_samples;        // [252] samples per texel of the depth input (1: single-sample; DEPTH_MULTISAMPLE reads 0..n-1)
     int   depth_sample_policy;  // [256] SAO_DEPTH_SAMPLE_0 / _NEAREST: which sample of a multisampled depth texel linear_z keeps
+    uvec4 tap_turns[16];        // [272] eq. 6 per tap i < s: alpha_i*tau turns mod 1 in 2^-32 turns, component i & 3 of element i >> 2 (sao::spiralTapTurn; 0 beyond s): the host's, so no tap divides by s
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -249,7 +250,7 @@ void sao_ao_main()
         float sum = 0.0;
         for (int i = 0; i < s; ++i) {
             float h;
-            ivec2 tap = sao_spiral_tap(c, i, s, inv_samples, frame_alpha_offset, spiral_turns, phase, r_px, h);
+            ivec2 tap = sao_spiral_tap(c, i, inv_samples, frame_alpha_offset, tap_turns[i >> 2][i & 3] + phase, r_px, h);
 #if Z_HIERARCHY
             int m = sao_mip_level(h, log_q, max_mip);
 #else

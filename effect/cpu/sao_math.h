@@ -233,10 +233,16 @@ inline std::uint32_t pixelPhase(std::uint32_t x, std::uint32_t y) {
   return (h * std::uint32_t(gen::SAO_PHASE_MUL)) << 1u;
 }
 
-// Eq. 6: alpha_i * tau turns mod 1 in 2^-32 turns.
-inline std::uint32_t spiralPhase(int i, int s, int tau) {
-  const std::uint32_t k = (std::uint32_t(2 * i + 1) * std::uint32_t(tau)) % std::uint32_t(2 * s);
-  return ((k << 23u) / std::uint32_t(s)) << 8u;
+// Eq. 6: tap i's alpha_i * tau turns, from the block as the shader reads it (tap_turns[i >> 2][i & 3]).
+template <typename T>
+std::uint32_t tapTurn(const Block<T>& P, int i) {
+  const gen::UInt4& v = P.tap_turns[i >> 2];
+  switch (i & 3) {
+    case 0: return v.x;
+    case 1: return v.y;
+    case 2: return v.z;
+    default: return v.w;
+  }
 }
 
 // Eq. 7: theta in [-pi, pi) from the 24 high bits of the turn.
@@ -249,12 +255,12 @@ void turnDirection(std::uint32_t turn, T& ux, T& uy) {
 
 // Eq. 6-7: the tap pixel (tx, ty) and its distance h.
 template <typename T>
-void spiralTap(int cx, int cy, int i, int s, std::uint32_t phase, T r_px, const Block<T>& P, int& tx, int& ty,
+void spiralTap(int cx, int cy, int i, std::uint32_t phase, T r_px, const Block<T>& P, int& tx, int& ty,
                T& h) {
   const T alpha = (T(i) + P.frame_alpha_offset) * P.inv_samples;  // offset 0.5 at frame 0
   h = r_px * alpha;
   T ux, uy;
-  turnDirection<T>(spiralPhase(i, s, P.spiral_turns) + phase, ux, uy);
+  turnDirection<T>(tapTurn(P, i) + phase, ux, uy);
   tx = cx + static_cast<int>(h * ux);  // conversion truncates toward zero
   ty = cy + static_cast<int>(h * uy);
 }

@@ -166,7 +166,7 @@ class AoSampleInvocation {
     for (int i = 0; i < s; ++i) {
       T h;
       int tx, ty;
-      spiralTap(cx, cy, i, s, phase, r_px, P_, tx, ty, h);
+      spiralTap(cx, cy, i, phase, r_px, P_, tx, ty, h);
       const int m = zHierarchy_ ? mipLevel(h, P_.log_q, P_.max_mip) : 0;
       const int mx = mipTexel(tx, m, z0.w), my = mipTexel(ty, m, z0.h);
       const T qx = T(tx) + T(0.5), qy = T(ty) + T(0.5);

@@ -111,7 +111,7 @@ void AoSampleTrace::group(int gx, int gy, Sink& out) const {
       if (!l.active) continue;
       float h;
       int tx, ty;
-      spiralTap(l.cx, l.cy, i, s, l.phase, l.rPx, P, tx, ty, h);
+      spiralTap(l.cx, l.cy, i, l.phase, l.rPx, P, tx, ty, h);
       const int m = zHierarchy_ ? mipLevel(h, P.log_q, P.max_mip) : 0;
       out.read(li, Surface::Csz, m, mipTexel(tx, m, z0.w), mipTexel(ty, m, z0.h));
     }

@@ -18,13 +18,6 @@ uint sao_pixel_phase(uvec2 p)
     return (h * SAO_PHASE_MUL) << 1u;
 }
 
-// Eq. 6: alpha_i * tau turns = (2i+1)*tau / (2s) turns, reduced modulo one turn, in units of 2^-32.
-uint sao_spiral_phase(int i, int s, int tau)
-{
-    uint k = (uint(2 * i + 1) * uint(tau)) % uint(2 * s);
-    return ((k << 23u) / uint(s)) << 8u;
-}
-
 // Eq. 7: the unit direction of a turn fraction; the angle is taken in [-pi, pi).
 vec2 sao_turn_direction(uint turn)
 {
@@ -32,15 +25,17 @@ vec2 sao_turn_direction(uint turn)
     return vec2(cos(theta), sin(theta));
 }
 
-// Eq. 6-7 for tap i of s at csz texel c: alpha = (i + alpha_offset) * inv_s (alpha_offset 0.5 is
-// the paper's; other frames move the taps radially, sao::frameSpiral), h = r_px * alpha,
-// theta = 2*pi*alpha*tau + phi; returns the full-resolution tap pixel c + ivec2(h * u)
+// Eq. 6-7 for tap i at csz texel c: alpha = (i + alpha_offset) * inv_s (alpha_offset 0.5 is the
+// paper's; other frames move the taps radially, sao::frameSpiral), h = r_px * alpha, and the
+// direction of `turn` = alpha*tau turns + phi (the block's tap_turns[i] plus the pixel's phase;
+// the host computes the first: per tap, an integer % and / by s cost llvmpipe more than the rest of
+// the tap, sao-bench --sections per_tap). Returns the full-resolution tap pixel c + ivec2(h * u)
 // (conversion truncates toward zero) and h. The angle keeps the paper's (2i+1)/(2s) position.
-ivec2 sao_spiral_tap(ivec2 c, int i, int s, float inv_s, float alpha_offset, int tau, uint phase, float r_px, out float h)
+ivec2 sao_spiral_tap(ivec2 c, int i, float inv_s, float alpha_offset, uint turn, float r_px, out float h)
 {
     float alpha = (float(i) + alpha_offset) * inv_s;
     h = r_px * alpha;
-    vec2 u = sao_turn_direction(sao_spiral_phase(i, s, tau) + phase);
+    vec2 u = sao_turn_direction(turn);
     return c + ivec2(h * u);
 }
 

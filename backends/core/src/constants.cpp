@@ -180,6 +180,12 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
   p.inv_samples = f(1.0 / s.samples);
   p.samples = s.samples;
   p.spiral_turns = s.spiral_turns > 0 ? s.spiral_turns : spiralTurns(s.samples);  // 0: the built-in choice
+  static_assert(sizeof(p.tap_turns) == gen::SAO_MAX_SAMPLES * sizeof(std::uint32_t), "one turn per tap");
+  for (int i = 0; i < gen::SAO_MAX_SAMPLES; ++i) {
+    const std::uint32_t turn = i < p.samples ? spiralTapTurn(i, p.samples, p.spiral_turns) : 0u;
+    gen::UInt4& v = p.tap_turns[i >> 2];
+    (i % 4 == 0 ? v.x : i % 4 == 1 ? v.y : i % 4 == 2 ? v.z : v.w) = turn;
+  }
   p.log_q = s.mip_switch_log2;
   p.max_mip = static_cast<std::int32_t>(mipLevelsNeeded(s, c, m)) - 1;
   p.quad_edge_threshold = f(s.quad_edge_threshold * u);

@@ -20,6 +20,11 @@ constexpr std::array<int, 100> kG3dMinimumDiscrepancyTurns = {
 
 }  // namespace
 
+std::uint32_t spiralTapTurn(int i, int s, int tau) {
+  const std::uint32_t k = (std::uint32_t(2 * i + 1) * std::uint32_t(tau)) % std::uint32_t(2 * s);
+  return ((k << 23u) / std::uint32_t(s)) << 8u;
+}
+
 int spiralTurns(int s) {
   if (s >= 1 && std::size_t(s) < kG3dMinimumDiscrepancyTurns.size()) return kG3dMinimumDiscrepancyTurns[std::size_t(s)];
   return latticeSpiralTurns(s);

@@ -19,6 +19,12 @@ struct FrameSpiral {
 };
 FrameSpiral frameSpiral(std::uint32_t frameIndex);
 
+// Eq. 6 for tap i of s with tau turns: alpha_i * tau turns mod 1, alpha_i = (2i + 1) / (2s), in
+// units of 2^-32 turns: k = ((2i + 1) tau) mod 2s, then ((k << 23) / s) << 8 (exact integers; the
+// low 8 bits are 0 because the shader keeps 24 bits of a turn). The parameter block's tap_turns
+// holds it for i < s, so ao_sample adds the pixel's phase instead of dividing by s per tap.
+std::uint32_t spiralTapTurn(int i, int samples, int tau);
+
 // tau for s taps, the one the effect uses when the setting spiral_turns is 0: G3D's
 // minimum-discrepancy table for s = 1..99 (it covers the samples setting's range), else
 // latticeSpiralTurns(s). The table replaced the lattice criterion below after
