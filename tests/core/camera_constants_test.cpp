@@ -214,6 +214,30 @@ TEST(Spiral, TurnsAreCoprimeAndMatchKnownGoodValues) {
   EXPECT_EQ(sao::latticeSpiralTurns(16), 3);
 }
 
+// Eq. 6 per tap, as the block's tap_turns holds it for ao_sample: alpha_i * tau turns mod 1 in
+// 2^-32 turns, alpha_i = (i + 0.5) / s, to the 24 bits the shader keeps; 0 beyond s.
+TEST(Spiral, TapTurnsInTheBlockAreEq6) {
+  auto cam = sao::perspectiveCamera(kFovy, 640, 360, kNear, kFar, sao::ClipDepth::ZeroToOne, false);
+  for (int samples : {1, 7, 16, 48, 64}) {
+    sao::Settings s;
+    s.samples = samples;
+    sao::ParamBlock p;
+    ASSERT_TRUE(sao::computeConstants(s, cam, sao::DepthEncoding::Hardware, p).ok());
+    for (int i = 0; i < sao::gen::SAO_MAX_SAMPLES; ++i) {
+      const sao::gen::UInt4& v = p.tap_turns[i / 4];
+      const std::uint32_t turn = i % 4 == 0 ? v.x : i % 4 == 1 ? v.y : i % 4 == 2 ? v.z : v.w;
+      if (i >= samples) {
+        EXPECT_EQ(turn, 0u) << "s=" << samples << " i=" << i;
+        continue;
+      }
+      const double turns = std::fmod((i + 0.5) / samples * p.spiral_turns, 1.0);
+      EXPECT_EQ(turn & 0xFFu, 0u);
+      EXPECT_NEAR(double(turn) / 4294967296.0, turns, 1.0 / 16777216.0) << "s=" << samples << " i=" << i;
+      EXPECT_EQ(turn, sao::spiralTapTurn(i, samples, p.spiral_turns));
+    }
+  }
+}
+
 // The matrix alone cannot tell [-1,1] from [0,1]: a standard GL matrix read as [0,1] is a valid
 // projection whose near plane is 2fn/(f+n) (2n with an infinite far plane); a reversed one keeps
 // its near plane and moves its far plane. expectedNear / expectedFar catch the mix-up.
