@@ -18,6 +18,7 @@
 #include "frames_section.h"
 #include "spiral_section.h"
 #include "measure.h"
+#include "per_tap_section.h"
 #include "precision_report.h"
 #include "reference_check.h"
 #include "report.h"
@@ -54,18 +55,22 @@ bias and epsilon of the medium preset fitted to (a) over a grid) writes calibrat
 the frames section (a static camera's frames averaged, Inputs::frameIndex, against one frame with 4x
 the taps, by error against (c)) writes frames.csv; the divisor section (every preset at resolution_divisor 1, 2
 and 4: error vs (c) on every scene at --size on the first backend, time at 1920x1080 on every backend) writes
-rows "divisor" and "divisor_time" into results.csv.)";
+rows "divisor" and "divisor_time" into results.csv; the per_tap section (GL only: ao_sample's time per tap at
+s = 7, 16, 32, 48 beside a ladder of minimal passes of our own, a fragment pass, the same as compute, and
+compute plus one of ao_sample's features each, on the main scene at --size, default 1920x1080) writes per_tap.csv.)";
 
 // The parts of the run, in the order they run (--sections picks some).
 const std::vector<std::string> kSections = {"presets",    "samples",   "mip_blur", "radius",
                                             "resolution", "two_layer", "precision", "traffic",
-                                            "divisor",    "spiral",    "frames",    "calibrate"};
+                                            "divisor",    "spiral",    "frames",    "per_tap",  "calibrate"};
 
 // The calibrate section searches a grid (about 20 minutes at 640x360 here), the spiral section
 // every differing sample count (about 5), the frames section 16 frames of three presets per scene,
-// the divisor section every preset at three divisors on every scene: asked for by name only.
+// the divisor section every preset at three divisors on every scene, the per_tap section a ladder
+// of passes at 1920x1080: asked for by name only.
 bool inDefaultRun(const std::string& section) {
-  return section != "calibrate" && section != "spiral" && section != "frames" && section != "divisor";
+  return section != "calibrate" && section != "spiral" && section != "frames" && section != "divisor" &&
+         section != "per_tap";
 }
 
 std::string sectionNames() {
@@ -84,6 +89,7 @@ struct Options {
   }();
   std::uint32_t runs = 5, rays = 256, convergedTaps = 4096;
   Extent size{1280, 720};
+  bool sizeGiven = false;  // --size given (the per_tap section's default is 1920x1080)
   bool quick = false;
   bool tune = false;            // --tune: the preset tuner (tune.h) instead of the sections
   bool convergedNoise = false;  // --converged-noise
@@ -111,14 +117,15 @@ Options parse(int argc, char** argv) {
   cl.text("--out", o.out, "DIR", "output folder (default out/bench)");
   cl.text("--backends", o.backends, "LIST",
           "comma-separated: cpu,gl,vulkan (default: gl,vulkan,cpu, those that start; the others are skipped)");
-  cl.value("--sections", "LIST", "comma-separated parts to run (default: all but calibrate, spiral, frames and divisor: grid searches of about 20 and 5 minutes, a frame accumulation and a preset x divisor matrix):\n" + sectionNames(),
+  cl.value("--sections", "LIST", "comma-separated parts to run (default: all but calibrate, spiral, frames, divisor and per_tap: grid searches of about 20 and 5 minutes, a frame accumulation, a preset x divisor matrix and a ladder of GL passes at 1920x1080):\n" + sectionNames(),
            [&o](const std::string& v) { o.sections = parseSections(v); });
   cli::addRuns(cl, o.runs, 1, "measured runs per point, after one warm-up", "default 5");
   cli::addRays(cl, "--rays", o.rays, "reference rays per pixel", "default 256");
   cli::addRays(cl, "--converged-taps", o.convergedTaps, "taps per pixel of reference (c), the converged estimator",
                "default 4096");
   cli::addImageSize(cl, o.size, "size of the preset matrix and sweeps",
-                    "default 1280x720; the radius sweep always runs at 1920x1080 unless --quick");
+                    "default 1280x720; the radius sweep always runs at 1920x1080 unless --quick, the per_tap section "
+                    "at 1920x1080 unless --size or --quick (320x180)");
   cl.choice("--depth-source", o.depthSource,
             [](const std::string& v) { return v == "raster" || v == "raytrace" ? std::optional(v) : std::nullopt; },
             "raster or raytrace", "S",
@@ -153,6 +160,7 @@ Options parse(int argc, char** argv) {
           "scenes, and choose presets on that front (tune.csv, resumable; tune_front.csv/.svg, tune_presets.txt). Uses "
           "the first of --backends that starts (default gl), --size default 640x360, --runs, --converged-taps, --quick");
   cl.parse(argc, argv);
+  o.sizeGiven = cl.given("--size");
   if (o.tune) {
     if (cl.given("--sections") || cl.given("--converged-noise") || cl.given("--rays") || cl.given("--ortho") ||
         cl.given("--scenes"))
@@ -481,6 +489,19 @@ int main(int argc, char** argv) {
     if (Status s = bench::framesSection(fo, first, cache); !s) fail("frames: " + s.message);
   }
 
+  // per_tap: ao_sample's time per tap beside a ladder of minimal GL passes (per_tap_section.h).
+  if (want("per_tap")) {
+    bench::PerTapOptions po;
+    po.outDir = o.out;
+    po.scene = mainScene;
+    po.size = o.quick ? Extent{320, 180} : o.sizeGiven ? o.size : Extent{1920, 1080};
+    po.runs = int(o.runs);
+    samples::BackendRunner* gl = nullptr;
+    for (auto& b : backends)
+      if (b->name() == "gl") gl = b.get();
+    if (Status s = bench::perTapSection(po, gl, cache); !s) fail("per_tap: " + s.message);
+  }
+
   // traffic: the memory-traffic model on the main scene (traffic_section.h).
   if (want("traffic"))
     if (Status s = bench::trafficSection(o.out, mainScene, o.quick, [&](Extent e) {
@@ -505,8 +526,8 @@ int main(int argc, char** argv) {
     files += ",precision.csv,precision.txt";
   }
   for (const auto& [section, file] : {std::pair{"spiral", ",spiral.csv"}, {"frames", ",frames.csv"},
-                                     {"calibrate", ",calibration.csv"}, {"traffic", ",traffic.csv"}})
-    if (want(section)) files += file;
+                                     {"calibrate", ",calibration.csv"}, {"traffic", ",traffic.csv"}, {"per_tap", ",per_tap.csv"}})
+    if (want(section) && fs::exists(fs::path(o.out) / (file + 1))) files += file;  // per_tap may skip
   std::printf("sao-bench: %zu measurements on %s\nwrote %s/{%s}\n", rows.size(), machine.c_str(),
               fs::absolute(o.out).lexically_normal().string().c_str(), files.c_str());
   for (const auto& [key, text] : legend) std::printf("  %s: %s\n", key.c_str(), text.c_str());
