@@ -7,6 +7,7 @@
 #include <string>
 
 #include "sao/gl/headless.h"
+#include "sao/gl/program_build.h"
 #include "sao/gl/texture_io.h"
 
 namespace sao::bench {
@@ -35,62 +36,13 @@ class RestoreContext {
   EGLSurface draw_, read_;
 };
 
-std::string infoLog(GLuint object, bool program) {
-  GLint length = 0;
-  program ? glGetProgramiv(object, GL_INFO_LOG_LENGTH, &length) : glGetShaderiv(object, GL_INFO_LOG_LENGTH, &length);
-  std::string log(std::size_t(length > 0 ? length : 1), '\0');
-  program ? glGetProgramInfoLog(object, GLsizei(log.size()), nullptr, log.data())
-          : glGetShaderInfoLog(object, GLsizei(log.size()), nullptr, log.data());
-  return log.c_str();
-}
-
-Status compile(GLenum stage, const std::string& text, const std::string& what, GLuint& out) {
-  const char* ptr = text.c_str();
-  out = glCreateShader(stage);
-  glShaderSource(out, 1, &ptr, nullptr);
-  glCompileShader(out);
-  GLint ok = 0;
-  glGetShaderiv(out, GL_COMPILE_STATUS, &ok);
-  if (ok) return Status::success();
-  const std::string log = infoLog(out, false);
-  glDeleteShader(out);
-  out = 0;
-  return Status::error(StatusCode::DriverError, what + " does not compile: " + log);
-}
-
 // The rung's program: the full-screen triangle and its fragment shader, or its compute shader.
 Status link(const LadderStep& step, int samples, int turns, GLuint& out) {
-  out = 0;
-  const std::string what = std::string(step.name) + " at s=" + std::to_string(samples);
-  std::vector<GLuint> shaders;
-  auto cleanup = [&] {
-    for (GLuint s : shaders) glDeleteShader(s);
-  };
-  GLuint s = 0;
-  if (step.fragment) {
-    if (Status st = compile(GL_VERTEX_SHADER, kLadderVertexShader, what + " (vertex)", s); !st) return st;
-    shaders.push_back(s);
-  }
-  if (Status st =
-          compile(step.fragment ? GL_FRAGMENT_SHADER : GL_COMPUTE_SHADER, ladderShader(step, samples, turns), what, s);
-      !st) {
-    cleanup();
-    return st;
-  }
-  shaders.push_back(s);
-  const GLuint program = glCreateProgram();
-  for (GLuint sh : shaders) glAttachShader(program, sh);
-  glLinkProgram(program);
-  cleanup();
-  GLint ok = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    const std::string log = infoLog(program, true);
-    glDeleteProgram(program);
-    return Status::error(StatusCode::DriverError, what + " does not link: " + log);
-  }
-  out = program;
-  return Status::success();
+  std::vector<gl::ShaderStage> stages;
+  if (step.fragment) stages.push_back({GL_VERTEX_SHADER, kLadderVertexShader, "vertex shader"});
+  stages.push_back({step.fragment ? GLenum(GL_FRAGMENT_SHADER) : GLenum(GL_COMPUTE_SHADER),
+                    ladderShader(step, samples, turns), step.fragment ? "fragment shader" : "compute shader"});
+  return gl::buildProgram(stages, std::string(step.name) + " at s=" + std::to_string(samples), out);
 }
 
 // The block's values as the rungs' uniforms; names a rung does not use are inactive (location -1)

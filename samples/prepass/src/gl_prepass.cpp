@@ -11,6 +11,7 @@
 #include "frame.h"
 #include "gl_state.h"
 #include "prepass_glsl.h"
+#include "sao/gl/program_build.h"
 
 namespace sao::prepass {
 
@@ -46,15 +47,6 @@ struct GlPrepass::Objects {
 
 namespace {
 
-std::string infoLog(GLuint object, bool program) {
-  GLint length = 0;
-  program ? glGetProgramiv(object, GL_INFO_LOG_LENGTH, &length) : glGetShaderiv(object, GL_INFO_LOG_LENGTH, &length);
-  std::vector<char> log(std::size_t(length > 0 ? length : 1), '\0');
-  program ? glGetProgramInfoLog(object, GLsizei(log.size()), nullptr, log.data())
-          : glGetShaderInfoLog(object, GLsizei(log.size()), nullptr, log.data());
-  return log.data();
-}
-
 // The source with `define` lines inserted after its #version line (kept as the first line).
 std::string withDefines(std::string_view source, std::string_view defines) {
   const auto eol = source.find('\n');
@@ -62,43 +54,10 @@ std::string withDefines(std::string_view source, std::string_view defines) {
   return std::string(source.substr(0, eol + 1)) + std::string(defines) + "#line 2\n" + std::string(source.substr(eol + 1));
 }
 
-Status compile(GLenum stage, const std::string& text, const char* name, GLuint& out) {
-  const char* ptr = text.c_str();
-  out = glCreateShader(stage);
-  glShaderSource(out, 1, &ptr, nullptr);
-  glCompileShader(out);
-  GLint ok = 0;
-  glGetShaderiv(out, GL_COMPILE_STATUS, &ok);
-  if (ok) return Status::success();
-  const std::string log = infoLog(out, false);
-  glDeleteShader(out);
-  out = 0;
-  return Status::error(StatusCode::DriverError, std::string("prepass: ") + name + " does not compile: " + log);
-}
-
 Status link(std::string_view defines, const char* name, GLuint& out) {
-  out = 0;
-  GLuint vs = 0, fs = 0;
-  if (Status s = compile(GL_VERTEX_SHADER, withDefines(glsl::kPrepassVert, ""), "prepass.vert", vs); !s) return s;
-  if (Status s = compile(GL_FRAGMENT_SHADER, withDefines(glsl::kPrepassFrag, defines), name, fs); !s) {
-    glDeleteShader(vs);
-    return s;
-  }
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, vs);
-  glAttachShader(program, fs);
-  glLinkProgram(program);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    const std::string log = infoLog(program, true);
-    glDeleteProgram(program);
-    return Status::error(StatusCode::DriverError, std::string("prepass: ") + name + " does not link: " + log);
-  }
-  out = program;
-  return Status::success();
+  return gl::buildProgram({{GL_VERTEX_SHADER, withDefines(glsl::kPrepassVert, ""), "prepass.vert"},
+                           {GL_FRAGMENT_SHADER, withDefines(glsl::kPrepassFrag, defines), name}},
+                          "prepass", out);
 }
 
 GLenum internalFormat(DepthFormat f) {
