@@ -7,7 +7,7 @@ usage: /usr/bin/python3 samples/bench/markdown_tables.py OUT_DIR   (the folder s
 The committed runs are docs/generated/bench-data/<run>/ (results.csv, precision.csv when the run has one,
 and run.txt: "key: value" lines saying how it was made); --write turns each into
 docs/generated/benchmarks-<run>.md and rewrites the key-figures block of docs/BENCHMARKS.md from them.
-Reads results.csv and precision.csv. Only the standard library.
+Reads results.csv, precision.csv and per_tap.csv. Only the standard library.
 """
 import csv
 import math
@@ -170,6 +170,31 @@ def tables(folder):
                     [[r["backend"], r["format"], r["far_m"] if r["far_m"] == "inf" else f(r["far_m"], 0),
                       r["convention"], r["clip"], r["distance_bin_m"], g(r["z_worst_m"], 2), g(r["z_p99_m"], 2),
                       g(r["normal_worst_deg"], 2), g(r["normal_p99_deg"], 2), r["pixels"]] for r in prec]))
+    per_tap = read_csv(os.path.join(folder, "per_tap.csv"))
+    if per_tap:
+        print(f"\n### Per-tap cost: ao_sample beside minimal passes of our own ({per_tap[0]['width']}x"
+              f"{per_tap[0]['height']}, median ms of {per_tap[0]['runs']} runs)\n")
+        print("ns/px/tap: the least-squares slope of the median time against s, per pixel; fixed: its intercept; "
+              "× (a): the slope over the fragment baseline's.\n")
+        counts = sorted({int(r["samples"]) for r in per_tap})
+        series = {}
+        for r in per_tap:
+            series.setdefault(r["variant"], (r["label"], {}))[1][int(r["samples"])] = float(r["median_ms"])
+        pixels = float(per_tap[0]["width"]) * float(per_tap[0]["height"])
+
+        def slope_intercept(at):
+            xs = sorted(at)
+            mx, my = sum(xs) / len(xs), sum(at[x] for x in xs) / len(xs)
+            k = sum((x - mx) * (at[x] - my) for x in xs) / sum((x - mx) ** 2 for x in xs)
+            return k, my - k * mx
+
+        base = slope_intercept(series["a_fragment"][1])[0] if "a_fragment" in series else float("nan")
+        rows_out = []
+        for variant, (label, at) in series.items():
+            k, c = slope_intercept(at)
+            rows_out.append([label, f"{k * 1e6 / pixels:.2f}", f"{c:.1f}", f"{k / base:.2f}"] +
+                            [f(at.get(n, "")) for n in counts])
+        print(table(["variant", "ns/px/tap", "fixed ms", "× (a)"] + [f"s={n} ms" for n in counts], rows_out))
     return "\n".join(out).lstrip("\n") + "\n"
 
 

@@ -86,11 +86,11 @@ void progress(int s, const std::string& what) {
 Status writeCsv(const std::string& path, const std::vector<Series>& series, Extent size, int runs) {
   std::ofstream csv(path);
   if (!csv) return Status::error(StatusCode::IoError, "cannot write " + path);
-  csv << "variant,samples,width,height,runs,median_ms,min_ms,max_ms,mean_a\n";
+  csv << "variant,samples,width,height,runs,median_ms,min_ms,max_ms,mean_a,label\n";
   for (const Series& s : series)
     for (const auto& [samples, p] : s.at)
       csv << s.variant << ',' << samples << ',' << size.width << ',' << size.height << ',' << runs << ',' << p.median
-          << ',' << p.min << ',' << p.max << ',' << p.meanA << '\n';
+          << ',' << p.min << ',' << p.max << ',' << p.meanA << ",\"" << s.label << "\"\n";  // labels hold commas
   if (!csv.flush()) return Status::error(StatusCode::IoError, "cannot write " + path);
   return Status::success();
 }

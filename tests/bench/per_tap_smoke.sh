@@ -17,7 +17,7 @@ die() { echo "per_tap smoke: $*" >&2; exit 1; }
 grep -q "^per_tap: skipped" "$out.stdout" && die "the section skipped: $(grep '^per_tap: skipped' "$out.stdout")"
 csv=$out/per_tap.csv
 test -s "$csv" || die "missing per_tap.csv"
-[ "$(head -1 "$csv")" = "variant,samples,width,height,runs,median_ms,min_ms,max_ms,mean_a" ] ||
+[ "$(head -1 "$csv")" = "variant,samples,width,height,runs,median_ms,min_ms,max_ms,mean_a,label" ] ||
   die "unexpected header $(head -1 "$csv")"
 variants="a_fragment b_compute c_compute_2x2 d_compute_mip e_compute_rebuilt_n f_compute_imageload
   g_compute_uniform_taps h_compute_exact_spiral i_compute_uniform_spiral j_compute_all k_compute_turn_table
@@ -42,4 +42,9 @@ done
 [ "$(awk 'NR > 1' "$out/results.csv" | wc -l)" -eq 0 ] || die "--sections per_tap ran other sections"
 "$bench" --help | tr '\n' ' ' | grep -q "default: all but [^:]*per_tap" ||
   die "--help does not leave per_tap out of the default run"
+# The published tables (samples/bench/markdown_tables.py) read the file back: one row per variant.
+tables=$(/usr/bin/python3 "$(dirname "$0")/../../samples/bench/markdown_tables.py" "$out") ||
+  die "markdown_tables.py cannot read the run"
+echo "$tables" | grep -q "^### Per-tap cost" || die "markdown_tables.py prints no per-tap table"
+[ "$(echo "$tables" | grep -c '^| (')" -eq 11 ] || die "expected the 11 ladder rows (a)..(k) in the per-tap table"
 echo "per_tap smoke: ok"
