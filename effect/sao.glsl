@@ -33,6 +33,9 @@
 #pragma sao setting float quad_edge_threshold default=0.02  range=[0,10]           unit=m   "2x2 reconstruction: quad neighbours average only when their z differ by less than this"
 #pragma sao setting int   resolution_divisor  default=2     values=[1,2,4]                  "AO resolution per axis: 1 full, 2 half, 4 quarter. ao_sample, the 2x2 reconstruction and the blurs run at the viewport over it (rounded up) and a depth-aware upsample writes the full-resolution output"
 #pragma sao setting float fade_start          default=0.0   range=[0,100000]       unit=m   "Distance fade: camera distance -z where the AO starts to fade towards 1 (unoccluded); used only when fade_end > 0, and must then be below fade_end"
+#pragma sao setting bool  temporal            default=false                                 "Accumulate frames (TEMPORAL): each pixel's obscurance sum is blended with the previous frames' of the same surface, reprojected through the previous and this frame's camera (Camera::view) and rejected by depth; count Inputs::frameIndex up so that frames sample different taps"
+#pragma sao setting float temporal_hysteresis default=0.9   range=[0,0.99]                  "Temporal: the history's largest share of a pixel once it holds 1/(1 - h) frames (a running mean up to then, an exponential one after); 0 = this frame only"
+#pragma sao setting float temporal_depth_tolerance default=0.05 range=[0.001,1]             "Temporal: relative z difference |z_history - z| / |z| at which a history texel weighs 0 (linearly down from 1 at 0): the disocclusion test"
 #pragma sao setting float fade_end            default=0.0   range=[0,100000]       unit=m   "Distance fade: camera distance -z from which A = 1, linear in distance from fade_start on; 0 = no fade"
 // ---------------------------------------------------------------------------------------------
 // Presets: the chain `sao-bench --tune` chose on the Pareto front of time against error vs the
@@ -77,6 +80,7 @@
 #pragma sao variant Z_HIERARCHY values=[0,1] default=1 select=use_z_hierarchy "1: taps read z MIP level clamp(findMSB(int(h)) - log_q, 0, max_mip) (eq. 9-10); 0: always level 0 (the AlchemyAO / no-MIP baseline)"
 #pragma sao variant OUTPUT_FORMAT values=[0,1,2,3] default=0 select=output:ao "The output image's format, an index into ao's formats=: 0 r16f, 1 r8 (A rounded to the nearest 1/255), 2 rgba8, 3 rgba16f (RGBA: A goes into the channels output_mask selects, the others keep their texels)"
 #pragma sao variant DEPTH_MULTISAMPLE values=[0,1] default=0 select=multisampled:depth "1: the depth input is multisampled (sampler2DMS, depth_samples per texel); linear_z keeps one sample per texel as depth_sample_policy says (sample 0, or the nearest to the camera)"
+#pragma sao variant TEMPORAL values=[0,1] default=0 select=temporal "1: ao_sample blends each pixel's obscurance sum with the history of the previous frames (sao_temporal.glsl) and writes this frame's history"
 #pragma sao exclude DEPTH_MULTISAMPLE=1 TWO_LAYER=1 "a multisampled depth input has no second layer: give depth peeling's layers single-sample, or resolve the depth first"
 #pragma sao exclude Z_HIERARCHY=0 TWO_LAYER=1 "the no-hierarchy baseline is a single-layer benchmark path"
 
@@ -91,6 +95,7 @@
 #pragma sao resource ao_raw    kind=image  format=rg32f divide_by=resolution_divisor "x: visibility A after the 2x2 reconstruction, y: key = camera-space z (+0.0 = sky); the viewport over resolution_divisor"
 #pragma sao resource ao_blur_h kind=image  format=rg32f divide_by=resolution_divisor "x: A after the horizontal bilateral blur, y: key z"
 #pragma sao resource ao_low    kind=image  format=rg32f divide_by=resolution_divisor "Reduced resolution only: (A, key z) after both blurs, the upsample's input"
+#pragma sao resource history  kind=image  format=rgba32f divide_by=resolution_divisor when=TEMPORAL history=true "Temporal: x the accumulated obscurance sum, y its key z (+0.0 = sky), z the frames it holds (0 = none); ao_raw's size, two images that trade places every frame"
 #pragma sao resource ao        kind=output format=r16f formats=[r16f,r8,rgba8,rgba16f] "Final ambient visibility A in [0,1] (1 = unoccluded), linear; r16f unless the caller's output image has another of formats= (OUTPUT_FORMAT); with output_blend multiply, the caller's texels times A"
 
 // ---------------------------------------------------------------------------------------------
@@ -105,11 +110,12 @@
 #include "include/sao_blur.glsl"
 #include "include/sao_upsample.glsl"
 #include "include/sao_output.glsl"
+#include "include/sao_temporal.glsl"
 
 // ---------------------------------------------------------------------------------------------
 // Parameter block: filled by host code from Settings + Camera + extents (docs/effect-math.md,
 // "Parameter block"). Lengths are camera-space (view) units: metres times metersToViewUnits.
-// std140 offsets in brackets; 260 bytes.
+// std140 offsets in brackets; 608 bytes.
 // ---------------------------------------------------------------------------------------------
 #pragma sao block SaoParams
 layout(std140, binding = 0) uniform SaoParams {
@@ -155,6 +161,14 @@ layout(std140, binding = 0) uniform SaoParams {
     int   depth_samples;        // [252] samples per texel of the depth input (1: single-sample; DEPTH_MULTISAMPLE reads 0..n-1)
     int   depth_sample_policy;  // [256] SAO_DEPTH_SAMPLE_0 / _NEAREST: which sample of a multisampled depth texel linear_z keeps
     uvec4 tap_turns[16];        // [272] eq. 6 per tap i < s: alpha_i*tau turns mod 1 in 2^-32 turns, component i & 3 of element i >> 2 (sao::spiralTapTurn; 0 beyond s): the host's, so no tap divides by s
+    vec4  prev_from_cur_x;      // [528] temporal: this frame's camera space -> the previous frame's, row 0 (.xyz rotation, .w translation, view units); identity without history
+    vec4  prev_from_cur_y;      // [544] row 1
+    vec4  prev_from_cur_z;      // [560] row 2
+    vec4  prev_proj_info;       // [576] temporal: proj_info of the previous frame's camera (eq. 3, guard folded in)
+    float temporal_min_blend;   // [592] temporal: 1 - temporal_hysteresis, this frame's least share
+    float temporal_max_frames;  // [596] temporal: 1 / (1 - temporal_hysteresis), the frames a history texel counts at most
+    float temporal_depth_k;     // [600] temporal: 1 / temporal_depth_tolerance
+    int   history_valid;        // [604] temporal: 1 when the history holds the previous frame (0 after create, a settings change, a resize, a reset)
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -211,7 +225,7 @@ void sao_mips_main()
 // bilateral reconstruction through shared memory (no derivative instructions). One invocation
 // per AO pixel; invocations outside the AO buffer take part in the barriers as sky.
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass ao_sample entry=sao_ao_main local=8x8 reads=csz,csz2,normals writes=ao_raw variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY "Obscurance from s spiral taps over the z hierarchy (eq. 1, 3-10), 2x2 bilateral reconstruction; writes (A, key z)"
+#pragma sao pass ao_sample entry=sao_ao_main local=8x8 reads=csz,csz2,normals,history writes=ao_raw,history variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,TEMPORAL "Obscurance from s spiral taps over the z hierarchy (eq. 1, 3-10), with TEMPORAL blended with the reprojected history (and this frame's history written), 2x2 bilateral reconstruction; writes (A, key z)"
 #if SAO_TARGET_VULKAN
 // The tap loop's trip count (= samples) as a push constant: Mesa lavapipe 22.3 keeps ~0.4 MB of
 // host memory per dispatch of a loop whose trip count comes from the uniform block its body also
@@ -236,6 +250,10 @@ void sao_ao_main()
 
     float A = 1.0;
     float key = 0.0;
+#if TEMPORAL
+    float kept = 0.0;    // this frame's history texel: the accumulated sum and the frames it holds
+    float frames = 0.0;  // (none for sky and outside)
+#endif
     if (inside && !sao_is_sky(zc)) {
         vec3 C = sao_position(vec2(c) + 0.5, zc, proj_info, ortho);
 #if NORMALS_SUPPLIED
@@ -266,9 +284,21 @@ void sao_ao_main()
 #endif
             sum += o;
         }
+#if TEMPORAL
+        vec2 acc = sao_temporal_accumulate(in_history, C, sum, ortho, prev_from_cur_x, prev_from_cur_y,
+                                           prev_from_cur_z, prev_proj_info, guard, ao_divisor, temporal_depth_k,
+                                           temporal_min_blend, temporal_max_frames, history_valid);
+        sum = acc.x;
+        kept = acc.x;
+        frames = acc.y;
+#endif
         A = sao_fade(sao_visibility(sum, intensity_div_s, contrast), zc, fade_start, fade_end, fade_inv_range);
         key = zc;
     }
+#if TEMPORAL
+    if (inside)
+        imageStore(out_history, p, vec4(kept, key, frames, 0.0));
+#endif
 
     // 2x2 bilateral reconstruction: quads are aligned to even pixels and lie inside one work
     // group (even local size). Every invocation reaches both barriers.

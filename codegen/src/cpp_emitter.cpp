@@ -59,6 +59,7 @@ const char* kindName(ResourceKind k) {
 std::string formatName(const std::string& f) {
   if (f == "r32f") return "Format::R32F";
   if (f == "rg32f") return "Format::RG32F";
+  if (f == "rgba32f") return "Format::RGBA32F";
   if (f == "r16f") return "Format::R16F";
   if (f == "rg16f") return "Format::RG16F";
   if (f == "rgba16f") return "Format::RGBA16F";
@@ -299,7 +300,7 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
   // --- resources
   h << "// ---- Resources: inputs, effect-owned images, and the output.\n"
     << "enum class ResourceKind : std::uint8_t { Input, Image, Output };\n"
-    << "enum class Format : std::uint8_t { R32F, RG32F, R16F, RG16F, RGBA16F, R8, RGBA8, Depth };\n"
+    << "enum class Format : std::uint8_t { R32F, RG32F, R16F, RG16F, RGBA16F, R8, RGBA8, Depth, RGBA32F };\n"
     << "enum class ResourceId : std::uint32_t {\n";
   for (const auto& r : e.resources) h << "  " << r.name << ",\n";
   h << "};\nstruct ResourceInfo {\n  std::string_view name;\n  ResourceKind kind;\n  Format format;\n"
@@ -309,7 +310,8 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     << "  std::int32_t whenVariant;   // exists only when this variant is non-zero; -1: always\n"
     << "  std::string_view doc;\n"
     << "  std::int32_t divideBy;  // a SettingId: the AO extent over that int setting, rounded up; -1: none\n"
-    << "  std::span<const Format> formats;  // kind=output: every format it may have (formats=); empty: only `format`\n};\n";
+    << "  std::span<const Format> formats;  // kind=output: every format it may have (formats=); empty: only `format`\n"
+    << "  bool history;  // history=true: two images that trade places every frame; reads see the previous frame's\n};\n";
   for (const auto& r : e.resources) {
     if (r.formats.empty()) continue;
     h << "inline constexpr Format kFormats_" << r.name << "[] = {";
@@ -322,7 +324,7 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     h << "  {" << quoted(r.name) << ", " << kindName(r.kind) << ", " << formatName(r.format) << ", "
       << (r.fullMipChain ? "true" : "false") << ", " << (r.inputExtent ? "true" : "false") << ", " << r.scaleDenominator << ", " << r.whenVariant << ", "
       << quoted(r.doc) << ", " << r.divideBy << ", "
-      << (r.formats.empty() ? std::string("{}") : "kFormats_" + r.name) << "},\n";
+      << (r.formats.empty() ? std::string("{}") : "kFormats_" + r.name) << ", " << (r.history ? "true" : "false") << "},\n";
   h << "}};\n\n";
 
   // --- passes

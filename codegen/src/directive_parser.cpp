@@ -12,7 +12,7 @@
 namespace sao::codegen {
 namespace {
 
-const std::set<std::string> kFormats = {"r32f", "rg32f", "r16f", "rg16f", "rgba16f", "r8", "rgba8", "depth"};
+const std::set<std::string> kFormats = {"r32f", "rg32f", "rgba32f", "r16f", "rg16f", "rgba16f", "r8", "rgba8", "depth"};
 
 // One `#pragma sao` line: words, key=value attributes and an optional trailing doc string.
 struct Directive {
@@ -413,9 +413,9 @@ class Parser {
   }
 
   void parseResource(const Directive& d) {
-    auto a = attrs(d, {"kind", "format", "formats", "mips", "scale", "when", "extent", "divide_by"});
+    auto a = attrs(d, {"kind", "format", "formats", "mips", "scale", "when", "extent", "divide_by", "history"});
     if (d.words.size() != 1) {
-      diags_.error(d.loc, "expected '#pragma sao resource NAME kind=K format=F [formats=[F,...]] [mips=1|auto] [scale=1/N] [divide_by=SETTING] [when=V] \"doc\"'");
+      diags_.error(d.loc, "expected '#pragma sao resource NAME kind=K format=F [formats=[F,...]] [mips=1|auto] [scale=1/N] [divide_by=SETTING] [when=V] [history=true] \"doc\"'");
       return;
     }
     Resource r;
@@ -472,6 +472,18 @@ class Parser {
     }
     r.inputExtent = extent == "input";
     if (a.count("divide_by") && !parseDivideBy(d, r, a["divide_by"])) return;
+    if (a.count("history")) {
+      const std::string h = a["history"];
+      std::string why;
+      if (h != "true" && h != "false") why = "must be true or false, got '" + h + "'";
+      else if (h == "true" && (r.kind != ResourceKind::Image || r.fullMipChain))
+        why = "is only for single-level kind=image resources (kept across frames)";
+      if (!why.empty()) {
+        diags_.error(d.loc, "history of resource '" + r.name + "' " + why);
+        return;
+      }
+      r.history = h == "true";
+    }
     if (a.count("when")) {
       r.whenVariant = findVariant(a["when"]);
       if (r.whenVariant < 0) {

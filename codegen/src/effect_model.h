@@ -71,6 +71,9 @@ struct Resource {
   int scaleDenominator = 1;   // scale=1/N of the base extent
   int divideBy = -1;          // divide_by=SETTING: the AO extent over that int setting, rounded up
   int whenVariant = -1;       // exists only when this variant is non-zero
+  // history=true (kind=image, single level): kept across frames in two images that trade places
+  // every frame; a pass's read sees the image the previous frame wrote, its write this frame's.
+  bool history = false;
   std::string doc;
 };
 

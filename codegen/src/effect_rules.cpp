@@ -334,6 +334,17 @@ void checkPassRules(const Effect& e, Diagnostics& diags) {
                                e.resources[a.serving].name + "', which no earlier pass writes when " +
                                p.aliasWhen->text);
     }
+    // A history is read as the previous frame left it: the pass that reads it must write this
+    // frame's, or the next frame would read a stale image.
+    for (int r : p.reads)
+      if (e.resources[r].history && !writes(p, r))
+        diags.error(p.loc, "pass '" + p.name + "' reads history resource '" + e.resources[r].name +
+                               "' but does not write it: the pass that reads a history writes this frame's");
+    for (const auto& a : p.aliases)
+      if (e.resources[a.declared].history || e.resources[a.serving].history)
+        diags.error(p.loc, "alias_when of pass '" + p.name + "' names history resource '" +
+                               e.resources[e.resources[a.declared].history ? a.declared : a.serving].name +
+                               "': a history is never served by or for another image");
     // A read whose earlier writers can all be skipped needs an alias for the last one's condition.
     for (int r : p.reads) {
       const Pass* last = nullptr;

@@ -46,11 +46,17 @@ class PassContext {
 
   Image& image(gen::ResourceId id, std::uint32_t level) { return levels(id)[level]; }
   const Image& image(gen::ResourceId id, std::uint32_t level) const { return levels(id)[level]; }
-  // The level a binding sees first: the one a write stores to, level m - 1 of a per=mip read.
-  Image& image(const ScheduledBinding& b) { return image(b.resource, b.baseLevel); }
+  // The level a binding sees first: the one a write stores to, level m - 1 of a per=mip read; for a
+  // history's read (previousFrame), the previous frame's image.
+  Image& image(const ScheduledBinding& b) {
+    return b.previousFrame ? previousFrame(b.resource) : image(b.resource, b.baseLevel);
+  }
+  // The previous frame's image of a history (history=true): Inputs::history, or all zeros.
+  Image& previousFrame(gen::ResourceId id) { return previous_[static_cast<std::size_t>(id)]; }
 
  private:
   std::array<Levels, gen::kResources.size()> images_;
+  std::array<Image, gen::kResources.size()> previous_;
 };
 
 // The binding through which dispatch `d` reads (write = false) or writes `declared`, the resource

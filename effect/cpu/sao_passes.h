@@ -129,13 +129,15 @@ template <typename T>
 class AoSampleInvocation {
  public:
   AoSampleInvocation(const PassContext<T>& ctx, const std::vector<Image<T>>& csz, const std::vector<Image<T>>& csz2,
-                     const Image<T>& aoRaw)
-      : in_(ctx.in), P_(ctx.P), csz_(csz), csz2_(csz2), aoRaw_(aoRaw),
+                     const Image<T>& aoRaw, const Image<T>* history)
+      : in_(ctx.in), P_(ctx.P), csz_(csz), csz2_(csz2), aoRaw_(aoRaw), history_(history),
         normalsSupplied_(ctx.variant(gen::VariantId::NORMALS_SUPPLIED)),
         twoLayer_(ctx.variant(gen::VariantId::TWO_LAYER)),
         zHierarchy_(ctx.variant(gen::VariantId::Z_HIERARCHY)) {}
 
-  void operator()(int px, int py, T& A, T& key) const {
+  // A and key for the 2x2 step; with TEMPORAL (history_ set) also this frame's history texel:
+  // the accumulated sum and its frames (0 for sky and outside).
+  void operator()(int px, int py, T& A, T& key, T& kept, T& frames) const {
     const Image<T>& z0 = csz_[0];
     const bool inside = px < std::min(P_.ao_size.x, aoRaw_.w) && py < std::min(P_.ao_size.y, aoRaw_.h);
     // The viewport pixel the (reduced) AO pixel stands for: itself at divisor 1.
@@ -146,6 +148,8 @@ class AoSampleInvocation {
     const T zc = z0.at(cx, cy);
     A = T(1);
     key = T(0);
+    kept = T(0);
+    frames = T(0);
     if (!inside || isSky(zc)) return;
 
     const Vec3<T> C = position(T(cx) + T(0.5), T(cy) + T(0.5), zc, P_);
@@ -174,6 +178,10 @@ class AoSampleInvocation {
       if (twoLayer_) o = glslMax(o, tapObscurance(C, n, qx, qy, csz2_[std::size_t(m)].at(mx, my), P_));
       sum += o;
     }
+    if (history_) {
+      temporalAccumulate(*history_, C, sum, P_, kept, frames);
+      sum = kept;
+    }
     A = fade(visibility(sum, P_), zc, P_);
     key = zc;
   }
@@ -184,6 +192,7 @@ class AoSampleInvocation {
   const std::vector<Image<T>>& csz_;
   const std::vector<Image<T>>& csz2_;
   const Image<T>& aoRaw_;
+  const Image<T>* history_;  // the previous frame's (TEMPORAL), else null
   const bool normalsSupplied_, twoLayer_, zHierarchy_;
 };
 
@@ -216,18 +225,30 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
     return Status::error(StatusCode::InvalidInput, "max_mip " + std::to_string(P.max_mip) + " does not match the " +
                                                        std::to_string(csz.size()) + " csz levels computed");
   if (aoRaw.ch != 2) return passError(d, "needs a 2-channel ao_raw");
+  // TEMPORAL: the previous frame's history in, this frame's out (sao_temporal.glsl).
+  const bool temporal = ctx.variant(gen::VariantId::TEMPORAL);
+  const ScheduledBinding* historyIn = temporal ? binding(d, bindings, gen::ResourceId::history, false) : nullptr;
+  const ScheduledBinding* historyOut = temporal ? binding(d, bindings, gen::ResourceId::history, true) : nullptr;
+  if (temporal && historyIn == nullptr) return missingBinding(d, gen::ResourceId::history, false);
+  if (temporal && historyOut == nullptr) return missingBinding(d, gen::ResourceId::history, true);
+  const Image<T>* previous = temporal ? &ctx.image(*historyIn) : nullptr;
+  Image<T>* history = temporal ? &ctx.image(*historyOut) : nullptr;
+  if (temporal && (previous->ch != 4 || history->ch != 4 || previous->w != aoRaw.w || previous->h != aoRaw.h ||
+                   history->w != aoRaw.w || history->h != aoRaw.h))
+    return passError(d, "needs 4-channel history images of ao_raw's extent");
   const int W = aoRaw.w, H = aoRaw.h;
   const int groupsX = int(d.groupsX), groupsY = int(d.groupsY);
   const T threshold = P.quad_edge_threshold;
-  const AoSampleInvocation<T> sampleInvocation(ctx, csz, csz2, aoRaw);
+  const AoSampleInvocation<T> sampleInvocation(ctx, csz, csz2, aoRaw, previous);
   parallelFor(groupsY, ctx.threads, [&](int gy) {
-    std::vector<T> quadA(std::size_t(LX) * LY), quadH(quadA.size()), quadZ(quadA.size());
+    std::vector<T> quadA(std::size_t(LX) * LY), quadH(quadA.size()), quadZ(quadA.size()), kept(quadA.size()),
+        frames(quadA.size());
     for (int gx = 0; gx < groupsX; ++gx) {
       // Up to the first barrier: every invocation's A and key.
       for (int ly = 0; ly < LY; ++ly)
         for (int lx = 0; lx < LX; ++lx) {
           const std::size_t li = std::size_t(ly) * LX + lx;
-          sampleInvocation(gx * LX + lx, gy * LY + ly, quadA[li], quadZ[li]);
+          sampleInvocation(gx * LX + lx, gy * LY + ly, quadA[li], quadZ[li], kept[li], frames[li]);
         }
       // Between the barriers: the step along x.
       for (int ly = 0; ly < LY; ++ly)
@@ -246,6 +267,12 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
           if (px < std::min(P.ao_size.x, W) && py < std::min(P.ao_size.y, H)) {
             aoRaw.at(px, py, 0) = av;
             aoRaw.at(px, py, 1) = quadZ[li];
+            if (history) {
+              history->at(px, py, 0) = kept[li];
+              history->at(px, py, 1) = quadZ[li];
+              history->at(px, py, 2) = frames[li];
+              history->at(px, py, 3) = T(0);
+            }
           }
         }
     }

@@ -41,16 +41,24 @@ Status runFramePath(const Options& o, samples::BackendRunner& backend, const Set
     const scenes::View view = scenes::pathView(base, o.path, f, o.frames);
     raytrace::Primary primary;
     if (Status s = makeDepth(view, primary); !s) return s;
+    // The frame's pose (temporal accumulation reprojects its history through it) and, with
+    // temporal accumulation, the frame's spiral: frames then sample different taps.
+    const glm::dmat4 worldToCamera = scenes::viewMatrix(view);
+    Camera frameCamera = camera;
+    std::array<double, 16> v{};
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) v[std::size_t(c * 4 + r)] = worldToCamera[c][r];
+    frameCamera.view = v;
     samples::RunInputs inputs{&primary.depth, nullptr, nullptr};
+    inputs.frameIndex = settings.temporal ? f : 0;
     samples::RunOutputs result;
-    if (Status s = backend.run(settings, camera, inputs, true, false, result); !s) return s;
+    if (Status s = backend.run(settings, frameCamera, inputs, true, false, result); !s) return s;
     times.push_back(result.timings.totalMilliseconds());
     char name[32];
     std::snprintf(name, sizeof name, "frames/ao_%04u.png", f);
     std::string png;
     if (Status s = out.file(name, png); !s) return s;
     if (Status s = writeAoPng(png, result.ao); !s) return s;
-    const glm::dmat4 worldToCamera = scenes::viewMatrix(view);
     samples::Flicker flicker;
     if (f > 0) {
       flicker = samples::reprojectedFlicker({&previousAo, &previous.position, previousView},

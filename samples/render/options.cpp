@@ -75,6 +75,9 @@ void refuseIneffectiveOptions(const Options& o) {
   if (o.has("--reference-rays") && !o.reference) usageError("--reference-rays has no effect without --reference");
   if (o.has("--path") && !o.has("--frames")) usageError("--path has no effect without --frames");
   if (o.has("--frames") && o.has("--depth")) usageError("--frames needs a scene: a --depth file has one view");
+  if (o.settings.temporal && !o.has("--frames"))
+    usageError("--set temporal=true accumulates frames: it needs --frames N along a --path (a single frame has "
+               "no history)");
 }
 
 }  // namespace

@@ -359,10 +359,13 @@ test::Scene cardOverWall(double cardDistance, double wallDistance, double half) 
 
 // ---- Cameras
 
+constexpr std::array<double, 16> kIdentityView{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+
 Camera camera(std::uint32_t width, std::uint32_t height, double n, double f, ClipDepth clip, bool reversedZ,
               std::uint32_t guard) {
   Camera c = perspectiveCamera(3.14159265358979323846 / 3.0, width, height, n, f, clip, reversedZ);
   c.guardBand = guard;
+  c.view = kIdentityView;  // a pose, so that every setting (temporal too) runs
   return c;
 }
 
@@ -370,6 +373,7 @@ Camera orthoCamera(std::uint32_t width, std::uint32_t height, double n, double f
                    std::uint32_t guard, double halfHeight) {
   Camera c = orthographicCamera(halfHeight, width, height, n, f, clip, reversedZ);
   c.guardBand = guard;
+  c.view = kIdentityView;
   return c;
 }
 

@@ -22,6 +22,7 @@ constexpr double kInf = INFINITY;
 Camera cam(std::uint32_t w, std::uint32_t h, double n, double f, ClipDepth clip, bool rev, std::uint32_t g) {
   Camera c = perspectiveCamera(3.14159265358979323846 / 3.0, w, h, n, f, clip, rev);
   c.guardBand = g;
+  c.view = std::array<double, 16>{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};  // every setting runs (temporal)
   return c;
 }
 

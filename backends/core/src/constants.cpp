@@ -28,9 +28,57 @@ static_assert(int(DepthSamplePolicy::Sample0) == gen::SAO_DEPTH_SAMPLE_0 &&
                   int(DepthSamplePolicy::Nearest) == gen::SAO_DEPTH_SAMPLE_NEAREST,
               "DepthSamplePolicy is the block's depth_sample_policy");
 
+// Eq. 3 in csz texel coordinates (guard folded into b): proj_info of the block.
+gen::Float4 projInfoOf(const Camera& c) {
+  const bool ortho = c.kind == ProjectionKind::Orthographic;
+  const double W = c.width, H = c.height, g = c.guardBand;
+  const double sy = c.flipY ? -1.0 : 1.0;
+  double ax, ay, bx, by;
+
+  if (!ortho) {
+    ax = -2.0 / (W * at(c, 0, 0));
+    ay = -2.0 * sy / (H * at(c, 1, 1));
+    bx = (1.0 - at(c, 0, 2)) / at(c, 0, 0) - g * ax;
+    by = (sy - at(c, 1, 2)) / at(c, 1, 1) - g * ay;
+  } else {
+    ax = 2.0 / (W * at(c, 0, 0));
+    ay = 2.0 * sy / (H * at(c, 1, 1));
+    bx = -(1.0 + at(c, 0, 3)) / at(c, 0, 0) - g * ax;
+    by = -(sy + at(c, 1, 3)) / at(c, 1, 1) - g * ay;
+  }
+  return {f(ax), f(ay), f(bx), f(by)};
+}
+
 // 1e-4: far looser than a float-stored rotation's rounding (~1e-7), far tighter than a scaled or
 // sheared matrix.
 constexpr double kRotationTolerance = 1e-4;
+
+// A rotation, column-major 3x3: finite, orthonormal columns to kRotationTolerance, determinant +1.
+Status checkRotation(const std::array<double, 9>& r, const char* name) {
+  auto bad = [](const std::string& what) { return Status::error(StatusCode::InvalidCamera, what); };
+  for (double v : r)
+    if (!std::isfinite(v)) return bad(std::string(name) + " has a non-finite element");
+  auto col = [&](int i, int k) { return r[std::size_t(i * 3 + k)]; };
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) {
+      const double d = col(i, 0) * col(j, 0) + col(i, 1) * col(j, 1) + col(i, 2) * col(j, 2);
+      const double want = i == j ? 1.0 : 0.0;
+      if (std::fabs(d - want) > kRotationTolerance) {
+        char text[200];
+        if (i == j)
+          std::snprintf(text, sizeof text, "column %d has length %.9g", i, std::sqrt(d));
+        else
+          std::snprintf(text, sizeof text, "columns %d and %d have the dot product %.9g", i, j, d);
+        return bad(std::string(name) + " is not a rotation: " + text +
+                   " (the columns must be orthonormal to 1e-4)");
+      }
+    }
+  const double det = col(0, 0) * (col(1, 1) * col(2, 2) - col(2, 1) * col(1, 2)) -
+                     col(1, 0) * (col(0, 1) * col(2, 2) - col(2, 1) * col(0, 2)) +
+                     col(2, 0) * (col(0, 1) * col(1, 2) - col(1, 1) * col(0, 2));
+  if (det < 0) return bad(std::string(name) + " is a reflection (determinant -1), not a rotation");
+  return Status::success();
+}
 
 // The normals encoding and the view rotation: a world-space encoding needs a rotation, and a
 // rotation that is set must be one (a scale or shear would bend every normal, a mirror would turn
@@ -48,28 +96,31 @@ Status checkNormalsEncoding(const Camera& c) {
   if (const int d = int(c.depthSamplePolicy); d != gen::SAO_DEPTH_SAMPLE_0 && d != gen::SAO_DEPTH_SAMPLE_NEAREST)
     return bad("Camera::depthSamplePolicy = " + std::to_string(d) + " is not a DepthSamplePolicy");
   if (!c.viewRotation) return Status::success();
-  const auto& r = *c.viewRotation;
-  for (double v : r)
-    if (!std::isfinite(v)) return bad("Camera::viewRotation has a non-finite element");
-  auto col = [&](int i, int k) { return r[std::size_t(i * 3 + k)]; };
-  for (int i = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j) {
-      const double d = col(i, 0) * col(j, 0) + col(i, 1) * col(j, 1) + col(i, 2) * col(j, 2);
-      const double want = i == j ? 1.0 : 0.0;
-      if (std::fabs(d - want) > kRotationTolerance) {
-        char text[200];
-        if (i == j)
-          std::snprintf(text, sizeof text, "column %d has length %.9g", i, std::sqrt(d));
-        else
-          std::snprintf(text, sizeof text, "columns %d and %d have the dot product %.9g", i, j, d);
-        return bad(std::string("Camera::viewRotation is not a rotation: ") + text +
-                   " (the columns must be orthonormal to 1e-4)");
-      }
-    }
-  const double det = col(0, 0) * (col(1, 1) * col(2, 2) - col(2, 1) * col(1, 2)) -
-                     col(1, 0) * (col(0, 1) * col(2, 2) - col(2, 1) * col(0, 2)) +
-                     col(2, 0) * (col(0, 1) * col(1, 2) - col(1, 1) * col(0, 2));
-  if (det < 0) return bad("Camera::viewRotation is a reflection (determinant -1), not a rotation");
+  return checkRotation(*c.viewRotation, "Camera::viewRotation");
+}
+
+// Camera::view: finite, a rotation (checkRotation) and a translation, last row 0 0 0 1; its rotation
+// the same as viewRotation's when both are set; required with temporal accumulation.
+Status checkView(const Camera& c, const Settings& s) {
+  auto bad = [](const std::string& what) { return Status::error(StatusCode::InvalidCamera, what); };
+  if (!c.view) {
+    if (s.temporal)
+      return bad("the temporal setting needs Camera::view (the world -> camera matrix) on every frame's camera, to "
+                 "find each pixel's surface in the previous frame; none is set (a camera that never moves: the identity)");
+    return Status::success();
+  }
+  const auto& v = *c.view;
+  for (double x : v)
+    if (!std::isfinite(x)) return bad("Camera::view has a non-finite element");
+  if (v[3] != 0.0 || v[7] != 0.0 || v[11] != 0.0 || v[15] != 1.0)
+    return bad("Camera::view's last row is not 0 0 0 1: it must be a rigid world -> camera transform");
+  const std::array<double, 9> r{v[0], v[1], v[2], v[4], v[5], v[6], v[8], v[9], v[10]};
+  if (Status st = checkRotation(r, "Camera::view's upper 3x3"); !st) return st;
+  if (c.viewRotation)
+    for (std::size_t k = 0; k < 9; ++k)
+      if (std::fabs(r[k] - (*c.viewRotation)[k]) > kRotationTolerance)
+        return bad("Camera::viewRotation differs from Camera::view's rotation (element " + std::to_string(k) +
+                   "): they describe one camera");
   return Status::success();
 }
 
@@ -131,26 +182,11 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
   DepthModel m;
   if (Status st = analyze(c, m); !st) return st;
   if (Status st = checkNormalsEncoding(c); !st) return st;
+  if (Status st = checkView(c, s); !st) return st;
   p = ParamBlock{};
   const bool ortho = c.kind == ProjectionKind::Orthographic;
   const double u = c.metersToViewUnits;
-  const double W = c.width, H = c.height, g = c.guardBand;
-  const double sy = c.flipY ? -1.0 : 1.0;
-
-  // eq. 3 in csz texel coordinates (guard folded into b).
-  double ax, ay, bx, by;
-  if (!ortho) {
-    ax = -2.0 / (W * at(c, 0, 0));
-    ay = -2.0 * sy / (H * at(c, 1, 1));
-    bx = (1.0 - at(c, 0, 2)) / at(c, 0, 0) - g * ax;
-    by = (sy - at(c, 1, 2)) / at(c, 1, 1) - g * ay;
-  } else {
-    ax = 2.0 / (W * at(c, 0, 0));
-    ay = 2.0 * sy / (H * at(c, 1, 1));
-    bx = -(1.0 + at(c, 0, 3)) / at(c, 0, 0) - g * ax;
-    by = -(sy + at(c, 1, 3)) / at(c, 1, 1) - g * ay;
-  }
-  p.proj_info = {f(ax), f(ay), f(bx), f(by)};
+  p.proj_info = projInfoOf(c);
 
   // eq. 2 and the far/clear test.
   if (encoding == DepthEncoding::LinearZ) {
@@ -225,7 +261,45 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
   p.depth_sample_policy = int(c.depthSamplePolicy);
   p.depth_samples = 1;  // backends put the depth input's sample count here
   setFrameIndex(p, 0);  // the paper's spiral; backends set the caller's frame
+  // Temporal accumulation: the history's share (docs/effect-math.md, "Temporal"); no history until
+  // a backend sets the previous frame's camera (setPreviousFrame).
+  p.temporal_min_blend = f(1.0 - double(s.temporal_hysteresis));
+  p.temporal_max_frames = f(1.0 / (1.0 - double(s.temporal_hysteresis)));
+  p.temporal_depth_k = f(1.0 / double(s.temporal_depth_tolerance));
+  setPreviousFrame(p, c, nullptr);
   return Status::success();
+}
+
+gen::Float4 projInfo(const Camera& camera) { return projInfoOf(camera); }
+
+void setPreviousFrame(ParamBlock& p, const Camera& current, const Camera* previous) {
+  if (!previous || !current.view || !previous->view) {
+    p.prev_from_cur_x = {1.0f, 0.0f, 0.0f, 0.0f};
+    p.prev_from_cur_y = {0.0f, 1.0f, 0.0f, 0.0f};
+    p.prev_from_cur_z = {0.0f, 0.0f, 1.0f, 0.0f};
+    p.prev_proj_info = p.proj_info;
+    p.history_valid = 0;
+    return;
+  }
+  // M = V_prev * V_cur^-1 in double, V_cur^-1 = [R^T | -R^T t] (rigid): rows of M's upper 3x4.
+  const auto& a = *previous->view;
+  const auto& b = *current.view;
+  auto A = [&](int r, int c) { return a[std::size_t(c * 4 + r)]; };
+  auto B = [&](int r, int c) { return b[std::size_t(c * 4 + r)]; };
+  double inv[3][4];
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) inv[r][c] = B(c, r);
+    inv[r][3] = -(B(0, r) * B(0, 3) + B(1, r) * B(1, 3) + B(2, r) * B(2, 3));
+  }
+  gen::Float4* rows[3] = {&p.prev_from_cur_x, &p.prev_from_cur_y, &p.prev_from_cur_z};
+  for (int r = 0; r < 3; ++r) {
+    double m[4];
+    for (int c = 0; c < 4; ++c) m[c] = A(r, 0) * inv[0][c] + A(r, 1) * inv[1][c] + A(r, 2) * inv[2][c];
+    m[3] += A(r, 3);
+    *rows[r] = {f(m[0]), f(m[1]), f(m[2]), f(m[3])};
+  }
+  p.prev_proj_info = projInfoOf(*previous);
+  p.history_valid = 1;
 }
 
 void setFrameIndex(ParamBlock& block, std::uint32_t frameIndex) {

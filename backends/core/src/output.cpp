@@ -19,6 +19,7 @@ std::uint32_t channelCount(gen::Format format) {
     case gen::Format::RG32F:
     case gen::Format::RG16F: return 2;
     case gen::Format::RGBA16F:
+    case gen::Format::RGBA32F:
     case gen::Format::RGBA8: return 4;
     default: return 1;
   }
@@ -31,6 +32,7 @@ const char* formatName(gen::Format format) {
     case gen::Format::R16F: return "r16f";
     case gen::Format::RG16F: return "rg16f";
     case gen::Format::RGBA16F: return "rgba16f";
+    case gen::Format::RGBA32F: return "rgba32f";
     case gen::Format::R8: return "r8";
     case gen::Format::RGBA8: return "rgba8";
     case gen::Format::Depth: return "depth";

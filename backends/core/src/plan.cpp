@@ -66,6 +66,7 @@ std::uint32_t bytesPerTexel(gen::Format format) {
     case gen::Format::R16F: return 2;
     case gen::Format::RG16F: return 4;
     case gen::Format::RGBA16F: return 8;
+    case gen::Format::RGBA32F: return 16;
     case gen::Format::R8: return 1;
     case gen::Format::RGBA8: return 4;
     case gen::Format::Depth: return 4;
@@ -99,7 +100,8 @@ std::string Plan::describe() const {
   s << "\nimages:";
   for (const auto& i : images)
     s << " " << gen::kResources[static_cast<std::size_t>(i.resource)].name << "(" << i.extent.width << "x"
-      << i.extent.height << (i.mipLevels > 1 ? ", " + std::to_string(i.mipLevels) + " levels" : "") << ")";
+      << i.extent.height << (i.mipLevels > 1 ? ", " + std::to_string(i.mipLevels) + " levels" : "")
+      << (i.copies > 1 ? ", x" + std::to_string(i.copies) : "") << ")";
   s << "\nbytes: " << totalBytes << "\n";
   return s.str();
 }
@@ -188,7 +190,8 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
       const Extent e = resourceExtent(out, id);  // not planned yet: the declared extent
       const std::uint32_t levels = r.fullMipChain ? out.cszLevels : 1;
       const gen::Format format = r.formats.empty() ? r.format : inputs.outputFormat;  // checked above
-      out.images.push_back({id, format, e, levels, imageBytes(format, e, levels)});
+      const std::uint32_t copies = r.history ? 2 : 1;
+      out.images.push_back({id, format, e, levels, copies, copies * imageBytes(format, e, levels)});
     }
   }
   for (const auto& i : out.images) out.totalBytes += i.bytes;
@@ -213,7 +216,7 @@ std::uint64_t fullAllocationBytes(const Camera& camera, const PlanInputs& inputs
     if (r.kind == gen::ResourceKind::Output && inputs.userOutput) continue;
     const Extent base = r.inputExtent ? input : ao;
     const gen::Format format = r.formats.empty() ? r.format : inputs.outputFormat;
-    total += imageBytes(format, base, r.fullMipChain ? fullChainLevels(base) : 1);
+    total += (r.history ? 2 : 1) * imageBytes(format, base, r.fullMipChain ? fullChainLevels(base) : 1);
   }
   return total;
 }

@@ -91,6 +91,7 @@ Schedule makeSchedule(const Plan& plan) {
         sb.binding = b.binding;
         sb.resource = plan.resolve(p, b.resource);
         sb.write = b.write;
+        sb.previousFrame = !b.write && gen::kResources[static_cast<std::size_t>(sb.resource)].history;
         const std::uint32_t levels = levelsOf(plan, sb.resource);
         if (b.write) {
           sb.baseLevel = d.level;
@@ -118,7 +119,8 @@ Schedule makeSchedule(const Plan& plan) {
       tracker.beginDispatch();
       for (const ScheduledBinding& b : s.bindingsOf(d))
         if (!b.write) {
-          tracker.read(b.resource, b.baseLevel, b.levelCount);
+          // The previous frame's copy of a history: written before the frame (its entry hazard).
+          if (!b.previousFrame) tracker.read(b.resource, b.baseLevel, b.levelCount);
           read[static_cast<std::size_t>(b.resource)] = true;
         }
       for (const ScheduledBinding& b : s.bindingsOf(d))
@@ -136,6 +138,7 @@ Schedule makeSchedule(const Plan& plan) {
     const auto id = static_cast<gen::ResourceId>(r);
     const auto kind = gen::kResources[r].kind;
     if (kind == gen::ResourceKind::Input && read[r]) s.hazards.push_back({id, 0, 1, HazardKind::CallerWrote});
+    if (gen::kResources[r].history && read[r]) s.hazards.push_back({id, 0, 1, HazardKind::ReadAfterWrite, true});
     // The previous frame (or the caller, for the output) read or wrote what this frame writes.
     if (written[r])
       s.hazards.push_back({id, 0, levelsOf(plan, id),
@@ -160,7 +163,8 @@ std::string Schedule::describe() const {
   auto hazardList = [&](std::span<const Hazard> hs) {
     std::string t;
     for (const Hazard& h : hs)
-      t += std::string(" ") + kKind[static_cast<int>(h.kind)] + " " + name(h.resource) + levels(h.baseLevel, h.levelCount);
+      t += std::string(" ") + kKind[static_cast<int>(h.kind)] + " " + name(h.resource) +
+           (h.previousFrame ? "(prev)" : "") + levels(h.baseLevel, h.levelCount);
     return t;
   };
   std::ostringstream o;
@@ -170,7 +174,8 @@ std::string Schedule::describe() const {
     if (d.level) o << "@" << d.level;
     o << " " << d.groupsX << "x" << d.groupsY << ":";
     for (const ScheduledBinding& b : bindingsOf(d))
-      o << " " << b.binding << (b.write ? "=w " : "=r ") << name(b.resource) << levels(b.baseLevel, b.levelCount);
+      o << " " << b.binding << (b.write ? "=w " : "=r ") << name(b.resource) << (b.previousFrame ? "(prev)" : "")
+        << levels(b.baseLevel, b.levelCount);
     if (d.hazardCount) o << " | before:" << hazardList(hazardsBefore(d));
     o << "\n";
   }

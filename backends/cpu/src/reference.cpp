@@ -13,6 +13,7 @@
 
 #include "sao/cpu/parallel.h"
 #include "sao/schedule.h"
+#include "sao/temporal.h"
 
 // The effect's CPU passes: the header that sao_generate_effect(... CPU_PASSES <header>) names, as
 // the effect target's compile definition. It defines sao::cpu::runEffectPass and PassContext.
@@ -115,6 +116,7 @@ int channelsOf(gen::Format format) {
     case gen::Format::RG32F:
     case gen::Format::RG16F: return 2;
     case gen::Format::RGBA16F:
+    case gen::Format::RGBA32F:
     case gen::Format::RGBA8: return 4;
     default: return 0;
   }
@@ -132,7 +134,7 @@ Status allocateImages(PassContext<T>& ctx) {
     if (channels == 0)
       return Status::error(StatusCode::UnsupportedFormat,
                            "the plan's image '" + resourceName(img.resource) +
-                               "' has a format the CPU reference cannot hold (r32f, r16f, r8, rg32f, rg16f, rgba16f, rgba8)");
+                               "' has a format the CPU reference cannot hold (r32f, r16f, r8, rg32f, rg16f, rgba16f, rgba32f, rgba8)");
     auto& levels = ctx.levels(img.resource);
     levels.clear();
     for (std::uint32_t m = 0; m < img.mipLevels; ++m) {
@@ -144,6 +146,13 @@ Status allocateImages(PassContext<T>& ctx) {
     const FloatImage* initial = ctx.in.output;
     if (gen::kResources[static_cast<std::size_t>(img.resource)].kind == gen::ResourceKind::Output && initial)
       for (std::size_t i = 0; i < initial->data.size(); ++i) levels[0].v[i] = static_cast<T>(initial->data[i]);
+    // A history's previous-frame copy: the previous run's (checked against the plan), else empty.
+    if (gen::kResources[static_cast<std::size_t>(img.resource)].history) {
+      auto& previous = ctx.previousFrame(img.resource);
+      previous = levels[0];
+      if (const FloatImage* h = ctx.in.history)
+        for (std::size_t i = 0; i < h->data.size(); ++i) previous.v[i] = static_cast<T>(h->data[i]);
+    }
   }
   return Status::success();
 }
@@ -203,6 +212,30 @@ Status execute(const Inputs& in, const Plan& plan, const gen::SaoParams& params,
   return Status::success();
 }
 
+// The previous run's history and camera (Inputs::history, previousCamera) into the block, as a GPU
+// backend's temporal state would give them (sao/temporal.h).
+Status checkHistory(const Settings& settings, const Camera& camera, const Inputs& in, Result& r) {
+  if ((in.history == nullptr) != (in.previousCamera == nullptr))
+    return invalid(std::string("Inputs::") + (in.history ? "history is given without Inputs::previousCamera" :
+                                                           "previousCamera is given without Inputs::history") +
+                   ": the history is reused with the camera that made it");
+  if (in.history == nullptr) return Status::success();
+  if (!settings.temporal)
+    return invalid("Inputs::history is given but the temporal setting is off: nothing would read it");
+  const PlannedImage* planned = r.plan.image(gen::ResourceId::history);
+  if (planned == nullptr) return invalid("the plan has no history image");
+  if (in.history->extent != planned->extent || in.history->channels != 4 ||
+      in.history->data.size() != std::size_t(planned->extent.width) * planned->extent.height * 4)
+    return invalid("Inputs::history is " + extentText(in.history->extent) + " with " +
+                   std::to_string(in.history->channels) + " channels; this run's history is " +
+                   extentText(planned->extent) + " with 4 (a previous run with another size or resolution_divisor)");
+  TemporalHistory h;
+  h.holdsFrame = true;
+  h.settings = settings;
+  h.camera = *in.previousCamera;
+  return prepareTemporalFrame(h, settings, camera, in.previousCamera, false, r.params);
+}
+
 Status validateAndPlan(const Settings& settings, const Camera& camera, const Inputs& in, Result& r) {
   if (in.depth == nullptr) return invalid("no depth input: Inputs::depth is null");
   if (!knownFormat(in.depth->format))
@@ -246,6 +279,7 @@ Status validateAndPlan(const Settings& settings, const Camera& camera, const Inp
   r.params.output_blend = static_cast<std::int32_t>(in.outputBlend);
   r.params.depth_samples = static_cast<std::int32_t>(in.depth->samples);
   setFrameIndex(r.params, in.frameIndex);
+  if (Status st = checkHistory(settings, camera, in, r); !st) return st;
   // The block and the plan come from the same core functions; check that they agree anyway.
   if (std::uint32_t(r.params.max_mip) + 1 != r.plan.cszLevels)
     return invalid("max_mip " + std::to_string(r.params.max_mip) + " disagrees with the plan's " +

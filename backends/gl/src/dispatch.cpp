@@ -2,7 +2,7 @@
 
 namespace sao::gl::detail {
 
-GLuint textureFor(const PassResources& r, gen::ResourceId id) {
+GLuint textureFor(const PassResources& r, gen::ResourceId id, bool previousFrame) {
   switch (id) {
     case gen::ResourceId::depth: return r.inputs->depth.texture;
     case gen::ResourceId::depth2: return r.inputs->depth2.texture;
@@ -11,7 +11,7 @@ GLuint textureFor(const PassResources& r, gen::ResourceId id) {
   }
   const auto& info = gen::kResources[static_cast<std::size_t>(id)];
   if (info.kind == gen::ResourceKind::Output && r.inputs->output.texture != 0) return r.inputs->output.texture;
-  return r.owned->texture(id);
+  return r.owned->texture(id, imageCopy(r.historyParity, id, previousFrame));
 }
 
 GLbitfield barrierBits(std::span<const Hazard> hazards) {
@@ -50,7 +50,7 @@ void barrier(const GlFunctions& gl, std::span<const Hazard> hazards) {
 
 // `declared`: the pass variant's own binding (the format its shader declares, whether it loads too).
 void bind(const GlFunctions& gl, const PassResources& r, const ScheduledBinding& b, const gen::BindingInfo& declared) {
-  const GLuint texture = textureFor(r, b.resource);
+  const GLuint texture = textureFor(r, b.resource, b.previousFrame);
   if (b.write) {
     gl.BindImageTexture(b.binding, texture, GLint(b.baseLevel), GL_FALSE, 0,
                         declared.readWrite ? GL_READ_WRITE : GL_WRITE_ONLY, glFormat(declared.format));

@@ -9,6 +9,7 @@
 #include "programs.h"
 #include "resources.h"
 #include "sao/schedule.h"
+#include "sao/temporal.h"
 #include "timing.h"
 
 namespace sao::gl::detail {
@@ -18,10 +19,12 @@ struct PassResources {
   const CheckedInputs* inputs = nullptr;
   GLuint nearestSampler = 0;  // GL_NEAREST, compare mode none: inputs, single levels
   GLuint mipSampler = 0;      // GL_NEAREST_MIPMAP_NEAREST: whole MIP chains read at explicit lods
+  std::uint32_t historyParity = 0;  // the history copy this frame writes (sao/temporal.h)
 };
 
-// The texture that serves `id` (input, owned image or output), 0 if none.
-GLuint textureFor(const PassResources& r, gen::ResourceId id);
+// The texture that serves `id` (input, owned image or output), 0 if none; for a history, this
+// frame's copy, or the previous frame's with `previousFrame`.
+GLuint textureFor(const PassResources& r, gen::ResourceId id, bool previousFrame = false);
 
 // The glMemoryBarrier bits that resolve `hazards` (0: none needed).
 GLbitfield barrierBits(std::span<const Hazard> hazards);

@@ -13,6 +13,7 @@
 #include "inputs.h"
 #include "programs.h"
 #include "resources.h"
+#include "sao/temporal.h"
 #include "state.h"
 #include "timing.h"
 
@@ -43,6 +44,7 @@ struct __attribute__((visibility("hidden"))) Effect::Impl {
   ParamBlock params{};
   Timings timings;
   Stats stats;
+  TemporalHistory temporal;  // the history textures' state (sao/temporal.h)
   GLuint aoTexture = 0;
   std::array<GLuint, gen::kResources.size()> served{};
 
@@ -224,6 +226,16 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
   block.output_blend = static_cast<std::int32_t>(checked.outputBlend);
   block.depth_samples = static_cast<std::int32_t>(checked.depth.samples);  // DEPTH_MULTISAMPLE's sample count
   setFrameIndex(block, inputs.frameIndex);  // the frame's spiral (sao/spiral.h)
+  if (settings.temporal) {
+    if (inputs.layer != 0)
+      return Status::error(StatusCode::InvalidInput, "sao::gl: temporal accumulation keeps one view's history: render "
+                                                     "each layer (eye) with its own effect (Inputs::layer must be 0)");
+    // A new plan (a resize, new settings, other inputs) has new history textures: start again.
+    if (Status st = prepareTemporalFrame(temporal, settings, camera, inputs.previousCamera,
+                                         inputs.resetHistory || replan, block);
+        !st)
+      return st;
+  }
   if (replan) {
     if (p.inputExtent.width > std::uint32_t(maxTextureSize) || p.inputExtent.height > std::uint32_t(maxTextureSize))
       return Status::error(StatusCode::InvalidExtent, "sao::gl: the depth input " + std::to_string(p.inputExtent.width) +
@@ -251,7 +263,7 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
   }
   gl.BindBufferBase(GL_UNIFORM_BUFFER, gen::kParamBlockBinding, ubo);
 
-  PassResources r{resources.get(), &checked, nearestSampler, mipSampler};
+  PassResources r{resources.get(), &checked, nearestSampler, mipSampler, temporal.parity};
   timer->beginFrame(options.measureTime);
   runSchedule(gl, p, s, programsOfPlan, r, *timer);
   if (!timer->endFrame(timings)) {  // GPU timers saw nothing: measure the same work again by clock
@@ -266,6 +278,8 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
     served[i] = kind == gen::ResourceKind::Input ? 0 : textureFor(r, id);
   }
   aoTexture = textureFor(r, gen::ResourceId::ao);
+  if (settings.temporal) finishTemporalFrame(temporal, settings, camera);
+  else temporal.holdsFrame = false;
   if (replan) {
     plan = std::move(newPlan);
     schedule = std::move(newSchedule);

@@ -13,6 +13,7 @@ GLenum glFormat(gen::Format format) {
     case gen::Format::R16F: return GL_R16F;
     case gen::Format::RG16F: return GL_RG16F;
     case gen::Format::RGBA16F: return GL_RGBA16F;
+    case gen::Format::RGBA32F: return GL_RGBA32F;
     case gen::Format::R8: return GL_R8;
     case gen::Format::RGBA8: return GL_RGBA8;
     case gen::Format::Depth: return 0;
@@ -28,11 +29,30 @@ GLuint Resources::levelView(gen::ResourceId id, std::uint32_t level) const {
 void Resources::release(Slot& s) {
   if (!s.views.empty()) gl_.DeleteTextures(GLsizei(s.views.size()), s.views.data());
   if (s.texture) gl_.DeleteTextures(1, &s.texture);
+  if (s.second) gl_.DeleteTextures(1, &s.second);
   s = Slot{};
 }
 
 void Resources::releaseAll() {
   for (Slot& s : slots_) release(s);
+}
+
+bool Resources::create(const PlannedImage& img, GLenum format, GLuint scratchUnit, const std::string& label, GLuint& out) {
+  gl_.GenTextures(1, &out);
+  gl_.ActiveTexture(GL_TEXTURE0 + scratchUnit);
+  gl_.BindTexture(GL_TEXTURE_2D, out);
+  gl_.TexStorage2D(GL_TEXTURE_2D, GLsizei(img.mipLevels), format, GLsizei(img.extent.width), GLsizei(img.extent.height));
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, img.mipLevels > 1 ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  // Allocation failures are detected without glGetError (which would swallow the caller's errors):
+  // a texture whose storage could not be allocated is not immutable.
+  GLint immutable = 0;
+  gl_.GetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
+  gl_.BindTexture(GL_TEXTURE_2D, 0);
+  gl_.ObjectLabel(GL_TEXTURE, out, GLsizei(label.size()), label.c_str());
+  return immutable != 0;
 }
 
 Status Resources::update(const Plan& plan, GLuint scratchUnit, GLint maxTextureSize, std::uint64_t& allocations) {
@@ -59,23 +79,9 @@ Status Resources::update(const Plan& plan, GLuint scratchUnit, GLint maxTextureS
                            "sao::gl: image '" + name + "' is " + std::to_string(img->extent.width) + "x" +
                                std::to_string(img->extent.height) + ", above GL_MAX_TEXTURE_SIZE " +
                                std::to_string(maxTextureSize));
-    gl_.GenTextures(1, &s.texture);
     if (isOutput) ++outputGeneration_;  // a new texture object serves aoTexture()
-    gl_.ActiveTexture(GL_TEXTURE0 + scratchUnit);
-    gl_.BindTexture(GL_TEXTURE_2D, s.texture);
-    gl_.TexStorage2D(GL_TEXTURE_2D, GLsizei(img->mipLevels), format, GLsizei(img->extent.width),
-                     GLsizei(img->extent.height));
-    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, img->mipLevels > 1 ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST);
-    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    // Allocation failures are detected without glGetError (which would swallow the caller's errors):
-    // a texture whose storage could not be allocated is not immutable.
-    GLint immutable = 0;
-    gl_.GetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
-    gl_.BindTexture(GL_TEXTURE_2D, 0);
-    const std::string label = "sao " + name;
-    gl_.ObjectLabel(GL_TEXTURE, s.texture, GLsizei(label.size()), label.c_str());
+    bool immutable = create(*img, format, scratchUnit, "sao " + name, s.texture);
+    if (img->copies > 1) immutable = create(*img, format, scratchUnit, "sao " + name + " (2)", s.second) && immutable;
     // Views of single levels of a chain: a binding that sees one level (the per=mip pass reads
     // level m-1) reads it as "lod 0" of a view.
     for (std::uint32_t m = 0; img->mipLevels > 1 && m < img->mipLevels; ++m) {

@@ -25,7 +25,10 @@ class Resources {
   // InvalidExtent when a size exceeds maxTextureSize; DriverError when allocation fails.
   Status update(const Plan& plan, GLuint scratchUnit, GLint maxTextureSize, std::uint64_t& allocations);
 
-  GLuint texture(gen::ResourceId id) const { return slot(id).texture; }
+  // The texture of an owned image; a history (PlannedImage::copies = 2) has two, `copy` 0 and 1.
+  GLuint texture(gen::ResourceId id, std::uint32_t copy = 0) const {
+    return copy == 0 ? slot(id).texture : slot(id).second;
+  }
   // Goes up each time an effect-owned output texture is created or deleted.
   std::uint64_t outputGeneration() const { return outputGeneration_; }
   GLuint levelView(gen::ResourceId id, std::uint32_t level) const;  // single-level view, 0 if none
@@ -34,11 +37,14 @@ class Resources {
  private:
   struct Slot {
     GLuint texture = 0;
+    GLuint second = 0;          // a history's second copy
     PlannedImage planned;       // what the texture was allocated for
     std::vector<GLuint> views;  // views[m]: level m alone (chains only)
   };
   const Slot& slot(gen::ResourceId id) const { return slots_[static_cast<std::size_t>(id)]; }
   void release(Slot& s);
+  // One immutable texture of img (its levels), labelled; false when its storage failed.
+  bool create(const PlannedImage& img, GLenum format, GLuint scratchUnit, const std::string& label, GLuint& out);
 
   const GlFunctions& gl_;
   std::array<Slot, gen::kResources.size()> slots_{};

@@ -383,6 +383,7 @@ Status Effect::update(const Config& config) {
     }
     e.config = std::move(next);
     e.plan = std::move(plan);
+    e.temporal.holdsFrame = false;  // new settings or images: the history starts again
     e.schedule = std::move(schedule);
     e.params = params;
     return Status::success();

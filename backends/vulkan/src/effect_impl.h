@@ -15,6 +15,7 @@
 #include "dispatch.h"
 #include "handle.h"
 #include "sao/schedule.h"
+#include "sao/temporal.h"
 #include "sao/vulkan/effect.h"
 
 namespace sao::vk {
@@ -28,6 +29,7 @@ struct OwnedImage {
   VkFormat format = VK_FORMAT_UNDEFINED;
   Extent extent;
   std::uint32_t levels = 1;
+  std::uint32_t copy = 0;  // a history's copy 0 or 1 (PlannedImage::copies, sao/temporal.h)
   Handle<VkImageView> fullView;
   std::vector<Handle<VkImageView>> levelViews;
 };
@@ -36,9 +38,9 @@ struct OwnedImage {
 struct Resources {
   std::vector<Allocator::Block> memory;
   std::vector<OwnedImage> images;
-  const OwnedImage* find(gen::ResourceId id) const {
+  const OwnedImage* find(gen::ResourceId id, std::uint32_t copy = 0) const {
     for (const auto& i : images)
-      if (i.id == id) return &i;
+      if (i.id == id && i.copy == copy) return &i;
     return nullptr;
   }
 };
@@ -121,6 +123,10 @@ struct __attribute__((visibility("hidden"))) EffectState {
   std::uint32_t nextSlot = 0;
   std::uint64_t outputGeneration = 0;  // Effect::outputGeneration()
   int lastTimedRegion = -1;  // region of the last timestamped record(); its passes are plan.passes
+  // The history images' state (sao/temporal.h), and whether the record being made reads them
+  // (its prologue keeps the previous frame's copy instead of discarding it).
+  TemporalHistory temporal;
+  bool historyValid = false;
 
   EffectState() = default;
   EffectState(const EffectState&) = delete;
@@ -164,6 +170,12 @@ std::uint32_t acquireSlot(EffectState& e, const Inputs& inputs, const OutputTarg
 // The parameter block of a record with Inputs::camera: Ok only for a valid camera (create()'s
 // checks and messages) that plans exactly as Config::camera does. Allocates nothing on success.
 Status cameraParams(const EffectState& e, const Camera& camera, ParamBlock& out);
+// The block of one record() or measure() that differs from e.params (Inputs::camera's, or any
+// with temporal accumulation, whose previous-frame members are per frame): `own` then says to
+// pass `out` to acquireSlot. Sets e.historyValid. Allocates nothing.
+Status recordParams(EffectState& e, const Inputs& inputs, ParamBlock& out, bool& own);
+// After a record() or measure() was made: its frame wrote the history (when temporal is on).
+void recordDone(EffectState& e, const Inputs& inputs);
 
 // ---- timing.cpp
 // The timestamp pool for `framesInFlight` ring slots; none (and success) where the queue family

@@ -54,4 +54,27 @@ Status cameraParams(const EffectState& e, const Camera& camera, ParamBlock& out)
   return Status::success();
 }
 
+Status recordParams(EffectState& e, const Inputs& inputs, ParamBlock& out, bool& own) {
+  own = inputs.camera != nullptr;
+  if (inputs.camera) {
+    if (Status st = cameraParams(e, *inputs.camera, out); !st) return st;
+  }
+  e.historyValid = false;
+  if (!e.config.settings.temporal) return Status::success();
+  if (!own) out = e.params;
+  own = true;
+  const Camera& camera = inputs.camera ? *inputs.camera : e.config.camera;
+  if (Status st = prepareTemporalFrame(e.temporal, e.config.settings, camera, inputs.previousCamera,
+                                       inputs.resetHistory, out);
+      !st)
+    return st;
+  e.historyValid = out.history_valid != 0;
+  return Status::success();
+}
+
+void recordDone(EffectState& e, const Inputs& inputs) {
+  if (!e.config.settings.temporal) return;
+  finishTemporalFrame(e.temporal, e.config.settings, inputs.camera ? *inputs.camera : e.config.camera);
+}
+
 }  // namespace sao::vk

@@ -143,7 +143,7 @@ VkDescriptorImageInfo imageInfo(const EffectState& e, const ScheduledBinding& b,
     default: break;
   }
   VkDescriptorImageInfo info{VK_NULL_HANDLE, output.view, VK_IMAGE_LAYOUT_GENERAL};  // the user's output
-  if (const OwnedImage* img = e.res.find(b.resource))
+  if (const OwnedImage* img = e.res.find(b.resource, imageCopy(e.temporal.parity, b.resource, b.previousFrame)))
     info.imageView = b.wholeChain ? img->fullView.get() : img->levelViews[b.baseLevel].get();
   return info;
 }

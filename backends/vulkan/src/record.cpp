@@ -200,8 +200,8 @@ struct Target {
   VkImage image = VK_NULL_HANDLE;
   std::uint32_t layer = 0;
 };
-Target imageOf(const EffectState& e, gen::ResourceId id, const OutputTarget& output) {
-  if (const OwnedImage* img = e.res.find(id)) return {img->image.get(), 0};
+Target imageOf(const EffectState& e, gen::ResourceId id, const OutputTarget& output, bool previousFrame = false) {
+  if (const OwnedImage* img = e.res.find(id, imageCopy(e.temporal.parity, id, previousFrame))) return {img->image.get(), 0};
   if (gen::kResources[static_cast<std::size_t>(id)].kind == gen::ResourceKind::Output) return {output.image, output.layer};
   return {};
 }
@@ -226,7 +226,13 @@ void recordPrologue(const EffectState& e, VkCommandBuffer cmd, const OutputTarge
                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
     for (const Hazard& h : e.schedule.entryHazards()) {
       if (h.kind == HazardKind::CallerWrote) continue;  // the caller's barrier (see above)
-      const Target t = imageOf(e, h.resource, output);
+      const Target t = imageOf(e, h.resource, output, h.previousFrame);
+      if (h.previousFrame) {  // the history the frame before wrote: kept when this frame reads it
+        images.add(imageBarrier(t.image, t.layer, e.historyValid ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED,
+                                VK_IMAGE_LAYOUT_GENERAL, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT,
+                                h.baseLevel, h.levelCount));
+        continue;
+      }
       const bool isOutput = t.image == output.image;
       // The output's kept channels are read by the final pass: its contents must survive.
       const VkImageLayout from = isOutput ? output.keepFrom : VK_IMAGE_LAYOUT_UNDEFINED;
@@ -267,7 +273,7 @@ void recordDispatches(const EffectState& e, VkCommandBuffer cmd, std::uint32_t s
     {
       BarrierBatch hazards(e, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
       for (const Hazard& h : e.schedule.hazardsBefore(d))
-        if (const Target t = imageOf(e, h.resource, output); t.image) hazards.add(hazardBarrier(t, h));
+        if (const Target t = imageOf(e, h.resource, output, h.previousFrame); t.image) hazards.add(hazardBarrier(t, h));
     }
     e.d.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe->layout.get(), 0, 1,
                                 &e.desc.sets[slot * e.desc.setsPerSlot + k], 0, nullptr);
@@ -299,15 +305,16 @@ Status Effect::record(VkCommandBuffer cmd, const Inputs& inputs, const OutputIma
       return Status::error(StatusCode::InvalidInput, "record(): the command buffer is VK_NULL_HANDLE");
     OutputTarget output;
     if (Status st = checkInputs(e, inputs, userOutput, output); !st) return st;
-    ParamBlock cameraBlock{};
-    if (inputs.camera)
-      if (Status st = cameraParams(e, *inputs.camera, cameraBlock); !st) return st;
+    ParamBlock recordBlock{};
+    bool ownBlock = false;
+    if (Status st = recordParams(e, inputs, recordBlock, ownBlock); !st) return st;
     // The only step that allocates, before the first command: a failure records nothing.
-    const std::uint32_t slot = acquireSlot(e, inputs, output, inputs.camera ? &cameraBlock : nullptr);
+    const std::uint32_t slot = acquireSlot(e, inputs, output, ownBlock ? &recordBlock : nullptr);
     const int region = e.config.timestamps && e.queryPool ? static_cast<int>(slot) : -1;
     recordPrologue(e, cmd, output, region);
     recordDispatches(e, cmd, slot, output, region);
     recordEpilogue(e, cmd, output);
+    recordDone(e, inputs);
     if (region >= 0) e.lastTimedRegion = region;
     return Status::success();
   });

@@ -14,6 +14,7 @@ VkFormat vkFormat(gen::Format format) {
     case gen::Format::R16F: return VK_FORMAT_R16_SFLOAT;
     case gen::Format::RG16F: return VK_FORMAT_R16G16_SFLOAT;
     case gen::Format::RGBA16F: return VK_FORMAT_R16G16B16A16_SFLOAT;
+    case gen::Format::RGBA32F: return VK_FORMAT_R32G32B32A32_SFLOAT;
     case gen::Format::R8: return VK_FORMAT_R8_UNORM;
     case gen::Format::RGBA8: return VK_FORMAT_R8G8B8A8_UNORM;
     case gen::Format::Depth: return VK_FORMAT_D32_SFLOAT;
@@ -45,39 +46,44 @@ Status createView(const EffectState& e, VkImage image, VkFormat format, std::uin
 
 Status createResources(EffectState& e, const Plan& plan, Resources& out) {
   Resources res;
-  res.images.reserve(plan.images.size());
+  std::size_t count = 0;
+  for (const auto& planned : plan.images) count += planned.copies;
+  res.images.reserve(count);
   std::vector<Allocator::Request> requests;
   for (const auto& planned : plan.images) {
-    const auto& info = gen::kResources[static_cast<std::size_t>(planned.resource)];
-    OwnedImage img;
-    img.id = planned.resource;
-    img.format = vkFormat(planned.format);
-    img.extent = planned.extent;
-    img.levels = planned.mipLevels;
+    for (std::uint32_t copy = 0; copy < planned.copies; ++copy) {
+      const auto& info = gen::kResources[static_cast<std::size_t>(planned.resource)];
+      OwnedImage img;
+      img.id = planned.resource;
+      img.copy = copy;
+      img.format = vkFormat(planned.format);
+      img.extent = planned.extent;
+      img.levels = planned.mipLevels;
 
-    VkFormatProperties fp{};
-    e.d.vkGetPhysicalDeviceFormatProperties(e.ctx.physicalDevice, img.format, &fp);
-    constexpr VkFormatFeatureFlags need = VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
-    if ((fp.optimalTilingFeatures & need) != need)
-      return Status::error(StatusCode::UnsupportedFormat,
-                           "the device cannot use format " + std::to_string(img.format) + " of image '" +
-                               std::string(info.name) + "' as an optimal-tiling storage and sampled image");
+      VkFormatProperties fp{};
+      e.d.vkGetPhysicalDeviceFormatProperties(e.ctx.physicalDevice, img.format, &fp);
+      constexpr VkFormatFeatureFlags need = VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
+      if ((fp.optimalTilingFeatures & need) != need)
+        return Status::error(StatusCode::UnsupportedFormat,
+                             "the device cannot use format " + std::to_string(img.format) + " of image '" +
+                                 std::string(info.name) + "' as an optimal-tiling storage and sampled image");
 
-    VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-    ci.imageType = VK_IMAGE_TYPE_2D;
-    ci.format = img.format;
-    ci.extent = {img.extent.width, img.extent.height, 1};
-    ci.mipLevels = img.levels;
-    ci.arrayLayers = 1;
-    ci.samples = VK_SAMPLE_COUNT_1_BIT;
-    ci.tiling = VK_IMAGE_TILING_OPTIMAL;
-    ci.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    if (VkResult r = make(e.owner, e.d.vkCreateImage, e.d.vkDestroyImage, ci, img.image); r != VK_SUCCESS)
-      return vkError(("vkCreateImage('" + std::string(info.name) + "')").c_str(), r);
-    res.images.push_back(std::move(img));
-    requests.push_back({res.images.back().image.get(), VK_NULL_HANDLE});
+      VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+      ci.imageType = VK_IMAGE_TYPE_2D;
+      ci.format = img.format;
+      ci.extent = {img.extent.width, img.extent.height, 1};
+      ci.mipLevels = img.levels;
+      ci.arrayLayers = 1;
+      ci.samples = VK_SAMPLE_COUNT_1_BIT;
+      ci.tiling = VK_IMAGE_TILING_OPTIMAL;
+      ci.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+      ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+      ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+      if (VkResult r = make(e.owner, e.d.vkCreateImage, e.d.vkDestroyImage, ci, img.image); r != VK_SUCCESS)
+        return vkError(("vkCreateImage('" + std::string(info.name) + "')").c_str(), r);
+      res.images.push_back(std::move(img));
+      requests.push_back({res.images.back().image.get(), VK_NULL_HANDLE});
+    }
   }
 
   if (Status st = e.allocator.allocateAndBind(requests, res.memory); !st) return st;

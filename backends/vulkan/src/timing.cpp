@@ -125,14 +125,14 @@ Status Effect::measure(VkQueue queue, const Inputs& inputs, const OutputImage* u
       return Status::error(StatusCode::InvalidInput, "measure(): the queue is VK_NULL_HANDLE");
     OutputTarget output;
     if (Status st = checkInputs(e, inputs, userOutput, output); !st) return st;
-    ParamBlock cameraBlock{};
-    if (inputs.camera)
-      if (Status st = cameraParams(e, *inputs.camera, cameraBlock); !st) return st;
+    ParamBlock recordBlock{};
+    bool ownBlock = false;
+    if (Status st = recordParams(e, inputs, recordBlock, ownBlock); !st) return st;
     Submitter sub(e);
     if (Status st = sub.init(); !st) return st;
     Timings t;
     t.passes.reserve(e.plan.passes.size());
-    const std::uint32_t slot = acquireSlot(e, inputs, output, inputs.camera ? &cameraBlock : nullptr);
+    const std::uint32_t slot = acquireSlot(e, inputs, output, ownBlock ? &recordBlock : nullptr);
 
     if (method == MeasureMethod::Auto && familyHasTimestamps(e) && e.queryPool) {
       const int region = static_cast<int>(e.config.framesInFlight);  // measure()'s own region
@@ -141,6 +141,7 @@ Status Effect::measure(VkQueue queue, const Inputs& inputs, const OutputImage* u
       recordPrologue(e, cmd, output, region);
       recordDispatches(e, cmd, slot, output, region);
       recordEpilogue(e, cmd, output);
+      recordDone(e, inputs);
       if (Status st = sub.submitAndWait(queue, cmd, nullptr); !st) return st;
       return readTimestamps(e, static_cast<std::uint32_t>(region), true, out);
     }
@@ -160,6 +161,7 @@ Status Effect::measure(VkQueue queue, const Inputs& inputs, const OutputImage* u
       if (Status st = sub.submitAndWait(queue, cmd, &ms); !st) return st;
       t.passes.push_back({std::string(gen::pass(e.plan.passes[i].pass).name), ms});
     }
+    recordDone(e, inputs);
     out = std::move(t);
     return Status::success();
   });

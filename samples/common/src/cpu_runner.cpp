@@ -18,11 +18,26 @@ class CpuRunner final : public BackendRunner {
              RunOutputs& out) override {
     cpu::Inputs inputs{in.depth, in.depth2, in.normals};
     inputs.frameIndex = in.frameIndex;
+    // Temporal accumulation: the previous run's history, as a GPU effect keeps it (same settings,
+    // a camera of the same size; sao/temporal.h).
+    const bool reuse = settings.temporal && haveHistory_ && settings == historySettings_ &&
+                       previous_.width == camera.width && previous_.height == camera.height &&
+                       previous_.guardBand == camera.guardBand && previous_.kind == camera.kind;
+    if (reuse) {
+      inputs.history = &history_;
+      inputs.previousCamera = &previous_;
+    }
     cpu::Options options;
     options.precision = precision_;
     options.measureTime = measureTime;
     cpu::Result r;
     if (Status s = cpu::run(settings, camera, inputs, options, r); !s) return s;
+    haveHistory_ = settings.temporal;
+    if (settings.temporal) {
+      history_ = r.images[std::size_t(gen::ResourceId::history)].at(0);
+      previous_ = camera;
+      historySettings_ = settings;
+    }
     out.plan = r.plan;
     out.ao = std::move(r.ao);
     out.timings = r.timings;
@@ -44,6 +59,10 @@ class CpuRunner final : public BackendRunner {
 
  private:
   cpu::Precision precision_;
+  bool haveHistory_ = false;
+  FloatImage history_;
+  Camera previous_;
+  Settings historySettings_;
 };
 
 }  // namespace

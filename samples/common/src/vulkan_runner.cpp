@@ -48,8 +48,18 @@ class VulkanRunner final : public BackendRunner {
       inputs.normals = {normals.view, readLayout, in.normals->extent};
     }
     inputs.frameIndex = in.frameIndex;
+    // A new camera that plans alike goes per record (no update(), which would also start a temporal
+    // history again): a camera path's frames.
+    const vk::Config* current = effect_ ? &effect_->config() : nullptr;
+    const bool perRecordCamera = current && current->settings == config.settings &&
+                                 current->depthFormat == config.depthFormat && current->timestamps == config.timestamps &&
+                                 current->secondLayer == config.secondLayer &&
+                                 current->normalsFormat == config.normalsFormat &&
+                                 cameraKeepsPlan(settings, current->camera, camera);
     if (!effect_) {
       if (Status s = vk::Effect::create(ctx.deviceContext(), config, effect_); !s) return s;
+    } else if (perRecordCamera) {
+      inputs.camera = &camera;
     } else if (Status s = effect_->update(config); !s) {
       return s;
     }

@@ -169,7 +169,7 @@ std::string_view exclusionReason(const VariantValues& values);
 
 // ---- Resources: inputs, effect-owned images, and the output.
 enum class ResourceKind : std::uint8_t { Input, Image, Output };
-enum class Format : std::uint8_t { R32F, RG32F, R16F, RG16F, RGBA16F, R8, RGBA8, Depth };
+enum class Format : std::uint8_t { R32F, RG32F, R16F, RG16F, RGBA16F, R8, RGBA8, Depth, RGBA32F };
 enum class ResourceId : std::uint32_t {
   src,
   extra,
@@ -188,13 +188,14 @@ struct ResourceInfo {
   std::string_view doc;
   std::int32_t divideBy;  // a SettingId: the AO extent over that int setting, rounded up; -1: none
   std::span<const Format> formats;  // kind=output: every format it may have (formats=); empty: only `format`
+  bool history;  // history=true: two images that trade places every frame; reads see the previous frame's
 };
 inline constexpr std::array<ResourceInfo, 5> kResources = {{
-  {"src", ResourceKind::Input, Format::Depth, false, true, 1, -1, "Input depth", -1, {}},
-  {"extra", ResourceKind::Input, Format::RGBA16F, false, true, 1, 1, "Extra input", -1, {}},
-  {"mid", ResourceKind::Image, Format::R32F, true, false, 1, -1, "Intermediate chain", -1, {}},
-  {"smooth", ResourceKind::Image, Format::R32F, false, false, 1, -1, "Smoothed intermediate", -1, {}},
-  {"dst", ResourceKind::Output, Format::R16F, false, false, 1, -1, "Result", -1, {}},
+  {"src", ResourceKind::Input, Format::Depth, false, true, 1, -1, "Input depth", -1, {}, false},
+  {"extra", ResourceKind::Input, Format::RGBA16F, false, true, 1, 1, "Extra input", -1, {}, false},
+  {"mid", ResourceKind::Image, Format::R32F, true, false, 1, -1, "Intermediate chain", -1, {}, false},
+  {"smooth", ResourceKind::Image, Format::R32F, false, false, 1, -1, "Smoothed intermediate", -1, {}, false},
+  {"dst", ResourceKind::Output, Format::R16F, false, false, 1, -1, "Result", -1, {}, false},
 }};
 
 // ---- Passes, in execution order, and their compiled variants.

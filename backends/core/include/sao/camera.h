@@ -68,6 +68,13 @@ struct Camera {
   // Required by the world-space encodings; whenever set, computeConstants() refuses anything but a
   // rotation (columns of unit length and mutually orthogonal to 1e-4, determinant +1, finite).
   std::optional<std::array<double, 9>> viewRotation;
+  // Optional: the world -> camera transform (the view matrix), column-major 4x4 like `projection`,
+  // rigid (a rotation and a translation in view units; last row 0 0 0 1). Temporal accumulation
+  // (the `temporal` setting) needs it on every frame's camera: the previous frame's history is
+  // found by moving each pixel's point from this camera into the previous one. Whenever set,
+  // computeConstants() refuses anything but a rigid transform (as for viewRotation, to 1e-4), and
+  // one whose rotation differs from viewRotation's when both are set.
+  std::optional<std::array<double, 16>> view;
   // A multisampled depth input's sample per texel (the depth buffer's convention, like clipDepth).
   DepthSamplePolicy depthSamplePolicy = DepthSamplePolicy::Sample0;
   bool operator==(const Camera&) const = default;

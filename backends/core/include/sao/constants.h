@@ -26,5 +26,12 @@ Status computeConstants(const Settings& settings, const Camera& camera, DepthEnc
 // frame_alpha_offset. computeConstants leaves frame 0's; backends set the caller's frame index per
 // render / record.
 void setFrameIndex(ParamBlock& block, std::uint32_t frameIndex);
+// The previous frame's camera into the block's temporal members (prev_from_cur_*, prev_proj_info,
+// history_valid = 1), or none (identity, this camera's proj_info, history_valid = 0) for null.
+// Both cameras must be valid and carry Camera::view (computeConstants checks `current`; the
+// caller, sao/temporal.h, checks `previous`).
+void setPreviousFrame(ParamBlock& block, const Camera& current, const Camera* previous);
+// proj_info (eq. 3 in csz texel coordinates, the guard band folded in) of a valid camera.
+gen::Float4 projInfo(const Camera& camera);
 
 }  // namespace sao

@@ -55,6 +55,9 @@ struct PlannedImage {
   gen::Format format;
   Extent extent;              // level 0
   std::uint32_t mipLevels = 1;
+  // 2 for a history (history=true: this frame's image and the previous frame's, which trade places
+  // every frame, sao/temporal.h); 1 otherwise. `bytes` counts every copy.
+  std::uint32_t copies = 1;
   std::uint64_t bytes = 0;
 };
 

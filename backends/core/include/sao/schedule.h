@@ -22,6 +22,9 @@ struct ScheduledBinding {
   std::uint32_t baseLevel = 0;  // first level the binding sees
   std::uint32_t levelCount = 1; // levels it sees; a read of a whole MIP chain sees them all
   bool wholeChain = false;      // a read of every level of a multi-level image (a MIP-sampled view)
+  // A read of a history (history=true): the copy the previous frame wrote (sao/temporal.h,
+  // imageCopy); its write is this frame's copy.
+  bool previousFrame = false;
 };
 
 // What must happen between an earlier access to (resource, levels) and a later one.
@@ -38,6 +41,7 @@ struct Hazard {
   std::uint32_t baseLevel = 0;
   std::uint32_t levelCount = 1;
   HazardKind kind{};
+  bool previousFrame = false;  // a history's previous-frame copy (frame entry: written by the frame before)
 };
 
 struct ScheduledDispatch {
@@ -54,8 +58,9 @@ struct Schedule {
   std::vector<ScheduledDispatch> dispatches;
   std::vector<ScheduledBinding> bindings;
   std::vector<Hazard> hazards;
-  // Frame entry: inputs the caller may have written (CallerWrote) and every image the frame
-  // writes, against the previous frame's reads and writes (WriteAfterRead / WriteAfterWrite).
+  // Frame entry: inputs the caller may have written (CallerWrote), every image the frame
+  // writes, against the previous frame's reads and writes (WriteAfterRead / WriteAfterWrite), and
+  // a history's previous-frame copy, which the frame before wrote (ReadAfterWrite, previousFrame).
   std::uint32_t firstEntryHazard = 0, entryHazardCount = 0;
   // Frame exit: the output, read by the caller (CallerReads).
   std::uint32_t firstExitHazard = 0, exitHazardCount = 0;

@@ -91,6 +91,13 @@ struct Inputs {
   // count), kept in the channels outputChannels leaves out, as a GPU backend keeps the caller's
   // texels (and multiplied in the others with OutputBlend::Multiply). Without it those channels hold 0.
   const FloatImage* output = nullptr;
+  // Temporal accumulation (the `temporal` setting): the history the previous run wrote
+  // (Result::images[history][0]: 4 channels, the planned history extent) and the camera it ran
+  // with (which needs Camera::view, like this run's camera). Both or neither: without them this
+  // run starts the history again from its own frame (history_valid = 0), as a GPU backend does after
+  // a reset. The CPU reference is stateless: the caller carries the history from run to run.
+  const FloatImage* history = nullptr;
+  const Camera* previousCamera = nullptr;
 };
 
 struct Options {

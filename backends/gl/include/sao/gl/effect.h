@@ -140,6 +140,15 @@ struct Inputs {
   // creates and deletes within render() (a name, no storage); the layers' texture parameters are
   // the views' own, so the caller's are never touched.
   std::uint32_t layer = 0;
+  // Temporal accumulation (the `temporal` setting; sao/temporal.h says when the history is reused):
+  // the effect keeps two history textures and the camera of its last render, and blends each
+  // pixel's obscurance with that frame's, reprojected through Camera::view (required then).
+  // resetHistory: start again from this frame alone (a camera cut, a teleport). previousCamera:
+  // the camera the history was made with, when it is not the one of the effect's last render
+  // (null: that one). The history follows one view: render each eye of a stereo pair with its own
+  // effect (layer must be 0 with temporal).
+  bool resetHistory = false;
+  const Camera* previousCamera = nullptr;
 };
 
 struct RenderOptions {

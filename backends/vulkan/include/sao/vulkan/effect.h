@@ -209,6 +209,16 @@ struct Inputs {
   // consecutive frames sample the disk evenly; frame 0 (the default) is the paper's spiral. Count
   // it up by one per frame. Per record, in the ring slot's block: no update().
   std::uint32_t frameIndex = 0;
+  // Temporal accumulation (Config::settings.temporal; sao/temporal.h says when the history is
+  // reused): the effect keeps two history images and the camera of its last record (Inputs::camera
+  // or Config::camera), and blends each pixel's obscurance with that frame's, reprojected through
+  // Camera::view (required then). Records are frames in submission order: record them in the order
+  // you submit them. resetHistory: start again from this frame alone (a camera cut). previousCamera:
+  // the camera the history was made with, when not the last record's (null: that one). update()
+  // starts the history again. The history follows one view: give each eye of a stereo pair its own
+  // effect. Per record: no update(), no allocation, no wait.
+  bool resetHistory = false;
+  const Camera* previousCamera = nullptr;
 };
 
 // The output: Config::outputFormat, the viewport's extent (plan().aoExtent), one level, usage

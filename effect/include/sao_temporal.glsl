@@ -1,0 +1,80 @@
+// sao_temporal.glsl -- temporal accumulation (issue [temporal]): this frame's obscurance sum of a
+// pixel blended with the history of the same surface, found by reprojecting the pixel's
+// camera-space point into the previous frame's camera and rejected where the history's z differs.
+// The sum (eq. 1 before the visibility curve) is what accumulates, so that N frames of s taps
+// average like one frame of N*s taps (averaging A itself would average the curve: Jensen's
+// inequality). Library code: depends on sao_depth.glsl. Math: docs/effect-math.md, "Temporal".
+#ifndef SAO_TEMPORAL_GLSL
+#define SAO_TEMPORAL_GLSL
+
+// The rigid transform from this frame's camera space into the previous frame's, by rows (.xyz the
+// rotation's row, .w the translation, view units).
+vec3 sao_to_previous(vec3 C, vec4 m_x, vec4 m_y, vec4 m_z)
+{
+    return vec3(dot(m_x.xyz, C) + m_x.w, dot(m_y.xyz, C) + m_y.w, dot(m_z.xyz, C) + m_z.w);
+}
+
+// Bilinear weight of corner o (0 or 1 per axis) for the fraction f.
+float sao_bilinear_weight(ivec2 o, vec2 f)
+{
+    return ((o.x == 1) ? f.x : 1.0 - f.x) * ((o.y == 1) ? f.y : 1.0 - f.y);
+}
+
+// This frame's pixel, camera-space point C with obscurance sum `sum`, against the history (the
+// previous frame's image: .x accumulated sum, .y its key z (+0.0 = sky), .z frames accumulated,
+// 0 = none). C goes into the previous camera (prev_x/y/z) and onto its csz level-0 texels
+// (prev_proj_info, eq. 3 inverted; the guard band is folded in as for proj_info), then onto the
+// history's texels (texel q stands for viewport pixel q*d + d/2, as sao_low_representative). The
+// 2x2 texels around that point weigh bilinearly (the fraction snapped to 1/64 texel, so that a
+// camera that holds still reads its own texel alone) times max(0, 1 - depth_k * |z_h - z_P| / -z_P),
+// z_P the point's previous z: a texel of another surface (a disocclusion) weighs 0. With w the sum
+// of the weights, the history is worth w * (their weighted mean of frames) frames, n; this frame
+// takes max(min_blend, 1 / (n + 1)) of the result (a running mean that becomes an exponential one).
+// Returns (accumulated sum, frames after this one, at most max_frames). valid == 0: no history.
+vec2 sao_temporal_accumulate(sampler2D history, vec3 C, float sum, int ortho, vec4 prev_x, vec4 prev_y,
+                             vec4 prev_z, vec4 prev_proj_info, ivec2 guard, int d, float depth_k,
+                             float min_blend, float max_frames, int valid)
+{
+    float h = 0.0;
+    float n = 0.0;
+    vec3 P = sao_to_previous(C, prev_x, prev_y, prev_z);
+    if (valid != 0 && P.z < 0.0) {
+        float w = (ortho != 0) ? 1.0 : P.z;
+        vec2 pixel = vec2((P.x / w - prev_proj_info.z) / prev_proj_info.x,
+                          (P.y / w - prev_proj_info.w) / prev_proj_info.y);
+        vec2 u = (((pixel - 0.5) - vec2(guard)) - float(d >> 1)) / float(d);
+        // Far outside the image: the int conversion below must not overflow.
+        if (all(greaterThan(u, vec2(-2.0))) && all(lessThan(u, vec2(textureSize(history, 0)) + 1.0))) {
+            vec2 i0 = floor(u);
+            vec2 f = floor((u - i0) * 64.0 + 0.5) / 64.0;
+            ivec2 q0 = ivec2(i0);
+            ivec2 size = textureSize(history, 0);
+            float k = depth_k / -P.z;
+            float wsum = 0.0;
+            float hsum = 0.0;
+            float nsum = 0.0;
+            for (int j = 0; j < 4; ++j) {
+                ivec2 o = ivec2(j & 1, j >> 1);
+                ivec2 q = q0 + o;
+                float wb = sao_bilinear_weight(o, f);
+                if (wb > 0.0 && all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size))) {
+                    vec4 t = texelFetch(history, q, 0);
+                    if (t.z > 0.0 && !sao_is_sky(t.y)) {
+                        float wt = wb * max(0.0, 1.0 - k * abs(t.y - P.z));
+                        wsum += wt;
+                        hsum += wt * t.x;
+                        nsum += wt * t.z;
+                    }
+                }
+            }
+            if (wsum > 0.0) {
+                h = hsum / wsum;
+                n = nsum;
+            }
+        }
+    }
+    float a = max(min_blend, 1.0 / (n + 1.0));
+    return vec2(h + a * (sum - h), min(n + 1.0, max_frames));
+}
+
+#endif // SAO_TEMPORAL_GLSL

@@ -1,0 +1,204 @@
+// Temporal accumulation on the CPU reference (the `temporal` setting, sao_temporal.glsl): the
+// first frame is the frame without history bit for bit; a static camera's frames accumulate
+// towards the converged result like more taps in one frame (the [temporal] static target: 16
+// frames at or below one frame with 4x the taps); a camera moving past a thin panel in front of a
+// wall restarts the history where the wall was hidden (no ghost) and keeps it where it was not.
+// The history is carried from run to run by the caller (cpu::Inputs::history, previousCamera).
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "moving_camera.h"
+#include "test_support.h"
+
+namespace sao::test {
+namespace {
+
+using cpu::Precision;
+
+Settings withTaps(int samples, bool temporal) {
+  Settings s;
+  s.samples = samples;
+  s.quad_edge_threshold = 0.0f;  // no 2x2 averaging
+  s.blur_radius = 0;             // no blur
+  s.resolution_divisor = 1;
+  s.temporal = temporal;
+  s.temporal_hysteresis = 0.95f;  // a running mean for the first 20 frames
+  return s;
+}
+
+double rmse(const FloatImage& a, const FloatImage& b) {
+  double sum = 0;
+  for (std::size_t i = 0; i < a.data.size(); ++i) sum += (double(a.data[i]) - b.data[i]) * (double(a.data[i]) - b.data[i]);
+  return std::sqrt(sum / double(a.data.size()));
+}
+
+// Frames of one camera path run in order, the history carried along.
+struct FrameRunner {
+  Settings settings;
+  FloatImage history;
+  Camera previous;
+  bool hasHistory = false;
+  cpu::Result run(const Camera& camera, const DepthImage& depth, std::uint32_t frame) {
+    cpu::Inputs in;
+    in.depth = &depth;
+    in.frameIndex = frame;
+    if (hasHistory) {
+      in.history = &history;
+      in.previousCamera = &previous;
+    }
+    cpu::Result r = runOrFail(settings, camera, in, Precision::Float);
+    history = r.images[std::size_t(gen::ResourceId::history)].at(0);
+    previous = camera;
+    hasHistory = true;
+    return r;
+  }
+};
+
+TEST(Temporal, FirstFrameIsTheFrameWithoutHistory) {
+  const Camera cam = movedCamera(testCamera(4, 1000.0, ClipDepth::NegativeOneToOne, false, 96, 64), {});
+  const DepthImage depth = renderDepth(sphereOnPlaneScene(), cam, DepthFormat::D32F);
+  cpu::Inputs in;
+  in.depth = &depth;
+  in.frameIndex = 3;
+  for (int divisor : {1, 2}) {
+    Settings off = withTaps(8, false), on = withTaps(8, true);
+    off.resolution_divisor = on.resolution_divisor = divisor;
+    const cpu::Result a = runOrFail(off, cam, in, Precision::Float);
+    const cpu::Result b = runOrFail(on, cam, in, Precision::Float);
+    ASSERT_EQ(a.ao.data.size(), b.ao.data.size());
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < a.ao.data.size(); ++i) differ += a.ao.data[i] != b.ao.data[i];
+    EXPECT_EQ(differ, 0u) << "divisor " << divisor;
+    EXPECT_EQ(b.params.history_valid, 0);
+    // The history holds one frame on geometry, none on sky.
+    const FloatImage& h = b.images[std::size_t(gen::ResourceId::history)].at(0);
+    EXPECT_EQ(h.extent, b.aoRaw.extent);
+    for (std::uint32_t y = 0; y < h.extent.height; ++y)
+      for (std::uint32_t x = 0; x < h.extent.width; ++x)
+        EXPECT_EQ(h.at(x, y, 2), b.aoRaw.at(x, y, 1) < 0.0f ? 1.0f : 0.0f) << x << "," << y;
+  }
+}
+
+TEST(Temporal, StaticCameraReachesFourTimesTheTapsInSixteenFrames) {
+  const Camera cam = movedCamera(testCamera(4, 1000.0, ClipDepth::NegativeOneToOne, false, 96, 64), {});
+  const DepthImage depth = renderDepth(sphereOnPlaneScene(), cam, DepthFormat::D32F);
+  cpu::Inputs in;
+  in.depth = &depth;
+  const FloatImage converged = runOrFail(withTaps(64, false), cam, in, Precision::Float).ao;
+  FrameRunner runner{withTaps(4, true)};
+  FloatImage last;
+  for (std::uint32_t frame = 0; frame < 16; ++frame) last = runner.run(cam, depth, frame).ao;
+  const double single4 = rmse(runOrFail(withTaps(4, false), cam, in, Precision::Float).ao, converged);
+  const double single16 = rmse(runOrFail(withTaps(16, false), cam, in, Precision::Float).ao, converged);
+  const double accumulated = rmse(last, converged);
+  std::printf("TEMPORAL static RMSE vs 64 taps: 1 frame x 4 taps %.4f, 1 frame x 16 taps %.4f, "
+              "16 accumulated frames x 4 taps %.4f\n", single4, single16, accumulated);
+  EXPECT_LE(accumulated, single16) << "16 frames of s taps should reach one frame of 4s taps";
+  // Every geometry texel of the history holds the 16 frames (no rejection on a still camera).
+  const FloatImage& h = runner.history;
+  std::size_t geometry = 0, full = 0;
+  for (std::uint32_t y = 0; y < h.extent.height; ++y)
+    for (std::uint32_t x = 0; x < h.extent.width; ++x)
+      if (h.at(x, y, 1) < 0.0f) {
+        ++geometry;
+        full += h.at(x, y, 2) == 16.0f;
+      }
+  EXPECT_GT(geometry, 0u);
+  EXPECT_EQ(full, geometry);
+}
+
+// A thin panel (0.4 m wide, 1 m tall, 5 cm deep, at z = -3) before a wall at z = -4, the camera
+// strafing along +x by 0.4 m a frame (the panel moves ~2 px against the wall a frame at 128x72):
+// every wall texel whose whole bilinear footprint in the previous frame lay on the panel must start
+// again (frames = 1: no ghost of the panel), and every wall texel whose footprint lay on the wall
+// keeps its history (frames > 1). The footprint is found in double from the analytic scene.
+TEST(Temporal, StrafePastAPanelRestartsOnlyDisoccludedPixels) {
+  Scene world;
+  world.planes.push_back({{0, 0, -4}, {0, 0, 1}, {}});
+  world.boxes.push_back({{-0.2, -0.5, -3.05}, {0.2, 0.5, -2.95}});
+  const Camera base = testCamera(4, 1000.0, ClipDepth::NegativeOneToOne, false, 128, 72);
+  FrameRunner runner{withTaps(8, true)};
+  std::size_t disoccluded = 0, restarted = 0, steady = 0, kept = 0;
+  constexpr double kStep = 0.4;
+  for (std::uint32_t frame = 0; frame < 6; ++frame) {
+    const Vec3 eye{kStep * frame - 1.0, 0, 0};
+    const Camera cam = movedCamera(base, eye);
+    const DepthImage depth = renderDepth(seenFrom(world, eye), cam, DepthFormat::D32F);
+    const bool moved = runner.hasHistory;
+    const cpu::Result r = runner.run(cam, depth, frame);
+    if (!moved) continue;
+    const Scene before = seenFrom(world, {eye.x - kStep, 0, 0});
+    const FloatImage& h = runner.history;
+    const auto& pi = r.params.proj_info;  // the same projection in both frames
+    const double g = cam.guardBand;
+    // What the previous camera saw at viewport texel (tx, ty): its surface's z.
+    auto seenZ = [&](int tx, int ty) {
+      const double dx = -((tx + g + 0.5) * pi.x + pi.z), dy = -((ty + g + 0.5) * pi.y + pi.w);
+      const double len = std::sqrt(dx * dx + dy * dy + 1.0);
+      const auto hits = before.trace({0, 0, 0}, {dx / len, dy / len, -1.0 / len});
+      return hits.empty() ? 0.0 : hits.front().point.z;
+    };
+    for (std::uint32_t y = 0; y < h.extent.height; ++y)
+      for (std::uint32_t x = 0; x < h.extent.width; ++x) {
+        const double z = h.at(x, y, 1);
+        if (!(z < -3.5)) continue;  // wall texels only
+        const double cx = x + g + 0.5, cy = y + g + 0.5;
+        const double px = z * (cx * pi.x + pi.z) + kStep, py = z * (cy * pi.y + pi.w);  // in the previous camera
+        const double ux = (px / z - pi.z) / pi.x - 0.5 - g, uy = (py / z - pi.w) / pi.y - 0.5 - g;
+        const int x0 = int(std::floor(ux)), y0 = int(std::floor(uy));
+        int panel = 0, wall = 0;
+        for (int k = 0; k < 4; ++k) {
+          const double sz = seenZ(x0 + (k & 1), y0 + (k >> 1));
+          panel += sz > -3.5 && sz < 0.0;
+          wall += sz < -3.5;
+        }
+        if (panel == 4) {
+          ++disoccluded;
+          restarted += h.at(x, y, 2) == 1.0f;
+        } else if (wall == 4 && x0 >= 0 && y0 >= 0 && x0 + 1 < int(h.extent.width) && y0 + 1 < int(h.extent.height)) {
+          ++steady;
+          kept += h.at(x, y, 2) > 1.0f;
+        }
+      }
+  }
+  std::printf("TEMPORAL strafe past a panel: %zu wall texels hidden in the previous frame, %zu restarted; %zu wall "
+              "texels seen in both, %zu kept their history\n", disoccluded, restarted, steady, kept);
+  ASSERT_GT(disoccluded, 20u) << "the path reveals no wall: the test checks nothing";
+  EXPECT_EQ(restarted, disoccluded) << "a texel hidden by the panel kept history: a ghost";
+  EXPECT_EQ(kept, steady) << "a texel seen in both frames lost its history";
+}
+
+TEST(Temporal, HistoryWithoutItsCameraOrOfAnotherSizeIsRefused) {
+  const Camera cam = movedCamera(testCamera(4, 1000.0, ClipDepth::NegativeOneToOne, false, 96, 64), {});
+  const DepthImage depth = renderDepth(sphereOnPlaneScene(), cam, DepthFormat::D32F);
+  cpu::Inputs in;
+  in.depth = &depth;
+  const FloatImage wrong(Extent{10, 10}, 4);
+  in.history = &wrong;
+  cpu::Result r;
+  Status st = cpu::run(withTaps(8, true), cam, in, {Precision::Float, 2}, r);
+  EXPECT_EQ(st.code, StatusCode::InvalidInput);
+  EXPECT_NE(st.message.find("previousCamera"), std::string::npos) << st.message;
+  in.previousCamera = &cam;
+  st = cpu::run(withTaps(8, true), cam, in, {Precision::Float, 2}, r);
+  EXPECT_EQ(st.code, StatusCode::InvalidInput);
+  EXPECT_NE(st.message.find("10x10"), std::string::npos) << st.message;
+  // Temporal without Camera::view: refused by name.
+  Camera noView = cam;
+  noView.view.reset();
+  cpu::Inputs plain;
+  plain.depth = &depth;
+  st = cpu::run(withTaps(8, true), noView, plain, {Precision::Float, 2}, r);
+  EXPECT_EQ(st.code, StatusCode::InvalidCamera);
+  EXPECT_NE(st.message.find("Camera::view"), std::string::npos) << st.message;
+  // A view that is not rigid.
+  Camera scaled = cam;
+  (*scaled.view)[0] = 2.0;
+  st = cpu::run(withTaps(8, true), scaled, plain, {Precision::Float, 2}, r);
+  EXPECT_EQ(st.code, StatusCode::InvalidCamera);
+  EXPECT_NE(st.message.find("Camera::view"), std::string::npos) << st.message;
+}
+
+}  // namespace
+}  // namespace sao::test

@@ -1,0 +1,113 @@
+// Temporal accumulation on OpenGL (the `temporal` setting): a camera strafing past a sphere on a
+// plane, six frames rendered by one effect against the CPU reference (Float, the history carried
+// from run to run) to the reference tests' bounds; the per-frame camera plans nothing and
+// allocates no texture; Inputs::resetHistory gives the frame without history bit for bit.
+#include <epoxy/gl.h>
+
+#include <cstdio>
+#include <string>
+
+#include "gl_support.h"
+#include "moving_camera.h"
+#include "sao/cpu/reference.h"
+#include "sao/presets.h"
+
+namespace sao::gltest {
+namespace {
+
+class Temporal : public GlTest {};
+
+Settings temporalMedium() {
+  Settings s = presetSettings(Preset::Medium);
+  s.temporal = true;
+  return s;
+}
+
+TEST_F(Temporal, EveryFrameOfAStrafeMatchesTheCpuReference) {
+  const Camera base = camera(160, 90, 8);
+  const test::Scene world = test::sphereOnPlaneScene();
+  const Settings settings = temporalMedium();
+  auto effect = makeEffect();
+  ASSERT_TRUE(effect);
+  FloatImage cpuHistory;
+  Camera previous;
+  gl::Stats afterFirst;
+  for (std::uint32_t frame = 0; frame < 6; ++frame) {
+    const std::string name = "gl_temporal" + std::to_string(frame);
+    const test::Vec3 eye{0.03 * frame, 0.0, 0.0};
+    const Camera cam = test::movedCamera(base, eye);
+    const DepthImage depth = test::renderDepth(test::seenFrom(world, eye), cam, DepthFormat::D32F);
+    const GLuint depthTex = uploadDepth(depth, GlDepth::D32F);
+    gl::Inputs gi;
+    gi.depth = {depthTex, gl::kDepthComponent32F};
+    gi.frameIndex = frame;
+    const Status st = effect->render(cam, settings, gi);
+    ASSERT_TRUE(st.ok()) << st.message;
+    const FloatImage actual = readTexture(effect->aoTexture(), 1);
+    deleteTexture(depthTex);
+    EXPECT_EQ(effect->params().history_valid, frame > 0 ? 1 : 0);
+    cpu::Inputs ci;
+    ci.depth = &depth;
+    ci.frameIndex = frame;
+    if (frame > 0) {
+      ci.history = &cpuHistory;
+      ci.previousCamera = &previous;
+    }
+    cpu::Result ref;
+    const Status cs = cpu::run(settings, cam, ci, cpu::Options{cpu::Precision::Float, 2}, ref);
+    ASSERT_TRUE(cs.ok()) << cs.message;
+    cpuHistory = ref.images[std::size_t(gen::ResourceId::history)].at(0);
+    previous = cam;
+    const Agreement a = compare(actual, ref.ao, 0, 2.0 / 255.0, 4.0 / 255.0, name);
+    EXPECT_TRUE(acceptable(a)) << name << ": max " << a.maxAbs * 255 << "/255, p99.9 " << a.p999 * 255 << "/255";
+    std::printf("TEMPORAL %-14s vs CPU: max %.3f/255, p99.9 %.3f/255\n", name.c_str(), a.maxAbs * 255, a.p999 * 255);
+    if (frame == 0) afterFirst = effect->stats();
+  }
+  EXPECT_EQ(effect->stats().textureAllocations, afterFirst.textureAllocations) << "a moving camera allocated";
+  EXPECT_EQ(effect->stats().plans, afterFirst.plans) << "a moving camera planned again";
+  EXPECT_EQ(effect->stats().programsCompiled, afterFirst.programsCompiled);
+}
+
+TEST_F(Temporal, ResetHistoryGivesTheFrameWithoutHistory) {
+  const Camera cam = test::movedCamera(camera(96, 64, 4), {});
+  const DepthImage depth = test::renderDepth(test::sphereOnPlaneScene(), cam, DepthFormat::D32F);
+  const GLuint depthTex = uploadDepth(depth, GlDepth::D32F);
+  const Settings settings = temporalMedium();
+  auto render = [&](gl::Effect& e, std::uint32_t frame, bool reset) {
+    gl::Inputs gi;
+    gi.depth = {depthTex, gl::kDepthComponent32F};
+    gi.frameIndex = frame;
+    gi.resetHistory = reset;
+    const Status st = e.render(cam, settings, gi);
+    EXPECT_TRUE(st.ok()) << st.message;
+    return readTexture(e.aoTexture(), 1);
+  };
+  auto accumulating = makeEffect();
+  auto fresh = makeEffect();
+  ASSERT_TRUE(accumulating && fresh);
+  render(*accumulating, 0, false);
+  const FloatImage second = render(*accumulating, 1, false);
+  const FloatImage reset = render(*accumulating, 2, true);
+  EXPECT_EQ(accumulating->params().history_valid, 0);
+  const FloatImage alone = render(*fresh, 2, false);
+  std::size_t differ = 0, moved = 0;
+  for (std::size_t i = 0; i < alone.data.size(); ++i) {
+    differ += reset.data[i] != alone.data[i];
+    moved += second.data[i] != alone.data[i];
+  }
+  EXPECT_EQ(differ, 0u) << "a reset frame must not read the history";
+  EXPECT_GT(moved, alone.data.size() / 20) << "frame 1 with history looks like frame 2 without";
+  // A settings change starts again too.
+  Settings other = settings;
+  other.radius = 0.9f;
+  gl::Inputs gi;
+  gi.depth = {depthTex, gl::kDepthComponent32F};
+  ASSERT_TRUE(accumulating->render(cam, other, gi).ok());
+  EXPECT_EQ(accumulating->params().history_valid, 0);
+  ASSERT_TRUE(accumulating->render(cam, other, gi).ok());
+  EXPECT_EQ(accumulating->params().history_valid, 1);
+  deleteTexture(depthTex);
+}
+
+}  // namespace
+}  // namespace sao::gltest
