@@ -45,12 +45,10 @@ Status runFramePath(const Options& o, samples::BackendRunner& backend, const Set
     // temporal accumulation, the frame's spiral: frames then sample different taps.
     const glm::dmat4 worldToCamera = scenes::viewMatrix(view);
     Camera frameCamera = camera;
-    std::array<double, 16> v{};
-    for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 4; ++r) v[std::size_t(c * 4 + r)] = worldToCamera[c][r];
-    frameCamera.view = v;
+    frameCamera.view = scenes::viewArray(view);
     samples::RunInputs inputs{&primary.depth, nullptr, nullptr};
     inputs.frameIndex = settings.temporal ? f : 0;
+    inputs.resetHistory = f == 0;  // the path starts a history of its own
     samples::RunOutputs result;
     if (Status s = backend.run(settings, frameCamera, inputs, true, false, result); !s) return s;
     times.push_back(result.timings.totalMilliseconds());

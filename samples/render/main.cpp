@@ -296,6 +296,7 @@ int main(int argc, char** argv) {
       progress.end();
       summary.frames = frames;
       view = scenes::pathView(view, o.path, o.frames - 1, o.frames);
+      camera.view = scenes::viewArray(view);  // the path's last pose: the runs below continue from it
     } else {
       progress.begin("rendering the depth");
       if (Status s = makeSceneDepth(o, *backend, scene, view, depthCamera, *rayScene, primary, how); !s) runError(s);
@@ -319,12 +320,15 @@ int main(int argc, char** argv) {
   samples::RunInputs inputs{&depth, nullptr, nullptr};
   samples::RunOutputs result;
   std::vector<Timings> timings;
+  // Temporal accumulation after a path: these runs are its next frames, at its last pose.
+  if (settings.temporal) inputs.frameIndex = o.frames;
   progress.begin("running the effect on " + std::string(backend->name()) + " (1 warm-up + " + std::to_string(o.runs) +
                  " measured run" + (o.runs == 1 ? ")" : "s)"));
   for (std::uint32_t r = 0; r <= o.runs; ++r) {
     result = {};
     if (Status s = backend->run(settings, camera, inputs, true, !o.dumpDir.empty() && r == o.runs, result); !s)
       runError(s);
+    if (settings.temporal) ++inputs.frameIndex;
     if (r > 0) timings.push_back(result.timings);
   }
   progress.begin("writing the outputs");

@@ -283,6 +283,7 @@ int App::run() {
       std::fprintf(stderr, "sao-viewer: %s\n", s.message.c_str());
     }
     FrameDesc frame = buildFrame(fb);
+    frame.frameIndex = frames;
     const bool lastFrame = options_.frames > 0 && frames + 1 >= options_.frames;
     if (lastFrame && !options_.screenshot.empty()) frame.screenshotPath = options_.screenshot;
     if (ui_.screenshot) {

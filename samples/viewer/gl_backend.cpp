@@ -86,6 +86,7 @@ class GlBackend final : public Backend {
 
     gl::Inputs inputs;
     inputs.depth = {prepass_.depthTexture(), gl::kDepthComponent32F};
+    inputs.frameIndex = frame.frameIndex;
     stats.effect = effect_->render(camera, frame.settings, inputs, {frame.measureTime});
     const GLuint compareAo = renderCompare(frame, inputs, stats.compare);
     GlCompositeInputs in;

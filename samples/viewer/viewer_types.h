@@ -53,6 +53,9 @@ struct FrameDesc {
   double zNear = 0.1, zFar = 100;  // distances mapped to white and black in the csz view
   bool referenceValid = false;     // the backend's reference image belongs to this view
   bool measureTime = true;
+  // Counts frames up: the effect's Inputs::frameIndex, so that with the temporal setting the frames
+  // sample different taps and accumulate while the camera moves (the camera carries its pose).
+  std::uint32_t frameIndex = 0;
   std::string screenshotPath;      // non-empty: save the window (with the panel) after this frame
 };
 

@@ -352,6 +352,8 @@ Status VkBackend::renderFrame(const FrameDesc& frame, FrameStats& stats) {
   if (effect_ && effectConfigured_) {
     vk::Inputs in;
     in.depth = {depth.view, depth.layout, effect_->plan().inputExtent, depth.format};
+    in.camera = &frame.camera;  // plans as config_'s (sameCamera); carries this frame's pose
+    in.frameIndex = frame.frameIndex;
     stats.effect = effect_->record(cmd_, in);
     recorded = stats.effect.ok();
   }
@@ -359,6 +361,8 @@ Status VkBackend::renderFrame(const FrameDesc& frame, FrameStats& stats) {
   if (compare_.effect && compare_.configured) {
     vk::Inputs in;
     in.depth = {depth.view, depth.layout, compare_.effect->plan().inputExtent, depth.format};
+    in.camera = &frame.camera;
+    in.frameIndex = frame.frameIndex;
     compare_.status = compare_.effect->record(cmd_, in);
     compared = compare_.status.ok();
   }

@@ -20,7 +20,7 @@ class CpuRunner final : public BackendRunner {
     inputs.frameIndex = in.frameIndex;
     // Temporal accumulation: the previous run's history, as a GPU effect keeps it (same settings,
     // a camera of the same size; sao/temporal.h).
-    const bool reuse = settings.temporal && haveHistory_ && settings == historySettings_ &&
+    const bool reuse = settings.temporal && !in.resetHistory && haveHistory_ && settings == historySettings_ &&
                        previous_.width == camera.width && previous_.height == camera.height &&
                        previous_.guardBand == camera.guardBand && previous_.kind == camera.kind;
     if (reuse) {

@@ -52,6 +52,7 @@ class GlRunner final : public BackendRunner {
     if (in.depth2) inputs.depth2 = {up.depth2, gl::internalFormat(glFormat(in.depth2->format))};
     inputs.normals = up.normals;
     inputs.frameIndex = in.frameIndex;
+    inputs.resetHistory = in.resetHistory;
     if (Status s = effect_->render(camera, settings, inputs, {measureTime}); !s) return s;
     out.plan = effect_->plan();
     out.timings = effect_->timings();

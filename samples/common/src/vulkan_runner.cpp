@@ -48,6 +48,7 @@ class VulkanRunner final : public BackendRunner {
       inputs.normals = {normals.view, readLayout, in.normals->extent};
     }
     inputs.frameIndex = in.frameIndex;
+    inputs.resetHistory = in.resetHistory;
     // A new camera that plans alike goes per record (no update(), which would also start a temporal
     // history again): a camera path's frames.
     const vk::Config* current = effect_ ? &effect_->config() : nullptr;

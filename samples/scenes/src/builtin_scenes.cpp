@@ -158,7 +158,16 @@ Camera makeCamera(const View& v, std::uint32_t width, std::uint32_t height, doub
     c = perspectiveCamera(v.fovyRadians, width, height, v.nearDistance, farDistance, clip, reversedZ);
   }
   c.guardBand = guardBand;
+  c.view = viewArray(v);  // the pose: temporal accumulation reprojects through it
   return c;
+}
+
+std::array<double, 16> viewArray(const View& view) {
+  const glm::dmat4 m = viewMatrix(view);
+  std::array<double, 16> a{};
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) a[std::size_t(c * 4 + r)] = m[c][r];
+  return a;
 }
 
 namespace {

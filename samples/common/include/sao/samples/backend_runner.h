@@ -19,6 +19,9 @@ struct RunInputs {
   const FloatImage* normals = nullptr;  // optional, 4 channels, camera space
   const DepthImage* depth2 = nullptr;   // optional second layer
   std::uint32_t frameIndex = 0;         // the backend's Inputs::frameIndex (sao::frameSpiral)
+  // With the temporal setting: start the history again from this run (the backend's
+  // Inputs::resetHistory); otherwise a runner keeps the history of its previous run, as an effect does.
+  bool resetHistory = false;
 };
 
 struct RunOutputs {

@@ -63,6 +63,8 @@ Status loadScene(std::string_view nameOrPath, Scene& out);
 
 // World -> camera (right-handed, looking down -z), built in double.
 glm::dmat4 viewMatrix(const View& view);
+// viewMatrix as sao::Camera::view holds it (column-major); makeCamera sets it.
+std::array<double, 16> viewArray(const View& view);
 
 // The camera for a view at a size, with the depth conventions given (a finite far plane when
 // farDistance is finite). An orthographic view always gets a finite far plane: farDistance when
