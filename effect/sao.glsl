@@ -81,6 +81,8 @@
 #pragma sao variant OUTPUT_FORMAT values=[0,1,2,3] default=0 select=output:ao "The output image's format, an index into ao's formats=: 0 r16f, 1 r8 (A rounded to the nearest 1/255), 2 rgba8, 3 rgba16f (RGBA: A goes into the channels output_mask selects, the others keep their texels)"
 #pragma sao variant DEPTH_MULTISAMPLE values=[0,1] default=0 select=multisampled:depth "1: the depth input is multisampled (sampler2DMS, depth_samples per texel); linear_z keeps one sample per texel as depth_sample_policy says (sample 0, or the nearest to the camera)"
 #pragma sao variant TEMPORAL values=[0,1] default=0 select=temporal "1: ao_sample blends each pixel's obscurance sum with the history of the previous frames (sao_temporal.glsl) and writes this frame's history"
+#pragma sao variant MOTION_VECTORS values=[0,1] default=0 select=input:motion "1: temporal accumulation finds each pixel's history where the motion input says the surface was (moving objects) instead of reprojecting through the cameras"
+#pragma sao exclude MOTION_VECTORS=1 TEMPORAL=0 "motion vectors serve temporal accumulation only: set the temporal setting, or give no motion input"
 #pragma sao exclude DEPTH_MULTISAMPLE=1 TWO_LAYER=1 "a multisampled depth input has no second layer: give depth peeling's layers single-sample, or resolve the depth first"
 #pragma sao exclude Z_HIERARCHY=0 TWO_LAYER=1 "the no-hierarchy baseline is a single-layer benchmark path"
 
@@ -90,6 +92,7 @@
 #pragma sao resource depth     kind=input  format=depth "The user's depth: hardware depth (D16/D24/D32F, standard or reversed) or R32F linear camera-space z; AO-buffer size plus the guard band"
 #pragma sao resource depth2    kind=input  format=depth when=TWO_LAYER "Second depth layer (deep G-buffer), same size and convention as depth"
 #pragma sao resource normals   kind=input  format=rgba16f when=NORMALS_SUPPLIED "Normals, same size as depth: camera- or world-space .xyz (components in [-1,1]) or their signed octahedral map in .xy (sao::Camera::normalsEncoding)"
+#pragma sao resource motion    kind=input  format=rg16f when=MOTION_VECTORS "Motion vectors, same size and region as depth: .xy the offset in pixels from this frame's texel to where its surface was in the previous frame (previous = current + motion; rows in the depth's order)"
 #pragma sao resource csz       kind=image  format=r32f mips=auto extent=input "Camera-space z MIP chain (z < 0, +0.0 = sky), the depth input's size including the guard band"
 #pragma sao resource csz2      kind=image  format=r32f mips=auto extent=input when=TWO_LAYER "Camera-space z MIP chain of the second layer"
 #pragma sao resource ao_raw    kind=image  format=rg32f divide_by=resolution_divisor "x: visibility A after the 2x2 reconstruction, y: key = camera-space z (+0.0 = sky); the viewport over resolution_divisor"
@@ -225,7 +228,7 @@ void sao_mips_main()
 // bilateral reconstruction through shared memory (no derivative instructions). One invocation
 // per AO pixel; invocations outside the AO buffer take part in the barriers as sky.
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass ao_sample entry=sao_ao_main local=8x8 reads=csz,csz2,normals,history writes=ao_raw,history variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,TEMPORAL "Obscurance from s spiral taps over the z hierarchy (eq. 1, 3-10), with TEMPORAL blended with the reprojected history (and this frame's history written), 2x2 bilateral reconstruction; writes (A, key z)"
+#pragma sao pass ao_sample entry=sao_ao_main local=8x8 reads=csz,csz2,normals,history,motion writes=ao_raw,history variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,TEMPORAL,MOTION_VECTORS "Obscurance from s spiral taps over the z hierarchy (eq. 1, 3-10), with TEMPORAL blended with the reprojected history (and this frame's history written), 2x2 bilateral reconstruction; writes (A, key z)"
 #if SAO_TARGET_VULKAN
 // The tap loop's trip count (= samples) as a push constant: Mesa lavapipe 22.3 keeps ~0.4 MB of
 // host memory per dispatch of a loop whose trip count comes from the uniform block its body also
@@ -285,8 +288,14 @@ void sao_ao_main()
             sum += o;
         }
 #if TEMPORAL
-        vec2 acc = sao_temporal_accumulate(in_history, C, sum, ortho, prev_from_cur_x, prev_from_cur_y,
-                                           prev_from_cur_z, prev_proj_info, guard, ao_divisor, temporal_depth_k,
+        // Where this surface was in the previous frame: through the cameras, or by the motion input.
+        vec3 P = sao_to_previous(C, prev_from_cur_x, prev_from_cur_y, prev_from_cur_z);
+#if MOTION_VECTORS
+        vec2 previous = (vec2(c) + 0.5) + texelFetch(in_motion, c + input_offset, 0).xy;
+#else
+        vec2 previous = sao_previous_pixel(P, prev_proj_info, ortho);
+#endif
+        vec2 acc = sao_temporal_accumulate(in_history, previous, P.z, sum, guard, ao_divisor, temporal_depth_k,
                                            temporal_min_blend, temporal_max_frames, history_valid);
         sum = acc.x;
         kept = acc.x;

@@ -444,26 +444,31 @@ T bilinearWeight(int ox, int oy, T fx, T fy) {
   return ((ox == 1) ? fx : T(1) - fx) * ((oy == 1) ? fy : T(1) - fy);
 }
 
-// sao_temporal_accumulate: (accumulated sum, frames) of this frame's pixel at C with `sum`, from
-// the previous frame's history image (4 channels).
+// sao_previous_pixel: csz texel coordinates of P (previous camera space) in the previous camera.
 template <typename T>
-void temporalAccumulate(const Image<T>& history, Vec3<T> C, T sum, const Block<T>& P, T& outSum, T& outFrames) {
+void previousPixel(Vec3<T> Q, const Block<T>& P, T& x, T& y) {
+  const T w = (P.ortho != 0) ? T(1) : Q.z;
+  x = (Q.x / w - P.prev_proj_info.z) / P.prev_proj_info.x;
+  y = (Q.y / w - P.prev_proj_info.w) / P.prev_proj_info.y;
+}
+
+// sao_temporal_accumulate: (accumulated sum, frames) of this frame's pixel whose surface was at csz
+// texel coordinates (px, py) with z zP in the previous frame, from that frame's history (4 channels).
+template <typename T>
+void temporalAccumulate(const Image<T>& history, T px, T py, T zP, T sum, const Block<T>& P, T& outSum,
+                        T& outFrames) {
   T h = T(0);
   T n = T(0);
-  const Vec3<T> Q = toPrevious(C, P);
-  if (P.history_valid != 0 && Q.z < T(0)) {
-    const T w = (P.ortho != 0) ? T(1) : Q.z;
-    const T pixelX = (Q.x / w - P.prev_proj_info.z) / P.prev_proj_info.x;
-    const T pixelY = (Q.y / w - P.prev_proj_info.w) / P.prev_proj_info.y;
+  if (P.history_valid != 0 && zP < T(0)) {
     const int d = P.ao_divisor;
-    const T ux = (((pixelX - T(0.5)) - T(P.guard.x)) - T(d >> 1)) / T(d);
-    const T uy = (((pixelY - T(0.5)) - T(P.guard.y)) - T(d >> 1)) / T(d);
+    const T ux = (((px - T(0.5)) - T(P.guard.x)) - T(d >> 1)) / T(d);
+    const T uy = (((py - T(0.5)) - T(P.guard.y)) - T(d >> 1)) / T(d);
     if (ux > T(-2) && uy > T(-2) && ux < T(history.w) + T(1) && uy < T(history.h) + T(1)) {
       const T ix = std::floor(ux), iy = std::floor(uy);
       const T fx = std::floor((ux - ix) * T(64) + T(0.5)) / T(64);
       const T fy = std::floor((uy - iy) * T(64) + T(0.5)) / T(64);
       const int qx0 = int(ix), qy0 = int(iy);
-      const T k = P.temporal_depth_k / -Q.z;
+      const T k = P.temporal_depth_k / -zP;
       T wsum = T(0), hsum = T(0), nsum = T(0);
       for (int j = 0; j < 4; ++j) {
         const int ox = j & 1, oy = j >> 1;
@@ -472,7 +477,7 @@ void temporalAccumulate(const Image<T>& history, Vec3<T> C, T sum, const Block<T
         if (wb > T(0) && qx >= 0 && qy >= 0 && qx < history.w && qy < history.h) {
           const T tx = history.at(qx, qy, 0), ty = history.at(qx, qy, 1), tz = history.at(qx, qy, 2);
           if (tz > T(0) && !isSky(ty)) {
-            const T wt = wb * glslMax(T(0), T(1) - k * std::abs(ty - Q.z));
+            const T wt = wb * glslMax(T(0), T(1) - k * std::abs(ty - zP));
             wsum += wt;
             hsum += wt * tx;
             nsum += wt * tz;

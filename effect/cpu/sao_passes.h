@@ -133,7 +133,8 @@ class AoSampleInvocation {
       : in_(ctx.in), P_(ctx.P), csz_(csz), csz2_(csz2), aoRaw_(aoRaw), history_(history),
         normalsSupplied_(ctx.variant(gen::VariantId::NORMALS_SUPPLIED)),
         twoLayer_(ctx.variant(gen::VariantId::TWO_LAYER)),
-        zHierarchy_(ctx.variant(gen::VariantId::Z_HIERARCHY)) {}
+        zHierarchy_(ctx.variant(gen::VariantId::Z_HIERARCHY)),
+        motionVectors_(ctx.variant(gen::VariantId::MOTION_VECTORS)) {}
 
   // A and key for the 2x2 step; with TEMPORAL (history_ set) also this frame's history texel:
   // the accumulated sum and its frames (0 for sky and outside).
@@ -179,7 +180,18 @@ class AoSampleInvocation {
       sum += o;
     }
     if (history_) {
-      temporalAccumulate(*history_, C, sum, P_, kept, frames);
+      // Where this surface was in the previous frame: through the cameras, or by the motion input.
+      const Vec3<T> Q = toPrevious(C, P_);
+      T px, py;
+      if (motionVectors_) {
+        const FloatImage& mv = *in_.motion;  // texel c + input_offset (inside: checked by the host)
+        const auto mx = std::uint32_t(cx + P_.input_offset.x), my = std::uint32_t(cy + P_.input_offset.y);
+        px = (T(cx) + T(0.5)) + T(quantizeHalf(mv.at(mx, my, 0)));  // rg16f, as the texture holds it
+        py = (T(cy) + T(0.5)) + T(quantizeHalf(mv.at(mx, my, 1)));
+      } else {
+        previousPixel(Q, P_, px, py);
+      }
+      temporalAccumulate(*history_, px, py, Q.z, sum, P_, kept, frames);
       sum = kept;
     }
     A = fade(visibility(sum, P_), zc, P_);
@@ -193,7 +205,7 @@ class AoSampleInvocation {
   const std::vector<Image<T>>& csz2_;
   const Image<T>& aoRaw_;
   const Image<T>* history_;  // the previous frame's (TEMPORAL), else null
-  const bool normalsSupplied_, twoLayer_, zHierarchy_;
+  const bool normalsSupplied_, twoLayer_, zHierarchy_, motionVectors_;
 };
 
 // Pass ao_sample over work groups: each group computes its invocations' (A, key) into
@@ -210,6 +222,8 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
   if (out == nullptr) return missingBinding(d, gen::ResourceId::ao_raw, true);
   if (ctx.variant(gen::VariantId::NORMALS_SUPPLIED) && ctx.in.normals == nullptr)
     return passError(d, "reads normals, but none were supplied");
+  if (ctx.variant(gen::VariantId::MOTION_VECTORS) && ctx.in.motion == nullptr)
+    return passError(d, "reads motion vectors, but none were supplied");
   const std::vector<Image<T>>& csz = ctx.levels(in->resource);  // the whole chain
   const std::vector<Image<T>>& csz2 = ctx.levels(twoLayer ? in2->resource : gen::ResourceId::csz2);
   Image<T>& aoRaw = ctx.image(*out);

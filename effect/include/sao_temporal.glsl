@@ -20,36 +20,39 @@ float sao_bilinear_weight(ivec2 o, vec2 f)
     return ((o.x == 1) ? f.x : 1.0 - f.x) * ((o.y == 1) ? f.y : 1.0 - f.y);
 }
 
-// This frame's pixel, camera-space point C with obscurance sum `sum`, against the history (the
-// previous frame's image: .x accumulated sum, .y its key z (+0.0 = sky), .z frames accumulated,
-// 0 = none). C goes into the previous camera (prev_x/y/z) and onto its csz level-0 texels
-// (prev_proj_info, eq. 3 inverted; the guard band is folded in as for proj_info), then onto the
-// history's texels (texel q stands for viewport pixel q*d + d/2, as sao_low_representative). The
-// 2x2 texels around that point weigh bilinearly (the fraction snapped to 1/64 texel, so that a
-// camera that holds still reads its own texel alone) times max(0, 1 - depth_k * |z_h - z_P| / -z_P),
-// z_P the point's previous z: a texel of another surface (a disocclusion) weighs 0. With w the sum
-// of the weights, the history is worth w * (their weighted mean of frames) frames, n; this frame
-// takes max(min_blend, 1 / (n + 1)) of the result (a running mean that becomes an exponential one).
-// Returns (accumulated sum, frames after this one, at most max_frames). valid == 0: no history.
-vec2 sao_temporal_accumulate(sampler2D history, vec3 C, float sum, int ortho, vec4 prev_x, vec4 prev_y,
-                             vec4 prev_z, vec4 prev_proj_info, ivec2 guard, int d, float depth_k,
-                             float min_blend, float max_frames, int valid)
+// The csz level-0 texel coordinates (centre = index + 0.5) of a point P of the previous frame's
+// camera space in that camera (eq. 3 inverted with prev_proj_info; the guard band folded in).
+vec2 sao_previous_pixel(vec3 P, vec4 prev_proj_info, int ortho)
+{
+    float w = (ortho != 0) ? 1.0 : P.z;
+    return vec2((P.x / w - prev_proj_info.z) / prev_proj_info.x, (P.y / w - prev_proj_info.w) / prev_proj_info.y);
+}
+
+// This frame's pixel, whose surface was at csz texel coordinates `previous` in the previous frame
+// with camera-space z_P there (sao_previous_pixel, or the motion input), and its obscurance sum
+// `sum`, against the history (the previous frame's image: .x accumulated sum, .y its key z (+0.0 =
+// sky), .z frames accumulated, 0 = none). The history texel q stands for viewport pixel q*d + d/2
+// (sao_low_representative). The 2x2 texels around `previous` weigh bilinearly (the fraction
+// snapped to 1/64 texel, so that a camera that holds still reads its own texel alone) times
+// max(0, 1 - depth_k * |z_h - z_P| / -z_P): a texel of another surface (a disocclusion) weighs 0.
+// With w the sum of the weights, the history is worth w * (their weighted mean of frames) frames,
+// n; this frame takes max(min_blend, 1 / (n + 1)) of the result (a running mean that becomes an
+// exponential one). Returns (accumulated sum, frames after this one, at most max_frames).
+// valid == 0, or z_P >= 0 (behind the previous camera): no history.
+vec2 sao_temporal_accumulate(sampler2D history, vec2 previous, float z_P, float sum, ivec2 guard, int d,
+                             float depth_k, float min_blend, float max_frames, int valid)
 {
     float h = 0.0;
     float n = 0.0;
-    vec3 P = sao_to_previous(C, prev_x, prev_y, prev_z);
-    if (valid != 0 && P.z < 0.0) {
-        float w = (ortho != 0) ? 1.0 : P.z;
-        vec2 pixel = vec2((P.x / w - prev_proj_info.z) / prev_proj_info.x,
-                          (P.y / w - prev_proj_info.w) / prev_proj_info.y);
-        vec2 u = (((pixel - 0.5) - vec2(guard)) - float(d >> 1)) / float(d);
-        // Far outside the image: the int conversion below must not overflow.
+    if (valid != 0 && z_P < 0.0) {
+        vec2 u = (((previous - 0.5) - vec2(guard)) - float(d >> 1)) / float(d);
+        // Far outside the image (or not a number): the int conversion below must not overflow.
         if (all(greaterThan(u, vec2(-2.0))) && all(lessThan(u, vec2(textureSize(history, 0)) + 1.0))) {
             vec2 i0 = floor(u);
             vec2 f = floor((u - i0) * 64.0 + 0.5) / 64.0;
             ivec2 q0 = ivec2(i0);
             ivec2 size = textureSize(history, 0);
-            float k = depth_k / -P.z;
+            float k = depth_k / -z_P;
             float wsum = 0.0;
             float hsum = 0.0;
             float nsum = 0.0;
@@ -60,7 +63,7 @@ vec2 sao_temporal_accumulate(sampler2D history, vec3 C, float sum, int ortho, ve
                 if (wb > 0.0 && all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size))) {
                     vec4 t = texelFetch(history, q, 0);
                     if (t.z > 0.0 && !sao_is_sky(t.y)) {
-                        float wt = wb * max(0.0, 1.0 - k * abs(t.y - P.z));
+                        float wt = wb * max(0.0, 1.0 - k * abs(t.y - z_P));
                         wsum += wt;
                         hsum += wt * t.x;
                         nsum += wt * t.z;

@@ -122,6 +122,49 @@ TEST(Schedule, NoBlurReadsTheAliasedImage) {
   for (const auto& d : s.dispatches) EXPECT_NE(d.pass, PassId::blur_h);
 }
 
+// The temporal history (history=true): two copies of ao_raw's size at 16 bytes a texel;
+// ao_sample reads the previous frame's copy (no hazard inside the frame: nothing in it writes that
+// copy) and writes this frame's; the frame's entry makes the previous frame's writes visible (RAW
+// on the previous copy) and orders this frame's write after the previous frame's read (WAR).
+TEST(Schedule, TemporalHistoryIsReadFromThePreviousFrameAndWrittenForTheNext) {
+  sao::Settings settings = sao::test::untunedDefaults();
+  settings.temporal = true;
+  settings.resolution_divisor = 2;
+  sao::Plan p;
+  ASSERT_TRUE(sao::plan(settings, camera(64, 32, 0), {}, p).ok());
+  const sao::PlannedImage* history = p.image(ResourceId::history);
+  ASSERT_NE(history, nullptr);
+  EXPECT_EQ(history->copies, 2u);
+  EXPECT_EQ(history->extent, (sao::Extent{32, 16}));
+  EXPECT_EQ(history->bytes, 2u * 32u * 16u * 16u);
+  const sao::Schedule s = sao::makeSchedule(p);
+  std::printf("%s", s.describe().c_str());
+  int reads = 0, writes = 0;
+  for (const auto& d : s.dispatches)
+    for (const auto& b : s.bindingsOf(d))
+      if (b.resource == ResourceId::history) {
+        EXPECT_EQ(d.pass, PassId::ao_sample);
+        EXPECT_EQ(b.previousFrame, !b.write);
+        (b.write ? writes : reads) += 1;
+      }
+  EXPECT_EQ(reads, 1);
+  EXPECT_EQ(writes, 1);
+  for (const auto& d : s.dispatches)
+    for (const auto& h : s.hazardsBefore(d)) EXPECT_NE(h.resource, ResourceId::history) << "no hazard inside the frame";
+  int rawPrevious = 0, warCurrent = 0;
+  for (const auto& h : s.entryHazards())
+    if (h.resource == ResourceId::history) {
+      rawPrevious += h.kind == HazardKind::ReadAfterWrite && h.previousFrame;
+      warCurrent += h.kind == HazardKind::WriteAfterRead && !h.previousFrame;
+    }
+  EXPECT_EQ(rawPrevious, 1);
+  EXPECT_EQ(warCurrent, 1);
+  // Without the setting there is no history at all.
+  settings.temporal = false;
+  ASSERT_TRUE(sao::plan(settings, camera(64, 32, 0), {}, p).ok());
+  EXPECT_EQ(p.image(ResourceId::history), nullptr);
+}
+
 TEST(Schedule, WithoutTheHierarchyThereIsNoMipDispatch) {
   sao::Settings settings = sao::test::untunedDefaults();
   settings.use_z_hierarchy = false;

@@ -169,6 +169,110 @@ TEST(Temporal, StrafePastAPanelRestartsOnlyDisoccludedPixels) {
   EXPECT_EQ(kept, steady) << "a texel seen in both frames lost its history";
 }
 
+// A box (0.6 m wide, front face at z = -2.95) moving 0.1 m a frame along +x before a wall at z = -4,
+// the camera still, with motion vectors (MOTION_VECTORS): the box's texels whose previous position
+// (texel + motion) had the box under its whole bilinear footprint keep their history; the wall
+// texels the box covered in the previous frame start again (the box's depth there is rejected).
+TEST(Temporal, MotionVectorsFollowAMovingBoxAndTheWallItUncoversStartsAgain) {
+  const Camera cam = movedCamera(testCamera(4, 1000.0, ClipDepth::NegativeOneToOne, false, 128, 72), {});
+  const gen::Float4 pi = projInfo(cam);
+  const double g = cam.guardBand;
+  const Extent input{cam.width + 2 * cam.guardBand, cam.height + 2 * cam.guardBand};
+  auto sceneAt = [](std::uint32_t frame) {
+    Scene s;
+    s.planes.push_back({{0, 0, -4}, {0, 0, 1}, {}});
+    const double x = 0.1 * frame - 0.3;
+    s.boxes.push_back({{x - 0.3, -0.5, -3.05}, {x + 0.3, 0.5, -2.95}});
+    return s;
+  };
+  // The camera-space point of csz texel (tx, ty) and what it hits.
+  auto hitAt = [&](const Scene& s, double tx, double ty) {
+    const double dx = -((tx + 0.5) * pi.x + pi.z), dy = -((ty + 0.5) * pi.y + pi.w);
+    const double len = std::sqrt(dx * dx + dy * dy + 1.0);
+    const auto hits = s.trace({0, 0, 0}, {dx / len, dy / len, -1.0 / len});
+    return hits.empty() ? Vec3{0, 0, 0} : hits.front().point;
+  };
+  Settings settings = withTaps(8, true);
+  struct Counts {
+    std::size_t boxTexels = 0, boxKept = 0, uncovered = 0, uncoveredRestarted = 0;
+  };
+  auto runSequence = [&](bool useMotion) {
+    Counts n;
+    FloatImage history;
+    for (std::uint32_t frame = 0; frame < 5; ++frame) {
+      const Scene now = sceneAt(frame);
+      const DepthImage depth = renderDepth(now, cam, DepthFormat::D32F);
+      // Motion: a box point was 0.1 m to the left a frame ago; the wall does not move.
+      FloatImage motion(input, 2);
+      for (std::uint32_t y = 0; y < input.height; ++y)
+        for (std::uint32_t x = 0; x < input.width; ++x) {
+          const Vec3 p = hitAt(now, x, y);
+          if (!(p.z > -3.5 && p.z < 0)) continue;
+          const double px = ((p.x - 0.1) / p.z - pi.z) / pi.x - 0.5;  // the texel coordinate it had
+          motion.at(x, y, 0) = float(px - x);
+        }
+      cpu::Inputs in;
+      in.depth = &depth;
+      in.frameIndex = frame;
+      if (useMotion) in.motion = &motion;
+      if (frame > 0) {
+        in.history = &history;
+        in.previousCamera = &cam;
+      }
+      const cpu::Result r = runOrFail(settings, cam, in, Precision::Float);
+      history = r.images[std::size_t(gen::ResourceId::history)].at(0);
+      if (frame == 0) continue;
+      const Scene before = sceneAt(frame - 1);
+      for (std::uint32_t y = 0; y < history.extent.height; ++y)
+        for (std::uint32_t x = 0; x < history.extent.width; ++x) {
+          const double z = history.at(x, y, 1);
+          const double cx = x + g, cy = y + g;
+          const double mx = motion.at(std::uint32_t(cx), std::uint32_t(cy), 0);
+          const double ux = cx + mx - g, uy = cy - g;  // the previous position, viewport texels
+          const int x0 = int(std::floor(ux)), y0 = int(std::floor(uy));
+          int boxBefore = 0;
+          for (int k = 0; k < 4; ++k) {
+            const Vec3 p = hitAt(before, x0 + (k & 1) + g, y0 + (k >> 1) + g);
+            boxBefore += p.z > -3.5 && p.z < 0;
+          }
+          if (z > -3.5 && z < 0 && boxBefore == 4) {
+            ++n.boxTexels;
+            n.boxKept += history.at(x, y, 2) > 1.0f;
+          }
+          const Vec3 was = hitAt(before, cx, cy);
+          if (z < -3.5 && was.z > -3.5 && was.z < 0 && mx == 0.0) {
+            // Wall now, box before, at this texel and (motion 0) its whole footprint's centre texel.
+            const Vec3 l = hitAt(before, cx - 1, cy), rr = hitAt(before, cx + 1, cy);
+            if (l.z > -3.5 && rr.z > -3.5) {
+              ++n.uncovered;
+              n.uncoveredRestarted += history.at(x, y, 2) == 1.0f;
+            }
+          }
+        }
+    }
+    return n;
+  };
+  const Counts with = runSequence(true), without = runSequence(false);
+  std::printf("TEMPORAL moving box with motion vectors: %zu box texels, %zu kept their history (%zu without motion "
+              "vectors); %zu uncovered wall texels, %zu restarted\n",
+              with.boxTexels, with.boxKept, without.boxKept, with.uncovered, with.uncoveredRestarted);
+  ASSERT_GT(with.boxTexels, 100u);
+  ASSERT_GT(with.uncovered, 20u);
+  EXPECT_EQ(with.boxKept, with.boxTexels) << "the moving box lost its history: the motion vectors were not followed";
+  EXPECT_LT(without.boxKept, with.boxKept) << "without motion vectors the box's leading edge should start again";
+  EXPECT_EQ(with.uncoveredRestarted, with.uncovered) << "wall texels the box covered kept the box's history: a ghost";
+  // Without the temporal setting a motion input is refused by name.
+  cpu::Inputs plain;
+  const DepthImage depth = renderDepth(sceneAt(0), cam, DepthFormat::D32F);
+  FloatImage zero(input, 2);
+  plain.depth = &depth;
+  plain.motion = &zero;
+  cpu::Result refused;
+  const Status st = cpu::run(withTaps(8, false), cam, plain, {Precision::Float, 2}, refused);
+  EXPECT_EQ(st.code, StatusCode::InvalidInput);
+  EXPECT_NE(st.message.find("motion vectors serve temporal accumulation only"), std::string::npos) << st.message;
+}
+
 TEST(Temporal, HistoryWithoutItsCameraOrOfAnotherSizeIsRefused) {
   const Camera cam = movedCamera(testCamera(4, 1000.0, ClipDepth::NegativeOneToOne, false, 96, 64), {});
   const DepthImage depth = renderDepth(sphereOnPlaneScene(), cam, DepthFormat::D32F);

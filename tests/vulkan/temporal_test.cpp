@@ -224,5 +224,68 @@ TEST_F(Temporal, ResetHistoryAndUpdateStartAgain) {
   context().destroy(out);
 }
 
+// Motion vectors (Config::motionFormat, Inputs::motion): frames 1..3 of the strafe recorded with a
+// field of (1.5, -0.75) pixels everywhere (R16G16B16A16_SFLOAT), against the CPU reference given
+// the same field, under validation.
+TEST_F(Temporal, MotionVectorsMatchTheCpuReference) {
+  FloatImage motion(depths[0].extent, 4);
+  for (std::size_t i = 0; i < motion.data.size(); i += 4) {
+    motion.data[i] = 1.5f;
+    motion.data[i + 1] = -0.75f;
+  }
+  Image motionImage;
+  ASSERT_TRUE(context()
+                  .uploadColor(motion, VK_FORMAT_R16G16B16A16_SFLOAT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                               motionImage)
+                  .ok());
+  vk::Config c;
+  c.settings = settings;
+  c.camera = cameras[0];
+  c.depthFormat = VK_FORMAT_D32_SFLOAT;
+  c.motionFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+  std::unique_ptr<vk::Effect> effect;
+  Status st = vk::Effect::create(context().deviceContext(), c, effect);
+  ASSERT_TRUE(st.ok()) << st.message;
+  FloatImage history;
+  for (std::uint32_t f = 0; f < 4; ++f) {
+    const std::string name = "vk_temporal_motion" + std::to_string(f);
+    vk::Inputs in = inputs(f);
+    in.motion = {motionImage.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, motion.extent,
+                 VK_FORMAT_R16G16B16A16_SFLOAT};
+    Status recorded;
+    ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, in); }).ok());
+    ASSERT_TRUE(recorded.ok()) << recorded.message;
+    const vk::OutputImage o = effect->output();
+    FloatImage actual;
+    ASSERT_TRUE(context()
+                    .readback(o.image, o.format, o.extent, 0, o.layout, c.outputDstStages, c.outputDstAccess, actual)
+                    .ok());
+    cpu::Inputs ci;
+    ci.depth = &depths[f];
+    ci.motion = &motion;
+    ci.frameIndex = f;
+    if (f > 0) {
+      ci.history = &history;
+      ci.previousCamera = &cameras[f - 1];
+    }
+    cpu::Result ref;
+    const Status cs = cpu::run(settings, cameras[f], ci, {cpu::Precision::Float, 2}, ref);
+    ASSERT_TRUE(cs.ok()) << cs.message;
+    history = ref.images[std::size_t(gen::ResourceId::history)].at(0);
+    const Agreement a = compare(actual, ref.ao, 0, 2.0 / 255.0, 4.0 / 255.0, name);
+    EXPECT_TRUE(acceptable(a)) << name << ": max " << a.maxAbs * 255 << "/255, p99.9 " << a.p999 * 255 << "/255";
+    std::printf("TEMPORAL %-20s vs CPU: max %.3f/255, p99.9 %.3f/255\n", name.c_str(), a.maxAbs * 255, a.p999 * 255);
+    expectNoMessages(name.c_str());
+  }
+  // A motion format without the temporal setting: refused by name.
+  vk::Config off = c;
+  off.settings.temporal = false;
+  std::unique_ptr<vk::Effect> refused;
+  st = vk::Effect::create(context().deviceContext(), off, refused);
+  EXPECT_EQ(st.code, StatusCode::InvalidInput);
+  EXPECT_NE(st.message.find("motion vectors serve temporal accumulation only"), std::string::npos) << st.message;
+  context().destroy(motionImage);
+}
+
 }  // namespace
 }  // namespace sao::vktest

@@ -119,6 +119,7 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
   const auto supplied = [&](gen::ResourceId input) {
     if (input == gen::ResourceId::normals) return inputs.normals;
     if (input == gen::ResourceId::depth2) return inputs.secondLayer;
+    if (input == gen::ResourceId::motion) return inputs.motion;
     return input == gen::ResourceId::depth;
   };
   for (std::size_t v = 0; v < gen::kVariantCount; ++v) {

@@ -89,6 +89,22 @@ Status checkNormals(const FloatImage& n, const Camera& camera, Extent expected, 
   return Status::success();
 }
 
+// Motion vectors: two or more channels (.xy read), the depth's region.
+Status checkMotion(const FloatImage& m, const Camera& camera, Extent expected, const std::optional<Offset>& region) {
+  if (m.channels < 2)
+    return Status::error(StatusCode::UnsupportedFormat,
+                         "motion vectors have " + std::to_string(m.channels) + " channel(s); .xy are read (rg16f)");
+  if (!holdsInput(m.extent, region, expected))
+    return invalid("motion vectors are " + extentText(m.extent) + ", but the plan expects " +
+                   regionText(camera, expected, region));
+  const std::size_t values = std::size_t(m.extent.width) * m.extent.height * m.channels;
+  if (m.data.size() != values)
+    return invalid("motion vectors hold " + std::to_string(m.data.size()) + " floats, but their extent " +
+                   extentText(m.extent) + " with " + std::to_string(m.channels) + " channels needs " +
+                   std::to_string(values));
+  return Status::success();
+}
+
 template <typename T>
 FloatImage toFloatImage(const Image<T>& src) {
   FloatImage out(Extent{std::uint32_t(src.w), std::uint32_t(src.h)}, std::uint32_t(src.ch));
@@ -244,8 +260,8 @@ Status validateAndPlan(const Settings& settings, const Camera& camera, const Inp
   const DepthEncoding encoding =
       in.depth->format == DepthFormat::LinearZ ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
   if (in.depth->samples == 0) return invalid("depth has 0 samples per texel (1: single-sample)");
-  const PlanInputs planInputs{encoding, in.normals != nullptr, in.depth2 != nullptr, false, in.outputFormat,
-                              in.depth->samples};
+  const PlanInputs planInputs{encoding,         in.normals != nullptr, in.depth2 != nullptr, false, in.outputFormat,
+                              in.depth->samples, in.motion != nullptr};
   if (Status st = plan(settings, camera, planInputs, r.plan); !st) return st;
   if (Status st = checkOutputChannels(in.outputFormat, in.outputChannels, "sao::cpu"); !st) return st;
   if (Status st = checkOutputBlend(in.outputBlend, in.output != nullptr, "sao::cpu"); !st) return st;
@@ -268,6 +284,8 @@ Status validateAndPlan(const Settings& settings, const Camera& camera, const Inp
   }
   if (in.normals != nullptr)
     if (Status st = checkNormals(*in.normals, camera, expected, in.region); !st) return st;
+  if (in.motion != nullptr)
+    if (Status st = checkMotion(*in.motion, camera, expected, in.region); !st) return st;
   // Inside the images (checked above); images that wide cannot be in memory, but the block holds int.
   const Offset offset = in.region.value_or(Offset{});
   if (offset.x > std::uint32_t(INT32_MAX) || offset.y > std::uint32_t(INT32_MAX))

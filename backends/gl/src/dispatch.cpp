@@ -7,6 +7,7 @@ GLuint textureFor(const PassResources& r, gen::ResourceId id, bool previousFrame
     case gen::ResourceId::depth: return r.inputs->depth.texture;
     case gen::ResourceId::depth2: return r.inputs->depth2.texture;
     case gen::ResourceId::normals: return r.inputs->normals.texture;
+    case gen::ResourceId::motion: return r.inputs->motion.texture;
     default: break;
   }
   const auto& info = gen::kResources[static_cast<std::size_t>(id)];

@@ -248,11 +248,12 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
 
   // Texture parameters of the caller's textures that would change what texelFetch returns or
   // whether an image store lands (restored before the StateGuard restores the bindings).
-  TextureParamGuard depthParams, depth2Params, normalParams, outputParams;
+  TextureParamGuard depthParams, depth2Params, normalParams, motionParams, outputParams;
   depthParams.apply(gl, scratchUnit, checked.depth.texture, checked.depth.target, true, checked.depth.hasStencil);
   if (checked.depth2.texture)
     depth2Params.apply(gl, scratchUnit, checked.depth2.texture, GL_TEXTURE_2D, true, checked.depth2.hasStencil);
   if (checked.normals.texture) normalParams.apply(gl, scratchUnit, checked.normals.texture, GL_TEXTURE_2D, false, false);
+  if (checked.motion.texture) motionParams.apply(gl, scratchUnit, checked.motion.texture, GL_TEXTURE_2D, false, false);
   if (checked.output.texture) outputParams.apply(gl, scratchUnit, checked.output.texture, GL_TEXTURE_2D, false, false);
 
   gl.BindBuffer(GL_UNIFORM_BUFFER, ubo);

@@ -209,11 +209,22 @@ Status checkInputs(const GlFunctions& gl, GLuint unit, const Inputs& inputs, Nor
       return checkNormalsChannels(normalsEncoding, channels, what(), "texture");
     out.planInputs.normals = true;
   }
+  if (inputs.motion != 0) {
+    if (Status st = inspect(gl, unit, inputs.motion, {"motion", false, layer, out.views}, out.motion); !st) return st;
+    const GLenum f = out.motion.internalFormat;
+    if (f != GL_RG16F && f != GL_RG32F && f != GL_RGBA16F && f != GL_RGBA32F)
+      return Status::error(StatusCode::UnsupportedFormat, "sao::gl: the motion texture " + std::to_string(inputs.motion) +
+                                                              " is " + glEnumName(f) +
+                                                              "; motion vectors must be GL_RG16F, GL_RG32F, GL_RGBA16F "
+                                                              "or GL_RGBA32F (.xy in pixels)");
+    out.planInputs.motion = true;
+  }
   if (inputs.output != 0) {
     const GLuint o = inputs.output;
     const char* clash = o == inputs.depth.texture    ? "depth"
                         : o == inputs.depth2.texture ? "second-layer depth"
                         : o == inputs.normals        ? "normals"
+                        : o == inputs.motion         ? "motion"
                                                      : nullptr;
     if (clash)
       return Status::error(StatusCode::InvalidInput, "sao::gl: texture " + std::to_string(o) +
@@ -254,6 +265,7 @@ SuppliedImages supplied(const CheckedInputs& in) {
   add(gen::ResourceId::depth, in.depth);
   add(gen::ResourceId::depth2, in.depth2);
   add(gen::ResourceId::normals, in.normals);
+  add(gen::ResourceId::motion, in.motion);
   add(gen::ResourceId::ao, in.output);
   return images;
 }

@@ -35,14 +35,14 @@ class LayerViews {
 
  private:
   const GlFunctions& gl_;
-  std::array<GLuint, 4> views_{};  // at most one per input (depth, depth2, normals, output)
+  std::array<GLuint, 5> views_{};  // at most one per input (depth, depth2, normals, motion, output)
   std::size_t count_ = 0;
 };
 
 struct CheckedInputs {
   explicit CheckedInputs(const GlFunctions& gl) : views(gl) {}
   LayerViews views;                            // per-render views of array layers (Inputs::layer)
-  TextureInfo depth, depth2, normals, output;  // texture 0 where absent; a layer's view for an array
+  TextureInfo depth, depth2, normals, motion, output;  // texture 0 where absent; a layer's view for an array
   std::optional<Offset> region;  // Inputs::region: where the region starts in depth, depth2 and normals
   PlanInputs planInputs;
   std::uint32_t outputChannels = 15;  // Inputs::outputChannels, checked against the output's format

@@ -175,6 +175,15 @@ Status checkConfig(const EffectState& e, const Config& c, Plan& plan, ParamBlock
     if (Status st = checkNormalsFormat(c.normalsFormat, c.camera.normalsEncoding); !st) return st;
     if (Status st = checkSampled(e, c.normalsFormat, "the normals"); !st) return st;
   }
+  if (c.motionFormat != VK_FORMAT_UNDEFINED) {
+    if (c.motionFormat != VK_FORMAT_R16G16_SFLOAT && c.motionFormat != VK_FORMAT_R32G32_SFLOAT &&
+        c.motionFormat != VK_FORMAT_R16G16B16A16_SFLOAT && c.motionFormat != VK_FORMAT_R32G32B32A32_SFLOAT)
+      return Status::error(StatusCode::UnsupportedFormat,
+                           "Config::motionFormat " + formatText(c.motionFormat) +
+                               " is not a motion-vector format the effect reads (R16G16_SFLOAT, R32G32_SFLOAT, "
+                               "R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT: .xy in pixels)");
+    if (Status st = checkSampled(e, c.motionFormat, "the motion vectors"); !st) return st;
+  }
   if (c.outputLayout != VK_IMAGE_LAYOUT_GENERAL && c.outputLayout != VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
     return Status::error(StatusCode::InvalidInput, "Config::outputLayout must be VK_IMAGE_LAYOUT_GENERAL or "
                                                    "VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, got " +
@@ -214,7 +223,8 @@ Status checkConfig(const EffectState& e, const Config& c, Plan& plan, ParamBlock
   const DepthEncoding encoding = depthEncodingOf(c.depthFormat);
   PlanInputs pi{encoding,     c.normalsFormat != VK_FORMAT_UNDEFINED,
                 c.secondLayer, c.userOutput,
-                outputFormat, static_cast<std::uint32_t>(c.depthSamples)};
+                outputFormat, static_cast<std::uint32_t>(c.depthSamples),
+                c.motionFormat != VK_FORMAT_UNDEFINED};
   if (Status st = sao::plan(c.settings, c.camera, pi, plan); !st) return st;
   if (Status st = computeConstants(c.settings, c.camera, encoding, params); !st) return st;
   params.output_mask = outputMaskParam(c.outputChannels);

@@ -140,6 +140,7 @@ VkDescriptorImageInfo imageInfo(const EffectState& e, const ScheduledBinding& b,
     case gen::ResourceId::depth: return {VK_NULL_HANDLE, inputs.depth.view, inputs.depth.layout};
     case gen::ResourceId::depth2: return {VK_NULL_HANDLE, inputs.depth2.view, inputs.depth2.layout};
     case gen::ResourceId::normals: return {VK_NULL_HANDLE, inputs.normals.view, inputs.normals.layout};
+    case gen::ResourceId::motion: return {VK_NULL_HANDLE, inputs.motion.view, inputs.motion.layout};
     default: break;
   }
   VkDescriptorImageInfo info{VK_NULL_HANDLE, output.view, VK_IMAGE_LAYOUT_GENERAL};  // the user's output

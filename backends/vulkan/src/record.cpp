@@ -114,6 +114,7 @@ Status checkInputs(const EffectState& e, const Inputs& in, const OutputImage* us
   add(gen::ResourceId::depth, in.depth.view, in.depth.extent, in.region);
   add(gen::ResourceId::depth2, in.depth2.view, in.depth2.extent, in.region);
   add(gen::ResourceId::normals, in.normals.view, in.normals.extent, in.region);
+  add(gen::ResourceId::motion, in.motion.view, in.motion.extent, in.region);
   if (userOutput) add(gen::ResourceId::ao, userOutput->view, userOutput->extent, {});
   if (userOutput && (userOutput->image == VK_NULL_HANDLE || userOutput->view == VK_NULL_HANDLE))
     return Status::error(StatusCode::InvalidInput, "the output image or its view is VK_NULL_HANDLE");
@@ -125,6 +126,7 @@ Status checkInputs(const EffectState& e, const Inputs& in, const OutputImage* us
   if (Status st = checkInput(in.depth, "depth", c.depthFormat, maxSide); !st) return st;
   if (Status st = checkInput(in.depth2, "depth2", c.depthFormat, maxSide); !st) return st;
   if (Status st = checkInput(in.normals, "normals", c.normalsFormat, maxSide); !st) return st;
+  if (Status st = checkInput(in.motion, "motion", c.motionFormat, maxSide); !st) return st;
   if (!c.userOutput) {
     const OwnedImage* ao = e.res.find(gen::ResourceId::ao);
     out = {ao->image.get(), ao->levelViews[0].get()};
@@ -148,7 +150,7 @@ Status checkInputs(const EffectState& e, const Inputs& in, const OutputImage* us
                              std::to_string(userOutput->layout) +
                              "; give the layout your image is in when the commands run (its texels are kept)");
   for (const auto& [input, name] : {std::pair{in.depth.view, "depth"}, std::pair{in.depth2.view, "depth2"},
-                                     std::pair{in.normals.view, "normals"}})
+                                     std::pair{in.normals.view, "normals"}, std::pair{in.motion.view, "motion"}})
     if (input != VK_NULL_HANDLE && input == userOutput->view)
       return Status::error(StatusCode::InvalidInput, std::string("the output view is also Inputs::") + name +
                                                          ".view; the output must be a separate image");

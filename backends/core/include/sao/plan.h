@@ -47,6 +47,7 @@ struct PlanInputs {
   gen::Format outputFormat = gen::Format::R16F;
   // Samples per texel of the depth input: more than 1 selects the multisampled read (DEPTH_MULTISAMPLE).
   std::uint32_t depthSamples = 1;
+  bool motion = false;  // the user supplies motion vectors (temporal accumulation, MOTION_VECTORS)
   bool operator==(const PlanInputs&) const = default;
 };
 

@@ -98,6 +98,11 @@ struct Inputs {
   // a reset. The CPU reference is stateless: the caller carries the history from run to run.
   const FloatImage* history = nullptr;
   const Camera* previousCamera = nullptr;
+  // Optional, with the temporal setting: motion vectors (MOTION_VECTORS), two or more channels, the
+  // depth's region: .xy the offset in pixels from each texel to where its surface was in the
+  // previous frame (previous = current + motion), read as the rg16f texture holds them (each
+  // rounded to binary16). The history is then found there instead of through the cameras.
+  const FloatImage* motion = nullptr;
 };
 
 struct Options {

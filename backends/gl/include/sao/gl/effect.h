@@ -149,6 +149,12 @@ struct Inputs {
   // effect (layer must be 0 with temporal).
   bool resetHistory = false;
   const Camera* previousCamera = nullptr;
+  // Optional, with temporal: motion vectors (GL_RG16F recommended; GL_RG32F, GL_RGBA16F, GL_RGBA32F),
+  // the same region as depth: .xy the offset in pixels from each texel to where its surface was in
+  // the previous frame (previous = current + motion, in the depth's row order). The history of a
+  // moving object is then found where it was. Refused without the temporal setting (a motion input
+  // nothing would read).
+  std::uint32_t motion = 0;
 };
 
 struct RenderOptions {

@@ -127,6 +127,12 @@ struct Config {
   // channel would read 0. VK_FORMAT_UNDEFINED: no normals (rebuilt from depth).
   VkFormat normalsFormat = VK_FORMAT_UNDEFINED;
   bool secondLayer = false;  // a second depth layer (deep G-buffer)
+  // Motion vectors for temporal accumulation (settings.temporal): VK_FORMAT_R16G16_SFLOAT
+  // (recommended), R32G32_SFLOAT, R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT, .xy the offset in
+  // pixels from each texel to where its surface was in the previous frame (previous = current +
+  // motion, in the depth's row order); Inputs::motion then gives the image. VK_FORMAT_UNDEFINED:
+  // none (the history is found through the cameras). Refused without settings.temporal.
+  VkFormat motionFormat = VK_FORMAT_UNDEFINED;
   // You pass the output image to record(); otherwise the effect owns one, which every record()
   // writes: stereo (several records per frame) needs your output, one layer (or image) per eye.
   bool userOutput = false;
@@ -172,7 +178,7 @@ struct Config {
 // READ_ONLY_OPTIMAL or GENERAL), created with VK_IMAGE_USAGE_SAMPLED_BIT. `extent` is the view's
 // size (a view cannot tell it): it must be plan().inputExtent (viewport + 2 * guard band) or, with
 // Inputs::region, hold it from there on, and not exceed maxImageDimension2D. `format`, when given, must be the one
-// Config names (Config::depthFormat for depth and depth2, Config::normalsFormat for normals).
+// Config names (Config::depthFormat for depth and depth2, Config::normalsFormat for normals, Config::motionFormat for motion).
 struct InputImage {
   VkImageView view = VK_NULL_HANDLE;
   VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
@@ -184,6 +190,7 @@ struct Inputs {
   InputImage depth;    // required
   InputImage depth2;   // when Config::secondLayer
   InputImage normals;  // when Config::normalsFormat != VK_FORMAT_UNDEFINED
+  InputImage motion;   // when Config::motionFormat != VK_FORMAT_UNDEFINED (the depth's region)
   // Optional: where the region of plan().inputExtent texels starts in depth, depth2 and normals
   // (they share it): the texel (x along a row, y in rows from row 0) holding the guard band's first
   // corner. With it the images may be larger (dynamic resolution: the viewport inside a bigger
