@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "cpu_frames.h"
 #include "moving_camera.h"
 #include "test_support.h"
 
@@ -33,27 +34,13 @@ double rmse(const FloatImage& a, const FloatImage& b) {
   return std::sqrt(sum / double(a.data.size()));
 }
 
-// Frames of one camera path run in order, the history carried along.
-struct FrameRunner {
-  Settings settings;
-  FloatImage history;
-  Camera previous;
-  bool hasHistory = false;
-  cpu::Result run(const Camera& camera, const DepthImage& depth, std::uint32_t frame) {
-    cpu::Inputs in;
-    in.depth = &depth;
-    in.frameIndex = frame;
-    if (hasHistory) {
-      in.history = &history;
-      in.previousCamera = &previous;
-    }
-    cpu::Result r = runOrFail(settings, camera, in, Precision::Float);
-    history = r.images[std::size_t(gen::ResourceId::history)].at(0);
-    previous = camera;
-    hasHistory = true;
-    return r;
-  }
-};
+// One frame of a path through CpuFrames: the depth and frame index.
+cpu::Result frameOf(CpuFrames& frames, const Camera& camera, const DepthImage& depth, std::uint32_t frame) {
+  cpu::Inputs in;
+  in.depth = &depth;
+  in.frameIndex = frame;
+  return frames.run(camera, in);
+}
 
 TEST(Temporal, FirstFrameIsTheFrameWithoutHistory) {
   const Camera cam = movedCamera(testCamera(4, 1000.0, ClipDepth::NegativeOneToOne, false, 96, 64), {});
@@ -86,9 +73,9 @@ TEST(Temporal, StaticCameraReachesFourTimesTheTapsInSixteenFrames) {
   cpu::Inputs in;
   in.depth = &depth;
   const FloatImage converged = runOrFail(withTaps(64, false), cam, in, Precision::Float).ao;
-  FrameRunner runner{withTaps(4, true)};
+  CpuFrames frames(withTaps(4, true));
   FloatImage last;
-  for (std::uint32_t frame = 0; frame < 16; ++frame) last = runner.run(cam, depth, frame).ao;
+  for (std::uint32_t frame = 0; frame < 16; ++frame) last = frameOf(frames, cam, depth, frame).ao;
   const double single4 = rmse(runOrFail(withTaps(4, false), cam, in, Precision::Float).ao, converged);
   const double single16 = rmse(runOrFail(withTaps(16, false), cam, in, Precision::Float).ao, converged);
   const double accumulated = rmse(last, converged);
@@ -96,7 +83,7 @@ TEST(Temporal, StaticCameraReachesFourTimesTheTapsInSixteenFrames) {
               "16 accumulated frames x 4 taps %.4f\n", single4, single16, accumulated);
   EXPECT_LE(accumulated, single16) << "16 frames of s taps should reach one frame of 4s taps";
   // Every geometry texel of the history holds the 16 frames (no rejection on a still camera).
-  const FloatImage& h = runner.history;
+  const FloatImage& h = frames.history();
   std::size_t geometry = 0, full = 0;
   for (std::uint32_t y = 0; y < h.extent.height; ++y)
     for (std::uint32_t x = 0; x < h.extent.width; ++x)
@@ -118,18 +105,17 @@ TEST(Temporal, StrafePastAPanelRestartsOnlyDisoccludedPixels) {
   world.planes.push_back({{0, 0, -4}, {0, 0, 1}, {}});
   world.boxes.push_back({{-0.2, -0.5, -3.05}, {0.2, 0.5, -2.95}});
   const Camera base = testCamera(4, 1000.0, ClipDepth::NegativeOneToOne, false, 128, 72);
-  FrameRunner runner{withTaps(8, true)};
+  CpuFrames frames(withTaps(8, true));
   std::size_t disoccluded = 0, restarted = 0, steady = 0, kept = 0;
   constexpr double kStep = 0.4;
   for (std::uint32_t frame = 0; frame < 6; ++frame) {
     const Vec3 eye{kStep * frame - 1.0, 0, 0};
     const Camera cam = movedCamera(base, eye);
     const DepthImage depth = renderDepth(seenFrom(world, eye), cam, DepthFormat::D32F);
-    const bool moved = runner.hasHistory;
-    const cpu::Result r = runner.run(cam, depth, frame);
-    if (!moved) continue;
+    const cpu::Result r = frameOf(frames, cam, depth, frame);
+    if (frame == 0) continue;
     const Scene before = seenFrom(world, {eye.x - kStep, 0, 0});
-    const FloatImage& h = runner.history;
+    const FloatImage& h = frames.history();
     const auto& pi = r.params.proj_info;  // the same projection in both frames
     const double g = cam.guardBand;
     // What the previous camera saw at viewport texel (tx, ty): its surface's z.
@@ -198,7 +184,7 @@ TEST(Temporal, MotionVectorsFollowAMovingBoxAndTheWallItUncoversStartsAgain) {
   };
   auto runSequence = [&](bool useMotion) {
     Counts n;
-    FloatImage history;
+    CpuFrames frames(settings);
     for (std::uint32_t frame = 0; frame < 5; ++frame) {
       const Scene now = sceneAt(frame);
       const DepthImage depth = renderDepth(now, cam, DepthFormat::D32F);
@@ -215,13 +201,9 @@ TEST(Temporal, MotionVectorsFollowAMovingBoxAndTheWallItUncoversStartsAgain) {
       in.depth = &depth;
       in.frameIndex = frame;
       if (useMotion) in.motion = &motion;
-      if (frame > 0) {
-        in.history = &history;
-        in.previousCamera = &cam;
-      }
-      const cpu::Result r = runOrFail(settings, cam, in, Precision::Float);
-      history = r.images[std::size_t(gen::ResourceId::history)].at(0);
+      frames.run(cam, in);
       if (frame == 0) continue;
+      const FloatImage& history = frames.history();
       const Scene before = sceneAt(frame - 1);
       for (std::uint32_t y = 0; y < history.extent.height; ++y)
         for (std::uint32_t x = 0; x < history.extent.width; ++x) {

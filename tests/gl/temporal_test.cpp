@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <string>
 
+#include "cpu_frames.h"
 #include "gl_support.h"
 #include "moving_camera.h"
 #include "sao/cpu/reference.h"
@@ -29,8 +30,7 @@ TEST_F(Temporal, EveryFrameOfAStrafeMatchesTheCpuReference) {
   const Settings settings = temporalMedium();
   auto effect = makeEffect();
   ASSERT_TRUE(effect);
-  FloatImage cpuHistory;
-  Camera previous;
+  test::CpuFrames reference(settings);
   gl::Stats afterFirst;
   for (std::uint32_t frame = 0; frame < 6; ++frame) {
     const std::string name = "gl_temporal" + std::to_string(frame);
@@ -49,15 +49,7 @@ TEST_F(Temporal, EveryFrameOfAStrafeMatchesTheCpuReference) {
     cpu::Inputs ci;
     ci.depth = &depth;
     ci.frameIndex = frame;
-    if (frame > 0) {
-      ci.history = &cpuHistory;
-      ci.previousCamera = &previous;
-    }
-    cpu::Result ref;
-    const Status cs = cpu::run(settings, cam, ci, cpu::Options{cpu::Precision::Float, 2}, ref);
-    ASSERT_TRUE(cs.ok()) << cs.message;
-    cpuHistory = ref.images[std::size_t(gen::ResourceId::history)].at(0);
-    previous = cam;
+    const cpu::Result ref = reference.run(cam, ci);
     const Agreement a = compare(actual, ref.ao, 0, 2.0 / 255.0, 4.0 / 255.0, name);
     EXPECT_TRUE(acceptable(a)) << name << ": max " << a.maxAbs * 255 << "/255, p99.9 " << a.p999 * 255 << "/255";
     std::printf("TEMPORAL %-14s vs CPU: max %.3f/255, p99.9 %.3f/255\n", name.c_str(), a.maxAbs * 255, a.p999 * 255);
@@ -125,7 +117,7 @@ TEST_F(Temporal, MotionVectorsMatchTheCpuReference) {
   const Settings settings = temporalMedium();
   auto effect = makeEffect();
   ASSERT_TRUE(effect);
-  FloatImage cpuHistory;
+  test::CpuFrames reference(settings);
   for (std::uint32_t frame = 0; frame < 4; ++frame) {
     const std::string name = "gl_temporal_motion" + std::to_string(frame);
     gl::Inputs gi;
@@ -140,14 +132,7 @@ TEST_F(Temporal, MotionVectorsMatchTheCpuReference) {
     ci.depth = &depth;
     ci.motion = &motion;
     ci.frameIndex = frame;
-    if (frame > 0) {
-      ci.history = &cpuHistory;
-      ci.previousCamera = &cam;
-    }
-    cpu::Result ref;
-    const Status cs = cpu::run(settings, cam, ci, cpu::Options{cpu::Precision::Float, 2}, ref);
-    ASSERT_TRUE(cs.ok()) << cs.message;
-    cpuHistory = ref.images[std::size_t(gen::ResourceId::history)].at(0);
+    const cpu::Result ref = reference.run(cam, ci);
     const Agreement a = compare(actual, ref.ao, 0, 2.0 / 255.0, 4.0 / 255.0, name);
     EXPECT_TRUE(acceptable(a)) << name << ": max " << a.maxAbs * 255 << "/255, p99.9 " << a.p999 * 255 << "/255";
     std::printf("TEMPORAL %-20s vs CPU: max %.3f/255, p99.9 %.3f/255\n", name.c_str(), a.maxAbs * 255, a.p999 * 255);

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <string>
 
+#include "cpu_frames.h"
 #include "library_allocations.h"
 #include "moving_camera.h"
 #include "sao/cpu/reference.h"
@@ -75,20 +76,12 @@ class Temporal : public VkTest {
   // The CPU reference's frames 0 .. n-1, the history carried along.
   std::vector<FloatImage> cpuFrames(std::uint32_t n) const {
     std::vector<FloatImage> out;
-    FloatImage history;
+    test::CpuFrames reference(settings);
     for (std::uint32_t f = 0; f < n; ++f) {
       cpu::Inputs ci;
       ci.depth = &depths[f];
       ci.frameIndex = f;
-      if (f > 0) {
-        ci.history = &history;
-        ci.previousCamera = &cameras[f - 1];
-      }
-      cpu::Result r;
-      const Status st = cpu::run(settings, cameras[f], ci, {cpu::Precision::Float, 2}, r);
-      EXPECT_TRUE(st.ok()) << st.message;
-      history = r.images[std::size_t(gen::ResourceId::history)].at(0);
-      out.push_back(r.ao);
+      out.push_back(reference.run(cameras[f], ci).ao);
     }
     return out;
   }
@@ -246,7 +239,7 @@ TEST_F(Temporal, MotionVectorsMatchTheCpuReference) {
   std::unique_ptr<vk::Effect> effect;
   Status st = vk::Effect::create(context().deviceContext(), c, effect);
   ASSERT_TRUE(st.ok()) << st.message;
-  FloatImage history;
+  test::CpuFrames reference(settings);
   for (std::uint32_t f = 0; f < 4; ++f) {
     const std::string name = "vk_temporal_motion" + std::to_string(f);
     vk::Inputs in = inputs(f);
@@ -264,14 +257,7 @@ TEST_F(Temporal, MotionVectorsMatchTheCpuReference) {
     ci.depth = &depths[f];
     ci.motion = &motion;
     ci.frameIndex = f;
-    if (f > 0) {
-      ci.history = &history;
-      ci.previousCamera = &cameras[f - 1];
-    }
-    cpu::Result ref;
-    const Status cs = cpu::run(settings, cameras[f], ci, {cpu::Precision::Float, 2}, ref);
-    ASSERT_TRUE(cs.ok()) << cs.message;
-    history = ref.images[std::size_t(gen::ResourceId::history)].at(0);
+    const cpu::Result ref = reference.run(cameras[f], ci);
     const Agreement a = compare(actual, ref.ao, 0, 2.0 / 255.0, 4.0 / 255.0, name);
     EXPECT_TRUE(acceptable(a)) << name << ": max " << a.maxAbs * 255 << "/255, p99.9 " << a.p999 * 255 << "/255";
     std::printf("TEMPORAL %-20s vs CPU: max %.3f/255, p99.9 %.3f/255\n", name.c_str(), a.maxAbs * 255, a.p999 * 255);
