@@ -58,6 +58,39 @@ TEST_F(GlFrameLoop, Render2000FramesHoldsHostMemory) {
   EXPECT_LT(perFrame, kAllowedBytesPerFrame) << "host memory grows with rendered frames";
 }
 
+// Temporal accumulation in the loop: the camera moves every frame (Camera::view), the frame index
+// counts up and the history images trade places; still no host memory per frame.
+TEST_F(GlFrameLoop, TemporalMovingCameraHoldsHostMemory) {
+  if (sanitized()) GTEST_SKIP() << "heap figures are meaningless under the sanitizers' allocator";
+  const Camera base = camera(64, 64, 4);
+  const DepthImage depth = test::renderDepth(test::sphereOnPlaneScene(), base, DepthFormat::D24);
+  const GLuint texture = uploadDepth(depth, GlDepth::D24);
+  auto effect = makeEffect();
+  ASSERT_TRUE(effect);
+  gl::Inputs in;
+  in.depth = {texture, gl::kDepthComponent24};
+  Settings settings;
+  settings.temporal = true;
+  std::size_t warm = 0;
+  for (int f = 0; f < kFrames; ++f) {
+    if (f == kWarmUp) warm = mallinfo2().uordblks;
+    Camera cam = base;
+    cam.view = std::array<double, 16>{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -0.001 * (f % 100), 0, 0, 1};
+    in.frameIndex = std::uint32_t(f);
+    const Status st = effect->render(cam, settings, in);
+    ASSERT_TRUE(st.ok()) << "frame " << f << ": " << st.message;
+    ASSERT_EQ(effect->params().history_valid, f > 0 ? 1 : 0) << "frame " << f;
+    glFinish();
+  }
+  const double perFrame = (double(mallinfo2().uordblks) - double(warm)) / (kFrames - kWarmUp);
+  EXPECT_EQ(effect->stats().plans, 1u);
+  effect.reset();
+  deleteTexture(texture);
+  std::printf("[frame loop] OpenGL temporal: %+.1f heap bytes/frame over %d frames after %d\n", perFrame,
+              kFrames - kWarmUp, kWarmUp);
+  EXPECT_LT(perFrame, kAllowedBytesPerFrame) << "host memory grows with accumulated frames";
+}
+
 // A stereo engine's loop: per frame two renders of one effect, one per layer of 2-layer arrays
 // (Inputs::layer: a texture view per input made and deleted in each render), each eye's camera
 // jittered per frame as TAA does. Neither plans again (one plan in all) nor grows host memory.

@@ -2,7 +2,8 @@
 // for 2000 frames with 2 in flight, under validation and synchronization validation. Host memory in
 // use (mallinfo2) after a 100-frame warm-up may grow by less than 1 KB per frame, amortised.
 // Lavapipe 22.3 grew ~400 KB per frame here until ao_sample took its loop count from a push
-// constant (docs/ROBUSTNESS.md; bisect with sao-vk-frame-loop-probe).
+// constant (docs/ROBUSTNESS.md; bisect with sao-vk-frame-loop-probe). Temporal accumulation is
+// looped as an engine runs it: recorded anew every frame with its camera.
 #include <malloc.h>
 
 #include <cstdio>
@@ -127,6 +128,46 @@ TEST_F(VkFrameLoop, MultisampledNearestDepthHoldsHostMemory) {
   std::printf("[frame loop] Vulkan, 4-sample depth, Nearest: %+.1f heap bytes/frame over %d frames after %d\n",
               perFrame, kFrames - kWarmUp, kWarmUp);
   EXPECT_LT(perFrame, kAllowedBytesPerFrame) << "host memory grows with resubmitted frames";
+}
+
+// Temporal accumulation in an engine's loop: every frame recorded anew with its own camera
+// (Inputs::camera, moving: Camera::view) and frame index, the history images trading places, each
+// submission waited for. Host memory stays flat.
+TEST_F(VkFrameLoop, TemporalRecordedEveryFrameHoldsHostMemory) {
+  if (sanitized()) GTEST_SKIP() << "heap figures are meaningless under the sanitizers' allocator";
+  vk::headless::Context& ctx = context();
+  Camera base = vulkanCamera(64, 64, 4);
+  base.view = std::array<double, 16>{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  const DepthImage depth = test::renderDepth(test::sphereOnPlaneScene(), base, DepthFormat::D32F);
+  vk::headless::Image image;
+  ASSERT_TRUE(ctx.uploadDepth(depth, VK_FORMAT_D32_SFLOAT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, image).ok());
+  vk::Config config;
+  config.camera = base;
+  config.depthFormat = VK_FORMAT_D32_SFLOAT;
+  config.settings.temporal = true;
+  std::unique_ptr<vk::Effect> effect;
+  const Status st = vk::Effect::create(ctx.deviceContext(), config, effect);
+  ASSERT_TRUE(st.ok()) << st.message;
+  std::size_t warm = 0;
+  for (int f = 0; f < kFrames; ++f) {
+    if (f == kWarmUp) warm = mallinfo2().uordblks;
+    Camera cam = base;
+    (*cam.view)[12] = -0.001 * (f % 100);
+    vk::Inputs in;
+    in.depth = {image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth.extent, VK_FORMAT_D32_SFLOAT};
+    in.camera = &cam;
+    in.frameIndex = std::uint32_t(f);
+    Status recorded;
+    ASSERT_TRUE(ctx.submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, in); }).ok());
+    ASSERT_TRUE(recorded.ok()) << "frame " << f << ": " << recorded.message;
+  }
+  const double perFrame = (double(mallinfo2().uordblks) - double(warm)) / (kFrames - kWarmUp);
+  expectNoMessages("temporal frame loop");
+  effect.reset();
+  ctx.destroy(image);
+  std::printf("[frame loop] Vulkan temporal, recorded every frame: %+.1f heap bytes/frame over %d frames after %d\n",
+              perFrame, kFrames - kWarmUp, kWarmUp);
+  EXPECT_LT(perFrame, kAllowedBytesPerFrame) << "host memory grows with recorded frames";
 }
 
 }  // namespace
