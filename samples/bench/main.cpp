@@ -16,6 +16,7 @@
 
 #include "calibrate.h"
 #include "frames_section.h"
+#include "paths_section.h"
 #include "spiral_section.h"
 #include "measure.h"
 #include "per_tap_section.h"
@@ -53,7 +54,9 @@ a cache model: a paper-like GPU and this CPU) writes traffic.csv; the calibrate 
 bias and epsilon of the medium preset fitted to (a) over a grid) writes calibration.csv; the spiral section
 (our former lattice criterion against G3D's table, the shipped one, by error against (c)) writes spiral.csv;
 the frames section (a static camera's frames averaged, Inputs::frameIndex, against one frame with 4x
-the taps, by error against (c)) writes frames.csv; the divisor section (every preset at resolution_divisor 1, 2
+the taps, by error against (c)) writes frames.csv; the paths section (every scene along the orbit, dolly
+and strafe camera paths, with and without temporal accumulation: flicker and time per frame, 60
+frames at 320x180 unless --size) writes paths.csv; the divisor section (every preset at resolution_divisor 1, 2
 and 4: error vs (c) on every scene at --size on the first backend, time at 1920x1080 on every backend) writes
 rows "divisor" and "divisor_time" into results.csv; the per_tap section (GL only: ao_sample's time per tap at
 s = 7, 16, 32, 48 beside a ladder of minimal passes of our own, a fragment pass, the same as compute, and
@@ -62,7 +65,7 @@ compute plus one of ao_sample's features each, on the main scene at --size, defa
 // The parts of the run, in the order they run (--sections picks some).
 const std::vector<std::string> kSections = {"presets",    "samples",   "mip_blur", "radius",
                                             "resolution", "two_layer", "precision", "traffic",
-                                            "divisor",    "spiral",    "frames",    "per_tap",  "calibrate"};
+                                            "divisor",    "spiral",    "frames",    "paths",     "per_tap",  "calibrate"};
 
 // The calibrate section searches a grid (about 20 minutes at 640x360 here), the spiral section
 // every differing sample count (about 5), the frames section 16 frames of three presets per scene,
@@ -70,7 +73,7 @@ const std::vector<std::string> kSections = {"presets",    "samples",   "mip_blur
 // of passes at 1920x1080: asked for by name only.
 bool inDefaultRun(const std::string& section) {
   return section != "calibrate" && section != "spiral" && section != "frames" && section != "divisor" &&
-         section != "per_tap";
+         section != "per_tap" && section != "paths";
 }
 
 std::string sectionNames() {
@@ -117,7 +120,7 @@ Options parse(int argc, char** argv) {
   cl.text("--out", o.out, "DIR", "output folder (default out/bench)");
   cl.text("--backends", o.backends, "LIST",
           "comma-separated: cpu,gl,vulkan (default: gl,vulkan,cpu, those that start; the others are skipped)");
-  cl.value("--sections", "LIST", "comma-separated parts to run (default: all but calibrate, spiral, frames, divisor and per_tap: grid searches of about 20 and 5 minutes, a frame accumulation, a preset x divisor matrix and a ladder of GL passes at 1920x1080):\n" + sectionNames(),
+  cl.value("--sections", "LIST", "comma-separated parts to run (default: all but calibrate, spiral, frames, paths, divisor and per_tap: grid searches of about 20 and 5 minutes, a frame accumulation, camera paths, a preset x divisor matrix and a ladder of GL passes at 1920x1080):\n" + sectionNames(),
            [&o](const std::string& v) { o.sections = parseSections(v); });
   cli::addRuns(cl, o.runs, 1, "measured runs per point, after one warm-up", "default 5");
   cli::addRays(cl, "--rays", o.rays, "reference rays per pixel", "default 256");
@@ -489,6 +492,16 @@ int main(int argc, char** argv) {
     if (Status s = bench::framesSection(fo, first, cache); !s) fail("frames: " + s.message);
   }
 
+  // paths: the camera paths with and without temporal accumulation (paths_section.h).
+  if (want("paths")) {
+    bench::PathsOptions po;
+    po.outDir = o.out;
+    po.scenes = sceneNames;
+    if (o.sizeGiven) po.size = o.size;
+    if (o.quick) po.frames = 4, po.size = Extent{96, 54};
+    if (Status s = bench::pathsSection(po, first, cache); !s) fail("paths: " + s.message);
+  }
+
   // per_tap: ao_sample's time per tap beside a ladder of minimal GL passes (per_tap_section.h).
   if (want("per_tap")) {
     bench::PerTapOptions po;
@@ -525,7 +538,7 @@ int main(int argc, char** argv) {
     bench::writePrecision(o.out, precision);
     files += ",precision.csv,precision.txt";
   }
-  for (const auto& [section, file] : {std::pair{"spiral", ",spiral.csv"}, {"frames", ",frames.csv"},
+  for (const auto& [section, file] : {std::pair{"spiral", ",spiral.csv"}, {"frames", ",frames.csv"}, {"paths", ",paths.csv"},
                                      {"calibrate", ",calibration.csv"}, {"traffic", ",traffic.csv"}, {"per_tap", ",per_tap.csv"}})
     if (want(section) && fs::exists(fs::path(o.out) / (file + 1))) files += file;  // per_tap may skip
   std::printf("sao-bench: %zu measurements on %s\nwrote %s/{%s}\n", rows.size(), machine.c_str(),

@@ -20,9 +20,10 @@ namespace sao::render {
 // Renders one view's depth, positions and normals with the run's depth source.
 using DepthMaker = std::function<Status(const scenes::View& view, raytrace::Primary& out)>;
 
-// Reserves frames.csv and frames/ao_NNNN.png in `out`, runs every frame and writes them. Frame
-// index `frameIndex` of the effect stays 0: the spiral is the same in every frame, so the
-// flicker is the camera's motion's alone (temporal accumulation is not part of the effect yet).
+// Reserves frames.csv and frames/ao_NNNN.png in `out`, runs every frame and writes them. Each
+// frame's camera carries its pose (Camera::view). Without the temporal setting the effect's frame
+// index stays 0: the spiral is the same in every frame, so the flicker is the camera's motion's
+// alone; with it the frame index counts up and the first frame starts the history.
 // `last` receives the last frame's depth, positions and normals, so that the run's usual outputs
 // (ao.png, lit.png, the reference) are made from it without rendering it again.
 Status runFramePath(const Options& o, samples::BackendRunner& backend, const Settings& settings,
