@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <numbers>
 
 #include "backend.h"
 #include "camera_control.h"
@@ -273,6 +274,7 @@ int App::run() {
     handleKeys();
     const ImGuiIO& io = ImGui::GetIO();
     camera_.update(io.WantCaptureMouse ? Input{} : window_->input(), *window_, !io.WantCaptureKeyboard, dt);
+    if (options_.orbitStepDegrees != 0) camera_.orbitBy(options_.orbitStepDegrees * std::numbers::pi / 180.0);
     backend_->newImGuiFrame();
     ImGui::NewFrame();
     if (ui_.showUi) drawPanel(ui_, panelInfo(), camera_);

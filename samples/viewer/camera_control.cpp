@@ -29,6 +29,12 @@ glm::dvec3 CameraController::forward() const {
   return {std::cos(pitch_) * std::sin(yaw_), std::sin(pitch_), -std::cos(pitch_) * std::cos(yaw_)};
 }
 
+void CameraController::orbitBy(double radians) {
+  const glm::dvec3 target = eye_ + forward() * distance_;
+  yaw_ += radians;
+  eye_ = target - forward() * distance_;
+}
+
 void CameraController::update(const Input& in, const Window& window, bool keys, double seconds) {
   const glm::dvec3 target = eye_ + forward() * distance_;
   if (in.left && (in.mouseDelta.x != 0 || in.mouseDelta.y != 0)) {

@@ -19,6 +19,8 @@ class CameraController {
   // Applies this frame's input (pass an empty Input and keys=false while the UI has the mouse).
   void update(const Input& input, const Window& window, bool keys, double seconds);
   scenes::View view() const;             // the current view (y up)
+  // Turns the eye about the vertical through the orbit target by `radians` (a scripted orbit).
+  void orbitBy(double radians);
   bool changedSince(const scenes::View& v) const;
 
   Mode mode = Mode::Orbit;

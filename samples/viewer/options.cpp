@@ -54,6 +54,14 @@ Options parseOptions(int argc, char** argv) {
   cli::addRays(cl, "--reference-rays", o.referenceRays, "rays per pixel of the reference", "default 32");
   cl.text("--screenshot", o.screenshot, "FILE", "with --frames: save the window as PNG after the last frame and exit");
   cl.whole("--frames", o.frames, 0, 1000000000, "N", "render N frames, then exit (0: until the window closes)");
+  cl.value("--orbit-step", "DEG",
+           "turn the camera about the orbit target's vertical by DEG degrees every frame, -30..30 (a moving camera "
+           "for temporal accumulation: --set temporal=true)",
+           [&o](const std::string& v) {
+             const double d = cli::parseNumber("--orbit-step", v);
+             if (d < -30 || d > 30) cli::reject("--orbit-step expects degrees in [-30, 30], got '" + v + "'");
+             o.orbitStepDegrees = d;
+           });
   cl.flag("--hide-ui", o.hideUi, "start with the panel hidden (H toggles)");
   cl.flag("--ortho", o.ortho,
           "start with the orthographic camera, as tall as the view's field of view spans at its target (O "
