@@ -145,8 +145,8 @@ struct Inputs {
   // pixel's obscurance with that frame's, reprojected through Camera::view (required then).
   // resetHistory: start again from this frame alone (a camera cut, a teleport). previousCamera:
   // the camera the history was made with, when it is not the one of the effect's last render
-  // (null: that one). The history follows one view: render each eye of a stereo pair with its own
-  // effect (layer must be 0 with temporal).
+  // (null: that one); without the temporal setting both are ignored. The history follows one view:
+  // render each eye of a stereo pair with its own effect (layer must be 0 with temporal).
   bool resetHistory = false;
   const Camera* previousCamera = nullptr;
   // Optional, with temporal: motion vectors (GL_RG16F recommended; GL_RG32F, GL_RGBA16F, GL_RGBA32F),

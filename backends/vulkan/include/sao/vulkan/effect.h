@@ -219,11 +219,13 @@ struct Inputs {
   // Temporal accumulation (Config::settings.temporal; sao/temporal.h says when the history is
   // reused): the effect keeps two history images and the camera of its last record (Inputs::camera
   // or Config::camera), and blends each pixel's obscurance with that frame's, reprojected through
-  // Camera::view (required then). Records are frames in submission order: record them in the order
-  // you submit them. resetHistory: start again from this frame alone (a camera cut). previousCamera:
-  // the camera the history was made with, when not the last record's (null: that one). update()
-  // starts the history again. The history follows one view: give each eye of a stereo pair its own
-  // effect. Per record: no update(), no allocation, no wait.
+  // Camera::view (required then). Records are frames in submission order: submit every record, in
+  // the order you made them (a record that is never submitted leaves the next frame a history that
+  // was never written; start again with resetHistory). resetHistory: start again from this frame
+  // alone (a camera cut). previousCamera: the camera the history was made with, when not the last
+  // record's (null: that one). Without the temporal setting both are ignored. update() starts the
+  // history again. The history follows one view: give each eye of a stereo pair its own effect. Per
+  // record: no update(), no allocation, no wait.
   bool resetHistory = false;
   const Camera* previousCamera = nullptr;
 };
