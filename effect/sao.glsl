@@ -62,6 +62,7 @@
 #pragma sao constant int  SAO_DEPTH_MODE_PERSPECTIVE=0 "depth_mode: hardware depth of a perspective projection, z = c0/(d*c1 + c2) (eq. 2)"
 #pragma sao constant int  SAO_DEPTH_MODE_ORTHOGRAPHIC=1 "depth_mode: hardware depth of an orthographic projection, z = d*c1 + c2"
 #pragma sao constant float SAO_UPSAMPLE_Z_SHARPNESS=32.0 "upsample depth weight max(0, 1 - SHARPNESS*|z - z_low|/|z|): low-resolution texels 1/32 (3.1%) apart in relative z get weight 0 (16, 64 and 256 compared in docs/BENCHMARKS.md, Reduced resolution)"
+#pragma sao constant float SAO_TEMPORAL_NORMAL_COS=0.7 "temporal: a history texel whose normal lies more than acos(0.7) = 45.6 degrees from the pixel's weighs 0 (another surface at the same depth: an edge, a crease)"
 #pragma sao constant int  SAO_DEPTH_MODE_LINEAR=2 "depth_mode: the input already holds linear camera-space z (R32F), z = d*c1 + c2 (normally c1 = 1, c2 = 0)"
 #pragma sao constant int  SAO_NORMALS_CAMERA_XYZ=0 "normals_encoding: camera-space normal in .xyz (sao::NormalsEncoding::CameraXyz)"
 #pragma sao constant int  SAO_NORMALS_WORLD_XYZ=1 "normals_encoding: world-space normal in .xyz, rotated by view_x/y/z (WorldXyz)"
@@ -98,7 +99,7 @@
 #pragma sao resource ao_raw    kind=image  format=rg32f divide_by=resolution_divisor "x: visibility A after the 2x2 reconstruction, y: key = camera-space z (+0.0 = sky); the viewport over resolution_divisor"
 #pragma sao resource ao_blur_h kind=image  format=rg32f divide_by=resolution_divisor "x: A after the horizontal bilateral blur, y: key z"
 #pragma sao resource ao_low    kind=image  format=rg32f divide_by=resolution_divisor "Reduced resolution only: (A, key z) after both blurs, the upsample's input"
-#pragma sao resource history  kind=image  format=rgba32f divide_by=resolution_divisor when=TEMPORAL history=true "Temporal: x the accumulated obscurance sum, y its key z (+0.0 = sky), z the frames it holds (0 = none); ao_raw's size, two images that trade places every frame"
+#pragma sao resource history  kind=image  format=rgba32f divide_by=resolution_divisor when=TEMPORAL history=true "Temporal: x the accumulated obscurance sum, y its key z (+0.0 = sky), z the frames it holds (0 = none), w its normal (octahedral, 12 bits a component, as the integer qx*4096 + qy); ao_raw's size, two images that trade places every frame"
 #pragma sao resource ao        kind=output format=r16f formats=[r16f,r8,rgba8,rgba16f] "Final ambient visibility A in [0,1] (1 = unoccluded), linear; r16f unless the caller's output image has another of formats= (OUTPUT_FORMAT); with output_blend multiply, the caller's texels times A"
 
 // ---------------------------------------------------------------------------------------------
@@ -254,8 +255,9 @@ void sao_ao_main()
     float A = 1.0;
     float key = 0.0;
 #if TEMPORAL
-    float kept = 0.0;    // this frame's history texel: the accumulated sum and the frames it holds
-    float frames = 0.0;  // (none for sky and outside)
+    float kept = 0.0;    // this frame's history texel: the accumulated sum, the frames it holds
+    float frames = 0.0;  // (none for sky and outside) and the packed normal
+    float normal_code = 0.0;
 #endif
     if (inside && !sao_is_sky(zc)) {
         vec3 C = sao_position(vec2(c) + 0.5, zc, proj_info, ortho);
@@ -295,8 +297,11 @@ void sao_ao_main()
 #else
         vec2 previous = sao_previous_pixel(P, prev_proj_info, ortho);
 #endif
-        vec2 acc = sao_temporal_accumulate(in_history, previous, P.z, sum, guard, ao_divisor, temporal_depth_k,
+        // The pixel's normal in the previous camera: the history's normals are that camera's.
+        vec3 nP = sao_rotate_to_previous(n, prev_from_cur_x, prev_from_cur_y, prev_from_cur_z);
+        vec2 acc = sao_temporal_accumulate(in_history, previous, P.z, nP, sum, guard, ao_divisor, temporal_depth_k,
                                            temporal_min_blend, temporal_max_frames, history_valid);
+        normal_code = sao_pack_normal(n);
         sum = acc.x;
         kept = acc.x;
         frames = acc.y;
@@ -306,7 +311,7 @@ void sao_ao_main()
     }
 #if TEMPORAL
     if (inside)
-        imageStore(out_history, p, vec4(kept, key, frames, 0.0));
+        imageStore(out_history, p, vec4(kept, key, frames, normal_code));
 #endif
 
     // 2x2 bilateral reconstruction: quads are aligned to even pixels and lie inside one work

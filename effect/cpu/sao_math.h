@@ -440,6 +440,45 @@ Vec3<T> toPrevious(Vec3<T> C, const Block<T>& P) {
 }
 
 template <typename T>
+Vec3<T> rotateToPrevious(Vec3<T> n, const Block<T>& P) {
+  auto row = [&](const auto& m) { return dot(Vec3<T>{m.x, m.y, m.z}, n); };
+  return {row(P.prev_from_cur_x), row(P.prev_from_cur_y), row(P.prev_from_cur_z)};
+}
+
+// sao_pack_normal / sao_unpack_normal: octahedral, 12 bits a component, the integer qx*4096 + qy.
+template <typename T>
+T packNormal(Vec3<T> n) {
+  const T l1 = (std::abs(n.x) + std::abs(n.y)) + std::abs(n.z);
+  T ex = n.x / l1, ey = n.y / l1;
+  if (n.z < T(0)) {
+    const T sx = ex >= T(0) ? T(1) : T(-1);
+    const T sy = ey >= T(0) ? T(1) : T(-1);
+    const T fx = (T(1) - std::abs(ey)) * sx;
+    const T fy = (T(1) - std::abs(ex)) * sy;
+    ex = fx;
+    ey = fy;
+  }
+  const T qx = std::floor((ex * T(0.5) + T(0.5)) * T(4095) + T(0.5));
+  const T qy = std::floor((ey * T(0.5) + T(0.5)) * T(4095) + T(0.5));
+  return qx * T(4096) + qy;
+}
+
+template <typename T>
+Vec3<T> unpackNormal(T code) {
+  const T qx = std::floor(code / T(4096));
+  const T qy = code - qx * T(4096);
+  return octahedralDecode(qx / T(4095) * T(2) - T(1), qy / T(4095) * T(2) - T(1));
+}
+
+// sao_normals_agree: within acos(SAO_TEMPORAL_NORMAL_COS), compared squared.
+template <typename T>
+bool normalsAgree(Vec3<T> a, Vec3<T> b) {
+  const T d = dot(a, b);
+  const T c = T(gen::SAO_TEMPORAL_NORMAL_COS);
+  return d > T(0) && d * d >= (c * c) * (dot(a, a) * dot(b, b));
+}
+
+template <typename T>
 T bilinearWeight(int ox, int oy, T fx, T fy) {
   return ((ox == 1) ? fx : T(1) - fx) * ((oy == 1) ? fy : T(1) - fy);
 }
@@ -455,7 +494,7 @@ void previousPixel(Vec3<T> Q, const Block<T>& P, T& x, T& y) {
 // sao_temporal_accumulate: (accumulated sum, frames) of this frame's pixel whose surface was at csz
 // texel coordinates (px, py) with z zP in the previous frame, from that frame's history (4 channels).
 template <typename T>
-void temporalAccumulate(const Image<T>& history, T px, T py, T zP, T sum, const Block<T>& P, T& outSum,
+void temporalAccumulate(const Image<T>& history, T px, T py, T zP, Vec3<T> nP, T sum, const Block<T>& P, T& outSum,
                         T& outFrames) {
   T h = T(0);
   T n = T(0);
@@ -476,7 +515,7 @@ void temporalAccumulate(const Image<T>& history, T px, T py, T zP, T sum, const 
         const T wb = bilinearWeight(ox, oy, fx, fy);
         if (wb > T(0) && qx >= 0 && qy >= 0 && qx < history.w && qy < history.h) {
           const T tx = history.at(qx, qy, 0), ty = history.at(qx, qy, 1), tz = history.at(qx, qy, 2);
-          if (tz > T(0) && !isSky(ty)) {
+          if (tz > T(0) && !isSky(ty) && normalsAgree(unpackNormal(history.at(qx, qy, 3)), nP)) {
             const T wt = wb * glslMax(T(0), T(1) - k * std::abs(ty - zP));
             wsum += wt;
             hsum += wt * tx;

@@ -137,8 +137,8 @@ class AoSampleInvocation {
         motionVectors_(ctx.variant(gen::VariantId::MOTION_VECTORS)) {}
 
   // A and key for the 2x2 step; with TEMPORAL (history_ set) also this frame's history texel:
-  // the accumulated sum and its frames (0 for sky and outside).
-  void operator()(int px, int py, T& A, T& key, T& kept, T& frames) const {
+  // the accumulated sum, its frames and the packed normal (all 0 for sky and outside).
+  void operator()(int px, int py, T& A, T& key, T& kept, T& frames, T& normalCode) const {
     const Image<T>& z0 = csz_[0];
     const bool inside = px < std::min(P_.ao_size.x, aoRaw_.w) && py < std::min(P_.ao_size.y, aoRaw_.h);
     // The viewport pixel the (reduced) AO pixel stands for: itself at divisor 1.
@@ -151,6 +151,7 @@ class AoSampleInvocation {
     key = T(0);
     kept = T(0);
     frames = T(0);
+    normalCode = T(0);
     if (!inside || isSky(zc)) return;
 
     const Vec3<T> C = position(T(cx) + T(0.5), T(cy) + T(0.5), zc, P_);
@@ -191,8 +192,9 @@ class AoSampleInvocation {
       } else {
         previousPixel(Q, P_, px, py);
       }
-      temporalAccumulate(*history_, px, py, Q.z, sum, P_, kept, frames);
+      temporalAccumulate(*history_, px, py, Q.z, rotateToPrevious(n, P_), sum, P_, kept, frames);
       sum = kept;
+      normalCode = packNormal(n);
     }
     A = fade(visibility(sum, P_), zc, P_);
     key = zc;
@@ -256,13 +258,13 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
   const AoSampleInvocation<T> sampleInvocation(ctx, csz, csz2, aoRaw, previous);
   parallelFor(groupsY, ctx.threads, [&](int gy) {
     std::vector<T> quadA(std::size_t(LX) * LY), quadH(quadA.size()), quadZ(quadA.size()), kept(quadA.size()),
-        frames(quadA.size());
+        frames(quadA.size()), normalCode(quadA.size());
     for (int gx = 0; gx < groupsX; ++gx) {
       // Up to the first barrier: every invocation's A and key.
       for (int ly = 0; ly < LY; ++ly)
         for (int lx = 0; lx < LX; ++lx) {
           const std::size_t li = std::size_t(ly) * LX + lx;
-          sampleInvocation(gx * LX + lx, gy * LY + ly, quadA[li], quadZ[li], kept[li], frames[li]);
+          sampleInvocation(gx * LX + lx, gy * LY + ly, quadA[li], quadZ[li], kept[li], frames[li], normalCode[li]);
         }
       // Between the barriers: the step along x.
       for (int ly = 0; ly < LY; ++ly)
@@ -285,7 +287,7 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
               history->at(px, py, 0) = kept[li];
               history->at(px, py, 1) = quadZ[li];
               history->at(px, py, 2) = frames[li];
-              history->at(px, py, 3) = T(0);
+              history->at(px, py, 3) = normalCode[li];
             }
           }
         }

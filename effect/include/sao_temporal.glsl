@@ -3,7 +3,7 @@
 // camera-space point into the previous frame's camera and rejected where the history's z differs.
 // The sum (eq. 1 before the visibility curve) is what accumulates, so that N frames of s taps
 // average like one frame of N*s taps (averaging A itself would average the curve: Jensen's
-// inequality). Library code: depends on sao_depth.glsl. Math: docs/effect-math.md, "Temporal".
+// inequality). Library code: depends on sao_depth.glsl and sao_normal.glsl. Math: docs/effect-math.md, "Temporal".
 #ifndef SAO_TEMPORAL_GLSL
 #define SAO_TEMPORAL_GLSL
 
@@ -12,6 +12,43 @@
 vec3 sao_to_previous(vec3 C, vec4 m_x, vec4 m_y, vec4 m_z)
 {
     return vec3(dot(m_x.xyz, C) + m_x.w, dot(m_y.xyz, C) + m_y.w, dot(m_z.xyz, C) + m_z.w);
+}
+
+// The rotation part of the same transform, for a direction (a normal).
+vec3 sao_rotate_to_previous(vec3 n, vec4 m_x, vec4 m_y, vec4 m_z)
+{
+    return vec3(dot(m_x.xyz, n), dot(m_y.xyz, n), dot(m_z.xyz, n));
+}
+
+// A normal in one float, exactly: its octahedral map (sao_octahedral_decode's inverse) in [0, 1]^2
+// quantised to 12 bits a component, stored as the integer qx * 4096 + qy (below 2^24, so a float
+// holds it exactly on every backend).
+float sao_pack_normal(vec3 n)
+{
+    float l1 = (abs(n.x) + abs(n.y)) + abs(n.z);
+    vec2 e = n.xy / l1;
+    if (n.z < 0.0) {
+        float sx = e.x >= 0.0 ? 1.0 : -1.0;
+        float sy = e.y >= 0.0 ? 1.0 : -1.0;
+        e = vec2((1.0 - abs(e.y)) * sx, (1.0 - abs(e.x)) * sy);
+    }
+    vec2 q = floor((e * 0.5 + 0.5) * 4095.0 + 0.5);
+    return q.x * 4096.0 + q.y;
+}
+
+vec3 sao_unpack_normal(float code)
+{
+    float qx = floor(code / 4096.0);
+    float qy = code - qx * 4096.0;
+    return sao_octahedral_decode(vec2(qx, qy) / 4095.0 * 2.0 - 1.0);
+}
+
+// Whether two normals (any length) lie within acos(SAO_TEMPORAL_NORMAL_COS) of each other, without
+// a square root: dot > 0 and dot^2 >= cos^2 |a|^2 |b|^2.
+bool sao_normals_agree(vec3 a, vec3 b)
+{
+    float d = dot(a, b);
+    return d > 0.0 && d * d >= (SAO_TEMPORAL_NORMAL_COS * SAO_TEMPORAL_NORMAL_COS) * (dot(a, a) * dot(b, b));
 }
 
 // Bilinear weight of corner o (0 or 1 per axis) for the fraction f.
@@ -29,17 +66,18 @@ vec2 sao_previous_pixel(vec3 P, vec4 prev_proj_info, int ortho)
 }
 
 // This frame's pixel, whose surface was at csz texel coordinates `previous` in the previous frame
-// with camera-space z_P there (sao_previous_pixel, or the motion input), and its obscurance sum
-// `sum`, against the history (the previous frame's image: .x accumulated sum, .y its key z (+0.0 =
-// sky), .z frames accumulated, 0 = none). The history texel q stands for viewport pixel q*d + d/2
-// (sao_low_representative). The 2x2 texels around `previous` weigh bilinearly (the fraction
+// with camera-space z_P there (sao_previous_pixel, or the motion input), its normal n_P turned into
+// the previous camera, and its obscurance sum `sum`, against the history (the previous frame's image:
+// .x accumulated sum, .y its key z (+0.0 = sky), .z frames accumulated, 0 = none, .w its packed
+// normal). A history texel whose normal disagrees with n_P (sao_normals_agree) weighs 0. The
+// history texel q stands for viewport pixel q*d + d/2 (sao_low_representative). The 2x2 texels around `previous` weigh bilinearly (the fraction
 // snapped to 1/64 texel, so that a camera that holds still reads its own texel alone) times
 // max(0, 1 - depth_k * |z_h - z_P| / -z_P): a texel of another surface (a disocclusion) weighs 0.
 // With w the sum of the weights, the history is worth w * (their weighted mean of frames) frames,
 // n; this frame takes max(min_blend, 1 / (n + 1)) of the result (a running mean that becomes an
 // exponential one). Returns (accumulated sum, frames after this one, at most max_frames).
 // valid == 0, or z_P >= 0 (behind the previous camera): no history.
-vec2 sao_temporal_accumulate(sampler2D history, vec2 previous, float z_P, float sum, ivec2 guard, int d,
+vec2 sao_temporal_accumulate(sampler2D history, vec2 previous, float z_P, vec3 n_P, float sum, ivec2 guard, int d,
                              float depth_k, float min_blend, float max_frames, int valid)
 {
     float h = 0.0;
@@ -62,7 +100,7 @@ vec2 sao_temporal_accumulate(sampler2D history, vec2 previous, float z_P, float 
                 float wb = sao_bilinear_weight(o, f);
                 if (wb > 0.0 && all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size))) {
                     vec4 t = texelFetch(history, q, 0);
-                    if (t.z > 0.0 && !sao_is_sky(t.y)) {
+                    if (t.z > 0.0 && !sao_is_sky(t.y) && sao_normals_agree(sao_unpack_normal(t.w), n_P)) {
                         float wt = wb * max(0.0, 1.0 - k * abs(t.y - z_P));
                         wsum += wt;
                         hsum += wt * t.x;

@@ -255,6 +255,62 @@ TEST(Temporal, MotionVectorsFollowAMovingBoxAndTheWallItUncoversStartsAgain) {
   EXPECT_NE(st.message.find("motion vectors serve temporal accumulation only"), std::string::npos) << st.message;
 }
 
+// The normal test: a still camera's second frame keeps every geometry texel's history (frames 2);
+// the same history with every texel's normal turned by 90 degrees (the packed .w of the history
+// replaced) gives none of it (frames 1): same depth, another surface orientation.
+TEST(Temporal, HistoryOfAnotherNormalIsRejected) {
+  const Camera cam = movedCamera(testCamera(4, 1000.0, ClipDepth::NegativeOneToOne, false, 96, 64), {});
+  const DepthImage depth = renderDepth(sphereOnPlaneScene(), cam, DepthFormat::D32F);
+  const Settings settings = withTaps(8, true);
+  cpu::Inputs in;
+  in.depth = &depth;
+  const cpu::Result first = runOrFail(settings, cam, in, Precision::Float);
+  FloatImage history = first.images[std::size_t(gen::ResourceId::history)].at(0);
+  in.history = &history;
+  in.previousCamera = &cam;
+  in.frameIndex = 1;
+  auto counts = [&](const cpu::Result& r, float frames) {
+    const FloatImage& h = r.images[std::size_t(gen::ResourceId::history)].at(0);
+    std::size_t geometry = 0, match = 0;
+    for (std::uint32_t y = 0; y < h.extent.height; ++y)
+      for (std::uint32_t x = 0; x < h.extent.width; ++x)
+        if (h.at(x, y, 1) < 0.0f) {
+          ++geometry;
+          match += h.at(x, y, 2) == frames;
+        }
+    return std::pair{geometry, match};
+  };
+  const auto [geometry, kept] = counts(runOrFail(settings, cam, in, Precision::Float), 2.0f);
+  EXPECT_GT(geometry, 1000u);
+  EXPECT_EQ(kept, geometry) << "a still camera keeps every texel's history";
+  // Every stored normal turned by 90 degrees about x: (x, y, z) -> (x, -z, y), packed as the shader
+  // packs it (octahedral, 12 bits a component).
+  for (std::uint32_t y = 0; y < history.extent.height; ++y)
+    for (std::uint32_t x = 0; x < history.extent.width; ++x) {
+      float& code = history.at(x, y, 3);
+      const float qx = std::floor(code / 4096.0f), qy = code - qx * 4096.0f;
+      const double ex = qx / 4095.0 * 2 - 1, ey = qy / 4095.0 * 2 - 1;
+      double nx = ex, ny = ey, nz = 1 - std::abs(ex) - std::abs(ey);
+      if (nz < 0) {
+        nx = (1 - std::abs(ey)) * (ex >= 0 ? 1 : -1);
+        ny = (1 - std::abs(ex)) * (ey >= 0 ? 1 : -1);
+      }
+      const double rx = nx, ry = -nz, rz = ny;  // turned
+      const double l1 = std::abs(rx) + std::abs(ry) + std::abs(rz);
+      double px = rx / l1, py = ry / l1;
+      if (rz < 0) {
+        const double fx = (1 - std::abs(py)) * (px >= 0 ? 1 : -1), fy = (1 - std::abs(px)) * (py >= 0 ? 1 : -1);
+        px = fx;
+        py = fy;
+      }
+      code = float(std::floor((px * 0.5 + 0.5) * 4095 + 0.5) * 4096 + std::floor((py * 0.5 + 0.5) * 4095 + 0.5));
+    }
+  const auto [geometry2, restarted] = counts(runOrFail(settings, cam, in, Precision::Float), 1.0f);
+  std::printf("TEMPORAL normal test: %zu of %zu texels keep their history; with the history's normals turned 90 "
+              "degrees %zu restart\n", kept, geometry, restarted);
+  EXPECT_EQ(restarted, geometry2) << "a history texel of another orientation was accepted";
+}
+
 TEST(Temporal, HistoryWithoutItsCameraOrOfAnotherSizeIsRefused) {
   const Camera cam = movedCamera(testCamera(4, 1000.0, ClipDepth::NegativeOneToOne, false, 96, 64), {});
   const DepthImage depth = renderDepth(sphereOnPlaneScene(), cam, DepthFormat::D32F);

@@ -52,7 +52,16 @@ TEST_F(Temporal, EveryFrameOfAStrafeMatchesTheCpuReference) {
     const cpu::Result ref = reference.run(cam, ci);
     const Agreement a = compare(actual, ref.ao, 0, 2.0 / 255.0, 4.0 / 255.0, name);
     EXPECT_TRUE(acceptable(a)) << name << ": max " << a.maxAbs * 255 << "/255, p99.9 " << a.p999 * 255 << "/255";
-    std::printf("TEMPORAL %-14s vs CPU: max %.3f/255, p99.9 %.3f/255\n", name.c_str(), a.maxAbs * 255, a.p999 * 255);
+    // The history this frame wrote: its frame counts and packed normals as the CPU's, texel for texel.
+    const FloatImage history = readTexture(effect->texture(gen::ResourceId::history), 4);
+    const FloatImage& cpuHistory = reference.history();
+    ASSERT_EQ(history.data.size(), cpuHistory.data.size());
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < history.data.size(); i += 4)
+      differ += history.data[i + 2] != cpuHistory.data[i + 2] || history.data[i + 3] != cpuHistory.data[i + 3];
+    EXPECT_LE(differ, history.data.size() / 4 / 1000) << name << ": history frames or normals differ";
+    std::printf("TEMPORAL %-14s vs CPU: max %.3f/255, p99.9 %.3f/255; history texels with other frames or normals: "
+                "%zu of %zu\n", name.c_str(), a.maxAbs * 255, a.p999 * 255, differ, history.data.size() / 4);
     if (frame == 0) afterFirst = effect->stats();
   }
   EXPECT_EQ(effect->stats().textureAllocations, afterFirst.textureAllocations) << "a moving camera allocated";
