@@ -62,7 +62,7 @@
 #pragma sao constant int  SAO_DEPTH_MODE_PERSPECTIVE=0 "depth_mode: hardware depth of a perspective projection, z = c0/(d*c1 + c2) (eq. 2)"
 #pragma sao constant int  SAO_DEPTH_MODE_ORTHOGRAPHIC=1 "depth_mode: hardware depth of an orthographic projection, z = d*c1 + c2"
 #pragma sao constant float SAO_UPSAMPLE_Z_SHARPNESS=32.0 "upsample depth weight max(0, 1 - SHARPNESS*|z - z_low|/|z|): low-resolution texels 1/32 (3.1%) apart in relative z get weight 0 (16, 64 and 256 compared in docs/BENCHMARKS.md, Reduced resolution)"
-#pragma sao constant float SAO_TEMPORAL_NORMAL_COS=0.7 "temporal: a history texel whose normal lies more than acos(0.7) = 45.6 degrees from the pixel's weighs 0 (another surface at the same depth: an edge, a crease)"
+#pragma sao constant float SAO_TEMPORAL_NORMAL_COS=0.7 "temporal, with supplied normals: a history texel whose normal lies more than acos(0.7) = 45.6 degrees from the pixel's weighs 0 (another surface at the same depth: an edge, a crease)"
 #pragma sao constant int  SAO_DEPTH_MODE_LINEAR=2 "depth_mode: the input already holds linear camera-space z (R32F), z = d*c1 + c2 (normally c1 = 1, c2 = 0)"
 #pragma sao constant int  SAO_NORMALS_CAMERA_XYZ=0 "normals_encoding: camera-space normal in .xyz (sao::NormalsEncoding::CameraXyz)"
 #pragma sao constant int  SAO_NORMALS_WORLD_XYZ=1 "normals_encoding: world-space normal in .xyz, rotated by view_x/y/z (WorldXyz)"
@@ -299,8 +299,8 @@ void sao_ao_main()
 #endif
         // The pixel's normal in the previous camera: the history's normals are that camera's.
         vec3 nP = sao_rotate_to_previous(n, prev_from_cur_x, prev_from_cur_y, prev_from_cur_z);
-        vec2 acc = sao_temporal_accumulate(in_history, previous, P.z, nP, sum, guard, ao_divisor, temporal_depth_k,
-                                           temporal_min_blend, temporal_max_frames, history_valid);
+        vec2 acc = sao_temporal_accumulate(in_history, previous, P.z, nP, NORMALS_SUPPLIED != 0, sum, guard, ao_divisor,
+                                           temporal_depth_k, temporal_min_blend, temporal_max_frames, history_valid);
         normal_code = sao_pack_normal(n);
         sum = acc.x;
         kept = acc.x;

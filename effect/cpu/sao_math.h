@@ -494,8 +494,8 @@ void previousPixel(Vec3<T> Q, const Block<T>& P, T& x, T& y) {
 // sao_temporal_accumulate: (accumulated sum, frames) of this frame's pixel whose surface was at csz
 // texel coordinates (px, py) with z zP in the previous frame, from that frame's history (4 channels).
 template <typename T>
-void temporalAccumulate(const Image<T>& history, T px, T py, T zP, Vec3<T> nP, T sum, const Block<T>& P, T& outSum,
-                        T& outFrames) {
+void temporalAccumulate(const Image<T>& history, T px, T py, T zP, Vec3<T> nP, bool testNormals, T sum,
+                        const Block<T>& P, T& outSum, T& outFrames) {
   T h = T(0);
   T n = T(0);
   if (P.history_valid != 0 && zP < T(0)) {
@@ -515,7 +515,7 @@ void temporalAccumulate(const Image<T>& history, T px, T py, T zP, Vec3<T> nP, T
         const T wb = bilinearWeight(ox, oy, fx, fy);
         if (wb > T(0) && qx >= 0 && qy >= 0 && qx < history.w && qy < history.h) {
           const T tx = history.at(qx, qy, 0), ty = history.at(qx, qy, 1), tz = history.at(qx, qy, 2);
-          if (tz > T(0) && !isSky(ty) && normalsAgree(unpackNormal(history.at(qx, qy, 3)), nP)) {
+          if (tz > T(0) && !isSky(ty) && (!testNormals || normalsAgree(unpackNormal(history.at(qx, qy, 3)), nP))) {
             const T wt = wb * glslMax(T(0), T(1) - k * std::abs(ty - zP));
             wsum += wt;
             hsum += wt * tx;

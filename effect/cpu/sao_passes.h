@@ -192,7 +192,7 @@ class AoSampleInvocation {
       } else {
         previousPixel(Q, P_, px, py);
       }
-      temporalAccumulate(*history_, px, py, Q.z, rotateToPrevious(n, P_), sum, P_, kept, frames);
+      temporalAccumulate(*history_, px, py, Q.z, rotateToPrevious(n, P_), normalsSupplied_, sum, P_, kept, frames);
       sum = kept;
       normalCode = packNormal(n);
     }

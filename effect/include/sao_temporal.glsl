@@ -69,7 +69,9 @@ vec2 sao_previous_pixel(vec3 P, vec4 prev_proj_info, int ortho)
 // with camera-space z_P there (sao_previous_pixel, or the motion input), its normal n_P turned into
 // the previous camera, and its obscurance sum `sum`, against the history (the previous frame's image:
 // .x accumulated sum, .y its key z (+0.0 = sky), .z frames accumulated, 0 = none, .w its packed
-// normal). A history texel whose normal disagrees with n_P (sao_normals_agree) weighs 0. The
+// normal). With test_normals (supplied normals: rebuilt ones are too noisy at edges and on fine
+// geometry, and the test would throw good history away), a history texel whose normal disagrees
+// with n_P (sao_normals_agree) weighs 0. The
 // history texel q stands for viewport pixel q*d + d/2 (sao_low_representative). The 2x2 texels around `previous` weigh bilinearly (the fraction
 // snapped to 1/64 texel, so that a camera that holds still reads its own texel alone) times
 // max(0, 1 - depth_k * |z_h - z_P| / -z_P): a texel of another surface (a disocclusion) weighs 0.
@@ -77,7 +79,8 @@ vec2 sao_previous_pixel(vec3 P, vec4 prev_proj_info, int ortho)
 // n; this frame takes max(min_blend, 1 / (n + 1)) of the result (a running mean that becomes an
 // exponential one). Returns (accumulated sum, frames after this one, at most max_frames).
 // valid == 0, or z_P >= 0 (behind the previous camera): no history.
-vec2 sao_temporal_accumulate(sampler2D history, vec2 previous, float z_P, vec3 n_P, float sum, ivec2 guard, int d,
+vec2 sao_temporal_accumulate(sampler2D history, vec2 previous, float z_P, vec3 n_P, bool test_normals, float sum,
+                             ivec2 guard, int d,
                              float depth_k, float min_blend, float max_frames, int valid)
 {
     float h = 0.0;
@@ -100,7 +103,8 @@ vec2 sao_temporal_accumulate(sampler2D history, vec2 previous, float z_P, vec3 n
                 float wb = sao_bilinear_weight(o, f);
                 if (wb > 0.0 && all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size))) {
                     vec4 t = texelFetch(history, q, 0);
-                    if (t.z > 0.0 && !sao_is_sky(t.y) && sao_normals_agree(sao_unpack_normal(t.w), n_P)) {
+                    if (t.z > 0.0 && !sao_is_sky(t.y) &&
+                        (!test_normals || sao_normals_agree(sao_unpack_normal(t.w), n_P))) {
                         float wt = wb * max(0.0, 1.0 - k * abs(t.y - z_P));
                         wsum += wt;
                         hsum += wt * t.x;

@@ -110,9 +110,9 @@ TEST_F(Temporal, ResetHistoryGivesTheFrameWithoutHistory) {
   deleteTexture(depthTex);
 }
 
-// Motion vectors (MOTION_VECTORS): a still camera and a motion field of (1.5, -0.75) pixels
-// everywhere (as if the whole picture moved), uploaded as GL_RGBA16F; four frames against the CPU
-// reference given the same field.
+// Motion vectors (MOTION_VECTORS) with supplied normals (the normal test): a still camera and a
+// motion field of (1.5, -0.75) pixels everywhere (as if the whole picture moved), uploaded as
+// GL_RGBA16F; four frames against the CPU reference given the same field and normals.
 TEST_F(Temporal, MotionVectorsMatchTheCpuReference) {
   const Camera cam = test::movedCamera(camera(96, 64, 4), {});
   const DepthImage depth = test::renderDepth(test::sphereOnPlaneScene(), cam, DepthFormat::D32F);
@@ -123,6 +123,8 @@ TEST_F(Temporal, MotionVectorsMatchTheCpuReference) {
     motion.data[i + 1] = -0.75f;
   }
   const GLuint motionTex = uploadNormals(motion);
+  const FloatImage normals = test::renderNormals(test::sphereOnPlaneScene(), cam);
+  const GLuint normalsTex = uploadNormals(normals);
   const Settings settings = temporalMedium();
   auto effect = makeEffect();
   ASSERT_TRUE(effect);
@@ -132,14 +134,17 @@ TEST_F(Temporal, MotionVectorsMatchTheCpuReference) {
     gl::Inputs gi;
     gi.depth = {depthTex, gl::kDepthComponent32F};
     gi.motion = motionTex;
+    gi.normals = normalsTex;
     gi.frameIndex = frame;
     const Status st = effect->render(cam, settings, gi);
     ASSERT_TRUE(st.ok()) << st.message;
     EXPECT_EQ(effect->plan().variants[std::size_t(gen::VariantId::MOTION_VECTORS)], 1);
+    EXPECT_EQ(effect->plan().variants[std::size_t(gen::VariantId::NORMALS_SUPPLIED)], 1);
     const FloatImage actual = readTexture(effect->aoTexture(), 1);
     cpu::Inputs ci;
     ci.depth = &depth;
     ci.motion = &motion;
+    ci.normals = &normals;
     ci.frameIndex = frame;
     const cpu::Result ref = reference.run(cam, ci);
     const Agreement a = compare(actual, ref.ao, 0, 2.0 / 255.0, 4.0 / 255.0, name);
@@ -154,6 +159,7 @@ TEST_F(Temporal, MotionVectorsMatchTheCpuReference) {
   EXPECT_EQ(refused.code, StatusCode::InvalidInput);
   EXPECT_NE(refused.message.find("motion vectors serve temporal accumulation only"), std::string::npos)
       << refused.message;
+  deleteTexture(normalsTex);
   deleteTexture(motionTex);
   deleteTexture(depthTex);
 }
