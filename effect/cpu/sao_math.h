@@ -433,16 +433,18 @@ T outputMultiply(T c, T a, bool unorm8) {
 
 // ---- sao_temporal.glsl
 
-template <typename T>
-Vec3<T> toPrevious(Vec3<T> C, const Block<T>& P) {
-  auto row = [&](const auto& m) { return dot(Vec3<T>{m.x, m.y, m.z}, C) + m.w; };
-  return {row(P.prev_from_cur_x), row(P.prev_from_cur_y), row(P.prev_from_cur_z)};
-}
 
+// sao_rotate_to_previous / sao_to_previous: the rotation of prev_from_cur_*, then with its translation.
 template <typename T>
 Vec3<T> rotateToPrevious(Vec3<T> n, const Block<T>& P) {
   auto row = [&](const auto& m) { return dot(Vec3<T>{m.x, m.y, m.z}, n); };
   return {row(P.prev_from_cur_x), row(P.prev_from_cur_y), row(P.prev_from_cur_z)};
+}
+
+template <typename T>
+Vec3<T> toPrevious(Vec3<T> C, const Block<T>& P) {
+  const Vec3<T> r = rotateToPrevious(C, P);
+  return {r.x + P.prev_from_cur_x.w, r.y + P.prev_from_cur_y.w, r.z + P.prev_from_cur_z.w};
 }
 
 // sao_pack_normal / sao_unpack_normal: octahedral, 12 bits a component, the integer qx*4096 + qy.

@@ -8,16 +8,16 @@
 #define SAO_TEMPORAL_GLSL
 
 // The rigid transform from this frame's camera space into the previous frame's, by rows (.xyz the
-// rotation's row, .w the translation, view units).
-vec3 sao_to_previous(vec3 C, vec4 m_x, vec4 m_y, vec4 m_z)
-{
-    return vec3(dot(m_x.xyz, C) + m_x.w, dot(m_y.xyz, C) + m_y.w, dot(m_z.xyz, C) + m_z.w);
-}
-
-// The rotation part of the same transform, for a direction (a normal).
+// rotation's row, .w the translation, view units): its rotation alone, for a direction (a normal),
+// and the whole, for a point.
 vec3 sao_rotate_to_previous(vec3 n, vec4 m_x, vec4 m_y, vec4 m_z)
 {
     return vec3(dot(m_x.xyz, n), dot(m_y.xyz, n), dot(m_z.xyz, n));
+}
+
+vec3 sao_to_previous(vec3 C, vec4 m_x, vec4 m_y, vec4 m_z)
+{
+    return sao_rotate_to_previous(C, m_x, m_y, m_z) + vec3(m_x.w, m_y.w, m_z.w);
 }
 
 // A normal in one float, exactly: its octahedral map (sao_octahedral_decode's inverse) in [0, 1]^2
@@ -87,12 +87,12 @@ vec2 sao_temporal_accumulate(sampler2D history, vec2 previous, float z_P, vec3 n
     float n = 0.0;
     if (valid != 0 && z_P < 0.0) {
         vec2 u = (((previous - 0.5) - vec2(guard)) - float(d >> 1)) / float(d);
+        ivec2 size = textureSize(history, 0);
         // Far outside the image (or not a number): the int conversion below must not overflow.
-        if (all(greaterThan(u, vec2(-2.0))) && all(lessThan(u, vec2(textureSize(history, 0)) + 1.0))) {
+        if (all(greaterThan(u, vec2(-2.0))) && all(lessThan(u, vec2(size) + 1.0))) {
             vec2 i0 = floor(u);
             vec2 f = floor((u - i0) * 64.0 + 0.5) / 64.0;
             ivec2 q0 = ivec2(i0);
-            ivec2 size = textureSize(history, 0);
             float k = depth_k / -z_P;
             float wsum = 0.0;
             float hsum = 0.0;

@@ -29,8 +29,7 @@ Status runPath(const PathsOptions& o, samples::BackendRunner& backend, Prepared&
   FloatImage previousAo;
   glm::dmat4 previousView{1.0};
   std::vector<double> times;
-  double flickerSum = 0;
-  std::uint64_t compared = 0, geometry = 0;
+  samples::FlickerTotal total;
   for (std::uint32_t f = 0; f < o.frames; ++f) {
     const scenes::View view = scenes::pathView(p.scene.views[0], kind, f, o.frames);
     // The scene is in its own units, the view units: the depth is cast with a factor of 1.
@@ -47,20 +46,16 @@ Status runPath(const PathsOptions& o, samples::BackendRunner& backend, Prepared&
     if (Status s = backend.run(settings, camera, in, true, false, run); !s) return s;
     times.push_back(run.timings.totalMilliseconds());
     const glm::dmat4 worldToCamera = scenes::viewMatrix(view);
-    if (f > 0) {
-      const samples::Flicker fl = samples::reprojectedFlicker({&previousAo, &previous.position, previousView},
-                                                              {&run.ao, &primary.position, worldToCamera}, camera);
-      flickerSum += fl.meanAbsDifference * double(fl.compared);
-      compared += fl.compared;
-      geometry += fl.geometry;
-    }
+    if (f > 0)
+      total.add(samples::reprojectedFlicker({&previousAo, &previous.position, previousView},
+                                            {&run.ao, &primary.position, worldToCamera}, camera));
     previous = std::move(primary);
     previousAo = std::move(run.ao);
     previousView = worldToCamera;
   }
   std::sort(times.begin(), times.end());
-  row.flicker = compared ? flickerSum / double(compared) : 0.0;
-  row.compared = geometry ? double(compared) / double(geometry) : 0.0;
+  row.flicker = total.mean();
+  row.compared = total.comparedFraction();
   row.medianMs = times[times.size() / 2];
   return Status::success();
 }

@@ -35,8 +35,7 @@ Status runFramePath(const Options& o, samples::BackendRunner& backend, const Set
   FloatImage previousAo;
   glm::dmat4 previousView{1.0};
   std::vector<double> times;
-  double flickerSum = 0;
-  std::uint64_t compared = 0, geometry = 0;
+  samples::FlickerTotal total;
   for (std::uint32_t f = 0; f < o.frames; ++f) {
     const scenes::View view = scenes::pathView(base, o.path, f, o.frames);
     raytrace::Primary primary;
@@ -61,9 +60,7 @@ Status runFramePath(const Options& o, samples::BackendRunner& backend, const Set
     if (f > 0) {
       flicker = samples::reprojectedFlicker({&previousAo, &previous.position, previousView},
                                             {&result.ao, &primary.position, worldToCamera}, camera);
-      flickerSum += flicker.meanAbsDifference * double(flicker.compared);
-      compared += flicker.compared;
-      geometry += flicker.geometry;
+      total.add(flicker);
     }
     char row[512];
     std::snprintf(row, sizeof row, "%u,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.4f,%s,%llu,%llu\n", f, view.eye.x, view.eye.y,
@@ -79,8 +76,8 @@ Status runFramePath(const Options& o, samples::BackendRunner& backend, const Set
   if (!csv) return Status::error(StatusCode::IoError, "cannot write '" + csvPath + "'");
   std::sort(times.begin(), times.end());
   summary.medianEffectMs = times[times.size() / 2];
-  summary.meanFlicker = compared ? flickerSum / double(compared) : 0.0;
-  summary.comparedFraction = geometry ? double(compared) / double(geometry) : 0.0;
+  summary.meanFlicker = total.mean();
+  summary.comparedFraction = total.comparedFraction();
   last = std::move(previous);
   return Status::success();
 }

@@ -30,4 +30,18 @@ struct Flicker {
 // Both frames use `camera`'s projection, size and guard band (a camera path moves the view only).
 Flicker reprojectedFlicker(const FlickerFrame& previous, const FlickerFrame& current, const Camera& camera);
 
+// A path's flicker: each frame's figure added, the mean over the path weighted by the pixels each
+// frame compared, and the share of geometry pixels compared.
+struct FlickerTotal {
+  double weightedSum = 0;  // sum of meanAbsDifference * compared
+  std::uint64_t compared = 0, geometry = 0;
+  void add(const Flicker& f) {
+    weightedSum += f.meanAbsDifference * double(f.compared);
+    compared += f.compared;
+    geometry += f.geometry;
+  }
+  double mean() const { return compared ? weightedSum / double(compared) : 0.0; }
+  double comparedFraction() const { return geometry ? double(compared) / double(geometry) : 0.0; }
+};
+
 }  // namespace sao::samples
