@@ -176,13 +176,46 @@ layout(std140, binding = 0) uniform SaoParams {
 };
 
 // ---------------------------------------------------------------------------------------------
+// The z chain's passes (levels=A..B: out_csz[j] is level A + j). SAO_CSZ_STORE_UP stores z (and
+// z2 with TWO_LAYER) at texel p of level A, then walks up: the texel of the next level that copies
+// this one by the rotated grid (Table 1) gets z too, and so on while each level's pick is this
+// texel's copy, up to level min(B, max_mip). Every texel above level A is the copy of exactly one
+// texel of level A, so exactly one invocation stores it, with the value the level-by-level chain
+// gives it: levels A..B in one dispatch, no shared memory, no barrier, bit for bit. The slots are
+// constant indices: Vulkan needs shaderStorageImageArrayDynamicIndexing for any other.
+// ---------------------------------------------------------------------------------------------
+#ifdef SAO_PASS_LEVEL_SLOTS
+#if SAO_PASS_LEVEL_SLOTS != 4
+#error "SAO_CSZ_STORE_UP walks four levels: levels=A..A+3"
+#endif
+#if defined(TWO_LAYER) && TWO_LAYER
+#define SAO_CSZ_STORE(J, q, z, z2) { imageStore(out_csz[J], q, vec4(z, 0.0, 0.0, 0.0)); imageStore(out_csz2[J], q, vec4(z2, 0.0, 0.0, 0.0)); }
+#else
+#define SAO_CSZ_STORE(J, q, z, z2) { imageStore(out_csz[J], q, vec4(z, 0.0, 0.0, 0.0)); }
+#endif
+#define SAO_CSZ_UP(J, z, z2) \
+    if (sao_up && (J) <= sao_top) { sao_up = sao_rotated_grid_parent(sao_cur, sao_size); if (sao_up) SAO_CSZ_STORE(J, sao_cur, z, z2) }
+#define SAO_CSZ_STORE_UP(p, size, z, z2) { \
+    SAO_CSZ_STORE(0, p, z, z2) \
+    ivec2 sao_cur = p; \
+    ivec2 sao_size = size; \
+    bool sao_up = true; \
+    int sao_top = max_mip - SAO_PASS_FIRST_LEVEL; \
+    SAO_CSZ_UP(1, z, z2) \
+    SAO_CSZ_UP(2, z, z2) \
+    SAO_CSZ_UP(3, z, z2) \
+}
+#endif
+
+// ---------------------------------------------------------------------------------------------
 // Pass 1: hardware depth -> camera-space z, MIP level 0 (eq. 2). One invocation per depth texel.
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass linear_z entry=sao_linear_z_main local=8x8 reads=depth,depth2 writes=csz,csz2 variants=TWO_LAYER,DEPTH_MULTISAMPLE "Camera-space z (eq. 2) into csz level 0; sky and invalid depth become +0.0; a multisampled depth texel gives the sample its policy picks"
+#pragma sao pass linear_z entry=sao_linear_z_main local=8x8 reads=depth,depth2 writes=csz,csz2 variants=TWO_LAYER,DEPTH_MULTISAMPLE levels=0..3 "Camera-space z (eq. 2) into csz level 0, and levels 1-3 of the chain (Table 1) from it; sky and invalid depth become +0.0; a multisampled depth texel gives the sample its policy picks"
 void sao_linear_z_main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(p, imageSize(out_csz))))
+    ivec2 size0 = imageSize(out_csz[0]);
+    if (any(greaterThanEqual(p, size0)))
         return;
     ivec2 t = p + input_offset;  // the host checked that the region lies inside the textures
 #if DEPTH_MULTISAMPLE
@@ -198,29 +231,37 @@ void sao_linear_z_main()
 #else
     float z = sao_z_from_depth(texelFetch(in_depth, t, 0).r, clip_info, depth_mode, far_dir, far_lim);
 #endif
-    imageStore(out_csz, p, vec4(z, 0.0, 0.0, 0.0));
 #if TWO_LAYER
     float z2 = sao_z_from_depth(texelFetch(in_depth2, t, 0).r, clip_info, depth_mode, far_dir, far_lim);
-    imageStore(out_csz2, p, vec4(z2, 0.0, 0.0, 0.0));
+#else
+    float z2 = 0.0;
 #endif
+    SAO_CSZ_STORE_UP(p, size0, z, z2);
 }
 #pragma sao end
 
 // ---------------------------------------------------------------------------------------------
-// Pass 2: csz level m from level m-1 by rotated-grid subsampling (Table 1). Runs once per level;
-// in_csz is a view of level m-1 only (read at lod 0), out_csz is level m.
+// Pass 2: csz levels 4-7 from level 3 by rotated-grid subsampling (Table 1), one dispatch (it runs
+// when the chain has more than 4 levels). in_csz is a view of level 3 only (read at lod 0).
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass mips entry=sao_mips_main local=8x8 reads=csz,csz2 writes=csz,csz2 variants=TWO_LAYER per=mip "z MIP chain by rotated-grid subsampling (paper Table 1); sky stays sky"
+#pragma sao pass mips entry=sao_mips_main local=8x8 reads=csz,csz2 writes=csz,csz2 variants=TWO_LAYER levels=4..7 "z MIP levels 4-7 by rotated-grid subsampling (paper Table 1) in one dispatch; sky stays sky"
+#if SAO_PASS_FIRST_LEVEL + SAO_PASS_LEVEL_SLOTS < SAO_MAX_MIP_LEVELS
+#error "the chain's last levels would stay unwritten: mips must reach SAO_MAX_MIP_LEVELS - 1"
+#endif
 void sao_mips_main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(p, imageSize(out_csz))))
+    ivec2 size = imageSize(out_csz[0]);
+    if (any(greaterThanEqual(p, size)))
         return;
     ivec2 src = sao_rotated_grid_source(p, textureSize(in_csz, 0));
-    imageStore(out_csz, p, vec4(texelFetch(in_csz, src, 0).r, 0.0, 0.0, 0.0));
+    float z = texelFetch(in_csz, src, 0).r;
 #if TWO_LAYER
-    imageStore(out_csz2, p, vec4(texelFetch(in_csz2, src, 0).r, 0.0, 0.0, 0.0));
+    float z2 = texelFetch(in_csz2, src, 0).r;
+#else
+    float z2 = 0.0;
 #endif
+    SAO_CSZ_STORE_UP(p, size, z, z2);
 }
 #pragma sao end
 

@@ -331,10 +331,12 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
   h << "// ---- Passes, in execution order, and their compiled variants.\n"
     << "enum class PassId : std::uint32_t {\n";
   for (const auto& p : e.passes) h << "  " << p.name << ",\n";
-  h << "};\nstruct BindingInfo {\n  std::uint32_t binding;  // GL unit and Vulkan set-0 binding\n"
+  h << "};\nstruct BindingInfo {\n  std::uint32_t binding;  // Vulkan set-0 binding\n"
     << "  ResourceId resource;\n  bool write;  // true: storage image out_<name>; false: sampler in_<name>\n"
     << "  Format format;  // the format the shader declares (a write's storage format)\n"
-    << "  bool readWrite;  // a write the pass may also load from (a formats= output: kept channels, a multiply)\n};\n"
+    << "  bool readWrite;  // a write the pass may also load from (a formats= output: kept channels, a multiply)\n"
+    << "  std::uint32_t glUnit;  // GL texture unit (a read) or image unit (a write), each counted from 0\n"
+    << "  std::uint32_t slots;  // array elements: a levels= pass's write of a MIP chain has one per level, else 1\n};\n"
     << "struct PassVariantInfo {\n  VariantValues values;  // -1 where the pass does not depend on the variant\n"
     << "  std::span<const BindingInfo> bindings;\n  std::uint32_t glslBlob;\n  std::uint32_t spirvBlob;\n"
     << "  std::string_view fileStem;\n};\n"
@@ -346,6 +348,9 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     << "struct ResourceAlias {\n  ResourceId declared;\n  ResourceId serving;\n};\n"
     << "struct PassInfo {\n  std::string_view name;\n  std::string_view entry;\n  std::uint32_t localX, localY;\n"
     << "  bool perMip;  // runs once per MIP level 1..L-1 of the written image\n"
+    << "  // levels=A..B: one dispatch writes levels A..B of its chains (firstLevel A, levelSlots B - A + 1,\n"
+    << "  // levels past the chain's last unwritten), reading level A - 1 of a chain it writes; 0 slots: not set\n"
+    << "  std::uint32_t firstLevel;\n  std::uint32_t levelSlots;\n"
     << "  std::span<const ResourceId> reads;\n  std::span<const ResourceId> writes;\n"
     << "  std::span<const VariantId> variants;\n  std::span<const PassVariantInfo> compiled;\n"
     << "  SettingCondition skipWhen;   // the pass does not run when this holds\n"
@@ -401,7 +406,8 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
       s << "static constexpr BindingInfo kBindings_" << pass.name << "_" << k++ << "[] = {";
       for (const auto& bd : cpv.variant.bindings)
         s << "{" << bd.binding << ", ResourceId::" << e.resources[bd.resource].name << ", " << (bd.write ? "true" : "false")
-          << ", " << formatName(bd.format) << ", " << (bd.readWrite ? "true" : "false") << "}, ";
+          << ", " << formatName(bd.format) << ", " << (bd.readWrite ? "true" : "false") << ", " << bd.unit << ", "
+          << bd.slots << "}, ";
       s << "};\n";
     }
     s << "static constexpr PassVariantInfo kCompiled_" << pass.name << "[] = {\n";
@@ -438,7 +444,8 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
       return n ? "std::span(" + prefix + pass.name + ")" : std::string("{}");
     };
     s << "  {" << quoted(pass.name) << ", " << quoted(pass.entry) << ", " << pass.localX << ", " << pass.localY << ", "
-      << (pass.perMip ? "true" : "false") << ", " << span("kReads_", pass.reads.size()) << ", "
+      << (pass.perMip ? "true" : "false") << ", " << pass.firstLevel << ", " << pass.levelSlots << ", "
+      << span("kReads_", pass.reads.size()) << ", "
       << span("kWrites_", pass.writes.size()) << ", " << span("kVariants_", pass.variants.size())
       << ", kCompiled_" << pass.name << ",\n   " << conditionValue(e, pass.skipWhen) << ", "
       << conditionValue(e, pass.aliasWhen) << ", " << span("kAliases_", pass.aliases.size()) << ", "

@@ -549,7 +549,7 @@ class Parser {
   }
 
   Pass* parsePass(const Directive& d) {
-    attrs(d, {"entry", "local", "reads", "writes", "variants", "per", "skip_when", "alias_when"});
+    attrs(d, {"entry", "local", "reads", "writes", "variants", "per", "levels", "skip_when", "alias_when"});
     Pass p;
     p.loc = d.loc;
     p.doc = d.doc;
@@ -609,6 +609,18 @@ class Parser {
       if (a["per"] != "mip") diags_.error(d.loc, "per= of pass '" + p.name + "' must be 'mip', got '" + a["per"] + "'");
       p.perMip = true;
     }
+    if (a.count("levels")) {
+      static const std::regex levelsRe("^([0-9]{1,2})\\.\\.([0-9]{1,2})$");
+      std::smatch m;
+      if (!std::regex_match(a["levels"], m, levelsRe) || std::stoi(m[1]) > std::stoi(m[2]) || std::stoi(m[2]) > 15)
+        diags_.error(d.loc, "levels= of pass '" + p.name + "' must be A..B with 0 <= A <= B <= 15, got '" + a["levels"] + "'");
+      else if (p.perMip)
+        diags_.error(d.loc, "pass '" + p.name + "' has both per=mip and levels=: per=mip writes one level per dispatch, levels= a range in one");
+      else {
+        p.firstLevel = std::stoi(m[1]);
+        p.levelSlots = std::stoi(m[2]) - p.firstLevel + 1;
+      }
+    }
     if (a.count("variants")) {
       for (const auto& name : splitList(a["variants"])) {
         const int v = findVariant(name);
@@ -626,6 +638,11 @@ class Parser {
         diags_.error(d.loc, "pass '" + p.name + "' writes input resource '" + res.name + "'");
       if (p.perMip && !res.fullMipChain)
         diags_.error(d.loc, "pass '" + p.name + "' runs per=mip but writes '" + res.name + "', which has no MIP chain");
+      if (p.levelSlots > 0 && !res.fullMipChain)
+        diags_.error(d.loc, "pass '" + p.name + "' writes levels= of '" + res.name + "', which has no MIP chain");
+      // A levels= pass reads the level below its first (A - 1) of a chain it writes; from level 0 there is none.
+      if (p.levelSlots > 0 && p.firstLevel == 0 && std::find(p.reads.begin(), p.reads.end(), r) != p.reads.end())
+        diags_.error(d.loc, "pass '" + p.name + "' reads '" + res.name + "' and writes its levels from 0 on: a levels=A..B pass that reads a chain it writes needs A >= 1 (it reads level A - 1)");
     }
     for (int r : p.reads) {
       if (effect_.resources[r].kind == ResourceKind::Output)

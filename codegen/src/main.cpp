@@ -110,12 +110,17 @@ int main(int argc, char** argv) {
   for (const auto& c : compiled) {
     const Pass& pass = effect.passes[c.variant.pass];
     manifest += c.variant.stem + " local=" + std::to_string(pass.localX) + "x" + std::to_string(pass.localY) +
-                (pass.perMip ? " per=mip" : "") + rulesText(effect, pass) + " glsl=#" + std::to_string(c.glslBlob) + " spirv=#" +
+                (pass.perMip ? " per=mip" : "") +
+                (pass.levelSlots ? " levels=" + std::to_string(pass.firstLevel) + ".." +
+                                       std::to_string(pass.firstLevel + pass.levelSlots - 1)
+                                 : "") +
+                rulesText(effect, pass) + " glsl=#" + std::to_string(c.glslBlob) + " spirv=#" +
                 std::to_string(c.spirvBlob) + " | 0 block " + effect.block->name;
     for (const auto& b : c.variant.bindings) {
       const Resource& r = effect.resources[b.resource];
-      manifest += ", " + std::to_string(b.binding) + (b.write ? " out " : " in ") + r.name + " " + b.format +
-                  (b.readWrite ? " rw" : "");
+      manifest += ", " + std::to_string(b.binding) + (b.write ? " out " : " in ") + r.name +
+                  (b.slots > 1 ? "[" + std::to_string(b.slots) + "]" : "") + " " + b.format + (b.readWrite ? " rw" : "") +
+                  " gl" + (b.write ? " image " : " texture ") + std::to_string(b.unit);
     }
     manifest += "\n";
   }

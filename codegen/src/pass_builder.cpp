@@ -55,12 +55,17 @@ std::vector<PassVariant> buildPassVariants(const Effect& effect) {
             return true;
         return false;
       };
+      int textureUnit = 0, imageUnit = 0;
       for (int r : pass.reads)
-        if (present(r)) pv.bindings.push_back({next++, r, false, effect.resources[r].format, false, multisampled(r)});
+        if (present(r))
+          pv.bindings.push_back({next++, textureUnit++, 1, r, false, effect.resources[r].format, false, multisampled(r)});
       for (int r : pass.writes) {
         if (!present(r)) continue;
         const Resource& res = effect.resources[r];
-        Binding b{next++, r, true, res.format, false};
+        const int slots = pass.levelSlots > 0 ? pass.levelSlots : 1;
+        Binding b{next, imageUnit, slots, r, true, res.format, false};
+        next += slots;
+        imageUnit += slots;
         // A formats= output: the format its selecting variant gives in this combination (the
         // parser checked that the pass lists the variant); the pass may load its texels (the
         // unmasked channels of an RGBA format, or any format's texel for a multiply blend).
@@ -88,14 +93,19 @@ std::vector<SourceLine> composeShader(const Effect& effect, const PassVariant& p
   gen(std::string("#define SAO_TARGET_VULKAN ") + (vk ? "1" : "0"));
   for (const auto& c : effect.constants) gen("#define " + c.name + " " + c.value + (c.type == "uint" ? "u" : ""));
   for (int v : pass.variants) gen("#define " + effect.variants[v].name + " " + std::to_string(pv.values[v]));
+  if (pass.levelSlots > 0) {
+    gen("#define SAO_PASS_FIRST_LEVEL " + std::to_string(pass.firstLevel));
+    gen("#define SAO_PASS_LEVEL_SLOTS " + std::to_string(pass.levelSlots));
+  }
   gen("layout(local_size_x = " + std::to_string(pass.localX) + ", local_size_y = " + std::to_string(pass.localY) +
       ", local_size_z = 1) in;");
   const std::string setPrefix = vk ? "set = 0, " : "";
   for (const auto& b : pv.bindings) {
     const Resource& r = effect.resources[b.resource];
-    const std::string bind = "layout(" + setPrefix + "binding = " + std::to_string(b.binding);
+    const std::string bind = "layout(" + setPrefix + "binding = " + std::to_string(vk ? b.binding : b.unit);
     if (b.write)
-      gen(bind + ", " + b.format + ")" + (b.readWrite ? "" : " writeonly") + " uniform image2D out_" + r.name + ";");
+      gen(bind + ", " + b.format + ")" + (b.readWrite ? "" : " writeonly") + " uniform image2D out_" + r.name +
+          (b.slots > 1 ? "[" + std::to_string(b.slots) + "]" : "") + ";");
     else gen(bind + ") uniform " + (b.multisampled ? "sampler2DMS" : "sampler2D") + " in_" + r.name + ";");
   }
   for (const auto& l : effect.commonCode) out.push_back(l);

@@ -11,7 +11,10 @@ namespace sao::codegen {
 enum class Target { OpenGL, Vulkan };
 
 struct Binding {
-  int binding = 0;
+  int binding = 0;  // Vulkan set-0 binding (one numbering for reads and writes, 0 = the parameter block)
+  int unit = 0;     // GL texture unit (a read) or image unit (a write): each counted from 0, so that
+                    // a pass's image units stay within GL's minimum of 8
+  int slots = 1;    // array elements: a levels= pass's write of a MIP chain, one per level
   int resource = 0;
   bool write = false;
   std::string format;      // the storage format of a write (per variant for a formats= output)

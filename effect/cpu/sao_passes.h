@@ -60,6 +60,27 @@ inline bool holdsRegion(const DepthImage& d, int ox, int oy, int w, int h) {
          std::int64_t(oy) + h <= std::int64_t(d.extent.height);
 }
 
+// Level m of a z chain from level m - 1 by the rotated grid (Table 1), level by level: the
+// oracle the GPU's walk up the chain (SAO_CSZ_STORE_UP, one invocation per lowest texel) must equal.
+template <typename T>
+void rotatedGridLevel(const Image<T>& prev, Image<T>& next, unsigned threads) {
+  parallelFor(next.h, threads, [&](int y) {
+    for (int x = 0; x < next.w; ++x) {
+      int sx, sy;
+      rotatedGridSource(x, y, prev.w, prev.h, sx, sy);
+      next.at(x, y) = prev.at(sx, sy);
+    }
+  });
+}
+
+// The levels of a levels=A..B write binding above its first: A + 1 .. A + levelCount - 1, each
+// from the one below.
+template <typename T>
+void chainAbove(PassContext<T>& ctx, const ScheduledBinding& out) {
+  for (std::uint32_t m = out.baseLevel + 1; m < out.baseLevel + out.levelCount; ++m)
+    rotatedGridLevel(ctx.image(out.resource, m - 1), ctx.image(out.resource, m), ctx.threads);
+}
+
 // Pass linear_z: one invocation per depth texel.
 template <typename T>
 Status linearZPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
@@ -91,10 +112,14 @@ Status linearZPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<co
       if (twoLayer) csz2->at(x, y) = zFromDepth(texel<T>(*ctx.in.depth2, x + ox, y + oy), ctx.P);
     }
   });
+  // levels=0..B: the chain's levels above 0 that this pass writes.
+  chainAbove(ctx, *out);
+  if (twoLayer) chainAbove(ctx, *out2);
   return Status::success();
 }
 
-// Pass mips, level m (the write binding's level) from level m - 1 (the read binding's).
+// Pass mips: the write binding's levels (levels=A..B: A .. A + levelCount - 1) from level A - 1
+// (the read binding's).
 template <typename T>
 Status mipsPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
   const bool twoLayer = ctx.variant(gen::VariantId::TWO_LAYER);
@@ -106,21 +131,16 @@ Status mipsPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const
   const ScheduledBinding* out2 = twoLayer ? binding(d, bindings, gen::ResourceId::csz2, true) : nullptr;
   if (twoLayer && in2 == nullptr) return missingBinding(d, gen::ResourceId::csz2, false);
   if (twoLayer && out2 == nullptr) return missingBinding(d, gen::ResourceId::csz2, true);
-  const Image<T>& prev = ctx.image(*in);  // in_csz: a view of level m - 1, read at lod 0
-  Image<T>& next = ctx.image(*out);
-  const Image<T>* prev2 = twoLayer ? &ctx.image(*in2) : nullptr;
-  Image<T>* next2 = twoLayer ? &ctx.image(*out2) : nullptr;
-  if (twoLayer && (prev2->w != prev.w || prev2->h != prev.h || next2->w != next.w || next2->h != next.h))
+  if (in->baseLevel + 1 != out->baseLevel) return passError(d, "must read the level below the first it writes");
+  if (twoLayer && (ctx.image(*in2).w != ctx.image(*in).w || ctx.image(*in2).h != ctx.image(*in).h ||
+                   out2->levelCount != out->levelCount))
     return passError(d, "needs csz and csz2 levels of the same extents");
-  const int w = next.w, h = next.h;
-  parallelFor(h, ctx.threads, [&](int y) {
-    for (int x = 0; x < w; ++x) {
-      int sx, sy;
-      rotatedGridSource(x, y, prev.w, prev.h, sx, sy);
-      next.at(x, y) = prev.at(sx, sy);
-      if (twoLayer) next2->at(x, y) = prev2->at(sx, sy);
-    }
-  });
+  rotatedGridLevel(ctx.image(*in), ctx.image(*out), ctx.threads);  // in_csz: a view of level A - 1, read at lod 0
+  chainAbove(ctx, *out);
+  if (twoLayer) {
+    rotatedGridLevel(ctx.image(*in2), ctx.image(*out2), ctx.threads);
+    chainAbove(ctx, *out2);
+  }
   return Status::success();
 }
 

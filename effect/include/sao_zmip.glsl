@@ -12,6 +12,21 @@ ivec2 sao_rotated_grid_source(ivec2 p, ivec2 prev_size)
     return min(s, prev_size - 1);
 }
 
+// Table 1 read backwards, for walking up a chain: level m - 1 texel `cur` (level m - 1 is
+// prev_size) is what level m texel cur >> 1 copies exactly when that texel exists (level m is
+// max(prev_size >> 1, 1)) and sao_rotated_grid_source picks cur for it. Then cur and prev_size
+// become that texel and level m's size, and the result is true; otherwise both stay.
+bool sao_rotated_grid_parent(inout ivec2 cur, inout ivec2 prev_size)
+{
+    ivec2 parent = cur >> 1;
+    ivec2 size = max(prev_size >> 1, ivec2(1));
+    if (any(greaterThanEqual(parent, size)) || sao_rotated_grid_source(parent, prev_size) != cur)
+        return false;
+    cur = parent;
+    prev_size = size;
+    return true;
+}
+
 // Eq. 9: m = clamp(findMSB(int(h)) - log2(q'), 0, max_mip); h >= 0 is the tap distance in pixels
 // (findMSB(0) = -1, so taps under 2^log_q pixels read level 0).
 int sao_mip_level(float h, int log_q, int max_mip)

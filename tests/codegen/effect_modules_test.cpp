@@ -50,14 +50,21 @@ TEST(EffectModules, PassTableIsConsistent) {
     for (const auto& c : p.compiled) {
       std::set<std::uint32_t> seen;
       std::uint32_t expected = 1;  // 0 is the parameter block
+      std::uint32_t textureUnit = 0, imageUnit = 0;  // GL: each counted from 0, an array's elements in a row
       for (const auto& b : c.bindings) {
-        EXPECT_EQ(b.binding, expected++) << p.name << " " << c.fileStem;
+        EXPECT_EQ(b.binding, expected) << p.name << " " << c.fileStem;
         EXPECT_TRUE(seen.insert(b.binding).second);
+        EXPECT_EQ(b.slots, b.write && p.levelSlots ? p.levelSlots : 1u) << p.name << " " << c.fileStem;
+        EXPECT_EQ(b.glUnit, b.write ? imageUnit : textureUnit) << p.name << " " << c.fileStem;
+        expected += b.slots;
+        (b.write ? imageUnit : textureUnit) += b.slots;
         const auto& r = gen::kResources[static_cast<std::size_t>(b.resource)];
         if (r.whenVariant >= 0) {
           EXPECT_NE(c.values[r.whenVariant], 0) << r.name << " bound while absent";
         }
       }
+      // GL's minimum GL_MAX_COMPUTE_IMAGE_UNIFORMS and GL_MAX_IMAGE_UNITS: every pass runs on any GL 4.3.
+      EXPECT_LE(imageUnit, 8u) << p.name << " " << c.fileStem;
     }
   }
 }

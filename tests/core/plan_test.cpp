@@ -30,7 +30,9 @@ TEST(Plan, DefaultSceneAt720p) {
   // capped by SAO_MAX_MIP_LEVELS - 1 = 7 -> 8 levels.
   EXPECT_EQ(p.cszLevels, 8u);
   EXPECT_EQ(p.passes.size(), 5u);
-  EXPECT_EQ(p.passes[1].dispatchCount, 7u);
+  EXPECT_EQ(p.passes[0].dispatchCount, 1u) << "linear_z writes levels 0-3";
+  EXPECT_EQ(p.passes[1].pass, PassId::mips);
+  EXPECT_EQ(p.passes[1].dispatchCount, 1u) << "mips writes levels 4-7 in one dispatch";
   const auto* csz = p.image(ResourceId::csz);
   ASSERT_NE(csz, nullptr);
   EXPECT_EQ(csz->mipLevels, 8u);

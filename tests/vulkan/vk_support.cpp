@@ -146,6 +146,18 @@ Status runEffect(const Settings& settings, const Camera& camera, const DepthImag
                                  VK_ACCESS_SHADER_WRITE_BIT, out.csz0);
         !st)
       return st;
+    for (const bool second : {false, true}) {
+      const gen::ResourceId id = second ? gen::ResourceId::csz2 : gen::ResourceId::csz;
+      if (!options.readChain || out.plan.image(id) == nullptr) continue;
+      const auto chain = effect->ownedImage(id);
+      auto& levels = second ? out.csz2 : out.csz;
+      levels.resize(out.plan.cszLevels);
+      for (std::uint32_t m = 0; m < out.plan.cszLevels; ++m)
+        if (Status st = ctx.readback(chain.image, chain.format, chain.extent, m, chain.layout,
+                                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, levels[m]);
+            !st)
+          return st;
+    }
     if (out.plan.image(gen::ResourceId::ao_low) != nullptr) {
       const auto low = effect->ownedImage(gen::ResourceId::ao_low);
       if (Status st = ctx.readback(low.image, low.format, low.extent, 0, low.layout, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,

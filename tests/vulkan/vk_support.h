@@ -45,6 +45,7 @@ struct RunOptions {
   VkFormat normalsFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
   const DepthImage* depth2 = nullptr;
   bool readIntermediates = true;        // ao_raw (and csz level 0)
+  bool readChain = false;               // every level of csz (and csz2 with depth2)
   std::optional<Offset> region;                              // vk::Inputs::offset: the region inside larger inputs
   // A depth image the test made itself (e.g. multisampled), bound instead of uploading `depth`
   // (runEffect then does not read `depth`); depthSamples goes into Config::depthSamples.
@@ -59,6 +60,7 @@ struct RunResult {
   FloatImage aoRaw;   // 2 channels (A, key z)
   FloatImage csz0;    // csz level 0
   FloatImage aoLow;   // 2 channels (A, key z) when the plan has ao_low (resolution_divisor > 1)
+  std::vector<FloatImage> csz, csz2;  // every level, with RunOptions::readChain
 };
 
 // Uploads `depth` in `format`, creates an effect, records it once, submits, waits and reads back.

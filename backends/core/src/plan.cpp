@@ -173,6 +173,7 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
       if (out.cszLevels <= 1) continue;  // the hierarchy is not used: no MIP pass
       p.dispatchCount = out.cszLevels - 1;
     }
+    if (info.levelSlots > 0 && out.cszLevels <= info.firstLevel) continue;  // the chain ends below its levels
     // The effect's skip_when= / alias_when= rules (e.g. blur 0: blur_h and ao_blur_h go, blur_v
     // copies ao_raw into the r16f output; docs/effect-math.md §2.5).
     if (gen::holds(info.skipWhen, settings)) continue;

@@ -12,6 +12,10 @@ std::uint32_t levelsOf(const Plan& plan, gen::ResourceId id) {
   return img ? img->mipLevels : 1;
 }
 
+bool writes(const gen::PassInfo& info, gen::ResourceId id) {
+  return std::find(info.writes.begin(), info.writes.end(), id) != info.writes.end();
+}
+
 const char* name(gen::ResourceId id) { return gen::kResources[static_cast<std::size_t>(id)].name.data(); }
 
 std::string extentText(Extent e) { return std::to_string(e.width) + "x" + std::to_string(e.height); }
@@ -83,7 +87,8 @@ Schedule makeSchedule(const Plan& plan) {
       d.passIndex = i;
       d.pass = p.pass;
       d.variant = p.variant;
-      d.level = info.perMip ? k + 1 : 0;  // per=mip: level m from level m-1, m = 1 .. L-1
+      // per=mip: level m from level m-1, m = 1 .. L-1; levels=A..B: levels A.. from A - 1.
+      d.level = info.perMip ? k + 1 : info.firstLevel;
       d.firstBinding = static_cast<std::uint32_t>(s.bindings.size());
       bool sized = false;
       for (const gen::BindingInfo& b : p.variant->bindings) {
@@ -95,14 +100,18 @@ Schedule makeSchedule(const Plan& plan) {
         const std::uint32_t levels = levelsOf(plan, sb.resource);
         if (b.write) {
           sb.baseLevel = d.level;
+          // levels=A..B: slot j is level A + j; the chain's levels from A on, at most B - A + 1.
+          if (info.levelSlots > 0) sb.levelCount = std::min(info.levelSlots, levels - info.firstLevel);
           if (!sized) {  // the dispatch covers the (level of the) first written image
-            const Extent e = levelExtent(resourceExtent(plan, sb.resource), d.level);
+            const Extent e = levelExtent(resourceExtent(plan, sb.resource), sb.baseLevel);
             d.groupsX = (e.width + info.localX - 1) / info.localX;
             d.groupsY = (e.height + info.localY - 1) / info.localY;
             sized = true;
           }
         } else if (info.perMip) {
           sb.baseLevel = d.level - 1;  // level m-1 alone, read at lod 0
+        } else if (info.levelSlots > 0 && writes(info, b.resource)) {
+          sb.baseLevel = info.firstLevel - 1;  // levels=A..B reads level A - 1 of a chain it writes, at lod 0
         } else {
           sb.levelCount = levels;
           sb.wholeChain = levels > 1;
@@ -125,7 +134,7 @@ Schedule makeSchedule(const Plan& plan) {
         }
       for (const ScheduledBinding& b : s.bindingsOf(d))
         if (b.write) {
-          tracker.write(b.resource, b.baseLevel);
+          for (std::uint32_t m = b.baseLevel; m < b.baseLevel + b.levelCount; ++m) tracker.write(b.resource, m);
           written[static_cast<std::size_t>(b.resource)] = true;
         }
       d.hazardCount = static_cast<std::uint32_t>(s.hazards.size()) - d.firstHazard;

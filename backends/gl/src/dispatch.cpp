@@ -1,5 +1,7 @@
 #include "dispatch.h"
 
+#include <algorithm>
+
 namespace sao::gl::detail {
 
 GLuint textureFor(const PassResources& r, gen::ResourceId id, bool previousFrame) {
@@ -53,18 +55,20 @@ void barrier(const GlFunctions& gl, std::span<const Hazard> hazards) {
 void bind(const GlFunctions& gl, const PassResources& r, const ScheduledBinding& b, const gen::BindingInfo& declared) {
   const GLuint texture = textureFor(r, b.resource, b.previousFrame);
   if (b.write) {
-    gl.BindImageTexture(b.binding, texture, GLint(b.baseLevel), GL_FALSE, 0,
-                        declared.readWrite ? GL_READ_WRITE : GL_WRITE_ONLY, glFormat(declared.format));
+    // A levels= write is an image array: unit + j holds level baseLevel + j, the last level past the chain.
+    for (std::uint32_t slot = 0; slot < declared.slots; ++slot)
+      gl.BindImageTexture(declared.glUnit + slot, texture, GLint(b.baseLevel + std::min(slot, b.levelCount - 1)),
+                          GL_FALSE, 0, declared.readWrite ? GL_READ_WRITE : GL_WRITE_ONLY, glFormat(declared.format));
     return;
   }
   GLuint tex = texture, sampler = r.nearestSampler;
   if (b.wholeChain) sampler = r.mipSampler;
   else if (const GLuint view = r.owned->levelView(b.resource, b.baseLevel)) tex = view;  // one level of a chain
-  gl.ActiveTexture(GL_TEXTURE0 + b.binding);
+  gl.ActiveTexture(GL_TEXTURE0 + declared.glUnit);
   // The caller's depth may be multisampled (sampler2DMS in linear_z's DEPTH_MULTISAMPLE variant).
   const bool depth = b.resource == gen::ResourceId::depth;
   gl.BindTexture(depth ? r.inputs->depth.target : GLenum(GL_TEXTURE_2D), tex);
-  gl.BindSampler(b.binding, sampler);
+  gl.BindSampler(declared.glUnit, sampler);
 }
 
 }  // namespace

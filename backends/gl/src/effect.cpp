@@ -91,10 +91,11 @@ Status Effect::Impl::checkLimits() {
     maxInvocations = std::max(maxInvocations, GLint(p.localX * p.localY));
     for (const gen::PassVariantInfo& v : p.compiled) {
       GLint samplers = 0, images = 0;
-      for (const gen::BindingInfo& b : v.bindings) {
-        (b.write ? img : tex).insert(b.binding);
-        ++(b.write ? images : samplers);
-      }
+      for (const gen::BindingInfo& b : v.bindings)
+        for (std::uint32_t slot = 0; slot < b.slots; ++slot) {
+          (b.write ? img : tex).insert(b.glUnit + slot);
+          ++(b.write ? images : samplers);
+        }
       maxSamplersPerPass = std::max(maxSamplersPerPass, samplers);
       maxImagesPerPass = std::max(maxImagesPerPass, images);
     }

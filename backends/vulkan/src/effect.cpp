@@ -230,6 +230,20 @@ Status checkConfig(const EffectState& e, const Config& c, Plan& plan, ParamBlock
   params.output_mask = outputMaskParam(c.outputChannels);
   params.output_blend = static_cast<std::int32_t>(c.outputBlend);
   params.depth_samples = static_cast<std::int32_t>(c.depthSamples);
+  // Per pass: its storage images (a levels= write counts one per slot) and sampled images.
+  for (const PlannedPass& p : plan.passes) {
+    std::uint32_t storage = 0, sampled = 0;
+    for (const gen::BindingInfo& b : p.variant->bindings) (b.write ? storage : sampled) += b.slots;
+    const std::string pass(gen::pass(p.pass).name);
+    if (storage > e.props.limits.maxPerStageDescriptorStorageImages)
+      return Status::error(StatusCode::DriverError, "pass '" + pass + "' binds " + std::to_string(storage) +
+                                                        " storage images, above this device's maxPerStageDescriptorStorageImages " +
+                                                        std::to_string(e.props.limits.maxPerStageDescriptorStorageImages));
+    if (sampled > e.props.limits.maxPerStageDescriptorSamplers ||
+        sampled > e.props.limits.maxPerStageDescriptorSampledImages)
+      return Status::error(StatusCode::DriverError, "pass '" + pass + "' binds " + std::to_string(sampled) +
+                                                        " sampled images, above this device's maxPerStageDescriptorSamplers or SampledImages");
+  }
   const std::uint32_t maxSide = e.props.limits.maxImageDimension2D;
   const Extent ie = plan.inputExtent;
   if (ie.width > maxSide || ie.height > maxSide)

@@ -1,5 +1,6 @@
 // Compute pipelines from the embedded SPIR-V (one per pass variant the plan needs, kept across
 // update()), their set layouts, and the descriptor sets: one per dispatch, per ring slot.
+#include <algorithm>
 #include <string>
 
 #include "effect_impl.h"
@@ -35,9 +36,10 @@ Status buildPipeline(EffectState& e, const gen::PassInfo& pass, const gen::PassV
   bindings.reserve(variant->bindings.size() + 1);
   const VkSampler sampler = e.sampler.get();
   bindings.push_back({gen::kParamBlockBinding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+  // An immutable sampler per element of a sampled binding (one element each: only writes are arrays).
   for (const auto& b : variant->bindings)
-    bindings.push_back({b.binding, b.write ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-                        VK_SHADER_STAGE_COMPUTE_BIT, b.write ? nullptr : &sampler});
+    bindings.push_back({b.binding, b.write ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                        b.slots, VK_SHADER_STAGE_COMPUTE_BIT, b.write ? nullptr : &sampler});
 
   auto fail = [&](const char* what, VkResult r) {
     const std::string where =
@@ -98,8 +100,9 @@ Status ensurePipelines(EffectState& e, const Plan& plan) {
 Status createDescriptors(EffectState& e, const Schedule& schedule, std::uint32_t slots, Descriptors& out) {
   Descriptors ds;
   const auto sets = static_cast<std::uint32_t>(schedule.dispatches.size());
-  std::uint32_t samplers = 0, storage = 0;
-  for (const ScheduledBinding& b : schedule.bindings) ++(b.write ? storage : samplers);
+  std::uint32_t samplers = 0, storage = 0, elements = 0;
+  for (const ScheduledDispatch& d : schedule.dispatches)
+    for (const gen::BindingInfo& b : d.variant->bindings) (b.write ? storage : samplers) += b.slots, elements += b.slots;
   ds.setsPerSlot = sets;
   std::vector<VkDescriptorPoolSize> sizes;
   sizes.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, sets * slots});
@@ -125,7 +128,7 @@ Status createDescriptors(EffectState& e, const Schedule& schedule, std::uint32_t
   if (VkResult r = e.d.vkAllocateDescriptorSets(e.ctx.device, &ai, ds.sets.data()); r != VK_SUCCESS)
     return vkError("vkAllocateDescriptorSets", r);
   ds.writes.resize(sets + schedule.bindings.size());
-  ds.images.resize(schedule.bindings.size());
+  ds.images.resize(elements);
   ds.buffers.resize(sets);
   out = std::move(ds);
   return Status::success();
@@ -134,8 +137,9 @@ Status createDescriptors(EffectState& e, const Schedule& schedule, std::uint32_t
 namespace {
 
 // The view and layout that serve a resolved binding.
+// `slot`: the element of a levels= write's array, level baseLevel + slot (the last level past the chain).
 VkDescriptorImageInfo imageInfo(const EffectState& e, const ScheduledBinding& b, const Inputs& inputs,
-                                const OutputTarget& output) {
+                                const OutputTarget& output, std::uint32_t slot) {
   switch (b.resource) {
     case gen::ResourceId::depth: return {VK_NULL_HANDLE, inputs.depth.view, inputs.depth.layout};
     case gen::ResourceId::depth2: return {VK_NULL_HANDLE, inputs.depth2.view, inputs.depth2.layout};
@@ -145,7 +149,8 @@ VkDescriptorImageInfo imageInfo(const EffectState& e, const ScheduledBinding& b,
   }
   VkDescriptorImageInfo info{VK_NULL_HANDLE, output.view, VK_IMAGE_LAYOUT_GENERAL};  // the user's output
   if (const OwnedImage* img = e.res.find(b.resource, imageCopy(e.temporal.parity, b.resource, b.previousFrame)))
-    info.imageView = b.wholeChain ? img->fullView.get() : img->levelViews[b.baseLevel].get();
+    info.imageView = b.wholeChain ? img->fullView.get()
+                                  : img->levelViews[b.baseLevel + std::min(slot, b.levelCount - 1)].get();
   return info;
 }
 
@@ -160,11 +165,15 @@ void writeDescriptors(EffectState& e, std::uint32_t slot, const Inputs& inputs, 
     ds.buffers[k] = {e.ubo.buffer.get(), slot * e.ubo.stride, sizeof(ParamBlock)};
     ds.writes[w++] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, set, gen::kParamBlockBinding, 0, 1,
                       VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, nullptr, &ds.buffers[k], nullptr};
-    for (const ScheduledBinding& b : e.schedule.bindingsOf(d)) {
-      ds.images[image] = imageInfo(e, b, inputs, output);
-      ds.writes[w++] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, set, b.binding, 0, 1,
+    const std::span<const ScheduledBinding> bindings = e.schedule.bindingsOf(d);  // one to one with the variant's
+    for (std::size_t i = 0; i < bindings.size(); ++i) {
+      const ScheduledBinding& b = bindings[i];
+      const std::uint32_t slots = d.variant->bindings[i].slots;
+      for (std::uint32_t j = 0; j < slots; ++j) ds.images[image + j] = imageInfo(e, b, inputs, output, j);
+      ds.writes[w++] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, set, b.binding, 0, slots,
                         b.write ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                        &ds.images[image++], nullptr, nullptr};
+                        &ds.images[image], nullptr, nullptr};
+      image += slots;
     }
   }
   e.d.vkUpdateDescriptorSets(e.ctx.device, static_cast<std::uint32_t>(w), ds.writes.data(), 0, nullptr);

@@ -205,11 +205,13 @@ enum class PassId : std::uint32_t {
   second,
 };
 struct BindingInfo {
-  std::uint32_t binding;  // GL unit and Vulkan set-0 binding
+  std::uint32_t binding;  // Vulkan set-0 binding
   ResourceId resource;
   bool write;  // true: storage image out_<name>; false: sampler in_<name>
   Format format;  // the format the shader declares (a write's storage format)
   bool readWrite;  // a write the pass may also load from (a formats= output: kept channels, a multiply)
+  std::uint32_t glUnit;  // GL texture unit (a read) or image unit (a write), each counted from 0
+  std::uint32_t slots;  // array elements: a levels= pass's write of a MIP chain has one per level, else 1
 };
 struct PassVariantInfo {
   VariantValues values;  // -1 where the pass does not depend on the variant
@@ -237,6 +239,10 @@ struct PassInfo {
   std::string_view entry;
   std::uint32_t localX, localY;
   bool perMip;  // runs once per MIP level 1..L-1 of the written image
+  // levels=A..B: one dispatch writes levels A..B of its chains (firstLevel A, levelSlots B - A + 1,
+  // levels past the chain's last unwritten), reading level A - 1 of a chain it writes; 0 slots: not set
+  std::uint32_t firstLevel;
+  std::uint32_t levelSlots;
   std::span<const ResourceId> reads;
   std::span<const ResourceId> writes;
   std::span<const VariantId> variants;

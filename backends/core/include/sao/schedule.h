@@ -14,7 +14,9 @@
 namespace sao {
 
 // One binding of one dispatch. Reads are sampled (texelFetch at explicit levels), writes are
-// storage-image stores of exactly one level.
+// storage-image stores of one level, or, for a levels=A..B pass, an array of B - A + 1 storage
+// images: slot j is level baseLevel + j while j < levelCount, and the last level after that (a
+// valid image the shader never stores to: the chain ends there, max_mip).
 struct ScheduledBinding {
   std::uint32_t binding = 0;    // GL texture/image unit, Vulkan set-0 binding
   gen::ResourceId resource{};   // the image that serves it, aliases resolved
@@ -48,7 +50,7 @@ struct ScheduledDispatch {
   std::uint32_t passIndex = 0;  // into Plan::passes
   gen::PassId pass{};
   const gen::PassVariantInfo* variant = nullptr;
-  std::uint32_t level = 0;      // the level a per=mip pass writes; 0 otherwise
+  std::uint32_t level = 0;      // the level a per=mip pass writes, the first a levels= pass writes; else 0
   std::uint32_t groupsX = 1, groupsY = 1;
   std::uint32_t firstBinding = 0, bindingCount = 0;  // into Schedule::bindings
   std::uint32_t firstHazard = 0, hazardCount = 0;    // into Schedule::hazards, resolved before it runs

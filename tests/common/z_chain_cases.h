@@ -1,0 +1,44 @@
+// The z chain's test inputs, shared by the GL and Vulkan tests that compare every csz level with the
+// CPU reference's level-by-level chain bit for bit: depth whose texels all differ (a texel copied
+// from the wrong place shows), and extents whose chains end at every kind of level count.
+#pragma once
+#include <bit>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sao/image.h"
+
+namespace sao::test {
+
+// D32F depth in [0.5, 0.99) with a different value in every texel, and every 37th texel 1.0 (sky with
+// standard depth): `seed` gives a second layer other values.
+inline DepthImage distinctDepth(Extent e, std::uint32_t seed) {
+  DepthImage d;
+  d.extent = e;
+  d.format = DepthFormat::D32F;
+  d.texels.resize(std::size_t(e.width) * e.height);
+  for (std::size_t i = 0; i < d.texels.size(); ++i) {
+    // An odd multiplier permutes the residues mod 2^20: distinct for the first 2^20 texels.
+    const std::uint32_t k = std::uint32_t((i + seed * 7919u) * 2654435761u) & 0xFFFFFu;
+    const float v = i % 37 == 36 ? 1.0f : 0.5f + 0.49f * float(k) / float(1u << 20);
+    d.texels[i] = std::bit_cast<std::uint32_t>(v);
+  }
+  return d;
+}
+
+struct ZChainCase {
+  std::string name;
+  std::uint32_t width, height, guard;
+  double radius;  // m: a larger radius keeps more levels (the plan allocates what taps reach)
+};
+
+// Chains of 8 levels (linear_z and the mips pass), of 5-7 (mips with slots past the chain's end),
+// of 4 or fewer (no mips pass, linear_z's slots past the end), odd extents, 1-texel-wide levels.
+inline std::vector<ZChainCase> zChainCases() {
+  return {{"640x360", 640, 360, 0, 1.0},   {"257x129_guard3", 257, 129, 3, 2.0}, {"100x60_guard4", 100, 60, 4, 1.0},
+          {"1029x5", 1029, 5, 0, 4.0},     {"3x200", 3, 200, 0, 4.0},            {"37x23", 37, 23, 0, 0.3},
+          {"1x1", 1, 1, 0, 1.0}};
+}
+
+}  // namespace sao::test

@@ -1,0 +1,82 @@
+// The z chain in two dispatches (linear_z writes levels 0-3, mips levels 4-7, each walking up the
+// rotated grid from its first level; effect/sao.glsl, SAO_CSZ_STORE_UP) equals the CPU reference's
+// level-by-level chain bit for bit, on every level, for chains of 1 to 8 levels, odd extents,
+// 1-texel-wide levels, guard bands and the second depth layer; and the plan runs one dispatch each.
+#include <epoxy/gl.h>
+
+#include <bit>
+#include <cstring>
+
+#include "gl_support.h"
+#include "sao/cpu/reference.h"
+#include "z_chain_cases.h"
+
+namespace sao::gltest {
+namespace {
+
+// The differing texels of one level, none expected.
+std::size_t differingTexels(const FloatImage& gpu, const FloatImage& cpu) {
+  if (gpu.extent.width != cpu.extent.width || gpu.extent.height != cpu.extent.height) return SIZE_MAX;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < cpu.data.size(); ++i)
+    n += std::bit_cast<std::uint32_t>(gpu.data[i]) != std::bit_cast<std::uint32_t>(cpu.data[i]);
+  return n;
+}
+
+class ZChain : public GlTest, public ::testing::WithParamInterface<test::ZChainCase> {};
+
+TEST_P(ZChain, EveryLevelEqualsTheCpuChainBitForBit) {
+  const test::ZChainCase& c = GetParam();
+  const Camera cam = camera(c.width, c.height, c.guard);
+  const Extent input{c.width + 2 * c.guard, c.height + 2 * c.guard};
+  for (const bool twoLayer : {false, true}) {
+    SCOPED_TRACE(twoLayer ? "two layers" : "one layer");
+    Settings settings;
+    settings.radius = float(c.radius);
+    const DepthImage depth = test::distinctDepth(input, 1);
+    const DepthImage depth2 = test::distinctDepth(input, 2);
+    cpu::Inputs ci;
+    ci.depth = &depth;
+    ci.depth2 = twoLayer ? &depth2 : nullptr;
+    cpu::Result ref;
+    const Status cst = cpu::run(settings, cam, ci, cpu::Options{cpu::Precision::Float, 2}, ref);
+    ASSERT_TRUE(cst.ok()) << cst.message;
+
+    const GLuint tex = uploadDepth(depth, GlDepth::D32F);
+    const GLuint tex2 = twoLayer ? uploadDepth(depth2, GlDepth::D32F) : 0;
+    gl::Inputs gi;
+    gi.depth = {tex, internalFormat(GlDepth::D32F)};
+    gi.depth2 = {tex2, tex2 ? internalFormat(GlDepth::D32F) : 0};
+    auto effect = makeEffect();
+    const Status st = effect->render(cam, settings, gi);
+    ASSERT_TRUE(st.ok()) << st.message;
+    const std::uint32_t levels = effect->plan().cszLevels;
+    ASSERT_EQ(levels, ref.plan.cszLevels);
+    ASSERT_EQ(ref.csz.size(), levels);
+
+    // One dispatch each: linear_z always, mips only when the chain has levels past 3.
+    std::uint32_t zDispatches = 0;
+    for (const PlannedPass& p : effect->plan().passes)
+      if (p.pass == gen::PassId::linear_z || p.pass == gen::PassId::mips) {
+        EXPECT_EQ(p.dispatchCount, 1u) << gen::pass(p.pass).name;
+        zDispatches += p.dispatchCount;
+      }
+    EXPECT_EQ(zDispatches, levels > 4 ? 2u : 1u) << levels << " levels";
+
+    for (std::uint32_t m = 0; m < levels; ++m) {
+      EXPECT_EQ(differingTexels(readTextureLevel(effect->texture(gen::ResourceId::csz), m), ref.csz[m]), 0u)
+          << c.name << " csz level " << m << " of " << levels;
+      if (twoLayer)
+        EXPECT_EQ(differingTexels(readTextureLevel(effect->texture(gen::ResourceId::csz2), m), ref.csz2[m]), 0u)
+            << c.name << " csz2 level " << m << " of " << levels;
+    }
+    deleteTexture(tex);
+    deleteTexture(tex2);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, ZChain, ::testing::ValuesIn(test::zChainCases()),
+                         [](const auto& info) { return info.param.name; });
+
+}  // namespace
+}  // namespace sao::gltest
