@@ -403,7 +403,9 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     int k = 0;
     for (const auto& cpv : pvs) {
       if (cpv.variant.pass != static_cast<int>(p)) continue;
-      s << "static constexpr BindingInfo kBindings_" << pass.name << "_" << k++ << "[] = {";
+      const int index = k++;
+      if (cpv.variant.bindings.empty()) continue;  // a variant that binds nothing (its resources absent): {} below
+      s << "static constexpr BindingInfo kBindings_" << pass.name << "_" << index << "[] = {";
       for (const auto& bd : cpv.variant.bindings)
         s << "{" << bd.binding << ", ResourceId::" << e.resources[bd.resource].name << ", " << (bd.write ? "true" : "false")
           << ", " << formatName(bd.format) << ", " << (bd.readWrite ? "true" : "false") << ", " << bd.unit << ", "
@@ -416,7 +418,10 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
       if (cpv.variant.pass != static_cast<int>(p)) continue;
       s << "  {{";
       for (size_t i = 0; i < cpv.variant.values.size(); ++i) s << (i ? ", " : "") << cpv.variant.values[i];
-      s << "}, kBindings_" << pass.name << "_" << k++ << ", " << cpv.glslBlob << ", " << cpv.spirvBlob << ", "
+      const int index = k++;
+      s << "}, "
+        << (cpv.variant.bindings.empty() ? std::string("{}") : "kBindings_" + pass.name + "_" + std::to_string(index))
+        << ", " << cpv.glslBlob << ", " << cpv.spirvBlob << ", "
         << quoted(cpv.variant.stem) << "},\n";
     }
     s << "};\n";

@@ -81,66 +81,37 @@ void chainAbove(PassContext<T>& ctx, const ScheduledBinding& out) {
     rotatedGridLevel(ctx.image(out.resource, m - 1), ctx.image(out.resource, m), ctx.threads);
 }
 
-// Pass linear_z: one invocation per depth texel.
+// Passes linear_z (csz from depth, `second` false) and linear_z2 (csz2 from depth2): level 0, one
+// invocation per depth texel, then the levels above it (levels=0..B) level by level.
 template <typename T>
-Status linearZPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
-  const bool twoLayer = ctx.variant(gen::VariantId::TWO_LAYER);
-  const ScheduledBinding* out = binding(d, bindings, gen::ResourceId::csz, true);
-  const ScheduledBinding* out2 = twoLayer ? binding(d, bindings, gen::ResourceId::csz2, true) : nullptr;
-  if (out == nullptr) return missingBinding(d, gen::ResourceId::csz, true);
-  if (twoLayer && out2 == nullptr) return missingBinding(d, gen::ResourceId::csz2, true);
+Status linearZPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings,
+                   bool second) {
+  const gen::ResourceId chain = second ? gen::ResourceId::csz2 : gen::ResourceId::csz;
+  const DepthImage* depth = second ? ctx.in.depth2 : ctx.in.depth;
+  const ScheduledBinding* out = binding(d, bindings, chain, true);
+  if (out == nullptr) return missingBinding(d, chain, true);
   Image<T>& csz = ctx.image(*out);
-  Image<T>* csz2 = twoLayer ? &ctx.image(*out2) : nullptr;
   const int w = csz.w, h = csz.h;
   const int ox = ctx.P.input_offset.x, oy = ctx.P.input_offset.y;  // texel p + input_offset
-  if (ctx.in.depth == nullptr || !holdsRegion(*ctx.in.depth, ox, oy, w, h) ||
-      (twoLayer && (ctx.in.depth2 == nullptr || !holdsRegion(*ctx.in.depth2, ox, oy, w, h))))
-    return passError(d, "needs the depth input(s) to hold csz's extent " + std::to_string(w) + "x" +
-                            std::to_string(h) + " at offset (" + std::to_string(ox) + ", " + std::to_string(oy) + ")");
-  // DEPTH_MULTISAMPLE: sample 0, or the nearest of the samples (sao_nearer_z).
-  const bool multisampled = ctx.variant(gen::VariantId::DEPTH_MULTISAMPLE);
+  if (depth == nullptr || !holdsRegion(*depth, ox, oy, w, h))
+    return passError(d, std::string("needs the ") + (second ? "depth2" : "depth") + " input to hold the chain's extent " +
+                            std::to_string(w) + "x" + std::to_string(h) + " at offset (" + std::to_string(ox) + ", " +
+                            std::to_string(oy) + ")");
+  // DEPTH_MULTISAMPLE (the first layer only): sample 0, or the nearest of the samples (sao_nearer_z).
+  const bool multisampled = !second && ctx.variant(gen::VariantId::DEPTH_MULTISAMPLE);
   const bool nearest = multisampled && ctx.P.depth_sample_policy == gen::SAO_DEPTH_SAMPLE_NEAREST;
-  if (multisampled && std::int64_t(ctx.P.depth_samples) != std::int64_t(ctx.in.depth->samples))
+  if (multisampled && std::int64_t(ctx.P.depth_samples) != std::int64_t(depth->samples))
     return passError(d, "reads " + std::to_string(ctx.P.depth_samples) + " samples per texel, but depth has " +
-                            std::to_string(ctx.in.depth->samples));
+                            std::to_string(depth->samples));
   parallelFor(h, ctx.threads, [&](int y) {
     for (int x = 0; x < w; ++x) {
-      T z = zFromDepth(texel<T>(*ctx.in.depth, x + ox, y + oy), ctx.P);
+      T z = zFromDepth(texel<T>(*depth, x + ox, y + oy), ctx.P);
       for (int s = 1; nearest && s < ctx.P.depth_samples; ++s)
-        z = nearerZ(z, zFromDepth(texel<T>(*ctx.in.depth, x + ox, y + oy, s), ctx.P));
+        z = nearerZ(z, zFromDepth(texel<T>(*depth, x + ox, y + oy, s), ctx.P));
       csz.at(x, y) = z;
-      if (twoLayer) csz2->at(x, y) = zFromDepth(texel<T>(*ctx.in.depth2, x + ox, y + oy), ctx.P);
     }
   });
-  // levels=0..B: the chain's levels above 0 that this pass writes.
   chainAbove(ctx, *out);
-  if (twoLayer) chainAbove(ctx, *out2);
-  return Status::success();
-}
-
-// Pass mips: the write binding's levels (levels=A..B: A .. A + levelCount - 1) from level A - 1
-// (the read binding's).
-template <typename T>
-Status mipsPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
-  const bool twoLayer = ctx.variant(gen::VariantId::TWO_LAYER);
-  const ScheduledBinding* in = binding(d, bindings, gen::ResourceId::csz, false);
-  const ScheduledBinding* out = binding(d, bindings, gen::ResourceId::csz, true);
-  if (in == nullptr) return missingBinding(d, gen::ResourceId::csz, false);
-  if (out == nullptr) return missingBinding(d, gen::ResourceId::csz, true);
-  const ScheduledBinding* in2 = twoLayer ? binding(d, bindings, gen::ResourceId::csz2, false) : nullptr;
-  const ScheduledBinding* out2 = twoLayer ? binding(d, bindings, gen::ResourceId::csz2, true) : nullptr;
-  if (twoLayer && in2 == nullptr) return missingBinding(d, gen::ResourceId::csz2, false);
-  if (twoLayer && out2 == nullptr) return missingBinding(d, gen::ResourceId::csz2, true);
-  if (in->baseLevel + 1 != out->baseLevel) return passError(d, "must read the level below the first it writes");
-  if (twoLayer && (ctx.image(*in2).w != ctx.image(*in).w || ctx.image(*in2).h != ctx.image(*in).h ||
-                   out2->levelCount != out->levelCount))
-    return passError(d, "needs csz and csz2 levels of the same extents");
-  rotatedGridLevel(ctx.image(*in), ctx.image(*out), ctx.threads);  // in_csz: a view of level A - 1, read at lod 0
-  chainAbove(ctx, *out);
-  if (twoLayer) {
-    rotatedGridLevel(ctx.image(*in2), ctx.image(*out2), ctx.threads);
-    chainAbove(ctx, *out2);
-  }
   return Status::success();
 }
 
@@ -365,22 +336,31 @@ Status blurPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const
   return Status::success();
 }
 
-// Pass upsample: the reduced (A, key) image to the viewport-sized output, guided by csz level 0;
-// stored through storeOutput (rounded as the output's format holds it in Float, unrounded in Double).
+// Pass upsample: the vertical blur of the reduced (A, key) image (ao_blur_h, or ao_raw with blur 0),
+// then the upsample to the viewport-sized output, guided by csz level 0; stored through
+// storeOutput (rounded as the output's format holds it in Float, unrounded in Double). The GPU
+// blurs the texels each work group reads into shared memory; here the whole blurred image is
+// formed first (the same values: the same function of the same image).
 template <typename T>
 Status upsamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
-  const ScheduledBinding* in = binding(d, bindings, gen::ResourceId::ao_low, false);
+  const ScheduledBinding* in = binding(d, bindings, gen::ResourceId::ao_blur_h, false);
   const ScheduledBinding* z = binding(d, bindings, gen::ResourceId::csz, false);
   const ScheduledBinding* out = binding(d, bindings, gen::ResourceId::ao, true);
-  if (in == nullptr) return missingBinding(d, gen::ResourceId::ao_low, false);
+  if (in == nullptr) return missingBinding(d, gen::ResourceId::ao_blur_h, false);
   if (z == nullptr) return missingBinding(d, gen::ResourceId::csz, false);
   if (out == nullptr) return missingBinding(d, gen::ResourceId::ao, true);
-  const Image<T>& low = ctx.image(*in);
+  const Image<T>& blurredH = ctx.image(*in);
   const Image<T>& z0 = ctx.image(z->resource, 0);
   Image<T>& dst = ctx.image(*out);
   const auto& P = ctx.P;
   const int div = P.ao_divisor;
-  if (low.ch != 2 || div < 1 || (div & (div - 1)) != 0 || P.ao_size.x != dst.w || P.ao_size.y != dst.h ||
+  if (blurredH.ch != 2) return passError(d, "needs an (A, key) image");
+  Image<T>& low = ctx.blurredLow;  // (A, key) after both blurs
+  low = Image<T>(blurredH.w, blurredH.h, 2);
+  parallelFor(low.h, ctx.threads, [&](int y) {
+    for (int x = 0; x < low.w; ++x) bilateralBlur(blurredH, x, y, 0, 1, P, low.at(x, y, 0), low.at(x, y, 1));
+  });
+  if (div < 1 || (div & (div - 1)) != 0 || P.ao_size.x != dst.w || P.ao_size.y != dst.h ||
       low.w != (dst.w + div - 1) / div || low.h != (dst.h + div - 1) / div || dst.w + P.guard.x > z0.w ||
       dst.h + P.guard.y > z0.h)
     return passError(d, "needs a power-of-two ao_divisor, an (A, key) image of the output's extent over it "
@@ -402,12 +382,11 @@ namespace sao::cpu {
 template <typename T>
 Status runSaoPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
   switch (d.pass) {
-    case gen::PassId::linear_z: return detail::linearZPass(ctx, d, bindings);
-    case gen::PassId::mips: return detail::mipsPass(ctx, d, bindings);
+    case gen::PassId::linear_z: return detail::linearZPass(ctx, d, bindings, false);
+    case gen::PassId::linear_z2: return detail::linearZPass(ctx, d, bindings, true);
     case gen::PassId::ao_sample: return detail::aoSamplePass(ctx, d, bindings);
     case gen::PassId::blur_h: return detail::blurPass(ctx, d, bindings, 1, 0, false);
     case gen::PassId::blur_v: return detail::blurPass(ctx, d, bindings, 0, 1, true);
-    case gen::PassId::blur_v_low: return detail::blurPass(ctx, d, bindings, 0, 1, false);
     case gen::PassId::upsample: return detail::upsamplePass(ctx, d, bindings);
     default:
       return Status::error(StatusCode::InvalidInput, "the plan holds pass '" + std::string(gen::pass(d.pass).name) +

@@ -78,26 +78,26 @@ double passMs(const Measurement& m, const char* name) {
 void writeCsv(const std::string& path, const std::vector<Row>& rows) {
   std::ofstream f(path);
   f << "section,scene,backend,preset,variant,inputs,shader_variant,width,height,radius_m,samples,use_z_hierarchy,"
-       "blur_radius,runs,timing_method,linear_z_ms,mips_ms,ao_sample_ms,blur_h_ms,blur_v_ms,total_ms,ns_per_pixel,"
+       "blur_radius,runs,timing_method,linear_z_ms,ao_sample_ms,blur_h_ms,blur_v_ms,total_ms,ns_per_pixel,"
        "plan_bytes,csz_levels";
   for (const char* prefix : {"ao_", "obscurance_", "converged_"})
     for (const char* c : kErrorColumns) f << "," << prefix << c;
   f << ",converged_blotch_rmse,converged_highfreq_rmse,converged_silhouette_rmse,model_rmse_vs_ao,"
-       "model_rmse_vs_obscurance,error_map,resolution_divisor,blur_v_low_ms,upsample_ms\n";
+       "model_rmse_vs_obscurance,error_map,resolution_divisor,upsample_ms\n";
   for (const auto& r : rows) {
     const auto& m = r.m;
     f << csv(r.section) << "," << csv(r.scene) << "," << csv(r.backend) << "," << csv(r.preset) << ","
       << csv(r.variant) << "," << csv(r.inputs) << "," << csv(m.shaderVariant) << "," << r.size.width << ","
       << r.size.height << "," << r.settings.radius << "," << r.settings.samples << "," << r.settings.use_z_hierarchy
       << "," << r.settings.blur_radius << "," << m.runs << "," << csv(toString(m.method)) << ","
-      << passMs(m, "linear_z") << "," << passMs(m, "mips") << "," << passMs(m, "ao_sample") << ","
+      << passMs(m, "linear_z") << "," << passMs(m, "ao_sample") << ","
       << passMs(m, "blur_h") << "," << passMs(m, "blur_v") << "," << m.totalMs << ","
       << m.totalMs * 1e6 / (double(r.size.width) * r.size.height) << "," << m.planBytes << "," << m.cszLevels;
     csvErrors(f, m.aoError);
     csvErrors(f, m.obscuranceError);
     csvErrors(f, m.convergedError);
     csvConverged(f, r);
-    f << "," << r.settings.resolution_divisor << "," << passMs(m, "blur_v_low") << "," << passMs(m, "upsample") << "\n";
+    f << "," << r.settings.resolution_divisor << "," << passMs(m, "upsample") << "\n";
   }
 }
 

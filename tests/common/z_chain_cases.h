@@ -33,8 +33,7 @@ struct ZChainCase {
   double radius;  // m: a larger radius keeps more levels (the plan allocates what taps reach)
 };
 
-// Chains of 8 levels (linear_z and the mips pass), of 5-7 (mips with slots past the chain's end),
-// of 4 or fewer (no mips pass, linear_z's slots past the end), odd extents, 1-texel-wide levels.
+// Chains of 8 levels, of fewer (array slots past the chain's end), odd extents, 1-texel-wide levels.
 inline std::vector<ZChainCase> zChainCases() {
   return {{"640x360", 640, 360, 0, 1.0},   {"257x129_guard3", 257, 129, 3, 2.0}, {"100x60_guard4", 100, 60, 4, 1.0},
           {"1029x5", 1029, 5, 0, 4.0},     {"3x200", 3, 200, 0, 4.0},            {"37x23", 37, 23, 0, 0.3},

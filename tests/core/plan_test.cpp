@@ -29,10 +29,10 @@ TEST(Plan, DefaultSceneAt720p) {
   // r' max = r S' / n = 1 * 623.5 / 0.1 = 6235 px -> floor(log2) = 12; minus log q' 3 = 9,
   // capped by SAO_MAX_MIP_LEVELS - 1 = 7 -> 8 levels.
   EXPECT_EQ(p.cszLevels, 8u);
-  EXPECT_EQ(p.passes.size(), 5u);
-  EXPECT_EQ(p.passes[0].dispatchCount, 1u) << "linear_z writes levels 0-3";
-  EXPECT_EQ(p.passes[1].pass, PassId::mips);
-  EXPECT_EQ(p.passes[1].dispatchCount, 1u) << "mips writes levels 4-7 in one dispatch";
+  EXPECT_EQ(p.passes.size(), 4u) << "linear_z, ao_sample, blur_h, blur_v";
+  EXPECT_EQ(p.passes[0].pass, PassId::linear_z);
+  EXPECT_EQ(p.passes[0].dispatchCount, 1u) << "linear_z writes the whole chain in one dispatch";
+  EXPECT_FALSE(hasPass(p, PassId::linear_z2)) << "no second layer given";
   const auto* csz = p.image(ResourceId::csz);
   ASSERT_NE(csz, nullptr);
   EXPECT_EQ(csz->mipLevels, 8u);
@@ -45,10 +45,10 @@ TEST(Plan, DefaultSceneAt720p) {
   EXPECT_EQ(p.image(ResourceId::ao)->bytes, 1843200u);
   EXPECT_EQ(p.totalBytes, 21503800u);
   // Without a plan: both layers' chains down to 1x1 (11 levels, 1,228,763 texels each) and every
-  // image at its largest (ao_low, which only reduced resolution uses, undivided; the temporal
-  // history, rgba32f in two copies): 2 x 4,915,052 + 3 x 7,372,800 + 1,843,200 + 2 x 14,745,600.
+  // image at its largest (the temporal history, rgba32f in two copies):
+  // 2 x 4,915,052 + 2 x 7,372,800 + 1,843,200 + 2 x 14,745,600.
   const std::uint64_t full = sao::fullAllocationBytes(camera720(), {});
-  EXPECT_EQ(full, 63282904u);
+  EXPECT_EQ(full, 55910104u);
   std::printf("default scene 1280x720: %s", p.describe().c_str());
   std::printf("full allocation: %llu bytes (plan %.1f%% of it)\n", static_cast<unsigned long long>(full),
               100.0 * double(p.totalBytes) / double(full));
@@ -106,13 +106,12 @@ TEST(Plan, VariantsFollowTheInputs) {
   EXPECT_NE(st.message.find("single-layer"), std::string::npos) << st.message;
 }
 
-TEST(Plan, NoHierarchyMeansNoMipPassAndOneLevel) {
+TEST(Plan, NoHierarchyMeansOneLevel) {
   sao::Settings s = sao::test::untunedDefaults();
   s.use_z_hierarchy = false;
   sao::Plan p;
   ASSERT_TRUE(sao::plan(s, camera720(), {}, p).ok());
   EXPECT_EQ(p.cszLevels, 1u);
-  EXPECT_FALSE(hasPass(p, PassId::mips));
   EXPECT_EQ(p.variants[static_cast<std::size_t>(sao::gen::VariantId::Z_HIERARCHY)], 0);
 }
 

@@ -1,5 +1,5 @@
 // makeSchedule(): the flat dispatch list the backends translate. Dispatch sizes, resolved
-// bindings (aliases, a levels= pass reading the level below its first), and the fewest hazards that order the
+// bindings (aliases, a levels= pass writing a whole MIP chain), and the fewest hazards that order the
 // frame: a write becomes visible to sampled reads once, just before the first dispatch that
 // reads it.
 #include <gtest/gtest.h>
@@ -36,11 +36,11 @@ TEST(Schedule, DefaultSettings) {
   const sao::Schedule s = sao::makeSchedule(p);
   std::printf("%s", s.describe().c_str());
   const std::uint32_t L = p.cszLevels;
-  ASSERT_GT(L, 4u) << "the test wants the mips pass";
-  ASSERT_EQ(s.dispatches.size(), 5u) << "linear_z (levels 0-3), mips (4..L-1), ao_sample, two blurs";
+  ASSERT_GT(L, 2u);
+  ASSERT_EQ(s.dispatches.size(), 4u) << "linear_z (the whole chain), ao_sample, two blurs";
 
-  // linear_z covers the input (108x68 with the guard band): 14x9 groups of 8x8; it writes levels
-  // 0-3 of csz (one binding, an array of four) and reads only the depth.
+  // linear_z covers the input (108x68 with the guard band): 14x9 groups of 8x8; it writes every
+  // level of csz (one binding, an array of eight slots, the L levels first) and reads only the depth.
   const auto& z = s.dispatches[0];
   EXPECT_EQ(z.pass, PassId::linear_z);
   EXPECT_EQ(z.level, 0u);
@@ -51,33 +51,11 @@ TEST(Schedule, DefaultSettings) {
     if (b.write) {
       EXPECT_EQ(b.resource, ResourceId::csz);
       EXPECT_EQ(b.baseLevel, 0u);
-      EXPECT_EQ(b.levelCount, 4u);
+      EXPECT_EQ(b.levelCount, L);
     }
 
-  // mips: reads csz level 3 alone, writes levels 4..L-1 (at most 4), sized by level 4; one
-  // hazard, linear_z's write of level 3 (the only level it reads).
-  const auto& d = s.dispatches[1];
-  EXPECT_EQ(d.pass, PassId::mips);
-  EXPECT_EQ(d.level, 4u);
-  const std::uint32_t w = std::max(1u, 108u >> 4), h = std::max(1u, 68u >> 4);
-  EXPECT_EQ(d.groupsX, (w + 7) / 8);
-  EXPECT_EQ(d.groupsY, (h + 7) / 8);
-  for (const auto& b : s.bindingsOf(d)) {
-    EXPECT_EQ(b.resource, ResourceId::csz);
-    EXPECT_EQ(b.baseLevel, b.write ? 4u : 3u);
-    EXPECT_EQ(b.levelCount, b.write ? std::min(4u, L - 4) : 1u);
-    EXPECT_FALSE(b.wholeChain);
-  }
-  ASSERT_EQ(d.hazardCount, 1u);
-  const auto& h0 = s.hazardsBefore(d)[0];
-  EXPECT_EQ(h0.kind, HazardKind::ReadAfterWrite);
-  EXPECT_EQ(h0.resource, ResourceId::csz);
-  EXPECT_EQ(h0.baseLevel, 3u);
-  EXPECT_EQ(h0.levelCount, 1u);
-
-  // ao_sample reads the whole chain; levels 0-2 (linear_z's, not read since) and 4..L-1 (mips')
-  // are still pending: one hazard per run of levels.
-  const auto& ao = s.dispatches[2];
+  // ao_sample reads the whole chain, all of it pending: one hazard for the run of levels.
+  const auto& ao = s.dispatches[1];
   EXPECT_EQ(ao.pass, PassId::ao_sample);
   EXPECT_EQ(ao.groupsX, 13u);  // the AO extent 100x60
   EXPECT_EQ(ao.groupsY, 8u);
@@ -89,15 +67,14 @@ TEST(Schedule, DefaultSettings) {
       sawChain = true;
     }
   EXPECT_TRUE(sawChain);
-  ASSERT_EQ(ao.hazardCount, 2u);
+  ASSERT_EQ(ao.hazardCount, 1u);
+  EXPECT_EQ(s.hazardsBefore(ao)[0].kind, HazardKind::ReadAfterWrite);
   EXPECT_EQ(s.hazardsBefore(ao)[0].baseLevel, 0u);
-  EXPECT_EQ(s.hazardsBefore(ao)[0].levelCount, 3u);
-  EXPECT_EQ(s.hazardsBefore(ao)[1].baseLevel, 4u);
-  EXPECT_EQ(s.hazardsBefore(ao)[1].levelCount, L - 4);
+  EXPECT_EQ(s.hazardsBefore(ao)[0].levelCount, L);
 
   // Each blur waits for the image the previous dispatch wrote.
-  const auto& bh = s.dispatches[3];
-  const auto& bv = s.dispatches[4];
+  const auto& bh = s.dispatches[2];
+  const auto& bv = s.dispatches[3];
   ASSERT_EQ(bh.hazardCount, 1u);
   EXPECT_EQ(s.hazardsBefore(bh)[0].resource, ResourceId::ao_raw);
   ASSERT_EQ(bv.hazardCount, 1u);
@@ -192,8 +169,16 @@ TEST(Schedule, SecondLayerAndNormalsAreReadAndWrittenInTheSameDispatches) {
   int callerWrote = 0;
   for (const auto& h : s.entryHazards()) callerWrote += h.kind == HazardKind::CallerWrote;
   EXPECT_EQ(callerWrote, 3) << "depth, depth2, normals";
-  // Each mips dispatch waits for both chains' previous level.
-  EXPECT_EQ(s.dispatches[1].hazardCount, 2u);
+  // linear_z writes csz, linear_z2 csz2 (eight storage images each, GL's minimum); ao_sample
+  // waits for both chains.
+  ASSERT_EQ(s.dispatches.size(), 5u);
+  EXPECT_EQ(s.dispatches[0].pass, PassId::linear_z);
+  EXPECT_EQ(s.dispatches[1].pass, PassId::linear_z2);
+  EXPECT_EQ(s.dispatches[2].pass, PassId::ao_sample);
+  EXPECT_EQ(s.dispatches[1].hazardCount, 0u);
+  ASSERT_EQ(s.dispatches[2].hazardCount, 2u);
+  EXPECT_EQ(s.hazardsBefore(s.dispatches[2])[0].resource, ResourceId::csz);
+  EXPECT_EQ(s.hazardsBefore(s.dispatches[2])[1].resource, ResourceId::csz2);
 }
 
 TEST(Schedule, SuppliedImagesAreCheckedAgainstThePlan) {

@@ -174,6 +174,11 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
       p.dispatchCount = out.cszLevels - 1;
     }
     if (info.levelSlots > 0 && out.cszLevels <= info.firstLevel) continue;  // the chain ends below its levels
+    // A pass whose writes all belong to absent variants' resources (linear_z2 without a second
+    // layer) has nothing to do.
+    if (std::none_of(p.variant->bindings.begin(), p.variant->bindings.end(),
+                     [](const gen::BindingInfo& b) { return b.write; }))
+      continue;
     // The effect's skip_when= / alias_when= rules (e.g. blur 0: blur_h and ao_blur_h go, blur_v
     // copies ao_raw into the r16f output; docs/effect-math.md §2.5).
     if (gen::holds(info.skipWhen, settings)) continue;
