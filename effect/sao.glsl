@@ -9,7 +9,7 @@
 // Passes: linear_z (eq. 2 and the z MIP chain, Table 1's rotated grid) -> ao_sample (eq. 3-10 + 2x2
 // reconstruction) -> blur_h -> blur_v (separable bilateral blur). With resolution_divisor d > 1,
 // ao_sample and the blurs run on the viewport over d (rounded up; reduced pixel p covers viewport
-// pixels [p*d, p*d + d)), and upsample replaces blur_v: it blurs vertically and writes the full-size output.
+// pixels [p*d, p*d + d)), blur_v_low replaces blur_v and upsample writes the full-size output.
 // Camera space is right-handed, the camera looks down -z, so geometry has z < 0; +0.0 in csz marks
 // sky / no geometry.
 
@@ -98,6 +98,7 @@
 #pragma sao resource csz2      kind=image  format=r32f mips=auto extent=input when=TWO_LAYER "Camera-space z MIP chain of the second layer"
 #pragma sao resource ao_raw    kind=image  format=rg32f divide_by=resolution_divisor "x: visibility A after the 2x2 reconstruction, y: key = camera-space z (+0.0 = sky); the viewport over resolution_divisor"
 #pragma sao resource ao_blur_h kind=image  format=rg32f divide_by=resolution_divisor "x: A after the horizontal bilateral blur, y: key z"
+#pragma sao resource ao_low    kind=image  format=rg32f divide_by=resolution_divisor "Reduced resolution only: (A, key z) after both blurs, the upsample's input"
 #pragma sao resource history  kind=image  format=rgba32f divide_by=resolution_divisor when=TEMPORAL history=true "Temporal: x the accumulated obscurance sum, y its key z (+0.0 = sky), z the frames it holds (0 = none), w its normal (octahedral, 12 bits a component, as the integer qx*4096 + qy); ao_raw's size, two images that trade places every frame"
 #pragma sao resource ao        kind=output format=r16f formats=[r16f,r8,rgba8,rgba16f] "Final ambient visibility A in [0,1] (1 = unoccluded), linear; r16f unless the caller's output image has another of formats= (OUTPUT_FORMAT); with output_blend multiply, the caller's texels times A"
 
@@ -176,48 +177,60 @@ layout(std140, binding = 0) uniform SaoParams {
 
 // ---------------------------------------------------------------------------------------------
 // The z chain (paper Table 1, rotated grid): linear_z and linear_z2 write all of a layer's levels
-// in one dispatch (levels=0..7: out_csz[m] is level m). SAO_CHAIN_STORE_UP stores z at texel p of
-// level 0, then walks up: the texel of the next level that copies this one by the rotated grid
-// gets z too, and so on while each level's pick is this texel's copy, up to max_mip. Every texel
-// above level 0 is the copy of exactly one level-0 texel, so exactly one invocation stores it,
-// with the value the level-by-level chain gives it: no shared memory, no barrier, bit for bit
-// (the CPU reference computes the chain level by level). Slots are constant indices: Vulkan needs
-// shaderStorageImageArrayDynamicIndexing for any other. One chain per pass: eight image units, GL
-// 4.3's minimum.
+// in one dispatch (levels=0..7: out_csz[m] is level m). Each invocation (texels=2x2) stores its
+// 2x2 level-0 texels and their level-1 texel, then walks up: the texel of the next level that
+// copies this one by the rotated grid gets its z too, and so on while each level's pick is this
+// texel's copy, up to max_mip. Every texel above level 1 is the copy of exactly one level-1 texel,
+// so exactly one invocation stores it, with the value the level-by-level chain gives it: no shared
+// memory, no barrier, bit for bit (the CPU reference computes the chain level by level). Slots are
+// constant indices: Vulkan needs shaderStorageImageArrayDynamicIndexing for any other. One chain
+// per pass: eight image units, GL 4.3's minimum.
 // ---------------------------------------------------------------------------------------------
 #ifdef SAO_PASS_LEVEL_SLOTS
 #if SAO_PASS_FIRST_LEVEL != 0 || SAO_PASS_LEVEL_SLOTS != SAO_MAX_MIP_LEVELS
-#error "SAO_CHAIN_STORE_UP writes a whole chain: levels=0..SAO_MAX_MIP_LEVELS-1"
+#error "SAO_CHAIN_FROM_BLOCK writes a whole chain: levels=0..SAO_MAX_MIP_LEVELS-1"
 #endif
 #define SAO_CHAIN_UP(IMG, J, z) \
     if (sao_up && (J) <= max_mip) { sao_up = sao_rotated_grid_parent(sao_cur, sao_size); if (sao_up) imageStore(IMG[J], sao_cur, vec4(z, 0.0, 0.0, 0.0)); }
-#define SAO_CHAIN_STORE_UP(IMG, p, size, z) { \
-    imageStore(IMG[0], p, vec4(z, 0.0, 0.0, 0.0)); \
-    ivec2 sao_cur = p; \
-    ivec2 sao_size = size; \
-    bool sao_up = true; \
-    SAO_CHAIN_UP(IMG, 1, z) \
-    SAO_CHAIN_UP(IMG, 2, z) \
-    SAO_CHAIN_UP(IMG, 3, z) \
-    SAO_CHAIN_UP(IMG, 4, z) \
-    SAO_CHAIN_UP(IMG, 5, z) \
-    SAO_CHAIN_UP(IMG, 6, z) \
-    SAO_CHAIN_UP(IMG, 7, z) \
+// Invocation b (texels=2x2): Z_OF(p) into the level-0 texels 2b .. 2b + 1 that lie inside size0,
+// then level-1 texel b, which copies one of them (the rotated grid picks inside the block, clamp
+// included), then up from there.
+#define SAO_CHAIN_FROM_BLOCK(IMG, b, size0, Z_OF) { \
+    float sao_zb[4]; \
+    for (int sao_k = 0; sao_k < 4; ++sao_k) { \
+        ivec2 sao_p = 2 * (b) + ivec2(sao_k & 1, sao_k >> 1); \
+        sao_zb[sao_k] = 0.0; \
+        if (all(lessThan(sao_p, size0))) { \
+            sao_zb[sao_k] = Z_OF(sao_p); \
+            imageStore(IMG[0], sao_p, vec4(sao_zb[sao_k], 0.0, 0.0, 0.0)); \
+        } \
+    } \
+    ivec2 sao_size = max((size0) >> 1, ivec2(1)); \
+    if (max_mip >= 1 && all(lessThan(b, sao_size))) { \
+        ivec2 sao_s = sao_rotated_grid_source(b, size0) - 2 * (b); \
+        float sao_z = sao_zb[sao_s.y * 2 + sao_s.x]; \
+        imageStore(IMG[1], b, vec4(sao_z, 0.0, 0.0, 0.0)); \
+        ivec2 sao_cur = b; \
+        bool sao_up = true; \
+        SAO_CHAIN_UP(IMG, 2, sao_z) \
+        SAO_CHAIN_UP(IMG, 3, sao_z) \
+        SAO_CHAIN_UP(IMG, 4, sao_z) \
+        SAO_CHAIN_UP(IMG, 5, sao_z) \
+        SAO_CHAIN_UP(IMG, 6, sao_z) \
+        SAO_CHAIN_UP(IMG, 7, sao_z) \
+    } \
 }
 #endif
 
 // ---------------------------------------------------------------------------------------------
 // Pass 1: hardware depth -> camera-space z, MIP level 0 (eq. 2), and the chain above it. One
-// invocation per depth texel.
+// invocation per 2x2 depth texels (one level-1 texel).
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass linear_z entry=sao_linear_z_main local=8x8 reads=depth writes=csz variants=DEPTH_MULTISAMPLE levels=0..7 "Camera-space z (eq. 2) into csz level 0 and the z MIP chain by rotated-grid subsampling (paper Table 1), in one dispatch; sky and invalid depth become +0.0 and stay sky; a multisampled depth texel gives the sample its policy picks"
-void sao_linear_z_main()
+#pragma sao pass linear_z entry=sao_linear_z_main local=8x8 texels=2x2 reads=depth writes=csz variants=DEPTH_MULTISAMPLE levels=0..7 "Camera-space z (eq. 2) into csz level 0 and the z MIP chain by rotated-grid subsampling (paper Table 1), in one dispatch; sky and invalid depth become +0.0 and stay sky; a multisampled depth texel gives the sample its policy picks"
+// csz texel p's z (the host checked that the region lies inside the textures).
+float sao_linear_z_texel(ivec2 p)
 {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 size0 = imageSize(out_csz[0]);
-    if (any(greaterThanEqual(p, size0)))
-        return;
-    ivec2 t = p + input_offset;  // the host checked that the region lies inside the textures
+    ivec2 t = p + input_offset;
 #if DEPTH_MULTISAMPLE
     // One sample stands for the texel: sample 0, or the nearest geometry (the largest z < 0; csz's
     // sky marker +0.0 is larger, so it is kept only when every sample is sky).
@@ -228,10 +241,19 @@ void sao_linear_z_main()
             z = sao_nearer_z(z, zs);
         }
     }
+    return z;
 #else
-    float z = sao_z_from_depth(texelFetch(in_depth, t, 0).r, clip_info, depth_mode, far_dir, far_lim);
+    return sao_z_from_depth(texelFetch(in_depth, t, 0).r, clip_info, depth_mode, far_dir, far_lim);
 #endif
-    SAO_CHAIN_STORE_UP(out_csz, p, size0, z);
+}
+
+void sao_linear_z_main()
+{
+    ivec2 b = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size0 = imageSize(out_csz[0]);
+    if (any(greaterThanEqual(2 * b, size0)))
+        return;
+    SAO_CHAIN_FROM_BLOCK(out_csz, b, size0, sao_linear_z_texel);
 }
 #pragma sao end
 
@@ -240,16 +262,22 @@ void sao_linear_z_main()
 // no dispatch binds more than eight storage images. Without TWO_LAYER it writes nothing, and the
 // plan leaves out a pass that writes nothing.
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass linear_z2 entry=sao_linear_z2_main local=8x8 reads=depth2 writes=csz2 variants=TWO_LAYER levels=0..7 "Second depth layer only: camera-space z (eq. 2) into csz2 and its z MIP chain, as linear_z"
+#pragma sao pass linear_z2 entry=sao_linear_z2_main local=8x8 texels=2x2 reads=depth2 writes=csz2 variants=TWO_LAYER levels=0..7 "Second depth layer only: camera-space z (eq. 2) into csz2 and its z MIP chain, as linear_z"
+#if TWO_LAYER
+float sao_linear_z2_texel(ivec2 p)
+{
+    return sao_z_from_depth(texelFetch(in_depth2, p + input_offset, 0).r, clip_info, depth_mode, far_dir, far_lim);
+}
+#endif
+
 void sao_linear_z2_main()
 {
 #if TWO_LAYER
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 b = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size0 = imageSize(out_csz2[0]);
-    if (any(greaterThanEqual(p, size0)))
+    if (any(greaterThanEqual(2 * b, size0)))
         return;
-    float z2 = sao_z_from_depth(texelFetch(in_depth2, p + input_offset, 0).r, clip_info, depth_mode, far_dir, far_lim);
-    SAO_CHAIN_STORE_UP(out_csz2, p, size0, z2);
+    SAO_CHAIN_FROM_BLOCK(out_csz2, b, size0, sao_linear_z2_texel);
 #endif
 }
 #pragma sao end
@@ -395,15 +423,28 @@ void sao_blur_v_main()
 #pragma sao end
 
 // ---------------------------------------------------------------------------------------------
-// Pass 6 (reduced resolution only): the vertical bilateral blur of the reduced (A, key z) image and
-// the joint bilateral upsample to the viewport, guided by csz level 0, in one dispatch; writes the
-// final A, rounded in the shader as the output format holds it.
+// Pass 6 (reduced resolution only): vertical bilateral blur into the reduced (A, key) image.
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass upsample entry=sao_upsample_main local=8x8 reads=ao_blur_h,csz writes=ao variants=OUTPUT_FORMAT skip_when=resolution_divisor==1 alias_when=blur_radius==0:ao_blur_h=ao_raw "Reduced resolution only: vertical depth-aware Gaussian blur of the reduced (A, key z), then the depth-aware upsample to the full-resolution output (bilinear x relative-z weights over the 2x2 nearest low texels, else the nearest in z of the 3x3)"
-// The low texels a work group reads, vertically blurred once into shared memory: with d = 2 or 4,
-// the 2x2 texels of every pixel and the 3x3 fallback around it lie in the (local / 2 + 2)^2
-// texels from the group's first q0 on (docs/effect-math.md 6.4). Each is the blur_v of the
-// separate passes (the same function on the same image), so no reduced image is written between.
+#pragma sao pass blur_v_low entry=sao_blur_v_low_main local=8x8 reads=ao_blur_h writes=ao_low skip_when=resolution_divisor==1 alias_when=blur_radius==0:ao_blur_h=ao_raw "Reduced resolution only: vertical depth-aware Gaussian blur into (A, key z) for the upsample"
+void sao_blur_v_low_main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(out_ao_low))))
+        return;
+    vec2 r = sao_bilateral_blur(in_ao_blur_h, p, ivec2(0, 1), blur_radius, blur_stride,
+                                blur_edge_sharpness, blur_weights_1_4, blur_weights_5_8);
+    imageStore(out_ao_low, p, vec4(r, 0.0, 0.0));
+}
+#pragma sao end
+
+// ---------------------------------------------------------------------------------------------
+// Pass 7 (reduced resolution only): joint bilateral upsample of (A, key z) to the viewport,
+// guided by csz level 0; writes the final A, rounded in the shader as the output format holds it.
+// ---------------------------------------------------------------------------------------------
+#pragma sao pass upsample entry=sao_upsample_main local=8x8 reads=ao_low,csz writes=ao variants=OUTPUT_FORMAT skip_when=resolution_divisor==1 "Reduced resolution only: depth-aware upsample to the full-resolution output (bilinear x relative-z weights over the 2x2 nearest low texels, else the nearest in z of the 3x3)"
+// The low texels a work group reads, loaded once into shared memory: with d = 2 or 4, the 2x2
+// texels of every pixel and the 3x3 fallback around it lie in the (local / 2 + 2)^2 texels from
+// the group's first q0 on (docs/effect-math.md 6.4).
 const uvec2 SAO_UP_TILE = gl_WorkGroupSize.xy / 2u + 2u;
 shared vec2 sao_up_tile[SAO_UP_TILE.x * SAO_UP_TILE.y];
 
@@ -472,15 +513,14 @@ void sao_upsample_main()
 {
     ivec2 x = ivec2(gl_GlobalInvocationID.xy);
     int d = ao_divisor;
-    ivec2 last = textureSize(in_ao_blur_h, 0) - 1;
+    ivec2 last = textureSize(in_ao_low, 0) - 1;
     // The group's smallest q0 (q0 grows with x); every texel it reads is clamped to at least it.
     ivec2 first = ivec2(gl_WorkGroupID.xy * gl_WorkGroupSize.xy);
     ivec2 origin = min(max(first - (d >> 1), ivec2(0)) >> findMSB(d), last);
     uint count = SAO_UP_TILE.x * SAO_UP_TILE.y;
     for (uint i = gl_LocalInvocationIndex; i < count; i += gl_WorkGroupSize.x * gl_WorkGroupSize.y) {
         ivec2 q = min(origin + ivec2(int(i % SAO_UP_TILE.x), int(i / SAO_UP_TILE.x)), last);
-        sao_up_tile[i] = sao_bilateral_blur(in_ao_blur_h, q, ivec2(0, 1), blur_radius, blur_stride,
-                                            blur_edge_sharpness, blur_weights_1_4, blur_weights_5_8);
+        sao_up_tile[i] = texelFetch(in_ao_low, q, 0).xy;
     }
     memoryBarrierShared();
     barrier();  // every invocation reaches it: the size test comes after

@@ -347,6 +347,7 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     << "// A binding of `declared` that `serving` fills instead (a skipped pass's output).\n"
     << "struct ResourceAlias {\n  ResourceId declared;\n  ResourceId serving;\n};\n"
     << "struct PassInfo {\n  std::string_view name;\n  std::string_view entry;\n  std::uint32_t localX, localY;\n"
+    << "  std::uint32_t texelsX, texelsY;  // texels=WxH: an invocation covers WxH texels of the first written level\n"
     << "  bool perMip;  // runs once per MIP level 1..L-1 of the written image\n"
     << "  // levels=A..B: one dispatch writes levels A..B of its chains (firstLevel A, levelSlots B - A + 1,\n"
     << "  // levels past the chain's last unwritten), reading level A - 1 of a chain it writes; 0 slots: not set\n"
@@ -449,6 +450,7 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
       return n ? "std::span(" + prefix + pass.name + ")" : std::string("{}");
     };
     s << "  {" << quoted(pass.name) << ", " << quoted(pass.entry) << ", " << pass.localX << ", " << pass.localY << ", "
+      << pass.texelsX << ", " << pass.texelsY << ", "
       << (pass.perMip ? "true" : "false") << ", " << pass.firstLevel << ", " << pass.levelSlots << ", "
       << span("kReads_", pass.reads.size()) << ", "
       << span("kWrites_", pass.writes.size()) << ", " << span("kVariants_", pass.variants.size())

@@ -549,7 +549,7 @@ class Parser {
   }
 
   Pass* parsePass(const Directive& d) {
-    attrs(d, {"entry", "local", "reads", "writes", "variants", "per", "levels", "skip_when", "alias_when"});
+    attrs(d, {"entry", "local", "texels", "reads", "writes", "variants", "per", "levels", "skip_when", "alias_when"});
     Pass p;
     p.loc = d.loc;
     p.doc = d.doc;
@@ -603,6 +603,16 @@ class Parser {
       } else {
         p.localX = std::stoi(m[1]);
         p.localY = std::stoi(m[2]);
+      }
+    }
+    if (a.count("texels")) {
+      static const std::regex texelsRe("^([1-4])x([1-4])$");
+      std::smatch m;
+      if (!std::regex_match(a["texels"], m, texelsRe)) {
+        diags_.error(d.loc, "texels= of pass '" + p.name + "' must be WxH with W and H in 1..4, got '" + a["texels"] + "'");
+      } else {
+        p.texelsX = std::stoi(m[1]);
+        p.texelsY = std::stoi(m[2]);
       }
     }
     if (a.count("per")) {

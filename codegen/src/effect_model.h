@@ -117,6 +117,7 @@ struct Pass {
   std::string name;
   std::string entry;
   int localX = 8, localY = 8;
+  int texelsX = 1, texelsY = 1;  // texels=WxH: texels of the first written level per invocation
   std::vector<int> reads;    // resource indices
   std::vector<int> writes;   // resource indices
   std::vector<int> variants; // variant indices, effect order

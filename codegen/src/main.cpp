@@ -110,6 +110,9 @@ int main(int argc, char** argv) {
   for (const auto& c : compiled) {
     const Pass& pass = effect.passes[c.variant.pass];
     manifest += c.variant.stem + " local=" + std::to_string(pass.localX) + "x" + std::to_string(pass.localY) +
+                (pass.texelsX * pass.texelsY > 1
+                     ? " texels=" + std::to_string(pass.texelsX) + "x" + std::to_string(pass.texelsY)
+                     : "") +
                 (pass.perMip ? " per=mip" : "") +
                 (pass.levelSlots ? " levels=" + std::to_string(pass.firstLevel) + ".." +
                                        std::to_string(pass.firstLevel + pass.levelSlots - 1)

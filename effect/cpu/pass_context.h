@@ -54,10 +54,6 @@ class PassContext {
   // The previous frame's image of a history (history=true): Inputs::history, or all zeros.
   Image& previousFrame(gen::ResourceId id) { return previous_[static_cast<std::size_t>(id)]; }
 
-  // The upsample's reduced (A, key) after both blurs, which a GPU keeps in shared memory only
-  // (Result::aoLow); empty unless an upsample ran.
-  Image blurredLow;
-
  private:
   std::array<Levels, gen::kResources.size()> images_;
   std::array<Image, gen::kResources.size()> previous_;

@@ -61,7 +61,7 @@ inline bool holdsRegion(const DepthImage& d, int ox, int oy, int w, int h) {
 }
 
 // Level m of a z chain from level m - 1 by the rotated grid (Table 1), level by level: the
-// oracle the GPU's walk up the chain (SAO_CSZ_STORE_UP, one invocation per lowest texel) must equal.
+// oracle the GPU's walk up the chain (SAO_CHAIN_FROM_BLOCK in effect/sao.glsl) must equal.
 template <typename T>
 void rotatedGridLevel(const Image<T>& prev, Image<T>& next, unsigned threads) {
   parallelFor(next.h, threads, [&](int y) {
@@ -336,31 +336,22 @@ Status blurPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const
   return Status::success();
 }
 
-// Pass upsample: the vertical blur of the reduced (A, key) image (ao_blur_h, or ao_raw with blur 0),
-// then the upsample to the viewport-sized output, guided by csz level 0; stored through
-// storeOutput (rounded as the output's format holds it in Float, unrounded in Double). The GPU
-// blurs the texels each work group reads into shared memory; here the whole blurred image is
-// formed first (the same values: the same function of the same image).
+// Pass upsample: the reduced (A, key) image to the viewport-sized output, guided by csz level 0;
+// stored through storeOutput (rounded as the output's format holds it in Float, unrounded in Double).
 template <typename T>
 Status upsamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
-  const ScheduledBinding* in = binding(d, bindings, gen::ResourceId::ao_blur_h, false);
+  const ScheduledBinding* in = binding(d, bindings, gen::ResourceId::ao_low, false);
   const ScheduledBinding* z = binding(d, bindings, gen::ResourceId::csz, false);
   const ScheduledBinding* out = binding(d, bindings, gen::ResourceId::ao, true);
-  if (in == nullptr) return missingBinding(d, gen::ResourceId::ao_blur_h, false);
+  if (in == nullptr) return missingBinding(d, gen::ResourceId::ao_low, false);
   if (z == nullptr) return missingBinding(d, gen::ResourceId::csz, false);
   if (out == nullptr) return missingBinding(d, gen::ResourceId::ao, true);
-  const Image<T>& blurredH = ctx.image(*in);
+  const Image<T>& low = ctx.image(*in);
   const Image<T>& z0 = ctx.image(z->resource, 0);
   Image<T>& dst = ctx.image(*out);
   const auto& P = ctx.P;
   const int div = P.ao_divisor;
-  if (blurredH.ch != 2) return passError(d, "needs an (A, key) image");
-  Image<T>& low = ctx.blurredLow;  // (A, key) after both blurs
-  low = Image<T>(blurredH.w, blurredH.h, 2);
-  parallelFor(low.h, ctx.threads, [&](int y) {
-    for (int x = 0; x < low.w; ++x) bilateralBlur(blurredH, x, y, 0, 1, P, low.at(x, y, 0), low.at(x, y, 1));
-  });
-  if (div < 1 || (div & (div - 1)) != 0 || P.ao_size.x != dst.w || P.ao_size.y != dst.h ||
+  if (low.ch != 2 || div < 1 || (div & (div - 1)) != 0 || P.ao_size.x != dst.w || P.ao_size.y != dst.h ||
       low.w != (dst.w + div - 1) / div || low.h != (dst.h + div - 1) / div || dst.w + P.guard.x > z0.w ||
       dst.h + P.guard.y > z0.h)
     return passError(d, "needs a power-of-two ao_divisor, an (A, key) image of the output's extent over it "
@@ -387,6 +378,7 @@ Status runSaoPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<con
     case gen::PassId::ao_sample: return detail::aoSamplePass(ctx, d, bindings);
     case gen::PassId::blur_h: return detail::blurPass(ctx, d, bindings, 1, 0, false);
     case gen::PassId::blur_v: return detail::blurPass(ctx, d, bindings, 0, 1, true);
+    case gen::PassId::blur_v_low: return detail::blurPass(ctx, d, bindings, 0, 1, false);
     case gen::PassId::upsample: return detail::upsamplePass(ctx, d, bindings);
     default:
       return Status::error(StatusCode::InvalidInput, "the plan holds pass '" + std::string(gen::pass(d.pass).name) +

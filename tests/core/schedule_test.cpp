@@ -39,13 +39,14 @@ TEST(Schedule, DefaultSettings) {
   ASSERT_GT(L, 2u);
   ASSERT_EQ(s.dispatches.size(), 4u) << "linear_z (the whole chain), ao_sample, two blurs";
 
-  // linear_z covers the input (108x68 with the guard band): 14x9 groups of 8x8; it writes every
-  // level of csz (one binding, an array of eight slots, the L levels first) and reads only the depth.
+  // linear_z covers the input (108x68 with the guard band), 2x2 texels an invocation: 7x5 groups
+  // of 8x8 (16x16 texels each); it writes every level of csz (one binding, an array of eight
+  // slots, the L levels first) and reads only the depth.
   const auto& z = s.dispatches[0];
   EXPECT_EQ(z.pass, PassId::linear_z);
   EXPECT_EQ(z.level, 0u);
-  EXPECT_EQ(z.groupsX, 14u);
-  EXPECT_EQ(z.groupsY, 9u);
+  EXPECT_EQ(z.groupsX, 7u);
+  EXPECT_EQ(z.groupsY, 5u);
   EXPECT_EQ(z.hazardCount, 0u);
   for (const auto& b : s.bindingsOf(z))
     if (b.write) {

@@ -1,5 +1,5 @@
 // The z chain in one dispatch per layer (linear_z / linear_z2 write levels 0-7, each invocation
-// walking up the rotated grid from its level-0 texel; effect/sao.glsl, SAO_CHAIN_STORE_UP) equals
+// walking up the rotated grid from its 2x2 block; effect/sao.glsl, SAO_CHAIN_FROM_BLOCK) equals
 // the CPU reference's level-by-level chain bit for bit, on every level, for chains of 1 to 8
 // levels, odd extents, 1-texel-wide levels, guard bands and the second depth layer.
 #include <epoxy/gl.h>

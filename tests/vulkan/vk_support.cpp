@@ -158,10 +158,10 @@ Status runEffect(const Settings& settings, const Camera& camera, const DepthImag
             !st)
           return st;
     }
-    if (out.plan.image(gen::ResourceId::ao_blur_h) != nullptr) {
-      const auto blurH = effect->ownedImage(gen::ResourceId::ao_blur_h);
-      if (Status st = ctx.readback(blurH.image, blurH.format, blurH.extent, 0, blurH.layout,
-                                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, out.aoBlurH);
+    if (out.plan.image(gen::ResourceId::ao_low) != nullptr) {
+      const auto low = effect->ownedImage(gen::ResourceId::ao_low);
+      if (Status st = ctx.readback(low.image, low.format, low.extent, 0, low.layout, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                                   VK_ACCESS_SHADER_WRITE_BIT, out.aoLow);
           !st)
         return st;
     }

@@ -59,7 +59,7 @@ struct RunResult {
   FloatImage ao;      // 1 channel
   FloatImage aoRaw;   // 2 channels (A, key z)
   FloatImage csz0;    // csz level 0
-  FloatImage aoBlurH; // 2 channels (A, key z) after blur_h, when the plan has ao_blur_h (blur_radius > 0)
+  FloatImage aoLow;   // 2 channels (A, key z) when the plan has ao_low (resolution_divisor > 1)
   std::vector<FloatImage> csz, csz2;  // every level, with RunOptions::readChain
 };
 

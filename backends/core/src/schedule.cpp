@@ -104,8 +104,9 @@ Schedule makeSchedule(const Plan& plan) {
           if (info.levelSlots > 0) sb.levelCount = std::min(info.levelSlots, levels - info.firstLevel);
           if (!sized) {  // the dispatch covers the (level of the) first written image
             const Extent e = levelExtent(resourceExtent(plan, sb.resource), sb.baseLevel);
-            d.groupsX = (e.width + info.localX - 1) / info.localX;
-            d.groupsY = (e.height + info.localY - 1) / info.localY;
+            const std::uint32_t coverX = info.localX * info.texelsX, coverY = info.localY * info.texelsY;
+            d.groupsX = (e.width + coverX - 1) / coverX;
+            d.groupsY = (e.height + coverY - 1) / coverY;
             sized = true;
           }
         } else if (info.perMip) {

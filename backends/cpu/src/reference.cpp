@@ -196,7 +196,6 @@ void collectImages(const PassContext<T>& ctx, Result& out) {
   out.aoRaw = first(R::ao_raw);
   out.aoBlurH = first(R::ao_blur_h);
   out.ao = first(R::ao);
-  out.aoLow = ctx.blurredLow.v.empty() ? FloatImage{} : toFloatImage(ctx.blurredLow);
   for (std::size_t r = 0; r < gen::kResources.size(); ++r) {
     const auto id = static_cast<R>(r);
     if (id == R::csz || id == R::csz2 || id == R::ao_raw || id == R::ao_blur_h || id == R::ao) continue;

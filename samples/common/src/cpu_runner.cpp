@@ -47,7 +47,7 @@ class CpuRunner final : public BackendRunner {
         out.intermediates.push_back({"csz2_level" + std::to_string(m), r.csz2[m]});
       out.intermediates.push_back({"ao_raw", r.aoRaw});
       if (!r.aoBlurH.data.empty()) out.intermediates.push_back({"ao_blur_h", r.aoBlurH});
-      for (std::size_t id = 0; id < r.images.size(); ++id)  // the rest the plan allocates (a walkthrough's image)
+      for (std::size_t id = 0; id < r.images.size(); ++id)  // the rest the plan allocates (ao_low)
         for (std::size_t m = 0; m < r.images[id].size(); ++m)
           out.intermediates.push_back({std::string(gen::kResources[id].name) +
                                            (r.images[id].size() > 1 ? "_level" + std::to_string(m) : ""),

@@ -66,6 +66,8 @@ class GlRunner final : public BackendRunner {
       out.intermediates.push_back({"ao_raw", out.aoRaw});
       if (out.plan.image(gen::ResourceId::ao_blur_h))
         out.intermediates.push_back({"ao_blur_h", gl::readTexture(effect_->texture(gen::ResourceId::ao_blur_h), 2)});
+      if (out.plan.image(gen::ResourceId::ao_low))  // reduced resolution: the upsample's input
+        out.intermediates.push_back({"ao_low", gl::readTexture(effect_->texture(gen::ResourceId::ao_low), 2)});
     }
     for (const auto& m : context_->errors())
       return Status::error(StatusCode::DriverError, "GL reported: " + gl::HeadlessContext::format(m));

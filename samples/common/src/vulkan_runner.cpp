@@ -96,6 +96,11 @@ class VulkanRunner final : public BackendRunner {
         if (Status s = readOwned(gen::ResourceId::ao_blur_h, 0, blur); !s) return s;
         out.intermediates.push_back({"ao_blur_h", std::move(blur)});
       }
+      if (out.plan.image(gen::ResourceId::ao_low)) {  // reduced resolution: the upsample's input
+        FloatImage low;
+        if (Status s = readOwned(gen::ResourceId::ao_low, 0, low); !s) return s;
+        out.intermediates.push_back({"ao_low", std::move(low)});
+      }
     }
     if (context_->messageCount())
       return Status::error(StatusCode::DriverError, "Vulkan validation: " + vk::headless::toString(context_->takeMessages()));

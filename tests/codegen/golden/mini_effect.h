@@ -238,6 +238,7 @@ struct PassInfo {
   std::string_view name;
   std::string_view entry;
   std::uint32_t localX, localY;
+  std::uint32_t texelsX, texelsY;  // texels=WxH: an invocation covers WxH texels of the first written level
   bool perMip;  // runs once per MIP level 1..L-1 of the written image
   // levels=A..B: one dispatch writes levels A..B of its chains (firstLevel A, levelSlots B - A + 1,
   // levels past the chain's last unwritten), reading level A - 1 of a chain it writes; 0 slots: not set

@@ -117,8 +117,6 @@ struct Result {
   std::vector<FloatImage> csz, csz2;  // one image per level (1 channel); csz2 only with depth2
   FloatImage aoRaw;    // 2 channels: A after the 2x2 reconstruction, key z (+0.0 = sky)
   FloatImage aoBlurH;  // 2 channels: after blur_h; empty when the plan drops the pass
-  FloatImage aoLow;    // 2 channels, reduced resolution only: after both blurs, the upsample's
-                       // input (the GPU passes keep it in shared memory); empty at full resolution
   FloatImage ao;       // the output, Inputs::outputFormat's channels: final A (Float: as that format
                        // rounds it; Double: unrounded) in Inputs::outputChannels, the rest kept
   // Every other image the plan allocates, by gen::ResourceId, one FloatImage per level: what a
