@@ -4,24 +4,15 @@
 // levels, odd extents, 1-texel-wide levels, guard bands and the second depth layer.
 #include <epoxy/gl.h>
 
-#include <bit>
 #include <cstring>
 
 #include "gl_support.h"
+#include "image_compare.h"
 #include "sao/cpu/reference.h"
 #include "z_chain_cases.h"
 
 namespace sao::gltest {
 namespace {
-
-// The differing texels of one level, none expected.
-std::size_t differingTexels(const FloatImage& gpu, const FloatImage& cpu) {
-  if (gpu.extent.width != cpu.extent.width || gpu.extent.height != cpu.extent.height) return SIZE_MAX;
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < cpu.data.size(); ++i)
-    n += std::bit_cast<std::uint32_t>(gpu.data[i]) != std::bit_cast<std::uint32_t>(cpu.data[i]);
-  return n;
-}
 
 class ZChain : public GlTest, public ::testing::WithParamInterface<test::ZChainCase> {};
 
@@ -64,10 +55,10 @@ TEST_P(ZChain, EveryLevelEqualsTheCpuChainBitForBit) {
     EXPECT_EQ(zDispatches, twoLayer ? 2u : 1u) << levels << " levels";
 
     for (std::uint32_t m = 0; m < levels; ++m) {
-      EXPECT_EQ(differingTexels(readTextureLevel(effect->texture(gen::ResourceId::csz), m), ref.csz[m]), 0u)
+      EXPECT_EQ(test::differingValues(readTextureLevel(effect->texture(gen::ResourceId::csz), m), ref.csz[m]), 0u)
           << c.name << " csz level " << m << " of " << levels;
       if (twoLayer)
-        EXPECT_EQ(differingTexels(readTextureLevel(effect->texture(gen::ResourceId::csz2), m), ref.csz2[m]), 0u)
+        EXPECT_EQ(test::differingValues(readTextureLevel(effect->texture(gen::ResourceId::csz2), m), ref.csz2[m]), 0u)
             << c.name << " csz2 level " << m << " of " << levels;
     }
     deleteTexture(tex);

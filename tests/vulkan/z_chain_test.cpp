@@ -3,23 +3,15 @@
 // SAO_CHAIN_FROM_BLOCK) equals the CPU reference's level-by-level chain bit for bit, on every level,
 // for chains of 1 to 8 levels, odd extents, 1-texel-wide levels, guard bands and the second depth
 // layer, under the validation layers (array slots past the chain's end bound, never written).
-#include <bit>
 #include <cstdint>
 
+#include "image_compare.h"
 #include "sao/cpu/reference.h"
 #include "vk_support.h"
 #include "z_chain_cases.h"
 
 namespace sao::vktest {
 namespace {
-
-std::size_t differingTexels(const FloatImage& gpu, const FloatImage& cpu) {
-  if (gpu.extent.width != cpu.extent.width || gpu.extent.height != cpu.extent.height) return SIZE_MAX;
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < cpu.data.size(); ++i)
-    n += std::bit_cast<std::uint32_t>(gpu.data[i]) != std::bit_cast<std::uint32_t>(cpu.data[i]);
-  return n;
-}
 
 class ZChain : public VkTest, public ::testing::WithParamInterface<test::ZChainCase> {};
 
@@ -57,9 +49,9 @@ TEST_P(ZChain, EveryLevelEqualsTheCpuChainBitForBit) {
     EXPECT_EQ(zDispatches, twoLayer ? 2u : 1u) << levels << " levels";
 
     for (std::uint32_t m = 0; m < levels; ++m) {
-      EXPECT_EQ(differingTexels(r.csz[m], ref.csz[m]), 0u) << c.name << " csz level " << m << " of " << levels;
+      EXPECT_EQ(test::differingValues(r.csz[m], ref.csz[m]), 0u) << c.name << " csz level " << m << " of " << levels;
       if (twoLayer)
-        EXPECT_EQ(differingTexels(r.csz2[m], ref.csz2[m]), 0u) << c.name << " csz2 level " << m << " of " << levels;
+        EXPECT_EQ(test::differingValues(r.csz2[m], ref.csz2[m]), 0u) << c.name << " csz2 level " << m << " of " << levels;
     }
   }
 }
