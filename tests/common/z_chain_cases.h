@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "sao/camera.h"
+#include "sao/cpu/reference.h"
 #include "sao/image.h"
 
 namespace sao::test {
@@ -38,6 +40,28 @@ inline std::vector<ZChainCase> zChainCases() {
   return {{"640x360", 640, 360, 0, 1.0},   {"257x129_guard3", 257, 129, 3, 2.0}, {"100x60_guard4", 100, 60, 4, 1.0},
           {"1029x5", 1029, 5, 0, 4.0},     {"3x200", 3, 200, 0, 4.0},            {"37x23", 37, 23, 0, 0.3},
           {"1x1", 1, 1, 0, 1.0}};
+}
+
+// One case's inputs (the settings with its radius, two layers of distinct depth of the input extent)
+// and the CPU reference's run on them, the level-by-level chain a backend must equal.
+struct ZChainReference {
+  Settings settings;
+  DepthImage depth, depth2;
+  cpu::Result cpu;
+  Status status;
+};
+
+inline ZChainReference zChainReference(const ZChainCase& c, const Camera& camera, bool twoLayer) {
+  ZChainReference r;
+  r.settings.radius = float(c.radius);
+  const Extent input{c.width + 2 * c.guard, c.height + 2 * c.guard};
+  r.depth = distinctDepth(input, 1);
+  r.depth2 = distinctDepth(input, 2);
+  cpu::Inputs in;
+  in.depth = &r.depth;
+  in.depth2 = twoLayer ? &r.depth2 : nullptr;
+  r.status = cpu::run(r.settings, camera, in, cpu::Options{cpu::Precision::Float, 2}, r.cpu);
+  return r;
 }
 
 }  // namespace sao::test

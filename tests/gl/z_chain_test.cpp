@@ -8,7 +8,6 @@
 
 #include "gl_support.h"
 #include "image_compare.h"
-#include "sao/cpu/reference.h"
 #include "z_chain_cases.h"
 
 namespace sao::gltest {
@@ -19,19 +18,13 @@ class ZChain : public GlTest, public ::testing::WithParamInterface<test::ZChainC
 TEST_P(ZChain, EveryLevelEqualsTheCpuChainBitForBit) {
   const test::ZChainCase& c = GetParam();
   const Camera cam = camera(c.width, c.height, c.guard);
-  const Extent input{c.width + 2 * c.guard, c.height + 2 * c.guard};
   for (const bool twoLayer : {false, true}) {
     SCOPED_TRACE(twoLayer ? "two layers" : "one layer");
-    Settings settings;
-    settings.radius = float(c.radius);
-    const DepthImage depth = test::distinctDepth(input, 1);
-    const DepthImage depth2 = test::distinctDepth(input, 2);
-    cpu::Inputs ci;
-    ci.depth = &depth;
-    ci.depth2 = twoLayer ? &depth2 : nullptr;
-    cpu::Result ref;
-    const Status cst = cpu::run(settings, cam, ci, cpu::Options{cpu::Precision::Float, 2}, ref);
-    ASSERT_TRUE(cst.ok()) << cst.message;
+    const test::ZChainReference z = test::zChainReference(c, cam, twoLayer);
+    ASSERT_TRUE(z.status.ok()) << z.status.message;
+    const Settings& settings = z.settings;
+    const DepthImage &depth = z.depth, &depth2 = z.depth2;
+    const cpu::Result& ref = z.cpu;
 
     const GLuint tex = uploadDepth(depth, GlDepth::D32F);
     const GLuint tex2 = twoLayer ? uploadDepth(depth2, GlDepth::D32F) : 0;

@@ -1,7 +1,5 @@
 #include "dispatch.h"
 
-#include <algorithm>
-
 namespace sao::gl::detail {
 
 GLuint textureFor(const PassResources& r, gen::ResourceId id, bool previousFrame) {
@@ -57,7 +55,7 @@ void bind(const GlFunctions& gl, const PassResources& r, const ScheduledBinding&
   if (b.write) {
     // A levels= write is an image array: unit + j holds level baseLevel + j, the last level past the chain.
     for (std::uint32_t slot = 0; slot < declared.slots; ++slot)
-      gl.BindImageTexture(declared.glUnit + slot, texture, GLint(b.baseLevel + std::min(slot, b.levelCount - 1)),
+      gl.BindImageTexture(declared.glUnit + slot, texture, GLint(b.slotLevel(slot)),
                           GL_FALSE, 0, declared.readWrite ? GL_READ_WRITE : GL_WRITE_ONLY, glFormat(declared.format));
     return;
   }

@@ -1,6 +1,5 @@
 // Compute pipelines from the embedded SPIR-V (one per pass variant the plan needs, kept across
 // update()), their set layouts, and the descriptor sets: one per dispatch, per ring slot.
-#include <algorithm>
 #include <string>
 
 #include "effect_impl.h"
@@ -149,8 +148,7 @@ VkDescriptorImageInfo imageInfo(const EffectState& e, const ScheduledBinding& b,
   }
   VkDescriptorImageInfo info{VK_NULL_HANDLE, output.view, VK_IMAGE_LAYOUT_GENERAL};  // the user's output
   if (const OwnedImage* img = e.res.find(b.resource, imageCopy(e.temporal.parity, b.resource, b.previousFrame)))
-    info.imageView = b.wholeChain ? img->fullView.get()
-                                  : img->levelViews[b.baseLevel + std::min(slot, b.levelCount - 1)].get();
+    info.imageView = b.wholeChain ? img->fullView.get() : img->levelViews[b.slotLevel(slot)].get();
   return info;
 }
 

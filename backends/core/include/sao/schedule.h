@@ -3,6 +3,7 @@
 // before it runs. OpenGL, Vulkan and the CPU reference only translate it (docs/adding-a-pass.md):
 // none of them decides sizes, bindings or barriers on its own.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <span>
@@ -18,7 +19,7 @@ namespace sao {
 // images: slot j is level baseLevel + j while j < levelCount, and the last level after that (a
 // valid image the shader never stores to: the chain ends there, max_mip).
 struct ScheduledBinding {
-  std::uint32_t binding = 0;    // GL texture/image unit, Vulkan set-0 binding
+  std::uint32_t binding = 0;    // Vulkan set-0 binding (GL binds the variant's BindingInfo::glUnit)
   gen::ResourceId resource{};   // the image that serves it, aliases resolved
   bool write = false;
   std::uint32_t baseLevel = 0;  // first level the binding sees
@@ -27,6 +28,9 @@ struct ScheduledBinding {
   // A read of a history (history=true): the copy the previous frame wrote (sao/temporal.h,
   // imageCopy); its write is this frame's copy.
   bool previousFrame = false;
+
+  // The level array element `slot` of a levels= write holds (slot 0 for any other binding).
+  std::uint32_t slotLevel(std::uint32_t slot) const { return baseLevel + std::min(slot, levelCount - 1); }
 };
 
 // What must happen between an earlier access to (resource, levels) and a later one.
