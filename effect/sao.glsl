@@ -37,6 +37,7 @@
 #pragma sao setting float temporal_hysteresis default=0.9   range=[0,0.99]                  "Temporal: the history's largest share of a pixel once it holds 1/(1 - h) frames (a running mean up to then, an exponential one after); 0 = this frame only"
 #pragma sao setting float temporal_depth_tolerance default=0.05 range=[0.001,1]             "Temporal: relative z difference |z_history - z| / |z| at which a history texel weighs 0 (linearly down from 1 at 0): the disocclusion test"
 #pragma sao setting float fade_end            default=0.0   range=[0,100000]       unit=m   "Distance fade: camera distance -z from which A = 1, linear in distance from fade_start on; 0 = no fade"
+#pragma sao setting bool  half_intermediates  default=false                                 "rg16f (A, key) intermediates (HALF_INTERMEDIATES): ao_raw, ao_blur_h and ao_low take 4 bytes a texel instead of 8; A and the key z (in about metres) rounded to binary16 (docs/effect-math.md, section 5.7)"
 // ---------------------------------------------------------------------------------------------
 // Presets: the chain `sao-bench --tune` chose on the Pareto front of time against error vs the
 // converged estimator (c), over the built-in scenes (docs/BENCHMARKS.md, "Tuning"; 2026-12-03, gl,
@@ -82,6 +83,7 @@
 #pragma sao variant OUTPUT_FORMAT values=[0,1,2,3] default=0 select=output:ao "The output image's format, an index into ao's formats=: 0 r16f, 1 r8 (A rounded to the nearest 1/255), 2 rgba8, 3 rgba16f (RGBA: A goes into the channels output_mask selects, the others keep their texels)"
 #pragma sao variant DEPTH_MULTISAMPLE values=[0,1] default=0 select=multisampled:depth "1: the depth input is multisampled (sampler2DMS, depth_samples per texel); linear_z keeps one sample per texel as depth_sample_policy says (sample 0, or the nearest to the camera)"
 #pragma sao variant TEMPORAL values=[0,1] default=0 select=temporal "1: ao_sample blends each pixel's obscurance sum with the history of the previous frames (sao_temporal.glsl) and writes this frame's history"
+#pragma sao variant HALF_INTERMEDIATES values=[0,1] default=0 select=half_intermediates "1: the (A, key) intermediates are rg16f: the passes writing them round A and the key (z times key_scale, a power of two near 1/metersToViewUnits) to binary16 themselves"
 #pragma sao variant MOTION_VECTORS values=[0,1] default=0 select=input:motion "1: temporal accumulation finds each pixel's history where the motion input says the surface was (moving objects) instead of reprojecting through the cameras"
 #pragma sao exclude MOTION_VECTORS=1 TEMPORAL=0 "motion vectors serve temporal accumulation only: set the temporal setting, or give no motion input"
 #pragma sao exclude DEPTH_MULTISAMPLE=1 TWO_LAYER=1 "a multisampled depth input has no second layer: give depth peeling's layers single-sample, or resolve the depth first"
@@ -96,9 +98,9 @@
 #pragma sao resource motion    kind=input  format=rg16f when=MOTION_VECTORS "Motion vectors, same size and region as depth: .xy the offset in pixels from this frame's texel to where its surface was in the previous frame (previous = current + motion; rows in the depth's order)"
 #pragma sao resource csz       kind=image  format=r32f mips=auto extent=input "Camera-space z MIP chain (z < 0, +0.0 = sky), the depth input's size including the guard band"
 #pragma sao resource csz2      kind=image  format=r32f mips=auto extent=input when=TWO_LAYER "Camera-space z MIP chain of the second layer"
-#pragma sao resource ao_raw    kind=image  format=rg32f divide_by=resolution_divisor "x: visibility A after the 2x2 reconstruction, y: key = camera-space z (+0.0 = sky); the viewport over resolution_divisor"
-#pragma sao resource ao_blur_h kind=image  format=rg32f divide_by=resolution_divisor "x: A after the horizontal bilateral blur, y: key z"
-#pragma sao resource ao_low    kind=image  format=rg32f divide_by=resolution_divisor "Reduced resolution only: (A, key z) after both blurs, the upsample's input"
+#pragma sao resource ao_raw    kind=image  format=rg32f format_when=HALF_INTERMEDIATES:rg16f divide_by=resolution_divisor "x: visibility A after the 2x2 reconstruction, y: key = camera-space z times key_scale (+0.0 = sky); the viewport over resolution_divisor"
+#pragma sao resource ao_blur_h kind=image  format=rg32f format_when=HALF_INTERMEDIATES:rg16f divide_by=resolution_divisor "x: A after the horizontal bilateral blur, y: key"
+#pragma sao resource ao_low    kind=image  format=rg32f format_when=HALF_INTERMEDIATES:rg16f divide_by=resolution_divisor "Reduced resolution only: (A, key) after both blurs, the upsample's input"
 #pragma sao resource history  kind=image  format=rgba32f divide_by=resolution_divisor when=TEMPORAL history=true "Temporal: x the accumulated obscurance sum, y its key z (+0.0 = sky), z the frames it holds (0 = none), w its normal (octahedral, 12 bits a component, as the integer qx*4096 + qy); ao_raw's size, two images that trade places every frame"
 #pragma sao resource ao        kind=output format=r16f formats=[r16f,r8,rgba8,rgba16f] "Final ambient visibility A in [0,1] (1 = unoccluded), linear; r16f unless the caller's output image has another of formats= (OUTPUT_FORMAT); with output_blend multiply, the caller's texels times A"
 
@@ -119,7 +121,7 @@
 // ---------------------------------------------------------------------------------------------
 // Parameter block: filled by host code from Settings + Camera + extents (docs/effect-math.md,
 // "Parameter block"). Lengths are camera-space (view) units: metres times metersToViewUnits.
-// std140 offsets in brackets; 608 bytes.
+// std140 offsets in brackets; 624 bytes.
 // ---------------------------------------------------------------------------------------------
 #pragma sao block SaoParams
 layout(std140, binding = 0) uniform SaoParams {
@@ -144,7 +146,7 @@ layout(std140, binding = 0) uniform SaoParams {
     int   log_q;                // [120] log2 q' of eq. 9
     int   max_mip;              // [124] highest csz level taps may read (levels allocated - 1)
     float quad_edge_threshold;  // [128] 2x2 reconstruction z threshold, view units
-    float blur_edge_sharpness;  // [132] bilateral depth weight scale, 1/view units
+    float blur_edge_sharpness;  // [132] bilateral depth weight scale, 1/key units (1/view units times key_to_view)
     int   blur_radius;          // [136] R, taps each side, 0..SAO_MAX_BLUR_RADIUS
     int   blur_stride;          // [140] pixels between blur taps, >= 1
     ivec2 ao_size;              // [144] the viewport: size of ao (and of ao_raw, ao_blur_h when ao_divisor = 1)
@@ -173,6 +175,8 @@ layout(std140, binding = 0) uniform SaoParams {
     float temporal_max_frames;  // [596] temporal: 1 / (1 - temporal_hysteresis), the frames a history texel counts at most
     float temporal_depth_k;     // [600] temporal: 1 / temporal_depth_tolerance
     int   history_valid;        // [604] temporal: 1 when the history holds the previous frame (0 after create, a settings change, a resize, a reset)
+    float key_scale;            // [608] the (A, key) images' key is z times this: 1, or with half_intermediates the power of two nearest 1/metersToViewUnits (about metres)
+    float key_to_view;          // [612] 1 / key_scale (exact: a power of two); blur_edge_sharpness is per key unit
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -287,7 +291,7 @@ void sao_linear_z2_main()
 // bilateral reconstruction through shared memory (no derivative instructions). One invocation
 // per AO pixel; invocations outside the AO buffer take part in the barriers as sky.
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass ao_sample entry=sao_ao_main local=8x8 reads=csz,csz2,normals,history,motion writes=ao_raw,history variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,TEMPORAL,MOTION_VECTORS "Obscurance from s spiral taps over the z hierarchy (eq. 1, 3-10), with TEMPORAL blended with the reprojected history (and this frame's history written), 2x2 bilateral reconstruction; writes (A, key z)"
+#pragma sao pass ao_sample entry=sao_ao_main local=8x8 reads=csz,csz2,normals,history,motion writes=ao_raw,history variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,TEMPORAL,MOTION_VECTORS,HALF_INTERMEDIATES "Obscurance from s spiral taps over the z hierarchy (eq. 1, 3-10), with TEMPORAL blended with the reprojected history (and this frame's history written), 2x2 bilateral reconstruction; writes (A, key z)"
 #if SAO_TARGET_VULKAN
 // The tap loop's trip count (= samples) as a push constant: Mesa lavapipe 22.3 keeps ~0.4 MB of
 // host memory per dispatch of a loop whose trip count comes from the uniform block its body also
@@ -387,15 +391,20 @@ void sao_ao_main()
     memoryBarrierShared();
     barrier();
     float a_v = sao_quad_mix(a_h, key, sao_quad_h[ly], sao_quad_z[ly], quad_edge_threshold);
+#if HALF_INTERMEDIATES
+    vec2 stored = sao_half_texel(vec2(a_v, key * key_scale));
+#else
+    vec2 stored = vec2(a_v, key);
+#endif
     if (inside)
-        imageStore(out_ao_raw, p, vec4(a_v, key, 0.0, 0.0));
+        imageStore(out_ao_raw, p, vec4(stored, 0.0, 0.0));
 }
 #pragma sao end
 
 // ---------------------------------------------------------------------------------------------
 // Pass 4: horizontal bilateral blur of (A, key).
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass blur_h entry=sao_blur_h_main local=8x8 reads=ao_raw writes=ao_blur_h skip_when=blur_radius==0 "Horizontal depth-aware Gaussian blur (float z key); with blur_radius 0 a copy"
+#pragma sao pass blur_h entry=sao_blur_h_main local=8x8 reads=ao_raw writes=ao_blur_h variants=HALF_INTERMEDIATES skip_when=blur_radius==0 "Horizontal depth-aware Gaussian blur (float z key); with blur_radius 0 a copy"
 void sao_blur_h_main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -403,6 +412,9 @@ void sao_blur_h_main()
         return;
     vec2 r = sao_bilateral_blur(in_ao_raw, p, ivec2(1, 0), blur_radius, blur_stride,
                                 blur_edge_sharpness, blur_weights_1_4, blur_weights_5_8);
+#if HALF_INTERMEDIATES
+    r = sao_half_texel(r);
+#endif
     imageStore(out_ao_blur_h, p, vec4(r, 0.0, 0.0));
 }
 #pragma sao end
@@ -425,7 +437,7 @@ void sao_blur_v_main()
 // ---------------------------------------------------------------------------------------------
 // Pass 6 (reduced resolution only): vertical bilateral blur into the reduced (A, key) image.
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass blur_v_low entry=sao_blur_v_low_main local=8x8 reads=ao_blur_h writes=ao_low skip_when=resolution_divisor==1 alias_when=blur_radius==0:ao_blur_h=ao_raw "Reduced resolution only: vertical depth-aware Gaussian blur into (A, key z) for the upsample"
+#pragma sao pass blur_v_low entry=sao_blur_v_low_main local=8x8 reads=ao_blur_h writes=ao_low variants=HALF_INTERMEDIATES skip_when=resolution_divisor==1 alias_when=blur_radius==0:ao_blur_h=ao_raw "Reduced resolution only: vertical depth-aware Gaussian blur into (A, key z) for the upsample"
 void sao_blur_v_low_main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -433,6 +445,9 @@ void sao_blur_v_low_main()
         return;
     vec2 r = sao_bilateral_blur(in_ao_blur_h, p, ivec2(0, 1), blur_radius, blur_stride,
                                 blur_edge_sharpness, blur_weights_1_4, blur_weights_5_8);
+#if HALF_INTERMEDIATES
+    r = sao_half_texel(r);
+#endif
     imageStore(out_ao_low, p, vec4(r, 0.0, 0.0));
 }
 #pragma sao end
@@ -520,7 +535,7 @@ void sao_upsample_main()
     uint count = SAO_UP_TILE.x * SAO_UP_TILE.y;
     for (uint i = gl_LocalInvocationIndex; i < count; i += gl_WorkGroupSize.x * gl_WorkGroupSize.y) {
         ivec2 q = min(origin + ivec2(int(i % SAO_UP_TILE.x), int(i / SAO_UP_TILE.x)), last);
-        sao_up_tile[i] = texelFetch(in_ao_low, q, 0).xy;
+        sao_up_tile[i] = texelFetch(in_ao_low, q, 0).xy * vec2(1.0, key_to_view);  // the key back in view units
     }
     memoryBarrierShared();
     barrier();  // every invocation reaches it: the size test comes after

@@ -311,7 +311,9 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     << "  std::string_view doc;\n"
     << "  std::int32_t divideBy;  // a SettingId: the AO extent over that int setting, rounded up; -1: none\n"
     << "  std::span<const Format> formats;  // kind=output: every format it may have (formats=); empty: only `format`\n"
-    << "  bool history;  // history=true: two images that trade places every frame; reads see the previous frame's\n};\n";
+    << "  bool history;  // history=true: two images that trade places every frame; reads see the previous frame's\n"
+    << "  std::int32_t formatWhenVariant;  // format_when=: where this variant is non-zero the image has formatWhen; -1: none\n"
+    << "  Format formatWhen;\n};\n";
   for (const auto& r : e.resources) {
     if (r.formats.empty()) continue;
     h << "inline constexpr Format kFormats_" << r.name << "[] = {";
@@ -324,7 +326,8 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     h << "  {" << quoted(r.name) << ", " << kindName(r.kind) << ", " << formatName(r.format) << ", "
       << (r.fullMipChain ? "true" : "false") << ", " << (r.inputExtent ? "true" : "false") << ", " << r.scaleDenominator << ", " << r.whenVariant << ", "
       << quoted(r.doc) << ", " << r.divideBy << ", "
-      << (r.formats.empty() ? std::string("{}") : "kFormats_" + r.name) << ", " << (r.history ? "true" : "false") << "},\n";
+      << (r.formats.empty() ? std::string("{}") : "kFormats_" + r.name) << ", " << (r.history ? "true" : "false") << ", "
+      << r.formatWhenVariant << ", " << formatName(r.formatWhen.empty() ? r.format : r.formatWhen) << "},\n";
   h << "}};\n\n";
 
   // --- passes

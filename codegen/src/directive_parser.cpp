@@ -352,9 +352,10 @@ class Parser {
       diags_.error(d.loc, "variant '" + v.name + "' needs at least two values");
       return;
     }
-    // Every combination of the variants is enumerated (and each pass's projection compiled): keep
-    // the product small, so that a long list of variants cannot make the tool run for ever.
-    constexpr std::size_t kMaxCombinations = 256;
+    // Every combination of the variants is enumerated (each pass compiles its projection, at most
+    // kMaxPassVariants): keep the product small, so that a long list of variants cannot make the
+    // tool run for ever.
+    constexpr std::size_t kMaxCombinations = 4096;
     std::size_t combinations = v.values.size();
     for (const Variant& other : effect_.variants) combinations *= other.values.size();
     if (v.values.size() > kMaxCombinations || combinations > kMaxCombinations) {
@@ -412,10 +413,13 @@ class Parser {
     effect_.exclusions.push_back(e);
   }
 
+  // The most combinations of its variants a pass may list (before exclusions): each is compiled twice.
+  static constexpr std::size_t kMaxPassVariants = 64;
+
   void parseResource(const Directive& d) {
-    auto a = attrs(d, {"kind", "format", "formats", "mips", "scale", "when", "extent", "divide_by", "history"});
+    auto a = attrs(d, {"kind", "format", "formats", "format_when", "mips", "scale", "when", "extent", "divide_by", "history"});
     if (d.words.size() != 1) {
-      diags_.error(d.loc, "expected '#pragma sao resource NAME kind=K format=F [formats=[F,...]] [mips=1|auto] [scale=1/N] [divide_by=SETTING] [when=V] [history=true] \"doc\"'");
+      diags_.error(d.loc, "expected '#pragma sao resource NAME kind=K format=F [formats=[F,...]] [format_when=V:F] [mips=1|auto] [scale=1/N] [divide_by=SETTING] [when=V] [history=true] \"doc\"'");
       return;
     }
     Resource r;
@@ -443,6 +447,7 @@ class Parser {
       return;
     }
     if (a.count("formats") && !parseFormats(d, r, a["formats"])) return;
+    if (a.count("format_when") && !parseFormatWhen(d, r, a["format_when"])) return;
     const std::string mips = a.count("mips") ? a["mips"] : "1";
     if (mips != "1" && mips != "auto") {
       diags_.error(d.loc, "mips of resource '" + r.name + "' must be 1 or auto, got '" + mips + "'");
@@ -513,6 +518,33 @@ class Parser {
       return false;
     }
     return true;
+  }
+
+  // format_when=VARIANT:F: an effect-owned image that has format F where the variant is non-zero
+  // (the rg16f intermediates); F holds as many channels as format=.
+  bool parseFormatWhen(const Directive& d, Resource& r, const std::string& text) {
+    const auto colon = text.find(':');
+    const std::string variant = text.substr(0, colon);
+    const std::string f = colon == std::string::npos ? "" : text.substr(colon + 1);
+    std::string why;
+    if (r.kind != ResourceKind::Image) why = "is only for kind=image resources";
+    else if (colon == std::string::npos || variant.empty() || f.empty()) why = "must be VARIANT:FORMAT";
+    else if (findVariant(variant) < 0) why = "names unknown variant '" + variant + "'";
+    else if (!kFormats.count(f) || f == "depth") why = "names '" + f + "', which is not a colour format";
+    else if (f == r.format) why = "names the resource's own format '" + f + "'";
+    else if (channelCount(f) != channelCount(r.format))
+      why = "names '" + f + "', which holds another number of channels than '" + r.format + "'";
+    if (!why.empty()) {
+      diags_.error(d.loc, "format_when= of resource '" + r.name + "' " + why);
+      return false;
+    }
+    r.formatWhenVariant = findVariant(variant);
+    r.formatWhen = f;
+    return true;
+  }
+
+  static int channelCount(const std::string& f) {
+    return f.rfind("rgba", 0) == 0 ? 4 : f.rfind("rg", 0) == 0 ? 2 : 1;
   }
 
   // divide_by=SETTING: an effect-owned image of the AO extent whose extent is that over the value
@@ -638,6 +670,12 @@ class Parser {
         else if (std::find(p.variants.begin(), p.variants.end(), v) == p.variants.end()) p.variants.push_back(v);
       }
       std::sort(p.variants.begin(), p.variants.end());
+      std::size_t combinations = 1;
+      for (int v : p.variants) combinations *= effect_.variants[v].values.size();
+      if (combinations > kMaxPassVariants)
+        diags_.error(d.loc, "pass '" + p.name + "' lists variants with " + std::to_string(combinations) +
+                                " combinations, more than " + std::to_string(kMaxPassVariants) +
+                                "; each one is compiled (GLSL and SPIR-V)");
     }
     p.reads = resolveList(p, d, "reads", "reads");
     p.writes = resolveList(p, d, "writes", "writes");
@@ -674,6 +712,10 @@ class Parser {
                                   effect_.variants[v].name + " it does not list in variants=");
     for (int r : p.writes) {
       const Resource& res = effect_.resources[r];
+      if (res.formatWhenVariant >= 0 &&
+          std::find(p.variants.begin(), p.variants.end(), res.formatWhenVariant) == p.variants.end())
+        diags_.error(d.loc, "pass '" + p.name + "' writes '" + res.name + "', whose format variant " +
+                                effect_.variants[res.formatWhenVariant].name + " it does not list in variants=");
       if (res.formats.empty()) continue;
       int selector = -1;
       for (size_t v = 0; v < effect_.variants.size(); ++v)

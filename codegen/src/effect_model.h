@@ -66,6 +66,10 @@ struct Resource {
   // formats=[...] (kind=output only): every format the output may have, `format` among them; the
   // variant with select=output:NAME picks one, and each pass writing it lists that variant.
   std::vector<std::string> formats;
+  // format_when=VARIANT:F (kind=image): the image has format F instead of `format` where that
+  // variant is non-zero (rg16f intermediates); every pass writing it lists the variant.
+  int formatWhenVariant = -1;
+  std::string formatWhen;
   bool fullMipChain = false;  // mips=auto
   bool inputExtent = false;   // extent=input: the depth input's size (viewport + guard band)
   int scaleDenominator = 1;   // scale=1/N of the base extent

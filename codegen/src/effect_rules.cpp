@@ -281,6 +281,8 @@ void resolvePassRules(const Effect& e, Pass& p, const SourceLoc& loc, const std:
       why = "serves '" + from.name + "' from output resource '" + to.name + "' (passes do not read outputs)";
     else if (to.format != from.format)
       why = "serves '" + from.name + "' (" + from.format + ") from '" + to.name + "' (" + to.format + "): the formats differ";
+    else if (to.formatWhenVariant != from.formatWhenVariant || to.formatWhen != from.formatWhen)
+      why = "serves '" + from.name + "' from '" + to.name + "', whose format_when= differ";
     else if (!sameExtent(from, to))
       why = "serves '" + from.name + "' from '" + to.name + "': their extents differ";
     else if (to.whenVariant >= 0 &&

@@ -64,6 +64,7 @@ std::vector<PassVariant> buildPassVariants(const Effect& effect) {
         const Resource& res = effect.resources[r];
         const int slots = pass.levelSlots > 0 ? pass.levelSlots : 1;
         Binding b{next, imageUnit, slots, r, true, res.format, false};
+        if (res.formatWhenVariant >= 0 && values[res.formatWhenVariant] > 0) b.format = res.formatWhen;
         next += slots;
         imageUnit += slots;
         // A formats= output: the format its selecting variant gives in this combination (the

@@ -348,11 +348,13 @@ T upsampleDepthWeight(T z, T zLow, T k) {
   return glslMax(T(0), T(1) - k * std::abs(z - zLow));
 }
 
-// sao_upsample: A at viewport pixel (x, y) with csz z from the reduced (A, key) image `low`;
-// d is 1, 2 or 4 (shifts as in the shader).
+// sao_upsample: A at viewport pixel (x, y) with csz z from the reduced (A, key) image `low`, whose
+// keys are z times 1 / keyToView (sao_upsample_main's tile converts them back); d is 1, 2 or 4
+// (shifts as in the shader).
 template <typename T>
-T upsample(const Image<T>& low, int x, int y, T z, int d, int fullW, int fullH) {
+T upsample(const Image<T>& low, int x, int y, T z, int d, int fullW, int fullH, T keyToView) {
   if (isSky(z)) return T(1);
+  auto lowZ = [&](int qx, int qy) { return low.at(qx, qy, 1) * keyToView; };
   const int sh = findMSB(d);
   const int lastX = low.w - 1, lastY = low.h - 1;
   const int q0x = std::min(std::max(x - (d >> 1), 0) >> sh, lastX);
@@ -363,10 +365,10 @@ T upsample(const Image<T>& low, int x, int y, T z, int d, int fullW, int fullH) 
   const T tx = std::clamp(T(x - r0x) / T(std::max(r1x - r0x, 1)), T(0), T(1));
   const T ty = std::clamp(T(y - r0y) / T(std::max(r1y - r0y, 1)), T(0), T(1));
   const T k = T(gen::SAO_UPSAMPLE_Z_SHARPNESS) / (-z);
-  const T w00 = ((T(1) - tx) * (T(1) - ty)) * upsampleDepthWeight(z, low.at(q0x, q0y, 1), k);
-  const T w10 = (tx * (T(1) - ty)) * upsampleDepthWeight(z, low.at(q1x, q0y, 1), k);
-  const T w01 = ((T(1) - tx) * ty) * upsampleDepthWeight(z, low.at(q0x, q1y, 1), k);
-  const T w11 = (tx * ty) * upsampleDepthWeight(z, low.at(q1x, q1y, 1), k);
+  const T w00 = ((T(1) - tx) * (T(1) - ty)) * upsampleDepthWeight(z, lowZ(q0x, q0y), k);
+  const T w10 = (tx * (T(1) - ty)) * upsampleDepthWeight(z, lowZ(q1x, q0y), k);
+  const T w01 = ((T(1) - tx) * ty) * upsampleDepthWeight(z, lowZ(q0x, q1y), k);
+  const T w11 = (tx * ty) * upsampleDepthWeight(z, lowZ(q1x, q1y), k);
   const T wsum = ((w00 + w10) + w01) + w11;
   if (wsum > T(0))
     return (((w00 * low.at(q0x, q0y, 0) + w10 * low.at(q1x, q0y, 0)) + w01 * low.at(q0x, q1y, 0)) +
@@ -378,7 +380,7 @@ T upsample(const Image<T>& low, int x, int y, T z, int d, int fullW, int fullH) 
   T best = T(-1);
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
-      const T zl = low.at(std::clamp(cx + dx, 0, lastX), std::clamp(cy + dy, 0, lastY), 1);
+      const T zl = lowZ(std::clamp(cx + dx, 0, lastX), std::clamp(cy + dy, 0, lastY));
       if (!isSky(zl)) best = best < T(0) ? std::abs(z - zl) : glslMin(best, std::abs(z - zl));
     }
   if (best < T(0)) return T(1);
@@ -386,7 +388,7 @@ T upsample(const Image<T>& low, int x, int y, T z, int d, int fullW, int fullH) 
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
       const int qx = std::clamp(cx + dx, 0, lastX), qy = std::clamp(cy + dy, 0, lastY);
-      const T zl = low.at(qx, qy, 1);
+      const T zl = lowZ(qx, qy);
       if (isSky(zl)) continue;
       const T v = glslMax(T(0), T(1) - k * (std::abs(z - zl) - best));
       sum += v * low.at(qx, qy, 0);
@@ -405,11 +407,7 @@ inline float roundToHalf(float x) {
   return std::ldexp(std::floor(std::ldexp(x, -q) + 0.5f), q);
 }
 
-// sao_round_to_unorm8 of sao_output.glsl: x clamped to [0, 1], rounded to the nearest multiple of
-// 1/255 (halves up), each operation one binary32 rounding as the shader does it.
-inline float roundToUnorm8(float x) { return std::floor(std::clamp(x, 0.0f, 1.0f) * 255.0f + 0.5f) / 255.0f; }
-
-// sao_round_to_half_signed of sao_output.glsl: roundToHalf's steps on |x|, sign kept, not clamped.
+// sao_round_to_half_signed of sao_blur.glsl: roundToHalf's steps on |x|, sign kept, not clamped.
 inline float roundToHalfSigned(float x) {
   const float m = std::fabs(x);
   if (m == 0.0f) return x;
@@ -419,6 +417,20 @@ inline float roundToHalfSigned(float x) {
   const float r = std::ldexp(std::floor(std::ldexp(m, -q) + 0.5f), q);
   return x < 0.0f ? -r : r;
 }
+
+// sao_half_texel of sao_blur.glsl (HALF_INTERMEDIATES): the (A, key) texel an rg16f image holds;
+// Float rounds as the shader does, Double keeps the values.
+template <typename T>
+void halfTexel(T& a, T& key) {
+  if constexpr (std::is_same_v<T, float>) {
+    a = roundToHalf(a);
+    key = roundToHalfSigned(std::max(key, -65504.0f));
+  }
+}
+
+// sao_round_to_unorm8 of sao_output.glsl: x clamped to [0, 1], rounded to the nearest multiple of
+// 1/255 (halves up), each operation one binary32 rounding as the shader does it.
+inline float roundToUnorm8(float x) { return std::floor(std::clamp(x, 0.0f, 1.0f) * 255.0f + 0.5f) / 255.0f; }
 
 // sao_output_multiply of sao_output.glsl (output blend multiply): channel c times A clamped to
 // [0, 1]; Float rounds it once as the format holds it (unorm8: 1/255 steps; else binary16),

@@ -201,6 +201,15 @@ class AoSampleInvocation {
   const bool normalsSupplied_, twoLayer_, zHierarchy_, motionVectors_;
 };
 
+// An (A, key) intermediate's texel (ao_raw, ao_blur_h, ao_low): with HALF_INTERMEDIATES as the rg16f
+// image holds it (sao_half_texel: rounded in Float, kept in Double).
+template <typename T>
+void storeAKey(const PassContext<T>& ctx, Image<T>& img, int x, int y, T a, T key) {
+  if (ctx.variant(gen::VariantId::HALF_INTERMEDIATES)) halfTexel(a, key);
+  img.at(x, y, 0) = a;
+  img.at(x, y, 1) = key;
+}
+
 // Pass ao_sample over work groups: each group computes its invocations' (A, key) into
 // "shared memory", then the two reconstruction steps separated as the barriers separate them.
 // Invocations outside the AO buffer take part with A = 1, key = +0.0 (sky) and store nothing.
@@ -272,8 +281,7 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
           const T av = quadMix(quadH[li], quadZ[li], quadH[ny], quadZ[ny], threshold);
           const int px = gx * LX + lx, py = gy * LY + ly;
           if (px < std::min(P.ao_size.x, W) && py < std::min(P.ao_size.y, H)) {
-            aoRaw.at(px, py, 0) = av;
-            aoRaw.at(px, py, 1) = quadZ[li];
+            storeAKey(ctx, aoRaw, px, py, av, quadZ[li] * P.key_scale);
             if (history) {
               history->at(px, py, 0) = kept[li];
               history->at(px, py, 1) = quadZ[li];
@@ -325,12 +333,10 @@ Status blurPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const
     for (int x = 0; x < W; ++x) {
       T a, key;
       bilateralBlur(src, x, y, dx, dy, ctx.P, a, key);
-      if (final) {
+      if (final)
         storeOutput(ctx, dst, x, y, a);
-      } else {
-        dst.at(x, y, 0) = a;
-        dst.at(x, y, 1) = key;
-      }
+      else
+        storeAKey(ctx, dst, x, y, a, key);
     }
   });
   return Status::success();
@@ -358,7 +364,8 @@ Status upsamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
                         "and the viewport's csz");
   parallelFor(dst.h, ctx.threads, [&](int y) {
     for (int x = 0; x < dst.w; ++x) {
-      storeOutput(ctx, dst, x, y, upsample(low, x, y, z0.at(x + P.guard.x, y + P.guard.y), div, dst.w, dst.h));
+      storeOutput(ctx, dst, x, y,
+                  upsample(low, x, y, z0.at(x + P.guard.x, y + P.guard.y), div, dst.w, dst.h, P.key_to_view));
     }
   });
   return Status::success();

@@ -58,4 +58,26 @@ float sao_round_to_half(float x)
     return ldexp(floor(ldexp(x, -q) + 0.5), q);
 }
 
+// x rounded to the nearest binary16 value (ties away from zero), of either sign and not clamped:
+// sao_round_to_half's exact steps on |x|, for |x| <= 65504.
+float sao_round_to_half_signed(float x)
+{
+    float m = abs(x);
+    if (m == 0.0)
+        return x;
+    int e;
+    frexp(m, e);
+    int q = max(e - 11, -24);
+    float r = ldexp(floor(ldexp(m, -q) + 0.5), q);
+    return x < 0.0 ? -r : r;
+}
+
+// The (A, key) texel as an rg16f intermediate holds it (HALF_INTERMEDIATES): A rounded to
+// binary16, the key (z times key_scale, <= 0) held to binary16's range and rounded; both exact in
+// binary16, so the store does not round again. A texel read from such an image passes unchanged.
+vec2 sao_half_texel(vec2 a_key)
+{
+    return vec2(sao_round_to_half(a_key.x), sao_round_to_half_signed(max(a_key.y, -65504.0)));
+}
+
 #endif // SAO_BLUR_GLSL

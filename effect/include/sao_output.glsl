@@ -1,6 +1,6 @@
 // sao_output.glsl -- the texel the final pass stores into the output: A quantised exactly as the
 // output's format holds it, in the channels the host's mask selects. Library code: depends on
-// sao_blur.glsl (sao_round_to_half). Math: docs/effect-math.md, "The output texel".
+// sao_blur.glsl (sao_round_to_half, sao_round_to_half_signed). Math: docs/effect-math.md, "The output texel".
 #ifndef SAO_OUTPUT_GLSL
 #define SAO_OUTPUT_GLSL
 
@@ -15,20 +15,6 @@
 float sao_round_to_unorm8(float x)
 {
     return floor(clamp(x, 0.0, 1.0) * 255.0 + 0.5) / 255.0;
-}
-
-// x rounded to the nearest binary16 value (ties away from zero), of either sign and not clamped:
-// sao_round_to_half's exact steps on |x|, for |x| <= 65504 (a binary16 texel times A in [0, 1]).
-float sao_round_to_half_signed(float x)
-{
-    float m = abs(x);
-    if (m == 0.0)
-        return x;
-    int e;
-    frexp(m, e);
-    int q = max(e - 11, -24);
-    float r = ldexp(floor(ldexp(m, -q) + 0.5), q);
-    return x < 0.0 ? -r : r;
 }
 
 // Output blend multiply: the texel's channel c times A (clamped to [0, 1]), rounded once as the

@@ -58,22 +58,25 @@ the taps, by error against (c)) writes frames.csv; the paths section (every scen
 and strafe camera paths, with and without temporal accumulation: flicker and time per frame, 60
 frames at 320x180 unless --size) writes paths.csv; the divisor section (every preset at resolution_divisor 1, 2
 and 4: error vs (c) on every scene at --size on the first backend, time at 1920x1080 on every backend) writes
-rows "divisor" and "divisor_time" into results.csv; the per_tap section (GL only: ao_sample's time per tap at
+rows "divisor" and "divisor_time" into results.csv; the intermediates section (every preset with rg32f and with
+rg16f (A, key) intermediates, half_intermediates: error vs (c) on every scene at --size on the first backend,
+time at 1920x1080 on every backend) writes rows "intermediates" and "intermediates_time"; the per_tap section (GL only: ao_sample's time per tap at
 s = 7, 16, 32, 48 beside a ladder of minimal passes of our own, a fragment pass, the same as compute, and
 compute plus one of ao_sample's features each, on the main scene at --size, default 1920x1080) writes per_tap.csv.)";
 
 // The parts of the run, in the order they run (--sections picks some).
 const std::vector<std::string> kSections = {"presets",    "samples",   "mip_blur", "radius",
                                             "resolution", "two_layer", "precision", "traffic",
-                                            "divisor",    "spiral",    "frames",    "paths",     "per_tap",  "calibrate"};
+                                            "divisor",    "intermediates", "spiral", "frames",  "paths",     "per_tap",
+                                            "calibrate"};
 
 // The calibrate section searches a grid (about 20 minutes at 640x360 here), the spiral section
 // every differing sample count (about 5), the frames section 16 frames of three presets per scene,
-// the divisor section every preset at three divisors on every scene, the per_tap section a ladder
-// of passes at 1920x1080: asked for by name only.
+// the divisor section every preset at three divisors on every scene (the intermediates section at
+// two formats), the per_tap section a ladder of passes at 1920x1080: asked for by name only.
 bool inDefaultRun(const std::string& section) {
   return section != "calibrate" && section != "spiral" && section != "frames" && section != "divisor" &&
-         section != "per_tap" && section != "paths";
+         section != "intermediates" && section != "per_tap" && section != "paths";
 }
 
 std::string sectionNames() {
@@ -120,7 +123,7 @@ Options parse(int argc, char** argv) {
   cl.text("--out", o.out, "DIR", "output folder (default out/bench)");
   cl.text("--backends", o.backends, "LIST",
           "comma-separated: cpu,gl,vulkan (default: gl,vulkan,cpu, those that start; the others are skipped)");
-  cl.value("--sections", "LIST", "comma-separated parts to run (default: all but calibrate, spiral, frames, paths, divisor and per_tap: grid searches of about 20 and 5 minutes, a frame accumulation, camera paths, a preset x divisor matrix and a ladder of GL passes at 1920x1080):\n" + sectionNames(),
+  cl.value("--sections", "LIST", "comma-separated parts to run (default: all but calibrate, spiral, frames, paths, divisor, intermediates and per_tap: grid searches of about 20 and 5 minutes, a frame accumulation, camera paths, a preset x divisor matrix, a preset x intermediate format matrix and a ladder of GL passes at 1920x1080):\n" + sectionNames(),
            [&o](const std::string& v) { o.sections = parseSections(v); });
   cli::addRuns(cl, o.runs, 1, "measured runs per point, after one warm-up", "default 5");
   cli::addRays(cl, "--rays", o.rays, "reference rays per pixel", "default 256");
@@ -432,6 +435,25 @@ int main(int argc, char** argv) {
         const std::string variant = "divisor=" + std::to_string(d);
         for (const auto& scene : sceneNames) run("divisor", scene, first, std::string(p.name), variant, t, size, true);
         for (auto& b : backends) run("divisor_time", mainScene, *b, std::string(p.name), variant, t, timeSize, false);
+      }
+    }
+  }
+
+  // intermediates ([bandwidth]): every preset with rg32f and with rg16f (A, key) images
+  // (half_intermediates), the rest unchanged; error vs (c) as the divisor section measures it, time
+  // at 1920x1080 with a preset's two formats one after another.
+  if (want("intermediates")) {
+    const Extent timeSize = o.quick ? size : Extent{1920, 1080};
+    for (const auto& p : presets()) {
+      if (o.quick && p.preset != Preset::Medium) continue;
+      for (bool half : {false, true}) {
+        Settings t = presetSettings(p.preset);
+        t.half_intermediates = half;
+        const std::string variant = half ? "rg16f" : "rg32f";
+        for (const auto& scene : sceneNames)
+          run("intermediates", scene, first, std::string(p.name), variant, t, size, true);
+        for (auto& b : backends)
+          run("intermediates_time", mainScene, *b, std::string(p.name), variant, t, timeSize, false);
       }
     }
   }

@@ -161,6 +161,42 @@ def tables(folder):
                             [f(t[(b, p, d)]["upsample_ms"]) for d in divisors[1:]])
         print(table(hdr, out_rows))
 
+    inter = sec("intermediates")
+    if inter:
+        err = {(r["scene"], r["preset"], r["variant"]): r for r in inter}
+        r0 = inter[0]
+        print(f"\n### Intermediates: error vs (c) with rg32f and rg16f (A, key) images ({r0['backend']}, "
+              f"{r0['width']}x{r0['height']})\n")
+        print("Each preset as it is, only half_intermediates changed. Δ: rg16f's RMSE vs (c) minus rg32f's; "
+              "silhouette: the RMSE within 3 px of a depth edge.\n")
+        out_rows = []
+        for (sc, p) in dict.fromkeys((r["scene"], r["preset"]) for r in inter):
+            a, b = err.get((sc, p, "rg32f")), err.get((sc, p, "rg16f"))
+            if not a or not b:
+                continue
+            ra, rb = a["converged_rmse_raw"], b["converged_rmse_raw"]
+            delta = "n/a" if "n/a" in (ra, rb) else f"{float(rb) - float(ra):+.5f}"
+            out_rows.append([sc, p, gn(ra, 4), gn(rb, 4), delta, gn(a["converged_silhouette_rmse"], 4),
+                             gn(b["converged_silhouette_rmse"], 4)])
+        print(table(["scene", "preset", "RMSE (c) rg32f", "RMSE (c) rg16f", "Δ", "silhouette rg32f",
+                     "silhouette rg16f"], out_rows))
+    times = sec("intermediates_time")
+    if times:
+        t = {(r["backend"], r["preset"], r["variant"]): r for r in times}
+        r0 = times[0]
+        print(f"\n### Intermediates: time per preset ({r0['scene']}, {r0['width']}x{r0['height']}, median ms; "
+              "a preset's two formats measured one after another)\n")
+        out_rows = []
+        for (b, p) in dict.fromkeys((r["backend"], r["preset"]) for r in times):
+            a, h = t.get((b, p, "rg32f")), t.get((b, p, "rg16f"))
+            if not a or not h:
+                continue
+            out_rows.append([b, p, f(a["total_ms"]), f(h["total_ms"]),
+                             f"{float(h['total_ms']) / float(a['total_ms']):.2f}", f(a["ao_sample_ms"]),
+                             f(h["ao_sample_ms"]), f(a["blur_h_ms"]), f(h["blur_h_ms"])])
+        print(table(["backend", "preset", "total rg32f", "total rg16f", "rg16f ÷ rg32f", "ao_sample rg32f",
+                     "ao_sample rg16f", "blur_h rg32f", "blur_h rg16f"], out_rows))
+
     two = sec("two_layer")
     if two:
         print("\n### Two depth layers (medium)\n")

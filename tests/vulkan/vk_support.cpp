@@ -137,6 +137,7 @@ Status runEffect(const Settings& settings, const Camera& camera, const DepthImag
     return st;
   if (options.readIntermediates) {
     const auto raw = effect->ownedImage(gen::ResourceId::ao_raw);
+    out.aoRawFormat = raw.format;
     if (Status st = ctx.readback(raw.image, raw.format, raw.extent, 0, raw.layout, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                                  VK_ACCESS_SHADER_WRITE_BIT, out.aoRaw);
         !st)

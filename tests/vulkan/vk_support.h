@@ -58,6 +58,7 @@ struct RunResult {
   ParamBlock params{};
   FloatImage ao;      // 1 channel
   FloatImage aoRaw;   // 2 channels (A, key z)
+  VkFormat aoRawFormat = VK_FORMAT_UNDEFINED;  // the effect's ao_raw image (rg32f, or rg16f with half_intermediates)
   FloatImage csz0;    // csz level 0
   FloatImage aoLow;   // 2 channels (A, key z) when the plan has ao_low (resolution_divisor > 1)
   std::vector<FloatImage> csz, csz2;  // every level, with RunOptions::readChain

@@ -196,7 +196,10 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
       if (r.kind == gen::ResourceKind::Output && inputs.userOutput) continue;
       const Extent e = resourceExtent(out, id);  // not planned yet: the declared extent
       const std::uint32_t levels = r.fullMipChain ? out.cszLevels : 1;
-      const gen::Format format = r.formats.empty() ? r.format : inputs.outputFormat;  // checked above
+      const gen::Format format = !r.formats.empty() ? inputs.outputFormat  // checked above
+                                 : r.formatWhenVariant >= 0 && out.variants[std::size_t(r.formatWhenVariant)] != 0
+                                     ? r.formatWhen
+                                     : r.format;
       const std::uint32_t copies = r.history ? 2 : 1;
       out.images.push_back({id, format, e, levels, copies, copies * imageBytes(format, e, levels)});
     }
@@ -222,7 +225,9 @@ std::uint64_t fullAllocationBytes(const Camera& camera, const PlanInputs& inputs
     if (r.kind == gen::ResourceKind::Input) continue;
     if (r.kind == gen::ResourceKind::Output && inputs.userOutput) continue;
     const Extent base = r.inputExtent ? input : ao;
-    const gen::Format format = r.formats.empty() ? r.format : inputs.outputFormat;
+    // format_when=: the larger of the two formats (the settings are not known here).
+    gen::Format format = r.formats.empty() ? r.format : inputs.outputFormat;
+    if (r.formatWhenVariant >= 0 && bytesPerTexel(r.formatWhen) > bytesPerTexel(format)) format = r.formatWhen;
     total += (r.history ? 2 : 1) * imageBytes(format, base, r.fullMipChain ? fullChainLevels(base) : 1);
   }
   return total;

@@ -189,13 +189,15 @@ struct ResourceInfo {
   std::int32_t divideBy;  // a SettingId: the AO extent over that int setting, rounded up; -1: none
   std::span<const Format> formats;  // kind=output: every format it may have (formats=); empty: only `format`
   bool history;  // history=true: two images that trade places every frame; reads see the previous frame's
+  std::int32_t formatWhenVariant;  // format_when=: where this variant is non-zero the image has formatWhen; -1: none
+  Format formatWhen;
 };
 inline constexpr std::array<ResourceInfo, 5> kResources = {{
-  {"src", ResourceKind::Input, Format::Depth, false, true, 1, -1, "Input depth", -1, {}, false},
-  {"extra", ResourceKind::Input, Format::RGBA16F, false, true, 1, 1, "Extra input", -1, {}, false},
-  {"mid", ResourceKind::Image, Format::R32F, true, false, 1, -1, "Intermediate chain", -1, {}, false},
-  {"smooth", ResourceKind::Image, Format::R32F, false, false, 1, -1, "Smoothed intermediate", -1, {}, false},
-  {"dst", ResourceKind::Output, Format::R16F, false, false, 1, -1, "Result", -1, {}, false},
+  {"src", ResourceKind::Input, Format::Depth, false, true, 1, -1, "Input depth", -1, {}, false, -1, Format::Depth},
+  {"extra", ResourceKind::Input, Format::RGBA16F, false, true, 1, 1, "Extra input", -1, {}, false, -1, Format::RGBA16F},
+  {"mid", ResourceKind::Image, Format::R32F, true, false, 1, -1, "Intermediate chain", -1, {}, false, -1, Format::R32F},
+  {"smooth", ResourceKind::Image, Format::R32F, false, false, 1, -1, "Smoothed intermediate", -1, {}, false, -1, Format::R32F},
+  {"dst", ResourceKind::Output, Format::R16F, false, false, 1, -1, "Result", -1, {}, false, -1, Format::R16F},
 }};
 
 // ---- Passes, in execution order, and their compiled variants.

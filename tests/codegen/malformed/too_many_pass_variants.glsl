@@ -1,0 +1,14 @@
+#pragma sao effect bad version=1
+#pragma sao variant A values=[0,1,2,3] "doc"
+#pragma sao variant B values=[0,1,2,3] "doc"
+#pragma sao variant C values=[0,1,2,3] "doc"
+#pragma sao variant D values=[0,1] "a pass listing all four compiles 128 > 64 variants"
+#pragma sao resource src kind=input format=depth "in"
+#pragma sao resource dst kind=output format=r16f "out"
+#pragma sao block P
+layout(std140, binding = 0) uniform P {
+  vec4 a;
+};
+#pragma sao pass main entry=run local=8x8 reads=src writes=dst variants=A,B,C,D "p"
+void run() { imageStore(out_dst, ivec2(0), texelFetch(in_src, ivec2(0), 0) * a); }
+#pragma sao end
