@@ -7,9 +7,10 @@
 // operations and how host code fills the parameter block: docs/effect-math.md.
 //
 // Passes: linear_z (eq. 2 and the z MIP chain, Table 1's rotated grid) -> ao_sample (eq. 3-10 + 2x2
-// reconstruction) -> blur_h -> blur_v (separable bilateral blur). With resolution_divisor d > 1,
-// ao_sample and the blurs run on the viewport over d (rounded up; reduced pixel p covers viewport
-// pixels [p*d, p*d + d)), blur_v_low replaces blur_v and upsample writes the full-size output.
+// reconstruction) -> blur (the separable bilateral blur, both directions in one dispatch) ->
+// output (full resolution: A into the output's format) or, with resolution_divisor d > 1, upsample
+// (ao_sample and the blur ran on the viewport over d, rounded up; reduced pixel p covers viewport
+// pixels [p*d, p*d + d)). Without blur (blur_radius 0) output or upsample reads ao_raw.
 // Camera space is right-handed, the camera looks down -z, so geometry has z < 0; +0.0 in csz marks
 // sky / no geometry.
 
@@ -37,7 +38,7 @@
 #pragma sao setting float temporal_hysteresis default=0.9   range=[0,0.99]                  "Temporal: the history's largest share of a pixel once it holds 1/(1 - h) frames (a running mean up to then, an exponential one after); 0 = this frame only"
 #pragma sao setting float temporal_depth_tolerance default=0.05 range=[0.001,1]             "Temporal: relative z difference |z_history - z| / |z| at which a history texel weighs 0 (linearly down from 1 at 0): the disocclusion test"
 #pragma sao setting float fade_end            default=0.0   range=[0,100000]       unit=m   "Distance fade: camera distance -z from which A = 1, linear in distance from fade_start on; 0 = no fade"
-#pragma sao setting bool  half_intermediates  default=false                                 "rg16f (A, key) intermediates (HALF_INTERMEDIATES): ao_raw, ao_blur_h and ao_low take 4 bytes a texel instead of 8; A and the key z (in about metres) rounded to binary16 (docs/effect-math.md, section 5.7)"
+#pragma sao setting bool  half_intermediates  default=false                                 "rg16f (A, key) intermediates (HALF_INTERMEDIATES): ao_raw and ao_low take 4 bytes a texel instead of 8; A and the key z (in about metres) rounded to binary16 (docs/effect-math.md, section 5.7)"
 // ---------------------------------------------------------------------------------------------
 // Presets: the chain `sao-bench --tune` chose on the Pareto front of time against error vs the
 // converged estimator (c), over the built-in scenes (docs/BENCHMARKS.md, "Tuning"; 2026-12-03, gl,
@@ -58,6 +59,7 @@
 #pragma sao constant int  SAO_MAX_MIP_LEVELS=8 "Most csz MIP levels ever allocated (level 0 and 7 reduced ones); max_mip <= SAO_MAX_MIP_LEVELS-1"
 #pragma sao constant int  SAO_MAX_SAMPLES=64 "Upper bound of samples; the tap loop clamps to it"
 #pragma sao constant int  SAO_MAX_BLUR_RADIUS=8 "Upper bound of blur_radius; the blur loop clamps to it and the block holds Gaussian weights for taps 1..8"
+#pragma sao constant int  SAO_MAX_BLUR_STRIDE=4 "Upper bound of blur_stride (its range's end); the blur's shared tile holds SAO_MAX_BLUR_RADIUS * SAO_MAX_BLUR_STRIDE rows above and below its own"
 #pragma sao constant int  SAO_MAX_RADIUS_PX=65536 "Clamp of the projected radius r' in pixels (eq. 5), so that tap offsets never overflow an int"
 #pragma sao constant uint SAO_PHASE_MUL=1270342730 "Eq. 8 rotation: 2*SAO_PHASE_MUL/2^32 = frac(10/(2*pi)), turning the hash times 10 radians into 2^-32 turns"
 #pragma sao constant int  SAO_DEPTH_MODE_PERSPECTIVE=0 "depth_mode: hardware depth of a perspective projection, z = c0/(d*c1 + c2) (eq. 2)"
@@ -99,8 +101,7 @@
 #pragma sao resource csz       kind=image  format=r32f mips=auto extent=input "Camera-space z MIP chain (z < 0, +0.0 = sky), the depth input's size including the guard band"
 #pragma sao resource csz2      kind=image  format=r32f mips=auto extent=input when=TWO_LAYER "Camera-space z MIP chain of the second layer"
 #pragma sao resource ao_raw    kind=image  format=rg32f format_when=HALF_INTERMEDIATES:rg16f divide_by=resolution_divisor "x: visibility A after the 2x2 reconstruction, y: key = camera-space z times key_scale (+0.0 = sky); the viewport over resolution_divisor"
-#pragma sao resource ao_blur_h kind=image  format=rg32f format_when=HALF_INTERMEDIATES:rg16f divide_by=resolution_divisor "x: A after the horizontal bilateral blur, y: key"
-#pragma sao resource ao_low    kind=image  format=rg32f format_when=HALF_INTERMEDIATES:rg16f divide_by=resolution_divisor "Reduced resolution only: (A, key) after both blurs, the upsample's input"
+#pragma sao resource ao_low    kind=image  format=rg32f format_when=HALF_INTERMEDIATES:rg16f divide_by=resolution_divisor "(A, key) after the bilateral blur, the upsample's input (with blur_radius 0 the upsample reads ao_raw instead)"
 #pragma sao resource history  kind=image  format=rgba32f divide_by=resolution_divisor when=TEMPORAL history=true "Temporal: x the accumulated obscurance sum, y its key z (+0.0 = sky), z the frames it holds (0 = none), w its normal (octahedral, 12 bits a component, as the integer qx*4096 + qy); ao_raw's size, two images that trade places every frame"
 #pragma sao resource ao        kind=output format=r16f formats=[r16f,r8,rgba8,rgba16f] "Final ambient visibility A in [0,1] (1 = unoccluded), linear; r16f unless the caller's output image has another of formats= (OUTPUT_FORMAT); with output_blend multiply, the caller's texels times A"
 
@@ -149,7 +150,7 @@ layout(std140, binding = 0) uniform SaoParams {
     float blur_edge_sharpness;  // [132] bilateral depth weight scale, 1/key units (1/view units times key_to_view)
     int   blur_radius;          // [136] R, taps each side, 0..SAO_MAX_BLUR_RADIUS
     int   blur_stride;          // [140] pixels between blur taps, >= 1
-    ivec2 ao_size;              // [144] the viewport: size of ao (and of ao_raw, ao_blur_h when ao_divisor = 1)
+    ivec2 ao_size;              // [144] the viewport: size of ao (and of ao_raw, ao_low when ao_divisor = 1)
     ivec2 guard;                // [152] guard band: AO pixel p is csz / depth texel p + guard
     ivec2 input_offset;         // [160] texel of depth, depth2 and normals that holds csz texel (0, 0): the region inside a larger texture
     int   ao_divisor;           // [168] resolution_divisor d: reduced AO pixel p stands for viewport pixel min(p*d + d/2, ao_size - 1)
@@ -402,61 +403,100 @@ void sao_ao_main()
 #pragma sao end
 
 // ---------------------------------------------------------------------------------------------
-// Pass 4: horizontal bilateral blur of (A, key).
+// Pass 4: the separable bilateral blur (paper section 2.4), both directions in one dispatch. A work
+// group covers 8 columns x 32 rows (texels=1x4); it blurs the rows those need (its own and
+// blur_radius * blur_stride above and below) horizontally into shared memory, every invocation
+// taking a share, then after the one barrier each invocation blurs its four texels vertically
+// from there. The horizontal results stay float in shared memory (no ao_blur_h image, no second
+// dispatch); each value is the one a horizontal pass over the whole image would give.
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass blur_h entry=sao_blur_h_main local=8x8 reads=ao_raw writes=ao_blur_h variants=HALF_INTERMEDIATES skip_when=blur_radius==0 "Horizontal depth-aware Gaussian blur (float z key); with blur_radius 0 a copy"
-void sao_blur_h_main()
+#pragma sao pass blur entry=sao_blur_main local=8x8 texels=1x4 reads=ao_raw writes=ao_low variants=HALF_INTERMEDIATES skip_when=blur_radius==0 "Depth-aware Gaussian blur, horizontal then vertical in one dispatch through shared memory, into (A, key) for the upsample"
+const int SAO_BLUR_COLS = int(gl_WorkGroupSize.x);
+const int SAO_BLUR_TEXELS_Y = 4;  // texels=1x4
+const int SAO_BLUR_ROWS = int(gl_WorkGroupSize.y) * SAO_BLUR_TEXELS_Y;
+const int SAO_BLUR_HALO = SAO_MAX_BLUR_RADIUS * SAO_MAX_BLUR_STRIDE;
+shared vec2 sao_blur_tile[SAO_BLUR_COLS * (SAO_BLUR_ROWS + 2 * SAO_BLUR_HALO)];  // (A, key) blurred along x
+
+// The vertical blur of tile column `col` at tile row `row` (image row y of `height`): the taps of
+// sao_bilateral_blur along (0, 1), read from the horizontally blurred rows in shared memory.
+vec2 sao_blur_tile_column(int col, int row, int y, int height, int R, int stride)
 {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(p, imageSize(out_ao_blur_h))))
-        return;
-    vec2 r = sao_bilateral_blur(in_ao_raw, p, ivec2(1, 0), blur_radius, blur_stride,
-                                blur_edge_sharpness, blur_weights_1_4, blur_weights_5_8);
+    vec2 centre = sao_blur_tile[row * SAO_BLUR_COLS + col];
+    if (sao_is_sky(centre.y))
+        return vec2(1.0, 0.0);
+    float sum = 0.0;
+    float wsum = 0.0;
+    for (int t = -R; t <= R; ++t) {
+        vec2 tap = centre;
+        if (t != 0) {
+            int qy = y + t * stride;
+            if (qy < 0 || qy >= height)
+                continue;
+            tap = sao_blur_tile[(row + t * stride) * SAO_BLUR_COLS + col];
+            if (sao_is_sky(tap.y))
+                continue;
+        }
+        float w = sao_blur_weight(t, tap.y, centre.y, blur_edge_sharpness, blur_weights_1_4, blur_weights_5_8);
+        sum += w * tap.x;
+        wsum += w;
+    }
+    return vec2(sum / wsum, centre.y);
+}
+
+void sao_blur_main()
+{
+    ivec2 size = textureSize(in_ao_raw, 0);
+    int R = clamp(blur_radius, 0, SAO_MAX_BLUR_RADIUS);
+    int stride = clamp(blur_stride, 1, SAO_MAX_BLUR_STRIDE);
+    int halo = R * stride;
+    ivec2 origin = ivec2(gl_WorkGroupID.xy) * ivec2(SAO_BLUR_COLS, SAO_BLUR_ROWS);
+    int count = SAO_BLUR_COLS * (SAO_BLUR_ROWS + 2 * halo);
+    int n = int(gl_WorkGroupSize.x * gl_WorkGroupSize.y);
+    for (int i = int(gl_LocalInvocationIndex); i < count; i += n) {
+        ivec2 q = origin + ivec2(i % SAO_BLUR_COLS, i / SAO_BLUR_COLS - halo);
+        vec2 h = vec2(1.0, 0.0);  // rows off the image: never read (the vertical taps skip them)
+        if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size)))
+            h = sao_bilateral_blur(in_ao_raw, q, ivec2(1, 0), R, stride, blur_edge_sharpness, blur_weights_1_4,
+                                   blur_weights_5_8);
+        sao_blur_tile[i] = h;
+    }
+    memoryBarrierShared();
+    barrier();  // every invocation reaches it: the size tests come after
+    ivec2 out_size = imageSize(out_ao_low);
+    int col = int(gl_LocalInvocationID.x);
+    for (int k = 0; k < SAO_BLUR_TEXELS_Y; ++k) {
+        int local_row = int(gl_LocalInvocationID.y) + k * int(gl_WorkGroupSize.y);
+        ivec2 p = origin + ivec2(col, local_row);
+        if (any(greaterThanEqual(p, out_size)))
+            continue;
+        vec2 r = sao_blur_tile_column(col, local_row + halo, p.y, size.y, R, stride);
 #if HALF_INTERMEDIATES
-    r = sao_half_texel(r);
+        r = sao_half_texel(r);
 #endif
-    imageStore(out_ao_blur_h, p, vec4(r, 0.0, 0.0));
+        imageStore(out_ao_low, p, vec4(r, 0.0, 0.0));
+    }
 }
 #pragma sao end
 
 // ---------------------------------------------------------------------------------------------
-// Pass 5: vertical bilateral blur; writes the final A.
+// Pass 5 (full resolution only): each pixel's A into the output, rounded in the shader as the
+// output format holds it (sky texels hold A = 1).
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass blur_v entry=sao_blur_v_main local=8x8 reads=ao_blur_h writes=ao variants=OUTPUT_FORMAT skip_when=resolution_divisor>1 alias_when=blur_radius==0:ao_blur_h=ao_raw "Full resolution only: vertical depth-aware Gaussian blur; writes the final visibility A, rounded in the shader as the output format holds it"
-void sao_blur_v_main()
+#pragma sao pass output entry=sao_output_main local=8x8 reads=ao_low writes=ao variants=OUTPUT_FORMAT skip_when=resolution_divisor>1 alias_when=blur_radius==0:ao_low=ao_raw "Full resolution only: A of the blurred (A, key) image (ao_raw without blur) into the output's format"
+void sao_output_main()
 {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(p, imageSize(out_ao))))
+    ivec2 x = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(x, imageSize(out_ao))))
         return;
-    vec2 r = sao_bilateral_blur(in_ao_blur_h, p, ivec2(0, 1), blur_radius, blur_stride,
-                                blur_edge_sharpness, blur_weights_1_4, blur_weights_5_8);
-    SAO_STORE_OUTPUT(p, r.x);
+    SAO_STORE_OUTPUT(x, texelFetch(in_ao_low, x, 0).x);
 }
 #pragma sao end
 
 // ---------------------------------------------------------------------------------------------
-// Pass 6 (reduced resolution only): vertical bilateral blur into the reduced (A, key) image.
+// Pass 6 (reduced resolution only): joint bilateral upsample of (A, key) to the viewport, guided
+// by csz level 0; writes the final A, rounded in the shader as the output format holds it.
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass blur_v_low entry=sao_blur_v_low_main local=8x8 reads=ao_blur_h writes=ao_low variants=HALF_INTERMEDIATES skip_when=resolution_divisor==1 alias_when=blur_radius==0:ao_blur_h=ao_raw "Reduced resolution only: vertical depth-aware Gaussian blur into (A, key z) for the upsample"
-void sao_blur_v_low_main()
-{
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(p, imageSize(out_ao_low))))
-        return;
-    vec2 r = sao_bilateral_blur(in_ao_blur_h, p, ivec2(0, 1), blur_radius, blur_stride,
-                                blur_edge_sharpness, blur_weights_1_4, blur_weights_5_8);
-#if HALF_INTERMEDIATES
-    r = sao_half_texel(r);
-#endif
-    imageStore(out_ao_low, p, vec4(r, 0.0, 0.0));
-}
-#pragma sao end
-
-// ---------------------------------------------------------------------------------------------
-// Pass 7 (reduced resolution only): joint bilateral upsample of (A, key z) to the viewport,
-// guided by csz level 0; writes the final A, rounded in the shader as the output format holds it.
-// ---------------------------------------------------------------------------------------------
-#pragma sao pass upsample entry=sao_upsample_main local=8x8 reads=ao_low,csz writes=ao variants=OUTPUT_FORMAT skip_when=resolution_divisor==1 "Reduced resolution only: depth-aware upsample to the full-resolution output (bilinear x relative-z weights over the 2x2 nearest low texels, else the nearest in z of the 3x3)"
+#pragma sao pass upsample entry=sao_upsample_main local=8x8 reads=ao_low,csz writes=ao variants=OUTPUT_FORMAT skip_when=resolution_divisor==1 alias_when=blur_radius==0:ao_low=ao_raw "Reduced resolution only: depth-aware upsample to the full-resolution output (bilinear x relative-z weights over the 2x2 nearest low texels, else the nearest in z of the 3x3)"
 // The low texels a work group reads, loaded once into shared memory: with d = 2 or 4, the 2x2
 // texels of every pixel and the 3x3 fallback around it lie in the (local / 2 + 2)^2 texels from
 // the group's first q0 on (docs/effect-math.md 6.4).

@@ -397,25 +397,27 @@ T upsample(const Image<T>& low, int x, int y, T z, int d, int fullW, int fullH, 
   return sum / vsum;
 }
 
-// sao_round_to_half (float only: the shader's own rounding).
-inline float roundToHalf(float x) {
-  x = std::clamp(x, 0.0f, 1.0f);
-  if (x == 0.0f) return 0.0f;
+// |x| rounded to the nearest binary16 value, ties away from zero (|x| <= 65504): the values of
+// sao_round_half_magnitude in sao_blur.glsl, by frexp steps. t = |x| / 2^q holds the spacing's
+// multiples; its fraction t - floor(t) is exact, so the tie test is too (floor(t + 0.5) would
+// round t + 0.5 up to 1 for the float just below 2^-25).
+inline float roundHalfMagnitude(float m) {
+  if (m == 0.0f) return m;
   int e = 0;
-  (void)std::frexp(x, &e);       // x = f * 2^e, f in [0.5, 1)
-  const int q = std::max(e - 11, -24);  // log2 of the binary16 spacing at x
-  return std::ldexp(std::floor(std::ldexp(x, -q) + 0.5f), q);
+  (void)std::frexp(m, &e);              // m = f * 2^e, f in [0.5, 1)
+  const int q = std::max(e - 11, -24);  // log2 of the binary16 spacing at m
+  const float t = std::ldexp(m, -q);
+  const float f = std::floor(t);
+  return std::ldexp(t - f >= 0.5f ? f + 1.0f : f, q);
 }
 
-// sao_round_to_half_signed of sao_blur.glsl: roundToHalf's steps on |x|, sign kept, not clamped.
+// sao_round_to_half (float only: the shader's own rounding): x clamped to [0, 1], then rounded.
+inline float roundToHalf(float x) { return roundHalfMagnitude(std::clamp(x, 0.0f, 1.0f)); }
+
+// sao_round_to_half_signed of sao_blur.glsl: |x| rounded, sign kept (±0 too), not clamped.
 inline float roundToHalfSigned(float x) {
-  const float m = std::fabs(x);
-  if (m == 0.0f) return x;
-  int e = 0;
-  (void)std::frexp(m, &e);
-  const int q = std::max(e - 11, -24);
-  const float r = std::ldexp(std::floor(std::ldexp(m, -q) + 0.5f), q);
-  return x < 0.0f ? -r : r;
+  const float r = roundHalfMagnitude(std::fabs(x));
+  return x < 0.0f ? -r : (x == 0.0f ? x : r);
 }
 
 // sao_half_texel of sao_blur.glsl (HALF_INTERMEDIATES): the (A, key) texel an rg16f image holds;

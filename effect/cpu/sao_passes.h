@@ -201,7 +201,7 @@ class AoSampleInvocation {
   const bool normalsSupplied_, twoLayer_, zHierarchy_, motionVectors_;
 };
 
-// An (A, key) intermediate's texel (ao_raw, ao_blur_h, ao_low): with HALF_INTERMEDIATES as the rg16f
+// An (A, key) intermediate's texel (ao_raw, ao_low): with HALF_INTERMEDIATES as the rg16f
 // image holds it (sao_half_texel: rounded in Float, kept in Double).
 template <typename T>
 void storeAKey(const PassContext<T>& ctx, Image<T>& img, int x, int y, T a, T key) {
@@ -314,30 +314,46 @@ void storeOutput(const PassContext<T>& ctx, Image<T>& dst, int x, int y, T a) {
     if ((ctx.P.output_mask >> c) & 1) dst.at(x, y, c) = a;
 }
 
-// Passes blur_h (final = false: writes (A, key)) and blur_v (final = true: writes A through
-// storeOutput, rounded as the output's format holds it in Float precision, unrounded in Double). The (A, key) image
-// read is the dispatch's one read binding, aliases resolved (blur_v reads ao_raw when blur_h is
-// skipped); the image written is its one write binding.
+// Pass blur: the bilateral blur along x into a float image (the shader's shared-memory rows, never
+// rounded), then along y from it into ao_low through storeAKey (rg16f with HALF_INTERMEDIATES).
 template <typename T>
-Status blurPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings, int dx,
-                int dy, bool final) {
-  const ScheduledBinding* in = nthBinding(bindings, false, 0);
-  const ScheduledBinding* out = nthBinding(bindings, true, 0);
-  if (in == nullptr || out == nullptr) return passError(d, "needs a read and a write binding");
+Status blurPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
+  const ScheduledBinding* in = binding(d, bindings, gen::ResourceId::ao_raw, false);
+  const ScheduledBinding* out = binding(d, bindings, gen::ResourceId::ao_low, true);
+  if (in == nullptr) return missingBinding(d, gen::ResourceId::ao_raw, false);
+  if (out == nullptr) return missingBinding(d, gen::ResourceId::ao_low, true);
   const Image<T>& src = ctx.image(*in);
   Image<T>& dst = ctx.image(*out);
-  if (src.ch != 2 || dst.w != src.w || dst.h != src.h || dst.ch < (final ? 1 : 2))
-    return passError(d, "needs an (A, key) image and an output of the same extent");
+  if (src.ch != 2 || dst.ch != 2 || dst.w != src.w || dst.h != src.h)
+    return passError(d, "needs (A, key) images of one extent");
   const int W = src.w, H = src.h;
+  Image<T> rows(W, H, 2);
+  parallelFor(H, ctx.threads, [&](int y) {
+    for (int x = 0; x < W; ++x) bilateralBlur(src, x, y, 1, 0, ctx.P, rows.at(x, y, 0), rows.at(x, y, 1));
+  });
   parallelFor(H, ctx.threads, [&](int y) {
     for (int x = 0; x < W; ++x) {
       T a, key;
-      bilateralBlur(src, x, y, dx, dy, ctx.P, a, key);
-      if (final)
-        storeOutput(ctx, dst, x, y, a);
-      else
-        storeAKey(ctx, dst, x, y, a, key);
+      bilateralBlur(rows, x, y, 0, 1, ctx.P, a, key);
+      storeAKey(ctx, dst, x, y, a, key);
     }
+  });
+  return Status::success();
+}
+
+// Pass output (full resolution): each pixel's A of the (A, key) image it reads (ao_low, or ao_raw
+// without blur) into the output through storeOutput.
+template <typename T>
+Status outputPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
+  const ScheduledBinding* in = binding(d, bindings, gen::ResourceId::ao_low, false);
+  const ScheduledBinding* out = binding(d, bindings, gen::ResourceId::ao, true);
+  if (in == nullptr) return missingBinding(d, gen::ResourceId::ao_low, false);
+  if (out == nullptr) return missingBinding(d, gen::ResourceId::ao, true);
+  const Image<T>& src = ctx.image(*in);
+  Image<T>& dst = ctx.image(*out);
+  if (src.ch != 2 || src.w != dst.w || src.h != dst.h) return passError(d, "needs an (A, key) image of the output's extent");
+  parallelFor(dst.h, ctx.threads, [&](int y) {
+    for (int x = 0; x < dst.w; ++x) storeOutput(ctx, dst, x, y, src.at(x, y, 0));
   });
   return Status::success();
 }
@@ -383,9 +399,8 @@ Status runSaoPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<con
     case gen::PassId::linear_z: return detail::linearZPass(ctx, d, bindings, false);
     case gen::PassId::linear_z2: return detail::linearZPass(ctx, d, bindings, true);
     case gen::PassId::ao_sample: return detail::aoSamplePass(ctx, d, bindings);
-    case gen::PassId::blur_h: return detail::blurPass(ctx, d, bindings, 1, 0, false);
-    case gen::PassId::blur_v: return detail::blurPass(ctx, d, bindings, 0, 1, true);
-    case gen::PassId::blur_v_low: return detail::blurPass(ctx, d, bindings, 0, 1, false);
+    case gen::PassId::blur: return detail::blurPass(ctx, d, bindings);
+    case gen::PassId::output: return detail::outputPass(ctx, d, bindings);
     case gen::PassId::upsample: return detail::upsamplePass(ctx, d, bindings);
     default:
       return Status::error(StatusCode::InvalidInput, "the plan holds pass '" + std::string(gen::pass(d.pass).name) +

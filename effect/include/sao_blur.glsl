@@ -1,5 +1,5 @@
 // sao_blur.glsl -- the separable depth-aware (bilateral) blur (SAO paper section 2.4) with a
-// float z key. Library code: depends on sao_depth.glsl. Math: docs/effect-math.md, "blur_h / blur_v".
+// float z key. Library code: depends on sao_depth.glsl. Math: docs/effect-math.md, "6. Pass blur".
 #ifndef SAO_BLUR_GLSL
 #define SAO_BLUR_GLSL
 
@@ -11,6 +11,12 @@ float sao_blur_gauss(int t, vec4 w_1_4, vec4 w_5_8)
     if (a == 0)
         return 1.0;
     return (a <= 4) ? w_1_4[clamp(a - 1, 0, 3)] : w_5_8[clamp(a - 5, 0, 3)];
+}
+
+// A tap's weight: gauss(t) * max(0, 1 - sharpness * |key - centre key|) (blur's one formula).
+float sao_blur_weight(int t, float key, float centre_key, float sharpness, vec4 w_1_4, vec4 w_5_8)
+{
+    return sao_blur_gauss(t, w_1_4, w_5_8) * max(0.0, 1.0 - sharpness * abs(key - centre_key));
 }
 
 // Bilateral 1D blur of src (.x = A, .y = key z) at texel p along dir ((1,0) or (0,1)):
@@ -36,40 +42,44 @@ vec2 sao_bilateral_blur(sampler2D src, ivec2 p, ivec2 dir, int radius_taps, int 
             if (sao_is_sky(tap.y))
                 continue;
         }
-        float w = sao_blur_gauss(t, w_1_4, w_5_8) * max(0.0, 1.0 - sharpness * abs(tap.y - centre.y));
+        float w = sao_blur_weight(t, tap.y, centre.y, sharpness, w_1_4, w_5_8);
         sum += w * tap.x;
         wsum += w;
     }
     return vec2(sum / wsum, centre.y);
 }
 
-// x clamped to [0, 1] and rounded to the nearest binary16 value (ties away from zero) with
-// operations that are exact on every IEEE GPU (frexp, ldexp, a multiply by a power of two,
-// floor): the r16f store that follows then converts without rounding, so the stored bits do
-// not depend on the driver's float-to-half rounding (llvmpipe truncates, others round).
-float sao_round_to_half(float x)
+// |x| rounded to the nearest binary16 value, ties away from zero, for |x| <= 65504, with integer
+// and power-of-two operations that are exact on every IEEE GPU: the r16f store that follows then
+// converts without rounding, so the stored bits do not depend on the driver's float-to-half
+// rounding (llvmpipe truncates, others round). Normal binary16 values keep 10 of binary32's 23
+// mantissa bits: adding half of the 13 dropped bits' weight and clearing them rounds half up (a
+// carry moves into the exponent); below 2^-14 the spacing is 2^-24, and t - floor(t) is exact, so
+// the tie test is (floor(t + 0.5) would round up the float just below 2^-25). The same values as
+// the CPU reference's frexp steps (roundHalfMagnitude; docs/effect-math.md 6.3), at a fraction of
+// their cost on a CPU rasterizer.
+float sao_round_half_magnitude(float m)
 {
-    x = clamp(x, 0.0, 1.0);
-    if (x == 0.0)
-        return 0.0;
-    int e;
-    frexp(x, e);                  // x = f * 2^e, f in [0.5, 1)
-    int q = max(e - 11, -24);     // log2 of the binary16 spacing at x
-    return ldexp(floor(ldexp(x, -q) + 0.5), q);
+    if (m < 0.00006103515625) {  // 2^-14: binary16's subnormals
+        float t = m * 16777216.0;  // exact: a power of two
+        float f = floor(t);
+        return (t - f >= 0.5 ? f + 1.0 : f) * 5.9604644775390625e-8;
+    }
+    return uintBitsToFloat((floatBitsToUint(m) + 0x1000u) & 0xFFFFE000u);
 }
 
-// x rounded to the nearest binary16 value (ties away from zero), of either sign and not clamped:
-// sao_round_to_half's exact steps on |x|, for |x| <= 65504.
+// x clamped to [0, 1] and rounded to the nearest binary16 value (ties away from zero).
+float sao_round_to_half(float x)
+{
+    return sao_round_half_magnitude(clamp(x, 0.0, 1.0));
+}
+
+// x rounded to the nearest binary16 value (ties away from zero), of either sign and not clamped,
+// for |x| <= 65504.
 float sao_round_to_half_signed(float x)
 {
-    float m = abs(x);
-    if (m == 0.0)
-        return x;
-    int e;
-    frexp(m, e);
-    int q = max(e - 11, -24);
-    float r = ldexp(floor(ldexp(m, -q) + 0.5), q);
-    return x < 0.0 ? -r : r;
+    float r = sao_round_half_magnitude(abs(x));
+    return x < 0.0 ? -r : (x == 0.0 ? x : r);
 }
 
 // The (A, key) texel as an rg16f intermediate holds it (HALF_INTERMEDIATES): A rounded to

@@ -104,6 +104,12 @@ def tables(folder):
                         [[r["backend"], f"{r['width']}x{r['height']}", f(r["linear_z_ms"], 2), f(r["mips_ms"], 2),
                           f(r["ao_sample_ms"]), f(r["blur_h_ms"]), f(r["blur_v_ms"]), f(r["total_ms"]),
                           f(r["ns_per_pixel"]), r["timing_method"]] for r in res]))
+        elif "blur_ms" in res[0]:  # one blur pass, and the upsample at every divisor
+            print(table(["backend", "size", "linear_z + chain", "ao_sample", "blur", "output", "upsample", "total",
+                         "ns/pixel", "timing"],
+                        [[r["backend"], f"{r['width']}x{r['height']}", f(r["linear_z_ms"], 2),
+                          f(r["ao_sample_ms"]), f(r["blur_ms"]), f(r.get("output_ms", "")), f(r["upsample_ms"]),
+                          f(r["total_ms"]), f(r["ns_per_pixel"]), r["timing_method"]] for r in res]))
         else:  # linear_z writes the whole chain; blur_v at full resolution, blur_v_low and upsample at reduced
             print(table(["backend", "size", "linear_z + chain", "ao_sample", "blur_h", "blur_v", "blur_v_low",
                          "upsample", "total", "ns/pixel", "timing"],
@@ -183,6 +189,7 @@ def tables(folder):
     times = sec("intermediates_time")
     if times:
         t = {(r["backend"], r["preset"], r["variant"]): r for r in times}
+        blur = "blur_ms" if "blur_ms" in times[0] else "blur_h_ms"  # the one blur pass, or its first half
         r0 = times[0]
         print(f"\n### Intermediates: time per preset ({r0['scene']}, {r0['width']}x{r0['height']}, median ms; "
               "a preset's two formats measured one after another)\n")
@@ -193,9 +200,9 @@ def tables(folder):
                 continue
             out_rows.append([b, p, f(a["total_ms"]), f(h["total_ms"]),
                              f"{float(h['total_ms']) / float(a['total_ms']):.2f}", f(a["ao_sample_ms"]),
-                             f(h["ao_sample_ms"]), f(a["blur_h_ms"]), f(h["blur_h_ms"])])
+                             f(h["ao_sample_ms"]), f(a[blur]), f(h[blur])])
         print(table(["backend", "preset", "total rg32f", "total rg16f", "rg16f ÷ rg32f", "ao_sample rg32f",
-                     "ao_sample rg16f", "blur_h rg32f", "blur_h rg16f"], out_rows))
+                     "ao_sample rg16f", f"{blur[:-3]} rg32f", f"{blur[:-3]} rg16f"], out_rows))
 
     two = sec("two_layer")
     if two:

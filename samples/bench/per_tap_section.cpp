@@ -159,7 +159,7 @@ Status perTapSection(const PerTapOptions& o, samples::BackendRunner* gl, SceneCa
   if (o.sampleCounts.size() < 2) return Status::error(StatusCode::InvalidInput, "needs at least two sample counts");
   Prepared& p = cache.prepare(o.scene, o.size.width, o.size.height);
   Settings base = presetSettings(Preset::Medium);
-  base.blur_radius = 0;  // ao_sample alone matters; blur_v is then a copy
+  base.blur_radius = 0;  // ao_sample alone matters: no blur pass, the output pass copies
   base.resolution_divisor = 1;
 
   // The effect's own csz chain, so that the rungs read exactly its z.

@@ -83,7 +83,7 @@ void writeCsv(const std::string& path, const std::vector<Row>& rows) {
   for (const char* prefix : {"ao_", "obscurance_", "converged_"})
     for (const char* c : kErrorColumns) f << "," << prefix << c;
   f << ",converged_blotch_rmse,converged_highfreq_rmse,converged_silhouette_rmse,model_rmse_vs_ao,"
-       "model_rmse_vs_obscurance,error_map,resolution_divisor,blur_v_low_ms,upsample_ms\n";
+       "model_rmse_vs_obscurance,error_map,resolution_divisor,blur_v_low_ms,upsample_ms,blur_ms,output_ms\n";
   for (const auto& r : rows) {
     const auto& m = r.m;
     f << csv(r.section) << "," << csv(r.scene) << "," << csv(r.backend) << "," << csv(r.preset) << ","
@@ -97,7 +97,9 @@ void writeCsv(const std::string& path, const std::vector<Row>& rows) {
     csvErrors(f, m.obscuranceError);
     csvErrors(f, m.convergedError);
     csvConverged(f, r);
-    f << "," << r.settings.resolution_divisor << "," << passMs(m, "blur_v_low") << "," << passMs(m, "upsample") << "\n";
+    // blur_h_ms, blur_v_ms and blur_v_low_ms: the passes before the blur ran in one (empty since).
+    f << "," << r.settings.resolution_divisor << "," << passMs(m, "blur_v_low") << "," << passMs(m, "upsample") << ","
+      << passMs(m, "blur") << "," << passMs(m, "output") << "\n";
   }
 }
 

@@ -29,12 +29,12 @@ grep -q '^input: depth file depth.exr' out/summary.txt || problem "summary.txt i
 # intermediates; the CPU's here).
 "$render" --backend cpu --size 64x36 --scene crease --dump-passes passes --out out >/dev/null || problem "dump run failed"
 [ -s passes/csz_level0.exr ] && [ -s passes/sao-render-outputs.txt ] || problem "no passes/csz_level0.exr or manifest"
-# The defaults' half resolution: the upsample's input ao_low is among the intermediates; not at full.
-[ -s passes/ao_low.exr ] || problem "no passes/ao_low.exr at the defaults' half resolution"
-"$render" --backend cpu --size 64x36 --scene crease --set use_z_hierarchy=0 --set resolution_divisor=1 --dump-passes passes \
+# The blur's image ao_low (the upsample's input) is among the intermediates; not without blur.
+[ -s passes/ao_low.exr ] || problem "no passes/ao_low.exr with the defaults' blur"
+"$render" --backend cpu --size 64x36 --scene crease --set use_z_hierarchy=0 --set blur_radius=0 --dump-passes passes \
   --out out >/dev/null || problem "second dump run failed"
 [ -e passes/csz_level1.exr ] && problem "a stale passes/csz_level1.exr survived a run without MIP levels"
-[ -e passes/ao_low.exr ] && problem "a stale passes/ao_low.exr survived a full-resolution run"
+[ -e passes/ao_low.exr ] && problem "a stale passes/ao_low.exr survived a run without blur"
 
 # A file the user put into the folder: refused before rendering, nothing deleted or changed.
 before=$(fingerprint out)

@@ -2,9 +2,9 @@
 # sao-bench --sections divisor, quick (the high preset at resolution_divisor 1 and 2, two scenes,
 # CPU reference): results.csv has one error row per scene and divisor (section "divisor", with
 # its RMSE vs (c), silhouette error and error map) and one time row per divisor ("divisor_time");
-# every row's resolution_divisor column is the divisor its variant names; the half-resolution rows
-# ran blur_v_low and the upsample and not blur_v, the full-resolution rows the opposite; the
-# half-resolution plan holds fewer bytes; and the section is not part of the default run.
+# every row's resolution_divisor column is the divisor its variant names; every row ran the blur,
+# the half-resolution rows the upsample and not the output pass, the full-resolution rows the
+# opposite; the half-resolution plan holds fewer bytes; and the section is not part of the default run.
 # usage: divisor_smoke.sh SAO_BENCH OUT_DIR
 set -eu
 bench=$1
@@ -17,18 +17,18 @@ die() { echo "divisor smoke: $*" >&2; exit 1; }
 csv=$out/results.csv
 test -s "$csv" || die "missing results.csv"
 col() { head -1 "$csv" | tr ',' '\n' | grep -nx "$1" | cut -d: -f1; }
-for c in resolution_divisor blur_v_low_ms upsample_ms blur_v_ms plan_bytes converged_rmse_raw converged_silhouette_rmse error_map; do
+for c in resolution_divisor blur_ms output_ms upsample_ms plan_bytes converged_rmse_raw converged_silhouette_rmse error_map; do
   test -n "$(col $c)" || die "results.csv has no column $c"
 done
 [ "$(awk -F, '$1 == "divisor"' "$csv" | wc -l)" -eq 4 ] || die "expected 4 divisor rows (2 scenes x 2 divisors)"
 [ "$(awk -F, '$1 == "divisor_time"' "$csv" | wc -l)" -eq 2 ] || die "expected 2 divisor_time rows"
 [ "$(awk -F, 'NR > 1 && !($1 ~ /^divisor/)' "$csv" | wc -l)" -eq 0 ] || die "--sections divisor ran other sections"
 awk -F, -v v="$(col variant)" -v d="$(col resolution_divisor)" -v p="$(col preset)" \
-    -v up="$(col upsample_ms)" -v low="$(col blur_v_low_ms)" -v bv="$(col blur_v_ms)" '
+    -v up="$(col upsample_ms)" -v blur="$(col blur_ms)" -v o="$(col output_ms)" '
   NR > 1 { n++
-    if ($v != "divisor=" $d || $p != "high") bad = 1
-    if ($d == 2 && !($up > 0 && $low > 0 && $bv == 0)) bad = 1
-    if ($d == 1 && !($up == 0 && $low == 0 && $bv > 0)) bad = 1 }
+    if ($v != "divisor=" $d || $p != "high" || !($blur > 0)) bad = 1
+    if ($d == 2 && !($up > 0 && $o == 0)) bad = 1
+    if ($d == 1 && !($up == 0 && $o > 0)) bad = 1 }
   END { exit bad || n != 6 }' "$csv" || die "a row's divisor, preset or passes are not what its variant says: $(cat "$csv")"
 # The error rows: RMSE vs (c) in (0, 0.2), a silhouette error (sphere-plane) or n/a (crease), a PNG map.
 awk -F, -v r="$(col converged_rmse_raw)" -v s="$(col converged_silhouette_rmse)" '

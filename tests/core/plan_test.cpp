@@ -29,7 +29,7 @@ TEST(Plan, DefaultSceneAt720p) {
   // r' max = r S' / n = 1 * 623.5 / 0.1 = 6235 px -> floor(log2) = 12; minus log q' 3 = 9,
   // capped by SAO_MAX_MIP_LEVELS - 1 = 7 -> 8 levels.
   EXPECT_EQ(p.cszLevels, 8u);
-  EXPECT_EQ(p.passes.size(), 4u) << "linear_z, ao_sample, blur_h, blur_v";
+  EXPECT_EQ(p.passes.size(), 4u) << "linear_z, ao_sample, blur, output";
   EXPECT_EQ(p.passes[0].pass, PassId::linear_z);
   EXPECT_EQ(p.passes[0].dispatchCount, 1u) << "linear_z writes the whole chain in one dispatch";
   EXPECT_FALSE(hasPass(p, PassId::linear_z2)) << "no second layer given";
@@ -38,17 +38,17 @@ TEST(Plan, DefaultSceneAt720p) {
   EXPECT_EQ(csz->mipLevels, 8u);
   EXPECT_EQ(p.image(ResourceId::csz2), nullptr) << "no second layer given";
   // Bytes by hand: csz r32f, levels 1280x720 ... 10x5 = 1,228,750 texels x 4 = 4,915,000;
-  // ao_raw and ao_blur_h rg32f 1280x720 x 8 = 7,372,800 each; ao r16f x 2 = 1,843,200.
+  // ao_raw and ao_low rg32f 1280x720 x 8 = 7,372,800 each; ao r16f x 2 = 1,843,200.
   EXPECT_EQ(csz->bytes, 4915000u);
   EXPECT_EQ(p.image(ResourceId::ao_raw)->bytes, 7372800u);
-  EXPECT_EQ(p.image(ResourceId::ao_blur_h)->bytes, 7372800u);
+  EXPECT_EQ(p.image(ResourceId::ao_low)->bytes, 7372800u);
   EXPECT_EQ(p.image(ResourceId::ao)->bytes, 1843200u);
   EXPECT_EQ(p.totalBytes, 21503800u);
   // Without a plan: both layers' chains down to 1x1 (11 levels, 1,228,763 texels each) and every
-  // image at its largest (ao_low, which only reduced resolution uses, undivided; the temporal
-  // history, rgba32f in two copies): 2 x 4,915,052 + 3 x 7,372,800 + 1,843,200 + 2 x 14,745,600.
+  // image at its largest (ao_raw and ao_low undivided and rg32f; the temporal history, rgba32f in
+  // two copies): 2 x 4,915,052 + 2 x 7,372,800 + 1,843,200 + 2 x 14,745,600.
   const std::uint64_t full = sao::fullAllocationBytes(camera720(), {});
-  EXPECT_EQ(full, 63282904u);
+  EXPECT_EQ(full, 55910104u);
   std::printf("default scene 1280x720: %s", p.describe().c_str());
   std::printf("full allocation: %llu bytes (plan %.1f%% of it)\n", static_cast<unsigned long long>(full),
               100.0 * double(p.totalBytes) / double(full));
@@ -57,7 +57,7 @@ TEST(Plan, DefaultSceneAt720p) {
 TEST(Plan, SmallRadiusWithoutBlurAllocatesLittle) {
   sao::Settings s = sao::test::untunedDefaults();
   s.radius = 0.01f;  // r' max 62 px: 3 csz levels
-  s.blur_radius = 0;  // no blur_h, no ao_blur_h
+  s.blur_radius = 0;  // no blur, no ao_low
   sao::Plan p;
   ASSERT_TRUE(sao::plan(s, camera720(), {}, p).ok());
   EXPECT_EQ(p.cszLevels, 3u);
@@ -115,16 +115,16 @@ TEST(Plan, NoHierarchyMeansOneLevel) {
   EXPECT_EQ(p.variants[static_cast<std::size_t>(sao::gen::VariantId::Z_HIERARCHY)], 0);
 }
 
-TEST(Plan, BlurZeroDropsTheHorizontalPassAndItsImage) {
+TEST(Plan, BlurZeroDropsTheBlurPassAndItsImage) {
   sao::Settings s = sao::test::untunedDefaults();
   s.blur_radius = 0;
   sao::Plan p;
   ASSERT_TRUE(sao::plan(s, camera720(), {}, p).ok());
-  EXPECT_FALSE(hasPass(p, PassId::blur_h));
-  ASSERT_TRUE(hasPass(p, PassId::blur_v));
-  EXPECT_EQ(p.image(ResourceId::ao_blur_h), nullptr);
+  EXPECT_FALSE(hasPass(p, PassId::blur));
+  ASSERT_TRUE(hasPass(p, PassId::output)) << "full resolution: the output pass writes ao";
+  EXPECT_EQ(p.image(ResourceId::ao_low), nullptr);
   const auto& last = p.passes.back();
-  EXPECT_EQ(p.resolve(last, ResourceId::ao_blur_h), ResourceId::ao_raw);
+  EXPECT_EQ(p.resolve(last, ResourceId::ao_low), ResourceId::ao_raw);
 }
 
 TEST(Plan, GuardBandSizesOnlyTheDepthSideImages) {

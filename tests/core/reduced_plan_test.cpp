@@ -1,5 +1,5 @@
-// resolution_divisor in plan() and makeSchedule(): at 1 the plan is the full-resolution one (no
-// blur_v_low, no upsample, no ao_low); at 2 and 4 ao_sample and the blurs run on the viewport over
+// resolution_divisor in plan() and makeSchedule(): at 1 the output pass copies A into the output,
+// at 2 and 4 the upsample writes it instead; at 2 and 4 ao_sample and the blur run on the viewport over
 // the divisor rounded up (641x359 -> 321x180, 161x90), upsample writes the full-size output, and
 // the plan's bytes count the reduced images at their reduced size.
 #include <gtest/gtest.h>
@@ -44,9 +44,9 @@ struct Expected {
 TEST(Plan, ResolutionDivisorSizesTheReducedImagesAndTheirBytes) {
   const sao::Camera camera = camera641(3);  // csz 647x365 whatever the divisor
   const Expected cases[] = {
-      {1, "linear_z ao_sample blur_h blur_v", {641, 359}},
-      {2, "linear_z ao_sample blur_h blur_v_low upsample", {321, 180}},
-      {4, "linear_z ao_sample blur_h blur_v_low upsample", {161, 90}},
+      {1, "linear_z ao_sample blur output", {641, 359}},
+      {2, "linear_z ao_sample blur upsample", {321, 180}},
+      {4, "linear_z ao_sample blur upsample", {161, 90}},
   };
   std::uint64_t cszBytes = 0;
   for (const Expected& c : cases) {
@@ -59,7 +59,7 @@ TEST(Plan, ResolutionDivisorSizesTheReducedImagesAndTheirBytes) {
     EXPECT_EQ(p.aoExtent, (sao::Extent{641, 359}));
     EXPECT_EQ(extentOf(p, ResourceId::ao), (sao::Extent{641, 359})) << "the output is always the viewport";
     EXPECT_EQ(extentOf(p, ResourceId::ao_raw), c.reduced) << c.divisor;
-    EXPECT_EQ(extentOf(p, ResourceId::ao_blur_h), c.reduced) << c.divisor;
+    EXPECT_EQ(extentOf(p, ResourceId::ao_low), c.reduced) << c.divisor;
     const sao::PlannedImage* csz = p.image(ResourceId::csz);
     ASSERT_NE(csz, nullptr);
     EXPECT_EQ(csz->extent, (sao::Extent{647, 365})) << "upsample reads the full-resolution z";
@@ -67,16 +67,10 @@ TEST(Plan, ResolutionDivisorSizesTheReducedImagesAndTheirBytes) {
     EXPECT_EQ(csz->bytes, cszBytes) << "the z hierarchy does not depend on the divisor";
     const std::uint64_t reducedRg32f = std::uint64_t(c.reduced.width) * c.reduced.height * 8;
     const std::uint64_t outputR16f = 641ull * 359 * 2;
-    if (c.divisor == 1) {
-      EXPECT_EQ(p.image(ResourceId::ao_low), nullptr) << "full resolution needs no ao_low";
-      EXPECT_EQ(p.totalBytes, cszBytes + 2 * reducedRg32f + outputR16f);
-    } else {
-      EXPECT_EQ(extentOf(p, ResourceId::ao_low), c.reduced) << c.divisor;
-      EXPECT_EQ(p.totalBytes, cszBytes + 3 * reducedRg32f + outputR16f) << c.divisor;
-    }
+    EXPECT_EQ(p.totalBytes, cszBytes + 2 * reducedRg32f + outputR16f) << "ao_raw, ao_low, ao; " << c.divisor;
   }
   // By hand at 641x359: full 2 x 1,840,952 + 460,238 = 4,142,142 bytes besides csz; half
-  // 3 x 462,240 + 460,238 = 1,846,958; quarter 3 x 115,920 + 460,238 = 807,998.
+  // 2 x 462,240 + 460,238 = 1,384,718; quarter 2 x 115,920 + 460,238 = 692,078.
   sao::Settings half = sao::test::untunedDefaults(), quarter = sao::test::untunedDefaults();
   half.resolution_divisor = 2;
   quarter.resolution_divisor = 4;
@@ -85,8 +79,8 @@ TEST(Plan, ResolutionDivisorSizesTheReducedImagesAndTheirBytes) {
   ASSERT_TRUE(sao::plan(half, camera, {}, h).ok());
   ASSERT_TRUE(sao::plan(quarter, camera, {}, q).ok());
   EXPECT_EQ(full.totalBytes - cszBytes, 4142142u);
-  EXPECT_EQ(h.totalBytes - cszBytes, 1846958u);
-  EXPECT_EQ(q.totalBytes - cszBytes, 807998u);
+  EXPECT_EQ(h.totalBytes - cszBytes, 1384718u);
+  EXPECT_EQ(q.totalBytes - cszBytes, 692078u);
 }
 
 TEST(Plan, ResolutionDivisorThreeIsRefused) {
@@ -98,21 +92,24 @@ TEST(Plan, ResolutionDivisorThreeIsRefused) {
   EXPECT_EQ(st.message, "setting 'resolution_divisor' = 3 is not one of its allowed values {1, 2, 4}");
 }
 
-// Without blur the reduced path keeps its shape: blur_v_low reads ao_raw in place of the skipped
-// blur_h's image and writes ao_low.
-TEST(Plan, ReducedResolutionWithoutBlurAliasesTheBlurInput) {
-  sao::Settings s = sao::test::untunedDefaults();
-  s.resolution_divisor = 2;
-  s.blur_radius = 0;
-  sao::Plan p;
-  ASSERT_TRUE(sao::plan(s, camera641(0), {}, p).ok());
-  EXPECT_EQ(passNames(p), "linear_z ao_sample blur_v_low upsample");
-  EXPECT_EQ(p.image(ResourceId::ao_blur_h), nullptr);
-  for (const auto& x : p.passes)
-    if (x.pass == PassId::blur_v_low) EXPECT_EQ(p.resolve(x, ResourceId::ao_blur_h), ResourceId::ao_raw);
+// Without blur the blur pass and ao_low go: the output pass (divisor 1) or upsample reads ao_raw in
+// place of the skipped blur's image (three dispatches).
+TEST(Plan, WithoutBlurTheUpsampleReadsTheRawImage) {
+  for (int d : {1, 2, 4}) {
+    sao::Settings s = sao::test::untunedDefaults();
+    s.resolution_divisor = d;
+    s.blur_radius = 0;
+    sao::Plan p;
+    ASSERT_TRUE(sao::plan(s, camera641(0), {}, p).ok());
+    EXPECT_EQ(passNames(p), d == 1 ? "linear_z ao_sample output" : "linear_z ao_sample upsample") << d;
+    EXPECT_EQ(p.image(ResourceId::ao_low), nullptr) << d;
+    const auto& last = p.passes.back();
+    EXPECT_EQ(p.resolve(last, ResourceId::ao_low), ResourceId::ao_raw) << d;
+  }
 }
 
-// The dispatches cover the reduced extent up to blur_v_low and the viewport in upsample, which
+// The dispatches cover the reduced extent up to the blur (8 x 32 texels a group: texels=1x4) and
+// the viewport in upsample, which
 // waits for ao_low (and csz, already visible since ao_sample read it).
 TEST(Schedule, ReducedResolutionDispatchSizes) {
   sao::Settings s = sao::test::untunedDefaults();
@@ -123,9 +120,9 @@ TEST(Schedule, ReducedResolutionDispatchSizes) {
   std::printf("%s", sch.describe().c_str());
   bool sawUpsample = false;
   for (const sao::ScheduledDispatch& d : sch.dispatches) {
-    if (d.pass == PassId::ao_sample || d.pass == PassId::blur_h || d.pass == PassId::blur_v_low) {
+    if (d.pass == PassId::ao_sample || d.pass == PassId::blur) {
       EXPECT_EQ(d.groupsX, 21u) << sao::gen::pass(d.pass).name << ": ceil(161 / 8)";
-      EXPECT_EQ(d.groupsY, 12u) << sao::gen::pass(d.pass).name << ": ceil(90 / 8)";
+      EXPECT_EQ(d.groupsY, d.pass == PassId::blur ? 3u : 12u) << sao::gen::pass(d.pass).name << ": ceil(90 / 32), ceil(90 / 8)";
     }
     if (d.pass != PassId::upsample) continue;
     sawUpsample = true;

@@ -73,13 +73,15 @@ TEST(Schedule, DefaultSettings) {
   EXPECT_EQ(s.hazardsBefore(ao)[0].baseLevel, 0u);
   EXPECT_EQ(s.hazardsBefore(ao)[0].levelCount, L);
 
-  // Each blur waits for the image the previous dispatch wrote.
-  const auto& bh = s.dispatches[2];
-  const auto& bv = s.dispatches[3];
-  ASSERT_EQ(bh.hazardCount, 1u);
-  EXPECT_EQ(s.hazardsBefore(bh)[0].resource, ResourceId::ao_raw);
-  ASSERT_EQ(bv.hazardCount, 1u);
-  EXPECT_EQ(s.hazardsBefore(bv)[0].resource, ResourceId::ao_blur_h);
+  // The blur and the output pass each wait for the image the previous dispatch wrote.
+  const auto& blur = s.dispatches[2];
+  const auto& up = s.dispatches[3];
+  EXPECT_EQ(blur.pass, PassId::blur);
+  EXPECT_EQ(up.pass, PassId::output);
+  ASSERT_EQ(blur.hazardCount, 1u);
+  EXPECT_EQ(s.hazardsBefore(blur)[0].resource, ResourceId::ao_raw);
+  ASSERT_EQ(up.hazardCount, 1u);
+  EXPECT_EQ(s.hazardsBefore(up)[0].resource, ResourceId::ao_low);
 
   // Entry: the caller's depth, then every written image against the previous frame. Exit: the output.
   int callerWrote = 0, written = 0;
@@ -93,7 +95,7 @@ TEST(Schedule, DefaultSettings) {
     }
   }
   EXPECT_EQ(callerWrote, 1);
-  EXPECT_EQ(written, 4) << "csz, ao_raw, ao_blur_h, ao";
+  EXPECT_EQ(written, 4) << "csz, ao_raw, ao_low, ao";
   ASSERT_EQ(s.exitHazards().size(), 1u);
   EXPECT_EQ(s.exitHazards()[0].resource, ResourceId::ao);
   EXPECT_EQ(s.exitHazards()[0].kind, HazardKind::CallerReads);
@@ -104,11 +106,12 @@ TEST(Schedule, NoBlurReadsTheAliasedImage) {
   settings.blur_radius = 0;
   const sao::Schedule s = scheduleOf(settings, camera(64, 32, 0));
   const auto& last = s.dispatches.back();
-  EXPECT_EQ(last.pass, PassId::blur_v);
-  for (const auto& b : s.bindingsOf(last)) EXPECT_EQ(b.resource, b.write ? ResourceId::ao : ResourceId::ao_raw);
+  EXPECT_EQ(last.pass, PassId::output);
+  for (const auto& b : s.bindingsOf(last))
+    if (b.resource != ResourceId::csz) EXPECT_EQ(b.resource, b.write ? ResourceId::ao : ResourceId::ao_raw);
   ASSERT_EQ(last.hazardCount, 1u);
   EXPECT_EQ(s.hazardsBefore(last)[0].resource, ResourceId::ao_raw);
-  for (const auto& d : s.dispatches) EXPECT_NE(d.pass, PassId::blur_h);
+  for (const auto& d : s.dispatches) EXPECT_NE(d.pass, PassId::blur);
 }
 
 // The temporal history (history=true): two copies of ao_raw's size at 16 bytes a texel;

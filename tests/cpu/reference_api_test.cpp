@@ -22,7 +22,9 @@ void expectIdentical(const cpu::Result& a, const cpu::Result& b) {
   ASSERT_EQ(a.csz2.size(), b.csz2.size());
   for (std::size_t m = 0; m < a.csz2.size(); ++m) EXPECT_TRUE(sameBits(a.csz2[m], b.csz2[m])) << "csz2 level " << m;
   EXPECT_TRUE(sameBits(a.aoRaw, b.aoRaw)) << "ao_raw";
-  EXPECT_TRUE(sameBits(a.aoBlurH, b.aoBlurH)) << "ao_blur_h";
+  const auto low = static_cast<std::size_t>(gen::ResourceId::ao_low);
+  ASSERT_EQ(a.images[low].size(), b.images[low].size());
+  for (std::size_t m = 0; m < a.images[low].size(); ++m) EXPECT_TRUE(sameBits(a.images[low][m], b.images[low][m])) << "ao_low";
   EXPECT_TRUE(sameBits(a.ao, b.ao)) << "ao";
 }
 
@@ -152,8 +154,10 @@ TEST(Passes, FollowThePlan) {
     EXPECT_EQ(r.csz.size(), r.plan.cszLevels);
     EXPECT_EQ(r.params.max_mip + 1, int(r.plan.cszLevels));
     EXPECT_TRUE(r.csz2.empty());
-    EXPECT_EQ(r.aoBlurH.extent, r.plan.aoExtent);
-    EXPECT_EQ(r.aoBlurH.channels, 2u);
+    const auto& low = r.images[static_cast<std::size_t>(gen::ResourceId::ao_low)];
+    ASSERT_EQ(low.size(), 1u) << "the blur's (A, key) image";
+    EXPECT_EQ(low[0].extent, r.plan.aoExtent);
+    EXPECT_EQ(low[0].channels, 2u);
     EXPECT_EQ(r.ao.extent, r.plan.aoExtent);
     EXPECT_EQ(r.csz[0].extent, r.plan.inputExtent);
   }
@@ -175,10 +179,10 @@ TEST(Passes, FollowThePlan) {
     EXPECT_EQ(r.csz.size(), 1u) << "no mips pass without the hierarchy";
   }
   s = test::untunedDefaults();
-  s.blur_radius = 0;  // blur_h dropped, blur_v reads ao_raw and copies it
+  s.blur_radius = 0;  // the blur dropped, the output pass reads ao_raw and copies it
   for (Precision precision : {Precision::Float, Precision::Double}) {
     const cpu::Result r = runOrFail(s, camera, {&depth}, precision);
-    EXPECT_TRUE(r.aoBlurH.data.empty());
+    EXPECT_TRUE(r.images[static_cast<std::size_t>(gen::ResourceId::ao_low)].empty());
     for (std::uint32_t y = 0; y < r.ao.extent.height; ++y)
       for (std::uint32_t x = 0; x < r.ao.extent.width; ++x) {
         const float a = r.aoRaw.at(x, y, 0);

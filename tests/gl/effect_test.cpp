@@ -270,8 +270,8 @@ TEST_P(Sky, IsUnoccludedAndFinite) {
       ASSERT_EQ(raw.data[i], 1.0f);
       ASSERT_EQ(std::bit_cast<std::uint32_t>(raw.data[i + 1]), 0u) << "the key of sky is +0.0";
     }
-    if (const GLuint bh = effect->texture(gen::ResourceId::ao_blur_h)) {
-      EXPECT_EQ(countNonFinite(readTexture(bh, 2)), 0u);
+    if (const GLuint low = effect->texture(gen::ResourceId::ao_low)) {
+      EXPECT_EQ(countNonFinite(readTexture(low, 2)), 0u);
     }
     const GLuint csz = effect->texture(gen::ResourceId::csz);
     for (std::uint32_t m = 0; m < effect->plan().cszLevels; ++m) {
@@ -335,9 +335,9 @@ TEST_F(Reallocation, OnlyWhatChanged) {
   Settings s = test::untunedDefaults();  // full resolution with a blur: the four images below
   ASSERT_TRUE(e->render(f.camera, s, in).ok());
   const auto allocs0 = e->stats().textureAllocations;
-  EXPECT_EQ(allocs0, 4u);  // csz, ao_raw, ao_blur_h, ao
+  EXPECT_EQ(allocs0, 4u);  // csz, ao_raw, ao_low, ao
   const GLuint csz = e->texture(gen::ResourceId::csz), raw = e->texture(gen::ResourceId::ao_raw);
-  const GLuint bh = e->texture(gen::ResourceId::ao_blur_h), ao = e->texture(gen::ResourceId::ao);
+  const GLuint low = e->texture(gen::ResourceId::ao_low), ao = e->texture(gen::ResourceId::ao);
   const std::uint32_t levels = e->plan().cszLevels;
 
   s.samples = 20;  // parameters only: nothing reallocated
@@ -346,18 +346,18 @@ TEST_F(Reallocation, OnlyWhatChanged) {
   EXPECT_EQ(e->stats().textureAllocations, allocs0);
   EXPECT_EQ(e->texture(gen::ResourceId::csz), csz);
 
-  s.blur_radius = 0;  // blur_h dropped: its image is freed, nothing else changes
+  s.blur_radius = 0;  // the blur dropped: its image is freed, nothing else changes
   ASSERT_TRUE(e->render(f.camera, s, in).ok());
-  EXPECT_EQ(e->texture(gen::ResourceId::ao_blur_h), 0u);
+  EXPECT_EQ(e->texture(gen::ResourceId::ao_low), 0u);
   EXPECT_EQ(e->stats().textureAllocations, allocs0);
   EXPECT_EQ(e->texture(gen::ResourceId::ao_raw), raw);
   EXPECT_EQ(e->texture(gen::ResourceId::ao), ao);
 
-  s.blur_radius = 4;  // back: ao_blur_h allocated again
+  s.blur_radius = 4;  // back: ao_low allocated again
   ASSERT_TRUE(e->render(f.camera, s, in).ok());
   EXPECT_EQ(e->stats().textureAllocations, allocs0 + 1);
-  EXPECT_NE(e->texture(gen::ResourceId::ao_blur_h), 0u);
-  (void)bh;
+  EXPECT_NE(e->texture(gen::ResourceId::ao_low), 0u);
+  (void)low;
 
   s.radius = 0.05f;  // fewer csz levels: only csz is reallocated
   ASSERT_TRUE(e->render(f.camera, s, in).ok());

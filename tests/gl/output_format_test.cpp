@@ -1,7 +1,7 @@
 // The output as the engine wants it (sao/output.h) on OpenGL: the caller's GL_R16F, GL_R8,
 // GL_RGBA8 and GL_RGBA16F textures with channel masks and the multiply blend (the apply step, also
 // on an HDR colour target with infinities and NaNs) against the CPU reference (Float) at full and
-// half resolution (blur_v and upsample write the output), untouched channels keeping their
+// half resolution (upsample writes the output at both), untouched channels keeping their
 // sentinel texels, other formats, masks and a multiply without the caller's texture refused, and
 // outputGeneration() following the owned output texture.
 #include <cmath>

@@ -345,9 +345,9 @@ TEST_F(VkEffect, UpdateMatchesAFreshEffect) {
   auto fresh = makeEffect(c);
   EXPECT_TRUE(sameBits(runOnce(*effect, small.inputs()), runOnce(*fresh, small.inputs())));
 
-  c.settings.blur_radius = 0;  // blur_h dropped, blur_v reads ao_raw
+  c.settings.blur_radius = 0;  // the blur dropped, the output pass reads ao_raw
   ASSERT_TRUE(effect->update(c).ok());
-  EXPECT_EQ(effect->plan().passes.size(), 3u) << "linear_z, ao_sample, blur_v";
+  EXPECT_EQ(effect->plan().passes.size(), 3u) << "linear_z, ao_sample, output";
   fresh = makeEffect(c);
   EXPECT_TRUE(sameBits(runOnce(*effect, small.inputs()), runOnce(*fresh, small.inputs())));
   EXPECT_EQ(effect->pipelineCount(), pipelines) << "same variants";

@@ -3,6 +3,7 @@
 // CPU reference compiled unchanged against the extended effect runs the new pass too.
 #pragma once
 #include <span>
+#include <type_traits>
 
 #include "../../effect/cpu/sao_passes.h"
 
@@ -10,13 +11,22 @@ namespace sao::cpu {
 
 namespace walkthrough {
 
-// Pass ao_halve: blur_v's A again from the dispatch's read image (ao_blur_h, or ao_raw through the
-// alias), rounded like sao_round_to_half in Float precision, times 0.5, into ao_half.
+// Pass ao_halve: the A of the dispatch's read image (ao_low, or ao_raw through the alias), rounded
+// like sao_round_to_half in Float precision, times 0.5, into ao_half.
 template <typename T>
 Status aoHalvePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
-  if (Status st = detail::blurPass(ctx, d, bindings, 0, 1, true); !st) return st;
-  detail::Image<T>& half = ctx.image(*nthBinding(bindings, true, 0));  // blurPass found it
-  for (T& a : half.v) a = a * T(0.5);
+  const ScheduledBinding* in = nthBinding(bindings, false, 0);
+  const ScheduledBinding* out = nthBinding(bindings, true, 0);
+  if (in == nullptr || out == nullptr) return detail::passError(d, "needs a read and a write binding");
+  const detail::Image<T>& src = ctx.image(*in);
+  detail::Image<T>& half = ctx.image(*out);
+  if (src.w != half.w || src.h != half.h) return detail::passError(d, "needs images of one extent");
+  for (int y = 0; y < half.h; ++y)
+    for (int x = 0; x < half.w; ++x) {
+      T a = src.at(x, y, 0);
+      if constexpr (std::is_same_v<T, float>) a = detail::roundToHalf(a);
+      half.at(x, y, 0) = a * T(0.5);
+    }
   return Status::success();
 }
 

@@ -34,7 +34,7 @@ TEST(ExtendedEffect, GeneratedTablesHoldTheNewImageAndPass) {
   EXPECT_EQ(info.localX, 8u);
   EXPECT_EQ(info.localY, 8u);
   ASSERT_EQ(info.reads.size(), 1u);
-  EXPECT_EQ(info.reads[0], gen::ResourceId::ao_blur_h);
+  EXPECT_EQ(info.reads[0], gen::ResourceId::ao_low);
   ASSERT_EQ(info.writes.size(), 1u);
   EXPECT_EQ(info.writes[0], gen::ResourceId::ao_half);
   EXPECT_TRUE(info.variants.empty()) << "the pass lists no variant, so it is compiled once";
@@ -50,8 +50,8 @@ TEST(ExtendedEffect, PlanRunsTheNewPassLastAndAllocatesItsImage) {
   std::printf("%s", plan.describe().c_str());
   ASSERT_GE(plan.passes.size(), 2u);
   EXPECT_EQ(plan.passes.back().pass, gen::PassId::ao_halve);
-  EXPECT_EQ(plan.passes[plan.passes.size() - 2].pass, gen::PassId::blur_v);
-  EXPECT_TRUE(plan.passes.back().aliases.empty()) << "blur_h runs, so ao_blur_h serves itself";
+  EXPECT_EQ(plan.passes[plan.passes.size() - 2].pass, gen::PassId::output) << "full resolution";
+  EXPECT_TRUE(plan.passes.back().aliases.empty()) << "the blur runs, so ao_low serves itself";
 
   const PlannedImage* half = plan.image(gen::ResourceId::ao_half);
   ASSERT_NE(half, nullptr) << "the plan allocates every effect-owned image a planned pass touches";
@@ -67,12 +67,12 @@ TEST(ExtendedEffect, PlanAppliesTheNewPassAliasWithoutBlur) {
   Plan plan;
   const Status st = sao::plan(settings, caseCamera(), PlanInputs{}, plan);
   ASSERT_TRUE(st.ok()) << st.message;
-  EXPECT_EQ(findPass(plan, gen::PassId::blur_h), nullptr) << "skip_when=blur_radius==0";
-  EXPECT_EQ(plan.image(gen::ResourceId::ao_blur_h), nullptr);
+  EXPECT_EQ(findPass(plan, gen::PassId::blur), nullptr) << "skip_when=blur_radius==0";
+  EXPECT_EQ(plan.image(gen::ResourceId::ao_low), nullptr);
   const PlannedPass* halve = findPass(plan, gen::PassId::ao_halve);
   ASSERT_NE(halve, nullptr);
-  EXPECT_EQ(plan.resolve(*halve, gen::ResourceId::ao_blur_h), gen::ResourceId::ao_raw)
-      << "alias_when=blur_radius==0:ao_blur_h=ao_raw";
+  EXPECT_EQ(plan.resolve(*halve, gen::ResourceId::ao_low), gen::ResourceId::ao_raw)
+      << "alias_when=blur_radius==0:ao_low=ao_raw";
   EXPECT_NE(plan.image(gen::ResourceId::ao_half), nullptr);
 }
 
@@ -95,7 +95,7 @@ TEST(ExtendedEffect, ScheduleDispatchesTheNewPassWithResolvedBindings) {
 
     const auto bindings = schedule.bindingsOf(d);
     ASSERT_EQ(bindings.size(), 2u);
-    const gen::ResourceId source = c.settings.blur_radius == 0 ? gen::ResourceId::ao_raw : gen::ResourceId::ao_blur_h;
+    const gen::ResourceId source = c.settings.blur_radius == 0 ? gen::ResourceId::ao_raw : gen::ResourceId::ao_low;
     EXPECT_EQ(bindings[0].binding, 1u) << "binding 0 is the parameter block, then reads, then writes";
     EXPECT_EQ(bindings[0].resource, source);
     EXPECT_FALSE(bindings[0].write);
@@ -105,7 +105,7 @@ TEST(ExtendedEffect, ScheduleDispatchesTheNewPassWithResolvedBindings) {
     EXPECT_TRUE(bindings[1].write);
     EXPECT_EQ(bindings[1].baseLevel, 0u);
 
-    // blur_v already read `source` after its last write (that read carried the barrier), and
+    // The output pass already read `source` after its last write (that read carried the barrier), and
     // ao_half is written once: nothing to wait for inside the frame.
     EXPECT_EQ(d.hazardCount, 0u);
     // Across frames: this frame's store to ao_half is ordered after the previous frame's.

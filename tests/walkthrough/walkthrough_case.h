@@ -23,11 +23,11 @@ struct Case {
   Settings settings;
 };
 
-// Blurred (ao_halve reads ao_blur_h), and blur_radius 0 (blur_h is skipped and ao_halve reads
+// Blurred (ao_halve reads ao_low), and blur_radius 0 (the blur is skipped and ao_halve reads
 // ao_raw through its alias_when).
 inline std::array<Case, 2> cases() {
   Settings medium = presetSettings(Preset::Medium);
-  medium.resolution_divisor = 1;  // the new pass reads ao_blur_h at the output's size: full resolution
+  medium.resolution_divisor = 1;  // the new pass reads ao_low at the output's size: full resolution
   Settings unblurred = medium;
   unblurred.blur_radius = 0;
   return {Case{"medium", medium}, Case{"blur_radius_0", unblurred}};

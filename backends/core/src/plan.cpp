@@ -179,8 +179,8 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
     if (std::none_of(p.variant->bindings.begin(), p.variant->bindings.end(),
                      [](const gen::BindingInfo& b) { return b.write; }))
       continue;
-    // The effect's skip_when= / alias_when= rules (e.g. blur 0: blur_h and ao_blur_h go, blur_v
-    // copies ao_raw into the r16f output; docs/effect-math.md §2.5).
+    // The effect's skip_when= / alias_when= rules (e.g. blur 0: blur and ao_low go, upsample
+    // reads ao_raw; docs/effect-math.md §6).
     if (gen::holds(info.skipWhen, settings)) continue;
     if (gen::holds(info.aliasWhen, settings))
       for (const auto& a : info.aliases) p.aliases.push_back({a.declared, a.serving});

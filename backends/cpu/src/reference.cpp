@@ -194,11 +194,10 @@ void collectImages(const PassContext<T>& ctx, Result& out) {
   out.csz = toFloatImages(ctx.levels(R::csz));
   out.csz2 = toFloatImages(ctx.levels(R::csz2));
   out.aoRaw = first(R::ao_raw);
-  out.aoBlurH = first(R::ao_blur_h);
   out.ao = first(R::ao);
   for (std::size_t r = 0; r < gen::kResources.size(); ++r) {
     const auto id = static_cast<R>(r);
-    if (id == R::csz || id == R::csz2 || id == R::ao_raw || id == R::ao_blur_h || id == R::ao) continue;
+    if (id == R::csz || id == R::csz2 || id == R::ao_raw || id == R::ao) continue;
     out.images[r] = toFloatImages(ctx.levels(id));
   }
 }

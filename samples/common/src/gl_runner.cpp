@@ -64,9 +64,7 @@ class GlRunner final : public BackendRunner {
           out.intermediates.push_back(
               {"csz_level" + std::to_string(m), gl::readTextureLevel(effect_->texture(gen::ResourceId::csz), m)});
       out.intermediates.push_back({"ao_raw", out.aoRaw});
-      if (out.plan.image(gen::ResourceId::ao_blur_h))
-        out.intermediates.push_back({"ao_blur_h", gl::readTexture(effect_->texture(gen::ResourceId::ao_blur_h), 2)});
-      if (out.plan.image(gen::ResourceId::ao_low))  // reduced resolution: the upsample's input
+      if (out.plan.image(gen::ResourceId::ao_low))  // the blurred (A, key), the upsample's input
         out.intermediates.push_back({"ao_low", gl::readTexture(effect_->texture(gen::ResourceId::ao_low), 2)});
     }
     for (const auto& m : context_->errors())

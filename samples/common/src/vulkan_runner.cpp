@@ -91,12 +91,7 @@ class VulkanRunner final : public BackendRunner {
           out.intermediates.push_back({"csz_level" + std::to_string(m), std::move(level)});
         }
       out.intermediates.push_back({"ao_raw", out.aoRaw});
-      if (out.plan.image(gen::ResourceId::ao_blur_h)) {
-        FloatImage blur;
-        if (Status s = readOwned(gen::ResourceId::ao_blur_h, 0, blur); !s) return s;
-        out.intermediates.push_back({"ao_blur_h", std::move(blur)});
-      }
-      if (out.plan.image(gen::ResourceId::ao_low)) {  // reduced resolution: the upsample's input
+      if (out.plan.image(gen::ResourceId::ao_low)) {  // the blurred (A, key), the upsample's input
         FloatImage low;
         if (Status s = readOwned(gen::ResourceId::ao_low, 0, low); !s) return s;
         out.intermediates.push_back({"ao_low", std::move(low)});

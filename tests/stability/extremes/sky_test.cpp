@@ -81,7 +81,7 @@ TEST(Sky, SkyNextToGeometryWithInfiniteFar) {
   }
   report("sky next to geometry, infinite far (4 conventions x D16/D24/D32F/R32F; sky checkerboard)",
          "A = 1 on sky; every intermediate finite; A in [0,1]",
-         fmt("%zu runs: sky exactly 1, no NaN/Inf in csz/ao_raw/ao_blur_h/ao; lowest A on geometry %.3f", runs, minGeom));
+         fmt("%zu runs: sky exactly 1, no NaN/Inf in csz/ao_raw/ao_low/ao; lowest A on geometry %.3f", runs, minGeom));
 }
 
 }  // namespace

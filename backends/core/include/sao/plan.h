@@ -74,7 +74,7 @@ struct Plan {
   gen::VariantValues variants{};
   Extent inputExtent;  // depth, normals, csz: viewport + 2 * guard band
   Extent aoExtent;     // the output: the viewport
-  // Per resource: the value of its divide_by= setting (resolution_divisor for ao_raw, ao_blur_h and
+  // Per resource: the value of its divide_by= setting (resolution_divisor for ao_raw, ao_low and
   // history), which divides its extent rounded up; 0 or 1: not divided.
   std::array<std::uint32_t, gen::kResources.size()> extentDivisor{};
   std::uint32_t cszLevels = 1;

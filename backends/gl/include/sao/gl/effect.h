@@ -201,7 +201,7 @@ class SAO_GL_API Effect {
   // comparing names cannot tell). Starts at 0; the caller's own output never changes it.
   std::uint64_t outputGeneration() const;
   // The GL texture serving a resource in the last render (intermediates for debugging and tests:
-  // csz is GL_R32F with plan().cszLevels levels, ao_raw and ao_blur_h GL_RG32F); 0 if not planned.
+  // csz is GL_R32F with plan().cszLevels levels, ao_raw and ao_low GL_RG32F, or GL_RG16F with half_intermediates); 0 if not planned.
   std::uint32_t texture(gen::ResourceId resource) const;
   const Plan& plan() const;           // the plan of the last successful render()
   const ParamBlock& params() const;   // the parameter block it used
