@@ -38,7 +38,7 @@
 #pragma sao setting float temporal_hysteresis default=0.9   range=[0,0.99]                  "Temporal: the history's largest share of a pixel once it holds 1/(1 - h) frames (a running mean up to then, an exponential one after); 0 = this frame only"
 #pragma sao setting float temporal_depth_tolerance default=0.05 range=[0.001,1]             "Temporal: relative z difference |z_history - z| / |z| at which a history texel weighs 0 (linearly down from 1 at 0): the disocclusion test"
 #pragma sao setting float fade_end            default=0.0   range=[0,100000]       unit=m   "Distance fade: camera distance -z from which A = 1, linear in distance from fade_start on; 0 = no fade"
-#pragma sao setting bool  half_intermediates  default=false                                 "rg16f (A, key) intermediates (HALF_INTERMEDIATES): ao_raw and ao_low take 4 bytes a texel instead of 8; A and the key z (in about metres) rounded to binary16 (docs/effect-math.md, section 5.7)"
+#pragma sao setting bool  half_intermediates  default=true                                  "rg16f (A, key) intermediates (HALF_INTERMEDIATES): ao_raw and ao_low take 4 bytes a texel instead of 8, A and the key z (in about metres) rounded to binary16; false: rg32f (docs/effect-math.md, section 6.5)"
 // ---------------------------------------------------------------------------------------------
 // Presets: the chain `sao-bench --tune` chose on the Pareto front of time against error vs the
 // converged estimator (c), over the built-in scenes (docs/BENCHMARKS.md, "Tuning"; 2026-12-03, gl,
@@ -85,7 +85,7 @@
 #pragma sao variant OUTPUT_FORMAT values=[0,1,2,3] default=0 select=output:ao "The output image's format, an index into ao's formats=: 0 r16f, 1 r8 (A rounded to the nearest 1/255), 2 rgba8, 3 rgba16f (RGBA: A goes into the channels output_mask selects, the others keep their texels)"
 #pragma sao variant DEPTH_MULTISAMPLE values=[0,1] default=0 select=multisampled:depth "1: the depth input is multisampled (sampler2DMS, depth_samples per texel); linear_z keeps one sample per texel as depth_sample_policy says (sample 0, or the nearest to the camera)"
 #pragma sao variant TEMPORAL values=[0,1] default=0 select=temporal "1: ao_sample blends each pixel's obscurance sum with the history of the previous frames (sao_temporal.glsl) and writes this frame's history"
-#pragma sao variant HALF_INTERMEDIATES values=[0,1] default=0 select=half_intermediates "1: the (A, key) intermediates are rg16f: the passes writing them round A and the key (z times key_scale, a power of two near 1/metersToViewUnits) to binary16 themselves"
+#pragma sao variant HALF_INTERMEDIATES values=[0,1] default=0 select=half_intermediates "1: the (A, key) intermediates are rg16f: the passes writing them round A and the key (z times key_scale = 1/metersToViewUnits: z in metres) to binary16 themselves"
 #pragma sao variant MOTION_VECTORS values=[0,1] default=0 select=input:motion "1: temporal accumulation finds each pixel's history where the motion input says the surface was (moving objects) instead of reprojecting through the cameras"
 #pragma sao exclude MOTION_VECTORS=1 TEMPORAL=0 "motion vectors serve temporal accumulation only: set the temporal setting, or give no motion input"
 #pragma sao exclude DEPTH_MULTISAMPLE=1 TWO_LAYER=1 "a multisampled depth input has no second layer: give depth peeling's layers single-sample, or resolve the depth first"
@@ -147,7 +147,7 @@ layout(std140, binding = 0) uniform SaoParams {
     int   log_q;                // [120] log2 q' of eq. 9
     int   max_mip;              // [124] highest csz level taps may read (levels allocated - 1)
     float quad_edge_threshold;  // [128] 2x2 reconstruction z threshold, view units
-    float blur_edge_sharpness;  // [132] bilateral depth weight scale, 1/key units (1/view units times key_to_view)
+    float blur_edge_sharpness;  // [132] bilateral depth weight scale per key unit: 1/view units, or 1/m with half_intermediates
     int   blur_radius;          // [136] R, taps each side, 0..SAO_MAX_BLUR_RADIUS
     int   blur_stride;          // [140] pixels between blur taps, >= 1
     ivec2 ao_size;              // [144] the viewport: size of ao (and of ao_raw, ao_low when ao_divisor = 1)
@@ -176,8 +176,8 @@ layout(std140, binding = 0) uniform SaoParams {
     float temporal_max_frames;  // [596] temporal: 1 / (1 - temporal_hysteresis), the frames a history texel counts at most
     float temporal_depth_k;     // [600] temporal: 1 / temporal_depth_tolerance
     int   history_valid;        // [604] temporal: 1 when the history holds the previous frame (0 after create, a settings change, a resize, a reset)
-    float key_scale;            // [608] the (A, key) images' key is z times this: 1, or with half_intermediates the power of two nearest 1/metersToViewUnits (about metres)
-    float key_to_view;          // [612] 1 / key_scale (exact: a power of two); blur_edge_sharpness is per key unit
+    float key_scale;            // [608] the (A, key) images' key is z times this: 1, or with half_intermediates 1/metersToViewUnits (the key in metres)
+    float key_to_view;          // [612] the key back in view units: 1, or metersToViewUnits
 };
 
 // ---------------------------------------------------------------------------------------------

@@ -83,7 +83,7 @@ float sao_round_to_half_signed(float x)
 }
 
 // The (A, key) texel as an rg16f intermediate holds it (HALF_INTERMEDIATES): A rounded to
-// binary16, the key (z times key_scale, <= 0) held to binary16's range and rounded; both exact in
+// binary16, the key (z in metres, <= 0) held to binary16's range and rounded; both exact in
 // binary16, so the store does not round again. A texel read from such an image passes unchanged.
 vec2 sao_half_texel(vec2 a_key)
 {

@@ -5,6 +5,11 @@
 # the 14400 pixels (by up to 74 steps): the upsample's fallback took the single texel nearest in z,
 # and a receding floor's row of texels has one z, so the last bit of z picked the texel; the
 # fallback now shares the pixel among the texels near the nearest z (docs/effect-math.md 6.4).
+# The runs use rg32f intermediates (half_intermediates=false): the arithmetic is unit-invariant to a
+# binary16 step. The default rg16f keys (z in metres, binary16) can round a key of one unit system
+# to the next binary16 value where the other does not (the float z of the two differ in the last
+# bits), which moves A by more than a step on a few pixels; that path's bound across units, 1/255,
+# is stability.WorldScale.HalfIntermediatesKeepTheirKeysInAnyUnit's (docs/effect-math.md 6.5).
 # Usage: render_units.sh SAO_RENDER AO_EXR_COMPARE BOX_OBJ WORK_DIR
 set -u
 render=$1 compare=$2 box=$3 work=$4
@@ -24,8 +29,10 @@ scene() {
 # run NAME SCENE: renders into $work/NAME at full resolution and $work/NAME-half at the defaults'
 # half resolution (stderr in $work/NAME.err).
 run() {
-  if ! "$render" --backend cpu --size 160x90 --scene "$2" --set resolution_divisor=1 --out "$work/$1" > /dev/null 2> "$work/$1.err" ||
-     ! "$render" --backend cpu --size 160x90 --scene "$2" --out "$work/$1-half" > /dev/null 2>> "$work/$1.err"; then
+  if ! "$render" --backend cpu --size 160x90 --scene "$2" --set resolution_divisor=1 --set half_intermediates=false \
+         --out "$work/$1" > /dev/null 2> "$work/$1.err" ||
+     ! "$render" --backend cpu --size 160x90 --scene "$2" --set half_intermediates=false --out "$work/$1-half" > /dev/null \
+         2>> "$work/$1.err"; then
     echo "FAIL: $1: sao-render failed:"; cat "$work/$1.err"; fail=1
   fi
 }
@@ -56,7 +63,8 @@ for s in 0.001 1 1000; do
 done
 grep -q "1 m = 1000 units" "$work/mm/summary.txt" || { echo "FAIL: mm: summary.txt does not give the factor"; fail=1; }
 # A unit that changes nothing at scale 1 must change the AO: the test can tell units apart.
-"$render" --backend cpu --size 160x90 --scene "$work/m.scene" --set resolution_divisor=1 --units mm --out "$work/mm-at-1" > /dev/null 2>&1
+"$render" --backend cpu --size 160x90 --scene "$work/m.scene" --set resolution_divisor=1 --set half_intermediates=false --units mm \
+  --out "$work/mm-at-1" > /dev/null 2>&1
 if "$compare" "$work/m/ao.exr" "$work/mm-at-1/ao.exr" 1 > /dev/null; then
   echo "FAIL: --units mm on the scene at scale 1 gives the AO of metres"; fail=1
 fi

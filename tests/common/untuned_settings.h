@@ -1,5 +1,5 @@
 // The settings' defaults before the presets were tuned (issue 16, 2026-12-03): full resolution, 11
-// taps, a 9-tap blur (radius 4, stride 2), q' = 8 px. Tests whose figures were derived by hand for a
+// taps, a 9-tap blur (radius 4, stride 2), q' = 8 px, rg32f (A, key) images. Tests whose figures were derived by hand for a
 // full-resolution plan with a blur (plan bytes, dispatch lists, MIP counts, reconstruction keys, seam
 // bounds) use these instead of Settings{}, whose defaults are now the high preset (half resolution).
 #pragma once
@@ -18,6 +18,7 @@ inline Settings untunedDefaults() {
   s.blur_radius = 4;
   s.blur_stride = 2;
   s.resolution_divisor = 1;
+  s.half_intermediates = false;  // rg32f (A, key) images, as before half_intermediates became the default
   return s;
 }
 

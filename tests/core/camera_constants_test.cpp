@@ -168,7 +168,10 @@ TEST(Constants, Eq5ProjectionScaleAndSettingScales) {
   EXPECT_EQ(p.spiral_turns, 5);
   s.spiral_turns = 0;
   EXPECT_FLOAT_EQ(p.quad_edge_threshold, s.quad_edge_threshold * 100.0f);
-  EXPECT_FLOAT_EQ(p.blur_edge_sharpness, s.blur_edge_sharpness / 100.0f);
+  // The blur's sharpness is per key unit: per metre with rg16f intermediates (the key z / u, in
+  // metres), per view unit with rg32f (the key z).
+  EXPECT_FLOAT_EQ(p.blur_edge_sharpness, s.half_intermediates ? s.blur_edge_sharpness : s.blur_edge_sharpness / 100.0f);
+  EXPECT_FLOAT_EQ(p.key_scale, s.half_intermediates ? 0.01f : 1.0f);
   EXPECT_EQ(p.ao_size.x, 1280);
   EXPECT_EQ(p.ao_size.y, 720);
 }

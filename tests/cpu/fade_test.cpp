@@ -21,6 +21,7 @@ Settings unmixed() {
   s.quad_edge_threshold = 0.0f;  // |dz| < 0 never holds: no quad averaging
   s.blur_radius = 0;             // the blur passes copy
   s.resolution_divisor = 1;      // no upsample mixing neighbours either
+  s.half_intermediates = false;  // A as computed, not rounded to binary16 in ao_raw
   return s;
 }
 

@@ -1,4 +1,4 @@
-// half_intermediates (HALF_INTERMEDIATES: rg16f ao_raw, ao_blur_h, ao_low) on Vulkan (under
+// half_intermediates (HALF_INTERMEDIATES: rg16f ao_raw and ao_low) on Vulkan (under
 // validation and synchronization validation) against the CPU reference (float): the images are
 // VK_FORMAT_R16G16_SFLOAT; the keys are the CPU's bit for bit; A raw, low and final at the
 // reference tests' bounds (99.9% within 2/255, none beyond 4/255), at full, half and quarter

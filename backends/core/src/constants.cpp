@@ -225,13 +225,18 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
   p.log_q = s.mip_switch_log2;
   p.max_mip = static_cast<std::int32_t>(mipLevelsNeeded(s, c, m)) - 1;
   p.quad_edge_threshold = f(s.quad_edge_threshold * u);
-  // The (A, key) images' key: z itself, or with rg16f intermediates z times the power of two nearest
-  // 1/u (the key in about metres, so binary16's range of 65504 holds any scene's units; a power of
-  // two keeps the scaling exact). The blur's sharpness is per key unit.
-  const int keyExponent = s.half_intermediates ? static_cast<int>(std::lround(-std::log2(u))) : 0;
-  p.key_scale = std::ldexp(1.0f, keyExponent);
-  p.key_to_view = std::ldexp(1.0f, -keyExponent);
-  p.blur_edge_sharpness = f(s.blur_edge_sharpness / u) * p.key_to_view;
+  // The (A, key) images' key: z itself, or with rg16f intermediates z / u, the key in metres, so
+  // that binary16's range (65504) holds any scene's units and a scene in millimetres rounds its
+  // keys where the same scene in metres does. The blur's sharpness is per key unit.
+  if (s.half_intermediates) {
+    p.key_scale = f(1.0 / u);
+    p.key_to_view = f(u);
+    p.blur_edge_sharpness = s.blur_edge_sharpness;
+  } else {
+    p.key_scale = 1.0f;
+    p.key_to_view = 1.0f;
+    p.blur_edge_sharpness = f(s.blur_edge_sharpness / u);
+  }
   p.blur_radius = s.blur_radius;
   p.blur_stride = s.blur_stride;
 

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <utility>
 
 #include "extremes_support.h"
 
@@ -77,70 +76,69 @@ TEST(WorldScale, MilliAndKiloUnitsLeaveAUnchanged) {
          "max |A(u) - A(1)| <= 1/255 on every backend", measured);
 }
 
-// The key's metres per key unit: 1 / (u * key_scale), within sqrt(2) of 1.
-double metresPerKeyUnit(double u) { return 1.0 / (u * std::ldexp(1.0, int(std::lround(-std::log2(u))))); }
-
 TEST(WorldScale, HalfIntermediatesKeepTheirKeysInAnyUnit) {
-  // half_intermediates stores the (A, key) images' key as binary16 of z times key_scale, the power
-  // of two nearest 1/metersToViewUnits (docs/effect-math.md 6.5): the key is in about metres in any
-  // unit system, so binary16's range (65504) holds a crease 70 m away in millimetres (z = -70000
-  // view units), and A is the metres run's within 1/255. Without the scale the keys would be inf.
-  Settings half;  // the defaults: half resolution, blur 1
+  // half_intermediates stores the (A, key) images' key as binary16 of z in metres (key_scale =
+  // 1/metersToViewUnits, docs/effect-math.md 6.5), so binary16's range (65504) holds a crease 70 m
+  // away in millimetres (z = -70000 view units), and the same scene in other units rounds its keys
+  // alike: A within 1/255 of the metres run, as with rg32f, and within 2/255 of rg32f's A.
+  Settings half;  // the defaults: half resolution, blur 1, rg16f intermediates
   half.half_intermediates = true;
-  for (const auto& [u, exponent] : {std::pair{1.0, 0}, std::pair{1e3, -10}, std::pair{1e-3, 10}, std::pair{39.37, -5}}) {
+  Settings full = half;
+  full.half_intermediates = false;
+  for (double u : {1.0, 1e3, 1e-3, 39.37}) {
     Camera c = camera(16, 16, 0.1 * u, kInf, ClipDepth::ZeroToOne, true);
     c.metersToViewUnits = u;
     ParamBlock p, plain;
     ASSERT_TRUE(computeConstants(half, c, DepthEncoding::Hardware, p).ok());
-    ASSERT_TRUE(computeConstants(Settings{}, c, DepthEncoding::Hardware, plain).ok());
-    EXPECT_EQ(p.key_scale, std::ldexp(1.0f, exponent)) << "u = " << u;
-    EXPECT_EQ(p.key_to_view, std::ldexp(1.0f, -exponent)) << "u = " << u;
-    EXPECT_EQ(p.blur_edge_sharpness, plain.blur_edge_sharpness * p.key_to_view) << "sharpness per key unit, u = " << u;
+    ASSERT_TRUE(computeConstants(full, c, DepthEncoding::Hardware, plain).ok());
+    EXPECT_EQ(p.key_scale, float(1.0 / u)) << "u = " << u;
+    EXPECT_EQ(p.key_to_view, float(u)) << "u = " << u;
+    EXPECT_EQ(p.blur_edge_sharpness, half.blur_edge_sharpness) << "sharpness per metre, u = " << u;
     EXPECT_EQ(plain.key_scale, 1.0f);
     EXPECT_EQ(plain.key_to_view, 1.0f);
+    EXPECT_EQ(plain.blur_edge_sharpness, float(full.blur_edge_sharpness / u));
   }
-  // In every unit the rg16f path stays as close to the rg32f one as in metres (binary16 rounds the
-  // keys of another unit differently, so the two half runs are not each other's to 1/255: each is
-  // within its own rounding of the float path), and the keys are finite and in about metres.
   std::string measured;
   for (const test::Scene& scene : {test::sphereOnPlaneScene(), test::creaseScene(70.0)})
-    for (const ScaleSetup& su : {kScaleSetups[1], kScaleSetups[2]})
+    for (const ScaleSetup& su : {kScaleSetups[1], kScaleSetups[2]}) {
+      const SceneRun h1 = runScene("half keys u=1, " + scene.name + ", " + su.name, half, scaleCamera(su, 1.0), scene, su.fm);
       for (double u : {1.0, 1e-3, 1e3}) {
         const std::string what = scene.name + ", " + su.name + fmt(", u=%g", u);
         const Camera cu = scaleCamera(su, u);
-        const test::Scene su_scene = scaledScene(scene, u);
-        const SceneRun h = runScene("half keys, " + what, half, cu, su_scene, su.fm);
-        const SceneRun f = runScene("float keys, " + what, Settings{}, cu, su_scene, su.fm);
-        double worst = 0;
+        const test::Scene scaled = scaledScene(scene, u);
+        const SceneRun h = u == 1.0 ? h1 : runScene("half keys, " + what, half, cu, scaled, su.fm);
+        const SceneRun f = runScene("float keys, " + what, full, cu, scaled, su.fm);
+        double worstFormat = 0, worstUnit = 0;
         std::size_t compared = 0;
         for (const BackendRun& b : h.runs.runs)
           if (const BackendRun* bf = f.runs.find(b.name)) {
             const double d = maxAbsDiff(b.out.ao, bf->out.ao);
             EXPECT_LE(d, 2 * k255) << what << " on " << b.name << ": rg16f vs rg32f";
-            worst = std::max(worst, d);
+            const double du = maxAbsDiff(b.out.ao, h1.runs.find(b.name)->out.ao);
+            EXPECT_LE(du, k255) << what << " on " << b.name << ": rg16f in these units vs in metres";
+            worstFormat = std::max(worstFormat, d);
+            worstUnit = std::max(worstUnit, du);
             ++compared;
             const FloatImage* raw = b.intermediate("ao_raw");
             if (raw == nullptr) continue;
-            float nearest = 0.0f, farthest = 0.0f;  // keys are <= 0, +0 = sky
+            float farthest = 0.0f;  // keys are <= 0, +0 = sky
             for (std::size_t k = 1; k < raw->data.size(); k += 2) {
               ASSERT_TRUE(std::isfinite(raw->data[k])) << what << " on " << b.name << ": key " << raw->data[k];
-              if (raw->data[k] < 0.0f) {
-                farthest = std::min(farthest, raw->data[k]);
-                nearest = nearest == 0.0f ? raw->data[k] : std::max(nearest, raw->data[k]);
-              }
+              farthest = std::min(farthest, raw->data[k]);
             }
-            // The deepest key in about metres: the crease's far corner lies beyond 70 m, the sphere
-            // scene's floor within 10 m; key_scale is within a factor sqrt(2) of 1/u.
-            const double deepest = -farthest * metresPerKeyUnit(u);
-            EXPECT_GT(deepest, scene.name == "crease" ? 70.0 / 1.42 : 1.0 / 1.42) << what << " on " << b.name;
-            EXPECT_LT(deepest, scene.name == "crease" ? 1000.0 : 20.0) << what << " on " << b.name;
+            // The deepest key in metres: the crease's far corner lies beyond 70 m, the sphere
+            // scene's floor within 10 m.
+            EXPECT_GT(-farthest, scene.name == "crease" ? 70.0f : 1.0f) << what << " on " << b.name;
+            EXPECT_LT(-farthest, scene.name == "crease" ? 1000.0f : 20.0f) << what << " on " << b.name;
           }
         EXPECT_GT(compared, 0u) << what << ": no backend ran both formats";
-        measured += fmt("%s%s: %.2g", measured.empty() ? "" : "; ", what.c_str(), worst);
+        measured += fmt("%s%s: vs rg32f %.2g, vs metres %.2g", measured.empty() ? "" : "; ", what.c_str(), worstFormat,
+                        worstUnit);
       }
-  report("half_intermediates at world scale x1, x1e-3, x1e3 (key z times a power of two near 1/u; sphere-plane and a "
-         "crease 70 m away, D32F rev and R32F)",
-         "max |A(rg16f) - A(rg32f)| <= 2/255 at every scale on every backend; keys finite, in about metres", measured);
+    }
+  report("half_intermediates at world scale x1, x1e-3, x1e3 (key z in metres; sphere-plane and a crease 70 m away, "
+         "D32F rev and R32F)",
+         "max |A(rg16f) - A(rg32f)| <= 2/255, |A(u) - A(1)| <= 1/255 on every backend; keys finite, in metres", measured);
 }
 
 TEST(WorldScale, PhysicalScaleWithTheRadiusLeavesAUnchanged) {
