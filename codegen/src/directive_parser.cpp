@@ -532,7 +532,7 @@ class Parser {
     else if (findVariant(variant) < 0) why = "names unknown variant '" + variant + "'";
     else if (!kFormats.count(f) || f == "depth") why = "names '" + f + "', which is not a colour format";
     else if (f == r.format) why = "names the resource's own format '" + f + "'";
-    else if (channelCount(f) != channelCount(r.format))
+    else if (formatChannels(f) != formatChannels(r.format))
       why = "names '" + f + "', which holds another number of channels than '" + r.format + "'";
     if (!why.empty()) {
       diags_.error(d.loc, "format_when= of resource '" + r.name + "' " + why);
@@ -541,10 +541,6 @@ class Parser {
     r.formatWhenVariant = findVariant(variant);
     r.formatWhen = f;
     return true;
-  }
-
-  static int channelCount(const std::string& f) {
-    return f.rfind("rgba", 0) == 0 ? 4 : f.rfind("rg", 0) == 0 ? 2 : 1;
   }
 
   // divide_by=SETTING: an effect-owned image of the AO extent whose extent is that over the value

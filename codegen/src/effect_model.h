@@ -58,6 +58,11 @@ struct Exclusion {
 
 enum class ResourceKind { Input, Image, Output };
 
+// Channels of a colour format name (r*: 1, rg*: 2, rgba*: 4).
+inline int formatChannels(const std::string& format) {
+  return format.rfind("rgba", 0) == 0 ? 4 : format.rfind("rg", 0) == 0 ? 2 : 1;
+}
+
 struct Resource {
   SourceLoc loc;
   std::string name;

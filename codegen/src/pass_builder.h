@@ -22,8 +22,6 @@ struct Binding {
   bool multisampled = false;  // a read of an input whose select=multisampled: variant is 1: sampler2DMS
 };
 
-// Channels of a resource format (r*: 1, rg*: 2, rgba*: 4).
-
 struct PassVariant {
   int pass = 0;
   std::vector<int> values;  // one per effect variant; -1 where the pass does not depend on it
