@@ -100,6 +100,7 @@ struct Options {
   bool tune = false;            // --tune: the preset tuner (tune.h) instead of the sections
   bool convergedNoise = false;  // --converged-noise
   bool ortho = false;           // --ortho: every scene's view made orthographic
+  bool timeOnly = false;        // --time-only: no references, so no error columns
   std::optional<scenes::LengthUnit> units;  // --units
   std::vector<std::string> scenes;          // --scenes; empty: benchScenes(quick)
 };
@@ -158,6 +159,10 @@ Options parse(int argc, char** argv) {
           "orthographic cameras: each scene's view made orthographic, as tall as its field of view spans at the "
           "target (scenes::toOrthographic: the eye moved back clear of the scene, a finite far plane just beyond it); "
           "the report's depth note says so");
+  cl.flag("--time-only", o.timeOnly,
+          "time the effect only: no ray-traced or converged references, so the error columns are empty (the "
+          "references take minutes of CPU per scene; a GPU machine's figures to add are its times: "
+          "ci/gpu-bench.sh). The reference check on the analytic sphere still runs");
   cl.flag("--quick", o.quick, "the smoke run: 160x90, 3 runs, 16 rays, two scenes, short sweeps (replaces --size, "
           "--runs and --rays)");
   cl.flag("--tune", o.tune,
@@ -169,10 +174,17 @@ Options parse(int argc, char** argv) {
   o.sizeGiven = cl.given("--size");
   if (o.tune) {
     if (cl.given("--sections") || cl.given("--converged-noise") || cl.given("--rays") || cl.given("--ortho") ||
-        cl.given("--scenes"))
+        cl.given("--scenes") || cl.given("--time-only"))
       cl.fail("--tune takes --out, --backends, --size, --runs, --converged-taps, --depth-source, --units and --quick only");
     if (!cl.given("--backends")) o.backends = "gl";
     if (!cl.given("--size")) o.size = {640, 360};
+  }
+  if (o.timeOnly) {
+    if (cl.given("--rays") || cl.given("--converged-taps") || cl.given("--converged-noise"))
+      cl.fail("--time-only computes no references: --rays, --converged-taps and --converged-noise do not apply");
+    for (const char* section : {"calibrate", "spiral", "frames"})
+      if (o.sections.count(section))
+        cl.fail(std::string("--time-only: the ") + section + " section measures error only; leave it out or drop --time-only");
   }
   if (o.quick) o.size = {160, 90}, o.runs = 3, o.rays = 16;
   return o;
@@ -327,7 +339,7 @@ int main(int argc, char** argv) {
     const std::string what = inputsName(extra);
     bench::References refs;
     Converged* converged = nullptr;
-    if (withError) {
+    if (withError && !o.timeOnly) {
       refs.nearFieldAo = &nearFieldReference(p, s.radius, o.rays);
       refs.obscurance = &obscuranceReference(p, s, o.rays);
       const bool fresh = !p.converged.count({obscuranceKey(s), extra});

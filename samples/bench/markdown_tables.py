@@ -15,8 +15,15 @@ import os
 import sys
 
 
-def f(x, digits=1):
-    return "" if x in ("", None) else f"{float(x):.{digits}f}"
+def f(x, digits=None):
+    """Fixed-point with `digits` decimals; by default one, or three significant digits below 1 (a GPU's
+    milliseconds)."""
+    if x in ("", None):
+        return ""
+    v = float(x)
+    if digits is None:
+        return f"{v:.1f}" if abs(v) >= 1 or v == 0 or math.isnan(v) else f"{v:.3g}"
+    return f"{v:.{digits}f}"
 
 
 def g(x, digits=3):
@@ -42,7 +49,16 @@ def tables(folder):
         rows = list(csv.DictReader(fh))
     sec = lambda name: [r for r in rows if r["section"] == name]
 
-    if sec("presets"):
+    timed_only = [r for r in sec("presets") if r["ao_rmse_raw"] == ""]  # sao-bench --time-only
+    if timed_only:
+        blur = "blur_ms" if "blur_ms" in timed_only[0] else "blur_h_ms"
+        print("### Presets: time per pass (--time-only: no references, no errors)\n")
+        print(table(["scene", "backend", "preset", "size", "total ms", "linear_z ms", "ao_sample ms", f"{blur[:-3]} ms",
+                     "upsample ms", "output ms", "timing"],
+                    [[r["scene"], r["backend"], r["preset"], f"{r['width']}x{r['height']}", f(r["total_ms"]),
+                      f(r["linear_z_ms"]), f(r["ao_sample_ms"]), f(r[blur]), f(r.get("upsample_ms", "")),
+                      f(r.get("output_ms", "")), r["timing_method"]] for r in timed_only]))
+    elif sec("presets"):
         print("### Presets: time and error (raw RMSE vs (a) near-field AO and (b) AlchemyAO obscurance)\n")
         print("\"off > 0.1 (b)\": the fraction of pixels with geometry whose raw output is more than 0.1 from (b).\n")
         print(table(["scene", "backend", "preset", "total ms", "ao_sample ms", "RMSE (a)", "bias (a)", "SSIM (a)",
@@ -118,7 +134,7 @@ def tables(folder):
                           f(r["upsample_ms"]), f(r["total_ms"]), f(r["ns_per_pixel"]), r["timing_method"]]
                          for r in res]))
 
-    div = sec("divisor")
+    div = [r for r in sec("divisor") if r["converged_rmse_raw"] != ""]  # none with --time-only
     if div:
         err = {(r["scene"], r["preset"], r["resolution_divisor"]): r for r in div}
         divisors = sorted({r["resolution_divisor"] for r in div}, key=int)
@@ -167,7 +183,7 @@ def tables(folder):
                             [f(t[(b, p, d)]["upsample_ms"]) for d in divisors[1:]])
         print(table(hdr, out_rows))
 
-    inter = sec("intermediates")
+    inter = [r for r in sec("intermediates") if r["converged_rmse_raw"] != ""]  # none with --time-only
     if inter:
         err = {(r["scene"], r["preset"], r["variant"]): r for r in inter}
         r0 = inter[0]
