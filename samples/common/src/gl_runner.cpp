@@ -1,5 +1,7 @@
 // The OpenGL backend as a sample backend: a headless EGL context of its own, the depth uploaded
-// as the matching GL format, the results read back.
+// as the matching GL format (once while it stays the same), the results read back.
+#include <cstring>
+
 #include "runners.h"
 #include "sao/gl/effect.h"
 #include "sao/gl/headless.h"
@@ -18,11 +20,25 @@ gl::GlDepth glFormat(DepthFormat f) {
   return gl::GlDepth::D32F;
 }
 
-// Deletes the textures a run uploaded, whatever path it leaves by.
-struct Uploads {
-  std::uint32_t depth = 0, depth2 = 0, normals = 0;
-  ~Uploads() {
-    for (auto t : {depth, depth2, normals}) gl::deleteTexture(t);
+bool sameImage(const DepthImage& a, const DepthImage& b) {
+  return a.extent == b.extent && a.format == b.format && a.samples == b.samples && a.texels == b.texels;
+}
+bool sameImage(const FloatImage& a, const FloatImage& b) {
+  return a.extent == b.extent && a.channels == b.channels && a.data.size() == b.data.size() &&
+         std::memcmp(a.data.data(), b.data.data(), a.data.size() * sizeof(float)) == 0;  // NaN bits too
+}
+
+// An input texture kept across runs while the image is the same (bit for bit): a texture created
+// and uploaded in every run leaves the driver's deferred work for it inside the first timed pass
+// that reads it on NVIDIA's GL (GL_TIME_ELAPSED counts the GPU's wait for it).
+template <class Image>
+struct KeptInput {
+  std::uint32_t texture = 0;
+  Image uploaded;
+  bool holds(const Image& image) const { return texture && sameImage(uploaded, image); }
+  void release() {
+    gl::deleteTexture(texture);
+    texture = 0;
   }
 };
 
@@ -31,7 +47,11 @@ class GlRunner final : public BackendRunner {
   GlRunner(std::unique_ptr<gl::HeadlessContext> context, std::unique_ptr<gl::Effect> effect)
       : context_(std::move(context)), effect_(std::move(effect)) {}
   ~GlRunner() override {
-    if (context_->makeCurrent().ok()) effect_.reset();  // GL objects need the context
+    if (!context_->makeCurrent().ok()) return;  // the objects die with the context
+    effect_.reset();                              // GL objects need the context
+    depth_.release();
+    depth2_.release();
+    normals_.release();
   }
   std::string_view name() const override { return "gl"; }
   std::string description() const override { return "OpenGL: " + context_->description(); }
@@ -40,17 +60,19 @@ class GlRunner final : public BackendRunner {
              RunOutputs& out) override {
     if (!in.depth) return Status::error(StatusCode::InvalidInput, "no depth image");
     if (Status s = context_->makeCurrent(); !s) return s;
-    Uploads up;
     const gl::GlDepth format = glFormat(in.depth->format);
-    if (Status s = gl::uploadDepth(*in.depth, format, up.depth); !s) return s;
+    if (Status s = keepDepth(*in.depth, depth_); !s) return s;
     if (in.depth2)
-      if (Status s = gl::uploadDepth(*in.depth2, glFormat(in.depth2->format), up.depth2); !s) return s;
-    if (in.normals)
-      if (Status s = gl::uploadNormals(*in.normals, up.normals); !s) return s;
+      if (Status s = keepDepth(*in.depth2, depth2_); !s) return s;
+    if (in.normals && !normals_.holds(*in.normals)) {
+      normals_.release();
+      if (Status s = gl::uploadNormals(*in.normals, normals_.texture); !s) return s;
+      normals_.uploaded = *in.normals;
+    }
     gl::Inputs inputs;
-    inputs.depth = {up.depth, gl::internalFormat(format)};
-    if (in.depth2) inputs.depth2 = {up.depth2, gl::internalFormat(glFormat(in.depth2->format))};
-    inputs.normals = up.normals;
+    inputs.depth = {depth_.texture, gl::internalFormat(format)};
+    if (in.depth2) inputs.depth2 = {depth2_.texture, gl::internalFormat(glFormat(in.depth2->format))};
+    inputs.normals = in.normals ? normals_.texture : 0;
     inputs.frameIndex = in.frameIndex;
     inputs.resetHistory = in.resetHistory;
     if (Status s = effect_->render(camera, settings, inputs, {measureTime}); !s) return s;
@@ -73,8 +95,18 @@ class GlRunner final : public BackendRunner {
   }
 
  private:
+  static Status keepDepth(const DepthImage& image, KeptInput<DepthImage>& kept) {
+    if (kept.holds(image)) return Status::success();
+    kept.release();
+    if (Status s = gl::uploadDepth(image, glFormat(image.format), kept.texture); !s) return s;
+    kept.uploaded = image;
+    return Status::success();
+  }
+
   std::unique_ptr<gl::HeadlessContext> context_;
   std::unique_ptr<gl::Effect> effect_;
+  KeptInput<DepthImage> depth_, depth2_;
+  KeptInput<FloatImage> normals_;
 };
 
 }  // namespace
