@@ -85,8 +85,19 @@ sections="${SAO_GPU_BENCH_SECTIONS:-presets,radius,resolution}"
 # device in results.json ("machine") too.
 export SAO_EGL_PLATFORM="${SAO_EGL_PLATFORM:-device}"
 mkdir -p "$out"
+# An NVIDIA GPU's clocks every 100 ms through the run: its boost falls while the benchmark's load
+# is light (uploads, read-backs, scene set-up between short passes), and a row's time depends on it.
+# results.csv's started_unix_s / ended_unix_s line the rows up with this log.
+sampler=
+if command -v nvidia-smi >/dev/null 2>&1; then
+  nvidia-smi --query-gpu=timestamp,clocks.sm,clocks.mem,utilization.gpu,pstate,power.draw --format=csv,nounits \
+    -lms 100 >"$out/gpu-clocks.csv" 2>/dev/null &
+  sampler=$!
+  trap 'kill $sampler 2>/dev/null || true; rm -rf "${unpacked:-}"' EXIT
+fi
 "$bench" --out "$out" --sections "$sections" --backends gl,vulkan --runs 5 --size 1920x1080 --time-only \
   ${SAO_GPU_BENCH_ARGS:-} 2>&1 | tee "$out/sao-bench.log"
+if [ -n "$sampler" ]; then kill "$sampler" 2>/dev/null || true; fi
 if grep -Eiq "llvmpipe|lavapipe|softpipe|swiftshader" "$out/results.json"; then
   echo "gpu-bench: WARNING: a backend ran on a software rasteriser (see 'machine' in $out/results.json);" \
        "its figures are not a GPU's" >&2
@@ -96,4 +107,4 @@ fi
 py=/usr/bin/python3
 command -v "$py" >/dev/null 2>&1 || py=python3
 "$py" samples/bench/markdown_tables.py "$out" >"$out/tables.md" || echo "gpu-bench: markdown tables failed (the CSVs are there)" >&2
-echo "gpu-bench: done in $((SECONDS - t0)) s; results in $(cd "$out" && pwd): results.csv, results.json, *.svg, tables.md"
+echo "gpu-bench: done in $((SECONDS - t0)) s; results in $(cd "$out" && pwd): results.csv, results.json, *.svg, tables.md${sampler:+, gpu-clocks.csv}"

@@ -1,10 +1,15 @@
 #include "measure.h"
 
 #include <algorithm>
+#include <chrono>
 #include <map>
 
 namespace sao::bench {
 namespace {
+
+double unixSeconds() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
@@ -24,6 +29,7 @@ Status measure(samples::BackendRunner& backend, const Settings& settings, const 
   std::vector<double> totals;
   // One warm-up run (pipelines, allocations), then the measured ones.
   for (int r = -1; r < runs; ++r) {
+    if (r == 0) out.startedUnixSeconds = unixSeconds();
     samples::RunOutputs o;
     if (Status s = backend.run(settings, camera, inputs, true, false, o); !s) return s;
     if (r < 0) continue;
@@ -42,6 +48,7 @@ Status measure(samples::BackendRunner& backend, const Settings& settings, const 
     }
     if (r == runs - 1) out.ao = std::move(o.ao);
   }
+  out.endedUnixSeconds = unixSeconds();
   for (const auto& name : order) out.passes.push_back({name, median(perPass[name])});
   out.totalMs = median(totals);
   out.runs = runs;

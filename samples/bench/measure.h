@@ -28,6 +28,9 @@ struct Measurement {
   int runs = 0;
   std::uint64_t planBytes = 0;
   std::uint32_t cszLevels = 0;
+  // Wall-clock time (seconds since the Unix epoch) of the first timed run's start and the last's end:
+  // a GPU's clock log (ci/gpu-bench.sh's gpu-clocks.csv) lines up with the rows by them.
+  double startedUnixSeconds = 0, endedUnixSeconds = 0;
   std::string shaderVariant;  // the ao_sample variant the plan chose, e.g. "NORMALS_SUPPLIED=1 TWO_LAYER=0 Z_HIERARCHY=0"
   std::optional<samples::ReferenceComparison> aoError;          // against (a)
   std::optional<samples::ReferenceComparison> obscuranceError;  // against (b)

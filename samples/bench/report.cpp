@@ -1,6 +1,7 @@
 #include "report.h"
 
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <sstream>
 
@@ -83,7 +84,8 @@ void writeCsv(const std::string& path, const std::vector<Row>& rows) {
   for (const char* prefix : {"ao_", "obscurance_", "converged_"})
     for (const char* c : kErrorColumns) f << "," << prefix << c;
   f << ",converged_blotch_rmse,converged_highfreq_rmse,converged_silhouette_rmse,model_rmse_vs_ao,"
-       "model_rmse_vs_obscurance,error_map,resolution_divisor,blur_v_low_ms,upsample_ms,blur_ms,output_ms\n";
+       "model_rmse_vs_obscurance,error_map,resolution_divisor,blur_v_low_ms,upsample_ms,blur_ms,output_ms,started_unix_s,"
+       "ended_unix_s\n";
   for (const auto& r : rows) {
     const auto& m = r.m;
     f << csv(r.section) << "," << csv(r.scene) << "," << csv(r.backend) << "," << csv(r.preset) << ","
@@ -99,7 +101,8 @@ void writeCsv(const std::string& path, const std::vector<Row>& rows) {
     csvConverged(f, r);
     // blur_h_ms, blur_v_ms and blur_v_low_ms: the passes before the blur ran in one (empty since).
     f << "," << r.settings.resolution_divisor << "," << passMs(m, "blur_v_low") << "," << passMs(m, "upsample") << ","
-      << passMs(m, "blur") << "," << passMs(m, "output") << "\n";
+      << passMs(m, "blur") << "," << passMs(m, "output") << "," << std::fixed << std::setprecision(3)
+      << m.startedUnixSeconds << "," << m.endedUnixSeconds << std::defaultfloat << std::setprecision(6) << "\n";
   }
 }
 
