@@ -26,6 +26,11 @@ def f(x, digits=None):
     return f"{v:.{digits}f}"
 
 
+def f2(x):
+    """f() with two decimals from 1 ms up."""
+    return f(x, 2) if x not in ("", None) and abs(float(x)) >= 1 else f(x)
+
+
 def g(x, digits=3):
     return "" if x in ("", None) else f"{float(x):.{digits}g}"
 
@@ -115,21 +120,23 @@ def tables(folder):
     if res:
         print("\n### Resolution (paper Table 3): per-pass ms and ns per pixel, medium\n")
         if "mips_ms" in res[0]:  # runs before the z chain moved into linear_z (and blur_v_low into upsample)
-            print(table(["backend", "size", "linear_z", "mips", "ao_sample", "blur_h", "blur_v", "total", "ns/pixel",
-                         "timing"],
-                        [[r["backend"], f"{r['width']}x{r['height']}", f(r["linear_z_ms"], 2), f(r["mips_ms"], 2),
-                          f(r["ao_sample_ms"]), f(r["blur_h_ms"]), f(r["blur_v_ms"]), f(r["total_ms"]),
-                          f(r["ns_per_pixel"]), r["timing_method"]] for r in res]))
+            low = "upsample_ms" in res[0]  # blur_v_low and upsample at reduced resolution
+            print(table(["backend", "size", "linear_z", "mips", "ao_sample", "blur_h", "blur_v"] +
+                        (["blur_v_low", "upsample"] if low else []) + ["total", "ns/pixel", "timing"],
+                        [[r["backend"], f"{r['width']}x{r['height']}", f2(r["linear_z_ms"]), f2(r["mips_ms"]),
+                          f(r["ao_sample_ms"]), f(r["blur_h_ms"]), f(r["blur_v_ms"])] +
+                         ([f(r["blur_v_low_ms"]), f(r["upsample_ms"])] if low else []) +
+                         [f(r["total_ms"]), f(r["ns_per_pixel"]), r["timing_method"]] for r in res]))
         elif "blur_ms" in res[0]:  # one blur pass, and the upsample at every divisor
             print(table(["backend", "size", "linear_z + chain", "ao_sample", "blur", "output", "upsample", "total",
                          "ns/pixel", "timing"],
-                        [[r["backend"], f"{r['width']}x{r['height']}", f(r["linear_z_ms"], 2),
+                        [[r["backend"], f"{r['width']}x{r['height']}", f2(r["linear_z_ms"]),
                           f(r["ao_sample_ms"]), f(r["blur_ms"]), f(r.get("output_ms", "")), f(r["upsample_ms"]),
                           f(r["total_ms"]), f(r["ns_per_pixel"]), r["timing_method"]] for r in res]))
         else:  # linear_z writes the whole chain; blur_v at full resolution, blur_v_low and upsample at reduced
             print(table(["backend", "size", "linear_z + chain", "ao_sample", "blur_h", "blur_v", "blur_v_low",
                          "upsample", "total", "ns/pixel", "timing"],
-                        [[r["backend"], f"{r['width']}x{r['height']}", f(r["linear_z_ms"], 2),
+                        [[r["backend"], f"{r['width']}x{r['height']}", f2(r["linear_z_ms"]),
                           f(r["ao_sample_ms"]), f(r["blur_h_ms"]), f(r["blur_v_ms"]), f(r["blur_v_low_ms"]),
                           f(r["upsample_ms"]), f(r["total_ms"]), f(r["ns_per_pixel"]), r["timing_method"]]
                          for r in res]))
@@ -312,6 +319,8 @@ def key_figures(runs):
     curves = ("SAO (z hierarchy)", "SAO (no hierarchy)", "AlchemyAO-style")
     sweeps = []  # (backend, size, {(curve, radius): ms}) in run order
     for name, folder in runs:
+        if name.startswith("gpu-"):  # another machine: its backends' names would mix with this one's
+            continue
         rad = [r for r in read_csv(os.path.join(folder, "results.csv")) if r["section"] == "radius"]
         if rad:
             sweeps.append((rad[0]["backend"], f"{rad[0]['width']}×{rad[0]['height']}",
