@@ -541,25 +541,22 @@ float sao_upsample(ivec2 x, float z, int d, ivec2 last, ivec2 origin)
     // floor's row) share the pixel: a single nearest texel, first in row order on ties, made
     // the choice hang on the last bit of z (the same scene in mm gave other texels' A).
     ivec2 c = min(x >> sh, last);
+    vec2 n[9];  // the 3x3, read once
     float best = -1.0;
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-            float zl = sao_up_low(clamp(c + ivec2(dx, dy), ivec2(0), last), origin).y;
-            if (!sao_is_sky(zl))
-                best = (best < 0.0) ? abs(z - zl) : min(best, abs(z - zl));
-        }
+    for (int i = 0; i < 9; ++i) {
+        n[i] = sao_up_low(clamp(c + ivec2(i % 3 - 1, i / 3 - 1), ivec2(0), last), origin);
+        if (!sao_is_sky(n[i].y))
+            best = (best < 0.0) ? abs(z - n[i].y) : min(best, abs(z - n[i].y));
+    }
     if (best < 0.0)
         return 1.0;
     float sum = 0.0;
     float vsum = 0.0;
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-            vec2 s = sao_up_low(clamp(c + ivec2(dx, dy), ivec2(0), last), origin);
-            if (!sao_is_sky(s.y)) {
-                float v = max(0.0, 1.0 - k * (abs(z - s.y) - best));
-                sum += v * s.x;
-                vsum += v;
-            }
+    for (int i = 0; i < 9; ++i)
+        if (!sao_is_sky(n[i].y)) {
+            float v = max(0.0, 1.0 - k * (abs(z - n[i].y) - best));
+            sum += v * n[i].x;
+            vsum += v;
         }
     return sum / vsum;
 }
