@@ -3,7 +3,8 @@
 # build-gpu/, checks that GL and Vulkan run on a real device (not llvmpipe / lavapipe), then times
 # the presets at 1920x1080, the radius sweep (paper Fig. 5) and the resolution table (paper Table 3)
 # on both APIs and writes results, plots and the markdown tables into OUT (default out/gpu-bench).
-# Timings only (sao-bench --time-only): the errors against the ray-traced references are the same
+# Each point is rendered back to back for 200 ms before its timed runs (--warmup-ms: the GPU's
+# boost clock up). Timings only (sao-bench --time-only): the errors against the ray-traced references are the same
 # computation on any machine (the backends agree with the CPU reference) and take minutes of CPU per
 # scene; docs/BENCHMARKS.md has them. No test depends on it; it is for whenever a GPU is at hand,
 # and for users checking their own.
@@ -95,7 +96,7 @@ if command -v nvidia-smi >/dev/null 2>&1; then
   sampler=$!
   trap 'kill $sampler 2>/dev/null || true; rm -rf "${unpacked:-}"' EXIT
 fi
-"$bench" --out "$out" --sections "$sections" --backends gl,vulkan --runs 5 --size 1920x1080 --time-only \
+"$bench" --out "$out" --sections "$sections" --backends gl,vulkan --runs 5 --size 1920x1080 --time-only --warmup-ms 200 \
   ${SAO_GPU_BENCH_ARGS:-} 2>&1 | tee "$out/sao-bench.log"
 if [ -n "$sampler" ]; then kill "$sampler" 2>/dev/null || true; fi
 if grep -Eiq "llvmpipe|lavapipe|softpipe|swiftshader" "$out/results.json"; then

@@ -93,7 +93,7 @@ struct Options {
       if (inDefaultRun(s)) out.insert(s);
     return out;
   }();
-  std::uint32_t runs = 5, rays = 256, convergedTaps = 4096;
+  std::uint32_t runs = 5, rays = 256, convergedTaps = 4096, warmupMs = 0;
   Extent size{1280, 720};
   bool sizeGiven = false;  // --size given (the per_tap section's default is 1920x1080)
   bool quick = false;
@@ -127,6 +127,11 @@ Options parse(int argc, char** argv) {
   cl.value("--sections", "LIST", "comma-separated parts to run (default: all but calibrate, spiral, frames, paths, divisor, intermediates and per_tap: grid searches of about 20 and 5 minutes, a frame accumulation, camera paths, a preset x divisor matrix, a preset x intermediate format matrix and a ladder of GL passes at 1920x1080):\n" + sectionNames(),
            [&o](const std::string& v) { o.sections = parseSections(v); });
   cli::addRuns(cl, o.runs, 1, "measured runs per point, after one warm-up", "default 5");
+  cl.value("--warmup-ms", "N",
+           "before each point's timed runs, render it back to back for N ms, 0..10000 (default 0: one warm-up run "
+           "only): a GPU lowers its clocks under the light load of single runs and their read-backs "
+           "(ci/gpu-bench.sh uses 200)",
+           [&o](const std::string& v) { o.warmupMs = cli::parseWhole("--warmup-ms", v, 0, 10000); });
   cli::addRays(cl, "--rays", o.rays, "reference rays per pixel", "default 256");
   cli::addRays(cl, "--converged-taps", o.convergedTaps, "taps per pixel of reference (c), the converged estimator",
                "default 4096");
@@ -174,7 +179,7 @@ Options parse(int argc, char** argv) {
   o.sizeGiven = cl.given("--size");
   if (o.tune) {
     if (cl.given("--sections") || cl.given("--converged-noise") || cl.given("--rays") || cl.given("--ortho") ||
-        cl.given("--scenes") || cl.given("--time-only"))
+        cl.given("--scenes") || cl.given("--time-only") || cl.given("--warmup-ms"))
       cl.fail("--tune takes --out, --backends, --size, --runs, --converged-taps, --depth-source, --units and --quick only");
     if (!cl.given("--backends")) o.backends = "gl";
     if (!cl.given("--size")) o.size = {640, 360};
@@ -358,7 +363,7 @@ int main(int argc, char** argv) {
       refs.silhouette = &p.silhouette;
     }
     bench::Row r{section, scene, std::string(b.name()), preset, variant, what, size, s, {}, NAN, NAN, {}};
-    if (Status st = bench::measure(b, s, p.camera, inputs, int(o.runs), refs, r.m); !st)
+    if (Status st = bench::measure(b, s, p.camera, inputs, int(o.runs), refs, r.m, double(o.warmupMs)); !st)
       fail(section + " " + scene + " " + variant + ": " + st.message);
     if (converged) {
       if (fs::create_directories(fs::path(o.out) / "maps", ec); ec)

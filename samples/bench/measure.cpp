@@ -21,7 +21,8 @@ double median(std::vector<double> v) {
 }  // namespace
 
 Status measure(samples::BackendRunner& backend, const Settings& settings, const Camera& camera,
-               const samples::RunInputs& inputs, int runs, const References& references, Measurement& out) {
+               const samples::RunInputs& inputs, int runs, const References& references, Measurement& out,
+               double warmupMs) {
   out = Measurement{};
   if (!inputs.depth) return Status::error(StatusCode::InvalidInput, "bench::measure needs a depth image");
   std::vector<std::string> order;
@@ -29,7 +30,11 @@ Status measure(samples::BackendRunner& backend, const Settings& settings, const 
   std::vector<double> totals;
   // One warm-up run (pipelines, allocations), then the measured ones.
   for (int r = -1; r < runs; ++r) {
-    if (r == 0) out.startedUnixSeconds = unixSeconds();
+    if (r == 0) {
+      if (warmupMs > 0 && !settings.temporal)
+        if (Status s = backend.keepBusy(settings, camera, inputs, warmupMs); !s) return s;
+      out.startedUnixSeconds = unixSeconds();
+    }
     samples::RunOutputs o;
     if (Status s = backend.run(settings, camera, inputs, true, false, o); !s) return s;
     if (r < 0) continue;

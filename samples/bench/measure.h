@@ -41,7 +41,11 @@ struct Measurement {
 
 // `inputs` select the variant as the backends do: normals -> NORMALS_SUPPLIED, depth2 -> TWO_LAYER;
 // settings.use_z_hierarchy -> Z_HIERARCHY.
+// warmupMs > 0: after the warm-up run, the backend renders back to back for that long
+// (BackendRunner::keepBusy: a GPU's clocks up) before the timed runs; not with the temporal setting,
+// whose history it would advance.
 Status measure(samples::BackendRunner& backend, const Settings& settings, const Camera& camera,
-               const samples::RunInputs& inputs, int runs, const References& references, Measurement& out);
+               const samples::RunInputs& inputs, int runs, const References& references, Measurement& out,
+               double warmupMs = 0);
 
 }  // namespace sao::bench

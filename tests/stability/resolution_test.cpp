@@ -259,6 +259,20 @@ TEST(Backends, EveryBuiltBackendStartsUnlessExcluded) {
          measured);
 }
 
+// A runner of its own for `name`; Vulkan's under the validation layers (SAO_VK_VALIDATION=1 while
+// it is created), so that a message fails the run.
+std::unique_ptr<samples::BackendRunner> validatedRunner(std::string_view name) {
+  const char* before = std::getenv("SAO_VK_VALIDATION");
+  const std::string saved = before ? before : "";
+  setenv("SAO_VK_VALIDATION", "1", 1);
+  std::unique_ptr<samples::BackendRunner> runner;
+  const Status s = samples::createBackend(name, runner);
+  if (before) setenv("SAO_VK_VALIDATION", saved.c_str(), 1);
+  else unsetenv("SAO_VK_VALIDATION");
+  EXPECT_TRUE(s.ok()) << name << ": " << s.message;
+  return s.ok() ? std::move(runner) : nullptr;
+}
+
 // ---- A runner's inputs changed in place between runs
 // The GL runner keeps its input textures across runs while the images stay the same (so that a
 // run's timers do not hold the upload): an image changed in place, at the same address, must
@@ -276,9 +290,8 @@ TEST(Backends, InputsChangedInPlaceAreSeen) {
   std::string measured;
   for (std::string_view name : kBackendNames) {
     if (!backend(name)) continue;
-    std::unique_ptr<samples::BackendRunner> runner, fresh;
-    ASSERT_TRUE(samples::createBackend(name, runner).ok()) << name;
-    ASSERT_TRUE(samples::createBackend(name, fresh).ok()) << name;
+    std::unique_ptr<samples::BackendRunner> runner = validatedRunner(name), fresh = validatedRunner(name);
+    ASSERT_TRUE(runner && fresh) << name;
     DepthImage depth = sphere;
     FloatImage normals = up;
     auto run = [&](samples::BackendRunner& r, bool withNormals) {
@@ -304,6 +317,38 @@ TEST(Backends, InputsChangedInPlaceAreSeen) {
   }
   report("inputs changed in place between runs (depth, normals; every backend)",
          "seen: equal to a fresh runner's run, and the first inputs again give the first output", measured);
+}
+
+// ---- keepBusy (sao-bench --warmup-ms): renders without read-back between two runs
+// It must leave the runner as it found it: the run after it gives the run before it's output, on
+// every backend (the Vulkan one under the validation layers), with and
+// without timing, and with normals, which the GL runner keeps.
+TEST(Backends, KeepBusyLeavesTheNextRunAlike) {
+  const Camera cam = camera(64, 48, 0.1, kInf, ClipDepth::ZeroToOne, true);
+  const DepthImage depth = renderGpuDepth(test::sphereOnPlaneScene(), cam, DepthFormat::D32F);
+  FloatImage normals(depth.extent, 4);
+  for (std::size_t i = 0; i < normals.data.size(); i += 4) normals.data[i + 2] = 1.0f;
+  std::string measured;
+  for (std::string_view name : kBackendNames) {
+    if (!backend(name)) continue;
+    std::unique_ptr<samples::BackendRunner> runner = validatedRunner(name);
+    ASSERT_TRUE(runner) << name;
+    for (const samples::RunInputs& in : {samples::RunInputs{&depth, nullptr, nullptr}, samples::RunInputs{&depth, &normals, nullptr}})
+      for (bool timed : {false, true}) {
+        samples::RunOutputs before, after;
+        ASSERT_TRUE(runner->run(fullResolution(), cam, in, timed, false, before).ok()) << name;
+        const auto start = std::chrono::steady_clock::now();
+        const Status busy = runner->keepBusy(fullResolution(), cam, in, 30.0);
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        ASSERT_TRUE(busy.ok()) << name << ": " << busy.message;
+        ASSERT_TRUE(runner->run(fullResolution(), cam, in, timed, false, after).ok()) << name;
+        EXPECT_EQ(maxAbsDiff(before.ao, after.ao), 0.0) << name << (in.normals ? " with normals" : "") << (timed ? ", timed" : "");
+        if (name == "gl" || name == "vulkan") EXPECT_GE(ms, 30.0) << name << ": keepBusy returned before its time";
+        if (!in.normals && !timed) measured += fmt("%s%.*s: %.0f ms", measured.empty() ? "" : "; ", int(name.size()), name.data(), ms);
+      }
+  }
+  report("keepBusy between two runs (every backend; timed or not, normals or not)",
+         "the next run's output equals the previous one's; the GPU backends render for the time asked", measured);
 }
 
 // ---- Repeated runs on one runner (finding F5, fixed upstream in 6f366b2)

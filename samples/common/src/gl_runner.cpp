@@ -1,5 +1,6 @@
 // The OpenGL backend as a sample backend: a headless EGL context of its own, the depth uploaded
 // as the matching GL format (once while it stays the same), the results read back.
+#include <chrono>
 #include <cstring>
 
 #include "runners.h"
@@ -60,21 +61,8 @@ class GlRunner final : public BackendRunner {
              RunOutputs& out) override {
     if (!in.depth) return Status::error(StatusCode::InvalidInput, "no depth image");
     if (Status s = context_->makeCurrent(); !s) return s;
-    const gl::GlDepth format = glFormat(in.depth->format);
-    if (Status s = keepDepth(*in.depth, depth_); !s) return s;
-    if (in.depth2)
-      if (Status s = keepDepth(*in.depth2, depth2_); !s) return s;
-    if (in.normals && !normals_.holds(*in.normals)) {
-      normals_.release();
-      if (Status s = gl::uploadNormals(*in.normals, normals_.texture); !s) return s;
-      normals_.uploaded = *in.normals;
-    }
     gl::Inputs inputs;
-    inputs.depth = {depth_.texture, gl::internalFormat(format)};
-    if (in.depth2) inputs.depth2 = {depth2_.texture, gl::internalFormat(glFormat(in.depth2->format))};
-    inputs.normals = in.normals ? normals_.texture : 0;
-    inputs.frameIndex = in.frameIndex;
-    inputs.resetHistory = in.resetHistory;
+    if (Status s = bind(in, inputs); !s) return s;
     if (Status s = effect_->render(camera, settings, inputs, {measureTime}); !s) return s;
     out.plan = effect_->plan();
     out.timings = effect_->timings();
@@ -94,7 +82,42 @@ class GlRunner final : public BackendRunner {
     return Status::success();
   }
 
+  Status keepBusy(const Settings& settings, const Camera& camera, const RunInputs& in, double milliseconds) override {
+    if (!in.depth) return Status::error(StatusCode::InvalidInput, "no depth image");
+    if (Status s = context_->makeCurrent(); !s) return s;
+    gl::Inputs inputs;
+    if (Status s = bind(in, inputs); !s) return s;
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double, std::milli>(milliseconds);
+    do {  // a few frames queued between waits: the GPU never idles long
+      for (int i = 0; i < 4; ++i)
+        if (Status s = effect_->render(camera, settings, inputs, {false}); !s) return s;
+      if (Status s = context_->finish(); !s) return s;
+    } while (std::chrono::steady_clock::now() < end);
+    for (const auto& m : context_->errors())
+      return Status::error(StatusCode::DriverError, "GL reported: " + gl::HeadlessContext::format(m));
+    return Status::success();
+  }
+
  private:
+  // The effect's inputs: the kept textures, uploaded again where the images changed.
+  Status bind(const RunInputs& in, gl::Inputs& inputs) {
+    const gl::GlDepth format = glFormat(in.depth->format);
+    if (Status s = keepDepth(*in.depth, depth_); !s) return s;
+    if (in.depth2)
+      if (Status s = keepDepth(*in.depth2, depth2_); !s) return s;
+    if (in.normals && !normals_.holds(*in.normals)) {
+      normals_.release();
+      if (Status s = gl::uploadNormals(*in.normals, normals_.texture); !s) return s;
+      normals_.uploaded = *in.normals;
+    }
+    inputs.depth = {depth_.texture, gl::internalFormat(format)};
+    if (in.depth2) inputs.depth2 = {depth2_.texture, gl::internalFormat(glFormat(in.depth2->format))};
+    inputs.normals = in.normals ? normals_.texture : 0;
+    inputs.frameIndex = in.frameIndex;
+    inputs.resetHistory = in.resetHistory;
+    return Status::success();
+  }
+
   static Status keepDepth(const DepthImage& image, KeptInput<DepthImage>& kept) {
     if (kept.holds(image)) return Status::success();
     kept.release();

@@ -1,5 +1,6 @@
 // The Vulkan backend as a sample backend: a headless instance and device of its own (a real GPU
 // when there is one, else lavapipe), the depth uploaded as the matching format, results read back.
+#include <chrono>
 #include <cstdlib>
 #include <string>
 
@@ -18,59 +19,15 @@ class VulkanRunner final : public BackendRunner {
 
   Status run(const Settings& settings, const Camera& camera, const RunInputs& in, bool measureTime, bool dumpPasses,
              RunOutputs& out) override {
-    if (!in.depth) return Status::error(StatusCode::InvalidInput, "no depth image");
     auto& ctx = *context_;
-    vk::headless::Image depth, depth2, normals;
-    struct Cleanup {
-      vk::headless::Context& c;
-      vk::headless::Image* images[3];
-      ~Cleanup() {
-        for (auto* i : images) c.destroy(*i);
-      }
-    } cleanup{ctx, {&depth, &depth2, &normals}};
-    const VkImageLayout readLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-    vk::Config config;
-    config.settings = settings;
-    config.camera = camera;
-    config.depthFormat = vk::depthVkFormat(in.depth->format);
-    config.timestamps = measureTime;
-    vk::Inputs inputs;
-    if (Status s = ctx.uploadDepth(*in.depth, config.depthFormat, readLayout, depth); !s) return s;
-    inputs.depth = {depth.view, readLayout, in.depth->extent};
-    if (in.depth2) {
-      if (Status s = ctx.uploadDepth(*in.depth2, vk::depthVkFormat(in.depth2->format), readLayout, depth2); !s) return s;
-      config.secondLayer = true;
-      inputs.depth2 = {depth2.view, readLayout, in.depth2->extent};
-    }
-    if (in.normals) {
-      config.normalsFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-      if (Status s = ctx.uploadColor(*in.normals, config.normalsFormat, readLayout, normals); !s) return s;
-      inputs.normals = {normals.view, readLayout, in.normals->extent};
-    }
-    inputs.frameIndex = in.frameIndex;
-    inputs.resetHistory = in.resetHistory;
-    // A new camera that plans alike goes per record (no update(), which would also start a temporal
-    // history again): a camera path's frames.
-    const vk::Config* current = effect_ ? &effect_->config() : nullptr;
-    const bool perRecordCamera = current && current->settings == config.settings &&
-                                 current->depthFormat == config.depthFormat && current->timestamps == config.timestamps &&
-                                 current->secondLayer == config.secondLayer &&
-                                 current->normalsFormat == config.normalsFormat &&
-                                 cameraKeepsPlan(settings, current->camera, camera);
-    if (!effect_) {
-      if (Status s = vk::Effect::create(ctx.deviceContext(), config, effect_); !s) return s;
-    } else if (perRecordCamera) {
-      inputs.camera = &camera;
-    } else if (Status s = effect_->update(config); !s) {
+    Prepared p{ctx};
+    if (Status s = prepare(settings, camera, in, measureTime, p); !s) return s;
+    if (measureTime) {
+      if (Status s = effect_->measure(ctx.queue(), p.inputs, nullptr, out.timings); !s) return s;
+    } else if (Status s = recordOnce(p.inputs); !s) {
       return s;
     }
-    if (measureTime) {
-      if (Status s = effect_->measure(ctx.queue(), inputs, nullptr, out.timings); !s) return s;
-    } else {
-      Status recorded;
-      if (Status s = ctx.submit([&](VkCommandBuffer cmd) { recorded = effect_->record(cmd, inputs); }); !s) return s;
-      if (!recorded) return recorded;
-    }
+    const vk::Config& config = effect_->config();
     out.plan = effect_->plan();
     const vk::OutputImage o = effect_->output();
     if (Status s = ctx.readback(o.image, o.format, o.extent, 0, o.layout, config.outputDstStages, config.outputDstAccess,
@@ -97,12 +54,86 @@ class VulkanRunner final : public BackendRunner {
         out.intermediates.push_back({"ao_low", std::move(low)});
       }
     }
+    return validationMessages();
+  }
+
+  Status keepBusy(const Settings& settings, const Camera& camera, const RunInputs& in, double milliseconds) override {
+    Prepared p{*context_};
+    // The configuration of the runs around it, timestamps included: no update() in between.
+    const bool timestamps = effect_ && effect_->config().timestamps;
+    if (Status s = prepare(settings, camera, in, timestamps, p); !s) return s;
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double, std::milli>(milliseconds);
+    do {
+      if (Status s = recordOnce(p.inputs); !s) return s;
+    } while (std::chrono::steady_clock::now() < end);
+    return validationMessages();
+  }
+
+ private:
+  // A run's uploaded inputs, destroyed with it.
+  struct Prepared {
+    vk::headless::Context& ctx;
+    vk::headless::Image depth, depth2, normals;
+    vk::Inputs inputs;
+    ~Prepared() {
+      for (auto* i : {&depth, &depth2, &normals}) ctx.destroy(*i);
+    }
+  };
+
+  // Uploads the inputs and makes the effect's configuration match them.
+  Status prepare(const Settings& settings, const Camera& camera, const RunInputs& in, bool measureTime, Prepared& p) {
+    if (!in.depth) return Status::error(StatusCode::InvalidInput, "no depth image");
+    auto& ctx = *context_;
+    const VkImageLayout readLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    vk::Config config;
+    config.settings = settings;
+    config.camera = camera;
+    config.depthFormat = vk::depthVkFormat(in.depth->format);
+    config.timestamps = measureTime;
+    vk::Inputs& inputs = p.inputs;
+    if (Status s = ctx.uploadDepth(*in.depth, config.depthFormat, readLayout, p.depth); !s) return s;
+    inputs.depth = {p.depth.view, readLayout, in.depth->extent};
+    if (in.depth2) {
+      if (Status s = ctx.uploadDepth(*in.depth2, vk::depthVkFormat(in.depth2->format), readLayout, p.depth2); !s) return s;
+      config.secondLayer = true;
+      inputs.depth2 = {p.depth2.view, readLayout, in.depth2->extent};
+    }
+    if (in.normals) {
+      config.normalsFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+      if (Status s = ctx.uploadColor(*in.normals, config.normalsFormat, readLayout, p.normals); !s) return s;
+      inputs.normals = {p.normals.view, readLayout, in.normals->extent};
+    }
+    inputs.frameIndex = in.frameIndex;
+    inputs.resetHistory = in.resetHistory;
+    // A new camera that plans alike goes per record (no update(), which would also start a temporal
+    // history again): a camera path's frames.
+    const vk::Config* current = effect_ ? &effect_->config() : nullptr;
+    const bool perRecordCamera = current && current->settings == config.settings &&
+                                 current->depthFormat == config.depthFormat && current->timestamps == config.timestamps &&
+                                 current->secondLayer == config.secondLayer &&
+                                 current->normalsFormat == config.normalsFormat &&
+                                 cameraKeepsPlan(settings, current->camera, camera);
+    if (!effect_) return vk::Effect::create(ctx.deviceContext(), config, effect_);
+    if (perRecordCamera) {
+      inputs.camera = &camera;
+      return Status::success();
+    }
+    return effect_->update(config);
+  }
+
+  // One frame recorded, submitted and waited for.
+  Status recordOnce(const vk::Inputs& inputs) {
+    Status recorded;
+    if (Status s = context_->submit([&](VkCommandBuffer cmd) { recorded = effect_->record(cmd, inputs); }); !s) return s;
+    return recorded;
+  }
+
+  Status validationMessages() {
     if (context_->messageCount())
       return Status::error(StatusCode::DriverError, "Vulkan validation: " + vk::headless::toString(context_->takeMessages()));
     return Status::success();
   }
 
- private:
   std::unique_ptr<vk::headless::Context> context_;
   std::unique_ptr<vk::Effect> effect_;  // destroyed before the context (declared after it)
 };

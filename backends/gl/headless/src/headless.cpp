@@ -216,6 +216,12 @@ Status HeadlessContext::makeCurrent() {
   return Status::success();
 }
 
+Status HeadlessContext::finish() {
+  if (Status s = makeCurrent(); !s) return s;
+  glFinish();
+  return Status::success();
+}
+
 Status HeadlessContext::releaseCurrent() {
   if (!eglMakeCurrent(egl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT))
     return Status::error(StatusCode::DriverError, eglError("eglMakeCurrent(EGL_NO_CONTEXT)"));

@@ -39,6 +39,15 @@ class BackendRunner {
   virtual std::string description() const = 0;  // device / driver in words
   virtual Status run(const Settings& settings, const Camera& camera, const RunInputs& inputs, bool measureTime,
                      bool dumpPasses, RunOutputs& out) = 0;
+  // Renders the inputs back to back, reading nothing back, for about `milliseconds` of wall time
+  // (at least once): a GPU lowers its clocks under the light, bursty load of single runs and their
+  // read-backs, and raises them under sustained work, so timed runs after this see the clocks a
+  // frame loop gets. With the temporal setting each render is a frame of the history. The CPU
+  // backends have no clocks to raise: the default does nothing.
+  virtual Status keepBusy(const Settings& settings, const Camera& camera, const RunInputs& inputs, double milliseconds) {
+    (void)settings, (void)camera, (void)inputs, (void)milliseconds;
+    return Status::success();
+  }
 };
 
 // "cpu" (float, as a GPU computes), "cpu-double", "gl", "vulkan" or "auto" (the first of gl, vulkan, cpu that starts). Backends not built

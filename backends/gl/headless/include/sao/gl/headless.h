@@ -41,6 +41,8 @@ class HeadlessContext {
   HeadlessContext& operator=(const HeadlessContext&) = delete;
 
   Status makeCurrent();
+  // glFinish on this context (made current first): every command issued so far has completed.
+  Status finish();
   // Leaves no context current on the calling thread (to test callers without one).
   Status releaseCurrent();
   // eglGetProcAddress, for sao::gl::Effect::create.
