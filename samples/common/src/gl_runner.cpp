@@ -29,9 +29,10 @@ bool sameImage(const FloatImage& a, const FloatImage& b) {
          std::memcmp(a.data.data(), b.data.data(), a.data.size() * sizeof(float)) == 0;  // NaN bits too
 }
 
-// An input texture kept across runs while the image is the same (bit for bit): a texture created
-// and uploaded in every run leaves the driver's deferred work for it inside the first timed pass
-// that reads it on NVIDIA's GL (GL_TIME_ELAPSED counts the GPU's wait for it).
+// An input texture kept across runs while the image is the same (bit for bit), as an engine's
+// depth stays on the GPU: with a texture created and uploaded in every run, the GL timer of the
+// first pass reading it held about 0.5-1 ms more than Vulkan's on an H200, most likely the
+// driver's deferred upload (docs/BENCHMARKS.md, "On a GPU").
 template <class Image>
 struct KeptInput {
   std::uint32_t texture = 0;
