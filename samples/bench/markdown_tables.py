@@ -246,8 +246,10 @@ def tables(folder):
                       g(r["normal_worst_deg"], 2), g(r["normal_p99_deg"], 2), r["pixels"]] for r in prec]))
     per_tap = read_csv(os.path.join(folder, "per_tap.csv"))
     if per_tap:
+        timing = ", ".join(dict.fromkeys(r["timing_method"] for r in per_tap if r.get("timing_method")))
         print(f"\n### Per-tap cost: ao_sample beside minimal passes of our own ({per_tap[0]['width']}x"
-              f"{per_tap[0]['height']}, median ms of {per_tap[0]['runs']} runs)\n")
+              f"{per_tap[0]['height']}, median ms of {per_tap[0]['runs']} runs"
+              f"{'; ' + timing if timing else ''})\n")
         print("ns/px/tap: the least-squares slope of the median time against s, per pixel; fixed: its intercept; "
               "× (a): the slope over the fragment baseline's.\n")
         counts = sorted({int(r["samples"]) for r in per_tap})

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+
 #include "per_tap_shaders.h"
 #include "sao/constants.h"
 #include "sao/image.h"
@@ -29,9 +30,12 @@ class PerTapLadder {
   PerTapLadder& operator=(const PerTapLadder&) = delete;
 
   // One warm-up and `runs` timed runs of `step` with `block`'s values (samples, spiral_turns,
-  // radius, ...), milliseconds per run in `ms`; the last run's output read back into `ao`. Fails on
-  // a compile or link error and on any GL error the debug context reported.
-  Status measure(const LadderStep& step, const ParamBlock& block, int runs, std::vector<double>& ms, FloatImage& ao);
+  // radius, ...), milliseconds per run: `clockMs` by a steady clock between two glFinish, `gpuMs` by
+  // a GL_TIME_ELAPSED query as the effect's passes are timed (empty when a result is below 100 ns:
+  // the query does not see the work, as llvmpipe's around compute). The last run's output is read
+  // back into `ao`. Fails on a compile or link error and on any GL error the debug context reported.
+  Status measure(const LadderStep& step, const ParamBlock& block, int runs, std::vector<double>& clockMs,
+                 std::vector<double>& gpuMs, FloatImage& ao);
 
   std::string description() const;  // the context: platform, GL version, renderer
 

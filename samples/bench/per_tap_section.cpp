@@ -28,7 +28,9 @@ struct Point {
 struct Series {
   std::string variant, label;
   std::map<int, Point> at;              // by sample count
+  std::map<int, Point> atGpu;           // the ladder's GL_TIME_ELAPSED times, where the query saw the work
   double slope = NAN, intercept = NAN;  // ms per tap, ms
+  TimingMethod method = TimingMethod::None;  // how its times were taken
 };
 
 Point summarize(std::vector<double> ms) {
@@ -86,11 +88,12 @@ void progress(int s, const std::string& what) {
 Status writeCsv(const std::string& path, const std::vector<Series>& series, Extent size, int runs) {
   std::ofstream csv(path);
   if (!csv) return Status::error(StatusCode::IoError, "cannot write " + path);
-  csv << "variant,samples,width,height,runs,median_ms,min_ms,max_ms,mean_a,label\n";
+  csv << "variant,samples,width,height,runs,median_ms,min_ms,max_ms,mean_a,label,timing_method\n";
   for (const Series& s : series)
     for (const auto& [samples, p] : s.at)
       csv << s.variant << ',' << samples << ',' << size.width << ',' << size.height << ',' << runs << ',' << p.median
-          << ',' << p.min << ',' << p.max << ',' << p.meanA << ",\"" << s.label << "\"\n";  // labels hold commas
+          << ',' << p.min << ',' << p.max << ',' << p.meanA << ",\"" << s.label << "\","  // labels hold commas
+          << toString(s.method) << "\n";
   if (!csv.flush()) return Status::error(StatusCode::IoError, "cannot write " + path);
   return Status::success();
 }
@@ -182,6 +185,7 @@ Status perTapSection(const PerTapOptions& o, samples::BackendRunner* gl, SceneCa
   series.push_back({"ours_rebuilt", "ao_sample, normals rebuilt (medium, no blur)", {}});
   std::vector<std::string> broken;
   TimingMethod method = TimingMethod::None;
+  bool ladderGpuSees = true;  // every rung's GL_TIME_ELAPSED saw its work, at every s
   // Every variant at one s before the next s: the ratios come from the same minute of a noisy machine.
   for (int s : o.sampleCounts) {
     Settings set = base;
@@ -194,9 +198,10 @@ Status perTapSection(const PerTapOptions& o, samples::BackendRunner* gl, SceneCa
     for (std::size_t k = 0; k < ladderSteps().size(); ++k) {
       const LadderStep& step = ladderSteps()[k];
       progress(s, step.label);
-      std::vector<double> ms;
+      std::vector<double> ms, gpuMs;
       FloatImage ao;
-      if (Status st = ladder->measure(step, block, o.runs, ms, ao); !st) return st;
+      if (Status st = ladder->measure(step, block, o.runs, ms, gpuMs, ao); !st) return st;
+      ladderGpuSees = ladderGpuSees && !gpuMs.empty();
       const Check c = check(ao, csz[0], block.guard);
       if (c.nan || (c.pixels && (c.allZero || c.allOne)))
         broken.push_back(std::string(step.name) + " at s=" + std::to_string(s) +
@@ -205,6 +210,7 @@ Status perTapSection(const PerTapOptions& o, samples::BackendRunner* gl, SceneCa
                                       : ": all 1"));
       series[k].at[s] = summarize(ms);
       series[k].at[s].meanA = c.meanA;
+      if (!gpuMs.empty()) series[k].atGpu[s] = summarize(gpuMs);
     }
     for (const Extra extra : {Extra::Normals, Extra::None}) {
       Series& out = series[ladderSteps().size() + (extra == Extra::None ? 1 : 0)];
@@ -213,7 +219,7 @@ Status perTapSection(const PerTapOptions& o, samples::BackendRunner* gl, SceneCa
       for (int r = -1; r < o.runs; ++r) {  // one warm-up
         samples::RunOutputs run;
         if (Status st = gl->run(set, p.camera, runInputs(p, extra), true, false, run); !st) return st;
-        method = run.timings.method;
+        method = out.method = run.timings.method;
         const auto pass = std::find_if(run.timings.passes.begin(), run.timings.passes.end(),
                                        [](const PassTiming& t) { return t.pass == "ao_sample"; });
         if (pass == run.timings.passes.end())
@@ -228,6 +234,20 @@ Status perTapSection(const PerTapOptions& o, samples::BackendRunner* gl, SceneCa
     }
   }
   std::fprintf(stderr, "\n");
+  // One method for the whole ladder, as the effect's timer decides for all its passes: the queries
+  // where every rung's saw its work (a GPU, where glFinish and a clock time the synchronisation
+  // more than the pass), else the clock (llvmpipe's query sees compute work as 1 ns, and a draw as
+  // its binning only).
+  for (std::size_t k = 0; k < ladderSteps().size(); ++k) {
+    Series& ladderSeries = series[k];
+    ladderSeries.method = ladderGpuSees ? TimingMethod::GpuTimestamps : TimingMethod::FinishAndClock;
+    if (ladderGpuSees)
+      for (auto& [count, point] : ladderSeries.at) {
+        const double meanA = point.meanA;
+        point = ladderSeries.atGpu.at(count);
+        point.meanA = meanA;
+      }
+  }
   for (Series& s : series) fit(s);
 
   const std::string path = (std::filesystem::path(o.outDir) / "per_tap.csv").string();

@@ -1,5 +1,6 @@
 #!/bin/sh
 # sao-bench --sections per_tap, quick (GL, 320x180, the main quick scene): per_tap.csv has its header
+# (with each row's timing method, the same in every row)
 # and one row per variant (the ladder (a)-(k) and ao_sample with normals read and rebuilt) and
 # sample count (7, 16, 32, 48), every time > 0 with min <= median <= max, every mean A in (0, 1]
 # (the section itself fails on a rung that writes NaN, all 0 or all 1); the summary gives the
@@ -17,8 +18,14 @@ die() { echo "per_tap smoke: $*" >&2; exit 1; }
 grep -q "^per_tap: skipped" "$out.stdout" && die "the section skipped: $(grep '^per_tap: skipped' "$out.stdout")"
 csv=$out/per_tap.csv
 test -s "$csv" || die "missing per_tap.csv"
-[ "$(head -1 "$csv")" = "variant,samples,width,height,runs,median_ms,min_ms,max_ms,mean_a,label" ] ||
+[ "$(head -1 "$csv")" = "variant,samples,width,height,runs,median_ms,min_ms,max_ms,mean_a,label,timing_method" ] ||
   die "unexpected header $(head -1 "$csv")"
+# The ladder and ao_sample are timed alike (GL_TIME_ELAPSED where it sees the work, else glFinish and
+# a clock, as on llvmpipe): one method in every row.
+[ "$(awk -F, 'NR > 1 {print $NF}' "$csv" | sort -u | wc -l)" -eq 1 ] ||
+  die "the rows were timed by different methods: $(awk -F, 'NR > 1 {print $1, $NF}' "$csv" | sort -u)"
+awk -F, 'NR > 1 && $NF != "finish + steady clock" && $NF != "GPU timestamps" { bad = 1 } END { exit bad }' "$csv" ||
+  die "a row's timing_method is not one of the two"
 variants="a_fragment b_compute c_compute_2x2 d_compute_mip e_compute_rebuilt_n f_compute_imageload
   g_compute_uniform_taps h_compute_exact_spiral i_compute_uniform_spiral j_compute_all k_compute_turn_table
   ours_normals ours_rebuilt"
