@@ -351,41 +351,60 @@ TEST_F(VkLifetime, CreateRecordSubmitDestroy200Times) {
 
   const vk::MemoryStats before = vk::processMemoryStats();
   const auto hostBefore = gHost.snapshot();
-  RssHalves rss(kWarmup, kCycles);
   std::uint64_t peakBytes = 0, peakHost = 0;
-  for (int i = 0; i < kCycles; ++i) {
-    {
-      std::unique_ptr<vk::Effect> effect;
-      const Status st = vk::Effect::create(countedContext(), config, effect);
-      ASSERT_TRUE(st.ok()) << st.message;
-      peakBytes = std::max(peakBytes, vk::processMemoryStats().liveBytes);
-      peakHost = std::max(peakHost, gHost.snapshot().first);
-      Status recorded;
-      ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, inputsOf(u)); }).ok());
-      ASSERT_TRUE(recorded.ok()) << recorded.message;
+  // kCycles cycles, every exact counter checked after each; the RSS halves measured in `rss`.
+  auto cycles = [&](RssHalves& rss) {
+    for (int i = 0; i < kCycles; ++i) {
+      {
+        std::unique_ptr<vk::Effect> effect;
+        const Status st = vk::Effect::create(countedContext(), config, effect);
+        ASSERT_TRUE(st.ok()) << st.message;
+        peakBytes = std::max(peakBytes, vk::processMemoryStats().liveBytes);
+        peakHost = std::max(peakHost, gHost.snapshot().first);
+        Status recorded;
+        ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, inputsOf(u)); }).ok());
+        ASSERT_TRUE(recorded.ok()) << recorded.message;
+      }
+      const vk::MemoryStats now = vk::processMemoryStats();
+      ASSERT_EQ(now.liveAllocations, before.liveAllocations) << "cycle " << i;
+      ASSERT_EQ(now.liveBytes, before.liveBytes) << "cycle " << i;
+      ASSERT_EQ(gHost.snapshot(), hostBefore) << "host memory of the effect's Vulkan objects, cycle " << i;
+      rss.afterCycle(i);
+      if (i % 50 == 49) expectNoMessages(("by cycle " + std::to_string(i)).c_str());
     }
-    const vk::MemoryStats now = vk::processMemoryStats();
-    ASSERT_EQ(now.liveAllocations, before.liveAllocations) << "cycle " << i;
-    ASSERT_EQ(now.liveBytes, before.liveBytes) << "cycle " << i;
-    ASSERT_EQ(gHost.snapshot(), hostBefore) << "host memory of the effect's Vulkan objects, cycle " << i;
-    rss.afterCycle(i);
-    if (i % 50 == 49) expectNoMessages(("by cycle " + std::to_string(i)).c_str());
+    rss.atEnd();
+  };
+  RssHalves rss(kWarmup, kCycles);
+  cycles(rss);
+  if (HasFatalFailure()) return;
+  double growth = rss.growth();
+  const double bound = std::max(0.0, rawGrowth) + double(kAllowedGrowth);
+  // Both halves grew once in a CI run (+4.2 MiB, twice the smaller half, against 0.2 - 1.0 in every
+  // run before and after, alone or beside another lifetime test): a leak grows again in a second
+  // measurement, such a step does not, so above the bound the cycles run again and the second
+  // measurement decides (both are printed).
+  std::string first;
+  if (!sanitized() && growth > bound) {
+    first = " (a first measurement read " + std::to_string(mib(growth)) + " MiB; measured again)";
+    RssHalves again(kWarmup, kCycles);
+    cycles(again);
+    if (HasFatalFailure()) return;
+    growth = again.growth();
   }
-  rss.atEnd();
   const vk::MemoryStats after = vk::processMemoryStats();
-  const double growth = rss.growth();
   EXPECT_GE(after.totalAllocations - before.totalAllocations, std::uint64_t(kCycles));
   std::printf("%d create/record/submit/destroy cycles: device memory live %llu -> %llu bytes (peak %llu, %llu "
               "allocations made); host memory of the effect's Vulkan objects %llu -> %llu bytes (peak %llu); RSS "
-              "growth over cycles %d..%d %+.3f MiB (twice the smaller half; end minus warm-up %+.3f), plain-Vulkan "
+              "growth over cycles %d..%d %+.3f MiB (twice the smaller half; end minus warm-up %+.3f)%s, plain-Vulkan "
               "baseline (same pipeline + dispatch per cycle) %+.3f MiB\n",
               kCycles, (unsigned long long)before.liveBytes, (unsigned long long)after.liveBytes,
               (unsigned long long)peakBytes, (unsigned long long)(after.totalAllocations - before.totalAllocations),
               (unsigned long long)hostBefore.first, (unsigned long long)gHost.snapshot().first,
-              (unsigned long long)peakHost, kWarmup, kCycles, mib(growth), mib(rss.endMinusWarm()), mib(rawGrowth));
+              (unsigned long long)peakHost, kWarmup, kCycles, mib(growth), mib(rss.endMinusWarm()), first.c_str(),
+              mib(rawGrowth));
   if (!sanitized()) {
-    EXPECT_LE(growth, std::max(0.0, rawGrowth) + double(kAllowedGrowth))
-        << "host memory grows with create/destroy cycles beyond what the driver itself retains";
+    EXPECT_LE(growth, bound) << "host memory grows with create/destroy cycles beyond what the driver itself retains"
+                             << first;
   }
   context().destroy(u.image);
 }
