@@ -60,8 +60,6 @@ class GlRunner final : public BackendRunner {
 
   Status run(const Settings& settings, const Camera& camera, const RunInputs& in, bool measureTime, bool dumpPasses,
              RunOutputs& out) override {
-    if (!in.depth) return Status::error(StatusCode::InvalidInput, "no depth image");
-    if (Status s = context_->makeCurrent(); !s) return s;
     gl::Inputs inputs;
     if (Status s = bind(in, inputs); !s) return s;
     if (Status s = effect_->render(camera, settings, inputs, {measureTime}); !s) return s;
@@ -78,14 +76,10 @@ class GlRunner final : public BackendRunner {
       if (out.plan.image(gen::ResourceId::ao_low))  // the blurred (A, key), the upsample's input
         out.intermediates.push_back({"ao_low", gl::readTexture(effect_->texture(gen::ResourceId::ao_low), 2)});
     }
-    for (const auto& m : context_->errors())
-      return Status::error(StatusCode::DriverError, "GL reported: " + gl::HeadlessContext::format(m));
-    return Status::success();
+    return reportedErrors();
   }
 
   Status keepBusy(const Settings& settings, const Camera& camera, const RunInputs& in, double milliseconds) override {
-    if (!in.depth) return Status::error(StatusCode::InvalidInput, "no depth image");
-    if (Status s = context_->makeCurrent(); !s) return s;
     gl::Inputs inputs;
     if (Status s = bind(in, inputs); !s) return s;
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double, std::milli>(milliseconds);
@@ -94,14 +88,15 @@ class GlRunner final : public BackendRunner {
         if (Status s = effect_->render(camera, settings, inputs, {false}); !s) return s;
       if (Status s = context_->finish(); !s) return s;
     } while (std::chrono::steady_clock::now() < end);
-    for (const auto& m : context_->errors())
-      return Status::error(StatusCode::DriverError, "GL reported: " + gl::HeadlessContext::format(m));
-    return Status::success();
+    return reportedErrors();
   }
 
  private:
-  // The effect's inputs: the kept textures, uploaded again where the images changed.
+  // The context made current and the effect's inputs: the kept textures, uploaded again where the
+  // images changed.
   Status bind(const RunInputs& in, gl::Inputs& inputs) {
+    if (!in.depth) return Status::error(StatusCode::InvalidInput, "no depth image");
+    if (Status s = context_->makeCurrent(); !s) return s;
     const gl::GlDepth format = glFormat(in.depth->format);
     if (Status s = keepDepth(*in.depth, depth_); !s) return s;
     if (in.depth2)
@@ -116,6 +111,13 @@ class GlRunner final : public BackendRunner {
     inputs.normals = in.normals ? normals_.texture : 0;
     inputs.frameIndex = in.frameIndex;
     inputs.resetHistory = in.resetHistory;
+    return Status::success();
+  }
+
+  // The first message the debug context reported, as an error.
+  Status reportedErrors() {
+    for (const auto& m : context_->errors())
+      return Status::error(StatusCode::DriverError, "GL reported: " + gl::HeadlessContext::format(m));
     return Status::success();
   }
 
