@@ -17,31 +17,38 @@ float sao_round_to_unorm8(float x)
     return floor(clamp(x, 0.0, 1.0) * 255.0 + 0.5) / 255.0;
 }
 
-// Output blend multiply: the texel's channel c times A (clamped to [0, 1]), rounded once as the
-// format holds it (binary16 of either sign, or a multiple of 1/255); an infinite or NaN channel is
-// stored back as it is (exponent bits all ones: exact, whatever the compiler assumes about NaN).
-float sao_output_multiply(float c, float a, bool unorm8)
+// One channel of the stored texel, rounded once as the format holds it (binary16 of either sign, or
+// a multiple of 1/255): replace stores A' = clamp(A, 0, 1), multiply the channel's value c times A'
+// (an infinite or NaN c is stored back as it is: exponent bits all ones, exact whatever the compiler
+// assumes about NaN). Both blends go through the one rounding: a software rasteriser (llvmpipe)
+// runs every branch of a shader for every pixel, so a second rounding path is paid in full.
+float sao_output_channel(float c, float a, bool unorm8, bool multiply)
 {
-    if ((floatBitsToUint(c) & 0x7F800000u) == 0x7F800000u)
+    if (multiply && (floatBitsToUint(c) & 0x7F800000u) == 0x7F800000u)
         return c;
-    float m = c * clamp(a, 0.0, 1.0);
+    float m = clamp(a, 0.0, 1.0);
+    if (multiply)
+        m = c * m;
     return unorm8 ? sao_round_to_unorm8(m) : sao_round_to_half_signed(m);
 }
 
-// The stored texel: channel c, when bit c of mask is set (bit 0 = R), gets the quantised A
+// The stored RGBA texel: channel c, when bit c of mask is set (bit 0 = R), gets A quantised
 // (SAO_OUTPUT_BLEND_REPLACE) or kept.c times A (SAO_OUTPUT_BLEND_MULTIPLY); the others keep `kept`
-// (the texel's previous value when the pass loaded it; ignored channels of an R output).
+// (the texel's previous value when the pass loaded it).
 vec4 sao_output_texel(float a, bool unorm8, vec4 kept, int mask, int blend)
 {
-    vec4 v;
-    if (blend == SAO_OUTPUT_BLEND_MULTIPLY) {
-        v = vec4(sao_output_multiply(kept.x, a, unorm8), sao_output_multiply(kept.y, a, unorm8),
-                 sao_output_multiply(kept.z, a, unorm8), sao_output_multiply(kept.w, a, unorm8));
-    } else {
-        v = vec4(unorm8 ? sao_round_to_unorm8(a) : sao_round_to_half(a));
-    }
+    bool multiply = blend == SAO_OUTPUT_BLEND_MULTIPLY;
+    vec4 v = vec4(sao_output_channel(kept.x, a, unorm8, multiply), sao_output_channel(kept.y, a, unorm8, multiply),
+                  sao_output_channel(kept.z, a, unorm8, multiply), sao_output_channel(kept.w, a, unorm8, multiply));
     bvec4 take = bvec4((mask & 1) != 0, (mask & 2) != 0, (mask & 4) != 0, (mask & 8) != 0);
     return mix(kept, v, take);
+}
+
+// The stored single-channel texel (r16f, r8): only R is computed; bit 0 of mask clear keeps it.
+vec4 sao_output_texel_r(float a, bool unorm8, float kept, int mask, int blend)
+{
+    float v = sao_output_channel(kept, a, unorm8, blend == SAO_OUTPUT_BLEND_MULTIPLY);
+    return vec4((mask & 1) != 0 ? v : kept, 0.0, 0.0, 1.0);
 }
 
 // Stores A at pixel p of the pass's `out_ao` binding (a macro: each pass declares its own), loading
@@ -54,9 +61,8 @@ vec4 sao_output_texel(float a, bool unorm8, vec4 kept, int mask, int blend)
             : imageLoad(out_ao, (p)), output_mask, output_blend))
 #elif defined(OUTPUT_FORMAT)
 #define SAO_STORE_OUTPUT(p, a) \
-    imageStore(out_ao, (p), sao_output_texel((a), SAO_OUTPUT_IS_UNORM8(OUTPUT_FORMAT), \
-        output_blend == SAO_OUTPUT_BLEND_REPLACE ? vec4(0.0, 0.0, 0.0, 1.0) : imageLoad(out_ao, (p)), output_mask, \
-        output_blend))
+    imageStore(out_ao, (p), sao_output_texel_r((a), SAO_OUTPUT_IS_UNORM8(OUTPUT_FORMAT), \
+        output_blend == SAO_OUTPUT_BLEND_REPLACE ? 0.0 : imageLoad(out_ao, (p)).x, output_mask, output_blend))
 #endif
 
 #endif // SAO_OUTPUT_GLSL
