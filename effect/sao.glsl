@@ -122,7 +122,7 @@
 // ---------------------------------------------------------------------------------------------
 // Parameter block: filled by host code from Settings + Camera + extents (docs/effect-math.md,
 // "Parameter block"). Lengths are camera-space (view) units: metres times metersToViewUnits.
-// std140 offsets in brackets; 624 bytes.
+// std140 offsets in brackets; 368 bytes.
 // ---------------------------------------------------------------------------------------------
 #pragma sao block SaoParams
 layout(std140, binding = 0) uniform SaoParams {
@@ -167,17 +167,18 @@ layout(std140, binding = 0) uniform SaoParams {
     float frame_alpha_offset;   // [248] the frame's radial tap position: alpha_i = (i + offset) / s (0.5 at frame 0, the paper's)
     int   depth_samples;        // [252] samples per texel of the depth input (1: single-sample; DEPTH_MULTISAMPLE reads 0..n-1)
     int   depth_sample_policy;  // [256] SAO_DEPTH_SAMPLE_0 / _NEAREST: which sample of a multisampled depth texel linear_z keeps
-    uvec4 tap_turns[16];        // [272] eq. 6 per tap i < s: alpha_i*tau turns mod 1 in 2^-32 turns, component i & 3 of element i >> 2 (sao::spiralTapTurn; 0 beyond s): the host's, so no tap divides by s
-    vec4  prev_from_cur_x;      // [528] temporal: this frame's camera space -> the previous frame's, row 0 (.xyz rotation, .w translation, view units); identity without history
-    vec4  prev_from_cur_y;      // [544] row 1
-    vec4  prev_from_cur_z;      // [560] row 2
-    vec4  prev_proj_info;       // [576] temporal: proj_info of the previous frame's camera (eq. 3, guard folded in)
-    float temporal_min_blend;   // [592] temporal: 1 - temporal_hysteresis, this frame's least share
-    float temporal_max_frames;  // [596] temporal: 1 / (1 - temporal_hysteresis), the frames a history texel counts at most
-    float temporal_depth_k;     // [600] temporal: 1 / temporal_depth_tolerance
-    int   history_valid;        // [604] temporal: 1 when the history holds the previous frame (0 after create, a settings change, a resize, a reset)
-    float key_scale;            // [608] the (A, key) images' key is z times this: 1, or with half_intermediates 1/metersToViewUnits (the key in metres)
-    float key_to_view;          // [612] the key back in view units: 1, or metersToViewUnits
+    uint  tap_turn0;            // [260] eq. 6 for tap 0: alpha_0*tau turns mod 1 in 2^-32 turns (sao::spiralTapTurn(0, s, tau)): the host's, so no pixel divides by s
+    vec2  tap_step;             // [264] (cos, sin) of 2*pi*tau/s, the angle from one tap to the next (eq. 6): tap i+1's direction is tap i's rotated by it
+    vec4  prev_from_cur_x;      // [272] temporal: this frame's camera space -> the previous frame's, row 0 (.xyz rotation, .w translation, view units); identity without history
+    vec4  prev_from_cur_y;      // [288] row 1
+    vec4  prev_from_cur_z;      // [304] row 2
+    vec4  prev_proj_info;       // [320] temporal: proj_info of the previous frame's camera (eq. 3, guard folded in)
+    float temporal_min_blend;   // [336] temporal: 1 - temporal_hysteresis, this frame's least share
+    float temporal_max_frames;  // [340] temporal: 1 / (1 - temporal_hysteresis), the frames a history texel counts at most
+    float temporal_depth_k;     // [344] temporal: 1 / temporal_depth_tolerance
+    int   history_valid;        // [348] temporal: 1 when the history holds the previous frame (0 after create, a settings change, a resize, a reset)
+    float key_scale;            // [352] the (A, key) images' key is z times this: 1, or with half_intermediates 1/metersToViewUnits (the key in metres)
+    float key_to_view;          // [356] the key back in view units: 1, or metersToViewUnits
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -334,9 +335,11 @@ void sao_ao_main()
         uint phase = sao_pixel_phase(uvec2(p)) + frame_phase;  // eq. 8, turned by the frame's rotation
         int s = clamp(SAO_TAP_COUNT, 1, SAO_MAX_SAMPLES);
         float sum = 0.0;
+        vec2 u = sao_turn_direction(tap_turn0 + phase);  // tap 0's direction; each tap turns it by tap_step
         for (int i = 0; i < s; ++i) {
             float h;
-            ivec2 tap = sao_spiral_tap(c, i, inv_samples, frame_alpha_offset, tap_turns[i >> 2][i & 3] + phase, r_px, h);
+            ivec2 tap = sao_spiral_tap(c, i, inv_samples, frame_alpha_offset, u, r_px, h);
+            u = sao_spiral_step(u, tap_step);
 #if Z_HIERARCHY
             int m = sao_mip_level(h, log_q, max_mip);
 #else

@@ -9,6 +9,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "sao/cpu/reference.h"
@@ -38,11 +39,11 @@ inline bool isSky(double z) {
 template <typename T>
 using Block = gen::ParamBlockAs<T>;
 
-// GLSL: `const float SAO_TURN24_TO_RADIANS = 6.28318530717958647692 / 16777216.0;` -- float
-// literals, so float(2*pi) / 2^24 (bits 0x34C90FDB). Double: 2*pi / 2^24 in double.
+// GLSL: `const float SAO_TURN26_TO_RADIANS = 9.36267597e-08;`, float(2*pi) / 2^26 (float(2*pi)'s
+// significand, exactly). Double: 2*pi / 2^26 in double.
 template <typename T>
-constexpr T turn24ToRadians() {
-  return T(6.28318530717958647692) / T(16777216.0);
+constexpr T turn26ToRadians() {
+  return T(6.28318530717958647692) / T(67108864.0);  // float: bits of float(2 pi) * 2^-26, the shader's
 }
 
 // ---- Images: one mip level or one 1-/2-channel image, row 0 first.
@@ -233,36 +234,58 @@ inline std::uint32_t pixelPhase(std::uint32_t x, std::uint32_t y) {
   return (h * std::uint32_t(gen::SAO_PHASE_MUL)) << 1u;
 }
 
-// Eq. 6: tap i's alpha_i * tau turns, from the block as the shader reads it (tap_turns[i >> 2][i & 3]).
-template <typename T>
-std::uint32_t tapTurn(const Block<T>& P, int i) {
-  const gen::UInt4& v = P.tap_turns[i >> 2];
-  switch (i & 3) {
-    case 0: return v.x;
-    case 1: return v.y;
-    case 2: return v.z;
-    default: return v.w;
-  }
-}
-
-// Eq. 7: theta in [-pi, pi) from the 24 high bits of the turn.
+// Eq. 7: sao_turn_direction, operation for operation: the nearest quarter turn, the rest x in
+// [-pi/4, pi/4] in 2^-26 turns, Taylor polynomials for cos and sin of x, the quarter turn's swap and
+// signs. Float: the shader's constants and bits; Double: the exact Taylor coefficients.
 template <typename T>
 void turnDirection(std::uint32_t turn, T& ux, T& uy) {
-  const T theta = T(static_cast<std::int32_t>(turn) >> 8) * turn24ToRadians<T>();
-  ux = std::cos(theta);
-  uy = std::sin(theta);
+  const std::uint32_t q = (turn + 0x20000000u) >> 30;
+  const T x = T(static_cast<std::int32_t>(turn - (q << 30)) >> 6) * turn26ToRadians<T>();
+  const T x2 = x * x;
+  T s, c;
+  if constexpr (std::is_same_v<T, float>) {
+    s = x + x * x2 * (-0.166666672f + x2 * (0.00833333377f + x2 * (-0.000198412701f + x2 * 2.75573188e-06f)));
+    c = 1.0f + x2 * (-0.5f + x2 * (0.0416666679f + x2 * (-0.00138888892f + x2 * (2.48015876e-05f + x2 * -2.755732e-07f))));
+  } else {
+    s = x + x * x2 * (T(-1) / 6 + x2 * (T(1) / 120 + x2 * (T(-1) / 5040 + x2 * (T(1) / 362880))));
+    c = T(1) + x2 * (T(-1) / 2 + x2 * (T(1) / 24 + x2 * (T(-1) / 720 + x2 * (T(1) / 40320 + x2 * (T(-1) / 3628800)))));
+  }
+  T dx = (q & 1u) ? -s : c, dy = (q & 1u) ? c : s;
+  if (q & 2u) {
+    dx = -dx;
+    dy = -dy;
+  }
+  ux = dx;
+  uy = dy;
 }
 
-// Eq. 6-7: the tap pixel (tx, ty) and its distance h.
+// The spiral's direction walk (sao_spiral_step): tap 0's direction from the block's tap_turn0 plus
+// the pixel's phase, then each tap's the previous one rotated by tap_step, every product and sum
+// rounded on its own (the shader's `precise`; this file is built with -ffp-contract=off).
 template <typename T>
-void spiralTap(int cx, int cy, int i, std::uint32_t phase, T r_px, const Block<T>& P, int& tx, int& ty,
-               T& h) {
+struct SpiralDirection {
+  T ux = T(1), uy = T(0);
+  static SpiralDirection start(std::uint32_t phase, const Block<T>& P) {
+    SpiralDirection u;
+    turnDirection<T>(P.tap_turn0 + phase, u.ux, u.uy);
+    return u;
+  }
+  void step(const Block<T>& P) {
+    const T x = P.tap_step.x * ux - P.tap_step.y * uy;
+    const T y = P.tap_step.y * ux + P.tap_step.x * uy;
+    ux = x;
+    uy = y;
+  }
+};
+
+// Eq. 6-7: tap i's pixel (tx, ty) and its distance h, in direction u (then u steps to tap i + 1's).
+template <typename T>
+void spiralTap(int cx, int cy, int i, T r_px, const Block<T>& P, SpiralDirection<T>& u, int& tx, int& ty, T& h) {
   const T alpha = (T(i) + P.frame_alpha_offset) * P.inv_samples;  // offset 0.5 at frame 0
   h = r_px * alpha;
-  T ux, uy;
-  turnDirection<T>(tapTurn(P, i) + phase, ux, uy);
-  tx = cx + static_cast<int>(h * ux);  // conversion truncates toward zero
-  ty = cy + static_cast<int>(h * uy);
+  tx = cx + static_cast<int>(h * u.ux);  // conversion truncates toward zero
+  ty = cy + static_cast<int>(h * u.uy);
+  u.step(P);
 }
 
 // ---- sao_estimator.glsl

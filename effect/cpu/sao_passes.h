@@ -160,10 +160,11 @@ class AoSampleInvocation {
     const std::uint32_t phase = pixelPhase(std::uint32_t(px), std::uint32_t(py)) + P_.frame_phase;
     const int s = std::clamp(P_.samples, 1, gen::SAO_MAX_SAMPLES);
     T sum = T(0);
+    SpiralDirection<T> u = SpiralDirection<T>::start(phase, P_);
     for (int i = 0; i < s; ++i) {
       T h;
       int tx, ty;
-      spiralTap(cx, cy, i, phase, r_px, P_, tx, ty, h);
+      spiralTap(cx, cy, i, r_px, P_, u, tx, ty, h);
       const int m = zHierarchy_ ? mipLevel(h, P_.log_q, P_.max_mip) : 0;
       const int mx = mipTexel(tx, m, z0.w), my = mipTexel(ty, m, z0.h);
       const T qx = T(tx) + T(0.5), qy = T(ty) + T(0.5);

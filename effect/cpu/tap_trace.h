@@ -47,7 +47,7 @@ class AoSampleTrace {
     bool active = false;  // inside the AO buffer and not sky: it reads its normal and taps
     int cx = 0, cy = 0;
     float rPx = 0;
-    std::uint32_t phase = 0;
+    detail::SpiralDirection<float> direction;  // the next tap's
   };
 
   const std::vector<detail::Image<float>>& csz_;
@@ -77,7 +77,7 @@ void AoSampleTrace::group(int gx, int gy, Sink& out) const {
     l.active = inside && !isSky(zc);
     if (l.active) {
       l.rPx = screenRadius(zc, P);
-      l.phase = pixelPhase(std::uint32_t(px), std::uint32_t(py)) + P.frame_phase;
+      l.direction = SpiralDirection<float>::start(pixelPhase(std::uint32_t(px), std::uint32_t(py)) + P.frame_phase, P);
     }
   }
 
@@ -107,11 +107,11 @@ void AoSampleTrace::group(int gx, int gy, Sink& out) const {
   for (int i = 0; i < s; ++i) {
     out.beginStep();
     for (int li = 0; li < lanes(); ++li) {
-      const Lane& l = lane[std::size_t(li)];
+      Lane& l = lane[std::size_t(li)];
       if (!l.active) continue;
       float h;
       int tx, ty;
-      spiralTap(l.cx, l.cy, i, l.phase, l.rPx, P, tx, ty, h);
+      spiralTap(l.cx, l.cy, i, l.rPx, P, l.direction, tx, ty, h);
       const int m = zHierarchy_ ? mipLevel(h, P.log_q, P.max_mip) : 0;
       out.read(li, Surface::Csz, m, mipTexel(tx, m, z0.w), mipTexel(ty, m, z0.h));
     }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 #include <string>
 
 #include "sao/spiral.h"
@@ -216,12 +217,9 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
   p.inv_samples = f(1.0 / s.samples);
   p.samples = s.samples;
   p.spiral_turns = s.spiral_turns > 0 ? s.spiral_turns : spiralTurns(s.samples);  // 0: the built-in choice
-  static_assert(sizeof(p.tap_turns) == gen::SAO_MAX_SAMPLES * sizeof(std::uint32_t), "one turn per tap");
-  for (int i = 0; i < gen::SAO_MAX_SAMPLES; ++i) {
-    const std::uint32_t turn = i < p.samples ? spiralTapTurn(i, p.samples, p.spiral_turns) : 0u;
-    gen::UInt4& v = p.tap_turns[i >> 2];
-    (i % 4 == 0 ? v.x : i % 4 == 1 ? v.y : i % 4 == 2 ? v.z : v.w) = turn;
-  }
+  p.tap_turn0 = spiralTapTurn(0, p.samples, p.spiral_turns);
+  const double step = 2.0 * std::numbers::pi * double(p.spiral_turns) / double(p.samples);  // tau/s turns
+  p.tap_step = {f(std::cos(step)), f(std::sin(step))};
   p.log_q = s.mip_switch_log2;
   p.max_mip = static_cast<std::int32_t>(mipLevelsNeeded(s, c, m)) - 1;
   p.quad_edge_threshold = f(s.quad_edge_threshold * u);

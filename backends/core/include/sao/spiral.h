@@ -21,8 +21,9 @@ FrameSpiral frameSpiral(std::uint32_t frameIndex);
 
 // Eq. 6 for tap i of s with tau turns: alpha_i * tau turns mod 1, alpha_i = (2i + 1) / (2s), in
 // units of 2^-32 turns: k = ((2i + 1) tau) mod 2s, then ((k << 23) / s) << 8 (exact integers; the
-// low 8 bits are 0 because the shader keeps 24 bits of a turn). The parameter block's tap_turns
-// holds it for i < s, so ao_sample adds the pixel's phase instead of dividing by s per tap.
+// low 8 bits are 0 because the shader keeps 24 bits of a turn). The parameter block's tap_turn0
+// holds it for i = 0, so ao_sample adds the pixel's phase instead of dividing by s; later taps turn
+// by tap_step, (cos, sin) of 2 pi tau / s.
 std::uint32_t spiralTapTurn(int i, int samples, int tau);
 
 // tau for s taps, the one the effect uses when the setting spiral_turns is 0: G3D's
