@@ -1,6 +1,6 @@
 // sao_output.glsl -- the texel the final pass stores into the output: A quantised exactly as the
 // output's format holds it, in the channels the host's mask selects. Library code: depends on
-// sao_blur.glsl (sao_round_to_half, sao_round_to_half_signed). Math: docs/effect-math.md, "The output texel".
+// sao_blur.glsl (sao_round_to_half_signed). Math: docs/effect-math.md, "The output texel".
 #ifndef SAO_OUTPUT_GLSL
 #define SAO_OUTPUT_GLSL
 

@@ -27,8 +27,10 @@ vec2 sao_turn_direction(uint turn)
     uint q = (turn + 0x20000000u) >> 30;  // nearest quarter turn (wrapping)
     precise float x = float(int(turn - (q << 30)) >> 6) * SAO_TURN26_TO_RADIANS;
     precise float x2 = x * x;
-    precise float s = x + x * x2 * (-0.166666672 + x2 * (0.00833333377 + x2 * (-0.000198412701 + x2 * 2.75573188e-06)));
-    precise float c = 1.0 + x2 * (-0.5 + x2 * (0.0416666679 + x2 * (-0.00138888892 + x2 * (2.48015876e-05 + x2 * -2.755732e-07))));
+    precise float s = x + x * x2 * (-0.166666672 + x2 * (0.00833333377 + x2 * (-0.000198412701
+                                    + x2 * 2.75573188e-06)));
+    precise float c = 1.0 + x2 * (-0.5 + x2 * (0.0416666679 + x2 * (-0.00138888892 + x2 * (2.48015876e-05
+                                    + x2 * -2.755732e-07))));
     vec2 d = (q & 1u) != 0u ? vec2(-s, c) : vec2(c, s);
     return (q & 2u) != 0u ? -d : d;
 }
@@ -48,8 +50,9 @@ ivec2 sao_spiral_tap(ivec2 c, int i, float inv_s, float alpha_offset, vec2 u, fl
 // (2i+1)/(2s) positions), so each direction is the previous one rotated by step = (cos, sin) of
 // 2*pi*tau/s (the host's). Tap 0's comes from sao_turn_direction(the block's tap_turn0 + the
 // pixel's phase). One rotation a tap instead of a cos and a sin (polynomials on llvmpipe, whose
-// per-tap cost sao-bench --sections per_tap measures); `precise` keeps every product and sum rounded on its own (no fused multiply-add), so that every
-// backend and the CPU reference walk the same floats.
+// per-tap cost sao-bench --sections per_tap measures); `precise` keeps every product and sum
+// rounded on its own (no fused multiply-add), so that every backend and the CPU reference walk the
+// same floats.
 vec2 sao_spiral_step(vec2 u, vec2 step)
 {
     precise vec2 v = vec2(step.x * u.x - step.y * u.y, step.y * u.x + step.x * u.y);
