@@ -336,7 +336,8 @@ void sao_ao_main()
         int s = clamp(SAO_TAP_COUNT, 1, SAO_MAX_SAMPLES);
         float sum = 0.0;
         vec2 u = sao_turn_direction(tap_turn0 + phase);  // tap 0's direction; each tap turns it by tap_step
-        for (int i = 0; i < s; ++i) {
+        int i = 0;  // s >= 1: a do-while, whose body llvmpipe does not run once more masked
+        do {
             float h;
             ivec2 tap = sao_spiral_tap(c, i, inv_samples, frame_alpha_offset, u, r_px, h);
             u = sao_spiral_step(u, tap_step);
@@ -354,7 +355,7 @@ void sao_ao_main()
                                           radius2, bias, epsilon));
 #endif
             sum += o;
-        }
+        } while (++i < s);
 #if TEMPORAL
         // Where this surface was in the previous frame: through the cameras, or by the motion input.
         vec3 P = sao_to_previous(C, prev_from_cur_x, prev_from_cur_y, prev_from_cur_z);
@@ -420,30 +421,24 @@ const int SAO_BLUR_ROWS = int(gl_WorkGroupSize.y) * SAO_BLUR_TEXELS_Y;
 const int SAO_BLUR_HALO = SAO_MAX_BLUR_RADIUS * SAO_MAX_BLUR_STRIDE;
 shared vec2 sao_blur_tile[SAO_BLUR_COLS * (SAO_BLUR_ROWS + 2 * SAO_BLUR_HALO)];  // (A, key) blurred along x
 
-// The vertical blur of tile column `col` at tile row `row` (image row y of `height`): the taps of
-// sao_bilateral_blur along (0, 1), read from the horizontally blurred rows in shared memory.
-vec2 sao_blur_tile_column(int col, int row, int y, int height, int R, int stride)
+// The vertical blur of tile column `col` at tile row `row`: the taps of sao_bilateral_blur along
+// (0, 1), read from the horizontally blurred rows in shared memory (rows off the image hold sky,
+// so the sky test skips them), branch-free like it.
+vec2 sao_blur_tile_column(int col, int row, int R, int stride)
 {
     vec2 centre = sao_blur_tile[row * SAO_BLUR_COLS + col];
-    if (sao_is_sky(centre.y))
-        return vec2(1.0, 0.0);
     float sum = 0.0;
     float wsum = 0.0;
-    for (int t = -R; t <= R; ++t) {
-        vec2 tap = centre;
-        if (t != 0) {
-            int qy = y + t * stride;
-            if (qy < 0 || qy >= height)
-                continue;
-            tap = sao_blur_tile[(row + t * stride) * SAO_BLUR_COLS + col];
-            if (sao_is_sky(tap.y))
-                continue;
-        }
-        float w = sao_blur_weight(t, tap.y, centre.y, blur_edge_sharpness, blur_weights_1_4, blur_weights_5_8);
+    int t = -R;
+    do {
+        vec2 tap = sao_blur_tile[(row + t * stride) * SAO_BLUR_COLS + col];
+        float w = sao_is_sky(tap.y) ? 0.0
+                                    : sao_blur_weight(t, tap.y, centre.y, blur_edge_sharpness, blur_weights_1_4,
+                                                      blur_weights_5_8);
         sum += w * tap.x;
         wsum += w;
-    }
-    return vec2(sum / wsum, centre.y);
+    } while (++t <= R);
+    return sao_is_sky(centre.y) ? vec2(1.0, 0.0) : vec2(sum / wsum, centre.y);
 }
 
 void sao_blur_main()
@@ -455,14 +450,16 @@ void sao_blur_main()
     ivec2 origin = ivec2(gl_WorkGroupID.xy) * ivec2(SAO_BLUR_COLS, SAO_BLUR_ROWS);
     int count = SAO_BLUR_COLS * (SAO_BLUR_ROWS + 2 * halo);
     int n = int(gl_WorkGroupSize.x * gl_WorkGroupSize.y);
-    for (int i = int(gl_LocalInvocationIndex); i < count; i += n) {
+    int i = int(gl_LocalInvocationIndex);  // < n <= count: a do-while (see sao_bilateral_blur)
+    do {
         ivec2 q = origin + ivec2(i % SAO_BLUR_COLS, i / SAO_BLUR_COLS - halo);
-        vec2 h = vec2(1.0, 0.0);  // rows off the image: never read (the vertical taps skip them)
+        vec2 h = vec2(1.0, 0.0);  // rows off the image: sky, which the vertical taps skip
         if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size)))
             h = sao_bilateral_blur(in_ao_raw, q, ivec2(1, 0), R, stride, blur_edge_sharpness, blur_weights_1_4,
                                    blur_weights_5_8);
         sao_blur_tile[i] = h;
-    }
+        i += n;
+    } while (i < count);
     memoryBarrierShared();
     barrier();  // every invocation reaches it: the size tests come after
     ivec2 out_size = imageSize(out_ao_low);
@@ -472,7 +469,7 @@ void sao_blur_main()
         ivec2 p = origin + ivec2(col, local_row);
         if (any(greaterThanEqual(p, out_size)))
             continue;
-        vec2 r = sao_blur_tile_column(col, local_row + halo, p.y, size.y, R, stride);
+        vec2 r = sao_blur_tile_column(col, local_row + halo, R, stride);
 #if HALF_INTERMEDIATES
         r = sao_half_texel(r);
 #endif
@@ -499,25 +496,25 @@ void sao_output_main()
 // Pass 6 (reduced resolution only): joint bilateral upsample of (A, key) to the viewport, guided
 // by csz level 0; writes the final A, rounded in the shader as the output format holds it.
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass upsample entry=sao_upsample_main local=8x8 reads=ao_low,csz writes=ao variants=OUTPUT_FORMAT skip_when=resolution_divisor==1 alias_when=blur_radius==0:ao_low=ao_raw "Reduced resolution only: depth-aware upsample to the full-resolution output (bilinear x relative-z weights over the 2x2 nearest low texels, else the nearest in z of the 3x3)"
-// The low texels a work group reads, loaded once into shared memory: with d = 2 or 4, the 2x2
-// texels of every pixel and the 3x3 fallback around it lie in the (local / 2 + 2)^2 texels from
-// the group's first q0 on (docs/effect-math.md 6.4).
-const uvec2 SAO_UP_TILE = gl_WorkGroupSize.xy / 2u + 2u;
-shared vec2 sao_up_tile[SAO_UP_TILE.x * SAO_UP_TILE.y];
+#pragma sao pass upsample entry=sao_upsample_main local=8x8 texels=2x2 reads=ao_low,csz writes=ao variants=OUTPUT_FORMAT skip_when=resolution_divisor==1 alias_when=blur_radius==0:ao_low=ao_raw "Reduced resolution only: depth-aware upsample to the full-resolution output (bilinear x relative-z weights over the 2x2 nearest low texels, else the nearest in z of the 3x3)"
+// An invocation (texels=2x2) covers viewport pixels 2b .. 2b + 1. With d = 2 or 4 they lie in one low
+// texel c = 2b >> log2(d), and every low texel any of them reads (its 2x2 bracketing texels and the
+// 3x3 fallback) is one of the 3x3 around c, clamped into the image (docs/effect-math.md 6.4): the
+// invocation fetches those nine once, with no shared memory and no barrier.
 
-vec2 sao_up_low(ivec2 q, ivec2 origin)
+// One of a 2x2 block of the 3x3: a (top left), b, c, d in row order. Selects, not a dynamic index
+// into the array: that puts it in memory (lavapipe: the pass 3.5x slower).
+vec2 sao_up_pick(vec2 a, vec2 b, vec2 c, vec2 d, bool right, bool down)
 {
-    ivec2 k = q - origin;
-    return sao_up_tile[k.y * int(SAO_UP_TILE.x) + k.x];
+    return down ? (right ? d : c) : (right ? b : a);
 }
 
-// A at viewport pixel x (csz z): the 2x2 low texels whose representative pixels bracket x, weighted
-// bilinearly by x's place between those pixels times the depth weight; when none matches x's z (a
-// silhouette, or a thin object the reduced image missed), the A of the texels nearest in z among
-// the 3x3 around the one holding x (below), so no average of the two sides makes a halo; all sky
-// gives 1. d is a power of two: shifts stand for its divisions and products.
-float sao_upsample(ivec2 x, float z, int d, ivec2 last, ivec2 origin)
+// A at viewport pixel x (csz z) from the 3x3 n around its low texel c: the 2x2 low texels whose
+// representative pixels bracket x, weighted bilinearly by x's place between those pixels times the
+// depth weight; when none matches x's z (a silhouette, or a thin object the reduced image missed),
+// the A of the texels nearest in z among the 3x3 (below), so no average of the two sides makes a
+// halo; all sky gives 1. d is a power of two: shifts stand for its divisions and products.
+float sao_upsample(ivec2 x, float z, int d, ivec2 last, ivec2 c, vec2 n[9])
 {
     if (sao_is_sky(z))
         return 1.0;
@@ -528,10 +525,13 @@ float sao_upsample(ivec2 x, float z, int d, ivec2 last, ivec2 origin)
     ivec2 r1 = sao_low_representative(q1, d, ao_size);
     vec2 t = clamp(vec2(x - r0) / vec2(max(r1 - r0, ivec2(1))), 0.0, 1.0);
     float k = SAO_UPSAMPLE_Z_SHARPNESS / -z;
-    vec2 s00 = sao_up_low(q0, origin);
-    vec2 s10 = sao_up_low(ivec2(q1.x, q0.y), origin);
-    vec2 s01 = sao_up_low(ivec2(q0.x, q1.y), origin);
-    vec2 s11 = sao_up_low(q1, origin);
+    // n[(q - c + 1).y * 3 + (q - c + 1).x] is texel q: q0 is c - 1 or c, q1 is c or c + 1 per axis.
+    bvec2 e0 = equal(q0, c);
+    bvec2 e1 = greaterThan(q1, c);
+    vec2 s00 = sao_up_pick(n[0], n[1], n[3], n[4], e0.x, e0.y);
+    vec2 s10 = sao_up_pick(n[1], n[2], n[4], n[5], e1.x, e0.y);
+    vec2 s01 = sao_up_pick(n[3], n[4], n[6], n[7], e0.x, e1.y);
+    vec2 s11 = sao_up_pick(n[4], n[5], n[7], n[8], e1.x, e1.y);
     float w00 = ((1.0 - t.x) * (1.0 - t.y)) * sao_upsample_depth_weight(z, s00.y, k);
     float w10 = (t.x * (1.0 - t.y)) * sao_upsample_depth_weight(z, s10.y, k);
     float w01 = ((1.0 - t.x) * t.y) * sao_upsample_depth_weight(z, s01.y, k);
@@ -539,18 +539,14 @@ float sao_upsample(ivec2 x, float z, int d, ivec2 last, ivec2 origin)
     float wsum = ((w00 + w10) + w01) + w11;
     if (wsum > 0.0)
         return (((w00 * s00.x + w10 * s10.x) + w01 * s01.x) + w11 * s11.x) / wsum;
-    // No texel matches: the 3x3 around the texel holding x, each within 1/SHARPNESS (relative) of
-    // the nearest z weighted linearly down to 0 at that distance. Texels of equal z (a receding
-    // floor's row) share the pixel: a single nearest texel, first in row order on ties, made
-    // the choice hang on the last bit of z (the same scene in mm gave other texels' A).
-    ivec2 c = min(x >> sh, last);
-    vec2 n[9];  // the 3x3, read once
+    // No texel matches: the 3x3, each within 1/SHARPNESS (relative) of the nearest z weighted
+    // linearly down to 0 at that distance. Texels of equal z (a receding floor's row) share the
+    // pixel: a single nearest texel, first in row order on ties, made the choice hang on the last
+    // bit of z (the same scene in mm gave other texels' A).
     float best = -1.0;
-    for (int i = 0; i < 9; ++i) {
-        n[i] = sao_up_low(clamp(c + ivec2(i % 3 - 1, i / 3 - 1), ivec2(0), last), origin);
+    for (int i = 0; i < 9; ++i)
         if (!sao_is_sky(n[i].y))
             best = (best < 0.0) ? abs(z - n[i].y) : min(best, abs(z - n[i].y));
-    }
     if (best < 0.0)
         return 1.0;
     float sum = 0.0;
@@ -566,23 +562,22 @@ float sao_upsample(ivec2 x, float z, int d, ivec2 last, ivec2 origin)
 
 void sao_upsample_main()
 {
-    ivec2 x = ivec2(gl_GlobalInvocationID.xy);
-    int d = ao_divisor;
-    ivec2 last = textureSize(in_ao_low, 0) - 1;
-    // The group's smallest q0 (q0 grows with x); every texel it reads is clamped to at least it.
-    ivec2 first = ivec2(gl_WorkGroupID.xy * gl_WorkGroupSize.xy);
-    ivec2 origin = min(max(first - (d >> 1), ivec2(0)) >> findMSB(d), last);
-    uint count = SAO_UP_TILE.x * SAO_UP_TILE.y;
-    for (uint i = gl_LocalInvocationIndex; i < count; i += gl_WorkGroupSize.x * gl_WorkGroupSize.y) {
-        ivec2 q = min(origin + ivec2(int(i % SAO_UP_TILE.x), int(i / SAO_UP_TILE.x)), last);
-        sao_up_tile[i] = texelFetch(in_ao_low, q, 0).xy * vec2(1.0, key_to_view);  // the key back in view units
-    }
-    memoryBarrierShared();
-    barrier();  // every invocation reaches it: the size test comes after
-    if (any(greaterThanEqual(x, imageSize(out_ao))))
+    ivec2 x0 = 2 * ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(out_ao);
+    if (any(greaterThanEqual(x0, size)))
         return;
-    float z = texelFetch(in_csz, x + guard, 0).r;
-    float a = sao_upsample(x, z, d, last, origin);
-    SAO_STORE_OUTPUT(x, a);
+    int d = ao_divisor;  // 2 or 4 (skip_when: the pass never runs at 1)
+    ivec2 last = textureSize(in_ao_low, 0) - 1;
+    ivec2 c = min(x0 >> findMSB(d), last);
+    vec2 n[9];
+    for (int i = 0; i < 9; ++i) {
+        ivec2 q = clamp(c + ivec2(i % 3 - 1, i / 3 - 1), ivec2(0), last);
+        n[i] = texelFetch(in_ao_low, q, 0).xy * vec2(1.0, key_to_view);  // the key back in view units
+    }
+    for (int j = 0; j < 4; ++j) {
+        ivec2 x = x0 + ivec2(j & 1, j >> 1);
+        if (all(lessThan(x, size)))
+            SAO_STORE_OUTPUT(x, sao_upsample(x, texelFetch(in_csz, x + guard, 0).r, d, last, c, n));
+    }
 }
 #pragma sao end

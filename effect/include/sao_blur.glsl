@@ -21,32 +21,28 @@ float sao_blur_weight(int t, float key, float centre_key, float sharpness, vec4 
 
 // Bilateral 1D blur of src (.x = A, .y = key z) at texel p along dir ((1,0) or (0,1)):
 // taps t = -R..R (ascending) at p + dir*t*stride, weight gauss(t) * max(0, 1 - sharpness*|dz|).
-// Taps off the texture or on sky are skipped; a sky centre gives (1, 0). Returns (A, key).
+// Taps off the texture or on sky weigh 0; a sky centre gives (1, 0). Returns (A, key).
+// Branch-free and a do-while loop (t = 0 always runs): a software rasteriser (llvmpipe) runs every
+// branch for every pixel and a for loop's body once more than its largest trip count; a tap
+// weighing 0 adds +0.0, so the sums are those of skipping it.
 vec2 sao_bilateral_blur(sampler2D src, ivec2 p, ivec2 dir, int radius_taps, int stride,
                         float sharpness, vec4 w_1_4, vec4 w_5_8)
 {
     vec2 centre = texelFetch(src, p, 0).xy;
-    if (sao_is_sky(centre.y))
-        return vec2(1.0, 0.0);
     ivec2 size = textureSize(src, 0);
     int R = clamp(radius_taps, 0, SAO_MAX_BLUR_RADIUS);
     float sum = 0.0;
     float wsum = 0.0;
-    for (int t = -R; t <= R; ++t) {
-        vec2 tap = centre;
-        if (t != 0) {
-            ivec2 q = p + dir * (t * stride);
-            if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size)))
-                continue;
-            tap = texelFetch(src, q, 0).xy;
-            if (sao_is_sky(tap.y))
-                continue;
-        }
-        float w = sao_blur_weight(t, tap.y, centre.y, sharpness, w_1_4, w_5_8);
+    int t = -R;
+    do {
+        ivec2 q = p + dir * (t * stride);
+        bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
+        vec2 tap = texelFetch(src, clamp(q, ivec2(0), size - 1), 0).xy;
+        float w = (inside && !sao_is_sky(tap.y)) ? sao_blur_weight(t, tap.y, centre.y, sharpness, w_1_4, w_5_8) : 0.0;
         sum += w * tap.x;
         wsum += w;
-    }
-    return vec2(sum / wsum, centre.y);
+    } while (++t <= R);
+    return sao_is_sky(centre.y) ? vec2(1.0, 0.0) : vec2(sum / wsum, centre.y);
 }
 
 // |x| rounded to the nearest binary16 value, ties away from zero, for |x| <= 65504, with integer

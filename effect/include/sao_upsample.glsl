@@ -1,6 +1,6 @@
 // sao_upsample.glsl -- reduced-resolution AO: which viewport pixel a reduced pixel stands for, and
 // the depth weight of the depth-aware (joint bilateral) upsample (the pass itself is in sao.glsl:
-// it caches the low texels of its work group in shared memory). Library code: depends on
+// an invocation fetches the 3x3 low texels its 2x2 pixels read once). Library code: depends on
 // sao_depth.glsl. Math: docs/effect-math.md, "6.4 Reduced resolution".
 #ifndef SAO_UPSAMPLE_GLSL
 #define SAO_UPSAMPLE_GLSL

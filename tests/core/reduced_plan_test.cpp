@@ -109,8 +109,8 @@ TEST(Plan, WithoutBlurTheUpsampleReadsTheRawImage) {
 }
 
 // The dispatches cover the reduced extent up to the blur (8 x 32 texels a group: texels=1x4) and
-// the viewport in upsample, which
-// waits for ao_low (and csz, already visible since ao_sample read it).
+// the viewport in upsample (16 x 16 pixels a group: texels=2x2), which waits for ao_low (and csz,
+// already visible since ao_sample read it).
 TEST(Schedule, ReducedResolutionDispatchSizes) {
   sao::Settings s = sao::test::untunedDefaults();
   s.resolution_divisor = 4;
@@ -126,8 +126,8 @@ TEST(Schedule, ReducedResolutionDispatchSizes) {
     }
     if (d.pass != PassId::upsample) continue;
     sawUpsample = true;
-    EXPECT_EQ(d.groupsX, 81u) << "ceil(641 / 8)";
-    EXPECT_EQ(d.groupsY, 45u) << "ceil(359 / 8)";
+    EXPECT_EQ(d.groupsX, 41u) << "ceil(641 / 16)";
+    EXPECT_EQ(d.groupsY, 23u) << "ceil(359 / 16)";
     ASSERT_EQ(sch.hazardsBefore(d).size(), 1u);
     EXPECT_EQ(sch.hazardsBefore(d)[0].resource, ResourceId::ao_low);
     EXPECT_EQ(sch.hazardsBefore(d)[0].kind, sao::HazardKind::ReadAfterWrite);
