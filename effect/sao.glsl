@@ -39,6 +39,9 @@
 #pragma sao setting float temporal_depth_tolerance default=0.05 range=[0.001,1]             "Temporal: relative z difference |z_history - z| / |z| at which a history texel weighs 0 (linearly down from 1 at 0): the disocclusion test"
 #pragma sao setting float fade_end            default=0.0   range=[0,100000]       unit=m   "Distance fade: camera distance -z from which A = 1, linear in distance from fade_start on; 0 = no fade"
 #pragma sao setting bool  half_intermediates  default=true                                  "rg16f (A, key) intermediates (HALF_INTERMEDIATES): ao_raw and ao_low take 4 bytes a texel instead of 8, A and the key z (in about metres) rounded to binary16; false: rg32f (docs/effect-math.md, section 6.5)"
+// Derived settings: bools plan() computes from the settings, for the passes' skip_when= rules.
+#pragma sao derived direct_output when=blur_radius==0&&resolution_divisor==1&&temporal==false "Nothing follows the AO (no blur, full resolution, no history to keep): ao_sample_output writes the output itself, and neither ao_raw nor a copy pass is planned"
+#pragma sao derived copy_to_output when=resolution_divisor==1&&direct_output==false "Full resolution, and ao_sample wrote (A, key) (for the blur, or for the temporal history): the pass output copies A into the output"
 // ---------------------------------------------------------------------------------------------
 // Presets: the chain `sao-bench --tune` chose on the Pareto front of time against error vs the
 // converged estimator (c), over the built-in scenes (docs/BENCHMARKS.md, "Tuning"; 2026-12-03, gl,
@@ -291,9 +294,18 @@ void sao_linear_z2_main()
 // ---------------------------------------------------------------------------------------------
 // Pass 3: spiral taps (eq. 5-10) through the AlchemyAO estimator (eq. 1), then the 2x2
 // bilateral reconstruction through shared memory (no derivative instructions). One invocation
-// per AO pixel; invocations outside the AO buffer take part in the barriers as sky.
+// per AO pixel; invocations outside the AO buffer take part in the barriers as sky. Two passes
+// share the body: ao_sample stores (A, key) for the blur, the upsample or the output pass,
+// ao_sample_output (when nothing follows: no blur, full resolution, no temporal history) stores A
+// into the output itself.
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass ao_sample entry=sao_ao_main local=8x8 reads=csz,csz2,normals,history,motion writes=ao_raw,history variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,TEMPORAL,MOTION_VECTORS,HALF_INTERMEDIATES "Obscurance from s spiral taps over the z hierarchy (eq. 1, 3-10), with TEMPORAL blended with the reprojected history (and this frame's history written), 2x2 bilateral reconstruction; writes (A, key z)"
+#if defined(SAO_PASS_AO_SAMPLE) || defined(SAO_PASS_AO_SAMPLE_OUTPUT)
+#ifdef SAO_PASS_AO_SAMPLE_OUTPUT
+// ao_sample_output lists neither (with temporal accumulation ao_sample runs, writing the history);
+// GLSL's #if does not take an undefined name as 0.
+#define TEMPORAL 0
+#define MOTION_VECTORS 0
+#endif
 #if SAO_TARGET_VULKAN
 // The tap loop's trip count (= samples) as a push constant: Mesa lavapipe 22.3 keeps ~0.4 MB of
 // host memory per dispatch of a loop whose trip count comes from the uniform block its body also
@@ -307,10 +319,11 @@ shared float sao_quad_a[gl_WorkGroupSize.x * gl_WorkGroupSize.y];  // A per invo
 shared float sao_quad_h[gl_WorkGroupSize.x * gl_WorkGroupSize.y];  // A after the horizontal step
 shared float sao_quad_z[gl_WorkGroupSize.x * gl_WorkGroupSize.y];  // key z (+0.0 = sky / outside)
 
-void sao_ao_main()
+// A of AO pixel p (of the reduced image when ao_divisor > 1) after the 2x2 reconstruction, and its
+// key z in key_z (+0.0 = sky or outside); with TEMPORAL also this frame's history texel, stored.
+// Every invocation of the group calls it (it holds the barriers); `inside` says whether p is stored.
+float sao_ao_sample(ivec2 p, bool inside, out float key_z)
 {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);  // AO pixel (of the reduced image when ao_divisor > 1)
-    bool inside = all(lessThan(p, min(ao_size, imageSize(out_ao_raw))));
     ivec2 size0 = textureSize(in_csz, 0);
     ivec2 f = sao_low_representative(p, ao_divisor, ao_size);  // its viewport pixel (p itself at d = 1)
     ivec2 c = clamp(f + guard, ivec2(0), size0 - 1);  // csz level-0 texel
@@ -395,14 +408,37 @@ void sao_ao_main()
     sao_quad_h[li] = a_h;
     memoryBarrierShared();
     barrier();
-    float a_v = sao_quad_mix(a_h, key, sao_quad_h[ly], sao_quad_z[ly], quad_edge_threshold);
+    key_z = key;
+    return sao_quad_mix(a_h, key, sao_quad_h[ly], sao_quad_z[ly], quad_edge_threshold);
+}
+#endif
+
+#pragma sao pass ao_sample entry=sao_ao_main local=8x8 reads=csz,csz2,normals,history,motion writes=ao_raw,history variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,TEMPORAL,MOTION_VECTORS,HALF_INTERMEDIATES skip_when=direct_output==true "Obscurance from s spiral taps over the z hierarchy (eq. 1, 3-10), with TEMPORAL blended with the reprojected history (and this frame's history written), 2x2 bilateral reconstruction; writes (A, key z)"
+void sao_ao_main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    bool inside = all(lessThan(p, min(ao_size, imageSize(out_ao_raw))));
+    float key;
+    float a = sao_ao_sample(p, inside, key);
 #if HALF_INTERMEDIATES
-    vec2 stored = sao_half_texel(vec2(a_v, key * key_scale));
+    vec2 stored = sao_half_texel(vec2(a, key * key_scale));
 #else
-    vec2 stored = vec2(a_v, key);
+    vec2 stored = vec2(a, key);
 #endif
     if (inside)
         imageStore(out_ao_raw, p, vec4(stored, 0.0, 0.0));
+}
+#pragma sao end
+
+#pragma sao pass ao_sample_output entry=sao_ao_output_main local=8x8 reads=csz,csz2,normals writes=ao variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,OUTPUT_FORMAT skip_when=direct_output==false "No blur at full resolution without temporal only: ao_sample's obscurance and 2x2 reconstruction, A stored straight into the output's format (no ao_raw, no output pass)"
+void sao_ao_output_main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    bool inside = all(lessThan(p, min(ao_size, imageSize(out_ao))));
+    float key;
+    float a = sao_ao_sample(p, inside, key);
+    if (inside)
+        SAO_STORE_OUTPUT(p, a);
 }
 #pragma sao end
 
@@ -479,10 +515,11 @@ void sao_blur_main()
 #pragma sao end
 
 // ---------------------------------------------------------------------------------------------
-// Pass 5 (full resolution only): each pixel's A into the output, rounded in the shader as the
-// output format holds it (sky texels hold A = 1).
+// Pass 5 (full resolution after ao_sample: with a blur, or with temporal accumulation, whose history
+// ao_sample writes; otherwise ao_sample_output wrote the output): each pixel's A into the output,
+// rounded in the shader as the output format holds it (sky texels hold A = 1).
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass output entry=sao_output_main local=8x8 reads=ao_low writes=ao variants=OUTPUT_FORMAT skip_when=resolution_divisor>1 alias_when=blur_radius==0:ao_low=ao_raw "Full resolution only: A of the blurred (A, key) image (ao_raw without blur) into the output's format"
+#pragma sao pass output entry=sao_output_main local=8x8 reads=ao_low writes=ao variants=OUTPUT_FORMAT skip_when=copy_to_output==false alias_when=blur_radius==0:ao_low=ao_raw "Full resolution, after ao_sample: A of the blurred (A, key) image (ao_raw without blur: temporal) into the output's format"
 void sao_output_main()
 {
     ivec2 x = ivec2(gl_GlobalInvocationID.xy);

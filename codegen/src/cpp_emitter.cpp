@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "effect_rules.h"
+
 namespace sao::codegen {
 namespace {
 
@@ -145,7 +147,7 @@ const char* compareName(CompareOp op) {
 
 std::string conditionValue(const Effect& e, const std::optional<SettingCondition>& c) {
   if (!c) return "{false, SettingId{}, Compare::Eq, 0.0}";
-  return std::string("{true, SettingId::") + e.settings[c->setting].name + ", " + compareName(c->op) + ", " +
+  return std::string("{true, SettingId::") + conditionSettingName(e, c->setting) + ", " + compareName(c->op) + ", " +
          number(c->value) + "}";
 }
 
@@ -203,6 +205,7 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
   h << "enum class SettingType : std::uint8_t { Float, Int, Bool };\n"
     << "enum class SettingId : std::uint32_t {\n";
   for (const auto& s : e.settings) h << "  " << s.name << ",\n";
+  for (const auto& d : e.derived) h << "  " << d.name << ",  // derived: " << d.doc << "\n";
   h << "};\n"
     << "struct SettingInfo {\n  std::string_view name;\n  SettingType type;\n  double defaultValue;\n"
     << "  double minValue;\n  double maxValue;\n  std::string_view unit;\n  std::string_view doc;\n"
@@ -221,7 +224,8 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
       << (s.allowed.empty() ? std::string("{}") : "kAllowed_" + s.name) << "},\n";
   }
   h << "}};\n"
-    << "// Reads or writes one setting as a double (ints and bools exactly).\n"
+    << "// Reads or writes one setting as a double (ints and bools exactly). A derived setting (a SettingId\n"
+    << "// past kSettings) reads 1 when all its terms hold, else 0; writing it does nothing.\n"
     << "double settingValue(const Settings& s, SettingId id);\n"
     << "void setSettingValue(Settings& s, SettingId id, double value);\n\n";
   emitPresets(h, e);
@@ -379,6 +383,12 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
   s << "double settingValue(const Settings& s, SettingId id) {\n  switch (id) {\n";
   for (const auto& st : e.settings)
     s << "    case SettingId::" << st.name << ": return " << (st.type == ScalarType::Bool ? "s." + st.name + " ? 1.0 : 0.0" : "static_cast<double>(s." + st.name + ")") << ";\n";
+  for (const auto& d : e.derived) {
+    s << "    case SettingId::" << d.name << ": return (";
+    for (size_t t = 0; t < d.terms.size(); ++t)
+      s << (t ? " && " : "") << "holds(" << conditionValue(e, d.terms[t]) << ", s)";
+    s << ") ? 1.0 : 0.0;\n";
+  }
   s << "  }\n  return 0.0;\n}\n\n"
     << "void setSettingValue(Settings& s, SettingId id, double value) {\n  switch (id) {\n";
   for (const auto& st : e.settings) {
@@ -388,6 +398,7 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     else s << "value != 0.0";
     s << "; return;\n";
   }
+  for (const auto& d : e.derived) s << "    case SettingId::" << d.name << ": return;  // derived: computed\n";
   s << "  }\n}\n\n"
     << "std::string_view exclusionReason(const VariantValues& values) {\n"
     << "  for (const auto& x : kExclusions) {\n    bool all = true;\n"

@@ -115,6 +115,17 @@ struct SettingCondition {
   }
 };
 
+// `#pragma sao derived NAME when=TERM&&TERM... "doc"`: a bool that plan() computes from the settings,
+// true when every term (a condition on an int or bool setting) holds. Conditions (skip_when=,
+// alias_when=) name it like a bool setting; the user cannot set it. In a SettingCondition it is
+// setting index settings.size() + its index in Effect::derived.
+struct DerivedSetting {
+  SourceLoc loc;
+  std::string name;
+  std::vector<SettingCondition> terms;
+  std::string doc;
+};
+
 // A binding of `declared` that `serving` fills instead (the output of a skipped pass).
 struct ResourceAlias {
   int declared = -1;  // resource indices
@@ -155,6 +166,7 @@ struct Effect {
   std::string name;
   int version = 0;
   std::vector<Setting> settings;
+  std::vector<DerivedSetting> derived;
   std::vector<Constant> constants;
   std::vector<Variant> variants;
   std::vector<Exclusion> exclusions;

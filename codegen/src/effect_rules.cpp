@@ -1,6 +1,8 @@
 #include "effect_rules.h"
 
 #include <algorithm>
+#include <cmath>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -58,9 +60,10 @@ bool conditionHolds(const SettingCondition& c, double v) {
   return false;
 }
 
-// The values of an int or bool setting a condition can meet; a very wide int range is sampled at
-// its ends and around the condition's literal, which is where the answer can change.
-std::vector<double> conditionValues(const Setting& s, const SettingCondition& c) {
+// The values an int or bool setting takes in the checks below: every value of its range, or of a very
+// wide int range its ends and each literal it is compared with and its neighbours (where an answer can
+// change).
+std::vector<double> settingValues(const Setting& s, const std::vector<double>& literals) {
   if (!s.allowed.empty()) return s.allowed;
   if (s.maxValue - s.minValue <= 1024) {
     std::vector<double> all;
@@ -68,9 +71,51 @@ std::vector<double> conditionValues(const Setting& s, const SettingCondition& c)
     return all;
   }
   std::vector<double> some{s.minValue, s.maxValue};
-  for (double v : {c.value - 1, c.value, c.value + 1})
-    if (v >= s.minValue && v <= s.maxValue) some.push_back(v);
+  for (double l : literals)
+    for (double v : {l - 1, l, l + 1})
+      if (v >= s.minValue && v <= s.maxValue && std::find(some.begin(), some.end(), v) == some.end()) some.push_back(v);
   return some;
+}
+
+// The settings a condition names, through derived settings' terms (which may name earlier derived
+// settings), with the literals each is compared with.
+void collectSettings(const Effect& e, const SettingCondition& c, std::map<int, std::vector<double>>& out) {
+  if (c.setting < static_cast<int>(e.settings.size())) {
+    out[c.setting].push_back(c.value);
+    return;
+  }
+  for (const auto& t : e.derived[static_cast<size_t>(c.setting) - e.settings.size()].terms) collectSettings(e, t, out);
+}
+
+// One value per setting index (NaN: not involved).
+using Assignment = std::vector<double>;
+
+// Every combination of values of the settings the conditions involve (null ones ignored).
+std::vector<Assignment> assignments(const Effect& e, const std::vector<const SettingCondition*>& conditions) {
+  std::map<int, std::vector<double>> literals;
+  for (const auto* c : conditions)
+    if (c) collectSettings(e, *c, literals);
+  std::vector<Assignment> out{Assignment(e.settings.size(), std::nan(""))};
+  for (const auto& [setting, lits] : literals) {
+    std::vector<Assignment> next;
+    for (const auto& a : out)
+      for (double v : settingValues(e.settings[static_cast<size_t>(setting)], lits)) {
+        next.push_back(a);
+        next.back()[static_cast<size_t>(setting)] = v;
+      }
+    out = std::move(next);
+  }
+  return out;
+}
+
+// Whether condition c (null: never) holds under assignment a.
+bool holdsAt(const Effect& e, const std::optional<SettingCondition>& c, const Assignment& a) {
+  if (!c) return false;
+  if (c->setting < static_cast<int>(e.settings.size())) return conditionHolds(*c, a[static_cast<size_t>(c->setting)]);
+  bool all = true;
+  for (const auto& t : e.derived[static_cast<size_t>(c->setting) - e.settings.size()].terms)
+    all = all && holdsAt(e, t, a);
+  return conditionHolds(*c, all ? 1 : 0);
 }
 
 // A literal of the setting's type inside its range; `owner` starts each message.
@@ -109,19 +154,36 @@ bool parseCondition(const Effect& e, const std::string& text, const SourceLoc& l
     return false;
   }
   out.text = text;
+  const std::string op = m[2];
+  out.op = op == "==" ? CompareOp::Eq : op == "!=" ? CompareOp::Ne : op == "<" ? CompareOp::Lt
+         : op == "<=" ? CompareOp::Le : op == ">" ? CompareOp::Gt : CompareOp::Ge;
   out.setting = findSetting(e, m[1]);
   if (out.setting < 0) {
-    diags.error(loc, owner + " names unknown setting '" + m[1].str() + "'");
-    return false;
+    for (size_t j = 0; j < e.derived.size(); ++j)
+      if (e.derived[j].name == m[1]) out.setting = static_cast<int>(e.settings.size() + j);
+    if (out.setting < 0) {
+      diags.error(loc, owner + " names unknown setting '" + m[1].str() + "'");
+      return false;
+    }
+    // A derived setting: a bool (true when all its terms hold).
+    const std::string value = m[3];
+    if (out.op != CompareOp::Eq && out.op != CompareOp::Ne) {
+      diags.error(loc, owner + " orders derived setting '" + m[1].str() + "': use == or !=");
+      return false;
+    }
+    if (value != "true" && value != "false") {
+      diags.error(loc, owner + ": '" + value + "' is not a value of derived setting '" + m[1].str() +
+                           "' (true or false)");
+      return false;
+    }
+    out.value = value == "true" ? 1 : 0;
+    return true;
   }
   const Setting& s = e.settings[out.setting];
   if (s.type == ScalarType::Float) {
     diags.error(loc, owner + " compares float setting '" + s.name + "': a condition takes an int or bool setting");
     return false;
   }
-  const std::string op = m[2];
-  out.op = op == "==" ? CompareOp::Eq : op == "!=" ? CompareOp::Ne : op == "<" ? CompareOp::Lt
-         : op == "<=" ? CompareOp::Le : op == ">" ? CompareOp::Gt : CompareOp::Ge;
   if (s.type == ScalarType::Bool && out.op != CompareOp::Eq && out.op != CompareOp::Ne) {
     diags.error(loc, owner + " orders bool setting '" + s.name + "': use == or !=");
     return false;
@@ -240,6 +302,11 @@ void resolveVariantSelect(const Effect& e, Variant& v, const SourceLoc& loc, con
   }
 }
 
+const std::string& conditionSettingName(const Effect& e, int i) {
+  return i < static_cast<int>(e.settings.size()) ? e.settings[static_cast<size_t>(i)].name
+                                                 : e.derived[static_cast<size_t>(i) - e.settings.size()].name;
+}
+
 void resolvePassRules(const Effect& e, Pass& p, const SourceLoc& loc, const std::string* skipWhen,
                       const std::string* aliasWhen, Diagnostics& diags) {
   if (skipWhen) {
@@ -300,40 +367,61 @@ void resolvePassRules(const Effect& e, Pass& p, const SourceLoc& loc, const std:
 }
 
 void checkPassRules(const Effect& e, Diagnostics& diags) {
+  // Every check below runs over every combination of the values of the settings that the
+  // conditions involved name (derived settings through their terms), so conditions on different
+  // settings combine (e.g. the output written by one of three passes on two settings).
   for (size_t i = 0; i < e.passes.size(); ++i) {
     const Pass& p = e.passes[i];
     // An output's writer may be skipped only where another writer of it runs (e.g. the full- and
     // reduced-resolution ends of the effect, skipped on complementary values of one setting).
     if (p.skipWhen)
       for (int r : p.writes)
-        if (e.resources[r].kind == ResourceKind::Output)
-          for (double v : conditionValues(e.settings[p.skipWhen->setting], *p.skipWhen)) {
-            if (!conditionHolds(*p.skipWhen, v)) continue;
+        if (e.resources[r].kind == ResourceKind::Output) {
+          std::vector<const SettingCondition*> conditions{&*p.skipWhen};
+          for (const Pass& q : e.passes)
+            if (&q != &p && writes(q, r) && q.skipWhen) conditions.push_back(&*q.skipWhen);
+          for (const auto& a : assignments(e, conditions)) {
+            if (!holdsAt(e, p.skipWhen, a)) continue;
             bool covered = false;
             for (const Pass& q : e.passes)
-              if (&q != &p && writes(q, r) &&
-                  (!q.skipWhen || (q.skipWhen->setting == p.skipWhen->setting && !conditionHolds(*q.skipWhen, v))))
-                covered = true;
+              if (&q != &p && writes(q, r) && !holdsAt(e, q.skipWhen, a)) covered = true;
             if (!covered) {
               diags.error(p.loc, "pass '" + p.name + "' writes output '" + e.resources[r].name + "' but has skip_when=" +
                                      p.skipWhen->text + ": the output would be left unwritten");
               break;
             }
           }
-    // Each alias stands in for a skipped earlier writer, from a resource an earlier pass writes anyway.
-    for (const auto& a : p.aliases) {
-      bool skippedWriter = false, servingWritten = e.resources[a.serving].kind == ResourceKind::Input;
+        }
+    // Each alias stands in for an earlier writer skipped whenever the alias applies (and the pass
+    // runs), from a resource an earlier pass writes then (or an input).
+    for (const auto& al : p.aliases) {
+      std::vector<const SettingCondition*> conditions{&*p.aliasWhen};
+      if (p.skipWhen) conditions.push_back(&*p.skipWhen);
+      for (size_t j = 0; j < i; ++j)
+        if (e.passes[j].skipWhen) conditions.push_back(&*e.passes[j].skipWhen);
+      const auto all = assignments(e, conditions);
+      const auto applies = [&](const Assignment& a) { return holdsAt(e, p.aliasWhen, a) && !holdsAt(e, p.skipWhen, a); };
+      bool skippedWriter = false, servingWritten = true;
       for (size_t j = 0; j < i; ++j) {
         const Pass& w = e.passes[j];
-        if (writes(w, a.declared) && w.skipWhen && *w.skipWhen == *p.aliasWhen) skippedWriter = true;
-        if (writes(w, a.serving) && !(w.skipWhen && *w.skipWhen == *p.aliasWhen)) servingWritten = true;
+        if (writes(w, al.declared) && w.skipWhen &&
+            std::all_of(all.begin(), all.end(), [&](const Assignment& a) { return !applies(a) || holdsAt(e, w.skipWhen, a); }))
+          skippedWriter = true;
       }
+      if (e.resources[al.serving].kind != ResourceKind::Input)
+        for (const auto& a : all) {
+          if (!applies(a)) continue;
+          bool written = false;
+          for (size_t j = 0; j < i; ++j)
+            if (writes(e.passes[j], al.serving) && !holdsAt(e, e.passes[j].skipWhen, a)) written = true;
+          if (!written) servingWritten = false;
+        }
       if (!skippedWriter)
-        diags.error(p.loc, "alias_when of pass '" + p.name + "' serves '" + e.resources[a.declared].name + "' when " +
+        diags.error(p.loc, "alias_when of pass '" + p.name + "' serves '" + e.resources[al.declared].name + "' when " +
                                p.aliasWhen->text + ", but no earlier pass that writes it is skipped then");
       else if (!servingWritten)
-        diags.error(p.loc, "alias_when of pass '" + p.name + "' serves '" + e.resources[a.declared].name + "' from '" +
-                               e.resources[a.serving].name + "', which no earlier pass writes when " +
+        diags.error(p.loc, "alias_when of pass '" + p.name + "' serves '" + e.resources[al.declared].name + "' from '" +
+                               e.resources[al.serving].name + "', which no earlier pass writes when " +
                                p.aliasWhen->text);
     }
     // A history is read as the previous frame left it: the pass that reads it must write this
@@ -342,28 +430,69 @@ void checkPassRules(const Effect& e, Diagnostics& diags) {
       if (e.resources[r].history && !writes(p, r))
         diags.error(p.loc, "pass '" + p.name + "' reads history resource '" + e.resources[r].name +
                                "' but does not write it: the pass that reads a history writes this frame's");
-    for (const auto& a : p.aliases)
-      if (e.resources[a.declared].history || e.resources[a.serving].history)
+    for (const auto& al : p.aliases)
+      if (e.resources[al.declared].history || e.resources[al.serving].history)
         diags.error(p.loc, "alias_when of pass '" + p.name + "' names history resource '" +
-                               e.resources[e.resources[a.declared].history ? a.declared : a.serving].name +
+                               e.resources[e.resources[al.declared].history ? al.declared : al.serving].name +
                                "': a history is never served by or for another image");
-    // A read whose earlier writers can all be skipped needs an alias for the last one's condition.
+    // A read whose earlier writers can all be skipped while the pass runs needs an alias then.
     for (int r : p.reads) {
       const Pass* last = nullptr;
       bool always = false;
+      std::vector<const SettingCondition*> conditions;
+      if (p.skipWhen) conditions.push_back(&*p.skipWhen);
+      if (p.aliasWhen) conditions.push_back(&*p.aliasWhen);
       for (size_t j = 0; j < i; ++j) {
         if (!writes(e.passes[j], r)) continue;
         if (!e.passes[j].skipWhen) always = true;
+        else conditions.push_back(&*e.passes[j].skipWhen);
         last = &e.passes[j];
       }
       if (!last || always) continue;
-      if (p.skipWhen && *p.skipWhen == *last->skipWhen) continue;  // skipped together with its writer
-      if (p.aliasWhen && *p.aliasWhen == *last->skipWhen && aliasOf(p.aliases, r)) continue;
-      diags.error(p.loc, "pass '" + p.name + "' reads '" + e.resources[r].name + "', which pass '" + last->name +
-                             "' does not write when " + last->skipWhen->text + "; add alias_when=" +
-                             last->skipWhen->text + ":" + e.resources[r].name + "=RESOURCE to pass '" + p.name + "'");
+      for (const auto& a : assignments(e, conditions)) {
+        if (holdsAt(e, p.skipWhen, a)) continue;
+        if (aliasOf(p.aliases, r) && holdsAt(e, p.aliasWhen, a)) continue;
+        bool written = false;
+        for (size_t j = 0; j < i; ++j)
+          if (writes(e.passes[j], r) && !holdsAt(e, e.passes[j].skipWhen, a)) written = true;
+        if (written) continue;
+        diags.error(p.loc, "pass '" + p.name + "' reads '" + e.resources[r].name + "', which pass '" + last->name +
+                               "' does not write when " + last->skipWhen->text + "; add alias_when=" +
+                               last->skipWhen->text + ":" + e.resources[r].name + "=RESOURCE to pass '" + p.name + "'");
+        break;
+      }
     }
   }
+}
+
+void parseDerived(Effect& e, const SourceLoc& loc, const std::vector<std::string>& words,
+                  const std::vector<std::pair<std::string, std::string>>& attrs, const std::string& doc, bool hasDoc,
+                  Diagnostics& diags) {
+  if (words.size() != 1 || attrs.size() != 1 || attrs[0].first != "when") {
+    diags.error(loc, "expected '#pragma sao derived NAME when=SETTING==VALUE[&&SETTING==VALUE...] \"doc\"'");
+    return;
+  }
+  DerivedSetting d;
+  d.loc = loc;
+  d.name = words[0];
+  d.doc = doc;
+  if (!hasDoc || doc.empty()) {
+    diags.error(loc, "derived setting '" + d.name + "' has no doc string");
+    return;
+  }
+  const std::string owner = "when= of derived setting '" + d.name + "'";
+  const std::string& text = attrs[0].second;
+  for (size_t from = 0;;) {
+    const size_t amp = text.find("&&", from);
+    SettingCondition c;
+    if (!parseCondition(e, text.substr(from, amp == std::string::npos ? std::string::npos : amp - from), loc, owner, c,
+                        diags))
+      return;
+    d.terms.push_back(c);
+    if (amp == std::string::npos) break;
+    from = amp + 2;
+  }
+  e.derived.push_back(d);
 }
 
 void parsePreset(Effect& e, const SourceLoc& loc, const std::vector<std::string>& words,

@@ -20,9 +20,19 @@ void resolveVariantSelect(const Effect& e, Variant& v, const SourceLoc& loc, con
 void resolvePassRules(const Effect& e, Pass& p, const SourceLoc& loc, const std::string* skipWhen,
                       const std::string* aliasWhen, Diagnostics& diags);
 
-// Across passes, in order: a skipped pass's output reaches later readers only through an alias
-// under the same condition, every alias serves such an output, and no skipped pass writes an output.
+// Across passes, in order, over every combination of the settings the conditions name: a skipped
+// pass's output reaches later readers only through an alias, every alias stands in for a skipped
+// writer from a resource written then, and every output has a writer that runs.
 void checkPassRules(const Effect& e, Diagnostics& diags);
+
+// `derived NAME when=TERM&&TERM... "doc"` (settings all parsed; before the passes' rules, which
+// may name it).
+void parseDerived(Effect& e, const SourceLoc& loc, const std::vector<std::string>& words,
+                  const std::vector<std::pair<std::string, std::string>>& attrs, const std::string& doc, bool hasDoc,
+                  Diagnostics& diags);
+
+// The name of setting index `i` of a condition (a setting, or a derived setting past them).
+const std::string& conditionSettingName(const Effect& e, int i);
 
 // `preset NAME SETTING=VALUE ... "summary"`.
 void parsePreset(Effect& e, const SourceLoc& loc, const std::vector<std::string>& words,

@@ -202,6 +202,25 @@ class AoSampleInvocation {
   const bool normalsSupplied_, twoLayer_, zHierarchy_, motionVectors_;
 };
 
+// The output texel at (x, y) as sao_output_texel stores it: into the channels output_mask selects,
+// A quantised as the output's format holds it (Float: binary16 or 1/255 steps; Double: unrounded),
+// or with output_blend multiply the channel's value times A (outputMultiply); the other channels
+// keep what the image holds (the caller's contents, Inputs::output).
+template <typename T>
+void storeOutput(const PassContext<T>& ctx, Image<T>& dst, int x, int y, T a) {
+  const std::int32_t v = ctx.plan.variants[static_cast<std::size_t>(gen::VariantId::OUTPUT_FORMAT)];
+  const gen::Format f = gen::kResources[static_cast<std::size_t>(gen::ResourceId::ao)].formats[std::size_t(v)];
+  const bool unorm8 = f == gen::Format::R8 || f == gen::Format::RGBA8;
+  if (ctx.P.output_blend == gen::SAO_OUTPUT_BLEND_MULTIPLY) {
+    for (int c = 0; c < dst.ch; ++c)
+      if ((ctx.P.output_mask >> c) & 1) dst.at(x, y, c) = outputMultiply(dst.at(x, y, c), a, unorm8);
+    return;
+  }
+  if constexpr (std::is_same_v<T, float>) a = unorm8 ? roundToUnorm8(a) : roundToHalf(a);
+  for (int c = 0; c < dst.ch; ++c)
+    if ((ctx.P.output_mask >> c) & 1) dst.at(x, y, c) = a;
+}
+
 // An (A, key) intermediate's texel (ao_raw, ao_low): with HALF_INTERMEDIATES as the rg16f
 // image holds it (sao_half_texel: rounded in Float, kept in Double).
 template <typename T>
@@ -211,25 +230,28 @@ void storeAKey(const PassContext<T>& ctx, Image<T>& img, int x, int y, T a, T ke
   img.at(x, y, 1) = key;
 }
 
-// Pass ao_sample over work groups: each group computes its invocations' (A, key) into
-// "shared memory", then the two reconstruction steps separated as the barriers separate them.
-// Invocations outside the AO buffer take part with A = 1, key = +0.0 (sky) and store nothing.
+// Passes ao_sample and ao_sample_output over work groups: each group computes its invocations'
+// (A, key) into "shared memory", then the two reconstruction steps separated as the barriers
+// separate them. Invocations outside the AO buffer take part with A = 1, key = +0.0 (sky) and store
+// nothing. ao_sample stores (A, key) into ao_raw, ao_sample_output A into the output (storeOutput).
 template <typename T>
 Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
   const bool twoLayer = ctx.variant(gen::VariantId::TWO_LAYER);
+  const bool direct = d.pass == gen::PassId::ao_sample_output;
+  const gen::ResourceId target = direct ? gen::ResourceId::ao : gen::ResourceId::ao_raw;
   const ScheduledBinding* in = binding(d, bindings, gen::ResourceId::csz, false);
   const ScheduledBinding* in2 = twoLayer ? binding(d, bindings, gen::ResourceId::csz2, false) : nullptr;
-  const ScheduledBinding* out = binding(d, bindings, gen::ResourceId::ao_raw, true);
+  const ScheduledBinding* out = binding(d, bindings, target, true);
   if (in == nullptr) return missingBinding(d, gen::ResourceId::csz, false);
   if (twoLayer && in2 == nullptr) return missingBinding(d, gen::ResourceId::csz2, false);
-  if (out == nullptr) return missingBinding(d, gen::ResourceId::ao_raw, true);
+  if (out == nullptr) return missingBinding(d, target, true);
   if (ctx.variant(gen::VariantId::NORMALS_SUPPLIED) && ctx.in.normals == nullptr)
     return passError(d, "reads normals, but none were supplied");
   if (ctx.variant(gen::VariantId::MOTION_VECTORS) && ctx.in.motion == nullptr)
     return passError(d, "reads motion vectors, but none were supplied");
   const std::vector<Image<T>>& csz = ctx.levels(in->resource);  // the whole chain
   const std::vector<Image<T>>& csz2 = ctx.levels(twoLayer ? in2->resource : gen::ResourceId::csz2);
-  Image<T>& aoRaw = ctx.image(*out);
+  Image<T>& dst = ctx.image(*out);
   const auto& P = ctx.P;
 
   const gen::PassInfo& info = gen::pass(d.pass);
@@ -241,7 +263,7 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
   if (P.max_mip < 0 || std::size_t(P.max_mip) >= csz.size() || (twoLayer && csz2.size() != csz.size()))
     return Status::error(StatusCode::InvalidInput, "max_mip " + std::to_string(P.max_mip) + " does not match the " +
                                                        std::to_string(csz.size()) + " csz levels computed");
-  if (aoRaw.ch != 2) return passError(d, "needs a 2-channel ao_raw");
+  if (!direct && dst.ch != 2) return passError(d, "needs a 2-channel ao_raw");
   // TEMPORAL: the previous frame's history in, this frame's out (sao_temporal.glsl).
   const bool temporal = ctx.variant(gen::VariantId::TEMPORAL);
   const ScheduledBinding* historyIn = temporal ? binding(d, bindings, gen::ResourceId::history, false) : nullptr;
@@ -250,13 +272,13 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
   if (temporal && historyOut == nullptr) return missingBinding(d, gen::ResourceId::history, true);
   const Image<T>* previous = temporal ? &ctx.image(*historyIn) : nullptr;
   Image<T>* history = temporal ? &ctx.image(*historyOut) : nullptr;
-  if (temporal && (previous->ch != 4 || history->ch != 4 || previous->w != aoRaw.w || previous->h != aoRaw.h ||
-                   history->w != aoRaw.w || history->h != aoRaw.h))
-    return passError(d, "needs 4-channel history images of ao_raw's extent");
-  const int W = aoRaw.w, H = aoRaw.h;
+  if (temporal && (previous->ch != 4 || history->ch != 4 || previous->w != dst.w || previous->h != dst.h ||
+                   history->w != dst.w || history->h != dst.h))
+    return passError(d, "needs 4-channel history images of the AO extent");
+  const int W = dst.w, H = dst.h;
   const int groupsX = int(d.groupsX), groupsY = int(d.groupsY);
   const T threshold = P.quad_edge_threshold;
-  const AoSampleInvocation<T> sampleInvocation(ctx, csz, csz2, aoRaw, previous);
+  const AoSampleInvocation<T> sampleInvocation(ctx, csz, csz2, dst, previous);
   parallelFor(groupsY, ctx.threads, [&](int gy) {
     std::vector<T> quadA(std::size_t(LX) * LY), quadH(quadA.size()), quadZ(quadA.size()), kept(quadA.size()),
         frames(quadA.size()), normalCode(quadA.size());
@@ -282,7 +304,10 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
           const T av = quadMix(quadH[li], quadZ[li], quadH[ny], quadZ[ny], threshold);
           const int px = gx * LX + lx, py = gy * LY + ly;
           if (px < std::min(P.ao_size.x, W) && py < std::min(P.ao_size.y, H)) {
-            storeAKey(ctx, aoRaw, px, py, av, quadZ[li] * P.key_scale);
+            if (direct)
+              storeOutput(ctx, dst, px, py, av);
+            else
+              storeAKey(ctx, dst, px, py, av, quadZ[li] * P.key_scale);
             if (history) {
               history->at(px, py, 0) = kept[li];
               history->at(px, py, 1) = quadZ[li];
@@ -294,25 +319,6 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
     }
   });
   return Status::success();
-}
-
-// The output texel at (x, y) as sao_output_texel stores it: into the channels output_mask selects,
-// A quantised as the output's format holds it (Float: binary16 or 1/255 steps; Double: unrounded),
-// or with output_blend multiply the channel's value times A (outputMultiply); the other channels
-// keep what the image holds (the caller's contents, Inputs::output).
-template <typename T>
-void storeOutput(const PassContext<T>& ctx, Image<T>& dst, int x, int y, T a) {
-  const std::int32_t v = ctx.plan.variants[static_cast<std::size_t>(gen::VariantId::OUTPUT_FORMAT)];
-  const gen::Format f = gen::kResources[static_cast<std::size_t>(gen::ResourceId::ao)].formats[std::size_t(v)];
-  const bool unorm8 = f == gen::Format::R8 || f == gen::Format::RGBA8;
-  if (ctx.P.output_blend == gen::SAO_OUTPUT_BLEND_MULTIPLY) {
-    for (int c = 0; c < dst.ch; ++c)
-      if ((ctx.P.output_mask >> c) & 1) dst.at(x, y, c) = outputMultiply(dst.at(x, y, c), a, unorm8);
-    return;
-  }
-  if constexpr (std::is_same_v<T, float>) a = unorm8 ? roundToUnorm8(a) : roundToHalf(a);
-  for (int c = 0; c < dst.ch; ++c)
-    if ((ctx.P.output_mask >> c) & 1) dst.at(x, y, c) = a;
 }
 
 // Pass blur: the bilateral blur along x into a float image (the shader's shared-memory rows, never
@@ -342,8 +348,8 @@ Status blurPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const
   return Status::success();
 }
 
-// Pass output (full resolution): each pixel's A of the (A, key) image it reads (ao_low, or ao_raw
-// without blur) into the output through storeOutput.
+// Pass output (full resolution with a blur): each pixel's A of ao_low into the output through
+// storeOutput.
 template <typename T>
 Status outputPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
   const ScheduledBinding* in = binding(d, bindings, gen::ResourceId::ao_low, false);
@@ -399,7 +405,8 @@ Status runSaoPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<con
   switch (d.pass) {
     case gen::PassId::linear_z: return detail::linearZPass(ctx, d, bindings, false);
     case gen::PassId::linear_z2: return detail::linearZPass(ctx, d, bindings, true);
-    case gen::PassId::ao_sample: return detail::aoSamplePass(ctx, d, bindings);
+    case gen::PassId::ao_sample:
+    case gen::PassId::ao_sample_output: return detail::aoSamplePass(ctx, d, bindings);
     case gen::PassId::blur: return detail::blurPass(ctx, d, bindings);
     case gen::PassId::output: return detail::outputPass(ctx, d, bindings);
     case gen::PassId::upsample: return detail::upsamplePass(ctx, d, bindings);

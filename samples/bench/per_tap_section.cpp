@@ -162,8 +162,8 @@ Status perTapSection(const PerTapOptions& o, samples::BackendRunner* gl, SceneCa
   if (o.sampleCounts.size() < 2) return Status::error(StatusCode::InvalidInput, "needs at least two sample counts");
   Prepared& p = cache.prepare(o.scene, o.size.width, o.size.height);
   Settings base = presetSettings(Preset::Medium);
-  base.blur_radius = 0;  // ao_sample alone matters: no blur pass, the output pass copies
-  base.resolution_divisor = 1;
+  base.blur_radius = 0;  // the sampling alone matters: no blur, full resolution, so the one pass after
+  base.resolution_divisor = 1;  // linear_z is ao_sample_output (ao_sample storing A into the output)
 
   // The effect's own csz chain, so that the rungs read exactly its z.
   samples::RunOutputs dump;
@@ -221,9 +221,9 @@ Status perTapSection(const PerTapOptions& o, samples::BackendRunner* gl, SceneCa
         if (Status st = gl->run(set, p.camera, runInputs(p, extra), true, false, run); !st) return st;
         method = out.method = run.timings.method;
         const auto pass = std::find_if(run.timings.passes.begin(), run.timings.passes.end(),
-                                       [](const PassTiming& t) { return t.pass == "ao_sample"; });
+                                       [](const PassTiming& t) { return t.pass == "ao_sample_output"; });
         if (pass == run.timings.passes.end())
-          return Status::error(StatusCode::DriverError, "the gl backend timed no ao_sample");
+          return Status::error(StatusCode::DriverError, "the gl backend timed no ao_sample_output");
         if (r < 0) continue;
         ms.push_back(pass->milliseconds);
         if (r == o.runs - 1) out.at[s].meanA = check(run.ao, csz[0], block.guard).meanA;

@@ -1,7 +1,8 @@
 // sao-bench --sections per_tap: where ao_sample's per-tap cost goes on this GL driver (issue
 // [bandwidth]: on llvmpipe ao_sample at 7 taps costs 2.2-3.3x a minimal fragment SAO pass).
 // On the main scene, at s = 7, 16, 32, 48 taps: the gl backend's ao_sample time (medium preset,
-// no blur, full resolution; normals supplied and rebuilt), and beside it a ladder of minimal passes
+// no blur, full resolution, where the pass is ao_sample_output: ao_sample storing A into the
+// output; normals supplied and rebuilt), and beside it a ladder of minimal passes
 // of our own (per_tap_shaders.h) reading the effect's own csz chain: (a) a fragment pass with
 // texelFetch, (b) the same as compute, then (b) plus ao_sample's features, one each and combined.
 // The time per tap is the least-squares slope of the median time against s (ns per pixel per tap),

@@ -7,6 +7,7 @@
 
 #include "untuned_settings.h"
 #include "sao/plan.h"
+#include "sao/settings.h"
 
 namespace {
 
@@ -57,12 +58,12 @@ TEST(Plan, DefaultSceneAt720p) {
 TEST(Plan, SmallRadiusWithoutBlurAllocatesLittle) {
   sao::Settings s = sao::test::untunedDefaults();
   s.radius = 0.01f;  // r' max 62 px: 3 csz levels
-  s.blur_radius = 0;  // no blur, no ao_low
+  s.blur_radius = 0;  // no blur at full resolution: ao_sample_output writes ao, no ao_raw, no ao_low
   sao::Plan p;
   ASSERT_TRUE(sao::plan(s, camera720(), {}, p).ok());
   EXPECT_EQ(p.cszLevels, 3u);
-  // csz (921,600 + 230,400 + 57,600) x 4 + ao_raw 7,372,800 + ao 1,843,200.
-  EXPECT_EQ(p.totalBytes, 4838400u + 7372800u + 1843200u);
+  // csz (921,600 + 230,400 + 57,600) x 4 + ao 1,843,200 (before ao_sample_output also ao_raw's 7,372,800).
+  EXPECT_EQ(p.totalBytes, 4838400u + 1843200u);
   std::printf("radius 0.01 m, blur 0, 1280x720: %llu bytes (%.1f%% of the full allocation)\n",
               static_cast<unsigned long long>(p.totalBytes),
               100.0 * double(p.totalBytes) / double(sao::fullAllocationBytes(camera720(), {})));
@@ -115,16 +116,52 @@ TEST(Plan, NoHierarchyMeansOneLevel) {
   EXPECT_EQ(p.variants[static_cast<std::size_t>(sao::gen::VariantId::Z_HIERARCHY)], 0);
 }
 
-TEST(Plan, BlurZeroDropsTheBlurPassAndItsImage) {
+// The derived settings read as bools of their terms, and writing one changes nothing.
+TEST(Settings, DerivedSettingsFollowTheirTerms) {
+  using sao::gen::SettingId;
+  for (int blur : {0, 1})
+    for (int d : {1, 2, 4})
+      for (bool temporal : {false, true}) {
+        sao::Settings s;
+        s.blur_radius = blur;
+        s.resolution_divisor = d;
+        s.temporal = temporal;
+        const bool direct = blur == 0 && d == 1 && !temporal;
+        EXPECT_EQ(sao::gen::settingValue(s, SettingId::direct_output), direct ? 1.0 : 0.0);
+        EXPECT_EQ(sao::gen::settingValue(s, SettingId::copy_to_output), d == 1 && !direct ? 1.0 : 0.0);
+        const sao::Settings before = s;
+        sao::gen::setSettingValue(s, SettingId::direct_output, direct ? 0.0 : 1.0);
+        EXPECT_EQ(s, before);
+      }
+  EXPECT_FALSE(sao::findSetting("direct_output")) << "not a user setting";
+}
+
+// Without blur at full resolution nothing follows the AO: ao_sample_output writes the output
+// itself (derived setting direct_output), so neither ao_sample, the blur, the output pass nor
+// their images are planned: two dispatches.
+TEST(Plan, BlurZeroAtFullResolutionWritesTheOutputFromTheSamplingPass) {
   sao::Settings s = sao::test::untunedDefaults();
   s.blur_radius = 0;
   sao::Plan p;
   ASSERT_TRUE(sao::plan(s, camera720(), {}, p).ok());
-  EXPECT_FALSE(hasPass(p, PassId::blur));
-  ASSERT_TRUE(hasPass(p, PassId::output)) << "full resolution: the output pass writes ao";
+  ASSERT_EQ(p.passes.size(), 2u);
+  EXPECT_EQ(p.passes[0].pass, PassId::linear_z);
+  EXPECT_EQ(p.passes[1].pass, PassId::ao_sample_output);
+  EXPECT_EQ(p.image(ResourceId::ao_raw), nullptr);
   EXPECT_EQ(p.image(ResourceId::ao_low), nullptr);
-  const auto& last = p.passes.back();
-  EXPECT_EQ(p.resolve(last, ResourceId::ao_low), ResourceId::ao_raw);
+  EXPECT_NE(p.image(ResourceId::ao), nullptr);
+  // With a blur the copy pass stays; at half resolution the upsample reads ao_raw.
+  s.blur_radius = 1;
+  ASSERT_TRUE(sao::plan(s, camera720(), {}, p).ok());
+  EXPECT_TRUE(hasPass(p, PassId::ao_sample) && hasPass(p, PassId::blur) && hasPass(p, PassId::output));
+  EXPECT_FALSE(hasPass(p, PassId::ao_sample_output));
+  s.blur_radius = 0;
+  s.resolution_divisor = 2;
+  ASSERT_TRUE(sao::plan(s, camera720(), {}, p).ok());
+  EXPECT_TRUE(hasPass(p, PassId::ao_sample) && hasPass(p, PassId::upsample));
+  EXPECT_FALSE(hasPass(p, PassId::ao_sample_output) || hasPass(p, PassId::blur) || hasPass(p, PassId::output));
+  EXPECT_EQ(p.image(ResourceId::ao_low), nullptr);
+  EXPECT_EQ(p.resolve(p.passes.back(), ResourceId::ao_low), ResourceId::ao_raw);
 }
 
 TEST(Plan, GuardBandSizesOnlyTheDepthSideImages) {

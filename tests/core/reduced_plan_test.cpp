@@ -92,20 +92,26 @@ TEST(Plan, ResolutionDivisorThreeIsRefused) {
   EXPECT_EQ(st.message, "setting 'resolution_divisor' = 3 is not one of its allowed values {1, 2, 4}");
 }
 
-// Without blur the blur pass and ao_low go: the output pass (divisor 1) or upsample reads ao_raw in
-// place of the skipped blur's image (three dispatches).
+// Without blur the blur pass and ao_low go: upsample reads ao_raw in place of the skipped blur's
+// image (three dispatches); at divisor 1 ao_sample_output writes the output (two dispatches), and
+// with temporal accumulation (ao_sample writes the history) the output pass reads ao_raw.
 TEST(Plan, WithoutBlurTheUpsampleReadsTheRawImage) {
-  for (int d : {1, 2, 4}) {
-    sao::Settings s = sao::test::untunedDefaults();
-    s.resolution_divisor = d;
-    s.blur_radius = 0;
-    sao::Plan p;
-    ASSERT_TRUE(sao::plan(s, camera641(0), {}, p).ok());
-    EXPECT_EQ(passNames(p), d == 1 ? "linear_z ao_sample output" : "linear_z ao_sample upsample") << d;
-    EXPECT_EQ(p.image(ResourceId::ao_low), nullptr) << d;
-    const auto& last = p.passes.back();
-    EXPECT_EQ(p.resolve(last, ResourceId::ao_low), ResourceId::ao_raw) << d;
-  }
+  for (int d : {1, 2, 4})
+    for (bool temporal : {false, true}) {
+      sao::Settings s = sao::test::untunedDefaults();
+      s.resolution_divisor = d;
+      s.blur_radius = 0;
+      s.temporal = temporal;
+      sao::Plan p;
+      ASSERT_TRUE(sao::plan(s, camera641(0), {}, p).ok());
+      const char* expected = d > 1 ? "linear_z ao_sample upsample"
+                             : temporal ? "linear_z ao_sample output" : "linear_z ao_sample_output";
+      EXPECT_EQ(passNames(p), expected) << d << " " << temporal;
+      EXPECT_EQ(p.image(ResourceId::ao_low), nullptr) << d;
+      const auto& last = p.passes.back();
+      if (d > 1 || temporal) EXPECT_EQ(p.resolve(last, ResourceId::ao_low), ResourceId::ao_raw) << d;
+      else EXPECT_EQ(p.image(ResourceId::ao_raw), nullptr);
+    }
 }
 
 // The dispatches cover the reduced extent up to the blur (8 x 32 texels a group: texels=1x4) and

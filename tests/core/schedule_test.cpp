@@ -104,14 +104,36 @@ TEST(Schedule, DefaultSettings) {
 TEST(Schedule, NoBlurReadsTheAliasedImage) {
   sao::Settings settings = sao::test::untunedDefaults();
   settings.blur_radius = 0;
+  settings.resolution_divisor = 2;
   const sao::Schedule s = scheduleOf(settings, camera(64, 32, 0));
   const auto& last = s.dispatches.back();
-  EXPECT_EQ(last.pass, PassId::output);
+  EXPECT_EQ(last.pass, PassId::upsample);
   for (const auto& b : s.bindingsOf(last))
     if (b.resource != ResourceId::csz) EXPECT_EQ(b.resource, b.write ? ResourceId::ao : ResourceId::ao_raw);
   ASSERT_EQ(last.hazardCount, 1u);
   EXPECT_EQ(s.hazardsBefore(last)[0].resource, ResourceId::ao_raw);
   for (const auto& d : s.dispatches) EXPECT_NE(d.pass, PassId::blur);
+}
+
+// Without blur at full resolution ao_sample_output writes the output after linear_z: its one
+// hazard is csz, and the caller reads ao after it.
+TEST(Schedule, NoBlurAtFullResolutionSamplesStraightIntoTheOutput) {
+  sao::Settings settings = sao::test::untunedDefaults();
+  settings.blur_radius = 0;
+  const sao::Schedule s = scheduleOf(settings, camera(64, 32, 0));
+  ASSERT_EQ(s.dispatches.size(), 2u);
+  const auto& last = s.dispatches.back();
+  EXPECT_EQ(last.pass, PassId::ao_sample_output);
+  bool writesAo = false;
+  for (const auto& b : s.bindingsOf(last)) {
+    if (b.write) writesAo = writesAo || b.resource == ResourceId::ao;
+    EXPECT_NE(b.resource, ResourceId::ao_raw);
+  }
+  EXPECT_TRUE(writesAo);
+  ASSERT_EQ(last.hazardCount, 1u);
+  EXPECT_EQ(s.hazardsBefore(last)[0].resource, ResourceId::csz);
+  ASSERT_EQ(s.exitHazards().size(), 1u);
+  EXPECT_EQ(s.exitHazards()[0].resource, ResourceId::ao);
 }
 
 // The temporal history (history=true): two copies of ao_raw's size at 16 bytes a texel;

@@ -1,6 +1,8 @@
 // sao::cpu as an API and as an emulation: validation, thread-count independence, the planned
 // passes and their structural invariants (Table 1 MIPs, 2x2 quads, output rounding).
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -178,16 +180,34 @@ TEST(Passes, FollowThePlan) {
     EXPECT_EQ(r.plan.cszLevels, 1u);
     EXPECT_EQ(r.csz.size(), 1u) << "no mips pass without the hierarchy";
   }
+  // Without blur at full resolution ao_sample_output writes the output itself (no ao_raw). With
+  // temporal accumulation ao_sample and the output pass run instead (ao_sample writes the history),
+  // and on the first frame (no history: the blend is this frame's sum exactly) the output pass
+  // copies ao_raw's A: both paths give the same output, bit for bit.
   s = test::untunedDefaults();
-  s.blur_radius = 0;  // the blur dropped, the output pass reads ao_raw and copies it
+  s.blur_radius = 0;
+  Camera still = camera;
+  still.view = std::array<double, 16>{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};  // temporal needs it
+  Settings viaRaw = s;
+  viaRaw.temporal = true;
   for (Precision precision : {Precision::Float, Precision::Double}) {
-    const cpu::Result r = runOrFail(s, camera, {&depth}, precision);
+    const cpu::Result direct = runOrFail(s, still, {&depth}, precision);
+    ASSERT_EQ(direct.plan.passes.back().pass, gen::PassId::ao_sample_output);
+    EXPECT_TRUE(direct.aoRaw.data.empty());
+    EXPECT_TRUE(direct.images[static_cast<std::size_t>(gen::ResourceId::ao_low)].empty());
+    const cpu::Result r = runOrFail(viaRaw, still, {&depth}, precision);
+    ASSERT_EQ(r.plan.passes.back().pass, gen::PassId::output);
     EXPECT_TRUE(r.images[static_cast<std::size_t>(gen::ResourceId::ao_low)].empty());
+    std::size_t occluded = 0;
     for (std::uint32_t y = 0; y < r.ao.extent.height; ++y)
       for (std::uint32_t x = 0; x < r.ao.extent.width; ++x) {
         const float a = r.aoRaw.at(x, y, 0);
         ASSERT_EQ(r.ao.at(x, y), precision == Precision::Float ? cpu::roundToHalfAsShader(a) : a);
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(direct.ao.at(x, y)), std::bit_cast<std::uint32_t>(r.ao.at(x, y)))
+            << x << "," << y;
+        occluded += a < 0.9f;
       }
+    EXPECT_GT(occluded, 100u) << "some pixels to compare on";
   }
 }
 

@@ -346,30 +346,33 @@ TEST_F(Reallocation, OnlyWhatChanged) {
   EXPECT_EQ(e->stats().textureAllocations, allocs0);
   EXPECT_EQ(e->texture(gen::ResourceId::csz), csz);
 
-  s.blur_radius = 0;  // the blur dropped: its image is freed, nothing else changes
+  s.blur_radius = 0;  // nothing follows the AO: ao_sample_output, so ao_low and ao_raw are freed
   ASSERT_TRUE(e->render(f.camera, s, in).ok());
   EXPECT_EQ(e->texture(gen::ResourceId::ao_low), 0u);
+  EXPECT_EQ(e->texture(gen::ResourceId::ao_raw), 0u);
   EXPECT_EQ(e->stats().textureAllocations, allocs0);
-  EXPECT_EQ(e->texture(gen::ResourceId::ao_raw), raw);
   EXPECT_EQ(e->texture(gen::ResourceId::ao), ao);
+  (void)raw;
 
-  s.blur_radius = 4;  // back: ao_low allocated again
+  s.blur_radius = 4;  // back: ao_raw and ao_low allocated again
   ASSERT_TRUE(e->render(f.camera, s, in).ok());
-  EXPECT_EQ(e->stats().textureAllocations, allocs0 + 1);
+  EXPECT_EQ(e->stats().textureAllocations, allocs0 + 2);
   EXPECT_NE(e->texture(gen::ResourceId::ao_low), 0u);
+  const GLuint raw2 = e->texture(gen::ResourceId::ao_raw);
+  EXPECT_NE(raw2, 0u);
   (void)low;
 
   s.radius = 0.05f;  // fewer csz levels: only csz is reallocated
   ASSERT_TRUE(e->render(f.camera, s, in).ok());
   EXPECT_LT(e->plan().cszLevels, levels);
-  EXPECT_EQ(e->stats().textureAllocations, allocs0 + 2);
-  EXPECT_EQ(e->texture(gen::ResourceId::ao_raw), raw);
+  EXPECT_EQ(e->stats().textureAllocations, allocs0 + 3);
+  EXPECT_EQ(e->texture(gen::ResourceId::ao_raw), raw2);
   EXPECT_EQ(e->texture(gen::ResourceId::ao), ao);
 
   s.use_z_hierarchy = false;  // one level
   ASSERT_TRUE(e->render(f.camera, s, in).ok());
   EXPECT_EQ(e->plan().cszLevels, 1u);
-  EXPECT_EQ(e->stats().textureAllocations, allocs0 + 3);
+  EXPECT_EQ(e->stats().textureAllocations, allocs0 + 4);
 }
 
 // ---- The caller's output texture.

@@ -46,8 +46,11 @@ TEST(ExtendedEffect, CpuReferenceRunsTheNewPassIntoItsImage) {
       EXPECT_GT(occluded, r.ao.data.size() / 50) << "the scene should darken some pixels";
       for (std::size_t k = 0; k < r.images.size(); ++k) {
         // ao_half is the new pass's; ao_low (the blur's image, read by output and by ao_halve) is
-        // there when the blur runs; the rest have named Result fields or are not planned.
-        if (k == kHalf || k == static_cast<std::size_t>(gen::ResourceId::ao_low)) continue;
+        // there when the blur runs, history with temporal (the second case); the rest have named
+        // Result fields or are not planned.
+        if (k == kHalf || k == static_cast<std::size_t>(gen::ResourceId::ao_low) ||
+            k == static_cast<std::size_t>(gen::ResourceId::history))
+          continue;
         EXPECT_TRUE(r.images[k].empty()) << gen::kResources[k].name << " has a named Result field";
       }
     }

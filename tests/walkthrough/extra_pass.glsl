@@ -10,8 +10,10 @@
 
 // Passes never read an output (codegen refuses it), so this pass reads the output pass's own input:
 // at full resolution the output is that image's A, rounded to binary16. The blur is skipped when
-// blur_radius == 0, so reading its image needs the same alias the output pass declares.
-#pragma sao pass ao_halve entry=walkthrough_ao_halve_main local=8x8 reads=ao_low writes=ao_half alias_when=blur_radius==0:ao_low=ao_raw "walkthrough: the final A times 0.5, into ao_half"
+// blur_radius == 0, so reading its image needs the same alias the output pass declares; and when
+// ao_sample_output writes the output (direct_output: no blur, no temporal) there is no (A, key)
+// image at all, so the pass is skipped then.
+#pragma sao pass ao_halve entry=walkthrough_ao_halve_main local=8x8 reads=ao_low writes=ao_half skip_when=direct_output==true alias_when=blur_radius==0:ao_low=ao_raw "walkthrough: the final A times 0.5, into ao_half"
 void walkthrough_ao_halve_main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);

@@ -74,6 +74,13 @@ TEST(ExtendedEffect, PlanAppliesTheNewPassAliasWithoutBlur) {
   EXPECT_EQ(plan.resolve(*halve, gen::ResourceId::ao_low), gen::ResourceId::ao_raw)
       << "alias_when=blur_radius==0:ao_low=ao_raw";
   EXPECT_NE(plan.image(gen::ResourceId::ao_half), nullptr);
+  // Without temporal accumulation ao_sample_output writes the output and no (A, key) image exists.
+  Settings direct = settings;
+  direct.temporal = false;
+  ASSERT_TRUE(sao::plan(direct, caseCamera(), PlanInputs{}, plan).ok());
+  EXPECT_NE(findPass(plan, gen::PassId::ao_sample_output), nullptr) << "derived direct_output";
+  EXPECT_EQ(findPass(plan, gen::PassId::ao_halve), nullptr) << "skip_when=direct_output==true";
+  EXPECT_EQ(plan.image(gen::ResourceId::ao_raw), nullptr);
 }
 
 TEST(ExtendedEffect, ScheduleDispatchesTheNewPassWithResolvedBindings) {

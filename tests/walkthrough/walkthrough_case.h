@@ -12,7 +12,12 @@ namespace sao::walkthrough {
 
 inline constexpr std::uint32_t kWidth = 64, kHeight = 48, kGuard = 8;
 
-inline Camera caseCamera() { return test::openglCamera(kWidth, kHeight, kGuard); }
+// With the view (identity: a camera that does not move), which temporal accumulation needs.
+inline Camera caseCamera() {
+  Camera c = test::openglCamera(kWidth, kHeight, kGuard);
+  c.view = std::array<double, 16>{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  return c;
+}
 
 inline DepthImage caseDepth() {
   return test::renderDepth(test::sphereOnPlaneScene(), caseCamera(), DepthFormat::D32F);
@@ -23,13 +28,15 @@ struct Case {
   Settings settings;
 };
 
-// Blurred (ao_halve reads ao_low), and blur_radius 0 (the blur is skipped and ao_halve reads
-// ao_raw through its alias_when).
+// Blurred (ao_halve reads ao_low), and blur_radius 0 with temporal accumulation (the blur is
+// skipped and ao_halve reads ao_raw through its alias_when; without temporal, ao_sample_output
+// would write the output and ao_halve, which has nothing to read then, would be skipped).
 inline std::array<Case, 2> cases() {
   Settings medium = presetSettings(Preset::Medium);
   medium.resolution_divisor = 1;  // the new pass reads ao_low at the output's size: full resolution
   Settings unblurred = medium;
   unblurred.blur_radius = 0;
+  unblurred.temporal = true;
   return {Case{"medium", medium}, Case{"blur_radius_0", unblurred}};
 }
 

@@ -45,7 +45,7 @@ class CpuRunner final : public BackendRunner {
       for (std::size_t m = 0; m < r.csz.size(); ++m) out.intermediates.push_back({"csz_level" + std::to_string(m), r.csz[m]});
       for (std::size_t m = 0; m < r.csz2.size(); ++m)
         out.intermediates.push_back({"csz2_level" + std::to_string(m), r.csz2[m]});
-      out.intermediates.push_back({"ao_raw", r.aoRaw});
+      if (!r.aoRaw.data.empty()) out.intermediates.push_back({"ao_raw", r.aoRaw});
       for (std::size_t id = 0; id < r.images.size(); ++id)  // the rest the plan allocates (ao_low)
         for (std::size_t m = 0; m < r.images[id].size(); ++m)
           out.intermediates.push_back({std::string(gen::kResources[id].name) +

@@ -66,13 +66,14 @@ class GlRunner final : public BackendRunner {
     out.plan = effect_->plan();
     out.timings = effect_->timings();
     out.ao = gl::readTexture(effect_->aoTexture(), 1);
-    out.aoRaw = gl::readTexture(effect_->texture(gen::ResourceId::ao_raw), 2);
+    if (out.plan.image(gen::ResourceId::ao_raw))  // not planned when ao_sample_output writes the output
+      out.aoRaw = gl::readTexture(effect_->texture(gen::ResourceId::ao_raw), 2);
     if (dumpPasses) {
       if (const auto* csz = out.plan.image(gen::ResourceId::csz))
         for (std::uint32_t m = 0; m < csz->mipLevels; ++m)
           out.intermediates.push_back(
               {"csz_level" + std::to_string(m), gl::readTextureLevel(effect_->texture(gen::ResourceId::csz), m)});
-      out.intermediates.push_back({"ao_raw", out.aoRaw});
+      if (!out.aoRaw.data.empty()) out.intermediates.push_back({"ao_raw", out.aoRaw});
       if (out.plan.image(gen::ResourceId::ao_low))  // the blurred (A, key), the upsample's input
         out.intermediates.push_back({"ao_low", gl::readTexture(effect_->texture(gen::ResourceId::ao_low), 2)});
     }

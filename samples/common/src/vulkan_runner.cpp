@@ -39,7 +39,8 @@ class VulkanRunner final : public BackendRunner {
       return ctx.readback(info.image, info.format, info.extent, level, info.layout, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                           VK_ACCESS_SHADER_WRITE_BIT, image);
     };
-    if (Status s = readOwned(gen::ResourceId::ao_raw, 0, out.aoRaw); !s) return s;
+    if (out.plan.image(gen::ResourceId::ao_raw))  // not planned when ao_sample_output writes the output
+      if (Status s = readOwned(gen::ResourceId::ao_raw, 0, out.aoRaw); !s) return s;
     if (dumpPasses) {
       if (const auto* csz = out.plan.image(gen::ResourceId::csz))
         for (std::uint32_t m = 0; m < csz->mipLevels; ++m) {
@@ -47,7 +48,7 @@ class VulkanRunner final : public BackendRunner {
           if (Status s = readOwned(gen::ResourceId::csz, m, level); !s) return s;
           out.intermediates.push_back({"csz_level" + std::to_string(m), std::move(level)});
         }
-      out.intermediates.push_back({"ao_raw", out.aoRaw});
+      if (!out.aoRaw.data.empty()) out.intermediates.push_back({"ao_raw", out.aoRaw});
       if (out.plan.image(gen::ResourceId::ao_low)) {  // the blurred (A, key), the upsample's input
         FloatImage low;
         if (Status s = readOwned(gen::ResourceId::ao_low, 0, low); !s) return s;

@@ -40,7 +40,8 @@ inline constexpr std::array<SettingInfo, 3> kSettings = {{
   {"taps", SettingType::Int, 4.0, 1.0, 16.0, "", "Taps per pixel", {}},
   {"enabled", SettingType::Bool, 1.0, 0.0, 1.0, "", "Whether to run at all", {}},
 }};
-// Reads or writes one setting as a double (ints and bools exactly).
+// Reads or writes one setting as a double (ints and bools exactly). A derived setting (a SettingId
+// past kSettings) reads 1 when all its terms hold, else 0; writing it does nothing.
 double settingValue(const Settings& s, SettingId id);
 void setSettingValue(Settings& s, SettingId id, double value);
 

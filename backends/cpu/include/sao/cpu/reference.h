@@ -115,7 +115,8 @@ struct Result {
   Plan plan;              // what ran (passes, variants, csz levels, aliasing)
   gen::SaoParams params;  // the block the passes used (as computeConstants filled it)
   std::vector<FloatImage> csz, csz2;  // one image per level (1 channel); csz2 only with depth2
-  FloatImage aoRaw;    // 2 channels: A after the 2x2 reconstruction, key z (+0.0 = sky)
+  FloatImage aoRaw;    // 2 channels: A after the 2x2 reconstruction, key z (+0.0 = sky); empty when
+                       // the plan has none (ao_sample_output wrote the output: no blur, full res.)
   FloatImage ao;       // the output, Inputs::outputFormat's channels: final A (Float: as that format
                        // rounds it; Double: unrounded) in Inputs::outputChannels, the rest kept
   // Every other image the plan allocates, by gen::ResourceId, one FloatImage per level: what a
