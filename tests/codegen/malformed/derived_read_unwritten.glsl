@@ -15,3 +15,6 @@ void run_a() { imageStore(out_mid, ivec2(0), texelFetch(in_src, ivec2(0), 0)); }
 #pragma sao pass second entry=run_b local=8x8 reads=mid writes=dst skip_when=on==false "b"
 void run_b() { imageStore(out_dst, ivec2(0), texelFetch(in_mid, ivec2(0), 0) * a); }
 #pragma sao end
+#pragma sao pass third entry=run_c local=8x8 reads=src writes=dst skip_when=on==true "c"
+void run_c() { imageStore(out_dst, ivec2(0), texelFetch(in_src, ivec2(0), 0)); }
+#pragma sao end
