@@ -110,9 +110,6 @@ struct SettingCondition {
   CompareOp op = CompareOp::Eq;
   double value = 0;
   std::string text;  // as written, for messages
-  bool operator==(const SettingCondition& o) const {
-    return setting == o.setting && op == o.op && value == o.value;
-  }
 };
 
 // `#pragma sao derived NAME when=TERM&&TERM... "doc"`: a bool that plan() computes from the settings,

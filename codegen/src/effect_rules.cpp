@@ -77,14 +77,20 @@ std::vector<double> settingValues(const Setting& s, const std::vector<double>& l
   return some;
 }
 
+// The derived setting a condition's setting index names (past the settings), or null.
+const DerivedSetting* derivedOf(const Effect& e, int setting) {
+  return setting < static_cast<int>(e.settings.size()) ? nullptr
+                                                        : &e.derived[static_cast<size_t>(setting) - e.settings.size()];
+}
+
 // The settings a condition names, through derived settings' terms (which may name earlier derived
 // settings), with the literals each is compared with.
 void collectSettings(const Effect& e, const SettingCondition& c, std::map<int, std::vector<double>>& out) {
-  if (c.setting < static_cast<int>(e.settings.size())) {
-    out[c.setting].push_back(c.value);
+  if (const DerivedSetting* d = derivedOf(e, c.setting)) {
+    for (const auto& t : d->terms) collectSettings(e, t, out);
     return;
   }
-  for (const auto& t : e.derived[static_cast<size_t>(c.setting) - e.settings.size()].terms) collectSettings(e, t, out);
+  out[c.setting].push_back(c.value);
 }
 
 // One value per setting index (NaN: not involved).
@@ -111,12 +117,13 @@ std::vector<Assignment> assignments(const Effect& e, const std::vector<const Set
 // Whether condition c (null: never) holds under assignment a.
 bool holdsAt(const Effect& e, const std::optional<SettingCondition>& c, const Assignment& a) {
   if (!c) return false;
-  if (c->setting < static_cast<int>(e.settings.size())) return conditionHolds(*c, a[static_cast<size_t>(c->setting)]);
+  const DerivedSetting* d = derivedOf(e, c->setting);
+  if (!d) return conditionHolds(*c, a[static_cast<size_t>(c->setting)]);
   bool all = true;
-  for (const auto& t : e.derived[static_cast<size_t>(c->setting) - e.settings.size()].terms)
-    all = all && holdsAt(e, t, a);
+  for (const auto& t : d->terms) all = all && holdsAt(e, t, a);
   return conditionHolds(*c, all ? 1 : 0);
 }
+
 
 // A literal of the setting's type inside its range; `owner` starts each message.
 bool parseSettingValue(const Setting& s, const std::string& text, const SourceLoc& loc, const std::string& owner,
@@ -196,6 +203,13 @@ bool sameExtent(const Resource& a, const Resource& b) {
 }
 
 bool writes(const Pass& p, int r) { return std::find(p.writes.begin(), p.writes.end(), r) != p.writes.end(); }
+
+// Whether a pass before pass `before` that writes resource r runs under assignment a.
+bool writtenBefore(const Effect& e, size_t before, int r, const Assignment& a) {
+  for (size_t j = 0; j < before; ++j)
+    if (writes(e.passes[j], r) && !holdsAt(e, e.passes[j].skipWhen, a)) return true;
+  return false;
+}
 
 const ResourceAlias* aliasOf(const std::vector<ResourceAlias>& aliases, int declared) {
   for (const auto& a : aliases)
@@ -303,8 +317,8 @@ void resolveVariantSelect(const Effect& e, Variant& v, const SourceLoc& loc, con
 }
 
 const std::string& conditionSettingName(const Effect& e, int i) {
-  return i < static_cast<int>(e.settings.size()) ? e.settings[static_cast<size_t>(i)].name
-                                                 : e.derived[static_cast<size_t>(i) - e.settings.size()].name;
+  const DerivedSetting* d = derivedOf(e, i);
+  return d ? d->name : e.settings[static_cast<size_t>(i)].name;
 }
 
 void resolvePassRules(const Effect& e, Pass& p, const SourceLoc& loc, const std::string* skipWhen,
@@ -410,11 +424,7 @@ void checkPassRules(const Effect& e, Diagnostics& diags) {
       }
       if (e.resources[al.serving].kind != ResourceKind::Input)
         for (const auto& a : all) {
-          if (!applies(a)) continue;
-          bool written = false;
-          for (size_t j = 0; j < i; ++j)
-            if (writes(e.passes[j], al.serving) && !holdsAt(e, e.passes[j].skipWhen, a)) written = true;
-          if (!written) servingWritten = false;
+          if (applies(a) && !writtenBefore(e, i, al.serving, a)) servingWritten = false;
         }
       if (!skippedWriter)
         diags.error(p.loc, "alias_when of pass '" + p.name + "' serves '" + e.resources[al.declared].name + "' when " +
@@ -452,10 +462,7 @@ void checkPassRules(const Effect& e, Diagnostics& diags) {
       for (const auto& a : assignments(e, conditions)) {
         if (holdsAt(e, p.skipWhen, a)) continue;
         if (aliasOf(p.aliases, r) && holdsAt(e, p.aliasWhen, a)) continue;
-        bool written = false;
-        for (size_t j = 0; j < i; ++j)
-          if (writes(e.passes[j], r) && !holdsAt(e, e.passes[j].skipWhen, a)) written = true;
-        if (written) continue;
+        if (writtenBefore(e, i, r, a)) continue;
         diags.error(p.loc, "pass '" + p.name + "' reads '" + e.resources[r].name + "', which pass '" + last->name +
                                "' does not write when " + last->skipWhen->text + "; add alias_when=" +
                                last->skipWhen->text + ":" + e.resources[r].name + "=RESOURCE to pass '" + p.name + "'");
