@@ -548,11 +548,13 @@ vec2 sao_up_pick(vec2 a, vec2 b, vec2 c, vec2 d, bool right, bool down)
 
 // A at viewport pixel x (csz z) from the 3x3 n around its low texel c: the 2x2 low texels whose
 // representative pixels bracket x, weighted bilinearly by x's place between those pixels times the
-// depth weight; when none matches x's z (a silhouette, or a thin object the reduced image missed),
-// the A of the texels nearest in z among the 3x3 (below), so no average of the two sides makes a
-// halo; all sky gives 1. d is a power of two: shifts stand for its divisions and products.
-float sao_upsample(ivec2 x, float z, int d, ivec2 last, ivec2 c, vec2 n[9])
+// depth weight; all sky gives 1. `unmatched` is true for a geometry pixel none of the four matches
+// in z (a silhouette, or a thin object the reduced image missed): its A is then
+// sao_upsample_nearest_z's, so that no average of the two sides makes a halo. d is a power of two:
+// shifts stand for its divisions and products.
+float sao_upsample_bilinear(ivec2 x, float z, int d, ivec2 last, ivec2 c, vec2 n[9], out bool unmatched)
 {
+    unmatched = false;
     if (sao_is_sky(z))
         return 1.0;
     int sh = findMSB(d);
@@ -574,12 +576,17 @@ float sao_upsample(ivec2 x, float z, int d, ivec2 last, ivec2 c, vec2 n[9])
     float w01 = ((1.0 - t.x) * t.y) * sao_upsample_depth_weight(z, s01.y, k);
     float w11 = (t.x * t.y) * sao_upsample_depth_weight(z, s11.y, k);
     float wsum = ((w00 + w10) + w01) + w11;
-    if (wsum > 0.0)
-        return (((w00 * s00.x + w10 * s10.x) + w01 * s01.x) + w11 * s11.x) / wsum;
-    // No texel matches: the 3x3, each within 1/SHARPNESS (relative) of the nearest z weighted
-    // linearly down to 0 at that distance. Texels of equal z (a receding floor's row) share the
-    // pixel: a single nearest texel, first in row order on ties, made the choice hang on the last
-    // bit of z (the same scene in mm gave other texels' A).
+    unmatched = !(wsum > 0.0);
+    return unmatched ? 1.0 : (((w00 * s00.x + w10 * s10.x) + w01 * s01.x) + w11 * s11.x) / wsum;
+}
+
+// A of a geometry pixel at z that no bracketing texel matches: the 3x3, each within 1/SHARPNESS
+// (relative) of the nearest z weighted linearly down to 0 at that distance; all sky gives 1. Texels
+// of equal z (a receding floor's row) share the pixel: a single nearest texel, first in row order on
+// ties, made the choice hang on the last bit of z (the same scene in mm gave other texels' A).
+float sao_upsample_nearest_z(float z, vec2 n[9])
+{
+    float k = SAO_UPSAMPLE_Z_SHARPNESS / -z;
     float best = -1.0;
     for (int i = 0; i < 9; ++i)
         if (!sao_is_sky(n[i].y))
@@ -611,10 +618,38 @@ void sao_upsample_main()
         ivec2 q = clamp(c + ivec2(i % 3 - 1, i / 3 - 1), ivec2(0), last);
         n[i] = texelFetch(in_ao_low, q, 0).xy * vec2(1.0, key_to_view);  // the key back in view units
     }
-    for (int j = 0; j < 4; ++j) {
-        ivec2 x = x0 + ivec2(j & 1, j >> 1);
-        if (all(lessThan(x, size)))
-            SAO_STORE_OUTPUT(x, sao_upsample(x, texelFetch(in_csz, x + guard, 0).r, d, last, c, n));
-    }
+    // The 2x2 pixels (those past the image's edge read the edge's z and are not stored).
+    ivec2 x1 = x0 + ivec2(1, 0);
+    ivec2 x2 = x0 + ivec2(0, 1);
+    ivec2 x3 = x0 + ivec2(1, 1);
+    float z0 = texelFetch(in_csz, x0 + guard, 0).r;
+    float z1 = texelFetch(in_csz, min(x1, size - 1) + guard, 0).r;
+    float z2 = texelFetch(in_csz, min(x2, size - 1) + guard, 0).r;
+    float z3 = texelFetch(in_csz, min(x3, size - 1) + guard, 0).r;
+    bool u0, u1, u2, u3;
+    float a0 = sao_upsample_bilinear(x0, z0, d, last, c, n, u0);
+    float a1 = sao_upsample_bilinear(x1, z1, d, last, c, n, u1);
+    float a2 = sao_upsample_bilinear(x2, z2, d, last, c, n, u2);
+    float a3 = sao_upsample_bilinear(x3, z3, d, last, c, n, u3);
+    // The unmatched pixels' fallback, one pixel per trip. A software rasteriser (llvmpipe) runs a
+    // branch's body for every pixel but a loop only as often as its busiest lane needs (at least
+    // once): the fallback, rarely needed, runs about once per invocation instead of four times.
+    uint pending = (u0 ? 1u : 0u) | (u1 ? 2u : 0u) | (u2 ? 4u : 0u) | (u3 ? 8u : 0u);
+    do {
+        int j = findLSB(pending | 16u);  // 4: none left (the trip that always runs stores nothing)
+        float a = sao_upsample_nearest_z(j == 0 ? z0 : (j == 1 ? z1 : (j == 2 ? z2 : z3)), n);
+        a0 = (j == 0) ? a : a0;
+        a1 = (j == 1) ? a : a1;
+        a2 = (j == 2) ? a : a2;
+        a3 = (j == 3) ? a : a3;
+        pending &= pending - 1u;
+    } while (pending != 0u);
+    SAO_STORE_OUTPUT(x0, a0);
+    if (x1.x < size.x)
+        SAO_STORE_OUTPUT(x1, a1);
+    if (x2.y < size.y)
+        SAO_STORE_OUTPUT(x2, a2);
+    if (all(lessThan(x3, size)))
+        SAO_STORE_OUTPUT(x3, a3);
 }
 #pragma sao end
