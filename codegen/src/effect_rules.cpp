@@ -124,7 +124,6 @@ bool holdsAt(const Effect& e, const std::optional<SettingCondition>& c, const As
   return conditionHolds(*c, all ? 1 : 0);
 }
 
-
 // A literal of the setting's type inside its range; `owner` starts each message.
 bool parseSettingValue(const Setting& s, const std::string& text, const SourceLoc& loc, const std::string& owner,
                        double& out, Diagnostics& diags) {
@@ -423,9 +422,8 @@ void checkPassRules(const Effect& e, Diagnostics& diags) {
           skippedWriter = true;
       }
       if (e.resources[al.serving].kind != ResourceKind::Input)
-        for (const auto& a : all) {
+        for (const auto& a : all)
           if (applies(a) && !writtenBefore(e, i, al.serving, a)) servingWritten = false;
-        }
       if (!skippedWriter)
         diags.error(p.loc, "alias_when of pass '" + p.name + "' serves '" + e.resources[al.declared].name + "' when " +
                                p.aliasWhen->text + ", but no earlier pass that writes it is skipped then");

@@ -372,9 +372,10 @@ T upsampleDepthWeight(T z, T zLow, T k) {
   return glslMax(T(0), T(1) - k * std::abs(z - zLow));
 }
 
-// sao_upsample: A at viewport pixel (x, y) with csz z from the reduced (A, key) image `low`, whose
-// keys are z times 1 / keyToView (sao_upsample_main's tile converts them back); d is 1, 2 or 4
-// (shifts as in the shader).
+// sao.glsl's sao_upsample_bilinear and, for a pixel it leaves unmatched, sao_upsample_nearest_z: A
+// at viewport pixel (x, y) with csz z from the reduced (A, key) image `low`, whose keys are z times
+// 1 / keyToView (sao_upsample_main converts the nine it fetches back); d is 1, 2 or 4 (shifts as in
+// the shader).
 template <typename T>
 T upsample(const Image<T>& low, int x, int y, T z, int d, int fullW, int fullH, T keyToView) {
   if (isSky(z)) return T(1);
