@@ -19,6 +19,8 @@ packages=(
   # models of assimp-testmodels (model files only, no assimp library)
   libtinygltf-dev assimp-testmodels
   xvfb xauth
+  # tests/apps/viewer_keys.sh: short key presses into sao-viewer under Xvfb
+  xdotool
   # ci/fuzz.sh: clang with libFuzzer and the sanitizer runtimes; llvm-symbolizer for the reports
   clang-14 libclang-rt-14-dev llvm-14
 )

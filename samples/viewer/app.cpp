@@ -5,11 +5,13 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <numbers>
+#include <thread>
 
 #include "backend.h"
 #include "camera_control.h"
@@ -136,20 +138,31 @@ Status App::adoptScene(scenes::Scene&& scene, int index, std::optional<scenes::L
 }
 
 void App::handleKeys() {
+  // A focused text field (Ctrl+click on a slider) has the keys: ImGui got them from the same
+  // callback, the viewer leaves them alone.
   if (ImGui::GetIO().WantCaptureKeyboard) return;
-  const Window& w = *window_;
-  if (w.keyPressed(GLFW_KEY_ESCAPE)) window_->requestClose();
-  if (w.keyPressed(GLFW_KEY_F12)) ui_.screenshot = true;
-  if (w.keyPressed(GLFW_KEY_R)) ui_.computeReference = true;
-  if (w.keyPressed(GLFW_KEY_H)) ui_.showUi = !ui_.showUi;
-  if (w.keyPressed(GLFW_KEY_HOME)) ui_.resetCamera = true;
-  if (w.keyPressed(GLFW_KEY_O)) camera_.orthographic = !camera_.orthographic;
-  if (w.keyPressed(GLFW_KEY_TAB))
-    camera_.mode = camera_.mode == CameraController::Mode::Orbit ? CameraController::Mode::Fly
-                                                                  : CameraController::Mode::Orbit;
-  for (const auto& m : viewModes()) {
-    const int key = GLFW_KEY_1 + static_cast<int>(m.mode);
-    if (w.keyPressed(key)) ui_.mode = m.mode;
+  for (const int key : window_->keyPresses()) {  // every press since the last frame, in order
+    switch (key) {
+      case GLFW_KEY_ESCAPE: window_->requestClose(); break;
+      case GLFW_KEY_F12: ui_.screenshot = true; break;
+      case GLFW_KEY_R: ui_.computeReference = true; break;
+      case GLFW_KEY_H: ui_.showUi = !ui_.showUi; break;
+      case GLFW_KEY_HOME: ui_.resetCamera = true; break;
+      case GLFW_KEY_O: camera_.orthographic = !camera_.orthographic; break;
+      case GLFW_KEY_TAB:
+        camera_.mode = camera_.mode == CameraController::Mode::Orbit ? CameraController::Mode::Fly
+                                                                      : CameraController::Mode::Orbit;
+        break;
+      default:
+        for (const auto& m : viewModes())
+          if (key == GLFW_KEY_1 + static_cast<int>(m.mode)) {
+            ui_.mode = m.mode;
+            // Scripted sessions (tests/apps/viewer_keys.sh) check that every press took effect.
+            std::printf("sao-viewer: view mode %.*s (key %d)\n", int(m.name.size()), m.name.data(),
+                        1 + static_cast<int>(m.mode));
+            std::fflush(stdout);
+          }
+    }
   }
 }
 
@@ -262,6 +275,7 @@ int App::run() {
   double last = glfwGetTime();
   std::uint32_t frames = 0;
   while (!window_->shouldClose()) {
+    const auto frameStart = std::chrono::steady_clock::now();
     window_->pollEvents();
     const glm::ivec2 fb = window_->framebufferSize();
     if (fb.x <= 0 || fb.y <= 0) {
@@ -303,6 +317,9 @@ int App::run() {
     }
     updateMetrics(frame);
     if (++frames >= options_.frames && options_.frames > 0) break;
+    // --min-frame-ms: a slow machine; keys pressed and released meanwhile wait in GLFW's queue.
+    if (options_.minFrameMs > 0)
+      std::this_thread::sleep_until(frameStart + std::chrono::milliseconds(options_.minFrameMs));
   }
   std::printf("sao-viewer: %u frames; effect: %s\n", frames, stats_.effect.ok() ? "ok" : stats_.effect.message.c_str());
   if (stats_.timings.method != TimingMethod::None)

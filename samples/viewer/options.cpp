@@ -62,6 +62,9 @@ Options parseOptions(int argc, char** argv) {
              if (d < -30 || d > 30) cli::reject("--orbit-step expects degrees in [-30, 30], got '" + v + "'");
              o.orbitStepDegrees = d;
            });
+  cl.whole("--min-frame-ms", o.minFrameMs, 0, 5000, "MS",
+           "hold every frame at least MS milliseconds (a slow machine: key presses shorter than a frame "
+           "still count; tests/apps/viewer_keys.sh)");
   cl.flag("--hide-ui", o.hideUi, "start with the panel hidden (H toggles)");
   cl.flag("--ortho", o.ortho,
           "start with the orthographic camera, as tall as the view's field of view spans at its target (O "

@@ -22,6 +22,7 @@ struct Options {
   std::string screenshot;  // with --frames: save after the last frame and exit
   std::uint32_t frames = 0;  // 0: run until the window closes
   double orbitStepDegrees = 0;  // the orbit camera turns this much every frame (a scripted moving camera)
+  std::uint32_t minFrameMs = 0;  // --min-frame-ms: hold every frame this long (a slow machine, for tests)
   bool hideUi = false, standardDepth = false, validation = false, vsync = true;
   bool ortho = false;  // --ortho: start with the orthographic camera
   Settings settings;  // from --preset and --set, validated

@@ -3,6 +3,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
 #include <cstdio>
 
 namespace sao::viewer {
@@ -42,8 +43,9 @@ Status Window::create(Api api, int width, int height, const std::string& title, 
   }
   if (api == Api::OpenGL) glfwMakeContextCurrent(w->window_);
   glfwSetWindowUserPointer(w->window_, w.get());
-  // Installed before ImGui's GLFW backend, which chains to it.
+  // Installed before ImGui's GLFW backend, which chains to them (ImGui sees every key too).
   glfwSetScrollCallback(w->window_, onScroll);
+  glfwSetKeyCallback(w->window_, onKey);
   out = std::move(w);
   return Status::success();
 }
@@ -55,6 +57,17 @@ Window::~Window() {
 
 void Window::onScroll(GLFWwindow* window, double, double dy) {
   if (auto* self = static_cast<Window*>(glfwGetWindowUserPointer(window))) self->pendingScroll_ += dy;
+}
+
+void Window::onKey(GLFWwindow* window, int key, int, int action, int) {
+  auto* self = static_cast<Window*>(glfwGetWindowUserPointer(window));
+  if (!self || key < 0 || key >= kKeys) return;  // GLFW_KEY_UNKNOWN
+  if (action == GLFW_PRESS) {
+    self->down_[std::size_t(key)] = true;
+    self->pending_.push_back(key);
+  } else if (action == GLFW_RELEASE) {
+    self->down_[std::size_t(key)] = false;
+  }
 }
 
 bool Window::shouldClose() const { return glfwWindowShouldClose(window_); }
@@ -75,11 +88,9 @@ void Window::pollEvents() {
   input_.left = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
   input_.right = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
   input_.middle = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
-  for (int k = GLFW_KEY_SPACE; k < kKeys; ++k) {
-    const bool d = glfwGetKey(window_, k) == GLFW_PRESS;
-    pressed_[k] = d && !down_[k];
-    down_[k] = d;
-  }
+  // Presses queued since the last poll, waitEvents() included.
+  presses_.swap(pending_);
+  pending_.clear();
 }
 
 glm::ivec2 Window::framebufferSize() const {
@@ -88,7 +99,9 @@ glm::ivec2 Window::framebufferSize() const {
   return s;
 }
 
-bool Window::keyDown(int key) const { return key >= 0 && key < kKeys && down_[key]; }
-bool Window::keyPressed(int key) const { return key >= 0 && key < kKeys && pressed_[key]; }
+bool Window::keyDown(int key) const {
+  if (key < 0 || key >= kKeys) return false;
+  return down_[std::size_t(key)] || std::find(presses_.begin(), presses_.end(), key) != presses_.end();
+}
 
 }  // namespace sao::viewer

@@ -1,9 +1,12 @@
 // The GLFW window and its input: a window for OpenGL (a 4.3 core context, current) or Vulkan
-// (no client API), per-frame mouse motion, scroll and key edges.
+// (no client API), per-frame mouse motion, scroll and key presses. Keys come from GLFW's key
+// callback, queued between frames: at a few frames a second a press shorter than a frame still
+// counts (polling glfwGetKey once a frame would miss it).
 #pragma once
 #include <array>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -33,23 +36,28 @@ class Window {
   bool shouldClose() const;
   void requestClose();
   void setVsync(bool on);  // OpenGL only: swap interval 1 or 0
-  void pollEvents();       // updates input() and the key edges
+  void pollEvents();       // updates input() and the key presses
   void waitEvents();       // blocks until something happens (minimised windows)
   glm::ivec2 framebufferSize() const;
   const Input& input() const { return input_; }
+  // Held now, or pressed since the previous pollEvents() (a tap between two frames moves too).
   bool keyDown(int glfwKey) const;
-  bool keyPressed(int glfwKey) const;  // went down during the last pollEvents()
+  // The keys that went down since the previous pollEvents(), in order, each press once (however
+  // short, and twice if pressed twice; key repeat not counted).
+  const std::vector<int>& keyPresses() const { return presses_; }
 
  private:
   Window() = default;
   static void onScroll(GLFWwindow* window, double dx, double dy);
+  static void onKey(GLFWwindow* window, int key, int scancode, int action, int mods);
   GLFWwindow* window_ = nullptr;
   Input input_;
   double pendingScroll_ = 0;
   glm::dvec2 lastCursor_{0, 0};
   bool haveCursor_ = false;
   static constexpr int kKeys = 349;  // GLFW_KEY_LAST + 1
-  std::array<bool, kKeys> down_{}, pressed_{};
+  std::array<bool, kKeys> down_{};   // from the callback: pressed and not yet released
+  std::vector<int> pending_, presses_;  // presses queued by the callback / of the last pollEvents()
 };
 
 }  // namespace sao::viewer
