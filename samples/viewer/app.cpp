@@ -15,6 +15,7 @@
 
 #include "backend.h"
 #include "camera_control.h"
+#include "framing.h"
 #include "reference.h"
 #include "screenshot.h"
 #include "ui_panel.h"
@@ -66,6 +67,7 @@ class App {
   Settings metricsSettings_;
   std::string message_;
   double frameMs_ = 0;
+  Camera lastCamera_;  // the last frame's (the panel's framing included)
 };
 
 Status App::start() {
@@ -187,10 +189,14 @@ FrameDesc App::buildFrame(glm::ivec2 size) const {
   f.camera = scenes::makeCamera(v, std::uint32_t(size.x), std::uint32_t(size.y), far, backend_->clipDepth(),
                                 backend_->reversedZ());
   f.camera.metersToViewUnits = metersToViewUnits_;  // the depth is drawn in the scene's own units
+  // What the camera frames for the window goes beside the panel (framing.h), the split views'
+  // divider with it.
+  const Strip strip = freeStrip(ui_.showUi && ui_.panelShown, ui_.panelX0, ui_.panelX1);
+  frameInStrip(f.camera, strip);
   f.settings = ui_.settings;
   f.mode = ui_.mode;
   f.cszLevel = ui_.cszLevel;
-  f.splitFraction = ui_.split;
+  f.splitFraction = strip.x0 + ui_.split * (strip.x1 - strip.x0);
   f.errorScale = ui_.errorScale;
   f.measureTime = ui_.measureTime;
   f.referenceValid = reference_.matches(v, f.camera, radiusInSceneUnits());
@@ -250,8 +256,7 @@ PanelInfo App::panelInfo() const {
   if (!reference_.available()) {
     p.referenceStatus = "no reference yet: press R (blocks for a few seconds)";
   } else {
-    const glm::ivec2 fb = window_->framebufferSize();
-    Camera c = scenes::makeCamera(v, std::uint32_t(fb.x), std::uint32_t(fb.y), INFINITY, ClipDepth::ZeroToOne, true);
+    const Camera& c = lastCamera_;
     char text[160];
     if (reference_.matches(v, c, radiusInSceneUnits()))
       std::snprintf(text, sizeof text, "reference of this view: %u rays per pixel, %.2f s", reference_.rays(),
@@ -291,8 +296,9 @@ int App::run() {
     if (options_.orbitStepDegrees != 0) camera_.orbitBy(options_.orbitStepDegrees * std::numbers::pi / 180.0);
     backend_->newImGuiFrame();
     ImGui::NewFrame();
+    ui_.panelShown = false;  // drawPanel says where it is
     if (ui_.showUi) drawPanel(ui_, panelInfo(), camera_);
-    drawOverlay(ui_, haveStats_ ? &stats_ : nullptr);
+    drawOverlay(buildFrame(fb), ui_, haveStats_ ? &stats_ : nullptr);
     ImGui::Render();
     if (Status s = handleRequests(buildFrame(fb)); !s) {
       message_ = s.message;
@@ -311,6 +317,7 @@ int App::run() {
       return 1;
     }
     haveStats_ = true;
+    lastCamera_ = frame.camera;
     if (!frame.screenshotPath.empty()) {
       message_ = "saved " + frame.screenshotPath;
       std::printf("sao-viewer: screenshot %s\n", frame.screenshotPath.c_str());

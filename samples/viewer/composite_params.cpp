@@ -1,4 +1,5 @@
 // View modes and the composite's parameter block.
+#include <algorithm>
 #include <cmath>
 
 #include "viewer_types.h"
@@ -46,6 +47,17 @@ Settings compareSettings(const Settings& settings) {
   return s;
 }
 
+LegendRect errorLegend(int width, int height) {
+  // 14 px wide, 40 % of the height (at most 240 px), 56 px from the right edge: room for the labels
+  // on its left and the split labels' line below.
+  LegendRect r;
+  r.x1 = width - 56;
+  r.x0 = r.x1 - 14;
+  r.y0 = std::max(40, height / 10);
+  r.y1 = r.y0 + std::min(240, height * 2 / 5);
+  return r;
+}
+
 CompositeParams makeCompositeParams(const FrameDesc& f, bool topDown, bool rawAo, std::uint32_t cszLevels) {
   CompositeParams p{};
   const Camera& c = f.camera;
@@ -87,6 +99,11 @@ CompositeParams makeCompositeParams(const FrameDesc& f, bool topDown, bool rawAo
   p.extra[1] = static_cast<std::int32_t>(c.height);
   p.extra[2] = rawAo ? 1 : 0;
   p.extra[3] = static_cast<std::int32_t>(cszLevels);
+  const LegendRect legend = errorLegend(int(c.width), int(c.height));  // the window's size
+  p.legend[0] = legend.x0;
+  p.legend[1] = legend.y0;
+  p.legend[2] = legend.x1;
+  p.legend[3] = legend.y1;
   return p;
 }
 

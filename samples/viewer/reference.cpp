@@ -26,6 +26,7 @@ Status Reference::compute(const scenes::View& view, const Camera& camera, double
   image_ = std::move(ao);
   mask_ = samples::geometryMask(primary.position, camera.guardBand);
   view_ = view;
+  projection_ = camera.projection;
   width_ = camera.width;
   height_ = camera.height;
   radius_ = radius;
@@ -35,7 +36,8 @@ Status Reference::compute(const scenes::View& view, const Camera& camera, double
 }
 
 bool Reference::matches(const scenes::View& view, const Camera& camera, double radius) const {
-  return available() && camera.width == width_ && camera.height == height_ && radius == radius_ &&
+  return available() && camera.width == width_ && camera.height == height_ && camera.projection == projection_ &&
+         radius == radius_ &&
          view.eye == view_.eye && view.target == view_.target && view.fovyRadians == view_.fovyRadians && view.orthoHeight == view_.orthoHeight &&
          view.nearDistance == view_.nearDistance;
 }

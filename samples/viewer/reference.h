@@ -1,6 +1,7 @@
 // The error-vs-reference view's data: the Embree ray-traced near-field AO for one view (computed
 // on request, low ray count), and the AO's error against it.
 #pragma once
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -17,7 +18,8 @@ class Reference {
   // Traces `rays` cosine-weighted rays per pixel within `radius` (scene units) for the view and camera.
   Status compute(const scenes::View& view, const Camera& camera, double radius, std::uint32_t rays);
   bool available() const { return !image_.data.empty(); }
-  // Whether the reference belongs to this view, camera size and radius.
+  // Whether the reference belongs to this view, camera (size and projection: the panel's framing
+  // shifts it) and radius.
   bool matches(const scenes::View& view, const Camera& camera, double radius) const;
   const FloatImage& image() const { return image_; }  // AO extent, row 0 at ndc y = -1
   double seconds() const { return seconds_; }
@@ -31,6 +33,7 @@ class Reference {
   FloatImage image_;
   std::vector<unsigned char> mask_;
   scenes::View view_;
+  std::array<double, 16> projection_{};
   std::uint32_t width_ = 0, height_ = 0, rays_ = 0;
   double radius_ = 0, seconds_ = 0;
 };

@@ -2,6 +2,7 @@
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -93,13 +94,16 @@ void referenceSection(UiState& s, const PanelInfo& info) {
 }
 
 void timingSection(UiState& s, const FrameStats& stats) {
-  ImGui::Checkbox("measure per-pass time", &s.measureTime);
+  ImGui::Checkbox("measure", &s.measureTime);
+  if (stats.timings.method != TimingMethod::None) {
+    ImGui::SameLine();
+    ImGui::TextDisabled("(%s)", toString(stats.timings.method));
+  }
   if (!stats.timingNote.empty()) ImGui::TextDisabled("%s", stats.timingNote.c_str());
   if (stats.compare.active && stats.compare.timings.method != TimingMethod::None)
     ImGui::TextDisabled("split-resolution's second effect (divisor %d): %.3f ms",
                         compareSettings(s.settings).resolution_divisor, stats.compare.timings.totalMilliseconds());
   if (stats.timings.method == TimingMethod::None) return;
-  ImGui::TextDisabled("method: %s", toString(stats.timings.method));
   if (ImGui::BeginTable("timings", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
     for (const auto& p : stats.timings.passes) {
       ImGui::TableNextRow();
@@ -127,6 +131,8 @@ void planSection(const FrameStats& stats, std::uint64_t fullBytes) {
   ImGui::TextWrapped("passes: %s", passes.str().c_str());
   ImGui::Text("input %ux%u, AO %ux%u, z MIP levels %u", p.inputExtent.width, p.inputExtent.height, p.aoExtent.width,
               p.aoExtent.height, p.cszLevels);
+  ImGui::Text("%.2f MiB (a naive allocation: %.2f MiB)", double(p.totalBytes) / 1048576.0, double(fullBytes) / 1048576.0);
+  if (!ImGui::TreeNode("images")) return;
   if (ImGui::BeginTable("images", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
     for (const auto& image : p.images) {
       ImGui::TableNextRow();
@@ -140,37 +146,73 @@ void planSection(const FrameStats& stats, std::uint64_t fullBytes) {
     }
     ImGui::EndTable();
   }
-  ImGui::Text("%.2f MiB (a naive allocation: %.2f MiB)", double(p.totalBytes) / 1048576.0, double(fullBytes) / 1048576.0);
+  ImGui::TreePop();
 }
 
 }  // namespace
 
 void drawPanel(UiState& s, const PanelInfo& info, CameraController& camera) {
+  // Narrow enough to leave most of the window to the scene (framed for the rest, framing.h), wide
+  // enough for the settings' labels: 360 px at 1280x720 (28 %).
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  const float width = std::clamp(0.28f * display.x, std::min(260.0f, display.x - 16), 360.0f);
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(440, ImGui::GetIO().DisplaySize.y - 16), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(width, display.y - 16), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowBgAlpha(0.82f);
-  if (!ImGui::Begin("sao-viewer (H hides)")) {
+  const bool open = ImGui::Begin("sao-viewer (H hides)");
+  s.panelShown = open && display.x > 0;
+  if (s.panelShown) {
+    s.panelX0 = ImGui::GetWindowPos().x / display.x;
+    s.panelX1 = (ImGui::GetWindowPos().x + ImGui::GetWindowSize().x) / display.x;
+  }
+  if (!open) {
     ImGui::End();
     return;
   }
-  ImGui::PushItemWidth(-190.0f);
-  ImGui::TextWrapped("%s", info.backend.c_str());
-  ImGui::Text("%.2f ms/frame (%.1f fps)", info.frameMs, info.frameMs > 0 ? 1000.0 / info.frameMs : 0.0);
-  if (ImGui::Button("Screenshot (F12)")) s.screenshot = true;
+  ImGui::PushItemWidth(-150.0f);
+  // The backend in one line; its depth conventions on hover.
+  const std::size_t cut = info.backend.find("; ");
+  ImGui::TextWrapped("%s", info.backend.substr(0, cut).c_str());
+  if (cut != std::string::npos && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", info.backend.c_str());
+  ImGui::Text("%.1f ms/frame (%.1f fps)", info.frameMs, info.frameMs > 0 ? 1000.0 / info.frameMs : 0.0);
+  ImGui::SameLine();
+  if (ImGui::SmallButton("Screenshot (F12)")) s.screenshot = true;
   if (!info.message.empty()) ImGui::TextWrapped("%s", info.message.c_str());
-  if (info.stats && !info.stats->effect.ok())
-    ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "effect: %s", info.stats->effect.message.c_str());
+  const ImVec4 red(1, 0.4f, 0.3f, 1);
+  auto wrappedColored = [](const ImVec4& color, const std::string& text) {
+    ImGui::PushStyleColor(ImGuiCol_Text, color);
+    ImGui::TextWrapped("%s", text.c_str());
+    ImGui::PopStyleColor();
+  };
+  if (info.stats && !info.stats->effect.ok()) wrappedColored(red, "effect: " + info.stats->effect.message);
   if (info.stats && info.stats->compare.active && !info.stats->compare.effect.ok())
-    ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "split-resolution's second effect: %s",
-                       info.stats->compare.effect.message.c_str());
-  if (ImGui::CollapsingHeader("Scene and camera", ImGuiTreeNodeFlags_DefaultOpen)) sceneSection(s, info, camera);
-  if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) viewSection(s, info.stats);
-  if (ImGui::CollapsingHeader("Settings", ImGuiTreeNodeFlags_DefaultOpen)) drawSettingsPanel(s.settings, s.settingsPanel);
-  if (s.mode == ViewMode::Error) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
-  if (ImGui::CollapsingHeader("Reference (error view)")) referenceSection(s, info);
+    wrappedColored(red, "split-resolution's second effect: " + info.stats->compare.effect.message);
+  // What a user reads while tuning stays on top: the view mode, the timings and the plan; the long
+  // lists (settings, scene, reference) go in tabs below, scrolling on their own.
+  viewSection(s, info.stats);
   if (info.stats && ImGui::CollapsingHeader("Per-pass timings", ImGuiTreeNodeFlags_DefaultOpen))
     timingSection(s, *info.stats);
-  if (info.stats && info.stats->effect.ok() && ImGui::CollapsingHeader("Plan", ImGuiTreeNodeFlags_DefaultOpen)) planSection(*info.stats, info.fullBytes);
+  if (info.stats && info.stats->effect.ok() && ImGui::CollapsingHeader("Plan", ImGuiTreeNodeFlags_DefaultOpen))
+    planSection(*info.stats, info.fullBytes);
+  const bool enteredError = s.mode == ViewMode::Error && s.panelMode != ViewMode::Error;
+  s.panelMode = s.mode;
+  if (ImGui::BeginTabBar("sections")) {
+    auto tab = [](const char* name, ImGuiTabItemFlags flags, auto&& body) {
+      if (!ImGui::BeginTabItem(name, nullptr, flags)) return;
+      ImGui::BeginChild(name);  // the rest of the panel's height, scrolled on its own
+      // Sliders 140 px wide: the rest for the longest label ("blur_edge_sharpness [1/m]") and
+      // the preset row's "Reset to defaults".
+      ImGui::PushItemWidth(140.0f);
+      body();
+      ImGui::PopItemWidth();
+      ImGui::EndChild();
+      ImGui::EndTabItem();
+    };
+    tab("Settings", 0, [&] { drawSettingsPanel(s.settings, s.settingsPanel); });
+    tab("Scene and camera", 0, [&] { sceneSection(s, info, camera); });
+    tab("Reference", enteredError ? ImGuiTabItemFlags_SetSelected : 0, [&] { referenceSection(s, info); });
+    ImGui::EndTabBar();
+  }
   ImGui::PopItemWidth();
   ImGui::End();
 }
@@ -189,13 +231,43 @@ std::string halfLabel(const char* what, int divisor, const Status& effect, const
   return text;
 }
 
+// The error view's colour bar (drawn by the composite at errorLegend()): a frame, the values of
+// its bottom, middle and top, and what it shows.
+void legendLabels(float errorScale) {
+  const ImGuiIO& io = ImGui::GetIO();
+  const ImVec2 scale = io.DisplayFramebufferScale;
+  if (scale.x <= 0 || scale.y <= 0) return;
+  const int fbWidth = int(io.DisplaySize.x * scale.x), fbHeight = int(io.DisplaySize.y * scale.y);
+  const LegendRect r = errorLegend(fbWidth, fbHeight);
+  // Framebuffer rows count from the bottom, ImGui's from the top.
+  const float x0 = float(r.x0) / scale.x, x1 = float(r.x1) / scale.x;
+  const float top = float(fbHeight - r.y1) / scale.y, bottom = float(fbHeight - r.y0) / scale.y;
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  const ImU32 color = IM_COL32(255, 255, 255, 230), shadow = IM_COL32(0, 0, 0, 200);
+  draw->AddRect(ImVec2(x0 - 1, top - 1), ImVec2(x1 + 1, bottom + 1), IM_COL32(160, 160, 160, 255));
+  auto label = [&](const std::string& text, float x, float y) {
+    draw->AddText(ImVec2(x + 1, y + 1), shadow, text.c_str());
+    draw->AddText(ImVec2(x, y), color, text.c_str());
+  };
+  const float h = ImGui::GetFontSize();
+  char text[32];
+  for (const double f : {0.0, 0.5, 1.0}) {
+    std::snprintf(text, sizeof text, f == 1.0 ? ">=%.2f" : "%.2f", f * errorScale);
+    const float y = bottom - float(f) * (bottom - top) - 0.5f * h;
+    label(text, x0 - 6 - ImGui::CalcTextSize(text).x, y);
+  }
+  const char* caption = "|AO - ref|";
+  label(caption, x1 - ImGui::CalcTextSize(caption).x, top - h - 4);
+}
+
 }  // namespace
 
-void drawOverlay(const UiState& s, const FrameStats* stats) {
+void drawOverlay(const FrameDesc& frame, const UiState& s, const FrameStats* stats) {
+  if (s.mode == ViewMode::Error && frame.referenceValid) legendLabels(float(frame.errorScale));
   if (s.mode != ViewMode::Split && s.mode != ViewMode::SplitResolution) return;
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   const ImVec2 size = ImGui::GetIO().DisplaySize;
-  const float x = std::floor(s.split * size.x), y = size.y - ImGui::GetFontSize() - 8.0f;
+  const float x = std::floor(float(frame.splitFraction) * size.x), y = size.y - ImGui::GetFontSize() - 8.0f;
   std::string left = "without AO", right = "with AO";
   if (s.mode == ViewMode::SplitResolution) {
     // The main effect runs the panel's divisor, the second one the other side's.

@@ -2,6 +2,7 @@
 // live per-pass timings and the plan.
 #pragma once
 #include <string>
+#include <vector>
 
 #include "camera_control.h"
 #include "sao/samples/metrics.h"
@@ -25,6 +26,11 @@ struct UiState {
   int referenceRays = 32;
   bool measureTime = true;
   bool showUi = true;
+  // Where the panel was drawn this frame (fractions of the window's width; shown: visible and not
+  // collapsed): the scene is framed for the rest (framing.h).
+  bool panelShown = false;
+  double panelX0 = 0, panelX1 = 0;
+  ViewMode panelMode = ViewMode::Lit;  // the mode the panel last saw (opens the reference tab)
   // Requests, cleared by the app once handled.
   bool sceneChanged = false, resetCamera = false, computeReference = false, screenshot = false;
 };
@@ -44,9 +50,9 @@ struct PanelInfo {
 
 void drawPanel(UiState& state, const PanelInfo& info, CameraController& camera);
 
-// Labels drawn over the scene, under the panel: the split view's "without AO | with AO", the
-// split-resolution view's divisors and each half's AO time (from `stats`, the last frame's; null
-// before the first).
-void drawOverlay(const UiState& state, const FrameStats* stats);
+// Labels drawn over the scene, under the panel, for `frame` (its divider, its reference): the split
+// view's "without AO | with AO", the split-resolution view's divisors and each half's AO time (from
+// `stats`, the last frame's; null before the first); the values of the error view's colour bar.
+void drawOverlay(const FrameDesc& frame, const UiState& state, const FrameStats* stats);
 
 }  // namespace sao::viewer

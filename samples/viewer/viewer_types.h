@@ -38,8 +38,17 @@ struct CompositeParams {
   std::int32_t modes[4];
   std::int32_t extra[4];
   std::int32_t projection[4];  // x: 1 for an orthographic camera (z and x, y linear in the texel)
+  std::int32_t legend[4];      // the error view's colour bar: x0, y0, x1, y1 (errorLegend())
 };
-static_assert(sizeof(CompositeParams) == 112);
+static_assert(sizeof(CompositeParams) == 128);
+
+// The error view's colour bar, in framebuffer pixels from the bottom-left corner: [x0, x1) x
+// [y0, y1), near the bottom-right corner (the panel is on the left). The composite fills it with
+// the heat map's colours from 0 (bottom) to the error at full heat (top); the overlay labels it.
+struct LegendRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+LegendRect errorLegend(int framebufferWidth, int framebufferHeight);
 
 // What the viewer shows this frame, independent of the backend.
 struct FrameDesc {

@@ -11,6 +11,7 @@ layout(std140, binding = 0) uniform CompositeParams {
   ivec4 modes;      // view mode, csz level, flip y, reference present
   ivec4 extra;      // guard band, viewport height, raw AO present, csz levels
   ivec4 projection; // x: 1 orthographic (z = d * c1 + c2, and x, y without the factor z)
+  ivec4 legend;     // the error view's colour bar: x0, y0, x1, y1 in window pixels from the bottom left
 } P;
 layout(binding = 1) uniform sampler2D depthTex;
 layout(binding = 2) uniform sampler2D aoTex;
@@ -70,6 +71,7 @@ vec3 lit(ivec2 t, bool sky, float ao) {
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   if (P.modes.z != 0) p.y = P.extra.y - 1 - p.y;
+  bool inLegend = all(greaterThanEqual(p, P.legend.xy)) && all(lessThan(p, P.legend.zw));
   p = clamp(p, ivec2(0), textureSize(depthTex, 0) - 2 * P.extra.x - 1);  // a window briefly larger than the images
   ivec2 t = p + ivec2(P.extra.x);
   int mode = P.modes.x;
@@ -97,6 +99,8 @@ void main() {
     } else {
       float e = abs(ao - texelFetch(referenceTex, p, 0).r);
       color = sky ? vec3(0.0) : heat(e / P.display.z);
+      // The colour bar: 0 at the bottom, the error at full heat (display.z) at the top.
+      if (inLegend) color = heat((float(p.y - P.legend.y) + 0.5) / float(P.legend.w - P.legend.y));
     }
   } else if (mode == kSplitResolution) {
     float reduced = clamp(texelFetch(aoReducedTex, p, 0).r, 0.0, 1.0);
