@@ -11,12 +11,15 @@
 #include <filesystem>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <thread>
+#include <vector>
 
 #include "backend.h"
 #include "camera_control.h"
 #include "framing.h"
 #include "reference.h"
+#include "sao/samples/scale_warnings.h"
 #include "screenshot.h"
 #include "ui_panel.h"
 
@@ -49,6 +52,7 @@ class App {
   Status handleRequests(const FrameDesc& frame);
   FrameDesc buildFrame(glm::ivec2 size) const;
   void updateMetrics(const FrameDesc& frame);
+  void checkScale(const FrameDesc& frame);
   PanelInfo panelInfo() const;
 
   Options options_;
@@ -68,6 +72,17 @@ class App {
   std::string message_;
   double frameMs_ = 0;
   Camera lastCamera_;  // the last frame's (the panel's framing included)
+  // The scale check (checkScale): what it last looked at, what the frame before looked like, and
+  // its warnings (printed on stderr when they change).
+  struct ScaleKey {
+    Camera camera;
+    Settings settings;
+    std::uint64_t scene = 0;
+    bool operator==(const ScaleKey&) const = default;
+  };
+  std::optional<ScaleKey> scaleChecked_, scalePrevious_;
+  std::uint64_t sceneGeneration_ = 0;
+  std::vector<std::string> scaleWarnings_, scalePrinted_;
 };
 
 Status App::start() {
@@ -120,6 +135,7 @@ Status App::loadScene(int index) {
 
 Status App::adoptScene(scenes::Scene&& scene, int index, std::optional<scenes::LengthUnit> requested) {
   scene_ = std::move(scene);
+  ++sceneGeneration_;
   const scenes::UnitChoice units = scenes::chooseUnits(scene_.mesh, scene_.units, requested);
   metersToViewUnits_ = units.metersToViewUnits;
   std::printf("sao-viewer: units %s\n", units.note.c_str());
@@ -241,6 +257,32 @@ void App::updateMetrics(const FrameDesc& frame) {
   std::printf("sao-viewer: error vs reference: RMSE %.4f, bias %+.4f\n", metrics_.raw.rmse, metrics_.raw.meanBias);
 }
 
+// sao-render's scale warnings (sao/samples/scale_warnings.h) for the view on screen: the AO read
+// back and the depth ray cast for the frame's camera. On the first frame, then whenever the scene,
+// the settings or the camera changed and held still for a frame (not while the camera moves).
+void App::checkScale(const FrameDesc& frame) {
+  if (!stats_.effect.ok()) return;
+  const ScaleKey key{frame.camera, frame.settings, sceneGeneration_};
+  const bool settled = !scaleChecked_ || (scalePrevious_ && *scalePrevious_ == key);
+  scalePrevious_ = key;
+  if ((scaleChecked_ && *scaleChecked_ == key) || !settled) return;
+  scaleChecked_ = key;
+  FloatImage ao;
+  DepthImage depth;
+  samples::ScaleCheck check;
+  Status s = backend_->readAo(ao);
+  if (s) s = reference_.castDepth(camera_.view(), frame.camera, depth);
+  if (s) s = samples::checkScale(frame.settings, frame.camera, depth, ao, check);
+  if (!s) {
+    message_ = "scale check: " + s.message;
+    return;
+  }
+  scaleWarnings_ = std::move(check.warnings);
+  if (scaleWarnings_ == scalePrinted_) return;  // said already (the camera moved, nothing new)
+  for (const std::string& w : scaleWarnings_) std::fprintf(stderr, "sao-viewer: warning: %s\n", w.c_str());
+  scalePrinted_ = scaleWarnings_;
+}
+
 PanelInfo App::panelInfo() const {
   PanelInfo p;
   p.backend = backend_->description();
@@ -268,6 +310,7 @@ PanelInfo App::panelInfo() const {
   }
   p.metrics = metrics_;
   p.message = message_;
+  p.scaleWarnings = &scaleWarnings_;
   return p;
 }
 
@@ -323,6 +366,7 @@ int App::run() {
       std::printf("sao-viewer: screenshot %s\n", frame.screenshotPath.c_str());
     }
     updateMetrics(frame);
+    checkScale(frame);
     if (++frames >= options_.frames && options_.frames > 0) break;
     // --min-frame-ms: a slow machine; keys pressed and released meanwhile wait in GLFW's queue.
     if (options_.minFrameMs > 0)

@@ -35,6 +35,16 @@ Status Reference::compute(const scenes::View& view, const Camera& camera, double
   return Status::success();
 }
 
+Status Reference::castDepth(const scenes::View& view, const Camera& camera, DepthImage& out) {
+  if (!scene_) return Status::error(StatusCode::InvalidInput, "no scene to trace");
+  if (!rays_scene_)
+    if (Status s = raytrace::RayScene::create(scene_->mesh, rays_scene_); !s) return s;
+  raytrace::Primary primary;
+  if (Status s = raytrace::castPrimary(*rays_scene_, view, camera, DepthFormat::D32F, primary); !s) return s;
+  out = std::move(primary.depth);
+  return Status::success();
+}
+
 bool Reference::matches(const scenes::View& view, const Camera& camera, double radius) const {
   return available() && camera.width == width_ && camera.height == height_ && camera.projection == projection_ &&
          radius == radius_ &&

@@ -21,6 +21,9 @@ class Reference {
   // Whether the reference belongs to this view, camera (size and projection: the panel's framing
   // shifts it) and radius.
   bool matches(const scenes::View& view, const Camera& camera, double radius) const;
+  // The depth a prepass draws for the view and camera (D32F, ray cast on the reference's ray
+  // scene): the scale check's input (sao/samples/scale_warnings.h).
+  Status castDepth(const scenes::View& view, const Camera& camera, DepthImage& out);
   const FloatImage& image() const { return image_; }  // AO extent, row 0 at ndc y = -1
   double seconds() const { return seconds_; }
   std::uint32_t rays() const { return rays_; }

@@ -178,7 +178,7 @@ void drawPanel(UiState& s, const PanelInfo& info, CameraController& camera) {
   ImGui::SameLine();
   if (ImGui::SmallButton("Screenshot (F12)")) s.screenshot = true;
   if (!info.message.empty()) ImGui::TextWrapped("%s", info.message.c_str());
-  const ImVec4 red(1, 0.4f, 0.3f, 1);
+  const ImVec4 red(1, 0.4f, 0.3f, 1), orange(1, 0.7f, 0.2f, 1);
   auto wrappedColored = [](const ImVec4& color, const std::string& text) {
     ImGui::PushStyleColor(ImGuiCol_Text, color);
     ImGui::TextWrapped("%s", text.c_str());
@@ -187,6 +187,8 @@ void drawPanel(UiState& s, const PanelInfo& info, CameraController& camera) {
   if (info.stats && !info.stats->effect.ok()) wrappedColored(red, "effect: " + info.stats->effect.message);
   if (info.stats && info.stats->compare.active && !info.stats->compare.effect.ok())
     wrappedColored(red, "split-resolution's second effect: " + info.stats->compare.effect.message);
+  if (info.scaleWarnings)
+    for (const std::string& w : *info.scaleWarnings) wrappedColored(orange, "warning: " + w);
   // What a user reads while tuning stays on top: the view mode, the timings and the plan; the long
   // lists (settings, scene, reference) go in tabs below, scrolling on their own.
   viewSection(s, info.stats);

@@ -46,6 +46,7 @@ struct PanelInfo {
   bool haveMetrics = false;
   samples::ReferenceComparison metrics;
   std::string message;  // the last screenshot, a failed scene load, ...
+  const std::vector<std::string>* scaleWarnings = nullptr;  // sao/samples/scale_warnings.h, this view
 };
 
 void drawPanel(UiState& state, const PanelInfo& info, CameraController& camera);
