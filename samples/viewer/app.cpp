@@ -3,6 +3,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <imgui.h>
+#include <imgui_internal.h>  // GImGui: whether the active item is a text field
 
 #include <algorithm>
 #include <chrono>
@@ -71,6 +72,7 @@ class App {
   Settings metricsSettings_;
   std::string message_;
   double frameMs_ = 0;
+  bool textField_ = false;  // a text field of the panel has had the keys (printed, not yet given back)
   Camera lastCamera_;  // the last frame's (the panel's framing included)
   // The scale check (checkScale): what it last looked at, what the frame before looked like, and
   // its warnings (printed on stderr when they change).
@@ -97,6 +99,7 @@ Status App::start() {
   if (Status s = api == Api::Vulkan ? createVulkanBackend(*window_, bo, backend_) : createGlBackend(*window_, bo, backend_);
       !s)
     return s;
+  window_->takeKeyCallback();  // in front of ImGui's, which the backend installed
   ui_.settings = options_.settings;
   ui_.mode = options_.mode;
   ui_.cszLevel = options_.zLevel;
@@ -156,9 +159,17 @@ Status App::adoptScene(scenes::Scene&& scene, int index, std::optional<scenes::L
 }
 
 void App::handleKeys() {
-  // A focused text field (Ctrl+click on a slider) has the keys: ImGui got them from the same
-  // callback, the viewer leaves them alone.
-  if (ImGui::GetIO().WantCaptureKeyboard) return;
+  // A focused text field (Ctrl+click on a slider) or a dragged widget has the keys: ImGui gets
+  // them from the same callback chain, the viewer leaves them alone. ImGui's flag dates from the
+  // start of the last frame, the active item from its end: a field opened in the last frame keeps
+  // the keys typed since (at a few frames a second, the next keys of a user who clicked then typed).
+  const bool panelHasKeys = ImGui::GetIO().WantCaptureKeyboard || ImGui::IsAnyItemActive();
+  if (textField_ && !panelHasKeys) {  // the keys are the viewer's again from now on
+    textField_ = false;
+    std::printf("sao-viewer: the text field let the keyboard go\n");
+    std::fflush(stdout);
+  }
+  if (panelHasKeys) return;
   for (const int key : window_->keyPresses()) {  // every press since the last frame, in order
     switch (key) {
       case GLFW_KEY_ESCAPE: window_->requestClose(); break;
@@ -342,6 +353,13 @@ int App::run() {
     ui_.panelShown = false;  // drawPanel says where it is
     if (ui_.showUi) drawPanel(ui_, panelInfo(), camera_);
     drawOverlay(buildFrame(fb), ui_, haveStats_ ? &stats_ : nullptr);
+    // A text field opened in this frame (Ctrl+click on a slider) has the keys typed from now on
+    // (handleKeys); scripted sessions (tests/apps/viewer_keys.sh) wait for this line to type.
+    if (!textField_ && GImGui->ActiveId != 0 && GImGui->ActiveId == GImGui->InputTextState.ID) {
+      textField_ = true;
+      std::printf("sao-viewer: a text field has the keyboard\n");
+      std::fflush(stdout);
+    }
     ImGui::Render();
     if (Status s = handleRequests(buildFrame(fb)); !s) {
       message_ = s.message;
@@ -364,6 +382,7 @@ int App::run() {
     if (!frame.screenshotPath.empty()) {
       message_ = "saved " + frame.screenshotPath;
       std::printf("sao-viewer: screenshot %s\n", frame.screenshotPath.c_str());
+      std::fflush(stdout);  // scripted sessions wait for it
     }
     updateMetrics(frame);
     checkScale(frame);

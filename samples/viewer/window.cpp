@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <utility>
 
 namespace sao::viewer {
 namespace {
@@ -43,9 +44,9 @@ Status Window::create(Api api, int width, int height, const std::string& title, 
   }
   if (api == Api::OpenGL) glfwMakeContextCurrent(w->window_);
   glfwSetWindowUserPointer(w->window_, w.get());
-  // Installed before ImGui's GLFW backend, which chains to them (ImGui sees every key too).
+  // Installed before ImGui's GLFW backend, which chains to it; the key callback goes in front of
+  // ImGui's later (takeKeyCallback).
   glfwSetScrollCallback(w->window_, onScroll);
-  glfwSetKeyCallback(w->window_, onKey);
   out = std::move(w);
   return Status::success();
 }
@@ -59,15 +60,24 @@ void Window::onScroll(GLFWwindow* window, double, double dy) {
   if (auto* self = static_cast<Window*>(glfwGetWindowUserPointer(window))) self->pendingScroll_ += dy;
 }
 
-void Window::onKey(GLFWwindow* window, int key, int, int action, int) {
+void Window::takeKeyCallback() { imguiKey_ = glfwSetKeyCallback(window_, onKey); }
+
+void Window::onKey(GLFWwindow* window, int key, int scancode, int action, int mods) {
   auto* self = static_cast<Window*>(glfwGetWindowUserPointer(window));
-  if (!self || key < 0 || key >= kKeys) return;  // GLFW_KEY_UNKNOWN
-  if (action == GLFW_PRESS) {
+  if (!self) return;
+  const bool known = key >= 0 && key < kKeys;  // not GLFW_KEY_UNKNOWN
+  if (known && action == GLFW_PRESS) {
     self->down_[std::size_t(key)] = true;
+    self->pressedSincePoll_[std::size_t(key)] = true;
     self->pending_.push_back(key);
-  } else if (action == GLFW_RELEASE) {
+  } else if (known && action == GLFW_RELEASE) {
     self->down_[std::size_t(key)] = false;
+    if (self->pressedSincePoll_[std::size_t(key)]) {  // ImGui has not seen it down yet
+      self->heldReleases_.push_back({key, scancode, mods});
+      return;
+    }
   }
+  if (self->imguiKey_) self->imguiKey_(window, key, scancode, action, mods);
 }
 
 bool Window::shouldClose() const { return glfwWindowShouldClose(window_); }
@@ -76,6 +86,10 @@ void Window::setVsync(bool on) { glfwSwapInterval(on ? 1 : 0); }
 void Window::waitEvents() { glfwWaitEvents(); }
 
 void Window::pollEvents() {
+  // ImGui saw these keys down for a frame: now they go up.
+  for (const auto& [key, scancode, mods] : std::exchange(heldReleases_, {}))
+    if (imguiKey_) imguiKey_(window_, key, scancode, GLFW_RELEASE, mods);
+  pressedSincePoll_ = {};
   glfwPollEvents();
   input_ = {};
   input_.scroll = pendingScroll_;

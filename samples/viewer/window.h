@@ -1,7 +1,10 @@
 // The GLFW window and its input: a window for OpenGL (a 4.3 core context, current) or Vulkan
 // (no client API), per-frame mouse motion, scroll and key presses. Keys come from GLFW's key
 // callback, queued between frames: at a few frames a second a press shorter than a frame still
-// counts (polling glfwGetKey once a frame would miss it).
+// counts (polling glfwGetKey once a frame would miss it). The callback also feeds ImGui's GLFW
+// backend, holding back a release that follows its press within one frame gap until the next
+// pollEvents(), since ImGui 1.86 reads key state once a frame (a short Enter would not close a
+// text field).
 #pragma once
 #include <array>
 #include <memory>
@@ -36,6 +39,9 @@ class Window {
   bool shouldClose() const;
   void requestClose();
   void setVsync(bool on);  // OpenGL only: swap interval 1 or 0
+  // After ImGui's GLFW backend has installed its callbacks: puts the viewer's key callback in front
+  // of ImGui's (which it then calls). Before this the viewer sees no keys.
+  void takeKeyCallback();
   void pollEvents();       // updates input() and the key presses
   void waitEvents();       // blocks until something happens (minimised windows)
   glm::ivec2 framebufferSize() const;
@@ -58,6 +64,10 @@ class Window {
   static constexpr int kKeys = 349;  // GLFW_KEY_LAST + 1
   std::array<bool, kKeys> down_{};   // from the callback: pressed and not yet released
   std::vector<int> pending_, presses_;  // presses queued by the callback / of the last pollEvents()
+  // ImGui's key callback, and the releases it gets at the next pollEvents() (key, scancode, mods).
+  void (*imguiKey_)(GLFWwindow*, int, int, int, int) = nullptr;
+  std::array<bool, kKeys> pressedSincePoll_{};
+  std::vector<std::array<int, 3>> heldReleases_;
 };
 
 }  // namespace sao::viewer
