@@ -15,7 +15,7 @@ struct Strip {
 
 // The wider of the strips left and right of a panel spanning [panelX0, panelX1) (fractions of the
 // window's width), or the whole window when the panel is not shown or leaves less than a quarter
-// of the width on either side (a panel in the middle, or one as wide as the window).
+// of the width on both sides (a panel that wide is not worth framing around).
 Strip freeStrip(bool panelShown, double panelX0, double panelX1);
 
 // Scales camera.projection's x and y by the strip's width and moves the window's centre to the

@@ -104,7 +104,10 @@ void timingSection(UiState& s, const FrameStats& stats) {
     ImGui::TextDisabled("split-resolution's second effect (divisor %d): %.3f ms",
                         compareSettings(s.settings).resolution_divisor, stats.compare.timings.totalMilliseconds());
   if (stats.timings.method == TimingMethod::None) return;
-  if (ImGui::BeginTable("timings", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
+  if (ImGui::BeginTable("timings", 2, ImGuiTableFlags_RowBg)) {
+    // Set widths: auto-fitted columns start at zero width in the table's first frame.
+    ImGui::TableSetupColumn("pass", ImGuiTableColumnFlags_WidthStretch);
+    ImGui::TableSetupColumn("ms", ImGuiTableColumnFlags_WidthFixed, ImGui::CalcTextSize("0000.000 ms").x);
     for (const auto& p : stats.timings.passes) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
@@ -153,7 +156,7 @@ void planSection(const FrameStats& stats, std::uint64_t fullBytes) {
 
 void drawPanel(UiState& s, const PanelInfo& info, CameraController& camera) {
   // Narrow enough to leave most of the window to the scene (framed for the rest, framing.h), wide
-  // enough for the settings' labels: 360 px at 1280x720 (28 %).
+  // enough for the settings' labels: 0.28 of the width, 260-360 px (358 px at 1280x720).
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   const float width = std::clamp(0.28f * display.x, std::min(260.0f, display.x - 16), 360.0f);
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
@@ -170,10 +173,17 @@ void drawPanel(UiState& s, const PanelInfo& info, CameraController& camera) {
     return;
   }
   ImGui::PushItemWidth(-150.0f);
-  // The backend in one line; its depth conventions on hover.
+  // The backend in one line (clipped at the panel's edge: the widgets below keep their places
+  // whatever the driver's name), all of it with the depth conventions on hover.
   const std::size_t cut = info.backend.find("; ");
-  ImGui::TextWrapped("%s", info.backend.substr(0, cut).c_str());
-  if (cut != std::string::npos && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", info.backend.c_str());
+  ImGui::TextUnformatted(info.backend.substr(0, cut).c_str());
+  if (ImGui::IsItemHovered()) {
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 35.0f);
+    ImGui::TextUnformatted(info.backend.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
+  }
   ImGui::Text("%.1f ms/frame (%.1f fps)", info.frameMs, info.frameMs > 0 ? 1000.0 / info.frameMs : 0.0);
   ImGui::SameLine();
   if (ImGui::SmallButton("Screenshot (F12)")) s.screenshot = true;
