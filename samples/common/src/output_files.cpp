@@ -132,6 +132,24 @@ void removeEarlierOutput(const fs::path& folder, const std::string& program) {
                  program.c_str(), folder.c_str());
 }
 
+// What every output folder must be before a run writes it (see output_files.h).
+Status checkFolder(const fs::path& folder, const std::string& where, const WriteRules& rules) {
+  for (const auto& input : rules.inputs)
+    if (within(input.path, folder))
+      return optionError(where + " holds the input " + input.option + " '" + input.path +
+                         "', and a run replaces the folder's files: choose another folder or move the input out "
+                         "(inputs are never written onto, --overwrite or not)");
+  std::error_code ec;
+  const auto status = fs::symlink_status(folder, ec);
+  if (fs::is_symlink(status)) return ioError(where + " is a symbolic link: give the folder it points to");
+  if (fs::exists(status)) {
+    if (!fs::is_directory(status)) return ioError(where + " exists and is not a folder");
+    if (!rules.overwrite)
+      if (Status s = checkReplaceable(folder, where, rules.program); !s) return s;
+  }
+  return Status::success();
+}
+
 mode_t currentUmask() {
   const mode_t m = ::umask(0);
   ::umask(m);
@@ -192,18 +210,7 @@ Status OutputFolder::stage(const std::string& path, const std::string& option, c
     if (!rel.empty() && *rel.begin() != "..")
       return ioError(where + " is or holds the working folder, which a run replaces: choose another folder");
   }
-  for (const auto& input : rules.inputs)
-    if (within(input.path, f->final_))
-      return optionError(where + " holds the input " + input.option + " '" + input.path +
-                         "', and a run replaces the folder's files: choose another folder or move the input out "
-                         "(inputs are never written onto, --overwrite or not)");
-  const auto status = fs::symlink_status(f->final_, ec);
-  if (fs::is_symlink(status)) return ioError(where + " is a symbolic link: give the folder it points to");
-  if (fs::exists(status)) {
-    if (!fs::is_directory(status)) return ioError(where + " exists and is not a folder");
-    if (!rules.overwrite)
-      if (Status s = checkReplaceable(f->final_, where, rules.program); !s) return s;
-  }
+  if (Status s = checkFolder(f->final_, where, rules); !s) return s;
   // Missing parents: made now and removed again if the run fails.
   std::vector<fs::path> missing;
   for (fs::path p = f->final_.parent_path(); !fs::exists(p, ec); p = p.parent_path()) missing.push_back(p);
@@ -370,6 +377,45 @@ Status OutputFile::commit() {
     return ioError("cannot write '" + final_ + "': " + std::strerror(errno));
   }
   committed_ = true;
+  return Status::success();
+}
+
+Status prepareFolderInPlace(const std::string& path, const std::string& option, const WriteRules& rules,
+                            const std::vector<std::string>& files) {
+  const fs::path folder = normalizedPath(path);
+  const std::string where = option + " '" + path + "'";
+  if (Status s = checkFolder(folder, where, rules); !s) return s;
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec) return ioError(where + ": cannot create it: " + ec.message());
+  std::set<fs::path> listed, kept;
+  readManifest(folder, manifestName(rules.program), listed);
+  for (const auto& f : listed)
+    if (fs::is_regular_file(fs::symlink_status(folder / f, ec))) kept.insert(f);
+  for (const auto& f : files) kept.insert(fs::path(f).lexically_normal());
+  return writeManifest(folder, rules.program, kept);
+}
+
+Status writeFileInPlace(const std::string& path, const std::string& text) {
+  const fs::path final = normalizedPath(path);
+  std::string name = (final.parent_path() / ("." + final.filename().string() + ".new-XXXXXX")).string();
+  const int fd = ::mkstemp(name.data());
+  if (fd < 0) return ioError("cannot write '" + path + "': " + std::strerror(errno));
+  ::fchmod(fd, 0666 & ~currentUmask());
+  bool ok = true;
+  for (std::size_t done = 0; ok && done < text.size();) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    ok = n > 0;
+    if (ok) done += std::size_t(n);
+  }
+  const int e = errno;
+  if (::close(fd) != 0) ok = false;
+  if (!ok || ::rename(name.c_str(), final.c_str()) != 0) {
+    const int why = ok ? errno : e;
+    ::unlink(name.c_str());
+    return ioError("cannot write '" + path + "': " + std::strerror(why));
+  }
   return Status::success();
 }
 

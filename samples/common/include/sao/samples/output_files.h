@@ -117,6 +117,17 @@ class OutputFile {
   bool committed_ = false;
 };
 
+// A folder written in place across runs (sao-bench --tune: tune.csv is appended and resumed): the
+// checks of OutputFolder::stage (the folder may be missing, empty, an earlier output of the
+// program, or any folder with --overwrite; it must not hold an input), the folder created and its
+// manifest made to list `files` (relative names) before they are written.
+Status prepareFolderInPlace(const std::string& path, const std::string& option, const WriteRules& rules,
+                            const std::vector<std::string>& files);
+
+// `text` written to a new file beside `path`, then renamed over it: for the files of a folder
+// whose rule was checked (prepareFolderInPlace). IoError naming the path.
+Status writeFileInPlace(const std::string& path, const std::string& text);
+
 // `path` absolute and normalised, without a trailing separator.
 std::filesystem::path normalizedPath(const std::string& path);
 
