@@ -409,7 +409,8 @@ int main(int argc, char** argv) {
       r.modelRmseVsAo = converged->rmseVsAo;
       r.modelRmseVsObscurance = converged->rmseVsObscurance;
       r.errorMap = "maps/" + mapName(rows.size(), {section, scene, r.backend, preset, variant});
-      if (Status st = samples::writeErrorMapPng((fs::path(out) / r.errorMap).string(), r.m.ao, converged->ao, p.mask); !st)
+      if (Status st = samples::writeErrorMapPng((fs::path(out) / r.errorMap).string(), r.m.ao, converged->ao, p.mask);
+          !st)
         fail(st.message);
       if (converged->modelMap.empty()) {  // once per scene, settings and inputs: (c) - (a)
         converged->modelMap = "maps/" + mapName(rows.size(), {"model", scene, what});

@@ -186,8 +186,8 @@ Status checkExtension(const std::string& path, const std::string& option, const 
   std::string names;
   for (const std::string& e : format.extensions) names += (names.empty() ? "" : " or ") + e;
   const std::string example = fs::path(path).replace_extension(format.extensions.front()).string();
-  return optionError(option + " '" + path + "': " + program + " writes a " + format.name +
-                     " file there, so its name must end in " + names + ": give e.g. '" + example + "'");
+  return optionError(option + " '" + path + "': " + program + " writes " + format.name +
+                     " there, so its name must end in " + names + ": give e.g. '" + example + "'");
 }
 
 fs::path normalizedPath(const std::string& path) {
@@ -240,7 +240,8 @@ OutputFolder::~OutputFolder() {
 Status OutputFolder::reserve(const std::string& relative, bool isFolder, fs::path& rel) {
   rel = fs::path(relative).lexically_normal();
   if (!isPlainRelative(rel) || rel == manifestName(rules_.program))
-    return optionError("'" + relative + "' is not a name " + rules_.program + " can write in '" + final_.string() + "'");
+    return optionError("'" + relative + "' is not a name " + rules_.program + " can write in '" + final_.string() +
+                       "'");
   auto inside = [](const fs::path& a, const fs::path& b) {  // a is b or lies inside it
     const fs::path r = a.lexically_relative(b);
     return !r.empty() && *r.begin() != "..";

@@ -40,13 +40,13 @@ struct WriteRules {
   void addInput(const std::string& option, const std::string& path);
 };
 
-// The format a file output holds: its extensions ("exr"), lower case, and its name for messages.
+// The format a file output holds: its extensions (".exr"), lower case, and its name for messages.
 struct FileFormat {
-  std::string name;                     // "OpenEXR"
+  std::string name;                     // "an OpenEXR file"
   std::vector<std::string> extensions;  // {".exr"}
 };
-inline const FileFormat kExrFormat{"OpenEXR", {".exr"}};
-inline const FileFormat kPngFormat{"PNG", {".png"}};
+inline const FileFormat kExrFormat{"an OpenEXR file", {".exr"}};
+inline const FileFormat kPngFormat{"a PNG file", {".png"}};
 
 // InvalidInput unless `path` ends in one of the format's extensions (any case).
 Status checkExtension(const std::string& path, const std::string& option, const std::string& program,
