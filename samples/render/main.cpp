@@ -19,12 +19,12 @@
 #include "sao/prepass/prepass.h"
 #include "sao/raytrace/raytrace.h"
 #include "sao/samples/backend_runner.h"
+#include "sao/samples/output_files.h"
 #include "sao/samples/scale_warnings.h"
 #include "sao/samples/shading.h"
 #include "sao/scenes/scene.h"
 #include "options.h"
 #include "frames.h"
-#include "output_folder.h"
 #include "progress.h"
 #include "run_timing.h"
 #include "summary.h"
@@ -38,8 +38,8 @@ namespace {
 // The outputs being written (staged beside their places until the run succeeds); an error exit
 // removes them.
 struct StagedOutputs {
-  std::unique_ptr<render::OutputFolder> out, dump;
-  std::unique_ptr<render::OutputFile> depth;
+  std::unique_ptr<samples::OutputFolder> out, dump;
+  std::unique_ptr<samples::OutputFile> depth;
   void abandon() {  // inner ones first: a folder made for --out may hold the others
     depth.reset();
     dump.reset();
@@ -126,7 +126,7 @@ Status makeSceneDepth(const Options& o, const samples::BackendRunner& backend, c
   return Status::success();
 }
 
-// Where each output is written: staged paths (see output_folder.h).
+// Where each output is written: staged paths (see sao/samples/output_files.h).
 struct OutputPaths {
   std::string aoPng, aoExr, lit, litNoAo, reference, summaryTxt, summaryJson;
   std::string saveDepth;   // staged inside an output folder; else g_staged.depth has it
@@ -135,17 +135,26 @@ struct OutputPaths {
 
 // The part of `path` inside `folder` ("" for the folder itself), or nullopt when outside.
 std::optional<std::string> inside(const fs::path& folder, const std::string& path) {
-  const fs::path rel = render::normalizedPath(path).lexically_relative(folder);
+  const fs::path rel = samples::normalizedPath(path).lexically_relative(folder);
   if (rel.empty() || *rel.begin() == "..") return std::nullopt;
   return rel == "." ? std::string() : rel.string();
+}
+
+// A refused output path: a bad option (exit 2) or something in the way on disk (exit 1).
+[[noreturn]] void outputError(const Status& s) {
+  if (s.code == StatusCode::InvalidInput) usageError(s.message);
+  runError(s);
 }
 
 // Checks every output path and stages it, before anything is rendered. Exits on a problem.
 OutputPaths stageOutputs(const Options& o) {
   OutputPaths p;
-  if (Status s = render::OutputFolder::stage(o.out, "--out", g_staged.out); !s) runError(s);
-  render::OutputFolder& out = *g_staged.out;
-  auto reserve = [](render::OutputFolder& folder, const std::string& name, std::string& path) {
+  samples::WriteRules rules{"sao-render", o.overwrite, {}};
+  if (o.depthPath.empty()) rules.addInput("--scene", o.scene);
+  rules.addInput("--depth", o.depthPath);
+  if (Status s = samples::OutputFolder::stage(o.out, "--out", rules, g_staged.out); !s) outputError(s);
+  samples::OutputFolder& out = *g_staged.out;
+  auto reserve = [](samples::OutputFolder& folder, const std::string& name, std::string& path) {
     if (Status s = folder.file(name, path); !s) usageError(s.message);
   };
   reserve(out, "ao.png", p.aoPng);
@@ -163,21 +172,30 @@ OutputPaths stageOutputs(const Options& o) {
       if (!rel->empty())
         if (Status s = out.folder(*rel); !s) usageError("--dump-passes: " + s.message);
     } else {
-      if (inside(render::normalizedPath(o.dumpDir), o.out))
+      if (inside(samples::normalizedPath(o.dumpDir), o.out))
         usageError("--out '" + o.out + "' lies inside --dump-passes '" + o.dumpDir + "': give two separate folders");
-      if (Status s = render::OutputFolder::stage(o.dumpDir, "--dump-passes", g_staged.dump); !s) runError(s);
+      if (Status s = samples::OutputFolder::stage(o.dumpDir, "--dump-passes", rules, g_staged.dump); !s)
+        outputError(s);
     }
   }
   if (!o.saveDepth.empty()) {
+    auto checkName = [&] {  // OutputFile::stage checks it outside the output folders
+      if (Status s = samples::checkExtension(o.saveDepth, "--save-depth", rules.program, samples::kExrFormat); !s)
+        usageError(s.message);
+    };
     if (const auto rel = inside(out.path(), o.saveDepth); rel && !rel->empty()) {
+      checkName();
       reserve(out, *rel, p.saveDepth);
     } else if (const auto relDump = g_staged.dump ? inside(g_staged.dump->path(), o.saveDepth) : std::nullopt;
                relDump && !relDump->empty()) {
+      checkName();
       reserve(*g_staged.dump, *relDump, p.saveDepth);
     } else if (rel || relDump) {
       usageError("--save-depth '" + o.saveDepth + "' is an output folder, not a file name");
-    } else if (Status s = render::OutputFile::stage(o.saveDepth, "--save-depth", g_staged.depth); !s) {
-      runError(s);
+    } else if (Status s = samples::OutputFile::stage(o.saveDepth, "--save-depth", samples::kExrFormat, rules,
+                                                     g_staged.depth);
+               !s) {
+      outputError(s);
     }
   }
   return p;
@@ -341,7 +359,7 @@ int main(int argc, char** argv) {
     if (Status s = samples::writeRgbPng(paths.litNoAo, unlit); !s) runError(s);
   }
   if (!o.dumpDir.empty()) {
-    render::OutputFolder& folder = g_staged.dump ? *g_staged.dump : *g_staged.out;
+    samples::OutputFolder& folder = g_staged.dump ? *g_staged.dump : *g_staged.out;
     for (const auto& [name, image] : result.intermediates) {
       std::vector<std::string> channels;
       for (std::uint32_t c = 0; c < image.channels; ++c) channels.push_back(image.channels == 1 ? "Y" : std::string(1, "RGBA"[c]));

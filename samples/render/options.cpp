@@ -7,6 +7,7 @@
 #include "help.h"
 #include "sao/cli/command_line.h"
 #include "sao/cli/shared_options.h"
+#include "sao/samples/output_files.h"
 
 namespace sao::render {
 namespace {
@@ -22,6 +23,9 @@ its memory), summary.json (with --json) and sao-render-outputs.txt (the list of 
 constexpr const char* kRules = R"(Any option but --set given twice: the last one counts. Options that would have no effect are
 refused (e.g. --fovy for a scene without --eye, --size with --depth, --reference-rays without
 --reference).
+Outputs (--out, --dump-passes, --save-depth) replace no file sao-render did not write unless
+--overwrite is given, never an input, and a file's name must end in its format's extension; they
+are checked before rendering (a bad name: exit 2; a file or folder in the way: exit 1).
 Exit status: 0 on success, 1 when the run fails (nothing is written then), 2 for bad options;
 errors are one line on stderr.
 )";
@@ -90,7 +94,7 @@ Options parseOptions(int argc, char** argv) {
           "the run writes into a new folder beside it and swaps it in only once every output is written (a failed "
           "run leaves DIR as it was). DIR must be missing, empty, or an earlier output holding only the files its "
           "sao-render-outputs.txt lists; any other file in it stops the run before rendering (nothing of yours is "
-          "deleted)");
+          "deleted), unless --overwrite. It must not hold an input file (the depth or scene file read)");
   cl.text("--backend", o.backend, "NAME",
           "gl | vulkan | cpu (the CPU reference in float, as a GPU computes) | cpu-double (the CPU reference in "
           "double) | auto (default: the first of gl, vulkan, cpu that starts)");
@@ -150,7 +154,8 @@ Options parseOptions(int argc, char** argv) {
             "the clip-space depth range of a --depth file without a camera: gl [-1,1] or zero-one [0,1] (default)");
   cl.flag("--reversed-z", o.reversedZ, "a --depth file without a camera holds reversed-Z depth (default off)");
   cl.text("--save-depth", o.saveDepth, "FILE.exr",
-          "write the depth input with its camera (a file --depth reads back); its folder must exist");
+          "write the depth input with its camera (a file --depth reads back); the name must end in .exr, its folder "
+          "must exist, an existing file is replaced only with --overwrite, the --depth input never");
   cl.text("--dump-passes", o.dumpDir, "DIR", "every intermediate image as EXR (a folder handled as --out is)");
   cl.flag("--reference", o.reference,
           "also the ray-traced reference (near-field AO within the radius) and the error metrics, for a scene (not "
@@ -183,6 +188,7 @@ Options parseOptions(int argc, char** argv) {
             "the camera path of --frames: orbit (30 degrees about the target's vertical, default), dolly (towards "
             "the target, to 60 % of its distance) or strafe (sideways, 30 % of the distance)");
   cl.flag("--json", o.json, "write summary.json too");
+  cl.flag(samples::kOverwriteOption, o.overwrite, samples::kOverwriteHelp);
   cl.parse(argc, argv);
 
   o.given = cl.givenNames();

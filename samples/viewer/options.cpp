@@ -1,7 +1,11 @@
 #include "options.h"
 
+#include <cstdio>
+#include <cstdlib>
+
 #include "sao/cli/command_line.h"
 #include "sao/cli/shared_options.h"
+#include "screenshot.h"
 
 namespace sao::viewer {
 namespace {
@@ -52,7 +56,10 @@ Options parseOptions(int argc, char** argv) {
            [&o](const std::string& v) { o.zLevel = int(cli::parseWhole("--z-level", v, 0, 15)); });
   cl.flag("--reference", o.reference, "compute the ray-traced reference at start (the error view needs it)");
   cli::addRays(cl, "--reference-rays", o.referenceRays, "rays per pixel of the reference", "default 32");
-  cl.text("--screenshot", o.screenshot, "FILE", "with --frames: save the window as PNG after the last frame and exit");
+  cl.text("--screenshot", o.screenshot, "FILE",
+          "with --frames: save the window as PNG after the last frame and exit. FILE must end in .png and its folder "
+          "exist; an existing file is replaced only with --overwrite, the --scene file never (checked before the "
+          "window opens)");
   cl.whole("--frames", o.frames, 0, 1000000000, "N", "render N frames, then exit (0: until the window closes)");
   cl.value("--orbit-step", "DEG",
            "turn the camera about the orbit target's vertical by DEG degrees every frame, -30..30 (a moving camera "
@@ -71,11 +78,20 @@ Options parseOptions(int argc, char** argv) {
           "vulkan: VK_LAYER_KHRONOS_validation with synchronization validation (messages on stderr; exit status 3 "
           "if it reported any)");
   cl.flag("--no-vsync", noVsync, "do not wait for vertical sync");
+  cl.flag(samples::kOverwriteOption, o.overwrite, samples::kOverwriteHelp);
   cl.parse(argc, argv);
 
   o.width = int(window.width), o.height = int(window.height);
   o.vsync = !noVsync;
   if (!o.screenshot.empty() && o.frames == 0) cl.fail("--screenshot needs --frames N");
+  if (o.overwrite && o.screenshot.empty()) cl.fail("--overwrite has no effect without --screenshot");
+  samples::WriteRules rules{"sao-viewer", o.overwrite, {}};
+  rules.addInput("--scene", o.scene);
+  if (Status s = setScreenshotRules(rules, o.screenshot); !s) {
+    if (s.code == StatusCode::InvalidInput) cl.fail(s.message);
+    std::fprintf(stderr, "sao-viewer: %s: %s\n", toString(s.code), s.message.c_str());  // as a failed run
+    std::exit(1);
+  }
   if (o.frames > 0) o.vsync = false;  // scripted runs go as fast as they can
   return o;
 }

@@ -24,6 +24,7 @@ struct Options {
   double orbitStepDegrees = 0;  // the orbit camera turns this much every frame (a scripted moving camera)
   bool hideUi = false, standardDepth = false, validation = false, vsync = true;
   bool ortho = false;  // --ortho: start with the orthographic camera
+  bool overwrite = false;  // --overwrite: --screenshot may replace an existing file
   Settings settings;  // from --preset and --set, validated
 };
 

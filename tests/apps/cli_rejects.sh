@@ -46,6 +46,14 @@ case $name in
     check "--units expects m, cm, mm, in, ft or auto, got 'km'" --units km
     check "--out needs a value, got an empty string" --out ""
     check "--quick takes no value (or true or false), got 'x'" --quick=x
+    # --quick sets --size, --runs and --rays: given with it they were silently replaced.
+    check "--quick and --size cannot be combined: --quick sets --size" --quick --size 64x36
+    check "--quick and --runs cannot be combined: --quick sets --runs" --quick --runs 2
+    check "--quick and --rays cannot be combined: --quick sets --rays" --rays 8 --quick
+    # A typo in --backends: was exit 1 at run time ('metal'), or skipped with a warning ('gl,metal').
+    check "--backends: unknown backend 'metal' (expected gl, vulkan, cpu, cpu-double or auto)" --backends metal
+    check "--backends: unknown backend 'metal' (expected gl, vulkan, cpu, cpu-double or auto)" --backends gl,metal
+    check "--backends: an empty name in 'gl,'" --backends gl,
     ;;
   sao-viewer)
     check "--z-level expects a whole number in [0, 15], got '16'" --z-level 16
@@ -54,6 +62,8 @@ case $name in
     check "--view expects a whole number in [0, 1000], got 'one'" --view one
     check "--screenshot needs --frames N" --screenshot x.png
     check "--scene needs a value, got an empty string" --scene ""
+    check "--screenshot 'x.txt': sao-viewer writes a PNG file there, so its name must end in .png" --frames 1 --screenshot x.txt
+    check "--overwrite has no effect without --screenshot" --frames 1 --overwrite
     check "unknown preset 'nope'" --preset nope
     check "setting 'radius' = 1000 is outside its range" --preset high --set radius=1000
     ;;
