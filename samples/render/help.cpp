@@ -60,6 +60,12 @@ std::string settingsHelp() {
     s << "  " << name << "  " << range << ", " << (info.unit.empty() ? std::string("unitless") : std::string(info.unit))
       << ", default " << number(info.defaultValue) << "\n"
       << wrapped(info.doc, 24, 100);
+    // The effect's inert rules: the setting has no effect then, and --set refuses it.
+    for (const auto& rule : gen::kInertRules)
+      if (gen::kSettings[static_cast<std::size_t>(rule.setting)].name == info.name)
+        s << wrapped("No effect while " + std::string(rule.whenText) + " (" + std::string(rule.reason) +
+                         "): --set refuses it then.",
+                     24, 100);
   }
   return s.str();
 }

@@ -22,7 +22,9 @@ its memory), summary.json (with --json) and sao-render-outputs.txt (the list of 
 
 constexpr const char* kRules = R"(Any option but --set given twice: the last one counts. Options that would have no effect are
 refused (e.g. --fovy for a scene without --eye, --size with --depth, --reference-rays without
---reference).
+--reference), and so is a --set setting that the final settings (the preset, every --set and
+--resolution-divisor) make inert, as the effect declares (the list below): --set fade_start
+while fade_end = 0. A preset's own values are never refused.
 Outputs (--out, --dump-passes, --save-depth) replace no file sao-render did not write unless
 --overwrite is given, never an input, and a file's name must end in its format's extension; they
 are checked before rendering (a bad name: exit 2; a file or folder in the way: exit 1).

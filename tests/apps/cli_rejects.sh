@@ -66,6 +66,15 @@ case $name in
     check "--overwrite has no effect without --screenshot" --frames 1 --overwrite
     check "unknown preset 'nope'" --preset nope
     check "setting 'radius' = 1000 is outside its range" --preset high --set radius=1000
+    # Options that would have no effect: a backend's flag on the other backend, a --set setting
+    # the final settings make inert (gen::kInertRules; a preset's own values never count).
+    check "--validation has no effect with --backend gl: it adds the Vulkan validation layer" --validation
+    check "--validation has no effect with --backend gl" --backend vulkan --backend gl --validation
+    check "--standard-depth has no effect with --backend vulkan: it turns off the GL viewer's glClipControl" --backend vulkan --standard-depth
+    check "--set fade_start has no effect while fade_end = 0 (no distance fade" --set fade_start=2
+    check "--set temporal_hysteresis has no effect while temporal = false" --set temporal_hysteresis=0.5
+    check "--set blur_stride has no effect while blur_radius = 0 (no bilateral blur" --preset low --set blur_stride=2
+    check "--set half_intermediates has no effect while blur_radius = 0, resolution_divisor = 1 and temporal = false" --preset ultra --set blur_radius=0 --set half_intermediates=false
     ;;
   sao-gl-timing)
     # Were std::atoi: 'x' ran 5 runs, -1 a guard band of 4294967295, 3 runs silently 5.
