@@ -33,8 +33,11 @@ std::string format(const char* pattern, ...) {
 // The geometry of a perspective buffer whose median lies within this fraction of the near plane's
 // depth from the near plane is within 2n of the camera under that reading (t = n/D > 1/2).
 constexpr double kFlippedMedian = 0.5;
-// Flat-surface votes: at least this many, and this many times those for the other reading.
+// Flat-surface votes for linear depth: at least this many, one per kLinearVoteShare interior texels
+// (a linear buffer gets about one per texel, window depth of the built-in scenes below one per 170,
+// from curved surfaces and silhouettes), and kVoteMajority times those for window depth.
 constexpr std::size_t kMinLinearVotes = 32;
+constexpr std::size_t kLinearVoteShare = 10;
 constexpr std::size_t kVoteMajority = 4;
 // Orthographic: the other convention's clear value on at least 1/kOrthoSkyShare of the texels.
 constexpr std::size_t kOrthoSkyShare = 200;
@@ -166,14 +169,17 @@ HardwareTally tallyHardware(const std::vector<double>& v, const Region& r, const
   const double step = storageStep(storage, t.interior);
   auto inside = [](double d) { return d > 0 && d < 1; };
   auto at = [&](std::uint32_t x, std::uint32_t y) { return v[std::size_t(y) * r.width + x]; };
+  // Neighbours k texels apart, about 1/64 of the smaller side: the curvature a wrong reading shows
+  // over k texels grows with k squared, the rounding does not, so a large image tells as well.
+  const std::uint32_t k = std::max(1u, std::uint32_t(std::lround(std::min(r.width, r.height) / 64.0)));
   for (std::uint32_t y = 0; y < r.height; ++y)
     for (std::uint32_t x = 0; x < r.width; ++x) {
       const double b = at(x, y);
       if (!inside(b)) continue;
-      if (x > 0 && x + 1 < r.width && inside(at(x - 1, y)) && inside(at(x + 1, y)))
-        t.votes.add(step, at(x - 1, y), b, at(x + 1, y));
-      if (y > 0 && y + 1 < r.height && inside(at(x, y - 1)) && inside(at(x, y + 1)))
-        t.votes.add(step, at(x, y - 1), b, at(x, y + 1));
+      if (x >= k && x + k < r.width && inside(at(x - k, y)) && inside(at(x + k, y)))
+        t.votes.add(step, at(x - k, y), b, at(x + k, y));
+      if (y >= k && y + k < r.height && inside(at(x, y - k)) && inside(at(x, y + k)))
+        t.votes.add(step, at(x, y - k), b, at(x, y + k));
     }
   return t;
 }
@@ -235,7 +241,8 @@ std::vector<std::string> hardwareWarnings(const std::vector<double>& v, const Re
   const double n = model.nearDistance;
   auto radiusPx = [&block](double dist) { return double(block.radius) * block.proj_scale / dist; };
 
-  const bool linear = t.votes.linear >= kMinLinearVotes && t.votes.linear >= kVoteMajority * t.votes.window;
+  const bool linear = t.votes.linear >= kMinLinearVotes && t.votes.linear * kLinearVoteShare >= t.interior.size() &&
+                      t.votes.linear >= kVoteMajority * t.votes.window;
   if (linear)
     return {format("the depth looks linear in distance (normalised to [0, 1]?), not %s window depth: on flat "
                    "surfaces its reciprocal changes evenly across the image where window depth itself would (%zu "
