@@ -207,6 +207,10 @@ TEST(DepthConvention, NoGeometryNamesTheValues) {
   const auto ws = depthConventionWarnings(filled(DepthFormat::D16, 0), perspective(false, 50), Settings{});
   ASSERT_EQ(ws.size(), 1u);
   EXPECT_TRUE(startsWith(ws[0], "the depth looks reversed-Z")) << "0 in a standard buffer is the near plane";
+  // Not a depth at all (a pure function's input need not have passed checkDepthValues).
+  const auto wn = depthConventionWarnings(filled(DepthFormat::D32F, NAN), perspective(true), Settings{});
+  ASSERT_EQ(wn.size(), 1u);
+  EXPECT_TRUE(startsWith(wn[0], "no geometry: every one of the 6144 depth texels is sky (all NaN or infinite)"));
   DepthImage full = filled(DepthFormat::D16, 0);
   for (std::uint32_t& t : full.texels) t = 65535;
   const auto w1 = depthConventionWarnings(full, perspective(false, 50), Settings{});

@@ -7,7 +7,8 @@
 #   - a reversed-Z file read as standard, a standard one read with --reversed-z, linear depth
 #     normalised to [0, 1] read as window depth;
 #   - no warning: every built-in scene as rendered, and camera-less files of two scenes in D16, D24
-#     and D32F, perspective and orthographic, read with their right convention (both of them).
+#     and D32F, perspective and orthographic, read with their right convention (both of them);
+#   - --help describes them and what cannot be told.
 # depth_convention_file (depth_convention_file.cpp) makes the files other tools would write.
 # Usage: depth_convention_warnings.sh SAO_RENDER DEPTH_CONVENTION_FILE WORK_DIR
 set -u
@@ -113,4 +114,11 @@ for scene in sphere-plane sponza-like; do
     done
   done
 done
+# --help says what is warned about and what cannot be told.
+if "$render" --help | grep -q "Depth values that do not fit the conventions they are read with are warned" &&
+   "$render" --help | grep -q "Not detectable: the Z convention of orthographic depth without sky"; then
+  echo "ok: --help"
+else
+  echo "FAIL: --help does not describe the depth convention warnings"; fail=1
+fi
 exit $fail

@@ -199,9 +199,10 @@ std::vector<std::string> hardwareWarnings(const std::vector<double>& v, const Re
   const double clear = rev ? 0.0 : 1.0, otherClear = rev ? 1.0 : 0.0;
 
   if (t.geometry == 0) {
-    const std::string values = t.lo == t.hi ? format("all %g, the %s clear value", t.lo, conventionName(rev))
-                                            : format("values %g to %g: the clear value %g or outside [0, 1]", t.lo,
-                                                     t.hi, clear);
+    const std::string values =
+        t.lo > t.hi    ? std::string("all NaN or infinite")
+        : t.lo == t.hi ? format("all %g, the %s clear value", t.lo, conventionName(rev))
+                       : format("values %g to %g: the clear value %g or outside [0, 1]", t.lo, t.hi, clear);
     return {format("no geometry: every one of the %zu depth texels is sky (%s), so the AO is 1 everywhere: nothing "
                    "in view lies between the near plane (%s view units) and the far plane (%s): is the near plane "
                    "(--near) beyond the scene, the camera looking away from it, or the depth buffer empty?",

@@ -22,7 +22,11 @@ namespace sao::samples {
 //     not, and whose sky is not the declared clear value: the other convention (--reversed-z);
 //   - orthographic hardware depth whose sky is the other convention's clear value;
 //   - perspective hardware depth whose values vary like a distance (1/d affine on flat surfaces)
-//     rather than like window depth (d affine): linear depth normalised to [0, 1].
+//     rather than like window depth (d affine), judged on texels 1/64 of the image apart: linear
+//     depth normalised to [0, 1].
+// Not told: the Z convention of orthographic depth without sky, linear [0, 1] depth read with an
+// orthographic camera (it is orthographic window depth for other near/far), and perspective depth
+// read with the wrong convention whose geometry lies mostly within twice the near distance.
 // Empty when nothing looks wrong, or when the camera or settings are ones the effect would refuse.
 // checkScale (scale_warnings.h) puts these lines first in its own list and, when there are any,
 // leaves out its units/radius warnings, whose figures a wrong convention explains.
