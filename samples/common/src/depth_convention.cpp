@@ -13,7 +13,6 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
-#include <limits>
 
 #include "sao/constants.h"
 
@@ -30,8 +29,8 @@ std::string format(const char* pattern, ...) {
   return text;
 }
 
-// The geometry of a perspective buffer whose median lies within this fraction of the near plane's
-// depth from the near plane is within 2n of the camera under that reading (t = n/D > 1/2).
+// The median of t = n/D (1 - d standard, d reversed-Z) above which most of a perspective buffer's
+// geometry lies within twice the near distance under the declared reading: the other one's mark.
 constexpr double kFlippedMedian = 0.5;
 // Flat-surface votes for linear depth: at least this many, one per kLinearVoteShare interior texels
 // (a linear buffer gets about one per texel, window depth of the built-in scenes below one per 170,
@@ -55,7 +54,7 @@ Region viewport(const DepthImage& depth, const Camera& camera) {
   return {0, 0, depth.extent.width, depth.extent.height};
 }
 
-// What " view units" means in the messages: the far plane may be infinite.
+// A near or far distance for the messages ("inf" for an infinite far plane).
 std::string distance(double d) { return std::isfinite(d) ? format("%g", d) : std::string("inf"); }
 
 // ---- LinearZ: geometry is finite and negative; positive, zero and non-finite values are sky.
