@@ -85,4 +85,18 @@ std::string depthExrHelp() {
   return s.str();
 }
 
+std::string depthConventionHelp() {
+  return "\nDepth values that do not fit the conventions they are read with are warned about (exit 0;\n"
+         "the units/radius warnings are left out then: a wrong convention explains their figures):\n"
+         "no geometry at all (every texel sky: the clear value, e.g. a near plane beyond the scene;\n"
+         "LinearZ holding positive distances: --depth-distances); reversed-Z depth read without\n"
+         "--reversed-z, or standard depth read with it (perspective: most geometry within twice the near\n"
+         "distance, where only the wrong reading puts it; a sky of the other convention's clear value);\n"
+         "linear depth normalised to [0, 1] read as window depth (on flat surfaces 1/d, not d, changes\n"
+         "evenly across the image). Not detectable: the Z convention of orthographic depth without sky\n"
+         "(it is affine in the distance either way), linear [0, 1] depth with --ortho (that is\n"
+         "orthographic window depth for some near and far), and perspective depth read with the wrong Z\n"
+         "convention whose geometry lies mostly within twice the near distance.\n";
+}
+
 }  // namespace sao::render

@@ -90,7 +90,7 @@ void refuseIneffectiveOptions(const Options& o) {
 
 Options parseOptions(int argc, char** argv) {
   Options o;
-  cli::CommandLine cl(kTool, kDescription, kRules + settingsHelp() + depthExrHelp());
+  cli::CommandLine cl(kTool, kDescription, kRules + settingsHelp() + depthExrHelp() + depthConventionHelp());
   cl.text("--out", o.out, "DIR",
           "output folder (default: out/render). It is replaced as a whole, so no file of an earlier run survives: "
           "the run writes into a new folder beside it and swaps it in only once every output is written (a failed "
