@@ -118,7 +118,8 @@ Status readDepthImpl(const std::string& path, DepthImage& depth, Camera& camera,
     if (!extentMatches(placement.image, cam.width, cam.height, cam.guardBand))
       return fail(StatusCode::IoError, path, extentMismatch(placement.image, cam.width, cam.height, cam.guardBand));
   } else {
-    learnt.saoAttributes = in.attributeNames("sao.");
+    for (const char* name : kCameraAttributes)
+      if (in.hasAttribute(name)) learnt.saoAttributes.emplace_back(name);
   }
 
   std::vector<float> values;

@@ -254,19 +254,6 @@ bool Input::hasAttribute(const char* name) const {
   return exr_get_attribute_by_name(context_, part_, name, &a) == EXR_ERR_SUCCESS && a;
 }
 
-std::vector<std::string> Input::attributeNames(const std::string& prefix) const {
-  std::vector<std::string> names;
-  int32_t count = 0;
-  if (exr_get_attribute_count(context_, part_, &count) != EXR_ERR_SUCCESS) return names;
-  for (int32_t i = 0; i < count; ++i) {
-    const exr_attribute_t* a = nullptr;
-    if (exr_get_attribute_by_index(context_, part_, EXR_ATTR_LIST_SORTED_ORDER, i, &a) == EXR_ERR_SUCCESS && a &&
-        a->name && std::string(a->name).rfind(prefix, 0) == 0)
-      names.emplace_back(a->name);
-  }
-  return names;
-}
-
 Status Input::lookup(const char* name, int type, const char* typeName, bool& found, const exr_attribute_t*& out) const {
   out = nullptr;
   found = exr_get_attribute_by_name(context_, part_, name, &out) == EXR_ERR_SUCCESS && out;

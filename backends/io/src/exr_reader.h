@@ -85,8 +85,6 @@ class Input {
   Status matrixAttribute(const char* name, bool& found, double (&value)[16]) const;
   Status stringVectorAttribute(const char* name, bool& found, std::vector<std::string>& value) const;
   bool hasAttribute(const char* name) const;
-  // The names of the part's attributes that start with `prefix`, sorted.
-  std::vector<std::string> attributeNames(const std::string& prefix) const;
 
   // Reads the named channels (FLOAT or HALF, full resolution) as float, interleaved, image row 0 =
   // the file's bottom scanline. The image grows as chunks decode, so a file that declares more

@@ -107,7 +107,7 @@ struct DepthFileInfo {
   std::uint64_t lossyNoiseTexels = 0; // texels moved into [0, 1] (see kLossyDepthNoise)
   float lossyNoiseWorst = 0;          // the farthest of them, as stored (e.g. -6e-6)
   std::uint64_t cropFillTexels = 0;   // texels outside the data window, filled with sky
-  std::vector<std::string> saoAttributes;  // sao.* attributes of a file without sao.version
+  std::vector<std::string> saoAttributes;  // camera attributes (sao.kind, ...) of a file without sao.version
 };
 
 // readDepthExr with what it learnt of the file and the sky around a crop (see above). The
