@@ -81,7 +81,16 @@ std::string depthExrHelp() {
        "  sao.width, sao.height, sao.guardBand int (the depth is (width+2*guardBand) x (height+2*guardBand))\n"
        "  sao.depthFormat \"D16\"|\"D24\"|\"D32F\"|\"LinearZ\"\n"
        "A file without sao.version is read as D32F hardware depth (channel \"Z\", else its only\n"
-       "channel) and needs the camera as options: --fovy, --near, --far, --clip, --reversed-z, --guard.\n";
+       "channel) and needs the camera as options: --fovy, --near, --far, --clip, --reversed-z, --guard;\n"
+       "with --depth-distances it holds distances along the view axis (a Blender Z pass) instead.\n"
+       "Files of other tools: any compression (DWAA/DWAB too; lossy noise just outside [0, 1] is read as\n"
+       "0 or 1, with a warning); the depth channel in any part: \"Z\", or \"<layer>.Z\" whose layer is\n"
+       "named depth (Blender's ViewLayer.Depth.Z, depth.Z); sao.projection as m44f too. The image is the\n"
+       "display window: a data window cropped inside it is placed there with sky around it.\n"
+       "Not detectable, so the AO is wrong without a word: NDC z (GL's [-1, 1]) stored instead of window\n"
+       "depth (most of it lies in [0, 1]); a guard band the file was rendered with but that --guard (or\n"
+       "sao.guardBand) does not declare (the field of view is then wrong). Binary16 (HALF) standard depth\n"
+       "is warned about with the depth step it leaves against the radius.\n";
   return s.str();
 }
 

@@ -24,6 +24,7 @@
 #include "sao/samples/shading.h"
 #include "sao/scenes/scene.h"
 #include "options.h"
+#include "depth_input.h"
 #include "frames.h"
 #include "progress.h"
 #include "run_timing.h"
@@ -237,20 +238,41 @@ int main(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
 
   if (!o.depthPath.empty()) {
-    bool hasCamera = false;
     progress.begin("reading the depth file");
-    if (Status s = readDepthExr(o.depthPath, depth, camera, hasCamera); !s) runError(s);
+    DepthFileInfo file;
+    DepthReadOptions reading;  // the sky around a cropped data window, in the file's convention
+    reading.skyWithoutCamera = o.depthDistances ? INFINITY : o.reversedZ ? 0.0f : 1.0f;
+    if (Status s = readDepthExr(o.depthPath, depth, camera, file, reading); !s) runError(s);
     progress.end();
+    const bool hasCamera = file.hasCamera;
     if (hasCamera) {
-      for (const char* flag : {"--fovy", "--ortho", "--near", "--far", "--clip", "--reversed-z", "--guard", "--units"})
+      for (const char* flag : {"--fovy", "--ortho", "--near", "--far", "--clip", "--reversed-z", "--guard", "--units",
+                               "--depth-distances"})
         if (o.has(flag))
           usageError(std::string(flag) + " has no effect: '" + o.depthPath +
                      "' carries its own camera (its sao.* attributes)");
     } else {
+      std::string saoNames;  // a camera that lacks only sao.version
+      for (const std::string& a : file.saoAttributes) saoNames += (saoNames.empty() ? "" : ", ") + a;
+      if (!o.cameraFlags && !saoNames.empty())
+        usageError("'" + o.depthPath + "' has sao.* attributes (" + saoNames + ") but no sao.version, so they are "
+                   "not read as its camera: add the int attribute sao.version = " + std::to_string(kDepthExrVersion) +
+                   " (sao/io.h), or give the camera as --fovy (or --ortho), --near, --far, --clip (and --reversed-z)");
       if (!o.cameraFlags)
-        usageError("'" + o.depthPath + "' carries no sao.* camera: give --fovy (or --ortho), --near, --far, --clip (and --reversed-z)");
+        usageError("'" + o.depthPath + "' carries no sao.* camera: give --fovy (or --ortho), --near, --far, --clip (and "
+                   "--reversed-z), or --depth-distances for distances along the view axis");
+      if (!saoNames.empty())
+        std::fprintf(stderr, "sao-render: warning: '%s' has sao.* attributes but no sao.version: they are ignored, the "
+                     "camera comes from the options\n", o.depthPath.c_str());
       camera = cameraFromFlags(o, depth.extent);
       if (o.units) camera.metersToViewUnits = scenes::metersToViewUnits(*o.units);
+      if (o.depthDistances)
+        if (Status s = render::distancesToLinearZ(depth, o.far); !s)
+          runError(Status::error(s.code, "'" + o.depthPath + "': " + s.message));
+    }
+    for (const std::string& note : render::depthFileNotes(o.depthPath, file)) {
+      std::fprintf(stderr, "sao-render: warning: %s\n", note.c_str());
+      summary.inputWarnings.push_back(note);
     }
     summary.units = hasCamera ? "the depth file's sao.metersToViewUnits"
                               : o.units ? std::string(scenes::toString(*o.units)) + " (--units)" : "m (the default)";
@@ -258,6 +280,11 @@ int main(int argc, char** argv) {
     // The same refusal on every backend (a GL D32F texture would clamp what the others read as sky).
     if (Status s = checkDepthValues(depth); !s) runError(Status::error(s.code, "'" + o.depthPath + "': " + s.message));
     summary.input = "depth file " + o.depthPath + " (" + toString(depth.format) + ")";
+    if (file.storedAsHalf)
+      if (const auto w = render::halfPrecisionWarning(o.depthPath, depth, camera, settings.radius)) {
+        std::fprintf(stderr, "sao-render: warning: %s\n", w->c_str());
+        summary.inputWarnings.push_back(*w);
+      }
   } else {
     progress.begin("loading the scene");
     if (Status s = scenes::loadScene(o.scene, scene); !s) runError(s);

@@ -63,12 +63,18 @@ void refuseIneffectiveOptions(const Options& o) {
     if (o.has("--size")) usageError("--size has no effect with --depth: the AO has the depth file's size");
     if (o.has("--depth-format")) usageError("--depth-format has no effect with --depth: the file gives its format");
     if (o.has("--depth-source")) usageError("--depth-source has no effect with --depth: the file is the depth");
+    if (o.depthDistances)
+      for (const char* flag : {"--clip", "--reversed-z"})
+        if (o.has(flag))
+          usageError(std::string(flag) + " has no effect with --depth-distances: distances have no depth-buffer "
+                     "convention");
     if (o.units == scenes::LengthUnit::Auto)
       usageError("--units auto needs a scene's bounding box: a --depth file takes m, cm, mm, in or ft");
   } else {
     for (const char* flag : {"--fovy", "--near", "--ortho"})
       if (o.has(flag) && !o.has("--eye"))
         usageError(std::string(flag) + " has no effect without --eye: a scene's view has its own camera");
+    if (o.depthDistances) usageError("--depth-distances describes a --depth file: it has no effect without --depth");
     for (const char* flag : {"--far", "--clip", "--reversed-z"})
       if (o.has(flag))
         usageError(std::string(flag) + " is for a --depth file without a camera: a scene's depth is always "
@@ -155,6 +161,11 @@ Options parseOptions(int argc, char** argv) {
   cl.choice("--clip", o.clip, oneOf({"gl", "zero-one"}), "gl or zero-one", "gl|zero-one",
             "the clip-space depth range of a --depth file without a camera: gl [-1,1] or zero-one [0,1] (default)");
   cl.flag("--reversed-z", o.reversedZ, "a --depth file without a camera holds reversed-Z depth (default off)");
+  cl.flag("--depth-distances", o.depthDistances,
+          "a --depth file without a camera holds positive distances along the view axis, in its units (--units; "
+          "e.g. a Blender Z pass), not hardware depth; the camera comes from --fovy (or --ortho), --near, --far and "
+          "--guard; sky is a value at or above --far, 0 or not finite (Blender writes 1e10: give a --far below "
+          "it, e.g. --far 1e9)");
   cl.text("--save-depth", o.saveDepth, "FILE.exr",
           "write the depth input with its camera (a file --depth reads back); the name must end in .exr, its folder "
           "must exist, an existing file is replaced only with --overwrite, the --depth input never");
@@ -194,7 +205,8 @@ Options parseOptions(int argc, char** argv) {
   cl.parse(argc, argv);
 
   o.given = cl.givenNames();
-  for (const char* flag : {"--fovy", "--ortho", "--near", "--far", "--clip", "--reversed-z"}) o.cameraFlags |= o.has(flag);
+  for (const char* flag : {"--fovy", "--ortho", "--near", "--far", "--clip", "--reversed-z", "--depth-distances"})
+    o.cameraFlags |= o.has(flag);
   refuseIneffectiveOptions(o);
   if (o.eye.has_value() != o.target.has_value()) usageError("--eye and --target go together");
   // Refused here, not after the AO was written: a depth file has no geometry to trace.
