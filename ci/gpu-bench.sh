@@ -96,7 +96,9 @@ if command -v nvidia-smi >/dev/null 2>&1; then
   sampler=$!
   trap 'kill $sampler 2>/dev/null || true; rm -rf "${unpacked:-}"' EXIT
 fi
-"$bench" --out "$out" --sections "$sections" --backends gl,vulkan --runs 5 --size 1920x1080 --time-only --warmup-ms 200 \
+# --overwrite: the folder also holds this script's gpu-clocks.csv and sao-bench.log, which sao-bench
+# did not write; its own files of an earlier run are replaced, these kept.
+"$bench" --out "$out" --overwrite --sections "$sections" --backends gl,vulkan --runs 5 --size 1920x1080 --time-only --warmup-ms 200 \
   ${SAO_GPU_BENCH_ARGS:-} 2>&1 | tee "$out/sao-bench.log"
 if [ -n "$sampler" ]; then kill "$sampler" 2>/dev/null || true; fi
 if grep -Eiq "llvmpipe|lavapipe|softpipe|swiftshader" "$out/results.json"; then

@@ -18,7 +18,7 @@ done
 cp "$tmp/sponza-like/lit_no_ao.png" "$out/sponza-like-lit-no-ao.png"
 if [ -x "$bin/sao-viewer" ] && command -v xvfb-run >/dev/null; then
   xvfb-run -a -s "-screen 0 1280x800x24" "$bin/sao-viewer" --backend gl --size 1280x720 --view-mode split \
-    --frames 5 --screenshot "$out/viewer.png" >/dev/null
+    --frames 5 --screenshot "$out/viewer.png" --overwrite >/dev/null
 fi
 echo "README images written to $out"
 ls "$out"

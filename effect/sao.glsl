@@ -42,6 +42,17 @@
 // Derived settings: bools plan() computes from the settings, for the passes' skip_when= rules.
 #pragma sao derived direct_output when=blur_radius==0&&resolution_divisor==1&&temporal==false "Nothing follows the AO (no blur, full resolution, no history to keep): ao_sample_output writes the output itself, and neither ao_raw nor a copy pass is planned"
 #pragma sao derived copy_to_output when=resolution_divisor==1&&direct_output==false "Full resolution, and ao_sample wrote (A, key) (for the blur, or for the temporal history): the pass output copies A into the output"
+// Inert settings: a setting whose value reaches no pass that runs while the condition holds (each
+// checked against computeConstants and the passes below). Programs refuse such a setting when the
+// user gave it (--set), whatever the preset set; sao-viewer greys it out with the reason.
+// Not inert in this sense: everything while intensity = 0 (A = 1, but every pass still runs and costs).
+#pragma sao inert fade_start               when=fade_end==0              "no distance fade: sao_fade returns A unchanged and fade_start is not uploaded"
+#pragma sao inert temporal_hysteresis      when=temporal==false          "no temporal accumulation: there is no history for it to weigh"
+#pragma sao inert temporal_depth_tolerance when=temporal==false          "no temporal accumulation: there is no history texel for it to reject"
+#pragma sao inert blur_stride              when=blur_radius==0           "no bilateral blur: the blur pass does not run"
+#pragma sao inert blur_edge_sharpness      when=blur_radius==0           "no bilateral blur: the blur pass does not run"
+#pragma sao inert mip_switch_log2          when=use_z_hierarchy==false   "no z MIP hierarchy: every tap reads level 0, there is no level to switch to"
+#pragma sao inert half_intermediates       when=direct_output==true      "ao_sample_output writes the output itself: there are no (A, key) intermediate images"
 // ---------------------------------------------------------------------------------------------
 // Presets: the chain `sao-bench --tune` chose on the Pareto front of time against error vs the
 // converged estimator (c), over the built-in scenes (docs/BENCHMARKS.md, "Tuning"; 2026-12-03, gl,

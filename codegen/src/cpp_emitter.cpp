@@ -180,6 +180,20 @@ void emitPresets(std::ostringstream& h, const Effect& e) {
   h << "}};\n\n";
 }
 
+// `#pragma sao inert`: the settings that have no effect while a condition holds.
+void emitInertRules(std::ostringstream& h, const Effect& e) {
+  h << "// ---- Inert settings: `setting` has no effect while `when` holds (its value reaches no pass that runs).\n"
+    << "struct InertRule {\n  SettingId setting;\n  SettingCondition when;\n"
+    << "  std::string_view whenText;  // `when` in words, a derived setting's terms spelled out\n"
+    << "  std::string_view fixText;   // what makes `when` false\n"
+    << "  std::string_view reason;    // why the setting has no effect then\n};\n"
+    << "inline constexpr std::array<InertRule, " << e.inert.size() << "> kInertRules = {{\n";
+  for (const auto& r : e.inert)
+    h << "  {SettingId::" << e.settings[r.setting].name << ", " << conditionValue(e, r.when) << ", " << quoted(r.whenText)
+      << ", " << quoted(r.fixText) << ", " << quoted(r.doc) << "},\n";
+  h << "}};\n\n";
+}
+
 }  // namespace
 
 GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& pvs,
@@ -348,7 +362,7 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     << "  std::span<const BindingInfo> bindings;\n  std::uint32_t glslBlob;\n  std::uint32_t spirvBlob;\n"
     << "  std::string_view fileStem;\n};\n"
     << "enum class Compare : std::uint8_t { Eq, Ne, Lt, Le, Gt, Ge };\n"
-    << "// `setting op value` on an int or bool setting; never holds when not active.\n"
+    << "// `setting op value` on a setting (pass rules: int or bool); never holds when not active.\n"
     << "struct SettingCondition {\n  bool active;\n  SettingId setting;\n  Compare op;\n  double value;\n};\n"
     << "bool holds(const SettingCondition& condition, const Settings& s);\n"
     << "// A binding of `declared` that `serving` fills instead (a skipped pass's output).\n"
@@ -373,8 +387,9 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     << "std::string_view glslSource(std::uint32_t blob);        // GLSL 4.30 for OpenGL\n"
     << "std::span<const std::uint32_t> spirvModule(std::uint32_t blob);  // SPIR-V 1.3 for Vulkan 1.1+\n"
     << "inline constexpr std::size_t kGlslBlobCount = " << glslBlobs.size() << ";\n"
-    << "inline constexpr std::size_t kSpirvBlobCount = " << spirvBlobs.size() << ";\n\n"
-    << "}  // namespace sao::gen\n";
+    << "inline constexpr std::size_t kSpirvBlobCount = " << spirvBlobs.size() << ";\n\n";
+  emitInertRules(h, e);
+  h << "}  // namespace sao::gen\n";
 
   // ================= source
   std::ostringstream s;

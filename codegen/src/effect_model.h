@@ -123,6 +123,18 @@ struct DerivedSetting {
   std::string doc;
 };
 
+// `#pragma sao inert SETTING when=COND "why"`: SETTING has no effect while COND holds (its value
+// reaches no pass that runs then). COND as in skip_when=, on any setting, a float one too, or a
+// derived setting. Programs refuse a setting the user gave that a rule makes inert.
+struct InertRule {
+  SourceLoc loc;
+  int setting = -1;
+  SettingCondition when;
+  std::string whenText;  // COND in words, a derived setting's terms spelled out: "fade_end = 0"
+  std::string fixText;   // what makes COND false: "fade_end > 0"
+  std::string doc;
+};
+
 // A binding of `declared` that `serving` fills instead (the output of a skipped pass).
 struct ResourceAlias {
   int declared = -1;  // resource indices
@@ -164,6 +176,7 @@ struct Effect {
   int version = 0;
   std::vector<Setting> settings;
   std::vector<DerivedSetting> derived;
+  std::vector<InertRule> inert;
   std::vector<Constant> constants;
   std::vector<Variant> variants;
   std::vector<Exclusion> exclusions;

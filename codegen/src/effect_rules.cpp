@@ -151,8 +151,10 @@ bool parseSettingValue(const Setting& s, const std::string& text, const SourceLo
   return true;
 }
 
+// `allowFloat`: a float setting may be compared too (inert rules; the pass rules enumerate their
+// settings' values, which a float range does not have).
 bool parseCondition(const Effect& e, const std::string& text, const SourceLoc& loc, const std::string& owner,
-                    SettingCondition& out, Diagnostics& diags) {
+                    SettingCondition& out, Diagnostics& diags, bool allowFloat = false) {
   static const std::regex re(R"(^([A-Za-z_][A-Za-z0-9_]*)(==|!=|<=|>=|<|>)([^=<>!]+)$)");
   std::smatch m;
   if (!std::regex_match(text, m, re)) {
@@ -186,7 +188,7 @@ bool parseCondition(const Effect& e, const std::string& text, const SourceLoc& l
     return true;
   }
   const Setting& s = e.settings[out.setting];
-  if (s.type == ScalarType::Float) {
+  if (s.type == ScalarType::Float && !allowFloat) {
     diags.error(loc, owner + " compares float setting '" + s.name + "': a condition takes an int or bool setting");
     return false;
   }
@@ -498,6 +500,142 @@ void parseDerived(Effect& e, const SourceLoc& loc, const std::vector<std::string
     from = amp + 2;
   }
   e.derived.push_back(d);
+}
+
+namespace {
+
+const char* opText(CompareOp op) {
+  switch (op) {
+    case CompareOp::Eq: return "=";
+    case CompareOp::Ne: return "!=";
+    case CompareOp::Lt: return "<";
+    case CompareOp::Le: return "<=";
+    case CompareOp::Gt: return ">";
+    case CompareOp::Ge: return ">=";
+  }
+  return "?";
+}
+
+// "a, b and c" / "a, b or c".
+std::string joined(const std::vector<std::string>& parts, const std::string& last) {
+  std::string out;
+  for (size_t i = 0; i < parts.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == parts.size() ? " " + last + " " : ", ") + parts[i];
+  return out;
+}
+
+// Whether a condition on a derived setting holds when all its terms do (==true, !=false).
+bool holdsWhenAllTerms(const SettingCondition& c) { return (c.op == CompareOp::Eq) == (c.value != 0); }
+
+// Condition c in words, a derived setting's terms spelled out ("blur_radius = 0, ... and temporal = false").
+std::string conditionWords(const Effect& e, const SettingCondition& c, bool negate);
+
+std::string termsWords(const Effect& e, const DerivedSetting& d, bool negate) {
+  std::vector<std::string> parts;
+  for (const auto& t : d.terms) parts.push_back(conditionWords(e, t, negate));
+  return joined(parts, negate ? "or" : "and");
+}
+
+// `negate`: the condition that makes c false, as the fix of a message says it ("fade_end > 0").
+std::string conditionWords(const Effect& e, const SettingCondition& c, bool negate) {
+  if (const DerivedSetting* d = derivedOf(e, c.setting)) {
+    // All terms hold / some term fails; the other way round for ==false.
+    const bool all = holdsWhenAllTerms(c) != negate;
+    return all ? termsWords(e, *d, false) : termsWords(e, *d, true);
+  }
+  const Setting& s = e.settings[static_cast<size_t>(c.setting)];
+  if (!negate) return s.name + " " + opText(c.op) + " " + valueText(s, c.value);
+  if (s.type == ScalarType::Bool) {
+    const bool holdsWhenTrue = (c.op == CompareOp::Eq) == (c.value != 0);
+    return s.name + " = " + (holdsWhenTrue ? "false" : "true");
+  }
+  CompareOp op = CompareOp::Ne;
+  switch (c.op) {
+    case CompareOp::Eq:  // the only way out of a range's end is inwards
+      op = c.value == s.minValue ? CompareOp::Gt : c.value == s.maxValue ? CompareOp::Lt : CompareOp::Ne;
+      break;
+    case CompareOp::Ne: op = CompareOp::Eq; break;
+    case CompareOp::Lt: op = CompareOp::Ge; break;
+    case CompareOp::Le: op = CompareOp::Gt; break;
+    case CompareOp::Gt: op = CompareOp::Le; break;
+    case CompareOp::Ge: op = CompareOp::Lt; break;
+  }
+  return s.name + " " + opText(op) + " " + valueText(s, c.value);
+}
+
+// Whether condition c holds for some / every value of the settings it names: for int and bool
+// settings every value (settingValues), for a float one its range's ends and the literal (a
+// comparison changes its answer only there).
+void conditionReach(const Effect& e, const SettingCondition& c, bool& some, bool& every) {
+  some = false;
+  every = true;
+  const DerivedSetting* d = derivedOf(e, c.setting);
+  if (!d && e.settings[static_cast<size_t>(c.setting)].type == ScalarType::Float) {
+    const Setting& s = e.settings[static_cast<size_t>(c.setting)];
+    for (double v : {s.minValue, s.maxValue, c.value}) {
+      const bool h = conditionHolds(c, v);
+      some = some || h;
+      every = every && h;
+    }
+    return;
+  }
+  for (const auto& a : assignments(e, {&c})) {
+    const bool h = holdsAt(e, c, a);
+    some = some || h;
+    every = every && h;
+  }
+}
+
+}  // namespace
+
+void parseInert(Effect& e, const SourceLoc& loc, const std::vector<std::string>& words,
+                const std::vector<std::pair<std::string, std::string>>& attrs, const std::string& doc, bool hasDoc,
+                Diagnostics& diags) {
+  if (words.size() != 1 || attrs.size() != 1 || attrs[0].first != "when") {
+    diags.error(loc, "expected '#pragma sao inert SETTING when=SETTING==VALUE \"why\"'");
+    return;
+  }
+  const std::string& name = words[0];
+  InertRule r;
+  r.loc = loc;
+  r.doc = doc;
+  r.setting = findSetting(e, name);
+  if (r.setting < 0) {
+    const bool derived = std::any_of(e.derived.begin(), e.derived.end(), [&](const DerivedSetting& d) { return d.name == name; });
+    diags.error(loc, derived ? "inert names derived setting '" + name + "', which nobody sets (plan() computes it)"
+                             : "inert names unknown setting '" + name + "'");
+    return;
+  }
+  const std::string owner = "when= of inert setting '" + name + "'";
+  if (!hasDoc || doc.empty()) {
+    diags.error(loc, "inert setting '" + name + "' has no \"why\" (the reason messages give)");
+    return;
+  }
+  if (!parseCondition(e, attrs[0].second, loc, owner, r.when, diags, /*allowFloat=*/true)) return;
+  std::map<int, std::vector<double>> named;
+  collectSettings(e, r.when, named);
+  if (named.count(r.setting)) {
+    diags.error(loc, owner + " names '" + name + "' itself: a setting's own value cannot make it have no effect");
+    return;
+  }
+  bool some = false, every = false;
+  conditionReach(e, r.when, some, every);
+  if (!some || every) {
+    const std::string of = " of " + conditionSettingName(e, r.when.setting);
+    diags.error(loc, owner + (some ? " holds for every value" + of + ", so '" + name +
+                                         "' never has an effect: drop the setting or the rule"
+                                   : " holds for no value" + of + ", so the rule never applies: drop it"));
+    return;
+  }
+  for (const auto& other : e.inert)
+    if (other.setting == r.setting && other.when.text == r.when.text) {
+      diags.error(loc, "duplicate inert rule for '" + name + "' (first declared at line " +
+                           std::to_string(other.loc.line) + ")");
+      return;
+    }
+  r.whenText = conditionWords(e, r.when, false);
+  r.fixText = conditionWords(e, r.when, true);
+  e.inert.push_back(r);
 }
 
 void parsePreset(Effect& e, const SourceLoc& loc, const std::vector<std::string>& words,

@@ -311,7 +311,7 @@ Status calibrateSection(const CalibrateOptions& o, samples::BackendRunner& backe
     if (confirm.size() > 2) printPoint("least mean RMSE", o.scenes, confirm[2]);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("calibrate: %.0f s in all; wrote %s\n", seconds, path.c_str());
+  std::printf("calibrate: %.0f s in all; wrote %s\n", seconds, std::filesystem::path(path).filename().c_str());
   return Status::success();
 }
 

@@ -26,6 +26,7 @@
 #include "scene_cache.h"
 #include "traffic_section.h"
 #include "tune.h"
+#include "tune_report.h"
 #include "sao/cli/command_line.h"
 #include "sao/cli/shared_options.h"
 #include "sao/prepass/precision.h"
@@ -34,6 +35,7 @@
 #include "sao/raytrace/converged.h"
 #include "sao/raytrace/raytrace.h"
 #include "sao/samples/error_structure.h"
+#include "sao/samples/output_files.h"
 #include "sao/scenes/scene.h"
 
 namespace fs = std::filesystem;
@@ -97,6 +99,7 @@ struct Options {
   Extent size{1280, 720};
   bool sizeGiven = false;  // --size given (the per_tap section's default is 1920x1080)
   bool quick = false;
+  bool overwrite = false;       // --overwrite (sao/samples/output_files.h)
   bool tune = false;            // --tune: the preset tuner (tune.h) instead of the sections
   bool convergedNoise = false;  // --converged-noise
   bool ortho = false;           // --ortho: every scene's view made orthographic
@@ -121,9 +124,21 @@ std::set<std::string> parseSections(const std::string& list) {
 Options parse(int argc, char** argv) {
   Options o;
   cli::CommandLine cl("sao-bench", kDescription);
-  cl.text("--out", o.out, "DIR", "output folder (default out/bench)");
-  cl.text("--backends", o.backends, "LIST",
-          "comma-separated: cpu,gl,vulkan (default: gl,vulkan,cpu, those that start; the others are skipped)");
+  cl.text("--out", o.out, "DIR",
+          "output folder (default out/bench). Written as sao-render's --out is: into a new folder beside it, swapped "
+          "in when the run ends; DIR must be missing, empty or an earlier sao-bench output holding only the files its "
+          "sao-bench-outputs.txt lists, else the run stops before it starts (with --overwrite: the run's files "
+          "replace those of the same names, the others are kept). --tune writes DIR in place (tune.csv is resumed) "
+          "by the same rule");
+  cl.value("--backends", "LIST",
+           "comma-separated: cpu,gl,vulkan (default: gl,vulkan,cpu, those that start; the others are skipped)",
+           [&o](const std::string& v) {
+             std::stringstream in(v);
+             for (std::string name; std::getline(in, name, ',');)
+               if (Status s = samples::checkBackendName(name); !s) cli::reject("--backends: " + s.message);
+             if (v.empty() || v.back() == ',') cli::reject("--backends: an empty name in '" + v + "'");
+             o.backends = v;
+           });
   cl.value("--sections", "LIST", "comma-separated parts to run (default: all but calibrate, spiral, frames, paths, divisor, intermediates and per_tap: grid searches of about 20 and 5 minutes, a frame accumulation, camera paths, a preset x divisor matrix, a preset x intermediate format matrix and a ladder of GL passes at 1920x1080):\n" + sectionNames(),
            [&o](const std::string& v) { o.sections = parseSections(v); });
   cli::addRuns(cl, o.runs, 1, "measured runs per point, after one warm-up", "default 5");
@@ -168,19 +183,26 @@ Options parse(int argc, char** argv) {
           "time the effect only: no ray-traced or converged references, so the error columns are empty (the "
           "references take minutes of CPU per scene; a GPU machine's figures to add are its times: "
           "ci/gpu-bench.sh). The reference check on the analytic sphere still runs");
-  cl.flag("--quick", o.quick, "the smoke run: 160x90, 3 runs, 16 rays, two scenes, short sweeps (replaces --size, "
-          "--runs and --rays)");
+  cl.flag("--quick", o.quick, "the smoke run: 160x90, 3 runs, 16 rays, two scenes, short sweeps (it sets --size, "
+          "--runs and --rays: they are refused with it)");
   cl.flag("--tune", o.tune,
           "instead of the sections: search a fixed grid of samples, z hierarchy q', blur radius/stride and "
           "resolution_divisor for the lowest error vs (c) per time, relative to the medium preset, over the built-in "
           "scenes, and choose presets on that front (tune.csv, resumable; tune_front.csv/.svg, tune_presets.txt). Uses "
           "the first of --backends that starts (default gl), --size default 640x360, --runs, --converged-taps, --quick");
+  cl.flag(samples::kOverwriteOption, o.overwrite, samples::kOverwriteHelp);
   cl.parse(argc, argv);
   o.sizeGiven = cl.given("--size");
+  if (o.quick)
+    for (const char* option : {"--size", "--runs", "--rays"})
+      if (cl.given(option))
+        cl.fail(std::string("--quick and ") + option + " cannot be combined: --quick sets " + option +
+                " (--size 160x90, --runs 3, --rays 16); drop one of them");
   if (o.tune) {
     if (cl.given("--sections") || cl.given("--converged-noise") || cl.given("--rays") || cl.given("--ortho") ||
         cl.given("--scenes") || cl.given("--time-only") || cl.given("--warmup-ms"))
-      cl.fail("--tune takes --out, --backends, --size, --runs, --converged-taps, --depth-source, --units and --quick only");
+      cl.fail("--tune takes --out, --backends, --size, --runs, --converged-taps, --depth-source, --units, --quick and "
+              "--overwrite only");
     if (!cl.given("--backends")) o.backends = "gl";
     if (!cl.given("--size")) o.size = {640, 360};
   }
@@ -269,19 +291,35 @@ std::vector<std::pair<std::string, std::string>> notes(const std::string& depthS
   };
 }
 
+// The output folder being written, staged beside its place until the run ends (an exit on an
+// error destroys it, and with it the staging folder).
+std::unique_ptr<samples::OutputFolder> g_output;
+
+// A refused --out: a bad option (exit 2) or something in the way on disk (exit 1), one line.
+[[noreturn]] void refuseOutput(const Status& s) {
+  if (s.code == StatusCode::InvalidInput) cli::exitWithUsageError("sao-bench", s.message);
+  std::fprintf(stderr, "sao-bench: %s\n", s.message.c_str());
+  std::exit(1);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
-  if (o.tune) return bench::runTune({o.out, o.backends, o.depthSource, o.units, o.size, o.runs, o.convergedTaps, o.quick});
+  samples::WriteRules rules{"sao-bench", o.overwrite, {}};
+  for (const std::string& scene : o.scenes) rules.addInput("--scenes", scene);
+  if (o.tune) {
+    if (Status s = samples::prepareFolderInPlace(o.out, "--out", rules, bench::kTuneFiles); !s) refuseOutput(s);
+    return bench::runTune({o.out, o.backends, o.depthSource, o.units, o.size, o.runs, o.convergedTaps, o.quick});
+  }
+  if (Status s = samples::OutputFolder::stage(o.out, "--out", rules, g_output); !s) refuseOutput(s);
+  const std::string out = g_output->stagingPath().string();  // every file of the run goes in here
   std::error_code ec;
-  fs::create_directories(o.out, ec);
-  if (ec) fail("cannot create '" + o.out + "': " + ec.message());
 
   // Reference (a) against the analytic sphere first: every figure below leans on it.
   std::vector<raytrace::SphereCheck> checks;
   if (Status s = bench::checkReference(checks); !s) fail("reference check: " + s.message);
-  bench::writeReferenceCheck((fs::path(o.out) / "reference_check.csv").string(), checks);
+  bench::writeReferenceCheck((fs::path(out) / "reference_check.csv").string(), checks);
   double worst = 0;
   std::string angles;
   for (const auto& c : checks) {
@@ -366,16 +404,17 @@ int main(int argc, char** argv) {
     if (Status st = bench::measure(b, s, p.camera, inputs, int(o.runs), refs, r.m, double(o.warmupMs)); !st)
       fail(section + " " + scene + " " + variant + ": " + st.message);
     if (converged) {
-      if (fs::create_directories(fs::path(o.out) / "maps", ec); ec)
-        fail("cannot create '" + (fs::path(o.out) / "maps").string() + "': " + ec.message());
+      if (fs::create_directories(fs::path(out) / "maps", ec); ec)
+        fail("cannot create '" + (fs::path(out) / "maps").string() + "': " + ec.message());
       r.modelRmseVsAo = converged->rmseVsAo;
       r.modelRmseVsObscurance = converged->rmseVsObscurance;
       r.errorMap = "maps/" + mapName(rows.size(), {section, scene, r.backend, preset, variant});
-      if (Status st = samples::writeErrorMapPng((fs::path(o.out) / r.errorMap).string(), r.m.ao, converged->ao, p.mask); !st)
+      if (Status st = samples::writeErrorMapPng((fs::path(out) / r.errorMap).string(), r.m.ao, converged->ao, p.mask);
+          !st)
         fail(st.message);
       if (converged->modelMap.empty()) {  // once per scene, settings and inputs: (c) - (a)
         converged->modelMap = "maps/" + mapName(rows.size(), {"model", scene, what});
-        if (Status st = samples::writeErrorMapPng((fs::path(o.out) / converged->modelMap).string(), converged->ao,
+        if (Status st = samples::writeErrorMapPng((fs::path(out) / converged->modelMap).string(), converged->ao,
                                                   *refs.nearFieldAo, p.mask);
             !st)
           fail(st.message);
@@ -504,7 +543,7 @@ int main(int argc, char** argv) {
 
   // calibrate: the appearance defaults fitted to reference (a) at --size, confirmed at 1280x720 (calibrate.h).
   if (want("calibrate"))
-    if (Status s = bench::calibrateSection({o.out, sceneNames, size, o.quick ? size : Extent{1280, 720}, o.rays,
+    if (Status s = bench::calibrateSection({out, sceneNames, size, o.quick ? size : Extent{1280, 720}, o.rays,
                                             int(o.runs), o.quick}, first, cache);
         !s)
       fail("calibrate: " + s.message);
@@ -512,7 +551,7 @@ int main(int argc, char** argv) {
   // spiral: the lattice criterion against G3D's table (shipped), by error vs (c) (spiral_section.h).
   if (want("spiral")) {
     bench::SpiralOptions so;
-    so.outDir = o.out;
+    so.outDir = out;
     so.scenes = sceneNames;
     so.size = size;
     so.convergedTaps = o.convergedTaps;
@@ -523,7 +562,7 @@ int main(int argc, char** argv) {
   // frames: a static camera's frames averaged against 4x the taps, by error vs (c) (frames_section.h).
   if (want("frames")) {
     bench::FramesOptions fo;
-    fo.outDir = o.out;
+    fo.outDir = out;
     fo.scenes = sceneNames;
     fo.size = size;
     fo.convergedTaps = o.convergedTaps;
@@ -534,7 +573,7 @@ int main(int argc, char** argv) {
   // paths: the camera paths with and without temporal accumulation (paths_section.h).
   if (want("paths")) {
     bench::PathsOptions po;
-    po.outDir = o.out;
+    po.outDir = out;
     po.scenes = sceneNames;
     if (o.sizeGiven) po.size = o.size;
     if (o.quick) po.frames = 4, po.size = Extent{96, 54};
@@ -544,7 +583,7 @@ int main(int argc, char** argv) {
   // per_tap: ao_sample's time per tap beside a ladder of minimal GL passes (per_tap_section.h).
   if (want("per_tap")) {
     bench::PerTapOptions po;
-    po.outDir = o.out;
+    po.outDir = out;
     po.scene = mainScene;
     po.size = o.quick ? Extent{320, 180} : o.sizeGiven ? o.size : Extent{1920, 1080};
     po.runs = int(o.runs);
@@ -556,7 +595,7 @@ int main(int argc, char** argv) {
 
   // traffic: the memory-traffic model on the main scene (traffic_section.h).
   if (want("traffic"))
-    if (Status s = bench::trafficSection(o.out, mainScene, o.quick, [&](Extent e) {
+    if (Status s = bench::trafficSection(out, mainScene, o.quick, [&](Extent e) {
           Prepared& p = cache.prepare(mainScene, e.width, e.height);
           return bench::TrafficInput{&p.primary.depth, p.camera};
         });
@@ -568,20 +607,21 @@ int main(int argc, char** argv) {
   std::string times;
   for (const std::string& t : convergedTimes) times += (times.empty() ? "" : "; ") + t;
   if (!times.empty()) legend.emplace_back("converged time", "wall (and CPU, all threads) time of each reference (c): " + times);
-  bench::writeCsv((fs::path(o.out) / "results.csv").string(), rows);
-  bench::writeJson((fs::path(o.out) / "results.json").string(), rows, machine, legend);
-  const auto charts = bench::writeCharts(o.out, rows, mainScene, std::string(first.name()));
+  bench::writeCsv((fs::path(out) / "results.csv").string(), rows);
+  bench::writeJson((fs::path(out) / "results.json").string(), rows, machine, legend);
+  const auto charts = bench::writeCharts(out, rows, mainScene, std::string(first.name()));
   std::string files = "reference_check.csv,results.csv,results.json";
   for (const auto& c : charts) files += "," + c;
   if (!precision.empty()) {
-    bench::writePrecision(o.out, precision);
+    bench::writePrecision(out, precision);
     files += ",precision.csv,precision.txt";
   }
   for (const auto& [section, file] : {std::pair{"spiral", ",spiral.csv"}, {"frames", ",frames.csv"}, {"paths", ",paths.csv"},
                                      {"calibrate", ",calibration.csv"}, {"traffic", ",traffic.csv"}, {"per_tap", ",per_tap.csv"}})
-    if (want(section) && fs::exists(fs::path(o.out) / (file + 1))) files += file;  // per_tap may skip
+    if (want(section) && fs::exists(fs::path(out) / (file + 1))) files += file;  // per_tap may skip
+  if (Status s = g_output->commit(); !s) fail(s.message);
   std::printf("sao-bench: %zu measurements on %s\nwrote %s/{%s}\n", rows.size(), machine.c_str(),
-              fs::absolute(o.out).lexically_normal().string().c_str(), files.c_str());
+              g_output->path().string().c_str(), files.c_str());
   for (const auto& [key, text] : legend) std::printf("  %s: %s\n", key.c_str(), text.c_str());
   return 0;
 }

@@ -129,8 +129,8 @@ Status trafficSection(const std::string& outDir, const std::string& sceneName, b
   const std::string path = (std::filesystem::path(outDir) / "traffic.csv").string();
   if (Status s = writeCsv(path, sceneName, machines, variants, rows); !s) return s;
   printSummary(machines, variants, rows);
-  std::printf("traffic: scene %s; this CPU's caches from %s; wrote %s\n", sceneName.c_str(), cpuSource.c_str(),
-              path.c_str());
+  std::printf("traffic: scene %s; this CPU's caches from %s; wrote traffic.csv\n", sceneName.c_str(),
+              cpuSource.c_str());  // in the output folder, moved into place when the run ends
   return Status::success();
 }
 

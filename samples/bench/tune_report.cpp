@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "sao/samples/output_files.h"
 #include "scene_cache.h"
 #include "svg_plot.h"
 #include "tune_grid.h"
@@ -29,10 +30,7 @@ double meanOf(const TuneRow& r, double SceneFigures::*field) {
 }
 
 void writeFile(const std::string& path, const std::string& text) {
-  std::ofstream f(path, std::ios::binary);
-  f << text;
-  f.close();
-  if (!f) fail("cannot write " + path);
+  if (Status s = samples::writeFileInPlace(path, text); !s) fail(s.message);
 }
 
 std::string frontCsv(const TuneResult& r) {
@@ -138,7 +136,7 @@ std::vector<std::string> writeTuneOutputs(const std::string& dir, const TuneResu
   writeFile((fs::path(dir) / "tune_front.csv").string(), frontCsv(r));
   writeFile((fs::path(dir) / "tune_front.svg").string(), frontSvg(r));
   writeFile((fs::path(dir) / "tune_presets.txt").string(), presetsText(r));
-  return {"tune.csv", "tune_front.csv", "tune_front.svg", "tune_presets.txt"};
+  return kTuneFiles;
 }
 
 void printTuneSummary(const TuneResult& r) {

@@ -36,7 +36,12 @@ inline const std::vector<std::string> kTuneNames = {"low", "medium", "high", "ul
 inline constexpr std::size_t kDefaultPreset = 2;
 inline constexpr double kDefaultBlotchShare = 0.5;
 
-// Files written, by name, in `dir`; a failure stops the tool (bench::fail).
+// The files --tune writes in its folder (the folder's manifest lists them before the run starts).
+inline const std::vector<std::string> kTuneFiles = {"tune.csv", "tune_front.csv", "tune_front.svg",
+                                                    "tune_presets.txt"};
+
+// Writes the files after tune.csv (each renamed into place when complete) in `dir` and returns
+// kTuneFiles; a failure stops the tool (bench::fail).
 std::vector<std::string> writeTuneOutputs(const std::string& dir, const TuneResult& r);
 
 // The tables (tuned presets; today's presets and the baseline), the span targets and what the

@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "sao/gl/effect.h"
-#include "sao/presets.h"
 
 // Stand-in for your window system: a surfaceless GL 4.3 core context (Mesa's EGL), made current.
 static EGLDisplay makeContextCurrent() {

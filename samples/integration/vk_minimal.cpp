@@ -11,7 +11,6 @@
 #include <numbers>
 #include <vector>
 
-#include "sao/presets.h"
 #include "sao/vulkan/effect.h"
 
 // An example's error handling: a failed Vulkan call ends the program.

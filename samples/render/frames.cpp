@@ -22,8 +22,8 @@ std::string FramesSummary::text() const {
 }
 
 Status runFramePath(const Options& o, samples::BackendRunner& backend, const Settings& settings,
-                    const scenes::View& base, const Camera& camera, const DepthMaker& makeDepth, OutputFolder& out,
-                    FramesSummary& summary, raytrace::Primary& last) {
+                    const scenes::View& base, const Camera& camera, const DepthMaker& makeDepth,
+                    samples::OutputFolder& out, FramesSummary& summary, raytrace::Primary& last) {
   summary = FramesSummary{};
   summary.frames = o.frames;
   summary.path = std::string(scenes::toString(o.path));

@@ -9,9 +9,9 @@
 #include <string>
 
 #include "options.h"
-#include "output_folder.h"
 #include "sao/raytrace/raytrace.h"
 #include "sao/samples/backend_runner.h"
+#include "sao/samples/output_files.h"
 #include "sao/scenes/camera_path.h"
 #include "summary.h"
 
@@ -27,7 +27,7 @@ using DepthMaker = std::function<Status(const scenes::View& view, raytrace::Prim
 // `last` receives the last frame's depth, positions and normals, so that the run's usual outputs
 // (ao.png, lit.png, the reference) are made from it without rendering it again.
 Status runFramePath(const Options& o, samples::BackendRunner& backend, const Settings& settings,
-                    const scenes::View& base, const Camera& camera, const DepthMaker& makeDepth, OutputFolder& out,
-                    FramesSummary& summary, raytrace::Primary& last);
+                    const scenes::View& base, const Camera& camera, const DepthMaker& makeDepth,
+                    samples::OutputFolder& out, FramesSummary& summary, raytrace::Primary& last);
 
 }  // namespace sao::render

@@ -60,6 +60,12 @@ std::string settingsHelp() {
     s << "  " << name << "  " << range << ", " << (info.unit.empty() ? std::string("unitless") : std::string(info.unit))
       << ", default " << number(info.defaultValue) << "\n"
       << wrapped(info.doc, 24, 100);
+    // The effect's inert rules: the setting has no effect then, and --set refuses it.
+    for (const auto& rule : gen::kInertRules)
+      if (gen::kSettings[static_cast<std::size_t>(rule.setting)].name == info.name)
+        s << wrapped("No effect while " + std::string(rule.whenText) + " (" + std::string(rule.reason) +
+                         "): --set refuses it then.",
+                     24, 100);
   }
   return s.str();
 }
@@ -75,8 +81,31 @@ std::string depthExrHelp() {
        "  sao.width, sao.height, sao.guardBand int (the depth is (width+2*guardBand) x (height+2*guardBand))\n"
        "  sao.depthFormat \"D16\"|\"D24\"|\"D32F\"|\"LinearZ\"\n"
        "A file without sao.version is read as D32F hardware depth (channel \"Z\", else its only\n"
-       "channel) and needs the camera as options: --fovy, --near, --far, --clip, --reversed-z, --guard.\n";
+       "channel) and needs the camera as options: --fovy, --near, --far, --clip, --reversed-z, --guard;\n"
+       "with --depth-distances it holds distances along the view axis (a Blender Z pass) instead.\n"
+       "Files of other tools: any compression (DWAA/DWAB too; lossy noise just outside [0, 1] is read as\n"
+       "0 or 1, with a warning); the depth channel in any part: \"Z\", or \"<layer>.Z\" whose layer is\n"
+       "named depth (Blender's ViewLayer.Depth.Z, depth.Z); sao.projection as m44f too. The image is the\n"
+       "display window: a data window cropped inside it is placed there with sky around it.\n"
+       "Not detectable, so the AO is wrong without a word: NDC z (GL's [-1, 1]) stored instead of window\n"
+       "depth (most of it lies in [0, 1]); a guard band the file was rendered with but that --guard (or\n"
+       "sao.guardBand) does not declare (the field of view is then wrong). Binary16 (HALF) standard depth\n"
+       "is warned about with the depth step it leaves against the radius.\n";
   return s.str();
+}
+
+std::string depthConventionHelp() {
+  return "\nDepth values that do not fit the conventions they are read with are warned about (exit 0;\n"
+         "the units/radius warnings are left out then: a wrong convention explains their figures):\n"
+         "no geometry at all (every texel sky: the clear value, e.g. a near plane beyond the scene;\n"
+         "LinearZ holding positive distances: --depth-distances); reversed-Z depth read without\n"
+         "--reversed-z, or standard depth read with it (perspective: most geometry within twice the near\n"
+         "distance, where only the wrong reading puts it; a sky of the other convention's clear value);\n"
+         "linear depth normalised to [0, 1] read as window depth (on flat surfaces 1/d, not d, changes\n"
+         "evenly across the image). Not detectable: the Z convention of orthographic depth without sky\n"
+         "(it is affine in the distance either way), linear [0, 1] depth with --ortho (that is\n"
+         "orthographic window depth for some near and far), and perspective depth read with the wrong Z\n"
+         "convention whose geometry lies mostly within twice the near distance.\n";
 }
 
 }  // namespace sao::render

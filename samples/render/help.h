@@ -11,4 +11,8 @@ std::string settingsHelp();
 // How a depth EXR carries its camera: the sao.* header attributes of sao/io.h.
 std::string depthExrHelp();
 
+// Which depth values are warned about as read with the wrong convention, and which cannot be
+// told (sao/samples/depth_convention.h).
+std::string depthConventionHelp();
+
 }  // namespace sao::render

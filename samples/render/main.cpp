@@ -19,12 +19,13 @@
 #include "sao/prepass/prepass.h"
 #include "sao/raytrace/raytrace.h"
 #include "sao/samples/backend_runner.h"
+#include "sao/samples/output_files.h"
 #include "sao/samples/scale_warnings.h"
 #include "sao/samples/shading.h"
 #include "sao/scenes/scene.h"
 #include "options.h"
+#include "depth_input.h"
 #include "frames.h"
-#include "output_folder.h"
 #include "progress.h"
 #include "run_timing.h"
 #include "summary.h"
@@ -38,8 +39,8 @@ namespace {
 // The outputs being written (staged beside their places until the run succeeds); an error exit
 // removes them.
 struct StagedOutputs {
-  std::unique_ptr<render::OutputFolder> out, dump;
-  std::unique_ptr<render::OutputFile> depth;
+  std::unique_ptr<samples::OutputFolder> out, dump;
+  std::unique_ptr<samples::OutputFile> depth;
   void abandon() {  // inner ones first: a folder made for --out may hold the others
     depth.reset();
     dump.reset();
@@ -126,7 +127,7 @@ Status makeSceneDepth(const Options& o, const samples::BackendRunner& backend, c
   return Status::success();
 }
 
-// Where each output is written: staged paths (see output_folder.h).
+// Where each output is written: staged paths (see sao/samples/output_files.h).
 struct OutputPaths {
   std::string aoPng, aoExr, lit, litNoAo, reference, summaryTxt, summaryJson;
   std::string saveDepth;   // staged inside an output folder; else g_staged.depth has it
@@ -135,17 +136,26 @@ struct OutputPaths {
 
 // The part of `path` inside `folder` ("" for the folder itself), or nullopt when outside.
 std::optional<std::string> inside(const fs::path& folder, const std::string& path) {
-  const fs::path rel = render::normalizedPath(path).lexically_relative(folder);
+  const fs::path rel = samples::normalizedPath(path).lexically_relative(folder);
   if (rel.empty() || *rel.begin() == "..") return std::nullopt;
   return rel == "." ? std::string() : rel.string();
+}
+
+// A refused output path: a bad option (exit 2) or something in the way on disk (exit 1).
+[[noreturn]] void outputError(const Status& s) {
+  if (s.code == StatusCode::InvalidInput) usageError(s.message);
+  runError(s);
 }
 
 // Checks every output path and stages it, before anything is rendered. Exits on a problem.
 OutputPaths stageOutputs(const Options& o) {
   OutputPaths p;
-  if (Status s = render::OutputFolder::stage(o.out, "--out", g_staged.out); !s) runError(s);
-  render::OutputFolder& out = *g_staged.out;
-  auto reserve = [](render::OutputFolder& folder, const std::string& name, std::string& path) {
+  samples::WriteRules rules{"sao-render", o.overwrite, {}};
+  if (o.depthPath.empty()) rules.addInput("--scene", o.scene);
+  rules.addInput("--depth", o.depthPath);
+  if (Status s = samples::OutputFolder::stage(o.out, "--out", rules, g_staged.out); !s) outputError(s);
+  samples::OutputFolder& out = *g_staged.out;
+  auto reserve = [](samples::OutputFolder& folder, const std::string& name, std::string& path) {
     if (Status s = folder.file(name, path); !s) usageError(s.message);
   };
   reserve(out, "ao.png", p.aoPng);
@@ -163,21 +173,30 @@ OutputPaths stageOutputs(const Options& o) {
       if (!rel->empty())
         if (Status s = out.folder(*rel); !s) usageError("--dump-passes: " + s.message);
     } else {
-      if (inside(render::normalizedPath(o.dumpDir), o.out))
+      if (inside(samples::normalizedPath(o.dumpDir), o.out))
         usageError("--out '" + o.out + "' lies inside --dump-passes '" + o.dumpDir + "': give two separate folders");
-      if (Status s = render::OutputFolder::stage(o.dumpDir, "--dump-passes", g_staged.dump); !s) runError(s);
+      if (Status s = samples::OutputFolder::stage(o.dumpDir, "--dump-passes", rules, g_staged.dump); !s)
+        outputError(s);
     }
   }
   if (!o.saveDepth.empty()) {
+    auto checkName = [&] {  // OutputFile::stage checks it outside the output folders
+      if (Status s = samples::checkExtension(o.saveDepth, "--save-depth", rules.program, samples::kExrFormat); !s)
+        usageError(s.message);
+    };
     if (const auto rel = inside(out.path(), o.saveDepth); rel && !rel->empty()) {
+      checkName();
       reserve(out, *rel, p.saveDepth);
     } else if (const auto relDump = g_staged.dump ? inside(g_staged.dump->path(), o.saveDepth) : std::nullopt;
                relDump && !relDump->empty()) {
+      checkName();
       reserve(*g_staged.dump, *relDump, p.saveDepth);
     } else if (rel || relDump) {
       usageError("--save-depth '" + o.saveDepth + "' is an output folder, not a file name");
-    } else if (Status s = render::OutputFile::stage(o.saveDepth, "--save-depth", g_staged.depth); !s) {
-      runError(s);
+    } else if (Status s = samples::OutputFile::stage(o.saveDepth, "--save-depth", samples::kExrFormat, rules,
+                                                     g_staged.depth);
+               !s) {
+      outputError(s);
     }
   }
   return p;
@@ -219,20 +238,41 @@ int main(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
 
   if (!o.depthPath.empty()) {
-    bool hasCamera = false;
     progress.begin("reading the depth file");
-    if (Status s = readDepthExr(o.depthPath, depth, camera, hasCamera); !s) runError(s);
+    DepthFileInfo file;
+    DepthReadOptions reading;  // the sky around a cropped data window, in the file's convention
+    reading.skyWithoutCamera = o.depthDistances ? INFINITY : o.reversedZ ? 0.0f : 1.0f;
+    if (Status s = readDepthExr(o.depthPath, depth, camera, file, reading); !s) runError(s);
     progress.end();
+    const bool hasCamera = file.hasCamera;
     if (hasCamera) {
-      for (const char* flag : {"--fovy", "--ortho", "--near", "--far", "--clip", "--reversed-z", "--guard", "--units"})
+      for (const char* flag : {"--fovy", "--ortho", "--near", "--far", "--clip", "--reversed-z", "--guard", "--units",
+                               "--depth-distances"})
         if (o.has(flag))
           usageError(std::string(flag) + " has no effect: '" + o.depthPath +
                      "' carries its own camera (its sao.* attributes)");
     } else {
+      std::string saoNames;  // a camera that lacks only sao.version
+      for (const std::string& a : file.saoAttributes) saoNames += (saoNames.empty() ? "" : ", ") + a;
+      if (!o.cameraFlags && !saoNames.empty())
+        usageError("'" + o.depthPath + "' has sao.* attributes (" + saoNames + ") but no sao.version, so they are "
+                   "not read as its camera: add the int attribute sao.version = " + std::to_string(kDepthExrVersion) +
+                   " (sao/io.h), or give the camera as --fovy (or --ortho), --near, --far, --clip (and --reversed-z)");
       if (!o.cameraFlags)
-        usageError("'" + o.depthPath + "' carries no sao.* camera: give --fovy (or --ortho), --near, --far, --clip (and --reversed-z)");
+        usageError("'" + o.depthPath + "' carries no sao.* camera: give --fovy (or --ortho), --near, --far, --clip (and "
+                   "--reversed-z), or --depth-distances for distances along the view axis");
+      if (!saoNames.empty())
+        std::fprintf(stderr, "sao-render: warning: '%s' has sao.* attributes but no sao.version: they are ignored, the "
+                     "camera comes from the options\n", o.depthPath.c_str());
       camera = cameraFromFlags(o, depth.extent);
       if (o.units) camera.metersToViewUnits = scenes::metersToViewUnits(*o.units);
+      if (o.depthDistances)
+        if (Status s = render::distancesToLinearZ(depth, o.far); !s)
+          runError(Status::error(s.code, "'" + o.depthPath + "': " + s.message));
+    }
+    for (const std::string& note : render::depthFileNotes(o.depthPath, file)) {
+      std::fprintf(stderr, "sao-render: warning: %s\n", note.c_str());
+      summary.inputWarnings.push_back(note);
     }
     summary.units = hasCamera ? "the depth file's sao.metersToViewUnits"
                               : o.units ? std::string(scenes::toString(*o.units)) + " (--units)" : "m (the default)";
@@ -240,6 +280,11 @@ int main(int argc, char** argv) {
     // The same refusal on every backend (a GL D32F texture would clamp what the others read as sky).
     if (Status s = checkDepthValues(depth); !s) runError(Status::error(s.code, "'" + o.depthPath + "': " + s.message));
     summary.input = "depth file " + o.depthPath + " (" + toString(depth.format) + ")";
+    if (file.storedAsHalf)
+      if (const auto w = render::halfPrecisionWarning(o.depthPath, depth, camera, settings.radius)) {
+        std::fprintf(stderr, "sao-render: warning: %s\n", w->c_str());
+        summary.inputWarnings.push_back(*w);
+      }
   } else {
     progress.begin("loading the scene");
     if (Status s = scenes::loadScene(o.scene, scene); !s) runError(s);
@@ -341,7 +386,7 @@ int main(int argc, char** argv) {
     if (Status s = samples::writeRgbPng(paths.litNoAo, unlit); !s) runError(s);
   }
   if (!o.dumpDir.empty()) {
-    render::OutputFolder& folder = g_staged.dump ? *g_staged.dump : *g_staged.out;
+    samples::OutputFolder& folder = g_staged.dump ? *g_staged.dump : *g_staged.out;
     for (const auto& [name, image] : result.intermediates) {
       std::vector<std::string> channels;
       for (std::uint32_t c = 0; c < image.channels; ++c) channels.push_back(image.channels == 1 ? "Y" : std::string(1, "RGBA"[c]));

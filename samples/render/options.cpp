@@ -7,6 +7,7 @@
 #include "help.h"
 #include "sao/cli/command_line.h"
 #include "sao/cli/shared_options.h"
+#include "sao/samples/output_files.h"
 
 namespace sao::render {
 namespace {
@@ -21,7 +22,12 @@ its memory), summary.json (with --json) and sao-render-outputs.txt (the list of 
 
 constexpr const char* kRules = R"(Any option but --set given twice: the last one counts. Options that would have no effect are
 refused (e.g. --fovy for a scene without --eye, --size with --depth, --reference-rays without
---reference).
+--reference), and so is a --set setting that the final settings (the preset, every --set and
+--resolution-divisor) make inert, as the effect declares (the list below): --set fade_start
+while fade_end = 0. A preset's own values are never refused.
+Outputs (--out, --dump-passes, --save-depth) replace no file sao-render did not write unless
+--overwrite is given, never an input, and a file's name must end in its format's extension; they
+are checked before rendering (a bad name: exit 2; a file or folder in the way: exit 1).
 Exit status: 0 on success, 1 when the run fails (nothing is written then), 2 for bad options;
 errors are one line on stderr.
 )";
@@ -57,12 +63,18 @@ void refuseIneffectiveOptions(const Options& o) {
     if (o.has("--size")) usageError("--size has no effect with --depth: the AO has the depth file's size");
     if (o.has("--depth-format")) usageError("--depth-format has no effect with --depth: the file gives its format");
     if (o.has("--depth-source")) usageError("--depth-source has no effect with --depth: the file is the depth");
+    if (o.depthDistances)
+      for (const char* flag : {"--clip", "--reversed-z"})
+        if (o.has(flag))
+          usageError(std::string(flag) + " has no effect with --depth-distances: distances have no depth-buffer "
+                     "convention");
     if (o.units == scenes::LengthUnit::Auto)
       usageError("--units auto needs a scene's bounding box: a --depth file takes m, cm, mm, in or ft");
   } else {
     for (const char* flag : {"--fovy", "--near", "--ortho"})
       if (o.has(flag) && !o.has("--eye"))
         usageError(std::string(flag) + " has no effect without --eye: a scene's view has its own camera");
+    if (o.depthDistances) usageError("--depth-distances describes a --depth file: it has no effect without --depth");
     for (const char* flag : {"--far", "--clip", "--reversed-z"})
       if (o.has(flag))
         usageError(std::string(flag) + " is for a --depth file without a camera: a scene's depth is always "
@@ -84,13 +96,13 @@ void refuseIneffectiveOptions(const Options& o) {
 
 Options parseOptions(int argc, char** argv) {
   Options o;
-  cli::CommandLine cl(kTool, kDescription, kRules + settingsHelp() + depthExrHelp());
+  cli::CommandLine cl(kTool, kDescription, kRules + settingsHelp() + depthExrHelp() + depthConventionHelp());
   cl.text("--out", o.out, "DIR",
           "output folder (default: out/render). It is replaced as a whole, so no file of an earlier run survives: "
           "the run writes into a new folder beside it and swaps it in only once every output is written (a failed "
           "run leaves DIR as it was). DIR must be missing, empty, or an earlier output holding only the files its "
           "sao-render-outputs.txt lists; any other file in it stops the run before rendering (nothing of yours is "
-          "deleted)");
+          "deleted), unless --overwrite. It must not hold an input file (the depth or scene file read)");
   cl.text("--backend", o.backend, "NAME",
           "gl | vulkan | cpu (the CPU reference in float, as a GPU computes) | cpu-double (the CPU reference in "
           "double) | auto (default: the first of gl, vulkan, cpu that starts)");
@@ -149,8 +161,14 @@ Options parseOptions(int argc, char** argv) {
   cl.choice("--clip", o.clip, oneOf({"gl", "zero-one"}), "gl or zero-one", "gl|zero-one",
             "the clip-space depth range of a --depth file without a camera: gl [-1,1] or zero-one [0,1] (default)");
   cl.flag("--reversed-z", o.reversedZ, "a --depth file without a camera holds reversed-Z depth (default off)");
+  cl.flag("--depth-distances", o.depthDistances,
+          "a --depth file without a camera holds positive distances along the view axis, in its units (--units; "
+          "e.g. a Blender Z pass), not hardware depth; the camera comes from --fovy (or --ortho), --near, --far and "
+          "--guard; sky is a value at or above --far, 0 or not finite (Blender writes 1e10: give a --far below "
+          "it, e.g. --far 1e9)");
   cl.text("--save-depth", o.saveDepth, "FILE.exr",
-          "write the depth input with its camera (a file --depth reads back); its folder must exist");
+          "write the depth input with its camera (a file --depth reads back); the name must end in .exr, its folder "
+          "must exist, an existing file is replaced only with --overwrite, the --depth input never");
   cl.text("--dump-passes", o.dumpDir, "DIR", "every intermediate image as EXR (a folder handled as --out is)");
   cl.flag("--reference", o.reference,
           "also the ray-traced reference (near-field AO within the radius) and the error metrics, for a scene (not "
@@ -183,10 +201,12 @@ Options parseOptions(int argc, char** argv) {
             "the camera path of --frames: orbit (30 degrees about the target's vertical, default), dolly (towards "
             "the target, to 60 % of its distance) or strafe (sideways, 30 % of the distance)");
   cl.flag("--json", o.json, "write summary.json too");
+  cl.flag(samples::kOverwriteOption, o.overwrite, samples::kOverwriteHelp);
   cl.parse(argc, argv);
 
   o.given = cl.givenNames();
-  for (const char* flag : {"--fovy", "--ortho", "--near", "--far", "--clip", "--reversed-z"}) o.cameraFlags |= o.has(flag);
+  for (const char* flag : {"--fovy", "--ortho", "--near", "--far", "--clip", "--reversed-z", "--depth-distances"})
+    o.cameraFlags |= o.has(flag);
   refuseIneffectiveOptions(o);
   if (o.eye.has_value() != o.target.has_value()) usageError("--eye and --target go together");
   // Refused here, not after the AO was written: a depth file has no geometry to trace.

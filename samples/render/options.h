@@ -27,6 +27,9 @@ struct Options {
   std::optional<glm::dvec3> eye, target;
   std::optional<double> orthoHeight;  // --ortho: an orthographic camera this tall (view units), not --fovy
   bool reversedZ = false, cameraFlags = false, reference = false, json = false;
+  bool overwrite = false;  // --overwrite (sao/samples/output_files.h)
+
+  bool depthDistances = false;  // --depth-distances: the camera-less --depth file holds view-axis distances
   Settings settings;  // from --preset and --set, validated
   std::uint32_t runs = 1;
   std::uint32_t frames = 1;                          // --frames: a camera path of this many frames

@@ -1,7 +1,11 @@
 #include "options.h"
 
+#include <cstdio>
+#include <cstdlib>
+
 #include "sao/cli/command_line.h"
 #include "sao/cli/shared_options.h"
+#include "screenshot.h"
 
 namespace sao::viewer {
 namespace {
@@ -15,6 +19,9 @@ constexpr const char* kFooter = R"(Keys: 1-9 view modes, F12 screenshot (sao-vie
 H hide/show the panel, Tab orbit/fly camera, O perspective/orthographic, Home reset the camera,
 Esc quit.
 Mouse: drag to rotate, right or middle drag to pan, wheel to dolly; WASD, Q/E to move.
+Options that would have no effect are refused: --validation without --backend vulkan,
+--standard-depth without --backend gl, and a --set setting that the final settings make inert
+(e.g. blur_stride while blur_radius = 0; the panel greys such settings out and says why).
 Exit status: 0 on success, 1 when the run fails, 2 for bad options, 3 when the graphics API
 reported errors (GL errors, or Vulkan validation messages with --validation).
 )";
@@ -52,7 +59,10 @@ Options parseOptions(int argc, char** argv) {
            [&o](const std::string& v) { o.zLevel = int(cli::parseWhole("--z-level", v, 0, 15)); });
   cl.flag("--reference", o.reference, "compute the ray-traced reference at start (the error view needs it)");
   cli::addRays(cl, "--reference-rays", o.referenceRays, "rays per pixel of the reference", "default 32");
-  cl.text("--screenshot", o.screenshot, "FILE", "with --frames: save the window as PNG after the last frame and exit");
+  cl.text("--screenshot", o.screenshot, "FILE",
+          "with --frames: save the window as PNG after the last frame and exit. FILE must end in .png and its folder "
+          "exist; an existing file is replaced only with --overwrite, the --scene file never (checked before the "
+          "window opens)");
   cl.whole("--frames", o.frames, 0, 1000000000, "N", "render N frames, then exit (0: until the window closes)");
   cl.value("--orbit-step", "DEG",
            "turn the camera about the orbit target's vertical by DEG degrees every frame, -30..30 (a moving camera "
@@ -69,16 +79,33 @@ Options parseOptions(int argc, char** argv) {
   cl.flag("--ortho", o.ortho,
           "start with the orthographic camera, as tall as the view's field of view spans at its target (O "
           "toggles; a .scene view with `ortho H` starts orthographic anyway)");
-  cl.flag("--standard-depth", o.standardDepth, "gl: no glClipControl; standard depth, [-1,1] clip, finite far plane");
+  cl.flag("--standard-depth", o.standardDepth,
+          "gl only (refused with --backend vulkan): no glClipControl; standard depth, [-1,1] clip, finite far plane");
   cl.flag("--validation", o.validation,
-          "vulkan: VK_LAYER_KHRONOS_validation with synchronization validation (messages on stderr; exit status 3 "
-          "if it reported any)");
+          "vulkan only (refused with --backend gl): VK_LAYER_KHRONOS_validation with synchronization validation "
+          "(messages on stderr; exit status 3 if it reported any)");
   cl.flag("--no-vsync", noVsync, "do not wait for vertical sync");
+  cl.flag(samples::kOverwriteOption, o.overwrite, samples::kOverwriteHelp);
   cl.parse(argc, argv);
 
   o.width = int(window.width), o.height = int(window.height);
   o.vsync = !noVsync;
   if (!o.screenshot.empty() && o.frames == 0) cl.fail("--screenshot needs --frames N");
+  // The backend-specific flags would change nothing on the other backend.
+  if (o.validation && o.backend != "vulkan")
+    cl.fail("--validation has no effect with --backend " + o.backend +
+            ": it adds the Vulkan validation layer (use --backend vulkan, or drop --validation)");
+  if (o.standardDepth && o.backend != "gl")
+    cl.fail("--standard-depth has no effect with --backend " + o.backend +
+            ": it turns off the GL viewer's glClipControl reversed-Z (use --backend gl, or drop --standard-depth)");
+  if (o.overwrite && o.screenshot.empty()) cl.fail("--overwrite has no effect without --screenshot");
+  samples::WriteRules rules{"sao-viewer", o.overwrite, {}};
+  rules.addInput("--scene", o.scene);
+  if (Status s = setScreenshotRules(rules, o.screenshot); !s) {
+    if (s.code == StatusCode::InvalidInput) cl.fail(s.message);
+    std::fprintf(stderr, "sao-viewer: %s: %s\n", toString(s.code), s.message.c_str());  // as a failed run
+    std::exit(1);
+  }
   if (o.frames > 0) o.vsync = false;  // scripted runs go as fast as they can
   return o;
 }

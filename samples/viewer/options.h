@@ -25,6 +25,7 @@ struct Options {
   std::uint32_t minFrameMs = 0;  // --min-frame-ms: hold every frame this long (a slow machine, for tests)
   bool hideUi = false, standardDepth = false, validation = false, vsync = true;
   bool ortho = false;  // --ortho: start with the orthographic camera
+  bool overwrite = false;  // --overwrite: --screenshot may replace an existing file
   Settings settings;  // from --preset and --set, validated
 };
 

@@ -16,10 +16,15 @@ std::string formatValue(double v) {
   return text;
 }
 
-void tooltip(const SettingInfo& info) {
-  if (!ImGui::IsItemHovered()) return;
+// `inert`: the effect's rule under which the setting has no effect now (greyed out), or null.
+void tooltip(const SettingInfo& info, const gen::InertRule* inert) {
+  if (!ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) return;
   ImGui::BeginTooltip();
   ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28.0f);
+  if (inert)
+    ImGui::Text("No effect while %.*s (%.*s): set %.*s to change it.", int(inert->whenText.size()),
+                inert->whenText.data(), int(inert->reason.size()), inert->reason.data(), int(inert->fixText.size()),
+                inert->fixText.data());
   ImGui::TextUnformatted(info.doc.data(), info.doc.data() + info.doc.size());
   ImGui::TextDisabled("range [%g, %g]%s%.*s, default %g", info.minValue, info.maxValue, info.unit.empty() ? "" : " ",
                       int(info.unit.size()), info.unit.data(), info.defaultValue);
@@ -28,9 +33,10 @@ void tooltip(const SettingInfo& info) {
 }
 
 // One control; returns the value the user asked for, or nothing when untouched.
-bool control(const SettingInfo& info, double current, double& wanted) {
+bool control(const SettingInfo& info, double current, const gen::InertRule* inert, double& wanted) {
   const std::string label = settingLabel(info);
   bool edited = false;
+  ImGui::BeginDisabled(inert != nullptr);
   switch (info.type) {
     case gen::SettingType::Float: {
       float v = static_cast<float>(current);
@@ -63,7 +69,8 @@ bool control(const SettingInfo& info, double current, double& wanted) {
       break;
     }
   }
-  tooltip(info);
+  ImGui::EndDisabled();
+  tooltip(info, inert);
   return edited;
 }
 
@@ -108,7 +115,8 @@ bool drawSettingsPanel(Settings& settings, SettingsPanelState& state) {
     const SettingInfo& info = gen::kSettings[i];
     const auto id = static_cast<SettingId>(i);
     double wanted = 0;
-    if (!control(info, gen::settingValue(settings, id), wanted)) continue;
+    // A setting the others make inert (gen::kInertRules) is shown greyed out, with the reason.
+    if (!control(info, gen::settingValue(settings, id), inertRule(settings, id), wanted)) continue;
     // Ctrl+click lets the user type any number: setFromText refuses what is out of range.
     if (Status s = setFromText(settings, info.name, formatValue(wanted)); !s) {
       state.rejected = s.message;

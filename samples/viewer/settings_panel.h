@@ -1,6 +1,7 @@
 // The settings section of the panel, generated from the effect's metadata (gen::kSettings): one
 // control per setting with its range and unit, its doc string as tooltip, a preset selector and
-// "reset to defaults". Every edit goes through sao::setFromText, so the settings stay valid.
+// "reset to defaults". Every edit goes through sao::setFromText, so the settings stay valid. A
+// setting the others make inert (gen::kInertRules) is greyed out, the reason in its tooltip.
 #pragma once
 #include <string>
 

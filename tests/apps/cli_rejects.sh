@@ -46,6 +46,14 @@ case $name in
     check "--units expects m, cm, mm, in, ft or auto, got 'km'" --units km
     check "--out needs a value, got an empty string" --out ""
     check "--quick takes no value (or true or false), got 'x'" --quick=x
+    # --quick sets --size, --runs and --rays: given with it they were silently replaced.
+    check "--quick and --size cannot be combined: --quick sets --size" --quick --size 64x36
+    check "--quick and --runs cannot be combined: --quick sets --runs" --quick --runs 2
+    check "--quick and --rays cannot be combined: --quick sets --rays" --rays 8 --quick
+    # A typo in --backends: was exit 1 at run time ('metal'), or skipped with a warning ('gl,metal').
+    check "--backends: unknown backend 'metal' (expected gl, vulkan, cpu, cpu-double or auto)" --backends metal
+    check "--backends: unknown backend 'metal' (expected gl, vulkan, cpu, cpu-double or auto)" --backends gl,metal
+    check "--backends: an empty name in 'gl,'" --backends gl,
     ;;
   sao-viewer)
     check "--z-level expects a whole number in [0, 15], got '16'" --z-level 16
@@ -54,8 +62,19 @@ case $name in
     check "--view expects a whole number in [0, 1000], got 'one'" --view one
     check "--screenshot needs --frames N" --screenshot x.png
     check "--scene needs a value, got an empty string" --scene ""
+    check "--screenshot 'x.txt': sao-viewer writes a PNG file there, so its name must end in .png" --frames 1 --screenshot x.txt
+    check "--overwrite has no effect without --screenshot" --frames 1 --overwrite
     check "unknown preset 'nope'" --preset nope
     check "setting 'radius' = 1000 is outside its range" --preset high --set radius=1000
+    # Options that would have no effect: a backend's flag on the other backend, a --set setting
+    # the final settings make inert (gen::kInertRules; a preset's own values never count).
+    check "--validation has no effect with --backend gl: it adds the Vulkan validation layer" --validation
+    check "--validation has no effect with --backend gl" --backend vulkan --backend gl --validation
+    check "--standard-depth has no effect with --backend vulkan: it turns off the GL viewer's glClipControl" --backend vulkan --standard-depth
+    check "--set fade_start has no effect while fade_end = 0 (no distance fade" --set fade_start=2
+    check "--set temporal_hysteresis has no effect while temporal = false" --set temporal_hysteresis=0.5
+    check "--set blur_stride has no effect while blur_radius = 0 (no bilateral blur" --preset low --set blur_stride=2
+    check "--set half_intermediates has no effect while blur_radius = 0, resolution_divisor = 1 and temporal = false" --preset ultra --set blur_radius=0 --set half_intermediates=false
     ;;
   sao-gl-timing)
     # Were std::atoi: 'x' ran 5 runs, -1 a guard band of 4294967295, 3 runs silently 5.

@@ -137,6 +137,15 @@ check 1 "not an OpenEXR" --depth text.exr
 check 1 "not an OpenEXR" --depth empty.exr
 check 1 "corrupt header" --depth truncated.exr
 check 1 "not a regular file" --depth fifo.exr
+# A --set setting that the final settings make inert (gen::kInertRules), after the preset, every
+# --set and --resolution-divisor; refused before anything is rendered.
+check 2 "--set fade_start has no effect while fade_end = 0 (no distance fade" --scene crease --set fade_start=2
+check 2 "also set fade_end > 0, or drop fade_start" --scene crease --set fade_end=4 --set fade_start=2 --set fade_end=0
+check 2 "--set temporal_depth_tolerance has no effect while temporal = false" --scene crease --set temporal_depth_tolerance=0.1
+check 2 "--set blur_stride has no effect while blur_radius = 0 (no bilateral blur" --scene crease --preset low --set blur_stride=2
+check 2 "--set blur_edge_sharpness has no effect while blur_radius = 0" --scene crease --set blur_edge_sharpness=5 --set blur_radius=0
+check 2 "--set mip_switch_log2 has no effect while use_z_hierarchy = false" --scene crease --set use_z_hierarchy=false --set mip_switch_log2=2
+check 2 "--set half_intermediates has no effect while blur_radius = 0, resolution_divisor = 1 and temporal = false" --scene crease --set blur_radius=0 --set half_intermediates=false --resolution-divisor 1
 
 # --help is no error: usage on stdout, exit 0, nothing on stderr.
 "$render" --help >stdout.txt 2>stderr.txt

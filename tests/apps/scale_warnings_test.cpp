@@ -1,5 +1,6 @@
 // The scale warnings of the sample programs (sao/samples/scale_warnings.h): each of the three, the
-// figures behind them, and no warning for a scene at the right scale or without geometry.
+// figures behind them, no warning for a scene at the right scale, and only the no-geometry one
+// without geometry.
 #include <bit>
 #include <cmath>
 #include <numbers>
@@ -109,7 +110,9 @@ TEST(ScaleWarnings, SkyOnlyAndSkyPixelsAreLeftOut) {
   ScaleCheck c;
   ASSERT_TRUE(checkScale(Settings{}, camera(1.0), linearDepth([](auto, auto) { return 0.0; }), aoWith(1.0f), c));
   EXPECT_EQ(c.geometryPixels, 0u);
-  EXPECT_TRUE(c.warnings.empty());
+  // No geometry is said (depth_convention.h), never the scale.
+  ASSERT_EQ(c.warnings.size(), 1u);
+  EXPECT_EQ(c.warnings[0].rfind("no geometry: every one of the 3072 depth texels is sky", 0), 0u) << c.warnings[0];
   // Sky at 5 km (r' would be far below 1 px) beside a wall at 5 m: only the wall counts.
   ASSERT_TRUE(checkScale(Settings{}, camera(1.0),
                          linearDepth([](std::uint32_t x, auto) { return x < 8 ? -5.0 : (x % 2 ? 0.0 : NAN); }),

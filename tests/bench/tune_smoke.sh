@@ -63,6 +63,7 @@ cmp -s "$out/t/tune_presets.txt" "$out/presets.first" || die "the second run wro
 
 # Interrupted after 20 rows: the rerun evaluates the other 15 only.
 mkdir -p "$out/cut"
+cp "$out/t/sao-bench-outputs.txt" "$out/cut/"  # written before the first row: the folder is the tune's
 head -21 "$out/tune.csv.first" >"$out/cut/tune.csv"
 tune "$out/cut"
 grep -q ', 20 in .*, 15 to evaluate$' "$out/stderr" || die "resume after 20 rows: $(grep 'to evaluate' "$out/stderr")"
@@ -70,6 +71,7 @@ grep -q ', 20 in .*, 15 to evaluate$' "$out/stderr" || die "resume after 20 rows
 
 # Another header (another scene set) is refused, naming the file.
 mkdir -p "$out/bad"
+cp "$out/t/sao-bench-outputs.txt" "$out/bad/"
 echo "kind,name,something,else" >"$out/bad/tune.csv"
 if "$bench" --tune --quick --backends cpu --out "$out/bad" >/dev/null 2>"$out/stderr"; then die "a mismatching header was accepted"; fi
 grep -q 'tune.csv was written by another tune (its header differs' "$out/stderr" || die "unclear header error: $(cat "$out/stderr")"

@@ -118,3 +118,24 @@ TEST(MiniGlue, EmbeddedBlobsArePresent) {
     }
   EXPECT_TRUE(gen::glslSource(999).empty());
 }
+
+TEST(MiniGlue, InertRulesHoldOnTheirSetting) {
+  // `#pragma sao inert strength when=enabled==false` and `taps when=strength==0` (a float setting).
+  ASSERT_EQ(gen::kInertRules.size(), 2u);
+  const auto& strength = gen::kInertRules[0];
+  const auto& taps = gen::kInertRules[1];
+  EXPECT_EQ(strength.setting, gen::SettingId::strength);
+  EXPECT_EQ(strength.whenText, "enabled = false");
+  EXPECT_EQ(strength.fixText, "enabled = true");
+  EXPECT_EQ(strength.reason, "the plain path has no strength");
+  EXPECT_EQ(taps.setting, gen::SettingId::taps);
+  EXPECT_EQ(taps.whenText, "strength = 0");
+  EXPECT_EQ(taps.fixText, "strength > 0");  // 0 is the range's minimum: the only way out is up
+  gen::Settings s;
+  EXPECT_FALSE(gen::holds(strength.when, s));
+  EXPECT_FALSE(gen::holds(taps.when, s));
+  s.enabled = false;
+  s.strength = 0.0f;
+  EXPECT_TRUE(gen::holds(strength.when, s));
+  EXPECT_TRUE(gen::holds(taps.when, s));
+}

@@ -6,7 +6,10 @@
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfMultiPartOutputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfOutputPart.h>
+#include <ImfPartType.h>
 #include <ImfTiledOutputFile.h>
 
 #include <cmath>
@@ -58,7 +61,8 @@ int main(int argc, char** argv) {
     const char* name;
     Imf::Compression c;
   } codecs[] = {{"none", Imf::NO_COMPRESSION}, {"rle", Imf::RLE_COMPRESSION}, {"zips", Imf::ZIPS_COMPRESSION},
-                {"piz", Imf::PIZ_COMPRESSION}, {"pxr24", Imf::PXR24_COMPRESSION}, {"b44", Imf::B44_COMPRESSION}};
+                {"piz", Imf::PIZ_COMPRESSION}, {"pxr24", Imf::PXR24_COMPRESSION}, {"b44", Imf::B44_COMPRESSION},
+                {"dwaa", Imf::DWAA_COMPRESSION}, {"dwab", Imf::DWAB_COMPRESSION}};
   for (const auto& codec : codecs) {
     Imf::Header h(4, 3);
     h.compression() = codec.c;
@@ -79,6 +83,48 @@ int main(int argc, char** argv) {
     fb.insert("Z", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(z.data()), sizeof(float), sizeof(float) * 5));
     out.setFrameBuffer(fb);
     out.writeTiles(0, out.numXTiles() - 1, 0, out.numYTiles() - 1);
+  }
+  // DWA with data that compresses (4x3 above is stored raw): 16x16, a lossy "Y" and a lossless "Z".
+  for (const auto& [name, c] : {std::pair{"dwaa", Imf::DWAA_COMPRESSION}, std::pair{"dwab", Imf::DWAB_COMPRESSION}}) {
+    Imf::Header h(16, 16);
+    h.compression() = c;
+    h.channels().insert("Y", Imf::Channel(Imf::HALF));
+    h.channels().insert("Z", Imf::Channel(Imf::FLOAT));
+    std::vector<half> y(256);
+    std::vector<float> z(256);
+    for (int i = 0; i < 256; ++i) {
+      y[std::size_t(i)] = half(std::sin(float(i) * 0.1f));
+      z[std::size_t(i)] = float(i % 16) * 0.05f;
+    }
+    Imf::OutputFile out((dir + "/foreign_yz_" + name + ".exr").c_str(), h);
+    Imf::FrameBuffer fb;
+    fb.insert("Y", Imf::Slice(Imf::HALF, reinterpret_cast<char*>(y.data()), sizeof(half), sizeof(half) * 16));
+    fb.insert("Z", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(z.data()), sizeof(float), sizeof(float) * 16));
+    out.setFrameBuffer(fb);
+    out.writePixels(16);
+  }
+  {
+    // Two parts, the depth ("depth.Z") in the second; the first's data window cropped inside its
+    // display window.
+    Imf::Header beauty(Imath::Box2i({0, 0}, {3, 2}), Imath::Box2i({1, 1}, {2, 2}));
+    beauty.channels().insert("R", Imf::Channel(Imf::HALF));
+    beauty.setName("beauty");
+    beauty.setType(Imf::SCANLINEIMAGE);
+    Imf::Header depth(4, 3);
+    depth.channels().insert("depth.Z", Imf::Channel(Imf::HALF));
+    depth.setName("depth");
+    depth.setType(Imf::SCANLINEIMAGE);
+    const Imf::Header headers[] = {beauty, depth};
+    Imf::MultiPartOutputFile out((dir + "/foreign_two_parts.exr").c_str(), headers, 2);
+    for (int p = 0; p < 2; ++p) {
+      Imf::OutputPart part(out, p);
+      Imf::FrameBuffer fb;
+      const int w = p == 0 ? 2 : 4, x0 = p == 0 ? 1 : 0, y0 = p == 0 ? 1 : 0;
+      char* base = reinterpret_cast<char*>(px.data()) - (x0 + y0 * w) * int(sizeof(half));
+      fb.insert(p == 0 ? "R" : "depth.Z", Imf::Slice(Imf::HALF, base, sizeof(half), sizeof(half) * std::size_t(w)));
+      part.setFrameBuffer(fb);
+      part.writePixels(p == 0 ? 2 : 3);
+    }
   }
   std::printf("seeds written to %s (%d failures)\n", dir.c_str(), failures);
   return failures ? 1 : 0;

@@ -176,6 +176,11 @@ void CommandLine::parse(int argc, char** argv) {
   if (!extra.empty())
     fail(extra.front().starts_with("-") ? "unknown option " + quoted(extra.front())
                                         : "unexpected argument " + quoted(extra.front()) + " (options start with --)");
+  try {
+    for (const auto& check : checks_) check();
+  } catch (const CLI::ParseError& e) {
+    fail(e.what());
+  }
 }
 
 std::set<std::string> CommandLine::givenNames() const {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <memory>
 #include <optional>
 
 namespace sao::cli {
@@ -65,9 +66,17 @@ void addSettings(CommandLine& cl, Settings& settings, const std::string& setHelp
            [&settings](const std::string& v) { settings = presetSettings(presetOrReject(v)); });
   // validate() checks each setting on its own, so a valid state after every assignment is a
   // valid final one.
-  cl.value("--set", "NAME=VALUE", setHelp, [&settings](const std::string& v) {
+  auto given = std::make_shared<std::vector<SettingId>>();  // the settings --set named, in order
+  cl.value("--set", "NAME=VALUE", setHelp, [&settings, given](const std::string& v) {
     if (Status s = setFromAssignment(settings, v); !s) reject(s.message);
     if (Status s = validate(settings); !s) reject(s.message);
+    given->push_back(*findSetting(v.substr(0, v.find('='))));
+  });
+  // A setting given that the final settings (the preset's and every --set, and what a program's
+  // own options set after them) make inert is refused; a preset's values never are.
+  cl.check([&settings, given] {
+    for (SettingId id : *given)
+      if (const gen::InertRule* rule = inertRule(settings, id)) reject("--set " + describeInert(*rule));
   });
 }
 

@@ -1,5 +1,6 @@
 // checkDepthValues: a depth image from a file is refused when its texels are not what its format
 // can hold, with the count, the first bad texel and the likely cause (sao/image.h).
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdio>
@@ -16,9 +17,20 @@ std::string number(double v) {
   return text;
 }
 
+// How far outside [0, 1] a value is taken for noise rather than another convention: a camera-space
+// z or a distance in metres is rarely within a millimetre of 0 or 1 everywhere.
+constexpr float kNoise = 1e-3f;
+
+std::string brief(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
+}
+
 struct BadTexels {
   std::size_t nan = 0, positiveInf = 0, negativeInf = 0, below = 0, above = 0;
   std::size_t first = 0;
+  float lowest = 0, highest = 1;  // of the finite values below 0 and above 1
   std::size_t count() const { return nan + positiveInf + negativeInf + below + above; }
 };
 
@@ -39,6 +51,16 @@ std::string kinds(const BadTexels& b) {
 std::string likelyCause(const BadTexels& b) {
   const std::string linearZ = "store it as LinearZ (camera-space z, negative in front of the camera; sao.depthFormat "
                               "\"LinearZ\", see sao/io.h)";
+  // Noise, not a convention: a lossy compression (B44 on HALF gives -6e-6) or filtering moves a
+  // sky or near plane of 0 (or a far plane of 1) by far less than any camera-space z.
+  if (b.below && !b.above && !b.nan && !b.negativeInf && b.lowest >= -kNoise)
+    return "values just below 0 (the lowest " + brief(b.lowest) + ") are noise around a depth of 0 (the sky of "
+           "reversed-Z), as a lossy compression (B44, DWA) or filtering leaves, not linear z: store the depth "
+           "losslessly (ZIP, PIZ or none) or clamp it to [0, 1]";
+  if (b.above && !b.below && !b.nan && !b.positiveInf && b.highest <= 1 + kNoise)
+    return "values just above 1 (the highest " + brief(b.highest) + ") are noise around a depth of 1 (the sky of "
+           "standard depth), as a lossy compression (B44, DWA) or filtering leaves, not linear depth: store the "
+           "depth losslessly (ZIP, PIZ or none) or clamp it to [0, 1]";
   if (b.above && !b.below && !b.nan)
     return "values above 1 look like linear depth (a distance in view units, e.g. metres), not hardware depth in "
            "[0, 1]: " + linearZ;
@@ -76,8 +98,13 @@ Status checkDepthValues(const DepthImage& depth) {
       else if (linear) continue;  // every other linear z is geometry (z < 0) or sky
       else if (v == INFINITY) note(bad.positiveInf, i);
       else if (v == -INFINITY) note(bad.negativeInf, i);
-      else if (v < 0) note(bad.below, i);  // -0.0 == 0 is not below
-      else if (v > 1) note(bad.above, i);
+      else if (v < 0) {  // -0.0 == 0 is not below
+        note(bad.below, i);
+        bad.lowest = std::min(bad.lowest, v);
+      } else if (v > 1) {
+        note(bad.above, i);
+        bad.highest = std::max(bad.highest, v);
+      }
     }
   }
   if (bad.count() == 0) return Status::success();

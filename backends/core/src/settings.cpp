@@ -152,4 +152,16 @@ Status setFromAssignment(Settings& settings, std::string_view assignment) {
   return setFromText(settings, assignment.substr(0, eq), assignment.substr(eq + 1));
 }
 
+const gen::InertRule* inertRule(const Settings& settings, SettingId id) {
+  for (const gen::InertRule& rule : gen::kInertRules)
+    if (rule.setting == id && gen::holds(rule.when, settings)) return &rule;
+  return nullptr;
+}
+
+std::string describeInert(const gen::InertRule& rule) {
+  const std::string name(gen::kSettings[static_cast<size_t>(rule.setting)].name);
+  return name + " has no effect while " + std::string(rule.whenText) + " (" + std::string(rule.reason) +
+         "): also set " + std::string(rule.fixText) + ", or drop " + name;
+}
+
 }  // namespace sao

@@ -10,6 +10,11 @@
 
 namespace sao::io::detail {
 
+// The camera's attributes besides sao.version (sao/io.h), in sorted order.
+inline constexpr const char* kCameraAttributes[] = {
+    "sao.clipDepth", "sao.depthFormat", "sao.flipY", "sao.guardBand", "sao.height", "sao.infiniteFar",
+    "sao.kind", "sao.metersToViewUnits", "sao.projection", "sao.reversedZ", "sao.width"};
+
 // For a file that has sao.version: every attribute present, of the right type, finite and in range.
 // IoError for a missing, mistyped or out-of-range attribute; UnsupportedFormat for an unknown
 // version, kind, clip-depth or format string. `camera` and `format` may be partly written on error.

@@ -14,4 +14,16 @@ Status checkChannel(const std::string& path, const exr::ChannelInfo& c);
 // "B, G, R" (or "none"), for messages about the file's channels.
 std::string channelList(const std::vector<exr::ChannelInfo>& channels);
 
+// Whether a channel name names depth: "Z", or "<layer>.Z" whose layer's last name is "depth" in
+// any case ("depth.Z", Blender's "ViewLayer.Depth.Z"; not "ViewLayer.Normal.Z", "Vector.Z").
+bool isDepthChannelName(const std::string& name);
+
+// The depth channel of a file (sao/io.h): the one depth-named channel among every part's, or the
+// file's only channel. IoError listing every part's channels when there is none or several.
+struct DepthChannel {
+  int part = 0;
+  std::string name;
+};
+Status findDepthChannel(const std::string& path, const std::vector<exr::PartInfo>& parts, DepthChannel& out);
+
 }  // namespace sao::io::detail

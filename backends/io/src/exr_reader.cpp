@@ -8,6 +8,7 @@
 #include <fstream>
 #include <new>
 
+#include "exr_dwa.h"
 #include "sao/io.h"
 #include "sao/plan.h"
 
@@ -112,88 +113,150 @@ Status Input::open(const std::string& path) {
   // The core library reports some problems and reads on with a guess of its own: any report fails.
   if (started != EXR_ERR_SUCCESS || !tCore.firstError.empty()) return fail("corrupt header: " + coreProblem(started));
 
-  int parts = 0;
+  int count = 0;
+  if (exr_get_count(context_, &count) != EXR_ERR_SUCCESS || count < 1)
+    return fail("corrupt header: " + coreProblem(EXR_ERR_MISSING_REQ_ATTR));
+  std::error_code ec;
+  fileSize_ = fs::file_size(path, ec);
+  if (ec) return fail("cannot read its size: " + ec.message());
+  // Every chunk has an 8-byte entry in an offset table, so the file must hold 8 bytes a chunk of
+  // every part: a small file cannot declare a large image (checked before any table is read).
+  std::uint64_t tableBytes = 0;
+  parts_.clear();
+  for (int p = 0; p < count; ++p) {
+    int32_t chunks = 0;
+    const exr_attr_chlist_t* list = nullptr;
+    exr_attr_box2i_t window{};
+    if (exr_get_chunk_count(context_, p, &chunks) != EXR_ERR_SUCCESS ||
+        exr_get_data_window(context_, p, &window) != EXR_ERR_SUCCESS ||
+        exr_get_channels(context_, p, &list) != EXR_ERR_SUCCESS || !list)
+      return fail("corrupt header: " + coreProblem(EXR_ERR_MISSING_REQ_ATTR));
+    const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
+    const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
+    if (width > kMaxImageSide || height > kMaxImageSide)
+      return fail((count > 1 ? "part " + std::to_string(p) + "'s " : std::string()) + "data window is " +
+                  std::to_string(width) + "x" + std::to_string(height) + "; the largest side read is " +
+                  std::to_string(kMaxImageSide));
+    tableBytes += std::uint64_t(std::max(chunks, 0)) * 8;
+    if (chunks <= 0 || tableBytes > fileSize_) {
+      return fail("is truncated or corrupt: " + std::string(count > 1 ? "part " + std::to_string(p) + "'s " : "its ") +
+                  std::to_string(width) + "x" + std::to_string(height) + " data window needs " +
+                  std::to_string(chunks) + " chunks, whose offset table alone (" +
+                  std::to_string(std::uint64_t(std::max(chunks, 0)) * 8) + " bytes" +
+                  (count > 1 ? ", with the other parts' " + std::to_string(tableBytes) : std::string()) +
+                  ") exceeds the file's " + std::to_string(fileSize_) + " bytes");
+    }
+    PartInfo info;
+    const char* name = nullptr;
+    if (exr_get_name(context_, p, &name) == EXR_ERR_SUCCESS && name) info.name = name;
+    for (int c = 0; c < list->num_channels; ++c) {
+      const exr_attr_chlist_entry_t& e = list->entries[c];
+      info.channels.push_back({std::string(e.name.str, std::size_t(std::max(e.name.length, 0))), int(e.pixel_type),
+                               e.x_sampling, e.y_sampling, e.p_linear != 0});
+    }
+    parts_.push_back(std::move(info));
+  }
+  // The first part that can be read (a multi-part file may start with a deep one); the reader of
+  // a depth file selects the part of its depth channel.
+  Status first = selectPart(0);
+  for (int p = 1; !first && p < count; ++p)
+    if (selectPart(p)) return Status::success();
+  return first;
+}
+
+Status Input::selectPart(int part) {
+  if (part < 0 || part >= int(parts_.size())) return fail("has no part " + std::to_string(part));
+  const std::string which = parts_.size() > 1 ? "part " + std::to_string(part) + "'s " : "";
   exr_storage_t storage = EXR_STORAGE_LAST_TYPE;
-  exr_attr_box2i_t window{};
-  int32_t chunks = 0;
-  const exr_attr_chlist_t* list = nullptr;
-  if (exr_get_count(context_, &parts) != EXR_ERR_SUCCESS || parts < 1 ||
-      exr_get_storage(context_, 0, &storage) != EXR_ERR_SUCCESS ||
-      exr_get_data_window(context_, 0, &window) != EXR_ERR_SUCCESS ||
-      exr_get_chunk_count(context_, 0, &chunks) != EXR_ERR_SUCCESS ||
-      exr_get_channels(context_, 0, &list) != EXR_ERR_SUCCESS || !list)
+  exr_attr_box2i_t window{}, display{};
+  exr_compression_t compression = EXR_COMPRESSION_NONE;
+  if (exr_get_storage(context_, part, &storage) != EXR_ERR_SUCCESS ||
+      exr_get_data_window(context_, part, &window) != EXR_ERR_SUCCESS ||
+      exr_get_display_window(context_, part, &display) != EXR_ERR_SUCCESS ||
+      exr_get_compression(context_, part, &compression) != EXR_ERR_SUCCESS)
     return fail("corrupt header: " + coreProblem(EXR_ERR_MISSING_REQ_ATTR));
   if (storage == EXR_STORAGE_DEEP_SCANLINE || storage == EXR_STORAGE_DEEP_TILED)
-    return Status::error(StatusCode::UnsupportedFormat, path + ": holds deep data; only flat images are read");
+    return Status::error(StatusCode::UnsupportedFormat,
+                         path_ + ": " + (parts_.size() > 1 ? "part " + std::to_string(part) + " holds" : "holds") +
+                             " deep data; only flat images are read");
 
   const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
   const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
-  if (width <= 0 || height <= 0) return fail("empty data window");
+  if (width <= 0 || height <= 0) return fail(which.empty() ? "empty data window" : which + "data window is empty");
   if (width > kMaxImageSide || height > kMaxImageSide)
-    return fail("data window is " + std::to_string(width) + "x" + std::to_string(height) +
+    return fail(which + "data window is " + std::to_string(width) + "x" + std::to_string(height) +
                 "; the largest side read is " + std::to_string(kMaxImageSide));
-  if (storage == EXR_STORAGE_TILED) {
+  std::uint32_t chunkWidth = 0, chunkLines = 0;
+  const bool tiled = storage == EXR_STORAGE_TILED;
+  if (tiled) {
     uint32_t tileX = 0, tileY = 0;
     exr_tile_level_mode_t levels{};
     exr_tile_round_mode_t round{};
-    if (exr_get_tile_descriptor(context_, 0, &tileX, &tileY, &levels, &round) != EXR_ERR_SUCCESS)
+    if (exr_get_tile_descriptor(context_, part, &tileX, &tileY, &levels, &round) != EXR_ERR_SUCCESS)
       return fail("corrupt header: " + coreProblem(EXR_ERR_MISSING_REQ_ATTR));
     if (tileX == 0 || tileY == 0 || tileX > kMaxImageSide || tileY > kMaxImageSide)
       return fail("tiles are " + std::to_string(tileX) + "x" + std::to_string(tileY) + "; the largest side read is " +
                   std::to_string(kMaxImageSide));
-    tiled_ = true;
-    chunkWidth_ = std::min<std::uint32_t>(tileX, std::uint32_t(width));
-    chunkLines_ = std::min<std::uint32_t>(tileY, std::uint32_t(height));
+    chunkWidth = std::min<std::uint32_t>(tileX, std::uint32_t(width));
+    chunkLines = std::min<std::uint32_t>(tileY, std::uint32_t(height));
   } else {
     int32_t lines = 0;
-    if (exr_get_scanlines_per_chunk(context_, 0, &lines) != EXR_ERR_SUCCESS || lines <= 0)
+    if (exr_get_scanlines_per_chunk(context_, part, &lines) != EXR_ERR_SUCCESS || lines <= 0)
       return fail("corrupt header: " + coreProblem(EXR_ERR_MISSING_REQ_ATTR));
-    chunkWidth_ = std::uint32_t(width);
-    chunkLines_ = std::uint32_t(std::min<std::int64_t>(lines, height));
+    chunkWidth = std::uint32_t(width);
+    chunkLines = std::uint32_t(std::min<std::int64_t>(lines, height));
   }
 
-  // Every chunk has an 8-byte entry in the offset table, so the file must hold chunks * 8 bytes:
-  // a small file cannot declare a large image (checked before the table is read).
-  std::error_code ec;
-  const std::uintmax_t fileSize = fs::file_size(path, ec);
-  if (ec) return fail("cannot read its size: " + ec.message());
-  if (chunks <= 0 || std::uint64_t(chunks) * 8 > fileSize)
-    return fail("is truncated or corrupt: its " + std::to_string(width) + "x" + std::to_string(height) +
-                " data window needs " + std::to_string(chunks) + " chunks, whose offset table alone (" +
-                std::to_string(std::uint64_t(std::max(chunks, 0)) * 8) + " bytes) exceeds the file's " +
-                std::to_string(fileSize) + " bytes");
-
   if (std::uint64_t(width) * std::uint64_t(height) > kMaxExrPixels)
-    return fail("data window is " + std::to_string(width) + "x" + std::to_string(height) + " = " +
+    return fail(which + "data window is " + std::to_string(width) + "x" + std::to_string(height) + " = " +
                 std::to_string(width * height) + " pixels; the most read is " + std::to_string(kMaxExrPixels));
 
   std::uint64_t pixelBytes = 0;  // all channels of one pixel, as stored
-  channels_.clear();
-  for (int c = 0; c < list->num_channels; ++c) {
-    const exr_attr_chlist_entry_t& e = list->entries[c];
-    pixelBytes += e.pixel_type == EXR_PIXEL_HALF ? 2 : 4;
-    channels_.push_back({std::string(e.name.str, std::size_t(std::max(e.name.length, 0))), int(e.pixel_type),
-                         e.x_sampling, e.y_sampling});
-  }
-  const std::uint64_t chunkBytes = std::uint64_t(chunkWidth_) * chunkLines_ * pixelBytes;
+  for (const ChannelInfo& c : parts_[std::size_t(part)].channels) pixelBytes += c.pixelType == EXR_PIXEL_HALF ? 2 : 4;
+  const std::uint64_t chunkBytes = std::uint64_t(chunkWidth) * chunkLines * pixelBytes;
   if (chunkBytes > kMaxChunkBytes)
     return fail("one chunk would decode to " + std::to_string(chunkBytes) + " bytes (" + std::to_string(pixelBytes) +
                 " bytes a pixel); the largest read is " + std::to_string(kMaxChunkBytes >> 20) + " MiB");
 
+  part_ = part;
+  tiled_ = tiled;
+  chunkWidth_ = chunkWidth;
+  chunkLines_ = chunkLines;
+  compression_ = int(compression);
   minX_ = window.min.x;
   minY_ = window.min.y;
+  dataWindow_ = {window.min.x, window.min.y, window.max.x, window.max.y};
+  displayWindow_ = {display.min.x, display.min.y, display.max.x, display.max.y};
   extent_ = {std::uint32_t(width), std::uint32_t(height)};
   return Status::success();
 }
 
+const char* Input::compressionName() const {
+  switch (compression_) {
+    case EXR_COMPRESSION_NONE: return "NONE";
+    case EXR_COMPRESSION_RLE: return "RLE";
+    case EXR_COMPRESSION_ZIPS: return "ZIPS";
+    case EXR_COMPRESSION_ZIP: return "ZIP";
+    case EXR_COMPRESSION_PIZ: return "PIZ";
+    case EXR_COMPRESSION_PXR24: return "PXR24";
+    case EXR_COMPRESSION_B44: return "B44";
+    case EXR_COMPRESSION_B44A: return "B44A";
+    case EXR_COMPRESSION_DWAA: return "DWAA";
+    case EXR_COMPRESSION_DWAB: return "DWAB";
+    default: return "unknown";
+  }
+}
+
+bool Input::isDwa() const { return compression_ == EXR_COMPRESSION_DWAA || compression_ == EXR_COMPRESSION_DWAB; }
+
 bool Input::hasAttribute(const char* name) const {
   const exr_attribute_t* a = nullptr;
-  return exr_get_attribute_by_name(context_, 0, name, &a) == EXR_ERR_SUCCESS && a;
+  return exr_get_attribute_by_name(context_, part_, name, &a) == EXR_ERR_SUCCESS && a;
 }
 
 Status Input::lookup(const char* name, int type, const char* typeName, bool& found, const exr_attribute_t*& out) const {
   out = nullptr;
-  found = exr_get_attribute_by_name(context_, 0, name, &out) == EXR_ERR_SUCCESS && out;
+  found = exr_get_attribute_by_name(context_, part_, name, &out) == EXR_ERR_SUCCESS && out;
   if (!found) return Status::success();
   if (out->type != type)
     return fail(std::string("attribute ") + name + " is of type " + attributeTypeName(*out) + ", expected " + typeName);
@@ -223,7 +286,15 @@ Status Input::stringAttribute(const char* name, bool& found, std::string& value)
 
 Status Input::matrixAttribute(const char* name, bool& found, double (&value)[16]) const {
   const exr_attribute_t* a = nullptr;
-  if (Status s = lookup(name, EXR_ATTR_M44D, "m44d", found, a); !s || !found) return s;
+  found = exr_get_attribute_by_name(context_, part_, name, &a) == EXR_ERR_SUCCESS && a;
+  if (!found) return Status::success();
+  // m44f is what OpenImageIO and Python's OpenEXR write for a matrix; each float widens exactly.
+  if (a->type == EXR_ATTR_M44F) {
+    std::copy_n(a->m44f->m, 16, value);
+    return Status::success();
+  }
+  if (a->type != EXR_ATTR_M44D)
+    return fail(std::string("attribute ") + name + " is of type " + attributeTypeName(*a) + ", expected m44d or m44f");
   std::copy_n(a->m44d->m, 16, value);
   return Status::success();
 }
@@ -239,13 +310,42 @@ Status Input::stringVectorAttribute(const char* name, bool& found, std::vector<s
   return Status::success();
 }
 
+Status Input::decodeDwa(const exr_chunk_info_t& chunk, const std::vector<int>& fileIndex, std::vector<float>& planar,
+                        std::size_t y0, std::size_t rows) const {
+  const std::string where = "the chunk of rows " + std::to_string(y0) + ".." + std::to_string(y0 + rows - 1);
+  if (tiled_)
+    return Status::error(StatusCode::UnsupportedFormat,
+                         path_ + ": is tiled and " + compressionName() +
+                             "-compressed, which is not read; save it as scanlines (or with ZIP or PIZ)");
+  // The core library located the chunk inside the file; its size is checked here before the
+  // buffer is made, as the core library's decoder would.
+  if (chunk.packed_size > kMaxChunkBytes || chunk.packed_size > fileSize_ || chunk.unpacked_size > kMaxChunkBytes)
+    return fail("is corrupt: " + where + " declares " + std::to_string(chunk.packed_size) + " bytes");
+  DwaChunk dwa;
+  dwa.compression = compression_;
+  dwa.channels = channels();
+  dwa.minX = dataWindow_.minX;
+  dwa.maxX = dataWindow_.maxX;
+  dwa.minY = chunk.start_y;
+  dwa.lines = chunk.height;
+  dwa.packed.resize(chunk.packed_size);
+  tCore.firstError.clear();
+  if (const exr_result_t r = exr_read_chunk(context_, part_, &chunk, dwa.packed.data()); r != EXR_ERR_SUCCESS)
+    return fail("is truncated or corrupt: " + where + " cannot be read: " + coreProblem(r));
+  std::string problem;
+  if (!decodeDwaChunk(dwa, fileIndex, planar, problem))
+    return fail("is truncated or corrupt: " + where + " does not decode (" + compressionName() + "): " + problem);
+  return Status::success();
+}
+
 Status Input::readChannels(const std::vector<std::string>& names, std::vector<float>& data) const {
   const std::size_t w = extent_.width, h = extent_.height, n = names.size();
   std::vector<int> fileIndex;  // per requested channel, its index among the file's channels
   for (const std::string& name : names) {
-    const auto it = std::find_if(channels_.begin(), channels_.end(), [&](const ChannelInfo& c) { return c.name == name; });
-    if (it == channels_.end()) return fail("has no channel \"" + name + "\"");
-    fileIndex.push_back(int(it - channels_.begin()));
+    const std::vector<ChannelInfo>& list = channels();
+    const auto it = std::find_if(list.begin(), list.end(), [&](const ChannelInfo& c) { return c.name == name; });
+    if (it == list.end()) return fail("has no channel \"" + name + "\"");
+    fileIndex.push_back(int(it - list.begin()));
   }
 
   exr_decode_pipeline_t decoder = EXR_DECODE_PIPELINE_INITIALIZER;
@@ -270,8 +370,8 @@ Status Input::readChannels(const std::vector<std::string>& names, std::vector<fl
       tCore.firstError.clear();
       exr_chunk_info_t chunk{};
       const exr_result_t found =
-          tiled_ ? exr_read_tile_chunk_info(context_, 0, int(x0 / chunkWidth_), int(y0 / chunkLines_), 0, 0, &chunk)
-                 : exr_read_scanline_chunk_info(context_, 0, minY_ + int(y0), &chunk);
+          tiled_ ? exr_read_tile_chunk_info(context_, part_, int(x0 / chunkWidth_), int(y0 / chunkLines_), 0, 0, &chunk)
+                 : exr_read_scanline_chunk_info(context_, part_, minY_ + int(y0), &chunk);
       if (found != EXR_ERR_SUCCESS)
         return fail("is truncated or corrupt: the chunk of rows " + std::to_string(y0) + ".." +
                     std::to_string(y0 + rows - 1) + " cannot be located: " + coreProblem(found));
@@ -280,8 +380,16 @@ Status Input::readChannels(const std::vector<std::string>& names, std::vector<fl
         return fail("is corrupt: the chunk of rows " + std::to_string(y0) + ".." + std::to_string(y0 + rows - 1) +
                     " is " + std::to_string(chunk.width) + "x" + std::to_string(chunk.height) + ", expected " +
                     std::to_string(cw) + "x" + std::to_string(rows));
-      const exr_result_t initialised = decoderReady ? exr_decoding_update(context_, 0, &chunk, &decoder)
-                                                    : exr_decoding_initialize(context_, 0, &chunk, &decoder);
+      if (isDwa()) {
+        if (Status s = decodeDwa(chunk, fileIndex, planar, y0, rows); !s) return s;
+        for (std::size_t k = 0; k < n; ++k)
+          for (std::size_t y = 0; y < rows; ++y)
+            for (std::size_t x = 0; x < cw; ++x)
+              band[(y * w + x0 + x) * n + k] = planar[k * cw * rows + y * cw + x];
+        continue;
+      }
+      const exr_result_t initialised = decoderReady ? exr_decoding_update(context_, part_, &chunk, &decoder)
+                                                    : exr_decoding_initialize(context_, part_, &chunk, &decoder);
       decoderReady = true;  // destroyed even after a failed initialisation, which may have allocated
       if (initialised != EXR_ERR_SUCCESS) return fail("cannot decode: " + coreProblem(initialised));
       planar.assign(cw * rows * n, 0.0f);
@@ -294,8 +402,8 @@ Status Input::readChannels(const std::vector<std::string>& names, std::vector<fl
         ch.user_pixel_stride = 4;
         ch.user_line_stride = int32_t(4 * cw);
       }
-      exr_result_t r = exr_decoding_choose_default_routines(context_, 0, &decoder);
-      if (r == EXR_ERR_SUCCESS) r = exr_decoding_run(context_, 0, &decoder);
+      exr_result_t r = exr_decoding_choose_default_routines(context_, part_, &decoder);
+      if (r == EXR_ERR_SUCCESS) r = exr_decoding_run(context_, part_, &decoder);
       if (r != EXR_ERR_SUCCESS)
         return fail("is truncated or corrupt: the chunk of rows " + std::to_string(y0) + ".." +
                     std::to_string(y0 + rows - 1) + " does not decode: " + coreProblem(r));

@@ -30,6 +30,12 @@ Status createBackend(std::string_view name, std::unique_ptr<BackendRunner>& out)
     out = makeCpuRunner(false);
     return Status::success();
   }
+  return checkBackendName(name);
+}
+
+Status checkBackendName(std::string_view name) {
+  for (std::string_view known : {"gl", "vulkan", "cpu", "cpu-double", "auto"})
+    if (name == known) return Status::success();
   return Status::error(StatusCode::InvalidInput,
                        "unknown backend '" + std::string(name) + "' (expected gl, vulkan, cpu, cpu-double or auto)");
 }

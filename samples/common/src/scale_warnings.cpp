@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "sao/constants.h"
+#include "sao/samples/depth_convention.h"
 
 namespace sao::samples {
 
@@ -44,6 +45,7 @@ Status checkScale(const Settings& settings, const Camera& camera, const DepthIma
       ao.data.size() != std::size_t(ao.extent.width) * ao.extent.height)
     return Status::error(StatusCode::InvalidInput, "scale check: the depth and AO images do not match the camera");
 
+  const std::vector<std::string> convention = depthConventionWarnings(depth, camera, settings);
   ScaleCheck c;
   std::vector<double> radiusPx;
   double aoSum = 0;
@@ -70,6 +72,11 @@ Status checkScale(const Settings& settings, const Camera& camera, const DepthIma
     c.fractionBelowOnePx = below / n;
     c.fractionAboveImage = above / n;
     c.aoMean = aoSum / n;
+  }
+  c.warnings = convention;  // first: they name the cause
+  // A buffer read with the wrong convention explains the figures below: its warning says what to do.
+  if (c.geometryPixels > 0 && convention.empty()) {
+    const double n = double(c.geometryPixels);
     const std::string radius = format("the radius (%g m = %g scene units)", settings.radius, block.radius);
     const std::string where = format("(median %.3g px over %.0f geometry pixels)", c.radiusPxMedian, n);
     if (2 * below > c.geometryPixels)

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,9 +43,27 @@ struct ForwardReference {
   std::int64_t index;  // 0-based
 };
 
+// Text that is not ASCII-compatible (UTF-16 or UTF-32, as Windows editors save "Unicode"): every
+// other byte is NUL, so no statement parses and the file read as empty ("has no triangles").
+// Known by its byte-order mark, or without one by its first character: ASCII beside NUL bytes.
+std::optional<std::string> notAsciiCompatible(std::string_view text) {
+  using namespace std::string_view_literals;
+  const auto starts = [&](std::string_view prefix) { return text.starts_with(prefix); };
+  const auto ascii = [&](std::size_t i) { return i < text.size() && text[i] >= 9 && text[i] < 127; };
+  const auto nul = [&](std::size_t i) { return i < text.size() && text[i] == '\0'; };
+  if (starts("\xFF\xFE\0\0"sv) || starts("\0\0\xFE\xFF"sv)) return "UTF-32 text (it starts with a UTF-32 byte-order mark)";
+  if (starts("\xFF\xFE"sv) || starts("\xFE\xFF"sv)) return "UTF-16 text (it starts with a UTF-16 byte-order mark)";
+  if ((ascii(0) && nul(1) && nul(2) && nul(3)) || (nul(0) && nul(1) && nul(2) && ascii(3)))
+    return "UTF-32 text (its first character is four bytes, three of them NUL)";
+  if ((ascii(0) && nul(1)) || (nul(0) && ascii(1))) return "UTF-16 text (its first character is two bytes, one NUL)";
+  return std::nullopt;
+}
+
 }  // namespace
 
 Status readObj(std::string_view text, std::string_view name, Mesh& out) {
+  if (const auto encoding = notAsciiCompatible(text))
+    return fileError(StatusCode::InvalidInput, name, "is " + *encoding + ": save it as UTF-8 or ASCII text");
   Mesh mesh;
   std::vector<ForwardReference> forward;
   std::vector<std::uint32_t> polygon;

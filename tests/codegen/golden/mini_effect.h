@@ -224,7 +224,7 @@ struct PassVariantInfo {
   std::string_view fileStem;
 };
 enum class Compare : std::uint8_t { Eq, Ne, Lt, Le, Gt, Ge };
-// `setting op value` on an int or bool setting; never holds when not active.
+// `setting op value` on a setting (pass rules: int or bool); never holds when not active.
 struct SettingCondition {
   bool active;
   SettingId setting;
@@ -265,5 +265,18 @@ std::string_view glslSource(std::uint32_t blob);        // GLSL 4.30 for OpenGL
 std::span<const std::uint32_t> spirvModule(std::uint32_t blob);  // SPIR-V 1.3 for Vulkan 1.1+
 inline constexpr std::size_t kGlslBlobCount = 5;
 inline constexpr std::size_t kSpirvBlobCount = 5;
+
+// ---- Inert settings: `setting` has no effect while `when` holds (its value reaches no pass that runs).
+struct InertRule {
+  SettingId setting;
+  SettingCondition when;
+  std::string_view whenText;  // `when` in words, a derived setting's terms spelled out
+  std::string_view fixText;   // what makes `when` false
+  std::string_view reason;    // why the setting has no effect then
+};
+inline constexpr std::array<InertRule, 2> kInertRules = {{
+  {SettingId::strength, {true, SettingId::enabled, Compare::Eq, 0.0}, "enabled = false", "enabled = true", "the plain path has no strength"},
+  {SettingId::taps, {true, SettingId::strength, Compare::Eq, 0.0}, "strength = 0", "strength > 0", "no strength, nothing to tap"},
+}};
 
 }  // namespace sao::gen

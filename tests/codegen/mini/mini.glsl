@@ -1,7 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // A small effect for the codegen's golden tests: three passes (one skipped for a single tap, its
-// reader then aliased), two variants selected by a setting and an input, an exclusion, two presets.
+// reader then aliased), two variants selected by a setting and an input, an exclusion, two presets,
+// two inert rules (one on a float setting).
 #pragma sao effect mini version=2
 #pragma sao setting float strength default=0.5 range=[0,2] unit=m "How strong"
 #pragma sao setting int taps default=4 range=[1,16] "Taps per pixel"
@@ -15,6 +16,8 @@
 #pragma sao resource mid kind=image format=r32f mips=auto "Intermediate chain"
 #pragma sao resource smooth kind=image format=r32f "Smoothed intermediate"
 #pragma sao resource dst kind=output format=r16f "Result"
+#pragma sao inert strength when=enabled==false "the plain path has no strength"
+#pragma sao inert taps when=strength==0 "no strength, nothing to tap"
 #pragma sao preset fast taps=1 enabled=false "One tap, plain path"
 #pragma sao preset best taps=16 strength=1.5 "All taps, stronger"
 

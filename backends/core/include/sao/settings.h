@@ -2,6 +2,7 @@
 // header adds validation (no silent clamping), an explicit clamp for UIs, and text parsing.
 #pragma once
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "sao/status.h"
@@ -36,5 +37,14 @@ Status setFromText(Settings& settings, std::string_view name, std::string_view v
 
 // "name=value" as the CLI's --set takes it.
 Status setFromAssignment(Settings& settings, std::string_view assignment);
+
+// A setting that has no effect under `settings`: the effect's first rule (`#pragma sao inert` in
+// effect/sao.glsl, gen::kInertRules) under which setting `id`'s value reaches no pass that runs,
+// or null when it has an effect. Programs refuse a setting the user gave that has none.
+const gen::InertRule* inertRule(const Settings& settings, SettingId id);
+
+// "fade_start has no effect while fade_end = 0 (no distance fade: ...): also set fade_end > 0, or
+// drop fade_start": the rule, its reason and the fix, for a setting the user gave.
+std::string describeInert(const gen::InertRule& rule);
 
 }  // namespace sao

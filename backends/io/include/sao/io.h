@@ -55,9 +55,23 @@ Status writeDepthExr(const std::string& path, const DepthImage& depth, const Cam
 
 // Reads a file written by writeDepthExr (hasCamera = true, depth and camera as written, texels
 // bit-identical), or any flat EXR without a sao.version attribute whose depth channel is FLOAT or
-// HALF (hasCamera = false, camera left untouched, depth read as D32F). The depth channel is "Z"
-// when present, otherwise the file's only channel; several channels without a "Z" are rejected.
-// A file with sao.version must carry every attribute above with the right type.
+// HALF (hasCamera = false, camera left untouched, depth read as D32F), as other tools write them:
+//  - The depth channel, in any part of a multi-part file, is the one channel named "Z" or
+//    "<layer>.Z" whose layer's last name is depth, any case ("depth.Z", Blender's
+//    "ViewLayer.Depth.Z"; not "ViewLayer.Normal.Z"), or else the file's only channel. None or
+//    several: IoError listing every part's channels.
+//  - Any compression OpenEXR writes, DWAA and DWAB included. A lossy one (B44, B44A, DWAA, DWAB,
+//    PXR24) leaves noise: hardware-depth texels at most kLossyDepthNoise outside [0, 1] are read
+//    as 0 or 1 (counted in DepthFileInfo); farther ones stay and are refused downstream.
+//  - The image is the display window. A data window inside it (a crop) is placed where it lies;
+//    the texels around it hold no surface (EXR: nothing outside the data window), so they are
+//    sky: the clear value of the file's camera (0 reversed-Z, else 1; LinearZ +0), or
+//    DepthReadOptions::skyWithoutCamera. At most kMaxExrPixels, and at most kMaxCropFillPixels
+//    more than the data window (a small file cannot make a large image). A data window that
+//    reaches outside the display window is refused naming both, unless it has the display
+//    window's size (an offset origin: read as the image, as before).
+// A file with sao.version must carry every attribute above with the right type; sao.projection
+// may also be m44f (what OpenImageIO and Python write).
 // Errors: IoError for missing files, directories and other non-regular files (FIFOs, devices),
 // files that are not EXR, truncated or corrupt files, wrong channel counts, missing or mistyped
 // attributes, non-finite camera values, an extent that contradicts width/height/guardBand, data
@@ -69,6 +83,37 @@ Status writeDepthExr(const std::string& path, const DepthImage& depth, const Cam
 // headers are parsed by OpenEXR's core library within a fixed memory budget, and the image grows
 // as its chunks decode.
 Status readDepthExr(const std::string& path, DepthImage& depth, Camera& camera, bool& hasCamera);
+
+// How far outside [0, 1] a hardware-depth texel of a lossily compressed file may lie and still be
+// read as 0 or 1: four binary16 steps just below 1 (2^-9). B44 on a HALF sky of 0 gives -6e-6.
+inline constexpr float kLossyDepthNoise = 1.0f / 512.0f;
+// Most texels of the display window a crop may leave to be filled (32 MiB of D32F).
+inline constexpr std::uint64_t kMaxCropFillPixels = std::uint64_t(1) << 23;
+
+struct DepthReadOptions {
+  // The texel value around a cropped data window of a file without a camera: its sky (1 for
+  // standard depth, 0 for reversed-Z, +inf for distances). Ignored for files with a camera.
+  float skyWithoutCamera = 1.0f;
+};
+
+// What readDepthExr learnt of the file besides the depth and the camera, for messages.
+struct DepthFileInfo {
+  bool hasCamera = false;
+  std::uint32_t part = 0, parts = 1;  // the part read, of how many
+  std::string channel;                // the depth channel's name
+  bool storedAsHalf = false;          // binary16 in the file: about 3 significant digits
+  std::string compression;            // "ZIP", "B44", "DWAA", ...
+  bool lossy = false;                 // B44, B44A, DWAA, DWAB or PXR24
+  std::uint64_t lossyNoiseTexels = 0; // texels moved into [0, 1] (see kLossyDepthNoise)
+  float lossyNoiseWorst = 0;          // the farthest of them, as stored (e.g. -6e-6)
+  std::uint64_t cropFillTexels = 0;   // texels outside the data window, filled with sky
+  std::vector<std::string> saoAttributes;  // camera attributes (sao.kind, ...) of a file without sao.version
+};
+
+// readDepthExr with what it learnt of the file and the sky around a crop (see above). The
+// overload above is this one with default options.
+Status readDepthExr(const std::string& path, DepthImage& depth, Camera& camera, DepthFileInfo& info,
+                    const DepthReadOptions& options = {});
 
 // Writes one channel of `ao` as an 8-bit grey PNG, value round(clamp(v, 0, 1) * 255), image row
 // height-1 first (the top of the screen, see above): the first PNG pixel is ao.at(0, height-1).

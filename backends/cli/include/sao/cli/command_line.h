@@ -9,6 +9,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "sao/plan.h"
 
@@ -69,6 +70,10 @@ class CommandLine {
     });
   }
 
+  // A check across options, run by parse() after every option's own (in the order added): it
+  // sees the final values and calls reject() to refuse them.
+  void check(std::function<void()> check) { checks_.push_back(std::move(check)); }
+
   // Parses argv and runs every option's check. --help prints the help on stdout and exits 0; a
   // bad option prints one line on stderr and exits 2.
   void parse(int argc, char** argv);
@@ -80,6 +85,7 @@ class CommandLine {
  private:
   std::string tool_;
   std::unique_ptr<CLI::App> app_;
+  std::vector<std::function<void()>> checks_;
 };
 
 }  // namespace sao::cli

@@ -43,6 +43,7 @@
 #include "sao/camera.h"
 #include "sao/output.h"
 #include "sao/plan.h"
+#include "sao/presets.h"  // presetSettings(): what every integration starts from
 #include "sao/settings.h"
 #include "sao/status.h"
 #include "sao/timing.h"

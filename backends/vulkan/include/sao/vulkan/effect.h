@@ -74,6 +74,7 @@
 #include "sao/image.h"
 #include "sao/output.h"
 #include "sao/plan.h"
+#include "sao/presets.h"  // presetSettings(): what every integration starts from
 #include "sao/settings.h"
 #include "sao/status.h"
 #include "sao/timing.h"

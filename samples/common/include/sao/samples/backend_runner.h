@@ -54,6 +54,10 @@ class BackendRunner {
 // into this program give a clear error.
 Status createBackend(std::string_view name, std::unique_ptr<BackendRunner>& out);
 
+// InvalidInput for a name createBackend does not know (the message lists the ones it does), so a
+// typo in a list of backends is refused with the options, not skipped at run time.
+Status checkBackendName(std::string_view name);
+
 // Whether `name` is compiled into this program ("cpu" and "cpu-double" always are; "gl" and
 // "vulkan" only when their backend was built). Lets a caller tell "not built" from "failed to
 // start", which createBackend reports alike (DriverError).

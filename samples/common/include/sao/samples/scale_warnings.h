@@ -22,7 +22,10 @@ struct ScaleCheck {
   std::vector<std::string> warnings;  // one line each, without a program prefix
 };
 
-// The warnings, each when it holds on geometry pixels (none without geometry):
+// The warnings: first depthConventionWarnings(depth, camera, settings) (depth_convention.h: no
+// geometry at all, a buffer that looks read with the wrong convention), and only when there are
+// none, since a wrong convention explains the figures, each of these when it holds on geometry
+// pixels:
 //   - r' below 1 px on more than half of them (the effect then returns 1: nothing to see);
 //   - r' above the image's larger side on more than half of them;
 //   - the AO exactly 1.0 on every one of them.
