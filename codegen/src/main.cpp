@@ -18,9 +18,11 @@ namespace {
 using namespace sao::codegen;
 
 constexpr const char* kUsage =
-    "usage: sao-shaderc <effect.glsl> -o <dir> [--depfile <file>]\n"
+    "usage: sao-shaderc <effect.glsl> -o <dir> [--depfile <file>] [--overwrite]\n"
     "  Writes <name>_effect.h, <name>_effect.cpp (C++ glue with embedded shaders), and for every\n"
-    "  pass and variant <stem>.glsl (GLSL 4.30, OpenGL) and <stem>.spv (SPIR-V 1.3, Vulkan 1.1).\n";
+    "  pass and variant <stem>.glsl (GLSL 4.30, OpenGL) and <stem>.spv (SPIR-V 1.3, Vulkan 1.1), and\n"
+    "  lists them in <dir>/sao-shaderc-outputs.txt. A file of the same name that sao-shaderc did not\n"
+    "  write (not listed there) is replaced only with --overwrite; an input never.\n";
 
 std::string spirvBytes(const std::vector<uint32_t>& words) {
   std::string out(words.size() * 4, '\0');
@@ -50,9 +52,11 @@ int fail(const Diagnostics& diags) {
 
 int main(int argc, char** argv) {
   std::string input, outDir, depfile;
+  WriteRules rules;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if ((a == "-o" || a == "--depfile") && i + 1 < argc) (a == "-o" ? outDir : depfile) = argv[++i];
+    else if (a == "--overwrite") rules.overwrite = true;
     else if (a == "-h" || a == "--help") {
       std::fputs(kUsage, stdout);
       return 0;
@@ -129,7 +133,8 @@ int main(int argc, char** argv) {
   }
   outputs.add(effect.name + "_passes.txt", manifest);
   for (const auto& d : diags.all()) std::fprintf(stderr, "%s\n", d.format().c_str());  // warnings
-  if (const std::string err = outputs.commit(outDir); !err.empty()) {
+  rules.inputs = source.files;
+  if (const std::string err = outputs.commit(outDir, rules); !err.empty()) {
     std::fprintf(stderr, "sao-shaderc: error: %s\n", err.c_str());
     return 1;
   }
@@ -138,7 +143,8 @@ int main(int argc, char** argv) {
     OutputSet dep;
     const std::filesystem::path depPath(depfile);
     dep.add(depPath.filename().string(), makeDepfile((std::filesystem::path(outDir) / headerName).string(), source.files));
-    if (const std::string err = dep.commit(depPath.parent_path().empty() ? "." : depPath.parent_path().string()); !err.empty()) {
+    const std::string depDir = depPath.parent_path().empty() ? "." : depPath.parent_path().string();
+    if (const std::string err = dep.commit(depDir, rules); !err.empty()) {
       std::fprintf(stderr, "sao-shaderc: error: %s\n", err.c_str());
       return 1;
     }

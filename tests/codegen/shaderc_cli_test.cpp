@@ -136,6 +136,46 @@ TEST(Shaderc, DepfileListsEveryIncludedFile) {
   fs::remove_all(out);
 }
 
+// The writers' rule (docs/ROBUSTNESS.md, "Files of the user's"): a file of an output's name that
+// sao-shaderc did not write is refused without --overwrite and left as it was, nothing else is
+// written; its own earlier outputs (listed in sao-shaderc-outputs.txt) are replaced.
+TEST(Shaderc, ReplacesNoFileItDidNotWriteWithoutOverwrite) {
+  const fs::path out = freshDir("users_file");
+  fs::create_directories(out);
+  std::ofstream(out / "mini_effect.h") << "the user's notes\n";
+  const std::string command = "'" + kShaderc + "' mini/mini.glsl -o '" + out.string() + "'";
+  const auto refused = runCommand(command, kTestsDir);
+  EXPECT_EQ(refused.exitCode, 1);
+  EXPECT_EQ(refused.err, "sao-shaderc: error: '" + (out / "mini_effect.h").string() +
+                             "' exists and sao-shaderc did not write it (sao-shaderc-outputs.txt there does not list "
+                             "it): move it, choose another -o folder, or give --overwrite to replace it\n");
+  EXPECT_EQ(readTree(out), (std::map<std::string, std::string>{{"mini_effect.h", "the user's notes\n"}}));
+  ASSERT_EQ(runCommand(command + " --overwrite", kTestsDir).exitCode, 0);
+  EXPECT_NE(readFile((out / "mini_effect.h").string()), "the user's notes\n");
+  const std::string listed = readFile((out / "sao-shaderc-outputs.txt").string());
+  EXPECT_NE(listed.find("mini_effect.h\n"), std::string::npos) << listed;
+  EXPECT_NE(listed.find("smoothing.spv\n"), std::string::npos) << listed;
+  const auto again = runCommand(command, kTestsDir);  // its own outputs: replaced without a flag
+  EXPECT_EQ(again.exitCode, 0) << again.err;
+  fs::remove_all(out);
+}
+
+TEST(Shaderc, NeverWritesOntoItsInput) {
+  // An effect file named like one of its outputs (smoothing.glsl), compiled into its own folder.
+  const fs::path dir = freshDir("input");
+  fs::create_directories(dir / "include");
+  fs::copy_file(kTestsDir + "/mini/mini.glsl", dir / "smoothing.glsl");
+  fs::copy(kTestsDir + "/mini/include", dir / "include", fs::copy_options::recursive);
+  const std::string before = readFile((dir / "smoothing.glsl").string());
+  const auto r = runCommand("'" + kShaderc + "' smoothing.glsl -o . --overwrite", dir.string());
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.err, "sao-shaderc: error: './smoothing.glsl' is the input 'smoothing.glsl': an input is never written "
+                   "onto, --overwrite or not\n");
+  EXPECT_EQ(readFile((dir / "smoothing.glsl").string()), before);
+  EXPECT_FALSE(fs::exists(dir / "mini_effect.h"));
+  fs::remove_all(dir);
+}
+
 TEST(Shaderc, BadCommandLinesFailWithUsage) {
   EXPECT_EQ(runCommand("'" + kShaderc + "'").exitCode, 2);
   EXPECT_EQ(runCommand("'" + kShaderc + "' mini/mini.glsl", kTestsDir).exitCode, 2);
