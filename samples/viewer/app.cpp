@@ -392,6 +392,9 @@ int App::run() {
       std::this_thread::sleep_until(frameStart + std::chrono::milliseconds(options_.minFrameMs));
   }
   std::printf("sao-viewer: %u frames; effect: %s\n", frames, stats_.effect.ok() ? "ok" : stats_.effect.message.c_str());
+  if (ui_.showUi && ui_.panelShown && ui_.topSectionsEndY >= 0)
+    std::printf("sao-viewer: panel: the timings and the plan end at y %.0f of %.0f\n", ui_.topSectionsEndY,
+                ui_.displayHeight);
   if (stats_.timings.method != TimingMethod::None)
     std::printf("sao-viewer: last frame %.3f ms in the effect (%s)\n", stats_.timings.totalMilliseconds(),
                 toString(stats_.timings.method));

@@ -206,6 +206,8 @@ void drawPanel(UiState& s, const PanelInfo& info, CameraController& camera) {
     timingSection(s, *info.stats);
   if (info.stats && info.stats->effect.ok() && ImGui::CollapsingHeader("Plan", ImGuiTreeNodeFlags_DefaultOpen))
     planSection(*info.stats, info.fullBytes);
+  s.topSectionsEndY = ImGui::GetCursorScreenPos().y;
+  s.displayHeight = display.y;
   const bool enteredError = s.mode == ViewMode::Error && s.panelMode != ViewMode::Error;
   s.panelMode = s.mode;
   if (ImGui::BeginTabBar("sections")) {

@@ -31,6 +31,9 @@ struct UiState {
   bool panelShown = false;
   double panelX0 = 0, panelX1 = 0;
   ViewMode panelMode = ViewMode::Lit;  // the mode the panel last saw (opens the reference tab)
+  // Where the timings and the plan end this frame, and the window's height (pixels, y down; -1: the
+  // panel was not drawn): they must be readable without scrolling (sao-viewer prints both at exit).
+  float topSectionsEndY = -1, displayHeight = 0;
   // Requests, cleared by the app once handled.
   bool sceneChanged = false, resetCamera = false, computeReference = false, screenshot = false;
 };
