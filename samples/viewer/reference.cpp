@@ -11,11 +11,16 @@ void Reference::setScene(const scenes::Scene* scene) {
   mask_.clear();
 }
 
-Status Reference::compute(const scenes::View& view, const Camera& camera, double radius, std::uint32_t rays) {
+// The ray scene of the current scene, built once per scene (setScene forgets it).
+Status Reference::ensureRayScene() {
   if (!scene_) return Status::error(StatusCode::InvalidInput, "no scene to trace");
+  if (rays_scene_) return Status::success();
+  return raytrace::RayScene::create(scene_->mesh, rays_scene_);
+}
+
+Status Reference::compute(const scenes::View& view, const Camera& camera, double radius, std::uint32_t rays) {
   const auto t0 = std::chrono::steady_clock::now();
-  if (!rays_scene_)
-    if (Status s = raytrace::RayScene::create(scene_->mesh, rays_scene_); !s) return s;
+  if (Status s = ensureRayScene(); !s) return s;
   raytrace::Primary primary;
   if (Status s = raytrace::castPrimary(*rays_scene_, view, camera, DepthFormat::D32F, primary); !s) return s;
   raytrace::ReferenceOptions options;
@@ -36,9 +41,7 @@ Status Reference::compute(const scenes::View& view, const Camera& camera, double
 }
 
 Status Reference::castDepth(const scenes::View& view, const Camera& camera, DepthImage& out) {
-  if (!scene_) return Status::error(StatusCode::InvalidInput, "no scene to trace");
-  if (!rays_scene_)
-    if (Status s = raytrace::RayScene::create(scene_->mesh, rays_scene_); !s) return s;
+  if (Status s = ensureRayScene(); !s) return s;
   raytrace::Primary primary;
   if (Status s = raytrace::castPrimary(*rays_scene_, view, camera, DepthFormat::D32F, primary); !s) return s;
   out = std::move(primary.depth);

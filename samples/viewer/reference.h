@@ -31,6 +31,7 @@ class Reference {
   samples::ReferenceComparison compare(const FloatImage& ao) const;
 
  private:
+  Status ensureRayScene();
   const scenes::Scene* scene_ = nullptr;
   std::unique_ptr<raytrace::RayScene> rays_scene_;
   FloatImage image_;
