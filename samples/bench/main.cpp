@@ -104,6 +104,7 @@ struct Options {
   bool convergedNoise = false;  // --converged-noise
   bool ortho = false;           // --ortho: every scene's view made orthographic
   bool timeOnly = false;        // --time-only: no references, so no error columns
+  std::string objective = "c";  // --objective: the reference --tune minimises the error against
   std::optional<scenes::LengthUnit> units;  // --units
   std::vector<std::string> scenes;          // --scenes; empty: benchScenes(quick)
 };
@@ -190,6 +191,11 @@ Options parse(int argc, char** argv) {
           "resolution_divisor for the lowest error vs (c) per time, relative to the medium preset, over the built-in "
           "scenes, and choose presets on that front (tune.csv, resumable; tune_front.csv/.svg, tune_presets.txt). Uses "
           "the first of --backends that starts (default gl), --size default 640x360, --runs, --converged-taps, --quick");
+  cl.choice("--objective", o.objective,
+            [](const std::string& v) { return v == "c" || v == "a" ? std::optional(v) : std::nullopt; }, "c or a", "R",
+            "with --tune: the reference whose error the front and the presets minimise: c (default), the converged "
+            "estimator (what the knobs trade); a, ray-traced near-field AO (what users see, model error included), with "
+            "--rays rays per pixel (default 1024 here; --quick: 16). Blotch and silhouette stay against (c)");
   cl.flag(samples::kOverwriteOption, o.overwrite, samples::kOverwriteHelp);
   cl.parse(argc, argv);
   o.sizeGiven = cl.given("--size");
@@ -199,13 +205,17 @@ Options parse(int argc, char** argv) {
         cl.fail(std::string("--quick and ") + option + " cannot be combined: --quick sets " + option +
                 " (--size 160x90, --runs 3, --rays 16); drop one of them");
   if (o.tune) {
-    if (cl.given("--sections") || cl.given("--converged-noise") || cl.given("--rays") || cl.given("--ortho") ||
-        cl.given("--scenes") || cl.given("--time-only") || cl.given("--warmup-ms"))
-      cl.fail("--tune takes --out, --backends, --size, --runs, --converged-taps, --depth-source, --units, --quick and "
-              "--overwrite only");
+    if (cl.given("--sections") || cl.given("--converged-noise") || cl.given("--ortho") || cl.given("--scenes") ||
+        cl.given("--time-only") || cl.given("--warmup-ms"))
+      cl.fail("--tune takes --out, --backends, --size, --runs, --converged-taps, --objective, --rays (with --objective "
+              "a), --depth-source, --units, --quick and --overwrite only");
+    if (cl.given("--rays") && o.objective != "a")
+      cl.fail("--tune: --rays sets reference (a)'s rays, which only --objective a uses; add --objective a or drop --rays");
+    if (o.objective == "a" && !cl.given("--rays")) o.rays = 1024;
     if (!cl.given("--backends")) o.backends = "gl";
     if (!cl.given("--size")) o.size = {640, 360};
   }
+  if (cl.given("--objective") && !o.tune) cl.fail("--objective chooses what --tune minimises: add --tune, or drop it");
   if (o.timeOnly) {
     if (cl.given("--rays") || cl.given("--converged-taps") || cl.given("--converged-noise"))
       cl.fail("--time-only computes no references: --rays, --converged-taps and --converged-noise do not apply");
@@ -310,7 +320,8 @@ int main(int argc, char** argv) {
   for (const std::string& scene : o.scenes) rules.addInput("--scenes", scene);
   if (o.tune) {
     if (Status s = samples::prepareFolderInPlace(o.out, "--out", rules, bench::kTuneFiles); !s) refuseOutput(s);
-    return bench::runTune({o.out, o.backends, o.depthSource, o.units, o.size, o.runs, o.convergedTaps, o.quick});
+    return bench::runTune({o.out, o.backends, o.depthSource, o.units, o.size, o.runs, o.convergedTaps,
+                           o.objective == "a" ? o.rays : 0, o.quick});
   }
   if (Status s = samples::OutputFolder::stage(o.out, "--out", rules, g_output); !s) refuseOutput(s);
   const std::string out = g_output->stagingPath().string();  // every file of the run goes in here

@@ -81,7 +81,7 @@ int runTune(const TuneOptions& o) {
   const std::vector<std::string> sceneNames = benchScenes(o.quick);
   TuneCsv csv;
   const std::string csvPath = (fs::path(o.out) / "tune.csv").string();
-  if (Status s = csv.open(csvPath, sceneNames); !s) fail("--tune: " + s.message);
+  if (Status s = csv.open(csvPath, sceneNames, o.objectiveRays); !s) fail("--tune: " + s.message);
 
   // The untuned rows first (the untuned medium is the time unit), today's presets, the baseline,
   // then the grid with the untuned medium again after every kAnchorEvery points and at the end (the anchors).
@@ -97,7 +97,8 @@ int runTune(const TuneOptions& o) {
   auto templateRow = [&](const Candidate& c) {
     TuneRow r;
     r.kind = c.kind, r.name = c.name, r.backend = backendName, r.depth = o.depthSource, r.inputs = inputsName(c.extra);
-    r.size = o.size, r.convergedTaps = o.convergedTaps, r.settings = c.settings, r.runs = o.runs;
+    r.size = o.size, r.convergedTaps = o.convergedTaps, r.objectiveRays = o.objectiveRays, r.settings = c.settings;
+    r.runs = o.runs;
     return r;
   };
   std::vector<const Candidate*> todo;
@@ -129,12 +130,23 @@ int runTune(const TuneOptions& o) {
       }
       References refs;
       refs.converged = &converged.ao, refs.mask = &p.mask, refs.silhouette = &p.silhouette;
+      if (o.objectiveRays) {
+        const bool freshAo = !p.references.count(c.settings.radius);
+        const auto aoStart = std::chrono::steady_clock::now();
+        refs.nearFieldAo = &nearFieldReference(p, c.settings.radius, o.objectiveRays);
+        if (freshAo) {
+          const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - aoStart).count();
+          referenceSeconds += seconds;
+          std::fprintf(stderr, "\r\033[Ksao-bench: reference (a) for %s, %u rays: %.1f s\n", scene.c_str(),
+                       o.objectiveRays, seconds);
+        }
+      }
       Measurement m;
       if (Status s = measure(*backend, c.settings, p.camera, runInputs(p, c.extra), int(o.runs), refs, m); !s)
         fail("--tune: " + label(c) + " on " + scene + ": " + s.message);
       SceneFigures g;
       g.ms = m.totalMs;
-      g.rmse = m.convergedError->raw.rmse;
+      g.rmse = o.objectiveRays ? m.aoError->raw.rmse : m.convergedError->raw.rmse;
       g.blotch = m.convergedStructure->blotchRmse;
       g.highFrequency = m.convergedStructure->highFrequencyRmse;
       g.silhouette = m.convergedStructure->silhouetteRmse;
@@ -148,6 +160,7 @@ int runTune(const TuneOptions& o) {
   // Everything below comes from tune.csv's rows, whether measured now or read back.
   TuneResult r;
   r.scenes = sceneNames, r.backend = backendName, r.depth = o.depthSource, r.size = o.size;
+  r.objective = o.objectiveRays ? "a" : "c";
   std::vector<const TuneRow*> rows;
   for (const Candidate& c : candidates) rows.push_back(csv.find(templateRow(c).key()));
   r.medium = rows[anchors.front()];
@@ -188,9 +201,10 @@ int runTune(const TuneOptions& o) {
   const std::vector<std::string> files = writeTuneOutputs(o.out, r);
 
   std::printf("sao-bench --tune: %s, %ux%u, %zu scenes, %zu candidates (%zu evaluated now in %s, the rest read from "
-              "tune.csv), reference (c) with %u taps\n",
+              "tune.csv), reference (c) with %u taps%s\n",
               backend->description().c_str(), o.size.width, o.size.height, sceneNames.size(), candidates.size(), todo.size(),
-              duration(wall).c_str(), o.convergedTaps);
+              duration(wall).c_str(), o.convergedTaps,
+              o.objectiveRays ? (", the error vs reference (a) with " + std::to_string(o.objectiveRays) + " rays").c_str() : "");
   for (const TunePoint& p : r.grid)
     if (p.row->settings == r.medium->settings)  // the grid's copy of medium, timed against the anchors around it
       std::printf("the grid's copy of the untuned medium: %.3gx (1 but for noise)\n", p.timeX);

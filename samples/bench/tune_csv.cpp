@@ -12,14 +12,16 @@
 namespace sao::bench {
 namespace {
 
-const char* const kSceneColumns[] = {"ms", "rmse_vs_c", "blotch", "highfreq", "silhouette"};
-
-std::string header(const std::vector<std::string>& scenes) {
+// With the objective (a), the header gains a_rays and names the error column rmse_vs_a: a file of
+// one objective is refused by a tune of the other.
+std::string header(const std::vector<std::string>& scenes, std::uint32_t objectiveRays) {
   std::string h = "kind,name,backend,depth,inputs,size,converged_taps";
+  if (objectiveRays) h += ",a_rays";
   for (const std::string& s : kTunedSettings) h += "," + s;
   h += ",runs";
   for (const std::string& scene : scenes)
-    for (const char* c : kSceneColumns) h += "," + scene + "_" + c;
+    for (const std::string c : {"ms", objectiveRays ? "rmse_vs_a" : "rmse_vs_c", "blotch", "highfreq", "silhouette"})
+      h += "," + scene + "_" + c;
   return h;
 }
 
@@ -57,6 +59,7 @@ bool parseWhole(const std::string& text, std::uint32_t& out) {
 std::string TuneRow::key() const {
   std::string k = kind + "," + name + "," + backend + "," + depth + "," + inputs + "," + std::to_string(size.width) + "x" +
                   std::to_string(size.height) + "," + std::to_string(convergedTaps);
+  if (objectiveRays) k += "," + std::to_string(objectiveRays);
   for (const std::string& s : kTunedSettings) k += "," + tunedSettingValue(settings, s);
   return k;
 }
@@ -83,12 +86,13 @@ TuneCsv::~TuneCsv() {
   if (file_) std::fclose(file_);
 }
 
-Status TuneCsv::open(const std::string& path, const std::vector<std::string>& scenes) {
+Status TuneCsv::open(const std::string& path, const std::vector<std::string>& scenes, std::uint32_t objectiveRays) {
   path_ = path;
   scenes_ = scenes;
+  objectiveRays_ = objectiveRays;
   rows_.clear();
   index_.clear();
-  const std::string expected = header(scenes);
+  const std::string expected = header(scenes, objectiveRays);
   std::ifstream in(path);
   bool exists = false;
   if (in) {
@@ -97,8 +101,8 @@ Status TuneCsv::open(const std::string& path, const std::vector<std::string>& sc
       exists = true;
       if (line != expected)
         return Status::error(StatusCode::InvalidInput,
-                             path + " was written by another tune (its header differs: another scene set or an older "
-                                    "format); give another --out or delete it. Expected header:\n  " + expected +
+                             path + " was written by another tune (its header differs: another scene set, another "
+                                    "objective or an older format); give another --out or delete it. Expected header:\n  " + expected +
                                  "\nfound:\n  " + line);
       const std::size_t columns = split(expected).size();
       for (int lineNo = 2; std::getline(in, line); ++lineNo) {
@@ -118,6 +122,7 @@ Status TuneCsv::open(const std::string& path, const std::vector<std::string>& sc
         if (std::sscanf(size.c_str(), "%ux%u%c", &w, &h, &tail) != 2) return bad("bad size '" + size + "'");
         r.size = {w, h};
         if (!parseWhole(f[i++], r.convergedTaps)) return bad("bad converged_taps");
+        if (objectiveRays && (!parseWhole(f[i++], r.objectiveRays) || r.objectiveRays == 0)) return bad("bad a_rays");
         for (const std::string& s : kTunedSettings)
           if (!setTunedSetting(r.settings, s, f[i++])) return bad("bad " + s + " '" + f[i - 1] + "'");
         if (!parseWhole(f[i++], r.runs)) return bad("bad runs");

@@ -18,13 +18,15 @@ namespace sao::bench {
 
 struct SceneFigures {
   double ms = 0;  // median total time of the runs
-  double rmse = 0, blotch = 0, highFrequency = 0, silhouette = 0;  // vs (c); silhouette NaN: no band
+  double rmse = 0;  // vs the objective: (c), or (a) when the row's objectiveRays > 0
+  double blotch = 0, highFrequency = 0, silhouette = 0;  // vs (c); silhouette NaN: no band
 };
 
 struct TuneRow {
   std::string kind, name, backend, depth, inputs;
   Extent size{0, 0};
   std::uint32_t convergedTaps = 0;
+  std::uint32_t objectiveRays = 0;  // 0: rmse is vs (c); else vs (a) with this many rays (column a_rays)
   Settings settings;
   std::uint32_t runs = 0;
   std::vector<SceneFigures> scenes;  // in the header's scene order
@@ -37,9 +39,10 @@ struct TuneRow {
 
 class TuneCsv {
  public:
-  // Reads `path` if it exists (its header must be the one for `scenes`), then keeps it open for
+  // Reads `path` if it exists (its header must be the one for `scenes` and the objective: an
+  // a_rays column and <scene>_rmse_vs_a columns when objectiveRays > 0), then keeps it open for
   // appending; creates it with the header otherwise.
-  Status open(const std::string& path, const std::vector<std::string>& scenes);
+  Status open(const std::string& path, const std::vector<std::string>& scenes, std::uint32_t objectiveRays = 0);
   ~TuneCsv();
   const std::vector<TuneRow>& rows() const { return rows_; }
   const TuneRow* find(const std::string& key) const;
@@ -48,6 +51,7 @@ class TuneCsv {
  private:
   std::string path_;
   std::vector<std::string> scenes_;
+  std::uint32_t objectiveRays_ = 0;
   std::vector<TuneRow> rows_;
   std::map<std::string, std::size_t> index_;  // key -> rows_
   std::FILE* file_ = nullptr;

@@ -34,8 +34,9 @@ void writeFile(const std::string& path, const std::string& text) {
 }
 
 std::string frontCsv(const TuneResult& r) {
-  std::string o = "role,name,time_x_medium,total_ms,mean_rmse_vs_c";
-  for (const char* what : {"rmse_vs_c", "blotch", "silhouette", "ms", "x_medium"})
+  const std::string rmse = "rmse_vs_" + r.objective;
+  std::string o = "role,name,time_x_medium,total_ms,mean_" + rmse;
+  for (const std::string what : {rmse, std::string("blotch"), std::string("silhouette"), std::string("ms"), std::string("x_medium")})
     for (const std::string& s : r.scenes) o += "," + s + "_" + what;
   o += ",inputs";
   for (const std::string& s : kTunedSettings) o += "," + s;
@@ -70,7 +71,7 @@ std::string frontSvg(const TuneResult& r) {
   c.title = "sao-bench --tune: " + r.backend + ", " + std::to_string(r.size.width) + "x" + std::to_string(r.size.height) +
             ", " + std::to_string(r.scenes.size()) + " scenes";
   c.xLabel = "time, x the untuned medium preset (sum over the scenes of the median totals)";
-  c.yLabel = "RMSE vs (c), mean over the scenes";
+  c.yLabel = "RMSE vs (" + r.objective + "), mean over the scenes";
   c.logX = c.logY = true;
   Series all{"candidates (" + std::to_string(r.grid.size()) + ")", {}, {}, false, {}, "#7f7f7f", 0.25};
   for (const TunePoint& p : r.grid) all.x.push_back(p.timeX), all.y.push_back(p.meanRmse);
@@ -99,13 +100,13 @@ std::string presetsText(const TuneResult& r) {
   std::string o = "// Presets chosen by `sao-bench --tune` on " + r.backend + " at " + std::to_string(r.size.width) + "x" +
                   std::to_string(r.size.height) + " over";
   for (const std::string& s : r.scenes) o += " " + s;
-  o += ": each step up is slower and has a lower RMSE vs (c) on every scene. Time x the untuned medium preset,\n"
-       "// RMSE vs (c) mean over the scenes. Ready to paste into effect/sao.glsl; the settings' defaults there are the " +
+  o += ": each step up is slower and has a lower RMSE vs (" + r.objective + ") on every scene. Time x the untuned medium preset,\n"
+       "// RMSE vs (" + r.objective + ") mean over the scenes. Ready to paste into effect/sao.glsl; the settings' defaults there are the " +
        kTuneNames[kDefaultPreset] + " preset's.\n";
   for (std::size_t k = 0; k < r.chain.size(); ++k) {
     const TunePoint& p = r.grid[r.chain[k]];
     o += "// " + r.chainNames[k] + ": budget " + number(r.chainBudgets[k], "%g") + "x, measured " + number(p.timeX, "%.3g") +
-         "x, RMSE vs (c) " + number(p.meanRmse, "%.4f") + "\n";
+         "x, RMSE vs (" + r.objective + ") " + number(p.meanRmse, "%.4f") + "\n";
   }
   for (std::size_t k = 0; k < r.chain.size(); ++k) {
     const Settings& s = r.grid[r.chain[k]].row->settings;
@@ -143,9 +144,9 @@ void printTuneSummary(const TuneResult& r) {
   std::vector<std::pair<std::string, const TunePoint*>> tuned, today;
   for (std::size_t k = 0; k < r.chain.size(); ++k) tuned.emplace_back(r.chainNames[k], &r.grid[r.chain[k]]);
   for (const TunePoint& p : r.references) today.emplace_back(p.row->kind == "baseline" ? "AlchemyAO-style" : p.row->name, &p);
-  std::printf("\nRMSE vs (c) per scene; blotch (low-passed error) and silhouette (within 3 px of a depth edge) RMSE are "
-              "means over the scenes; time is x the untuned medium preset (%.3g ms summed over the scenes).",
-              r.medium->totalMs());
+  std::printf("\nRMSE vs (%s) per scene; blotch (low-passed error) and silhouette (within 3 px of a depth edge) RMSE "
+              "vs (c) are means over the scenes; time is x the untuned medium preset (%.3g ms summed over the scenes).",
+              r.objective.c_str(), r.medium->totalMs());
   printTable(r, "tuned presets (the chain; " + std::to_string(r.front.size()) + " of " + std::to_string(r.grid.size()) +
                     " candidates on the front)", tuned);
   printTable(r, "the untuned medium and defaults, today's presets and the AlchemyAO-style baseline (the untuned medium "
@@ -170,10 +171,10 @@ void printTuneSummary(const TuneResult& r) {
       worstRmse = std::min(worstRmse, lo.scenes[s].rmse / hi.scenes[s].rmse);
     }
     std::printf("\ntargets: %zu presets (>= 5: %s), monotone on every scene by construction; cheapest to most accurate: "
-                "time x%.2f (>= 8: %s; the smallest per scene x%.2f), RMSE vs (c) falls x%.2f (>= 3: %s; the smallest per "
+                "time x%.2f (>= 8: %s; the smallest per scene x%.2f), RMSE vs (%s) falls x%.2f (>= 3: %s; the smallest per "
                 "scene x%.2f: %s)\n",
                 r.chain.size(), r.chain.size() >= 5 ? "met" : "NOT met", timeSpan, timeSpan >= 8 ? "met" : "NOT met", worstTime,
-                rmseSpan, rmseSpan >= 3 ? "met" : "NOT met", worstRmse, worstRmse >= 3 ? "met on every scene" : "not on every scene");
+                r.objective.c_str(), rmseSpan, rmseSpan >= 3 ? "met" : "NOT met", worstRmse, worstRmse >= 3 ? "met on every scene" : "not on every scene");
   } else {
     std::printf("\ntargets: NOT met: no chain of two or more presets steps up on every scene\n");
   }

@@ -14,6 +14,7 @@ struct TuneResult {
   std::vector<std::string> scenes;
   std::string backend, depth;
   Extent size{0, 0};
+  std::string objective = "c";           // the reference the error is measured against: "c" or "a" (TuneOptions)
   const TuneRow* medium = nullptr;       // the untuned medium (tune_grid.h), the time unit
   std::vector<TunePoint> grid;           // every grid candidate
   std::vector<std::size_t> front;        // paretoFront(grid)

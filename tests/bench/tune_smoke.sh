@@ -75,4 +75,28 @@ cp "$out/t/sao-bench-outputs.txt" "$out/bad/"
 echo "kind,name,something,else" >"$out/bad/tune.csv"
 if "$bench" --tune --quick --backends cpu --out "$out/bad" >/dev/null 2>"$out/stderr"; then die "a mismatching header was accepted"; fi
 grep -q 'tune.csv was written by another tune (its header differs' "$out/stderr" || die "unclear header error: $(cat "$out/stderr")"
+# --objective a: the error vs reference (a) (16 rays with --quick), its own header; a tune.csv of
+# the other objective is refused rather than mixed; the options it needs are checked.
+"$bench" --tune --quick --backends cpu --objective a --out "$out/a" >"$out/stdout" 2>"$out/stderr" ||
+  die "--objective a failed: $(tail -3 "$out/stderr")"
+head -1 "$out/a/tune.csv" | grep -q ',converged_taps,a_rays,.*,crease_rmse_vs_a,.*,sphere-plane_rmse_vs_a,' ||
+  die "--objective a: tune.csv header: $(head -1 "$out/a/tune.csv")"
+grep -q '^unit,untuned-medium,cpu,[a-z]*,depth,160x90,4096,16,' "$out/a/tune.csv" || die "--objective a: no a_rays 16 in the rows"
+grep -q 'the error vs reference (a) with 16 rays' "$out/stdout" || die "--objective a: not said: $(head -3 "$out/stdout")"
+head -1 "$out/a/tune_front.csv" | grep -q '^role,name,time_x_medium,total_ms,mean_rmse_vs_a,' || die "--objective a: tune_front.csv header"
+cp "$out/t/tune.csv" "$out/a/tune.csv"
+if "$bench" --tune --quick --backends cpu --objective a --out "$out/a" >/dev/null 2>"$out/stderr"; then die "objective a resumed objective c's tune.csv"; fi
+grep -q 'another objective' "$out/stderr" || die "unclear objective mismatch: $(cat "$out/stderr")"
+set +e
+"$bench" --tune --quick --rays 64 --out "$out/r" >/dev/null 2>"$out/stderr"; rc=$?
+set -e
+[ $rc -eq 2 ] && grep -q -- '--quick and --rays' "$out/stderr" || die "--quick --rays: rc $rc $(cat "$out/stderr")"
+set +e
+"$bench" --tune --rays 64 --out "$out/r" >/dev/null 2>"$out/stderr"; rc=$?
+set -e
+[ $rc -eq 2 ] && grep -q 'only --objective a uses' "$out/stderr" || die "--tune --rays without --objective a: rc $rc $(cat "$out/stderr")"
+set +e
+"$bench" --objective a --out "$out/r" >/dev/null 2>"$out/stderr"; rc=$?
+set -e
+[ $rc -eq 2 ] && grep -q 'add --tune' "$out/stderr" || die "--objective without --tune: rc $rc $(cat "$out/stderr")"
 echo "tune smoke: ok"
