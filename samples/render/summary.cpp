@@ -65,7 +65,9 @@ std::string Summary::text() const {
       << " pixels with geometry:\n";
     auto row = [&](const char* what, const ErrorMetrics& m) {
       s << "  " << what << ": RMSE " << metric(m.rmse) << ", mean bias " << metric(m.meanBias) << ", SSIM "
-        << metric(m.ssim) << ", off by > 0.1: " << metric(m.fractionOver01, 100.0) << " %\n";
+        << metric(m.ssim) << ", off by > 0.1: " << metric(m.fractionOver01, 100.0) << " %; where the reference is 1 ("
+        << m.openPixels << " pixels): mean darkening " << metric(m.openDarkening) << ", below 0.9 "
+        << metric(m.openShareUnder09, 100.0) << " %\n";
     };
     row("raw", metrics->raw);
     s << "  best-fit occlusion scale " << metric(metrics->fittedIntensity)
@@ -127,7 +129,8 @@ std::string Summary::json() const {
     // NaN (undefined) serialises as null.
     auto obj = [](const ErrorMetrics& m) {
       return Json{
-          {"rmse", m.rmse}, {"mean_bias", m.meanBias}, {"ssim", m.ssim}, {"fraction_over_0_1", m.fractionOver01}};
+          {"rmse", m.rmse}, {"mean_bias", m.meanBias}, {"ssim", m.ssim}, {"fraction_over_0_1", m.fractionOver01},
+          {"open_pixels", m.openPixels}, {"open_darkening", m.openDarkening}, {"open_share_under_0_9", m.openShareUnder09}};
     };
     j["reference"] = {{"rays", referenceRays},        {"pixels", metrics->raw.pixels},
                       {"raw", obj(metrics->raw)},      {"fitted_intensity", metrics->fittedIntensity},

@@ -43,6 +43,22 @@ TEST(Metrics, FractionOverThreshold) {
   EXPECT_NEAR(c.raw.meanBias, -0.025, 1e-7);
 }
 
+// Darkening where the reference sees nothing (issue 40: convex edges at 0.83 where (a) is 1).
+TEST(Metrics, DarkeningWhereTheReferenceIsOpen) {
+  FloatImage ref({10, 1}, 1, 1.0f), ao({10, 1}, 1, 1.0f);
+  ref.data[0] = 0.5f, ao.data[0] = 0.2f;  // occluded in the reference: not an open pixel
+  ref.data[1] = 0.999f, ao.data[1] = 0.5f;  // not exactly 1: not open either
+  ao.data[2] = 0.83f;
+  ao.data[3] = 0.95f;
+  const auto c = samples::compareToReference(ao, ref, std::vector<unsigned char>(10, 1));
+  EXPECT_EQ(c.raw.openPixels, 8u);
+  EXPECT_NEAR(c.raw.openDarkening, (0.17 + 0.05) / 8, 1e-7);
+  EXPECT_DOUBLE_EQ(c.raw.openShareUnder09, 1.0 / 8);
+  const auto none = samples::compareToReference(ao, ao, std::vector<unsigned char>(10, 0));
+  EXPECT_EQ(none.raw.openPixels, 0u);
+  EXPECT_TRUE(std::isnan(none.raw.openDarkening));
+}
+
 // Undefined metrics are NaN (printed n/a, JSON null), not a flattering 1.
 TEST(Metrics, UndefinedMetricsAreNaN) {
   FloatImage white({16, 16}, 1, 1.0f), grey({16, 16}, 1, 0.5f);

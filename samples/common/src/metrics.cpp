@@ -11,8 +11,8 @@ ErrorMetrics measure(const FloatImage& ao, const FloatImage& ref, const std::vec
   ErrorMetrics m;
   const Extent e = ao.extent;
   auto value = [&](std::uint32_t x, std::uint32_t y) { return 1.0 - k * (1.0 - double(ao.at(x, y))); };
-  double sq = 0, bias = 0;
-  std::size_t over = 0;
+  double sq = 0, bias = 0, openDark = 0;
+  std::size_t over = 0, openUnder = 0;
   bool aoConstant = true, refConstant = true;  // over the mask
   double aoFirst = 0, refFirst = 0;
   for (std::uint32_t y = 0; y < e.height; ++y)
@@ -25,12 +25,21 @@ ErrorMetrics measure(const FloatImage& ao, const FloatImage& ref, const std::vec
       sq += d * d;
       bias += d;
       over += std::fabs(d) > 0.1;
+      if (ref.at(x, y) == 1.0f) {
+        ++m.openPixels;
+        openDark += 1.0 - value(x, y);
+        openUnder += value(x, y) < 0.9;
+      }
       ++m.pixels;
     }
   if (!m.pixels) return m;
   m.rmse = std::sqrt(sq / m.pixels);
   m.meanBias = bias / m.pixels;
   m.fractionOver01 = double(over) / m.pixels;
+  if (m.openPixels) {
+    m.openDarkening = openDark / double(m.openPixels);
+    m.openShareUnder09 = double(openUnder) / double(m.openPixels);
+  }
   // SSIM (Wang et al. 2004) on 8x8 windows with stride 4, constants for a data range of 1.
   const double c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;
   double ssimSum = 0;

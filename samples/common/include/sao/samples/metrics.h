@@ -22,6 +22,12 @@ struct ErrorMetrics {
   double ssim = NAN;            // mean SSIM over 8x8 windows fully inside the mask (data range 1)
   double fractionOver01 = NAN;  // share of pixels off by more than 0.1
   double flip = NAN;            // mean FLIP over the mask (flip.h: the perceptual difference, 0 = none)
+  // Darkening where nothing occludes: over the pixels whose reference is exactly 1 (every ray of a
+  // ray-traced reference escaped: open planes, convex edges and corners), how many there are, the
+  // mean of 1 - ao, and the share darker than 0.9. Undefined (NaN) without such pixels.
+  std::size_t openPixels = 0;
+  double openDarkening = NAN;
+  double openShareUnder09 = NAN;
 };
 
 struct ReferenceComparison {
