@@ -38,6 +38,7 @@
 #pragma sao setting float temporal_hysteresis default=0.9   range=[0,0.99]                  "Temporal: the history's largest share of a pixel once it holds 1/(1 - h) frames (a running mean up to then, an exponential one after); 0 = this frame only"
 #pragma sao setting float temporal_depth_tolerance default=0.05 range=[0.001,1]             "Temporal: relative z difference |z_history - z| / |z| at which a history texel weighs 0 (linearly down from 1 at 0): the disocclusion test"
 #pragma sao setting float fade_end            default=0.0   range=[0,100000]       unit=m   "Distance fade: camera distance -z from which A = 1, linear in distance from fade_start on; 0 = no fade"
+#pragma sao setting float albedo              default=0.0   range=[0,1]                     "Multi-bounce: the surface albedo rho of Jimenez et al. 2016's fit max(A, ((a A + b) A + c) A), applied to A where the output is written; 0: single bounce, A unchanged (docs/effect-math.md, Multi-bounce)"
 #pragma sao setting bool  half_intermediates  default=true                                  "rg16f (A, key) intermediates (HALF_INTERMEDIATES): ao_raw and ao_low take 4 bytes a texel instead of 8, A and the key z (in about metres) rounded to binary16; false: rg32f (docs/effect-math.md, section 6.5)"
 // Derived settings: bools plan() computes from the settings, for the passes' skip_when= rules.
 #pragma sao derived direct_output when=blur_radius==0&&resolution_divisor==1&&temporal==false "Nothing follows the AO (no blur, full resolution, no history to keep): ao_sample_output writes the output itself, and neither ao_raw nor a copy pass is planned"
@@ -136,7 +137,7 @@
 // ---------------------------------------------------------------------------------------------
 // Parameter block: filled by host code from Settings + Camera + extents (docs/effect-math.md,
 // "Parameter block"). Lengths are camera-space (view) units: metres times metersToViewUnits.
-// std140 offsets in brackets; 368 bytes.
+// std140 offsets in brackets; 384 bytes.
 // ---------------------------------------------------------------------------------------------
 #pragma sao block SaoParams
 layout(std140, binding = 0) uniform SaoParams {
@@ -193,6 +194,10 @@ layout(std140, binding = 0) uniform SaoParams {
     int   history_valid;        // [348] temporal: 1 when the history holds the previous frame (0 after create, a settings change, a resize, a reset)
     float key_scale;            // [352] the (A, key) images' key is z times this: 1, or with half_intermediates 1/metersToViewUnits (the key in metres)
     float key_to_view;          // [356] the key back in view units: 1, or metersToViewUnits
+    int   multi_bounce;         // [360] 1: the output store applies Jimenez et al. 2016's multi-bounce fit to A (albedo > 0); 0: A as it is
+    float bounce_a;             // [364] the fit's cubic coefficient, 2.0404*albedo - 0.3324 (0 when multi_bounce is 0)
+    float bounce_b;             // [368] quadratic, -4.7951*albedo + 0.6417
+    float bounce_c;             // [372] linear, 2.7552*albedo + 0.6903
 };
 
 // ---------------------------------------------------------------------------------------------

@@ -470,6 +470,14 @@ T outputMultiply(T c, T a, bool unorm8) {
   return m;
 }
 
+// sao_multi_bounce of sao_output.glsl: Jimenez et al. 2016's multi-bounce fit
+// max(x, ((a x + b) x + c) x) with the block's coefficients, or x itself when it is off (albedo 0).
+template <typename T>
+T multiBounce(T x, const Block<T>& P) {
+  if (P.multi_bounce == 0) return x;
+  return glslMax(x, ((P.bounce_a * x + P.bounce_b) * x + P.bounce_c) * x);
+}
+
 // ---- sao_temporal.glsl
 
 

@@ -205,9 +205,11 @@ class AoSampleInvocation {
 // The output texel at (x, y) as sao_output_texel stores it: into the channels output_mask selects,
 // A quantised as the output's format holds it (Float: binary16 or 1/255 steps; Double: unrounded),
 // or with output_blend multiply the channel's value times A (outputMultiply); the other channels
-// keep what the image holds (the caller's contents, Inputs::output).
+// keep what the image holds (the caller's contents, Inputs::output). A goes through the
+// multi-bounce fit first (SAO_BOUNCED; A itself with albedo 0).
 template <typename T>
 void storeOutput(const PassContext<T>& ctx, Image<T>& dst, int x, int y, T a) {
+  a = multiBounce(a, ctx.P);
   const std::int32_t v = ctx.plan.variants[static_cast<std::size_t>(gen::VariantId::OUTPUT_FORMAT)];
   const gen::Format f = gen::kResources[static_cast<std::size_t>(gen::ResourceId::ao)].formats[std::size_t(v)];
   const bool unorm8 = f == gen::Format::R8 || f == gen::Format::RGBA8;
@@ -216,7 +218,10 @@ void storeOutput(const PassContext<T>& ctx, Image<T>& dst, int x, int y, T a) {
       if ((ctx.P.output_mask >> c) & 1) dst.at(x, y, c) = outputMultiply(dst.at(x, y, c), a, unorm8);
     return;
   }
-  if constexpr (std::is_same_v<T, float>) a = unorm8 ? roundToUnorm8(a) : roundToHalf(a);
+  if constexpr (std::is_same_v<T, float>)
+    a = unorm8 ? roundToUnorm8(a) : roundToHalf(a);
+  else if (ctx.P.multi_bounce != 0)
+    a = std::clamp(a, T(0), T(1));  // the shader's channel clamp: the fit reaches 1.0001 at A = 1 for albedo > 0.8
   for (int c = 0; c < dst.ch; ++c)
     if ((ctx.P.output_mask >> c) & 1) dst.at(x, y, c) = a;
 }

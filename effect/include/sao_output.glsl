@@ -51,17 +51,30 @@ vec4 sao_output_texel_r(float a, bool unorm8, float kept, int mask, int blend)
     return vec4((mask & 1) != 0 ? v : kept, 0.0, 0.0, 1.0);
 }
 
-// Stores A at pixel p of the pass's `out_ao` binding (a macro: each pass declares its own), loading
+// Multi-bounce (Jimenez et al. 2016, "Practical Real-Time Strategies for Accurate Indirect
+// Occlusion"): the visibility after many bounces on a surface of albedo rho, fitted from the
+// single-bounce visibility x as max(x, ((a x + b) x + c) x), a, b, c from rho on the host (block
+// members bounce_a/b/c). `on` false (albedo 0) returns x itself: the fit at rho = 0 is not exactly
+// the identity (it exceeds x by up to ~1e-6 near x = 0.965), so it is skipped, not evaluated.
+// Applied once per stored texel, before the channels' clamp to [0, 1] (the fit gives up to 1.0001 at
+// x = 1 for rho > 0.8). Math: docs/effect-math.md, "Multi-bounce".
+float sao_multi_bounce(float x, bool on, float a, float b, float c)
+{
+    return on ? max(x, ((a * x + b) * x + c) * x) : x;
+}
+#define SAO_BOUNCED(a) sao_multi_bounce((a), multi_bounce != 0, bounce_a, bounce_b, bounce_c)
+
+// Stores A (through the multi-bounce fit when it is on) at pixel p of the pass's `out_ao` binding (a macro: each pass declares its own), loading
 // the texel first only when it is needed: an RGBA output whose mask keeps channels, or a multiply.
 // Defined only in the passes that have the OUTPUT_FORMAT variant.
 #if defined(OUTPUT_FORMAT) && SAO_OUTPUT_IS_RGBA(OUTPUT_FORMAT)
 #define SAO_STORE_OUTPUT(p, a) \
-    imageStore(out_ao, (p), sao_output_texel((a), SAO_OUTPUT_IS_UNORM8(OUTPUT_FORMAT), \
+    imageStore(out_ao, (p), sao_output_texel(SAO_BOUNCED(a), SAO_OUTPUT_IS_UNORM8(OUTPUT_FORMAT), \
         output_mask == SAO_OUTPUT_ALL_CHANNELS && output_blend == SAO_OUTPUT_BLEND_REPLACE ? vec4(0.0) \
             : imageLoad(out_ao, (p)), output_mask, output_blend))
 #elif defined(OUTPUT_FORMAT)
 #define SAO_STORE_OUTPUT(p, a) \
-    imageStore(out_ao, (p), sao_output_texel_r((a), SAO_OUTPUT_IS_UNORM8(OUTPUT_FORMAT), \
+    imageStore(out_ao, (p), sao_output_texel_r(SAO_BOUNCED(a), SAO_OUTPUT_IS_UNORM8(OUTPUT_FORMAT), \
         output_blend == SAO_OUTPUT_BLEND_REPLACE ? 0.0 : imageLoad(out_ao, (p)).x, output_mask, output_blend))
 #endif
 

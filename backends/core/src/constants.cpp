@@ -259,6 +259,15 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
     // At most FLT_MAX, so that t stays finite even for a range of a few denormals.
     p.fade_inv_range = f(std::min(1.0 / (end - start), double(std::numeric_limits<float>::max())));
   }
+  // Multi-bounce (Jimenez et al. 2016's fit, docs/effect-math.md "Multi-bounce"): off at albedo 0,
+  // where the store keeps A exactly (the fit itself is not quite the identity there).
+  if (s.albedo > 0.0f) {
+    const double rho = s.albedo;
+    p.multi_bounce = 1;
+    p.bounce_a = f(2.0404 * rho - 0.3324);
+    p.bounce_b = f(-4.7951 * rho + 0.6417);
+    p.bounce_c = f(2.7552 * rho + 0.6903);
+  }
   p.normals_encoding = int(c.normalsEncoding);
   // Columns of R (identity without one: the camera encodings never read it).
   const std::array<double, 9> R = c.viewRotation.value_or(std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1});
