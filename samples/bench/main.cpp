@@ -13,6 +13,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "calibrate.h"
 #include "frames_section.h"
@@ -251,6 +252,17 @@ std::vector<std::pair<std::string, std::string>> notes(const std::string& depthS
                       "double, integrated over the spiral's tap distribution by stratified taps "
                       "(raytrace::convergedEstimator, --converged-taps per pixel, docs/reference.md). The error vs (c) "
                       "is what taps, MIP use, blur and resolution trade."},
+      {"screen_*", "error against reference (d), converged screen-space visibility: the cosine-weighted fraction of "
+                   "directions from the effect's point (same depth, normals rebuilt or supplied, second layer) that "
+                   "travel the radius r without passing through the slab of thickness 0.3 m behind a stored depth "
+                   "sample (0.3 % of the depth behind it onward), 64 slices per pixel, each marched to r' and "
+                   "integrated exactly, in double (raytrace::screenVisibility, docs/reference.md \"Reference (d)\"). "
+                   "What a screen-space estimator that sees these inputs converges to at best; the error vs (d) is the "
+                   "effect's estimator, sampling and reconstruction together."},
+      {"screen_model_rmse_vs_ao / model_rmse_converged_vs_screen",
+       "per scene, radius and inputs: RMSE of (d) against (a), what screen space cannot see (hidden and off-screen "
+       "geometry, the thickness), and of (c) against (d), the estimator's definition (AlchemyAO's falloff, bias "
+       "and intensity against cosine-weighted visibility); model_rmse_vs_ao is about their sum."},
       {"converged_blotch_rmse / converged_highfreq_rmse", "the error vs (c) split by a Gaussian low-pass of sigma = 8 px "
                                                           "(a normalised convolution over the pixels with geometry only): "
                                                           "RMSE of the low-passed error (blotches, what a blur cannot "
@@ -366,6 +378,7 @@ int main(int argc, char** argv) {
   }
   std::vector<bench::Row> rows;
   std::vector<std::string> convergedTimes;  // how long each reference (c) took
+  std::vector<std::string> screenTimes;     // and each reference (d)
   int step = 0;
   auto progress = [&](const std::string& what) {
     std::fprintf(stderr, "\r\033[K[%d] %s", ++step, what.c_str());
@@ -382,6 +395,7 @@ int main(int argc, char** argv) {
     const std::string what = inputsName(extra);
     bench::References refs;
     Converged* converged = nullptr;
+    std::pair<double, double> screenModel{NAN, NAN};  // (d) vs (a), (c) vs (d)
     if (withError && !o.timeOnly) {
       refs.nearFieldAo = &nearFieldReference(p, s.radius, o.rays);
       refs.obscurance = &obscuranceReference(p, s, o.rays);
@@ -397,6 +411,16 @@ int main(int argc, char** argv) {
         }
       }
       refs.converged = &converged->ao;
+      const bool freshScreen = !p.screen.count({s.radius, extra});
+      Screen& screen = screenReference(p, s, extra, {64, 1, refs.nearFieldAo, &converged->ao});
+      if (freshScreen) {
+        char t[96];
+        std::snprintf(t, sizeof t, ": %.1f s (%.1f s CPU)", screen.seconds, screen.cpuSeconds);
+        screenTimes.push_back(scene + " (" + what + ")" + t);
+      }
+      refs.screen = &screen.ao;
+      refs.screenMask = &screen.mask;
+      screenModel = {screen.rmseVsAo, screen.rmseConvergedVsScreen};
       refs.mask = &p.mask;
       refs.silhouette = &p.silhouette;
     }
@@ -408,6 +432,7 @@ int main(int argc, char** argv) {
         fail("cannot create '" + (fs::path(out) / "maps").string() + "': " + ec.message());
       r.modelRmseVsAo = converged->rmseVsAo;
       r.modelRmseVsObscurance = converged->rmseVsObscurance;
+      std::tie(r.screenRmseVsAo, r.convergedRmseVsScreen) = screenModel;
       r.errorMap = "maps/" + mapName(rows.size(), {section, scene, r.backend, preset, variant});
       if (Status st = samples::writeErrorMapPng((fs::path(out) / r.errorMap).string(), r.m.ao, converged->ao, p.mask);
           !st)
@@ -607,6 +632,9 @@ int main(int argc, char** argv) {
   std::string times;
   for (const std::string& t : convergedTimes) times += (times.empty() ? "" : "; ") + t;
   if (!times.empty()) legend.emplace_back("converged time", "wall (and CPU, all threads) time of each reference (c): " + times);
+  std::string dTimes;
+  for (const std::string& t : screenTimes) dTimes += (dTimes.empty() ? "" : "; ") + t;
+  if (!dTimes.empty()) legend.emplace_back("screen time", "wall (and CPU, all threads) time of each reference (d): " + dTimes);
   bench::writeCsv((fs::path(out) / "results.csv").string(), rows);
   bench::writeJson((fs::path(out) / "results.json").string(), rows, machine, legend);
   const auto charts = bench::writeCharts(out, rows, mainScene, std::string(first.name()));

@@ -8,6 +8,7 @@
 #include <ctime>
 
 #include "sao/raytrace/converged.h"
+#include "sao/raytrace/screen_visibility.h"
 #include "sao/samples/error_structure.h"
 #include "sao/samples/metrics.h"
 
@@ -139,6 +140,31 @@ Converged& convergedReference(Prepared& p, const Settings& s, Extra extra, const
   if (options.nearFieldAo) c.rmseVsAo = samples::compareToReference(c.ao, *options.nearFieldAo, p.mask).raw.rmse;
   if (options.obscurance) c.rmseVsObscurance = samples::compareToReference(c.ao, *options.obscurance, p.mask).raw.rmse;
   return c;
+}
+
+Screen& screenReference(Prepared& p, const Settings& s, Extra extra, const ScreenOptions& options) {
+  const ScreenKey key{s.radius, extra};
+  auto it = p.screen.find(key);
+  if (it != p.screen.end()) return it->second;
+  const samples::RunInputs inputs = runInputs(p, extra);
+  Screen& d = p.screen[key];
+  raytrace::ScreenVisibilityOptions so;
+  so.slices = options.slices;
+  so.stride = options.stride;
+  const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpuStart = std::clock();
+  if (Status st = raytrace::screenVisibility(s, p.camera, {inputs.depth, inputs.depth2, inputs.normals}, so, d.ao); !st)
+    fail("reference (d): " + st.message);
+  d.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  d.cpuSeconds = double(std::clock() - cpuStart) / CLOCKS_PER_SEC;
+  d.mask = p.mask;
+  for (std::uint32_t y = 0; y < p.camera.height; ++y)
+    for (std::uint32_t x = 0; x < p.camera.width; ++x)
+      if (x % options.stride != 0 || y % options.stride != 0) d.mask[std::size_t(y) * p.camera.width + x] = 0;
+  if (options.nearFieldAo) d.rmseVsAo = samples::compareToReference(d.ao, *options.nearFieldAo, d.mask).raw.rmse;
+  if (options.converged)
+    d.rmseConvergedVsScreen = samples::compareToReference(*options.converged, d.ao, d.mask).raw.rmse;
+  return d;
 }
 
 }  // namespace sao::bench
