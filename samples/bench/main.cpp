@@ -103,6 +103,7 @@ struct Options {
   bool overwrite = false;       // --overwrite (sao/samples/output_files.h)
   bool tune = false;            // --tune: the preset tuner (tune.h) instead of the sections
   bool convergedNoise = false;  // --converged-noise
+  bool aoNoise = false;         // --ao-noise
   bool ortho = false;           // --ortho: every scene's view made orthographic
   bool timeOnly = false;        // --time-only: no references, so no error columns
   std::optional<scenes::LengthUnit> units;  // --units
@@ -176,6 +177,10 @@ Options parse(int argc, char** argv) {
   cl.flag("--converged-noise", o.convergedNoise,
           "compute each reference (c) a second time with another seed and report its own noise, the RMS of the "
           "difference / sqrt(2) over the pixels with geometry (doubles the time (c) takes)");
+  cl.flag("--ao-noise", o.aoNoise,
+          "compute each reference (a) a second time with another seed and report its own noise as --converged-noise "
+          "does, beside sqrt(mean V (1 - V) / rays), the noise its independent rays predict (doubles the time (a) "
+          "takes)");
   cl.flag("--ortho", o.ortho,
           "orthographic cameras: each scene's view made orthographic, as tall as its field of view spans at the "
           "target (scenes::toOrthographic: the eye moved back clear of the scene, a finite far plane just beyond it); "
@@ -200,16 +205,17 @@ Options parse(int argc, char** argv) {
         cl.fail(std::string("--quick and ") + option + " cannot be combined: --quick sets " + option +
                 " (--size 160x90, --runs 3, --rays 16); drop one of them");
   if (o.tune) {
-    if (cl.given("--sections") || cl.given("--converged-noise") || cl.given("--rays") || cl.given("--ortho") ||
-        cl.given("--scenes") || cl.given("--time-only") || cl.given("--warmup-ms"))
+    if (cl.given("--sections") || cl.given("--converged-noise") || cl.given("--ao-noise") || cl.given("--rays") ||
+        cl.given("--ortho") || cl.given("--scenes") || cl.given("--time-only") || cl.given("--warmup-ms"))
       cl.fail("--tune takes --out, --backends, --size, --runs, --converged-taps, --depth-source, --units, --quick and "
               "--overwrite only");
     if (!cl.given("--backends")) o.backends = "gl";
     if (!cl.given("--size")) o.size = {640, 360};
   }
   if (o.timeOnly) {
-    if (cl.given("--rays") || cl.given("--converged-taps") || cl.given("--converged-noise"))
-      cl.fail("--time-only computes no references: --rays, --converged-taps and --converged-noise do not apply");
+    if (cl.given("--rays") || cl.given("--converged-taps") || cl.given("--converged-noise") || cl.given("--ao-noise"))
+      cl.fail("--time-only computes no references: --rays, --converged-taps, --converged-noise and --ao-noise do not "
+              "apply");
     for (const char* section : {"calibrate", "spiral", "frames"})
       if (o.sections.count(section))
         cl.fail(std::string("--time-only: the ") + section + " section measures error only; leave it out or drop --time-only");
@@ -379,6 +385,7 @@ int main(int argc, char** argv) {
   std::vector<bench::Row> rows;
   std::vector<std::string> convergedTimes;  // how long each reference (c) took
   std::vector<std::string> screenTimes;     // and each reference (d)
+  std::vector<std::string> aoNoises;        // --ao-noise: each reference (a)'s own noise
   int step = 0;
   auto progress = [&](const std::string& what) {
     std::fprintf(stderr, "\r\033[K[%d] %s", ++step, what.c_str());
@@ -398,6 +405,12 @@ int main(int argc, char** argv) {
     std::pair<double, double> screenModel{NAN, NAN};  // (d) vs (a), (c) vs (d)
     if (withError && !o.timeOnly) {
       refs.nearFieldAo = &nearFieldReference(p, s.radius, o.rays);
+      if (o.aoNoise && !p.referenceNoise.count(s.radius)) {
+        const auto [measured, predicted] = nearFieldNoise(p, s.radius, o.rays);
+        char t[160];
+        std::snprintf(t, sizeof t, "%s at %g m: %.4f (predicted %.4f)", scene.c_str(), double(s.radius), measured, predicted);
+        aoNoises.push_back(t);
+      }
       refs.obscurance = &obscuranceReference(p, s, o.rays);
       const bool fresh = !p.converged.count({obscuranceKey(s), extra});
       converged = &convergedReference(p, s, extra, {o.convergedTaps, o.convergedNoise, refs.nearFieldAo, refs.obscurance});
@@ -635,6 +648,11 @@ int main(int argc, char** argv) {
   std::string dTimes;
   for (const std::string& t : screenTimes) dTimes += (dTimes.empty() ? "" : "; ") + t;
   if (!dTimes.empty()) legend.emplace_back("screen time", "wall (and CPU, all threads) time of each reference (d): " + dTimes);
+  std::string noises;
+  for (const std::string& t : aoNoises) noises += (noises.empty() ? "" : "; ") + t;
+  if (!noises.empty())
+    legend.emplace_back("ao noise", "reference (a)'s own noise at " + std::to_string(o.rays) +
+                                        " rays, RMS over the pixels with geometry of (a1 - a2)/sqrt(2) (two seeds): " + noises);
   bench::writeCsv((fs::path(out) / "results.csv").string(), rows);
   bench::writeJson((fs::path(out) / "results.json").string(), rows, machine, legend);
   const auto charts = bench::writeCharts(out, rows, mainScene, std::string(first.name()));

@@ -76,6 +76,25 @@ const FloatImage& nearFieldReference(Prepared& p, double radius, std::uint32_t r
   return ref;
 }
 
+std::pair<double, double> nearFieldNoise(Prepared& p, double radius, std::uint32_t rays) {
+  auto it = p.referenceNoise.find(radius);
+  if (it != p.referenceNoise.end()) return it->second;
+  const FloatImage& first = nearFieldReference(p, radius, rays);
+  raytrace::ReferenceOptions o;
+  o.radius = radius * p.camera.metersToViewUnits;
+  o.rays = rays;
+  o.seed = 2;
+  FloatImage second;
+  if (Status s = raytrace::referenceAmbientOcclusion(*p.rays, p.camera, p.primary, p.scene.views[0], o, second); !s)
+    fail(s.message);
+  double variance = 0;
+  std::size_t pixels = 0;
+  for (std::size_t i = 0; i < p.mask.size(); ++i)
+    if (p.mask[i]) variance += double(first.data[i]) * (1.0 - first.data[i]), ++pixels;
+  const double measured = samples::compareToReference(second, first, p.mask).raw.rmse / std::sqrt(2.0);
+  return p.referenceNoise[radius] = {measured, std::sqrt(variance / double(std::max<std::size_t>(pixels, 1)) / rays)};
+}
+
 const FloatImage& obscuranceReference(Prepared& p, const Settings& s, std::uint32_t rays) {
   const ObscuranceKey key = obscuranceKey(s);
   auto it = p.obscurance.find(key);

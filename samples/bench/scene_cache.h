@@ -69,6 +69,7 @@ struct Prepared {
   raytrace::Primary primary;
   std::vector<unsigned char> mask;
   std::map<double, FloatImage> references;  // (a) near-field AO per radius
+  std::map<double, std::pair<double, double>> referenceNoise;  // (a)'s noise per radius: nearFieldNoise
   std::map<ObscuranceKey, FloatImage> obscurance;  // (b) per obscurance settings
   std::map<ConvergedKey, Converged> converged;     // (c) per obscurance settings and inputs
   std::map<ScreenKey, Screen> screen;              // (d) per radius and inputs
@@ -95,6 +96,10 @@ class SceneCache {
 
 // (a) near-field AO at `radius` metres.
 const FloatImage& nearFieldReference(Prepared& p, double radius, std::uint32_t rays);
+// (a)'s own noise at `radius` (computed with `rays` and a second seed on first use), as (c)'s is
+// measured: first the RMS over the mask of the two images' difference / sqrt(2), second the same
+// predicted from (a) alone, sqrt(mean V (1 - V) / rays) (its rays are independent: binomial).
+std::pair<double, double> nearFieldNoise(Prepared& p, double radius, std::uint32_t rays);
 // (b) the obscurance integral with the settings' radius, intensity, bias, epsilon and contrast.
 const FloatImage& obscuranceReference(Prepared& p, const Settings& s, std::uint32_t rays);
 // The second depth layer (the prepass's peeled one, or ray-cast on first use).

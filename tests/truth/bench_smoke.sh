@@ -136,7 +136,11 @@ grep -q '"radius: AlchemyAO-style": ' "$out/all/results.json" || die "results.js
 grep -q '<svg' "$out/all/pareto.svg" || die "pareto.svg is not an SVG"
 
 # --sections: one part only; an unknown name is an error.
-"$bench" --quick --backends cpu --sections two_layer --out "$out/one" >/dev/null 2>"$out.stderr" || die "--sections two_layer failed"
+"$bench" --quick --backends cpu --sections two_layer --ao-noise --out "$out/one" >/dev/null 2>"$out.stderr" ||
+  die "--sections two_layer failed"
+# --ao-noise: (a)'s own noise, measured and predicted, in the notes (16 rays: about 0.035 on sphere-plane).
+grep -Eq '"ao noise": "[^"]*sphere-plane at 1 m: 0\.0[0-9]+ \(predicted 0\.0[0-9]+\)' "$out/one/results.json" ||
+  die "--ao-noise: no noise note in results.json"
 [ "$(awk -F, 'NR > 1 && $1 != "two_layer"' "$out/one/results.csv" | wc -l)" -eq 0 ] || die "--sections two_layer ran other sections"
 [ "$(awk -F, '$1 == "two_layer"' "$out/one/results.csv" | wc -l)" -eq 2 ] || die "--sections two_layer: expected 2 rows"
 test ! -e "$out/one/radius.svg" || die "--sections two_layer wrote radius.svg"
