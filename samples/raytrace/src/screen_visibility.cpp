@@ -88,10 +88,10 @@ class Marcher {
 
   // Visibility of one pixel from `slices` slices at screen angles pi (k + xi) / slices.
   double visibility(const Pixel& px, std::uint32_t slices, double xi, bool azimuthWeight) {
-    // The azimuth Jacobian: with f(phi) = the screen direction D(phi) projected off V, f = cos f1 +
-    // sin f2, the azimuth about V turns at |f1 x f2| / |f|^2 per radian of phi.
     // A step of +u on the screen moves the point along w (u.x a_x, u.y a_y, 0) with w = z < 0 in
     // perspective (sao_position), 1 in ortho: D takes w's sign so that e points to the +u side.
+    // The azimuth Jacobian: with f(phi) = D(phi) projected off V, f = cos f1 + sin f2, the azimuth
+    // about V turns at |f1 x f2| / |f|^2 per radian of phi.
     const double ws = ortho_ ? 1.0 : -1.0;
     const Vec3<double> f1 = offV({ws * P_.proj_info.x, 0, 0}, px.V), f2 = offV({0, ws * P_.proj_info.y, 0}, px.V);
     const Vec3<double> f12 = cross(f1, f2);
