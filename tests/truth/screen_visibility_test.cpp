@@ -181,8 +181,7 @@ TEST(ScreenVisibility, CreaseMatchesTheClosedForm) {
 // radius sqrt(r^2 - x^2) on the wall) projects within r' - 2 px of C (checked on the disk's rim,
 // where a projective map takes its extremes), so the march to r' sees all it must. (Without the
 // azimuth weight the mean over these pixels (at stride 1) moves from +0.0030 to +0.0045: real, but
-// within the pixel term,
-// so this test cannot tell the two apart.)
+// within the pixel term, so this test cannot tell the two apart.)
 TEST(ScreenVisibility, PerspectiveCreaseMatchesTheClosedFormWhereItApplies) {
   const scenes::Mesh mesh = creaseMesh(0.0).build();
   const scenes::View level{"level", {3.0, 0.5, 0.4}, {0.0, 0.5, 0.4}, {0, 1, 0}, 1.6, 0.05};
