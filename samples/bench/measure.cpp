@@ -57,6 +57,8 @@ Status measure(samples::BackendRunner& backend, const Settings& settings, const 
   for (const auto& name : order) out.passes.push_back({name, median(perPass[name])});
   out.totalMs = median(totals);
   out.runs = runs;
+  if (references.screen && references.screenMask)
+    out.screenError = samples::compareToReference(out.ao, *references.screen, *references.screenMask);
   if (const auto* mask = references.mask) {
     if (references.nearFieldAo) out.aoError = samples::compareToReference(out.ao, *references.nearFieldAo, *mask);
     if (references.obscurance) out.obscuranceError = samples::compareToReference(out.ao, *references.obscurance, *mask);

@@ -17,6 +17,8 @@ struct References {
   const FloatImage* nearFieldAo = nullptr;  // (a) raytrace::referenceAmbientOcclusion at the run's radius
   const FloatImage* obscurance = nullptr;   // (b) raytrace::referenceObscurance with the run's settings
   const FloatImage* converged = nullptr;    // (c) raytrace::convergedEstimator with the run's settings and inputs
+  const FloatImage* screen = nullptr;       // (d) raytrace::screenVisibility with the run's radius and inputs,
+  const std::vector<unsigned char>* screenMask = nullptr;  // compared over this mask (its stride's pixels)
   const std::vector<unsigned char>* mask = nullptr;
   const std::vector<unsigned char>* silhouette = nullptr;  // samples::silhouetteBand, for (c)'s structure
 };
@@ -35,6 +37,7 @@ struct Measurement {
   std::optional<samples::ReferenceComparison> aoError;          // against (a)
   std::optional<samples::ReferenceComparison> obscuranceError;  // against (b)
   std::optional<samples::ReferenceComparison> convergedError;   // against (c)
+  std::optional<samples::ReferenceComparison> screenError;      // against (d)
   std::optional<samples::ErrorStructure> convergedStructure;    // blotch, high-frequency, silhouette vs (c)
   FloatImage ao;
 };

@@ -81,11 +81,11 @@ void writeCsv(const std::string& path, const std::vector<Row>& rows) {
   f << "section,scene,backend,preset,variant,inputs,shader_variant,width,height,radius_m,samples,use_z_hierarchy,"
        "blur_radius,runs,timing_method,linear_z_ms,ao_sample_ms,blur_h_ms,blur_v_ms,total_ms,ns_per_pixel,"
        "plan_bytes,csz_levels";
-  for (const char* prefix : {"ao_", "obscurance_", "converged_"})
+  for (const char* prefix : {"ao_", "obscurance_", "converged_", "screen_"})
     for (const char* c : kErrorColumns) f << "," << prefix << c;
   f << ",converged_blotch_rmse,converged_highfreq_rmse,converged_silhouette_rmse,model_rmse_vs_ao,"
        "model_rmse_vs_obscurance,error_map,resolution_divisor,blur_v_low_ms,upsample_ms,blur_ms,output_ms,started_unix_s,"
-       "ended_unix_s\n";
+       "ended_unix_s,screen_model_rmse_vs_ao,model_rmse_converged_vs_screen\n";
   for (const auto& r : rows) {
     const auto& m = r.m;
     f << csv(r.section) << "," << csv(r.scene) << "," << csv(r.backend) << "," << csv(r.preset) << ","
@@ -98,11 +98,14 @@ void writeCsv(const std::string& path, const std::vector<Row>& rows) {
     csvErrors(f, m.aoError);
     csvErrors(f, m.obscuranceError);
     csvErrors(f, m.convergedError);
+    csvErrors(f, m.screenError);
     csvConverged(f, r);
     // blur_h_ms, blur_v_ms and blur_v_low_ms: the passes before the blur ran in one (empty since).
     f << "," << r.settings.resolution_divisor << "," << passMs(m, "blur_v_low") << "," << passMs(m, "upsample") << ","
       << passMs(m, "blur") << "," << passMs(m, "output") << "," << std::fixed << std::setprecision(3)
-      << m.startedUnixSeconds << "," << m.endedUnixSeconds << std::defaultfloat << std::setprecision(6) << "\n";
+      << m.startedUnixSeconds << "," << m.endedUnixSeconds << std::defaultfloat << std::setprecision(6);
+    auto optional = [](double v) { return samples::isDefined(v) ? csvMetric(v) : std::string(); };
+    f << "," << optional(r.screenRmseVsAo) << "," << optional(r.convergedRmseVsScreen) << "\n";
   }
 }
 
@@ -144,6 +147,11 @@ void writeJson(const std::string& path, const std::vector<Row>& rows, const std:
       }
       row["model_error"] = Json{{"rmse_converged_vs_ao", r.modelRmseVsAo},
                                 {"rmse_converged_vs_obscurance", r.modelRmseVsObscurance}};
+    }
+    if (r.m.screenError) {
+      row["error_vs_screen"] = jsonErrors(*r.m.screenError);
+      row["screen_model_error"] = Json{{"rmse_screen_vs_ao", r.screenRmseVsAo},
+                                       {"rmse_converged_vs_screen", r.convergedRmseVsScreen}};
     }
     if (!r.errorMap.empty()) row["error_map"] = r.errorMap;
     rowsJson.push_back(std::move(row));

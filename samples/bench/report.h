@@ -20,15 +20,20 @@ struct Row {
   // and (b) over the mask; NaN where (c) or that reference was not computed.
   double modelRmseVsAo = NAN, modelRmseVsObscurance = NAN;
   std::string errorMap;  // the error-vs-(c) PNG, relative to the output folder; empty: none
+  // The same per scene, radius and inputs for reference (d): RMSE of (d) against (a) (what screen
+  // space cannot see) and of (c) against (d) (the estimator's definition); NaN where not computed.
+  double screenRmseVsAo = NAN, convergedRmseVsScreen = NAN;
 };
 
 // Median time of one pass, 0 when the pass did not run.
 double passMs(const Measurement& m, const char* pass);
 
-// Error columns come in three groups, named by their reference: ao_* against (a) the near-field AO,
+// Error columns come in four groups, named by their reference: ao_* against (a) the near-field AO,
 // obscurance_* against (b) the AlchemyAO obscurance, converged_* against (c) the converged
-// estimator (with its blotch, high-frequency and silhouette figures); then the model error
-// (model_rmse_vs_ao, model_rmse_vs_obscurance) and error_map. Empty where not computed.
+// estimator, screen_* against (d) converged screen-space visibility; then (c)'s blotch,
+// high-frequency and silhouette figures, the model error (model_rmse_vs_ao,
+// model_rmse_vs_obscurance) and error_map; (d)'s model errors (screen_model_rmse_vs_ao,
+// model_rmse_converged_vs_screen) last. Empty where not computed.
 void writeCsv(const std::string& path, const std::vector<Row>& rows);
 
 // `notes`: (key, text) pairs written as the "notes" object: what the references, the radius-sweep

@@ -8,6 +8,7 @@
 #include <ctime>
 
 #include "sao/raytrace/converged.h"
+#include "sao/raytrace/screen_visibility.h"
 #include "sao/samples/error_structure.h"
 #include "sao/samples/metrics.h"
 
@@ -75,6 +76,25 @@ const FloatImage& nearFieldReference(Prepared& p, double radius, std::uint32_t r
   return ref;
 }
 
+std::pair<double, double> nearFieldNoise(Prepared& p, double radius, std::uint32_t rays) {
+  auto it = p.referenceNoise.find(radius);
+  if (it != p.referenceNoise.end()) return it->second;
+  const FloatImage& first = nearFieldReference(p, radius, rays);
+  raytrace::ReferenceOptions o;
+  o.radius = radius * p.camera.metersToViewUnits;
+  o.rays = rays;
+  o.seed = 2;
+  FloatImage second;
+  if (Status s = raytrace::referenceAmbientOcclusion(*p.rays, p.camera, p.primary, p.scene.views[0], o, second); !s)
+    fail(s.message);
+  double variance = 0;
+  std::size_t pixels = 0;
+  for (std::size_t i = 0; i < p.mask.size(); ++i)
+    if (p.mask[i]) variance += double(first.data[i]) * (1.0 - first.data[i]), ++pixels;
+  const double measured = samples::compareToReference(second, first, p.mask).raw.rmse / std::sqrt(2.0);
+  return p.referenceNoise[radius] = {measured, std::sqrt(variance / double(std::max<std::size_t>(pixels, 1)) / rays)};
+}
+
 const FloatImage& obscuranceReference(Prepared& p, const Settings& s, std::uint32_t rays) {
   const ObscuranceKey key = obscuranceKey(s);
   auto it = p.obscurance.find(key);
@@ -139,6 +159,31 @@ Converged& convergedReference(Prepared& p, const Settings& s, Extra extra, const
   if (options.nearFieldAo) c.rmseVsAo = samples::compareToReference(c.ao, *options.nearFieldAo, p.mask).raw.rmse;
   if (options.obscurance) c.rmseVsObscurance = samples::compareToReference(c.ao, *options.obscurance, p.mask).raw.rmse;
   return c;
+}
+
+Screen& screenReference(Prepared& p, const Settings& s, Extra extra, const ScreenOptions& options) {
+  const ScreenKey key{s.radius, extra};
+  auto it = p.screen.find(key);
+  if (it != p.screen.end()) return it->second;
+  const samples::RunInputs inputs = runInputs(p, extra);
+  Screen& d = p.screen[key];
+  raytrace::ScreenVisibilityOptions so;
+  so.slices = options.slices;
+  so.stride = options.stride;
+  const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpuStart = std::clock();
+  if (Status st = raytrace::screenVisibility(s, p.camera, {inputs.depth, inputs.depth2, inputs.normals}, so, d.ao); !st)
+    fail("reference (d): " + st.message);
+  d.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  d.cpuSeconds = double(std::clock() - cpuStart) / CLOCKS_PER_SEC;
+  d.mask = p.mask;
+  for (std::uint32_t y = 0; y < p.camera.height; ++y)
+    for (std::uint32_t x = 0; x < p.camera.width; ++x)
+      if (x % options.stride != 0 || y % options.stride != 0) d.mask[std::size_t(y) * p.camera.width + x] = 0;
+  if (options.nearFieldAo) d.rmseVsAo = samples::compareToReference(d.ao, *options.nearFieldAo, d.mask).raw.rmse;
+  if (options.converged)
+    d.rmseConvergedVsScreen = samples::compareToReference(*options.converged, d.ao, d.mask).raw.rmse;
+  return d;
 }
 
 }  // namespace sao::bench

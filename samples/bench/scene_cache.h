@@ -47,6 +47,20 @@ struct Converged {
   std::string modelMap;  // maps/ PNG of (c) - (a), relative to the output folder
 };
 
+// Reference (d) depends on the radius and the inputs (its thickness and tolerance are
+// ScreenVisibilityOptions' defaults, 0.3 m and 0.003, until the settings have them).
+using ScreenKey = std::tuple<float, Extra>;
+
+// Reference (d), converged screen-space visibility, with its cost and the two model errors that
+// split (c) - (a): (d) against (a) (what screen space cannot see) and (c) against (d) (the
+// estimator's definition), over `mask`; NaN until computed.
+struct Screen {
+  FloatImage ao;                    // V, NaN on the pixels the stride skips
+  std::vector<unsigned char> mask;  // Prepared::mask on the pixels evaluated
+  double seconds = 0, cpuSeconds = 0;
+  double rmseVsAo = NAN, rmseConvergedVsScreen = NAN;
+};
+
 // A scene at one size: its ray caster, primary rays, second layer and references.
 struct Prepared {
   scenes::Scene scene;
@@ -55,8 +69,10 @@ struct Prepared {
   raytrace::Primary primary;
   std::vector<unsigned char> mask;
   std::map<double, FloatImage> references;  // (a) near-field AO per radius
+  std::map<double, std::pair<double, double>> referenceNoise;  // (a)'s noise per radius: nearFieldNoise
   std::map<ObscuranceKey, FloatImage> obscurance;  // (b) per obscurance settings
   std::map<ConvergedKey, Converged> converged;     // (c) per obscurance settings and inputs
+  std::map<ScreenKey, Screen> screen;              // (d) per radius and inputs
   std::vector<unsigned char> silhouette;           // samples::silhouetteBand of the primary positions
   std::optional<raytrace::Primary> secondLayer;
 };
@@ -80,6 +96,10 @@ class SceneCache {
 
 // (a) near-field AO at `radius` metres.
 const FloatImage& nearFieldReference(Prepared& p, double radius, std::uint32_t rays);
+// (a)'s own noise at `radius` (computed with `rays` and a second seed on first use), as (c)'s is
+// measured: first the RMS over the mask of the two images' difference / sqrt(2), second the same
+// predicted from (a) alone, sqrt(mean V (1 - V) / rays) (its rays are independent: binomial).
+std::pair<double, double> nearFieldNoise(Prepared& p, double radius, std::uint32_t rays);
 // (b) the obscurance integral with the settings' radius, intensity, bias, epsilon and contrast.
 const FloatImage& obscuranceReference(Prepared& p, const Settings& s, std::uint32_t rays);
 // The second depth layer (the prepass's peeled one, or ray-cast on first use).
@@ -98,5 +118,15 @@ struct ConvergedOptions {
 // Reference (c) for the settings and inputs, timed; cached per ConvergedKey (the first call's
 // options decide the taps and which model errors are filled in).
 Converged& convergedReference(Prepared& p, const Settings& s, Extra extra, const ConvergedOptions& options);
+
+struct ScreenOptions {
+  std::uint32_t slices = 64;
+  std::uint32_t stride = 1;                 // every stride-th pixel in x and y (raytrace::ScreenVisibilityOptions)
+  const FloatImage* nearFieldAo = nullptr;  // given: (d) vs (a) is computed
+  const FloatImage* converged = nullptr;    // given: (c) vs (d)
+};
+// Reference (d) for the settings' radius and the inputs, timed; cached per ScreenKey (the first
+// call's options decide).
+Screen& screenReference(Prepared& p, const Settings& s, Extra extra, const ScreenOptions& options);
 
 }  // namespace sao::bench

@@ -36,7 +36,8 @@ csv=$out/all/results.csv
 col() { head -1 "$csv" | tr ',' '\n' | grep -nx "$1" | cut -d: -f1; }
 for c in ao_rmse_raw ao_rmse_fitted obscurance_rmse_raw obscurance_bias_raw obscurance_fitted_scale obscurance_rmse_fitted \
          converged_rmse_raw converged_bias_raw converged_ssim_raw converged_blotch_rmse converged_highfreq_rmse \
-         converged_silhouette_rmse model_rmse_vs_ao model_rmse_vs_obscurance error_map; do
+         converged_silhouette_rmse model_rmse_vs_ao model_rmse_vs_obscurance error_map \
+         screen_rmse_raw screen_ssim_raw screen_model_rmse_vs_ao model_rmse_converged_vs_screen; do
   test -n "$(col $c)" || die "results.csv has no column $c"
 done
 count() { awk -F, "$1" "$csv" | wc -l; }
@@ -45,7 +46,8 @@ rows() { count "\$1==\"$1\" && \$$(col "$2") $3 \"\""; }
 
 [ "$(rows presets section !=)" -eq 10 ] || die "expected 10 preset rows (2 scenes x 5 presets)"
 for c in ao_rmse_raw ao_rmse_fitted obscurance_rmse_raw obscurance_rmse_fitted converged_rmse_raw converged_ssim_raw \
-         converged_blotch_rmse converged_highfreq_rmse model_rmse_vs_ao model_rmse_vs_obscurance error_map; do
+         converged_blotch_rmse converged_highfreq_rmse model_rmse_vs_ao model_rmse_vs_obscurance error_map \
+         screen_rmse_raw screen_model_rmse_vs_ao model_rmse_converged_vs_screen; do
   [ "$(rows presets $c ==)" -eq 0 ] || die "a preset row has no $c"
   [ "$(rows two_layer $c ==)" -eq 0 ] || die "a two_layer row has no $c"
 done
@@ -61,6 +63,10 @@ awk -F, -v r="$(col converged_rmse_raw)" -v b="$(col converged_blotch_rmse)" -v 
        if ($2 == "sphere-plane" && !($s > 0 && $s < 0.2)) bad = 1
        if ($2 == "crease" && $s != "n/a") bad = 1 }
      END { exit bad || n == 0 }' "$csv" || die "results.csv: converged_* or model_* values out of range"
+# Reference (d) (screen_*): the error vs (d) and (d)'s two model errors are RMSEs in (0, 0.3).
+awk -F, -v r="$(col screen_rmse_raw)" -v a="$(col screen_model_rmse_vs_ao)" -v c="$(col model_rmse_converged_vs_screen)" \
+    'NR > 1 && $r != "" { n++; if (!($r > 0 && $r < 0.3 && $a > 0 && $a < 0.3 && $c > 0 && $c < 0.3)) bad = 1 }
+     END { exit bad || n == 0 }' "$csv" || die "results.csv: screen_* values out of range"
 # Every row with errors has its map, a PNG, and each scene a map of its model error.
 m=$(col error_map)
 for f in $(awk -F, -v m="$m" 'NR > 1 && $m != "" {print $m}' "$csv"); do
@@ -130,7 +136,11 @@ grep -q '"radius: AlchemyAO-style": ' "$out/all/results.json" || die "results.js
 grep -q '<svg' "$out/all/pareto.svg" || die "pareto.svg is not an SVG"
 
 # --sections: one part only; an unknown name is an error.
-"$bench" --quick --backends cpu --sections two_layer --out "$out/one" >/dev/null 2>"$out.stderr" || die "--sections two_layer failed"
+"$bench" --quick --backends cpu --sections two_layer --ao-noise --out "$out/one" >/dev/null 2>"$out.stderr" ||
+  die "--sections two_layer failed"
+# --ao-noise: (a)'s own noise, measured and predicted, in the notes (16 rays: about 0.035 on sphere-plane).
+grep -Eq '"ao noise": "[^"]*sphere-plane at 1 m: 0\.0[0-9]+ \(predicted 0\.0[0-9]+\)' "$out/one/results.json" ||
+  die "--ao-noise: no noise note in results.json"
 [ "$(awk -F, 'NR > 1 && $1 != "two_layer"' "$out/one/results.csv" | wc -l)" -eq 0 ] || die "--sections two_layer ran other sections"
 [ "$(awk -F, '$1 == "two_layer"' "$out/one/results.csv" | wc -l)" -eq 2 ] || die "--sections two_layer: expected 2 rows"
 test ! -e "$out/one/radius.svg" || die "--sections two_layer wrote radius.svg"
