@@ -1,0 +1,203 @@
+// sao_visibility.glsl -- the visibility estimator (ESTIMATOR 1): cosine-weighted visibility of the
+// hemisphere around n with a finite thickness, sampled in slices (the plane through the eye that
+// holds V and a screen direction u: marching the screen line c + h u tests every ray of the slice)
+// with a 32-bit visibility bitmask per slice (Therrien et al. 2023) over the cosine-weighted measure.
+// Library code: depends on sao_depth.glsl, sao_position.glsl, sao_zmip.glsl and sao_spiral.glsl.
+// Math: docs/effect-math.md, "The visibility estimator"; the definition it samples is reference (d)'s.
+#ifndef SAO_VISIBILITY_GLSL
+#define SAO_VISIBILITY_GLSL
+
+const float SAO_PI = 3.14159265;
+const float SAO_HALF_PI = 1.57079633;
+
+// One slice of a pixel: e (in the slice, perpendicular to V), the hemisphere [lo, hi] = gamma -+ pi/2
+// around the projected normal's angle gamma (from V, signed towards e), G(lo), 1/(G(hi) - G(lo)) and
+// the slice's weight L*(G(hi) - G(lo)) (L = length of the projected normal).
+struct SaoSlice {
+    vec3 e;
+    vec3 a;      // the slice plane's normal
+    vec3 shear;  // (a - n (n.a)) / L^2: moves a point into the slice along the surface's tangent plane
+    float gamma;
+    float cos_gamma;
+    float sin_gamma;
+    float lo;
+    float hi;
+    float g_lo;
+    float inv_range;
+    float weight;
+};
+
+// G(x) = s*(cos(gamma) - cos(2x - gamma) + 2x sin(gamma))/4, s = sign(x) (+1 at 0): the integral of
+// cos(theta - gamma)*|sin(theta)| from 0 to x, the cosine-weighted measure of the slice's angles.
+float sao_slice_g(float x, float gamma, float cos_gamma, float sin_gamma)
+{
+    float s = (x >= 0.0) ? 1.0 : -1.0;
+    return s * (((cos_gamma - cos(2.0 * x - gamma)) + (2.0 * x) * sin_gamma) * 0.25);
+}
+
+// The slice through the eye holding V and screen direction u (csz pixels), for the normal n.
+// gamma is clamped to [-pi/2, pi/2]: a normal facing away from the eye (n.V < 0: silhouettes, noisy
+// or supplied normals) keeps the hemisphere inside (-pi, pi], where the taps' angles lie.
+SaoSlice sao_slice_setup(vec2 u, vec3 V, vec3 n, vec4 proj_info)
+{
+    SaoSlice sl;
+    vec3 D = vec3(u.x * proj_info.x, u.y * proj_info.y, 0.0);
+    sl.e = normalize(D - V * dot(D, V));
+    vec3 a = normalize(cross(sl.e, V));
+    float na = dot(n, a);
+    vec3 np = n - a * na;
+    float L = length(np);
+    sl.a = a;
+    sl.shear = (L > 0.0) ? (a - n * na) * (1.0 / (L * L)) : vec3(0.0);
+    float g = atan(dot(np, sl.e), dot(np, V));
+    sl.gamma = (L > 0.0) ? clamp(g, -SAO_HALF_PI, SAO_HALF_PI) : 0.0;
+    sl.cos_gamma = cos(sl.gamma);
+    sl.sin_gamma = sin(sl.gamma);
+    sl.lo = sl.gamma - SAO_HALF_PI;
+    sl.hi = sl.gamma + SAO_HALF_PI;
+    sl.g_lo = sao_slice_g(sl.lo, sl.gamma, sl.cos_gamma, sl.sin_gamma);
+    float range = sao_slice_g(sl.hi, sl.gamma, sl.cos_gamma, sl.sin_gamma) - sl.g_lo;
+    sl.inv_range = 1.0 / range;
+    sl.weight = L * range;
+    return sl;
+}
+
+// Bits [0, b) of a 32-bit mask, b in [0, 32] (a shift by 32 is undefined).
+uint sao_bits_below(int b)
+{
+    return (b >= 32) ? 0xFFFFFFFFu : ((1u << uint(b)) - 1u);
+}
+
+// The bits of slice positions [u1, u2] (u in [0, 1], uniform in the cosine-weighted measure): bit
+// range [floor(32 u1 + 0.5), floor(32 u2 + 0.5)).
+uint sao_bits_between(float u1, float u2)
+{
+    int b1 = clamp(int(floor(32.0 * u1 + 0.5)), 0, 32);
+    int b2 = clamp(int(floor(32.0 * u2 + 0.5)), 0, 32);
+    return sao_bits_below(b2) & ~sao_bits_below(b1);
+}
+
+// The bits a stored sample blocks: the slab along its view ray from depth d(1 + tol) to
+// d(1 + tol) + T (S at pixel centre q_pixel, z: perspective S scaled by (1 + tol) and
+// (1 + tol) + T/d; ortho S's z moved), seen from C: its angles in the slice, clamped to the
+// hemisphere, as bits. Sky, a front point farther than r from C, and a slab that would subtend more
+// than pi (only a sample on the pixel's own view ray, behind C) block nothing.
+uint sao_slab_bits(SaoSlice sl, vec3 C, vec3 V, vec2 q_pixel, float z, vec4 proj_info, int ortho, float radius2,
+                   float tolerance, float thickness)
+{
+    if (sao_is_sky(z))
+        return 0u;
+    vec3 S = sao_position(q_pixel, z, proj_info, ortho);
+    float k = 1.0 + tolerance;
+    vec3 F;
+    vec3 B;
+    if (ortho != 0) {
+        F = vec3(S.xy, z * k);
+        B = vec3(S.xy, z * k - thickness);
+    } else {
+        F = S * k;
+        B = S * (k + thickness / -z);
+    }
+    vec3 f = F - C;
+    if (dot(f, f) > radius2)
+        return 0u;
+    vec3 b = B - C;
+    // Into the slice plane along the tangent plane (a truncated tap lies up to a pixel beside the
+    // slice; dropping its a component would lift a point of the surface's own plane above it).
+    f -= sl.shear * dot(f, sl.a);
+    b -= sl.shear * dot(b, sl.a);
+    float tf = atan(dot(f, sl.e), dot(f, V));
+    float tb = atan(dot(b, sl.e), dot(b, V));
+    float t1 = min(tf, tb);
+    float t2 = max(tf, tb);
+    if (t2 - t1 > SAO_PI)
+        return 0u;
+    t1 = clamp(t1, sl.lo, sl.hi);
+    t2 = clamp(t2, sl.lo, sl.hi);
+    float u1 = (sao_slice_g(t1, sl.gamma, sl.cos_gamma, sl.sin_gamma) - sl.g_lo) * sl.inv_range;
+    float u2 = (sao_slice_g(t2, sl.gamma, sl.cos_gamma, sl.sin_gamma) - sl.g_lo) * sl.inv_range;
+    return sao_bits_between(u1, u2);
+}
+
+// The csz level-0 texel whose z level-m texel t holds: the rotated grid (Table 1) walked down. A
+// tap's point is placed there, on the surface its z belongs to (SAO places it at the tap pixel,
+// up to 2^m pixels from where that z was seen: beside a receding floor, above it).
+ivec2 sao_mip_source(ivec2 t, int m, ivec2 size0)
+{
+    for (int k = SAO_MAX_MIP_LEVELS - 1; k >= 1; --k)  // a constant trip count (no block value)
+        if (k <= m)
+            t = sao_rotated_grid_source(t, max(size0 >> (k - 1), ivec2(1)));
+    return t;
+}
+
+// The pixel's radial jitter: a hash of the AO pixel, 24 bits, in [0, 1) (exact as a float, so
+// every backend has the same value). Decorrelated from eq. 8's rotation hash.
+float sao_pixel_jitter(uvec2 p)
+{
+    uint h = (p.x * 0x8DA6B343u) ^ (p.y * 0xD8163841u);
+    h ^= h >> 16;
+    h *= 0x7FEB352Du;
+    h ^= h >> 15;
+    return float(h >> 8) * 5.96046448e-08;  // 2^-24
+}
+
+// The occlusion 1 - V of the pixel at csz level-0 texel c (position C, normal n, projected radius
+// r_px): `slices` slices at angles phase + k*slice_turn (2^-32 turns; slice_turn = half a turn over
+// slices), m = max(1, tap_count/(2*slices)) steps on each side at h_j = r_px*((j + xi)/m)^2, each
+// tap read from the z MIP level for its distance (hierarchy) and, with two_layer, the second
+// layer's slab too. V = sum_k w_k (1 - bits_k/32) / sum_k w_k; 0 when every weight is 0. The loop's
+// trip count comes from tap_count alone (the caller passes SAO_TAP_COUNT: on Vulkan a push constant,
+// see sao.glsl), max(tap_count, 2*SAO_MAX_SLICES) >= 2*slices*m, its extra trips doing nothing.
+float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, bool two_layer, bool hierarchy, ivec2 c, vec3 C,
+                               vec3 n, float r_px, uint phase, float xi, int tap_count, int slices,
+                               uint slice_turn, vec4 proj_info, int ortho, float radius2, float tolerance,
+                               float thickness, int log_q, int max_mip)
+{
+    ivec2 size0 = textureSize(csz, 0);
+    vec3 V = (ortho != 0) ? vec3(0.0, 0.0, 1.0) : normalize(-C);
+    int ns = clamp(slices, 1, SAO_MAX_SLICES);
+    int m = max(1, tap_count / (2 * ns));
+    int per_slice = 2 * m;
+    int used = ns * per_slice;
+    int trips = max(tap_count, 2 * SAO_MAX_SLICES);
+    float inv_m = 1.0 / float(m);
+    float occluded = 0.0;
+    float weights = 0.0;
+    SaoSlice sl;
+    uint bits = 0u;
+    vec2 u = vec2(1.0, 0.0);
+    int i = 0;  // trips >= 1: a do-while, as the spiral's loop
+    do {
+        if (i < used) {
+            int k = i / per_slice;
+            int r = i - k * per_slice;  // place in the slice: side (r >= m: -u), step j
+            if (r == 0) {
+                u = sao_turn_direction(phase + uint(k) * slice_turn);
+                sl = sao_slice_setup(u, V, n, proj_info);
+                bits = 0u;
+            }
+            bool negative = r >= m;
+            int j = negative ? r - m : r;
+            float t = (float(j) + xi) * inv_m;
+            float h = r_px * (t * t);
+            ivec2 tap = c + ivec2(h * (negative ? -u : u));  // conversion truncates toward zero
+            if (tap != c) {
+                int lvl = hierarchy ? sao_mip_level(h, log_q, max_mip) : 0;
+                ivec2 tt = sao_mip_texel(tap, lvl, size0);
+                vec2 q = vec2(sao_mip_source(tt, lvl, size0)) + 0.5;
+                bits |= sao_slab_bits(sl, C, V, q, texelFetch(csz, tt, lvl).r, proj_info, ortho, radius2, tolerance,
+                                      thickness);
+                if (two_layer)
+                    bits |= sao_slab_bits(sl, C, V, q, texelFetch(csz2, tt, lvl).r, proj_info, ortho, radius2,
+                                          tolerance, thickness);
+            }
+            if (r == per_slice - 1) {
+                occluded += sl.weight * (float(bitCount(bits)) * 0.03125);
+                weights += sl.weight;
+            }
+        }
+    } while (++i < trips);
+    return (weights > 0.0) ? occluded / weights : 0.0;
+}
+
+#endif // SAO_VISIBILITY_GLSL
