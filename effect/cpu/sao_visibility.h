@@ -27,6 +27,22 @@ Vec3<T> normalize(Vec3<T> v) {
   return scale(v, inverseSqrt(dot(v, v)));
 }
 
+// sao_atan2: atan(y, x) from basic arithmetic, operation for operation (Float: the shader's
+// constants; Double: the same polynomial, error below 2e-7 rad, in double).
+template <typename T>
+T atan2Poly(T y, T x) {
+  const T ax = std::abs(x), ay = std::abs(y);
+  const T t = glslMin(ax, ay) / glslMax(ax, ay);
+  const bool reduce = t > T(0.414213562f);
+  const T r = reduce ? (t - T(1)) / (t + T(1)) : t;
+  const T z = r * r;
+  const T p = (((T(0.0805374449538f) * z - T(0.138776856032f)) * z + T(0.199777106478f)) * z - T(0.333329491539f)) * z * r + r;
+  const T a = reduce ? T(0.785398163f) + p : p;
+  const T b = (ay > ax) ? T(1.57079633f) - a : a;
+  const T c = (x < T(0)) ? T(3.14159265f) - b : b;
+  return (y < T(0)) ? -c : c;
+}
+
 // SaoSlice.
 template <typename T>
 struct Slice {
@@ -34,11 +50,11 @@ struct Slice {
   T gamma = T(0), cosGamma = T(1), sinGamma = T(0), lo = T(0), hi = T(0), gLo = T(0), invRange = T(0), weight = T(0);
 };
 
-// sao_slice_g.
+// sao_slice_g (c2 = cos(2x - gamma)).
 template <typename T>
-T sliceG(T x, T gamma, T cosGamma, T sinGamma) {
+T sliceG(T x, T c2, T cosGamma, T sinGamma) {
   const T s = (x >= T(0)) ? T(1) : T(-1);
-  return s * (((cosGamma - std::cos(T(2) * x - gamma)) + (T(2) * x) * sinGamma) * T(0.25));
+  return s * (((cosGamma - c2) + (T(2) * x) * sinGamma) * T(0.25));
 }
 
 // sao_slice_setup.
@@ -53,17 +69,26 @@ Slice<T> sliceSetup(T ux, T uy, Vec3<T> V, Vec3<T> n, const Block<T>& P) {
   const T L = std::sqrt(dot(np, np));
   sl.a = a;
   sl.shear = (L > T(0)) ? scale(a - scale(n, na), T(1) / (L * L)) : Vec3<T>{T(0), T(0), T(0)};
-  const T g = std::atan2(dot(np, sl.e), dot(np, V));
-  sl.gamma = (L > T(0)) ? std::clamp(g, -kVisHalfPi<T>, kVisHalfPi<T>) : T(0);
-  sl.cosGamma = std::cos(sl.gamma);
-  sl.sinGamma = std::sin(sl.gamma);
+  const T npe = dot(np, sl.e), npv = dot(np, V);
+  const bool facing = npv > T(0);
+  sl.gamma = (L > T(0)) ? std::clamp(atan2Poly(npe, npv), -kVisHalfPi<T>, kVisHalfPi<T>) : T(0);
+  sl.cosGamma = (L > T(0)) ? (facing ? npv / L : T(0)) : T(1);
+  sl.sinGamma = (L > T(0)) ? (facing ? npe / L : (npe >= T(0) ? T(1) : T(-1))) : T(0);
   sl.lo = sl.gamma - kVisHalfPi<T>;
   sl.hi = sl.gamma + kVisHalfPi<T>;
-  sl.gLo = sliceG(sl.lo, sl.gamma, sl.cosGamma, sl.sinGamma);
-  const T range = sliceG(sl.hi, sl.gamma, sl.cosGamma, sl.sinGamma) - sl.gLo;
+  sl.gLo = sliceG(sl.lo, -sl.cosGamma, sl.cosGamma, sl.sinGamma);
+  const T range = sliceG(sl.hi, -sl.cosGamma, sl.cosGamma, sl.sinGamma) - sl.gLo;
   sl.invRange = T(1) / range;
   sl.weight = L * range;
   return sl;
+}
+
+// sao_slice_position.
+template <typename T>
+T slicePosition(const Slice<T>& sl, T theta, T pe, T pv) {
+  const T c2 = ((pv * pv - pe * pe) * sl.cosGamma + (T(2) * pv * pe) * sl.sinGamma) / (pe * pe + pv * pv);
+  const bool inside = theta > sl.lo && theta < sl.hi;
+  return sliceG(std::clamp(theta, sl.lo, sl.hi), inside ? c2 : -sl.cosGamma, sl.cosGamma, sl.sinGamma);
 }
 
 // sao_bits_below, sao_bits_between.
@@ -95,15 +120,15 @@ std::uint32_t slabBits(const Slice<T>& sl, Vec3<T> C, Vec3<T> V, T qx, T qy, T z
   Vec3<T> b = B - C;
   f = f - scale(sl.shear, dot(f, sl.a));  // into the slice along the tangent plane
   b = b - scale(sl.shear, dot(b, sl.a));
-  const T tf = std::atan2(dot(f, sl.e), dot(f, V));
-  const T tb = std::atan2(dot(b, sl.e), dot(b, V));
-  T t1 = glslMin(tf, tb);
-  T t2 = glslMax(tf, tb);
-  if (t2 - t1 > kVisPi<T>) return 0u;
-  t1 = std::clamp(t1, sl.lo, sl.hi);
-  t2 = std::clamp(t2, sl.lo, sl.hi);
-  const T u1 = (sliceG(t1, sl.gamma, sl.cosGamma, sl.sinGamma) - sl.gLo) * sl.invRange;
-  const T u2 = (sliceG(t2, sl.gamma, sl.cosGamma, sl.sinGamma) - sl.gLo) * sl.invRange;
+  const T fe = dot(f, sl.e), fv = dot(f, V);
+  const T be = dot(b, sl.e), bv = dot(b, V);
+  const T tf = atan2Poly(fe, fv);
+  const T tb = atan2Poly(be, bv);
+  if (std::abs(tf - tb) > kVisPi<T>) return 0u;
+  const T gf = slicePosition(sl, tf, fe, fv);
+  const T gb = slicePosition(sl, tb, be, bv);
+  const T u1 = (glslMin(gf, gb) - sl.gLo) * sl.invRange;
+  const T u2 = (glslMax(gf, gb) - sl.gLo) * sl.invRange;
   return bitsBetween(u1, u2);
 }
 
@@ -173,9 +198,11 @@ T visibilityOcclusion(const std::vector<Image<T>>& csz, const std::vector<Image<
       const int mx = mipTexel(tx, lvl, z0.w), my = mipTexel(ty, lvl, z0.h);
       int sx = mx, sy = my;
       mipSource(sx, sy, lvl, z0.w, z0.h);
-      const T qx = T(sx) + T(0.5), qy = T(sy) + T(0.5);
-      bits |= slabBits(sl, C, V, qx, qy, csz[std::size_t(lvl)].at(mx, my), P);
-      if (twoLayer) bits |= slabBits(sl, C, V, qx, qy, csz2[std::size_t(lvl)].at(mx, my), P);
+      if (sx != cx || sy != cy) {  // a coarse texel may hold the centre's own z
+        const T qx = T(sx) + T(0.5), qy = T(sy) + T(0.5);
+        bits |= slabBits(sl, C, V, qx, qy, csz[std::size_t(lvl)].at(mx, my), P);
+        if (twoLayer) bits |= slabBits(sl, C, V, qx, qy, csz2[std::size_t(lvl)].at(mx, my), P);
+      }
     }
     if (r == perSlice - 1) {
       occluded += sl.weight * (T(std::popcount(bits)) * T(0.03125));

@@ -5,7 +5,8 @@
 // Reads come per instruction ("step") and lane, the order a SIMT machine issues them: step 0 the
 // centre z of every invocation (inside or not), then, for the invocations with geometry, the
 // normal (one normals fetch, or the four csz neighbours of eq. 4), then the s taps (with the
-// visibility estimator, ESTIMATOR 1: its 2*slices*m slice taps, those that leave the centre texel).
+// visibility estimator, ESTIMATOR 1: its 2*slices*m slice taps, those that leave the centre texel and
+// whose MIP texel does not hold the centre's own z).
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -132,7 +133,11 @@ void AoSampleTrace::group(int gx, int gy, Sink& out) const {
         const int ty = l.cy + static_cast<int>(h * (negative ? -l.uy : l.uy));
         if (tx == l.cx && ty == l.cy) continue;
         const int lvl = zHierarchy_ ? mipLevel(h, P.log_q, P.max_mip) : 0;
-        out.read(li, Surface::Csz, lvl, mipTexel(tx, lvl, z0.w), mipTexel(ty, lvl, z0.h));
+        const int mx = mipTexel(tx, lvl, z0.w), my = mipTexel(ty, lvl, z0.h);
+        int sx = mx, sy = my;
+        mipSource(sx, sy, lvl, z0.w, z0.h);
+        if (sx == l.cx && sy == l.cy) continue;  // a coarse texel holding the centre's z: not read
+        out.read(li, Surface::Csz, lvl, mx, my);
       }
     }
     out.beginStep();  // closes the last step
