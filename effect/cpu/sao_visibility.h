@@ -96,8 +96,9 @@ inline std::uint32_t bitsBelow(int b) { return b >= 32 ? 0xFFFFFFFFu : ((1u << u
 
 template <typename T>
 std::uint32_t bitsBetween(T u1, T u2) {
-  const int b1 = std::clamp(static_cast<int>(std::floor(T(32) * u1 + T(0.5))), 0, 32);
-  const int b2 = std::clamp(static_cast<int>(std::floor(T(32) * u2 + T(0.5))), 0, 32);
+  const T x1 = T(32) * u1 + T(0.5), x2 = T(32) * u2 + T(0.5);
+  const int b1 = static_cast<int>(std::floor(x1 > T(0) ? glslMin(x1, T(32)) : T(0)));  // NaN: 0
+  const int b2 = static_cast<int>(std::floor(x2 > T(0) ? glslMin(x2, T(32)) : T(0)));
   return bitsBelow(b2) & ~bitsBelow(b1);
 }
 

@@ -109,13 +109,14 @@ uint sao_bits_below(int b)
 }
 
 // The bits of slice positions [u1, u2] (u in [0, 1], uniform in the cosine-weighted measure): bit
-// range [floor(32 u1 + 0.5), floor(32 u2 + 0.5)).
+// range [floor(32 u1 + 0.5), floor(32 u2 + 0.5)), clamped to [0, 32] before the conversion (a NaN,
+// from a degenerate slice, gives 0).
 uint sao_bits_between(float u1, float u2)
 {
     precise float x1 = 32.0 * u1 + 0.5;
     precise float x2 = 32.0 * u2 + 0.5;
-    int b1 = clamp(int(floor(x1)), 0, 32);
-    int b2 = clamp(int(floor(x2)), 0, 32);
+    int b1 = int(floor(x1 > 0.0 ? min(x1, 32.0) : 0.0));
+    int b2 = int(floor(x2 > 0.0 ? min(x2, 32.0) : 0.0));
     return sao_bits_below(b2) & ~sao_bits_below(b1);
 }
 
