@@ -40,6 +40,10 @@
 #pragma sao setting float fade_end            default=0.0   range=[0,100000]       unit=m   "Distance fade: camera distance -z from which A = 1, linear in distance from fade_start on; 0 = no fade"
 #pragma sao setting float albedo              default=0.0   range=[0,1]                     "Multi-bounce: the surface albedo rho of Jimenez et al. 2016's fit max(A, ((a A + b) A + c) A), applied to A where the output is written; 0: single bounce, A unchanged (docs/effect-math.md, Multi-bounce)"
 #pragma sao setting bool  half_intermediates  default=true                                  "rg16f (A, key) intermediates (HALF_INTERMEDIATES): ao_raw and ao_low take 4 bytes a texel instead of 8, A and the key z (in about metres) rounded to binary16; false: rg32f (docs/effect-math.md, section 6.5)"
+#pragma sao setting int   estimator           default=0     values=[0,1]                    "0 alchemy: the paper's eq. 1, as before; 1 visibility: cosine-weighted visibility with a finite thickness, horizon slices with a visibility bitmask (docs/effect-math.md)"
+#pragma sao setting float thickness           default=0.3   range=[0.001,100]      unit=m   "Visibility estimator: the thickness T of every stored surface; a ray is blocked where it passes through the slab from the surface (plus the tolerance) to T behind it"
+#pragma sao setting float depth_tolerance     default=0.003 range=[0,0.1]                   "Visibility estimator: relative depth tolerance; the slab behind a stored sample starts at its depth times (1 + tolerance)"
+#pragma sao setting int   slices              default=2     range=[1,8]                     "Visibility estimator: slices (screen directions, both sides each) per pixel; samples/(2*slices) steps on each side"
 // Derived settings: bools plan() computes from the settings, for the passes' skip_when= rules.
 #pragma sao derived direct_output when=blur_radius==0&&resolution_divisor==1&&temporal==false "Nothing follows the AO (no blur, full resolution, no history to keep): ao_sample_output writes the output itself, and neither ao_raw nor a copy pass is planned"
 #pragma sao derived copy_to_output when=resolution_divisor==1&&direct_output==false "Full resolution, and ao_sample wrote (A, key) (for the blur, or for the temporal history): the pass output copies A into the output"
@@ -54,6 +58,12 @@
 #pragma sao inert blur_edge_sharpness      when=blur_radius==0           "no bilateral blur: the blur pass does not run"
 #pragma sao inert mip_switch_log2          when=use_z_hierarchy==false   "no z MIP hierarchy: every tap reads level 0, there is no level to switch to"
 #pragma sao inert half_intermediates       when=direct_output==true      "ao_sample_output writes the output itself: there are no (A, key) intermediate images"
+#pragma sao inert bias                     when=estimator==1             "the visibility estimator has no eq. 1 term for a bias to offset"
+#pragma sao inert epsilon                  when=estimator==1             "the visibility estimator has no eq. 1 term for an epsilon to guard"
+#pragma sao inert spiral_turns             when=estimator==1             "the visibility estimator samples slices, not the spiral"
+#pragma sao inert thickness                when=estimator==0             "the alchemy estimator (eq. 1) has no thickness model; thickness is not uploaded"
+#pragma sao inert depth_tolerance          when=estimator==0             "the alchemy estimator (eq. 1) has no thickness model; depth_tolerance is not uploaded"
+#pragma sao inert slices                   when=estimator==0             "the alchemy estimator (eq. 1) samples the spiral, not slices; slices is not uploaded"
 // ---------------------------------------------------------------------------------------------
 // Presets: the chain `sao-bench --tune` chose on the Pareto front of time against error vs the
 // converged estimator (c), over the built-in scenes (docs/BENCHMARKS.md, "Tuning"; 2026-12-03, gl,
@@ -89,6 +99,7 @@
 #pragma sao constant int  SAO_OUTPUT_BLEND_REPLACE=0 "output_blend: the output's selected channels receive A (sao::OutputBlend::Replace)"
 #pragma sao constant int  SAO_DEPTH_SAMPLE_0=0 "depth_sample_policy: a multisampled depth input's sample 0 stands for its texel (sao::DepthSamplePolicy::Sample0)"
 #pragma sao constant int  SAO_DEPTH_SAMPLE_NEAREST=1 "depth_sample_policy: the sample nearest to the camera (the largest geometry z; sky only when every sample is sky) stands for its texel (Nearest)"
+#pragma sao constant int  SAO_MAX_SLICES=8 "Upper bound of slices (its range's end); the visibility estimator's loop runs at least 2*SAO_MAX_SLICES trips"
 #pragma sao constant int  SAO_OUTPUT_BLEND_MULTIPLY=1 "output_blend: the output's selected channels are multiplied by A, the apply step of an engine's colour or occlusion target (sao::OutputBlend::Multiply)"
 
 // ---------------------------------------------------------------------------------------------
@@ -102,6 +113,7 @@
 #pragma sao variant TEMPORAL values=[0,1] default=0 select=temporal "1: ao_sample blends each pixel's obscurance sum with the history of the previous frames (sao_temporal.glsl) and writes this frame's history"
 #pragma sao variant HALF_INTERMEDIATES values=[0,1] default=0 select=half_intermediates "1: the (A, key) intermediates are rg16f: the passes writing them round A and the key (z times key_scale = 1/metersToViewUnits: z in metres) to binary16 themselves"
 #pragma sao variant MOTION_VECTORS values=[0,1] default=0 select=input:motion "1: temporal accumulation finds each pixel's history where the motion input says the surface was (moving objects) instead of reprojecting through the cameras"
+#pragma sao variant ESTIMATOR values=[0,1] default=0 select=estimator "0: the AlchemyAO estimator (eq. 1) over the spiral taps; 1: the visibility estimator, cosine-weighted visibility with a finite thickness over slices with a visibility bitmask (sao_visibility.glsl)"
 #pragma sao exclude MOTION_VECTORS=1 TEMPORAL=0 "motion vectors serve temporal accumulation only: set the temporal setting, or give no motion input"
 #pragma sao exclude DEPTH_MULTISAMPLE=1 TWO_LAYER=1 "a multisampled depth input has no second layer: give depth peeling's layers single-sample, or resolve the depth first"
 #pragma sao exclude Z_HIERARCHY=0 TWO_LAYER=1 "the no-hierarchy baseline is a single-layer benchmark path"
@@ -129,6 +141,7 @@
 #include "include/sao_zmip.glsl"
 #include "include/sao_spiral.glsl"
 #include "include/sao_estimator.glsl"
+#include "include/sao_visibility.glsl"
 #include "include/sao_blur.glsl"
 #include "include/sao_upsample.glsl"
 #include "include/sao_output.glsl"
@@ -137,7 +150,7 @@
 // ---------------------------------------------------------------------------------------------
 // Parameter block: filled by host code from Settings + Camera + extents (docs/effect-math.md,
 // "Parameter block"). Lengths are camera-space (view) units: metres times metersToViewUnits.
-// std140 offsets in brackets; 384 bytes.
+// std140 offsets in brackets; 400 bytes (392 of members, rounded up to a vec4).
 // ---------------------------------------------------------------------------------------------
 #pragma sao block SaoParams
 layout(std140, binding = 0) uniform SaoParams {
@@ -198,6 +211,10 @@ layout(std140, binding = 0) uniform SaoParams {
     float bounce_a;             // [364] the fit's cubic coefficient, 2.0404*albedo - 0.3324 (0 when multi_bounce is 0)
     float bounce_b;             // [368] quadratic, -4.7951*albedo + 0.6417
     float bounce_c;             // [372] linear, 2.7552*albedo + 0.6903
+    float thickness;            // [376] visibility estimator: T, view units (0 with estimator 0)
+    float depth_tolerance;      // [380] visibility estimator: tol, relative to depth (0 with estimator 0)
+    int   slices;               // [384] visibility estimator: slices per pixel, 1..SAO_MAX_SLICES (0 with estimator 0)
+    uint  slice_turn;           // [388] visibility estimator: the angle between slices, 2^-32 turns (half a turn over slices)
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -308,7 +325,8 @@ void sao_linear_z2_main()
 #pragma sao end
 
 // ---------------------------------------------------------------------------------------------
-// Pass 3: spiral taps (eq. 5-10) through the AlchemyAO estimator (eq. 1), then the 2x2
+// Pass 3: spiral taps (eq. 5-10) through the AlchemyAO estimator (eq. 1), or with ESTIMATOR the
+// visibility estimator's slices over the same z hierarchy (sao_visibility.glsl), then the 2x2
 // bilateral reconstruction through shared memory (no derivative instructions). One invocation
 // per AO pixel; invocations outside the AO buffer take part in the barriers as sky. Two passes
 // share the body: ao_sample stores (A, key) for the blur, the upsample or the output pass,
@@ -330,6 +348,11 @@ layout(push_constant) uniform SaoLoopCounts { int samples; } sao_loop;
 #define SAO_TAP_COUNT sao_loop.samples
 #else
 #define SAO_TAP_COUNT samples
+#endif
+#if TWO_LAYER
+#define SAO_CSZ2 in_csz2
+#else
+#define SAO_CSZ2 in_csz  // not read (two_layer false): a bound sampler of the right type
 #endif
 shared float sao_quad_a[gl_WorkGroupSize.x * gl_WorkGroupSize.y];  // A per invocation
 shared float sao_quad_h[gl_WorkGroupSize.x * gl_WorkGroupSize.y];  // A after the horizontal step
@@ -363,6 +386,15 @@ float sao_ao_sample(ivec2 p, bool inside, out float key_z)
         float r_px = sao_screen_radius(radius, proj_scale, zc, ortho);
         uint phase = sao_pixel_phase(uvec2(p)) + frame_phase;  // eq. 8, turned by the frame's rotation
         int s = clamp(SAO_TAP_COUNT, 1, SAO_MAX_SAMPLES);
+#if ESTIMATOR
+        // The visibility estimator: "sum" is the occlusion 1 - V (intensity_div_s = sigma), so that
+        // sao_visibility gives max(0, 1 - sigma (1 - V))^k and TEMPORAL blends the occlusion. Radial
+        // jitter: the frame's offset plus the pixel's hash, mod 1.
+        float xi = fract(frame_alpha_offset + sao_pixel_jitter(uvec2(p)));
+        float sum = sao_visibility_occlusion(in_csz, SAO_CSZ2, TWO_LAYER != 0, Z_HIERARCHY != 0, c, C, n, r_px, phase,
+                                             xi, s, slices, slice_turn, proj_info, ortho, radius2, depth_tolerance,
+                                             thickness, log_q, max_mip);
+#else
         float sum = 0.0;
         vec2 u = sao_turn_direction(tap_turn0 + phase);  // tap 0's direction; each tap turns it by tap_step
         int i = 0;  // s >= 1: a do-while, whose body llvmpipe does not run once more masked
@@ -385,6 +417,7 @@ float sao_ao_sample(ivec2 p, bool inside, out float key_z)
 #endif
             sum += o;
         } while (++i < s);
+#endif
 #if TEMPORAL
         // Where this surface was in the previous frame: through the cameras, or by the motion input.
         vec3 P = sao_to_previous(C, prev_from_cur_x, prev_from_cur_y, prev_from_cur_z);
@@ -429,7 +462,7 @@ float sao_ao_sample(ivec2 p, bool inside, out float key_z)
 }
 #endif
 
-#pragma sao pass ao_sample entry=sao_ao_main local=8x8 reads=csz,csz2,normals,history,motion writes=ao_raw,history variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,TEMPORAL,MOTION_VECTORS,HALF_INTERMEDIATES skip_when=direct_output==true "Obscurance from s spiral taps over the z hierarchy (eq. 1, 3-10), with TEMPORAL blended with the reprojected history (and this frame's history written), 2x2 bilateral reconstruction; writes (A, key z)"
+#pragma sao pass ao_sample entry=sao_ao_main local=8x8 reads=csz,csz2,normals,history,motion writes=ao_raw,history variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,TEMPORAL,MOTION_VECTORS,HALF_INTERMEDIATES,ESTIMATOR skip_when=direct_output==true "Obscurance from s spiral taps over the z hierarchy (eq. 1, 3-10), with TEMPORAL blended with the reprojected history (and this frame's history written), 2x2 bilateral reconstruction; writes (A, key z)"
 void sao_ao_main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -446,7 +479,7 @@ void sao_ao_main()
 }
 #pragma sao end
 
-#pragma sao pass ao_sample_output entry=sao_ao_output_main local=8x8 reads=csz,csz2,normals writes=ao variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,OUTPUT_FORMAT skip_when=direct_output==false "No blur at full resolution without temporal only: ao_sample's obscurance and 2x2 reconstruction, A stored straight into the output's format (no ao_raw, no output pass)"
+#pragma sao pass ao_sample_output entry=sao_ao_output_main local=8x8 reads=csz,csz2,normals writes=ao variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,OUTPUT_FORMAT,ESTIMATOR skip_when=direct_output==false "No blur at full resolution without temporal only: ao_sample's obscurance and 2x2 reconstruction, A stored straight into the output's format (no ao_raw, no output pass)"
 void sao_ao_output_main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);

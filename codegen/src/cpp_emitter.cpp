@@ -285,7 +285,7 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     << "// What gives a variant its value when the effect is planned.\n"
     << "enum class VariantSelect : std::uint8_t {\n"
     << "  Default,  // always defaultValue\n"
-    << "  Setting,  // the bool setting SettingId(selectIndex): 1 when true\n"
+    << "  Setting,  // the setting SettingId(selectIndex), a bool or an int with values=[0,1]: its value\n"
     << "  Input,    // the kind=input resource ResourceId(selectIndex): 1 when the user supplies it\n"
     << "  Output,   // the kind=output resource ResourceId(selectIndex): the index of its image's format in its formats\n"
     << "  Multisampled,  // the kind=input resource ResourceId(selectIndex): 1 when it has several samples per texel\n"

@@ -300,9 +300,13 @@ void resolveVariantSelect(const Effect& e, Variant& v, const SourceLoc& loc, con
       diags.error(loc, "variant '" + v.name + "' is selected by unknown setting '" + text + "'");
       return;
     }
-    if (e.settings[s].type != ScalarType::Bool) {
-      diags.error(loc, "variant '" + v.name + "' is selected by " + typeName(e.settings[s].type) + " setting '" + text +
-                           "': select= takes a bool setting or input:RESOURCE");
+    // A bool setting, or an int one whose only values are 0 and 1: either way the variant's value
+    // is the setting's (plan(): value != 0).
+    const Setting& st = e.settings[s];
+    const bool intZeroOne = st.type == ScalarType::Int && st.allowed == std::vector<double>{0.0, 1.0};
+    if (st.type != ScalarType::Bool && !intZeroOne) {
+      diags.error(loc, "variant '" + v.name + "' is selected by " + typeName(st.type) + " setting '" + text +
+                           "': select= takes a bool setting, an int setting with values=[0,1], or input:RESOURCE");
       return;
     }
     v.select = VariantSelect::Setting;

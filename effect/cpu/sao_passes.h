@@ -17,6 +17,7 @@
 #include "sao/schedule.h"
 #include "sao/status.h"
 #include "sao_math.h"
+#include "sao_visibility.h"
 
 namespace sao::cpu::detail {
 
@@ -125,7 +126,8 @@ class AoSampleInvocation {
         normalsSupplied_(ctx.variant(gen::VariantId::NORMALS_SUPPLIED)),
         twoLayer_(ctx.variant(gen::VariantId::TWO_LAYER)),
         zHierarchy_(ctx.variant(gen::VariantId::Z_HIERARCHY)),
-        motionVectors_(ctx.variant(gen::VariantId::MOTION_VECTORS)) {}
+        motionVectors_(ctx.variant(gen::VariantId::MOTION_VECTORS)),
+        visibilityEstimator_(ctx.variant(gen::VariantId::ESTIMATOR)) {}
 
   // A and key for the 2x2 step; with TEMPORAL (history_ set) also this frame's history texel:
   // the accumulated sum, its frames and the packed normal (all 0 for sky and outside).
@@ -161,7 +163,11 @@ class AoSampleInvocation {
     const int s = std::clamp(P_.samples, 1, gen::SAO_MAX_SAMPLES);
     T sum = T(0);
     SpiralDirection<T> u = SpiralDirection<T>::start(phase, P_);
-    for (int i = 0; i < s; ++i) {
+    // ESTIMATOR 1: the occlusion 1 - V of the visibility estimator (sao_visibility.h) is the sum.
+    if (visibilityEstimator_)
+      sum = visibilityOcclusion(csz_, csz2_, twoLayer_, zHierarchy_, cx, cy, C, n, r_px, phase,
+                                radialJitter(std::uint32_t(px), std::uint32_t(py), P_), s, P_);
+    for (int i = 0; i < s && !visibilityEstimator_; ++i) {
       T h;
       int tx, ty;
       spiralTap(cx, cy, i, r_px, P_, u, tx, ty, h);
@@ -199,7 +205,7 @@ class AoSampleInvocation {
   const std::vector<Image<T>>& csz2_;
   const Image<T>& aoRaw_;
   const Image<T>* history_;  // the previous frame's (TEMPORAL), else null
-  const bool normalsSupplied_, twoLayer_, zHierarchy_, motionVectors_;
+  const bool normalsSupplied_, twoLayer_, zHierarchy_, motionVectors_, visibilityEstimator_;
 };
 
 // The output texel at (x, y) as sao_output_texel stores it: into the channels output_mask selects,

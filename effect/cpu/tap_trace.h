@@ -4,13 +4,16 @@
 // are the ones the shader fetches (compile the includer with -ffp-contract=off, as sao_cpu is).
 // Reads come per instruction ("step") and lane, the order a SIMT machine issues them: step 0 the
 // centre z of every invocation (inside or not), then, for the invocations with geometry, the
-// normal (one normals fetch, or the four csz neighbours of eq. 4), then the s taps.
+// normal (one normals fetch, or the four csz neighbours of eq. 4), then the s taps (with the
+// visibility estimator, ESTIMATOR 1: its 2*slices*m slice taps, those that leave the centre texel and
+// whose MIP texel does not hold the centre's own z).
 #pragma once
 #include <algorithm>
 #include <cstdint>
 #include <vector>
 
 #include "sao_math.h"
+#include "sao_visibility.h"
 
 namespace sao::cpu::trace {
 
@@ -25,9 +28,9 @@ class AoSampleTrace {
  public:
   // csz: level 0 first, more than params.max_mip levels when zHierarchy (the caller checks).
   AoSampleTrace(const std::vector<detail::Image<float>>& csz, const gen::SaoParams& params, bool zHierarchy,
-                bool normalsSupplied, int localX = 8, int localY = 8)
+                bool normalsSupplied, int localX = 8, int localY = 8, bool visibilityEstimator = false)
       : csz_(csz), P_(params), zHierarchy_(zHierarchy), normalsSupplied_(normalsSupplied), localX_(localX),
-        localY_(localY) {}
+        localY_(localY), visibility_(visibilityEstimator) {}
 
   // ao_raw's extent: the viewport over resolution_divisor, rounded up (the dispatch covers it).
   int aoWidth() const { return (P_.ao_size.x + divisor() - 1) / divisor(); }
@@ -48,12 +51,16 @@ class AoSampleTrace {
     int cx = 0, cy = 0;
     float rPx = 0;
     detail::SpiralDirection<float> direction;  // the next tap's
+    std::uint32_t phase = 0;                   // the visibility estimator's slice angles
+    float xi = 0;                              // and radial jitter
+    float ux = 1, uy = 0;                      // its slice's direction
   };
 
   const std::vector<detail::Image<float>>& csz_;
   const detail::Block<float> P_;
   const bool zHierarchy_, normalsSupplied_;
   const int localX_, localY_;
+  const bool visibility_;
 };
 
 template <typename Sink>
@@ -77,7 +84,9 @@ void AoSampleTrace::group(int gx, int gy, Sink& out) const {
     l.active = inside && !isSky(zc);
     if (l.active) {
       l.rPx = screenRadius(zc, P);
-      l.direction = SpiralDirection<float>::start(pixelPhase(std::uint32_t(px), std::uint32_t(py)) + P.frame_phase, P);
+      l.phase = pixelPhase(std::uint32_t(px), std::uint32_t(py)) + P.frame_phase;
+      l.direction = SpiralDirection<float>::start(l.phase, P);
+      l.xi = radialJitter(std::uint32_t(px), std::uint32_t(py), P);
     }
   }
 
@@ -102,8 +111,39 @@ void AoSampleTrace::group(int gx, int gy, Sink& out) const {
     }
   }
 
-  // The s spiral taps (eq. 6-10).
   const int s = std::clamp(P.samples, 1, gen::SAO_MAX_SAMPLES);
+  if (visibility_) {
+    // sao_visibility_occlusion's taps: slice k's +u then -u side, m steps each, at h_j = r'((j + xi)/m)^2;
+    // a tap on the centre texel is not fetched.
+    const int ns = std::clamp(P.slices, 1, gen::SAO_MAX_SLICES);
+    const int m = std::max(1, s / (2 * ns));
+    const float invM = 1.0f / float(m);
+    for (int i = 0; i < ns * 2 * m; ++i) {
+      const int k = i / (2 * m), r = i - k * (2 * m);
+      const bool negative = r >= m;
+      const int j = negative ? r - m : r;
+      out.beginStep();
+      for (int li = 0; li < lanes(); ++li) {
+        Lane& l = lane[std::size_t(li)];
+        if (!l.active) continue;
+        if (r == 0) turnDirection<float>(l.phase + std::uint32_t(k) * P.slice_turn, l.ux, l.uy);
+        const float t = (float(j) + l.xi) * invM;
+        const float h = l.rPx * (t * t);
+        const int tx = l.cx + static_cast<int>(h * (negative ? -l.ux : l.ux));
+        const int ty = l.cy + static_cast<int>(h * (negative ? -l.uy : l.uy));
+        if (tx == l.cx && ty == l.cy) continue;
+        const int lvl = zHierarchy_ ? mipLevel(h, P.log_q, P.max_mip) : 0;
+        const int mx = mipTexel(tx, lvl, z0.w), my = mipTexel(ty, lvl, z0.h);
+        int sx = mx, sy = my;
+        mipSource(sx, sy, lvl, z0.w, z0.h);
+        if (sx == l.cx && sy == l.cy) continue;  // a coarse texel holding the centre's z: not read
+        out.read(li, Surface::Csz, lvl, mx, my);
+      }
+    }
+    out.beginStep();  // closes the last step
+    return;
+  }
+  // The s spiral taps (eq. 6-10).
   for (int i = 0; i < s; ++i) {
     out.beginStep();
     for (int li = 0; li < lanes(); ++li) {

@@ -77,7 +77,8 @@ Status TrafficScene::replay(const Settings& settings, const TrafficVariant& vari
     if (Status st = validate(m); !st) return st;
     models.emplace_back(m, surfaces);
   }
-  const cpu::trace::AoSampleTrace trace(impl_->csz, params, variant.zHierarchy, variant.normalsSupplied);
+  const cpu::trace::AoSampleTrace trace(impl_->csz, params, variant.zHierarchy, variant.normalsSupplied, 8, 8,
+                                        s.estimator == 1);
   GroupReads group;
   for (int gy = 0; gy < trace.groupsY(); ++gy)
     for (int gx = 0; gx < trace.groupsX(); ++gx) {

@@ -33,6 +33,12 @@ TEST(InertRules, DeclaredRelations) {
                        "blur_edge_sharpness while blur_radius = 0",
                        "mip_switch_log2 while use_z_hierarchy = false",
                        "half_intermediates while blur_radius = 0, resolution_divisor = 1 and temporal = false",
+                       "bias while estimator = 1",
+                       "epsilon while estimator = 1",
+                       "spiral_turns while estimator = 1",
+                       "thickness while estimator = 0",
+                       "depth_tolerance while estimator = 0",
+                       "slices while estimator = 0",
                    }));
 }
 
@@ -116,6 +122,7 @@ TEST(InertRules, WhileARuleHoldsTheSettingChangesNoBit) {
     if (rule.when.setting == SettingId::blur_radius) s.blur_radius = 0;
     if (rule.when.setting == SettingId::use_z_hierarchy) s.use_z_hierarchy = false;
     if (rule.when.setting == SettingId::direct_output) s.blur_radius = 0, s.resolution_divisor = 1;
+    if (rule.when.setting == SettingId::estimator) s.estimator = int(rule.when.value);
     ASSERT_NE(inertRule(s, rule.setting), nullptr) << "the rule does not hold under the chosen settings";
     const auto [low, high] = atBothEnds(sc, s, rule.setting);
     ASSERT_FALSE(low.data.empty());
@@ -137,9 +144,17 @@ TEST(InertRules, WhereNoRuleHoldsTheSettingChangesTheOutput) {
   Settings direct;
   direct.blur_radius = 0;
   direct.resolution_divisor = 2;  // not direct output: the upsample reads rg16f or rg32f (A, key)
+  Settings visibility;  // the visibility estimator: its thickness model and slices
+  visibility.estimator = 1;
+  visibility.radius = 3.0f;
+  const Settings alchemy;  // the defaults: the alchemy estimator's bias, epsilon and spiral
   const std::vector<std::pair<SettingId, Settings>> cases = {
-      {SettingId::fade_start, fade},      {SettingId::blur_stride, blur},    {SettingId::blur_edge_sharpness, blur},
-      {SettingId::mip_switch_log2, mips}, {SettingId::half_intermediates, direct}};
+      {SettingId::fade_start, fade},         {SettingId::blur_stride, blur},
+      {SettingId::blur_edge_sharpness, blur}, {SettingId::mip_switch_log2, mips},
+      {SettingId::half_intermediates, direct}, {SettingId::thickness, visibility},
+      {SettingId::depth_tolerance, visibility}, {SettingId::slices, visibility},
+      {SettingId::bias, alchemy},            {SettingId::epsilon, alchemy},
+      {SettingId::spiral_turns, alchemy}};
   for (const auto& [id, s] : cases) {
     SCOPED_TRACE(nameOf(id));
     ASSERT_EQ(inertRule(s, id), nullptr);

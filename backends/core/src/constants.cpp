@@ -211,6 +211,15 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
   // by the view-space radius r, so sigma is unitless and A is the same in any unit system and for a
   // scene scaled together with its radius (at r = 1 m it is the paper's sigma in metres).
   p.intensity_div_s = f(2.0 * s.intensity * r / s.samples);
+  if (s.estimator == 1) {
+    // The visibility estimator's "sum" is the occlusion 1 - V in [0, 1]: A = max(0, 1 - sigma (1 - V))^k.
+    // Its thickness model and slices are uploaded only for it (the inert rules say so).
+    p.intensity_div_s = s.intensity;
+    p.thickness = f(double(s.thickness) * u);
+    p.depth_tolerance = s.depth_tolerance;
+    p.slices = s.slices;
+    p.slice_turn = static_cast<std::uint32_t>(std::llround(2147483648.0 / s.slices));  // half a turn over slices
+  }
   p.epsilon = f(double(s.epsilon) * u * u);
   p.contrast = s.contrast;
   p.proj_scale = f(projScale(c));

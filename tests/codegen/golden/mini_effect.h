@@ -139,7 +139,7 @@ enum class VariantId : std::uint32_t {
 // What gives a variant its value when the effect is planned.
 enum class VariantSelect : std::uint8_t {
   Default,  // always defaultValue
-  Setting,  // the bool setting SettingId(selectIndex): 1 when true
+  Setting,  // the setting SettingId(selectIndex), a bool or an int with values=[0,1]: its value
   Input,    // the kind=input resource ResourceId(selectIndex): 1 when the user supplies it
   Output,   // the kind=output resource ResourceId(selectIndex): the index of its image's format in its formats
   Multisampled,  // the kind=input resource ResourceId(selectIndex): 1 when it has several samples per texel

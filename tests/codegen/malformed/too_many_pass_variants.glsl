@@ -2,7 +2,7 @@
 #pragma sao variant A values=[0,1,2,3] "doc"
 #pragma sao variant B values=[0,1,2,3] "doc"
 #pragma sao variant C values=[0,1,2,3] "doc"
-#pragma sao variant D values=[0,1] "a pass listing all four compiles 128 > 64 variants"
+#pragma sao variant D values=[0,1,2,3] "a pass listing all four compiles 256 > 128 variants"
 #pragma sao resource src kind=input format=depth "in"
 #pragma sao resource dst kind=output format=r16f "out"
 #pragma sao block P

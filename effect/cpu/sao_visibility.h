@@ -1,0 +1,216 @@
+// sao_visibility.glsl in C++ (the visibility estimator, ESTIMATOR 1), one function each, in the
+// shader's order of operations, templated on T like sao_math.h (float mimics the GPU, double is the
+// reference). atan, cos and sin are the C library's: GPUs' are not correctly rounded, so float
+// agrees with the GPU to the agreement tests' bounds, not bit for bit. Built with -ffp-contract=off.
+#pragma once
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "sao_math.h"
+
+namespace sao::cpu::detail {
+
+template <typename T>
+constexpr T kVisPi = T(3.14159265358979323846);
+template <typename T>
+constexpr T kVisHalfPi = T(1.57079632679489661923);
+
+template <typename T>
+Vec3<T> scale(Vec3<T> v, T s) {
+  return {v.x * s, v.y * s, v.z * s};
+}
+// GLSL normalize: v * inversesqrt(dot(v, v)).
+template <typename T>
+Vec3<T> normalize(Vec3<T> v) {
+  return scale(v, inverseSqrt(dot(v, v)));
+}
+
+// sao_atan2: atan(y, x) from basic arithmetic, operation for operation (Float: the shader's
+// constants; Double: the same polynomial, error below 2e-7 rad, in double).
+template <typename T>
+T atan2Poly(T y, T x) {
+  const T ax = std::abs(x), ay = std::abs(y);
+  const T t = glslMin(ax, ay) / glslMax(ax, ay);
+  const bool reduce = t > T(0.414213562f);
+  const T r = reduce ? (t - T(1)) / (t + T(1)) : t;
+  const T z = r * r;
+  const T p = (((T(0.0805374449538f) * z - T(0.138776856032f)) * z + T(0.199777106478f)) * z - T(0.333329491539f)) * z * r + r;
+  const T a = reduce ? T(0.785398163f) + p : p;
+  const T b = (ay > ax) ? T(1.57079633f) - a : a;
+  const T c = (x < T(0)) ? T(3.14159265f) - b : b;
+  return (y < T(0)) ? -c : c;
+}
+
+// SaoSlice.
+template <typename T>
+struct Slice {
+  Vec3<T> e{T(0), T(0), T(0)}, a{T(0), T(0), T(0)}, shear{T(0), T(0), T(0)};
+  T gamma = T(0), cosGamma = T(1), sinGamma = T(0), lo = T(0), hi = T(0), gLo = T(0), invRange = T(0), weight = T(0);
+};
+
+// sao_slice_g (c2 = cos(2x - gamma)).
+template <typename T>
+T sliceG(T x, T c2, T cosGamma, T sinGamma) {
+  const T s = (x >= T(0)) ? T(1) : T(-1);
+  return s * (((cosGamma - c2) + (T(2) * x) * sinGamma) * T(0.25));
+}
+
+// sao_slice_setup.
+template <typename T>
+Slice<T> sliceSetup(T ux, T uy, Vec3<T> V, Vec3<T> n, const Block<T>& P) {
+  Slice<T> sl;
+  const Vec3<T> D{ux * P.proj_info.x, uy * P.proj_info.y, T(0)};
+  sl.e = normalize(D - scale(V, dot(D, V)));
+  const Vec3<T> a = normalize(cross(sl.e, V));
+  const T na = dot(n, a);
+  const Vec3<T> np = n - scale(a, na);
+  const T L = std::sqrt(dot(np, np));
+  sl.a = a;
+  sl.shear = (L > T(0)) ? scale(a - scale(n, na), T(1) / (L * L)) : Vec3<T>{T(0), T(0), T(0)};
+  const T npe = dot(np, sl.e), npv = dot(np, V);
+  const bool facing = npv > T(0);
+  sl.gamma = (L > T(0)) ? std::clamp(atan2Poly(npe, npv), -kVisHalfPi<T>, kVisHalfPi<T>) : T(0);
+  sl.cosGamma = (L > T(0)) ? (facing ? npv / L : T(0)) : T(1);
+  sl.sinGamma = (L > T(0)) ? (facing ? npe / L : (npe >= T(0) ? T(1) : T(-1))) : T(0);
+  sl.lo = sl.gamma - kVisHalfPi<T>;
+  sl.hi = sl.gamma + kVisHalfPi<T>;
+  sl.gLo = sliceG(sl.lo, -sl.cosGamma, sl.cosGamma, sl.sinGamma);
+  const T range = sliceG(sl.hi, -sl.cosGamma, sl.cosGamma, sl.sinGamma) - sl.gLo;
+  sl.invRange = T(1) / range;
+  sl.weight = L * range;
+  return sl;
+}
+
+// sao_slice_position.
+template <typename T>
+T slicePosition(const Slice<T>& sl, T theta, T pe, T pv) {
+  const T c2 = ((pv * pv - pe * pe) * sl.cosGamma + (T(2) * pv * pe) * sl.sinGamma) / (pe * pe + pv * pv);
+  const bool inside = theta > sl.lo && theta < sl.hi;
+  return sliceG(std::clamp(theta, sl.lo, sl.hi), inside ? c2 : -sl.cosGamma, sl.cosGamma, sl.sinGamma);
+}
+
+// sao_bits_below, sao_bits_between.
+inline std::uint32_t bitsBelow(int b) { return b >= 32 ? 0xFFFFFFFFu : ((1u << unsigned(b)) - 1u); }
+
+template <typename T>
+std::uint32_t bitsBetween(T u1, T u2) {
+  const T x1 = T(32) * u1 + T(0.5), x2 = T(32) * u2 + T(0.5);
+  const int b1 = static_cast<int>(std::floor(x1 > T(0) ? glslMin(x1, T(32)) : T(0)));  // NaN: 0
+  const int b2 = static_cast<int>(std::floor(x2 > T(0) ? glslMin(x2, T(32)) : T(0)));
+  return bitsBelow(b2) & ~bitsBelow(b1);
+}
+
+// sao_slab_bits.
+template <typename T>
+std::uint32_t slabBits(const Slice<T>& sl, Vec3<T> C, Vec3<T> V, T qx, T qy, T z, const Block<T>& P) {
+  if (isSky(z)) return 0u;
+  const Vec3<T> S = position(qx, qy, z, P);
+  const T k = T(1) + P.depth_tolerance;
+  Vec3<T> F, B;
+  if (P.ortho != 0) {
+    F = {S.x, S.y, z * k};
+    B = {S.x, S.y, z * k - P.thickness};
+  } else {
+    F = scale(S, k);
+    B = scale(S, k + P.thickness / -z);
+  }
+  Vec3<T> f = F - C;
+  if (dot(f, f) > P.radius2) return 0u;
+  Vec3<T> b = B - C;
+  f = f - scale(sl.shear, dot(f, sl.a));  // into the slice along the tangent plane
+  b = b - scale(sl.shear, dot(b, sl.a));
+  const T fe = dot(f, sl.e), fv = dot(f, V);
+  const T be = dot(b, sl.e), bv = dot(b, V);
+  const T tf = atan2Poly(fe, fv);
+  const T tb = atan2Poly(be, bv);
+  if (std::abs(tf - tb) > kVisPi<T>) return 0u;
+  const T gf = slicePosition(sl, tf, fe, fv);
+  const T gb = slicePosition(sl, tb, be, bv);
+  const T u1 = (glslMin(gf, gb) - sl.gLo) * sl.invRange;
+  const T u2 = (glslMax(gf, gb) - sl.gLo) * sl.invRange;
+  return bitsBetween(u1, u2);
+}
+
+// sao_mip_source: the level-0 texel (x, y) whose z level-m texel (x, y) holds.
+inline void mipSource(int& x, int& y, int m, int w0, int h0) {
+  for (int k = gen::SAO_MAX_MIP_LEVELS - 1; k >= 1; --k)
+    if (k <= m) {
+      int sx, sy;
+      rotatedGridSource(x, y, std::max(w0 >> (k - 1), 1), std::max(h0 >> (k - 1), 1), sx, sy);
+      x = sx;
+      y = sy;
+    }
+}
+
+// sao_pixel_jitter: 24 bits of a hash of the AO pixel, in [0, 1) (exact in float and double).
+inline std::uint32_t pixelJitterBits(std::uint32_t x, std::uint32_t y) {
+  std::uint32_t h = (x * 0x8DA6B343u) ^ (y * 0xD8163841u);
+  h ^= h >> 16;
+  h *= 0x7FEB352Du;
+  h ^= h >> 15;
+  return h >> 8;
+}
+
+// The radial jitter xi = fract(frame_alpha_offset + the pixel's jitter), as ao_sample computes it
+// (a float sum in the shader: Float rounds the same way, Double keeps it exact).
+template <typename T>
+T radialJitter(std::uint32_t px, std::uint32_t py, const Block<T>& P) {
+  const T x = P.frame_alpha_offset + T(pixelJitterBits(px, py)) * T(5.9604644775390625e-08);
+  return x - std::floor(x);
+}
+
+// sao_visibility_occlusion: the occlusion 1 - V of the pixel at csz texel (cx, cy). csz2 is read
+// only with twoLayer; `tapCount` is the block's samples (the shader's SAO_TAP_COUNT).
+template <typename T>
+T visibilityOcclusion(const std::vector<Image<T>>& csz, const std::vector<Image<T>>& csz2, bool twoLayer,
+                      bool hierarchy, int cx, int cy, Vec3<T> C, Vec3<T> n, T r_px, std::uint32_t phase, T xi,
+                      int tapCount, const Block<T>& P) {
+  const Image<T>& z0 = csz[0];
+  const Vec3<T> V = (P.ortho != 0) ? Vec3<T>{T(0), T(0), T(1)} : normalize(Vec3<T>{-C.x, -C.y, -C.z});
+  const int ns = std::clamp(P.slices, 1, gen::SAO_MAX_SLICES);
+  const int m = std::max(1, tapCount / (2 * ns));
+  const int perSlice = 2 * m;
+  const int used = ns * perSlice;
+  const T invM = T(1) / T(m);
+  T occluded = T(0);
+  T weights = T(0);
+  Slice<T> sl;
+  std::uint32_t bits = 0u;
+  T ux = T(1), uy = T(0);
+  for (int i = 0; i < used; ++i) {
+    const int k = i / perSlice;
+    const int r = i - k * perSlice;
+    if (r == 0) {
+      turnDirection<T>(phase + std::uint32_t(k) * P.slice_turn, ux, uy);
+      sl = sliceSetup(ux, uy, V, n, P);
+      bits = 0u;
+    }
+    const bool negative = r >= m;
+    const int j = negative ? r - m : r;
+    const T t = (T(j) + xi) * invM;
+    const T h = r_px * (t * t);
+    const T dx = negative ? -ux : ux, dy = negative ? -uy : uy;
+    const int tx = cx + static_cast<int>(h * dx);  // truncates toward zero
+    const int ty = cy + static_cast<int>(h * dy);
+    if (tx != cx || ty != cy) {
+      const int lvl = hierarchy ? mipLevel(h, P.log_q, P.max_mip) : 0;
+      const int mx = mipTexel(tx, lvl, z0.w), my = mipTexel(ty, lvl, z0.h);
+      int sx = mx, sy = my;
+      mipSource(sx, sy, lvl, z0.w, z0.h);
+      if (sx != cx || sy != cy) {  // a coarse texel may hold the centre's own z
+        const T qx = T(sx) + T(0.5), qy = T(sy) + T(0.5);
+        bits |= slabBits(sl, C, V, qx, qy, csz[std::size_t(lvl)].at(mx, my), P);
+        if (twoLayer) bits |= slabBits(sl, C, V, qx, qy, csz2[std::size_t(lvl)].at(mx, my), P);
+      }
+    }
+    if (r == perSlice - 1) {
+      occluded += sl.weight * (T(std::popcount(bits)) * T(0.03125));
+      weights += sl.weight;
+    }
+  }
+  return (weights > T(0)) ? occluded / weights : T(0);
+}
+
+}  // namespace sao::cpu::detail

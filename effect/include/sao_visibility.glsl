@@ -1,0 +1,255 @@
+// sao_visibility.glsl -- the visibility estimator (ESTIMATOR 1): cosine-weighted visibility of the
+// hemisphere around n with a finite thickness, sampled in slices (the plane through the eye that
+// holds V and a screen direction u: marching the screen line c + h u tests every ray of the slice)
+// with a 32-bit visibility bitmask per slice (Therrien et al. 2023) over the cosine-weighted measure.
+// Library code: depends on sao_depth.glsl, sao_position.glsl, sao_zmip.glsl and sao_spiral.glsl.
+// Math: docs/effect-math.md, "The visibility estimator"; the definition it samples is reference (d)'s.
+#ifndef SAO_VISIBILITY_GLSL
+#define SAO_VISIBILITY_GLSL
+
+const float SAO_PI = 3.14159265;
+const float SAO_HALF_PI = 1.57079633;
+
+// atan(y, x) in (-pi, pi] from basic arithmetic only, so that every backend and the CPU reference
+// compute the same floats (built-in atan differs between implementations, and a tap's angle that
+// lands on a bit boundary would flip the bit): t = min/max of |x|, |y| in [0, 1], reduced to
+// [0, tan(pi/8)] by atan(t) = pi/4 + atan((t - 1)/(t + 1)), then Cephes' atanf polynomial (error
+// below 2e-7 rad), the octant's reflections exact. `precise`: no fused multiply-add. (0, 0) is
+// never passed (sao_slab_bits' caller skips the centre's own texel; a slice's n_p with L = 0 is
+// not evaluated).
+float sao_atan2(float y, float x)
+{
+    precise float ax = abs(x);
+    precise float ay = abs(y);
+    precise float t = min(ax, ay) / max(ax, ay);
+    bool reduce = t > 0.414213562;
+    precise float r = reduce ? (t - 1.0) / (t + 1.0) : t;
+    precise float z = r * r;
+    precise float p = (((0.0805374449538 * z - 0.138776856032) * z + 0.199777106478) * z - 0.333329491539) * z * r + r;
+    precise float a = reduce ? 0.785398163 + p : p;
+    precise float b = (ay > ax) ? 1.57079633 - a : a;
+    precise float c = (x < 0.0) ? 3.14159265 - b : b;
+    return (y < 0.0) ? -c : c;
+}
+
+// One slice of a pixel: e (in the slice, perpendicular to V), the hemisphere [lo, hi] = gamma -+ pi/2
+// around the projected normal's angle gamma (from V, signed towards e), G(lo), 1/(G(hi) - G(lo)) and
+// the slice's weight L*(G(hi) - G(lo)) (L = length of the projected normal).
+struct SaoSlice {
+    vec3 e;
+    vec3 a;      // the slice plane's normal
+    vec3 shear;  // (a - n (n.a)) / L^2: moves a point into the slice along the surface's tangent plane
+    float gamma;
+    float cos_gamma;
+    float sin_gamma;
+    float lo;
+    float hi;
+    float g_lo;
+    float inv_range;
+    float weight;
+};
+
+// G(x) = s*(cos(gamma) - cos(2x - gamma) + 2x sin(gamma))/4, s = sign(x) (+1 at 0): the integral of
+// cos(theta - gamma)*|sin(theta)| from 0 to x, the cosine-weighted measure of the slice's angles;
+// c2 = cos(2x - gamma), which the caller has (sao_slice_position).
+float sao_slice_g(float x, float c2, float cos_gamma, float sin_gamma)
+{
+    float s = (x >= 0.0) ? 1.0 : -1.0;
+    precise float g = s * (((cos_gamma - c2) + (2.0 * x) * sin_gamma) * 0.25);
+    return g;
+}
+
+// The slice through the eye holding V and screen direction u (csz pixels), for the normal n.
+// gamma is clamped to [-pi/2, pi/2]: a normal facing away from the eye (n.V < 0: silhouettes, noisy
+// or supplied normals) keeps the hemisphere inside (-pi, pi], where the taps' angles lie.
+SaoSlice sao_slice_setup(vec2 u, vec3 V, vec3 n, vec4 proj_info)
+{
+    SaoSlice sl;
+    precise vec3 D = vec3(u.x * proj_info.x, u.y * proj_info.y, 0.0);
+    precise vec3 e = normalize(D - V * dot(D, V));
+    precise vec3 a = normalize(cross(e, V));
+    precise float na = dot(n, a);
+    precise vec3 np = n - a * na;
+    precise float L = length(np);
+    sl.e = e;
+    sl.a = a;
+    precise vec3 shear = (a - n * na) * (1.0 / (L * L));
+    sl.shear = (L > 0.0) ? shear : vec3(0.0);
+    // gamma, cos(gamma) = n_p.V / L and sin(gamma) = n_p.e / L; clamped: cos 0, sin +-1.
+    precise float npe = dot(np, sl.e);
+    precise float npv = dot(np, V);
+    bool facing = npv > 0.0;
+    sl.gamma = (L > 0.0) ? clamp(sao_atan2(npe, npv), -SAO_HALF_PI, SAO_HALF_PI) : 0.0;
+    sl.cos_gamma = (L > 0.0) ? (facing ? npv / L : 0.0) : 1.0;
+    sl.sin_gamma = (L > 0.0) ? (facing ? npe / L : (npe >= 0.0 ? 1.0 : -1.0)) : 0.0;
+    sl.lo = sl.gamma - SAO_HALF_PI;
+    sl.hi = sl.gamma + SAO_HALF_PI;
+    // cos(2 lo - gamma) = cos(gamma - pi) = -cos(gamma), and the same at hi.
+    sl.g_lo = sao_slice_g(sl.lo, -sl.cos_gamma, sl.cos_gamma, sl.sin_gamma);
+    precise float range = sao_slice_g(sl.hi, -sl.cos_gamma, sl.cos_gamma, sl.sin_gamma) - sl.g_lo;
+    sl.inv_range = 1.0 / range;
+    sl.weight = L * range;
+    return sl;
+}
+
+// G of the angle theta (from V) of the in-slice vector (pe, pv) = (x.e, x.V), theta clamped to the
+// hemisphere. cos(2 theta - gamma) comes from the vector itself, (pv^2 - pe^2) cos(gamma) +
+// 2 pv pe sin(gamma) over its squared length (no cos per tap); at a clamped end it is -cos(gamma).
+float sao_slice_position(SaoSlice sl, float theta, float pe, float pv)
+{
+    precise float c2 = ((pv * pv - pe * pe) * sl.cos_gamma + (2.0 * pv * pe) * sl.sin_gamma) / (pe * pe + pv * pv);
+    bool inside = theta > sl.lo && theta < sl.hi;
+    return sao_slice_g(clamp(theta, sl.lo, sl.hi), inside ? c2 : -sl.cos_gamma, sl.cos_gamma, sl.sin_gamma);
+}
+
+// Bits [0, b) of a 32-bit mask, b in [0, 32] (a shift by 32 is undefined).
+uint sao_bits_below(int b)
+{
+    return (b >= 32) ? 0xFFFFFFFFu : ((1u << uint(b)) - 1u);
+}
+
+// The bits of slice positions [u1, u2] (u in [0, 1], uniform in the cosine-weighted measure): bit
+// range [floor(32 u1 + 0.5), floor(32 u2 + 0.5)), clamped to [0, 32] before the conversion (a NaN,
+// from a degenerate slice, gives 0).
+uint sao_bits_between(float u1, float u2)
+{
+    precise float x1 = 32.0 * u1 + 0.5;
+    precise float x2 = 32.0 * u2 + 0.5;
+    int b1 = int(floor(x1 > 0.0 ? min(x1, 32.0) : 0.0));
+    int b2 = int(floor(x2 > 0.0 ? min(x2, 32.0) : 0.0));
+    return sao_bits_below(b2) & ~sao_bits_below(b1);
+}
+
+// The bits a stored sample blocks: the slab along its view ray from depth d(1 + tol) to
+// d(1 + tol) + T (S at pixel centre q_pixel, z: perspective S scaled by (1 + tol) and
+// (1 + tol) + T/d; ortho S's z moved), seen from C: its angles in the slice, clamped to the
+// hemisphere, as bits. Sky, a front point farther than r from C, and a slab that would subtend more
+// than pi (only a sample on the pixel's own view ray, behind C) block nothing. The caller never
+// passes the centre's own texel (f = 0 would leave the angle undefined).
+uint sao_slab_bits(SaoSlice sl, vec3 C, vec3 V, vec2 q_pixel, float z, vec4 proj_info, int ortho, float radius2,
+                   float tolerance, float thickness)
+{
+    if (sao_is_sky(z))
+        return 0u;
+    // `precise` from here to the bits: no fused multiply-add, so that the backends and the CPU round
+    // alike (an angle on a bit boundary would flip the bit).
+    precise vec3 S = sao_position(q_pixel, z, proj_info, ortho);
+    precise float k = 1.0 + tolerance;
+    precise vec3 F;
+    precise vec3 B;
+    if (ortho != 0) {
+        F = vec3(S.xy, z * k);
+        B = vec3(S.xy, z * k - thickness);
+    } else {
+        F = S * k;
+        B = S * (k + thickness / -z);
+    }
+    precise vec3 f = F - C;
+    if (dot(f, f) > radius2)
+        return 0u;
+    precise vec3 b = B - C;
+    // Into the slice plane along the tangent plane (a truncated tap lies up to a pixel beside the
+    // slice; dropping its a component would lift a point of the surface's own plane above it).
+    f -= sl.shear * dot(f, sl.a);
+    b -= sl.shear * dot(b, sl.a);
+    precise float fe = dot(f, sl.e);
+    precise float fv = dot(f, V);
+    precise float be = dot(b, sl.e);
+    precise float bv = dot(b, V);
+    float tf = sao_atan2(fe, fv);
+    float tb = sao_atan2(be, bv);
+    if (abs(tf - tb) > SAO_PI)
+        return 0u;
+    // G is increasing on the hemisphere: the smaller G is the smaller angle's.
+    precise float gf = sao_slice_position(sl, tf, fe, fv);
+    precise float gb = sao_slice_position(sl, tb, be, bv);
+    precise float u1 = (min(gf, gb) - sl.g_lo) * sl.inv_range;
+    precise float u2 = (max(gf, gb) - sl.g_lo) * sl.inv_range;
+    return sao_bits_between(u1, u2);
+}
+
+// The csz level-0 texel whose z level-m texel t holds: the rotated grid (Table 1) walked down. A
+// tap's point is placed there, on the surface its z belongs to (SAO places it at the tap pixel,
+// up to 2^m pixels from where that z was seen: beside a receding floor, above it).
+ivec2 sao_mip_source(ivec2 t, int m, ivec2 size0)
+{
+    for (int k = SAO_MAX_MIP_LEVELS - 1; k >= 1; --k)  // a constant trip count (no block value)
+        if (k <= m)
+            t = sao_rotated_grid_source(t, max(size0 >> (k - 1), ivec2(1)));
+    return t;
+}
+
+// The pixel's radial jitter: a hash of the AO pixel, 24 bits, in [0, 1) (exact as a float, so
+// every backend has the same value). Decorrelated from eq. 8's rotation hash.
+float sao_pixel_jitter(uvec2 p)
+{
+    uint h = (p.x * 0x8DA6B343u) ^ (p.y * 0xD8163841u);
+    h ^= h >> 16;
+    h *= 0x7FEB352Du;
+    h ^= h >> 15;
+    return float(h >> 8) * 5.96046448e-08;  // 2^-24
+}
+
+// The occlusion 1 - V of the pixel at csz level-0 texel c (position C, normal n, projected radius
+// r_px): `slices` slices at angles phase + k*slice_turn (2^-32 turns; slice_turn = half a turn over
+// slices), m = max(1, tap_count/(2*slices)) steps on each side at h_j = r_px*((j + xi)/m)^2, each
+// tap read from the z MIP level for its distance (hierarchy) and, with two_layer, the second
+// layer's slab too. V = sum_k w_k (1 - bits_k/32) / sum_k w_k; 0 when every weight is 0. The loop's
+// trip count comes from tap_count alone (the caller passes SAO_TAP_COUNT: on Vulkan a push constant,
+// see sao.glsl), max(tap_count, 2*SAO_MAX_SLICES) >= 2*slices*m, its extra trips doing nothing.
+float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, bool two_layer, bool hierarchy, ivec2 c, vec3 C,
+                               vec3 n, float r_px, uint phase, float xi, int tap_count, int slices,
+                               uint slice_turn, vec4 proj_info, int ortho, float radius2, float tolerance,
+                               float thickness, int log_q, int max_mip)
+{
+    ivec2 size0 = textureSize(csz, 0);
+    precise vec3 V = (ortho != 0) ? vec3(0.0, 0.0, 1.0) : normalize(-C);
+    int ns = clamp(slices, 1, SAO_MAX_SLICES);
+    int m = max(1, tap_count / (2 * ns));
+    int per_slice = 2 * m;
+    int used = ns * per_slice;
+    int trips = max(tap_count, 2 * SAO_MAX_SLICES);
+    float inv_m = 1.0 / float(m);
+    precise float occluded = 0.0;
+    precise float weights = 0.0;
+    SaoSlice sl;
+    uint bits = 0u;
+    vec2 u = vec2(1.0, 0.0);
+    int i = 0;  // trips >= 1: a do-while, as the spiral's loop
+    do {
+        if (i < used) {
+            int k = i / per_slice;
+            int r = i - k * per_slice;  // place in the slice: side (r >= m: -u), step j
+            if (r == 0) {
+                u = sao_turn_direction(phase + uint(k) * slice_turn);
+                sl = sao_slice_setup(u, V, n, proj_info);
+                bits = 0u;
+            }
+            bool negative = r >= m;
+            int j = negative ? r - m : r;
+            float t = (float(j) + xi) * inv_m;
+            float h = r_px * (t * t);
+            ivec2 tap = c + ivec2(h * (negative ? -u : u));  // conversion truncates toward zero
+            if (tap != c) {
+                int lvl = hierarchy ? sao_mip_level(h, log_q, max_mip) : 0;
+                ivec2 tt = sao_mip_texel(tap, lvl, size0);
+                ivec2 src = sao_mip_source(tt, lvl, size0);
+                if (src != c) {  // a coarse texel may hold the centre's own z
+                    vec2 q = vec2(src) + 0.5;
+                    bits |= sao_slab_bits(sl, C, V, q, texelFetch(csz, tt, lvl).r, proj_info, ortho, radius2,
+                                          tolerance, thickness);
+                    if (two_layer)
+                        bits |= sao_slab_bits(sl, C, V, q, texelFetch(csz2, tt, lvl).r, proj_info, ortho, radius2,
+                                              tolerance, thickness);
+                }
+            }
+            if (r == per_slice - 1) {
+                occluded += sl.weight * (float(bitCount(bits)) * 0.03125);
+                weights += sl.weight;
+            }
+        }
+    } while (++i < trips);
+    return (weights > 0.0) ? occluded / weights : 0.0;
+}
+
+#endif // SAO_VISIBILITY_GLSL

@@ -1,0 +1,73 @@
+// The visibility estimator (estimator = 1) at the extremes, on every backend (runScene: finite,
+// in [0, 1], sky = 1, GL = Vulkan): radius 0.01 and 100 m, thickness 0.001 and 100 m,
+// depth_tolerance 0 and 0.1, 1 and 8 slices with 1 and 64 samples, temporal, and far depths (a
+// scene 1000x farther, reversed and standard depth).
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "extremes_support.h"
+
+namespace sao::stability {
+namespace {
+
+TEST(VisibilityEstimator, ExtremesStayInZeroOne) {
+  const Camera persp = camera(64, 48, 0.1, 1e4, ClipDepth::NegativeOneToOne, false, 8);
+  const Camera farRev = camera(64, 48, 0.1, kInf, ClipDepth::ZeroToOne, true, 8);
+  const Camera ortho = orthoCamera(64, 48, 0.1, 100.0, ClipDepth::ZeroToOne, true, 8, 3.0);
+  struct Tweak {
+    std::string name;
+    void (*apply)(Settings&);
+  };
+  const std::vector<Tweak> tweaks = {
+      {"defaults", [](Settings&) {}},
+      {"radius 0.01", [](Settings& s) { s.radius = 0.01f; }},
+      {"radius 100", [](Settings& s) { s.radius = 100.0f; }},
+      {"thickness 0.001", [](Settings& s) { s.thickness = 0.001f; }},
+      {"thickness 100", [](Settings& s) { s.thickness = 100.0f; }},
+      {"depth_tolerance 0", [](Settings& s) { s.depth_tolerance = 0.0f; }},
+      {"depth_tolerance 0.1 radius 100", [](Settings& s) { s.depth_tolerance = 0.1f, s.radius = 100.0f; }},
+      {"slices 8 samples 1", [](Settings& s) { s.slices = 8, s.samples = 1; }},
+      {"slices 8 samples 64", [](Settings& s) { s.slices = 8, s.samples = 64; }},
+      {"slices 1 samples 64 intensity 10 contrast 8", [](Settings& s) { s.slices = 1, s.samples = 64, s.intensity = 10.0f, s.contrast = 8.0f; }},
+  };
+  double lo = 1, hi = 0;
+  std::size_t runs = 0;
+  auto check = [&](const std::string& label, const Settings& s, const Camera& cam, const test::Scene& scene,
+                   DepthFormat fm) {
+    const SceneRun r = runScene(label, s, cam, scene, fm);
+    for (const BackendRun& b : r.runs.runs) {
+      ++runs;
+      const Range a = range(b.out.ao);
+      EXPECT_TRUE(allFinite(b.out.ao)) << label << " on " << b.name;
+      EXPECT_GE(a.min, 0.0) << label << " on " << b.name;
+      EXPECT_LE(a.max, 1.0) << label << " on " << b.name;
+      lo = std::min(lo, a.min);
+      hi = std::max(hi, a.max);
+    }
+  };
+  for (const Tweak& t : tweaks) {
+    Settings s = fullResolution();
+    s.estimator = 1;
+    t.apply(s);
+    ASSERT_TRUE(validate(s).ok()) << t.name;
+    check(t.name + " persp", s, persp, test::sphereOnPlaneScene(), DepthFormat::D24);
+    check(t.name + " ortho", s, ortho, test::creaseScene(5.0), DepthFormat::D32F);
+    // Far depths: the stairs 1000x farther (a 3 km wide flight at 2 km and beyond), reversed infinite.
+    check(t.name + " far", s, farRev, test::stairsScene(), DepthFormat::D32F);
+  }
+  Settings far = fullResolution();
+  far.estimator = 1;
+  far.radius = 100.0f;
+  far.thickness = 100.0f;
+  test::Scene distant{"distant_planes", {}, {}, {}, {}};
+  distant.planes.push_back({{0, -1000, 0}, {0, 1, 0}, {}});
+  distant.planes.push_back({{0, 0, -5000}, {0, 0, 1}, {}});
+  check("far floor and wall (5 km)", far, farRev, distant, DepthFormat::D32F);
+  report("visibility estimator at the extremes (radius, thickness, depth_tolerance, slices x samples, far depths; "
+         "persp, ortho, reversed infinite)",
+         "A finite and in [0,1]", fmt("%zu runs: A in [%.4f, %.4f]", runs, lo, hi));
+}
+
+}  // namespace
+}  // namespace sao::stability
