@@ -107,6 +107,7 @@ struct Options {
   bool ortho = false;           // --ortho: every scene's view made orthographic
   bool timeOnly = false;        // --time-only: no references, so no error columns
   std::string objective = "c";  // --objective: the reference --tune minimises the error against
+  std::vector<std::string> sets;  // --set NAME=VALUE, in order: applied to every preset of the presets section
   std::optional<scenes::LengthUnit> units;  // --units
   std::vector<std::string> scenes;          // --scenes; empty: benchScenes(quick)
 };
@@ -199,6 +200,15 @@ Options parse(int argc, char** argv) {
           "resolution_divisor for the lowest error vs (c) per time, relative to the medium preset, over the built-in "
           "scenes, and choose presets on that front (tune.csv, resumable; tune_front.csv/.svg, tune_presets.txt). Uses "
           "the first of --backends that starts (default gl), --size default 640x360, --runs, --converged-taps, --quick");
+  cl.value("--set", "NAME=VALUE",
+           "with --sections presets only (repeatable): a setting applied on top of every preset, e.g. --set estimator=1 "
+           "to measure the visibility estimator at each preset's cost; the rows' variant column lists them. Checked as "
+           "sao-render checks it (name, type, range; a setting a preset's final settings make inert is refused)",
+           [&o](const std::string& v) {
+             Settings probe;
+             if (Status s = setFromAssignment(probe, v); !s) cli::reject("--set: " + s.message);
+             o.sets.push_back(v);
+           });
   cl.choice("--objective", o.objective,
             [](const std::string& v) { return v == "c" || v == "a" ? std::optional(v) : std::nullopt; }, "c or a", "R",
             "with --tune: the reference whose error the front and the presets minimise: c (default), the converged "
@@ -222,6 +232,22 @@ Options parse(int argc, char** argv) {
     if (o.objective == "a" && !cl.given("--rays")) o.rays = 4096;  // (a)'s own noise below 0.005 on every scene (docs/reference.md)
     if (!cl.given("--backends")) o.backends = "gl";
     if (!cl.given("--size")) o.size = {640, 360};
+  }
+  if (!o.sets.empty()) {
+    if (o.tune || o.sections != std::set<std::string>{"presets"})
+      cl.fail("--set applies to the presets section only: add --sections presets (and no --tune)");
+    for (const PresetInfo& p : presets()) {
+      Settings s = presetSettings(p.preset);
+      std::vector<SettingId> given;
+      for (const std::string& a : o.sets) {
+        if (Status st = setFromAssignment(s, a); !st) cl.fail("--set: " + st.message);
+        given.push_back(*findSetting(a.substr(0, a.find('='))));
+      }
+      if (Status st = validate(s); !st) cl.fail("--set: preset " + std::string(p.name) + ": " + st.message);
+      for (SettingId id : given)
+        if (const gen::InertRule* rule = inertRule(s, id))
+          cl.fail("--set " + describeInert(*rule) + " (preset " + std::string(p.name) + ")");
+    }
   }
   if (cl.given("--objective") && !o.tune) cl.fail("--objective chooses what --tune minimises: add --tune, or drop it");
   if (o.timeOnly) {
@@ -310,6 +336,8 @@ std::vector<std::pair<std::string, std::string>> notes(const std::string& depthS
                                   "read r32f z and rebuild positions, where AlchemyAO read float3 camera-space "
                                   "positions (3x the bytes per tap); taps follow SAO's spiral; the 2x2 and bilateral "
                                   "blur passes are SAO's."},
+      {"radius: visibility (z hierarchy)", "the visibility estimator (estimator=1, docs/effect-math.md 5.9) with the z "
+                                           "MIP hierarchy, normals rebuilt from depth: its cost against the radius."},
       {"two_layer", std::string("medium settings with and without TWO_LAYER; depth2 is the nearest surface at least ") +
                         separation +
                         " m behind the first layer in camera-space z, D32F like depth: with the raster depth source "
@@ -437,7 +465,7 @@ int main(int argc, char** argv) {
         }
       }
       refs.converged = &converged->ao;
-      const bool freshScreen = !p.screen.count({s.radius, extra});
+      const bool freshScreen = !p.screen.count({s.radius, s.thickness, s.depth_tolerance, extra});
       ScreenOptions screenOptions;  // 64 slices, every pixel
       screenOptions.nearFieldAo = refs.nearFieldAo;
       screenOptions.converged = &converged->ao;
@@ -485,7 +513,15 @@ int main(int argc, char** argv) {
   if (want("presets"))
     for (const auto& scene : sceneNames)
       for (auto& b : backends)
-        for (const auto& p : presets()) run("presets", scene, *b, std::string(p.name), "", presetSettings(p.preset), size, true);
+        for (const auto& p : presets()) {
+          Settings s = presetSettings(p.preset);
+          std::string variant;
+          for (const std::string& a : o.sets) {
+            setFromAssignment(s, a);  // checked by parse()
+            variant += (variant.empty() ? "" : " ") + a;
+          }
+          run("presets", scene, *b, std::string(p.name), variant, s, size, true);
+        }
 
   // samples, mip_blur: sweeps on the main scene and the first backend.
   if (want("samples"))
@@ -511,15 +547,18 @@ int main(int argc, char** argv) {
       const char* label;
       bool hierarchy;
       Extra extra;
+      int estimator;
     };
-    const Curve curves[] = {{"SAO (z hierarchy)", true, Extra::None},
-                            {"SAO (no hierarchy)", false, Extra::None},
-                            {"AlchemyAO-style", false, Extra::Normals}};
+    const Curve curves[] = {{"SAO (z hierarchy)", true, Extra::None, 0},
+                            {"SAO (no hierarchy)", false, Extra::None, 0},
+                            {"AlchemyAO-style", false, Extra::Normals, 0},
+                            {"visibility (z hierarchy)", true, Extra::None, 1}};
     for (double r : o.quick ? std::vector<double>{0.1, 1.5} : std::vector<double>{0.1, 0.25, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0})
       for (const Curve& c : curves) {
         Settings t = base;
         t.radius = float(r);
         t.use_z_hierarchy = c.hierarchy;
+        t.estimator = c.estimator;
         run("radius", mainScene, first, "medium", c.label, t, radiusSize, false, c.extra);
       }
   }

@@ -162,7 +162,7 @@ Converged& convergedReference(Prepared& p, const Settings& s, Extra extra, const
 }
 
 Screen& screenReference(Prepared& p, const Settings& s, Extra extra, const ScreenOptions& options) {
-  const ScreenKey key{s.radius, extra};
+  const ScreenKey key{s.radius, s.thickness, s.depth_tolerance, extra};
   auto it = p.screen.find(key);
   if (it != p.screen.end()) return it->second;
   const samples::RunInputs inputs = runInputs(p, extra);

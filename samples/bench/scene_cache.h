@@ -47,9 +47,8 @@ struct Converged {
   std::string modelMap;  // maps/ PNG of (c) - (a), relative to the output folder
 };
 
-// Reference (d) depends on the radius and the inputs (its thickness and tolerance are
-// ScreenVisibilityOptions' defaults, 0.3 m and 0.003, until the settings have them).
-using ScreenKey = std::tuple<float, Extra>;
+// Reference (d) depends on the radius, the thickness, the depth tolerance and the inputs.
+using ScreenKey = std::tuple<float, float, float, Extra>;
 
 // Reference (d), converged screen-space visibility, with its cost and the two model errors that
 // split (c) - (a): (d) against (a) (what screen space cannot see) and (c) against (d) (the
@@ -72,7 +71,7 @@ struct Prepared {
   std::map<double, std::pair<double, double>> referenceNoise;  // (a)'s noise per radius: nearFieldNoise
   std::map<ObscuranceKey, FloatImage> obscurance;  // (b) per obscurance settings
   std::map<ConvergedKey, Converged> converged;     // (c) per obscurance settings and inputs
-  std::map<ScreenKey, Screen> screen;              // (d) per radius and inputs
+  std::map<ScreenKey, Screen> screen;              // (d) per radius, thickness, tolerance and inputs
   std::vector<unsigned char> silhouette;           // samples::silhouetteBand of the primary positions
   std::optional<raytrace::Primary> secondLayer;
 };

@@ -286,10 +286,20 @@ TEST(ScreenVisibility, ThicknessDecidesWhatHidesBehindAThinObject) {
   Settings s;  // radius 1 m: r' about 15 px on the wall
   FloatImage thin, infinite, reference;
   raytrace::ScreenVisibilityOptions o = fewSlices(32);
-  o.thicknessMeters = 0.2;
+  o.thicknessMeters = double(0.2f);  // the float setting's value, compared below
   ASSERT_TRUE(raytrace::screenVisibility(s, v.camera, {&v.primary.depth}, o, thin).ok());
   o.thicknessMeters = std::numeric_limits<double>::infinity();
   ASSERT_TRUE(raytrace::screenVisibility(s, v.camera, {&v.primary.depth}, o, infinite).ok());
+  // Unset, T and tol are the settings' (the visibility estimator's): thickness 0.2 m gives the same.
+  Settings fromSettings = s;
+  fromSettings.thickness = 0.2f;
+  FloatImage settingsThin;
+  o.thicknessMeters.reset();
+  ASSERT_TRUE(raytrace::screenVisibility(fromSettings, v.camera, {&v.primary.depth}, o, settingsThin).ok());
+  EXPECT_EQ(settingsThin.data, thin.data);
+  fromSettings.depth_tolerance = 0.05f;  // a tolerance of 5 % of the depth moves the slabs: another result
+  ASSERT_TRUE(raytrace::screenVisibility(fromSettings, v.camera, {&v.primary.depth}, o, settingsThin).ok());
+  EXPECT_NE(settingsThin.data, thin.data);
   raytrace::ReferenceOptions ro;
   ro.rays = 256;
   ASSERT_TRUE(raytrace::referenceAmbientOcclusion(*v.rays, v.camera, v.primary, v.scene.views[0], ro, reference).ok());

@@ -201,10 +201,12 @@ Status screenVisibility(const Settings& settings, const Camera& camera, const Co
   if (in.depth == nullptr) return invalid("needs a depth image");
   if (options.slices == 0) return invalid("needs slices >= 1 (got 0)");
   if (options.stride == 0) return invalid("needs stride >= 1 (got 0; 1 evaluates every pixel)");
-  if (!(options.thicknessMeters > 0))
-    return invalid("the thickness must be > 0 metres or +infinity (got " + number(options.thicknessMeters) + ")");
-  if (!(options.tolerance >= 0 && options.tolerance < 1))
-    return invalid("the depth tolerance must be in [0, 1) (got " + number(options.tolerance) + ")");
+  const double thicknessMeters = options.thicknessMeters.value_or(double(settings.thickness));
+  const double tolerance = options.tolerance.value_or(double(settings.depth_tolerance));
+  if (!(thicknessMeters > 0))
+    return invalid("the thickness must be > 0 metres or +infinity (got " + number(thicknessMeters) + ")");
+  if (!(tolerance >= 0 && tolerance < 1))
+    return invalid("the depth tolerance must be in [0, 1) (got " + number(tolerance) + ")");
   const DepthEncoding encoding = in.depth->format == DepthFormat::LinearZ ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
   gen::ParamBlock block;
   if (Status st = computeConstants(settings, camera, encoding, block); !st) return st;
@@ -221,7 +223,7 @@ Status screenVisibility(const Settings& settings, const Camera& camera, const Co
     return invalid("the normals must have the depth's extent and at least 3 channels");
 
   const Block<double> P(block);
-  const double thickness = options.thicknessMeters * camera.metersToViewUnits;
+  const double thickness = thicknessMeters * camera.metersToViewUnits;
   const Image<double> z0 = linearZ(*in.depth, P);
   const Image<double> z1 = in.depth2 ? linearZ(*in.depth2, P) : Image<double>{};
   const std::uint32_t k = options.stride;
@@ -233,7 +235,7 @@ Status screenVisibility(const Settings& settings, const Camera& camera, const Co
 
   cpu::parallelFor(int((camera.height + k - 1) / k), options.threads, [&](int row) {
     const int py = row * int(k);
-    Marcher marcher(P, z0, in.depth2 ? &z1 : nullptr, thickness, options.tolerance);
+    Marcher marcher(P, z0, in.depth2 ? &z1 : nullptr, thickness, tolerance);
     for (int px = 0; px < int(camera.width); px += int(k)) {
       Pixel p;
       p.cx = px + int(g), p.cy = py + int(g);

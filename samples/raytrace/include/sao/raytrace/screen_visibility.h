@@ -8,6 +8,7 @@
 // (docs/reference.md, "Reference (d)").
 #pragma once
 #include <cstdint>
+#include <optional>
 
 #include "sao/camera.h"
 #include "sao/image.h"
@@ -23,12 +24,12 @@ struct ScreenVisibilityOptions {
   // integrated exactly (a sorted union), so the slice count is the only sampling: 64 slices leave
   // an error of about 1e-3 on the closed-form crease (docs/reference.md).
   std::uint32_t slices = 64;
-  // T and tol of the definition. They belong to the effect's settings `thickness` (metres) and
-  // `depth_tolerance` (unitless, relative to depth), which are being added to Settings separately;
-  // until they are, they come from here. T is converted to view units with Camera::metersToViewUnits
-  // like the radius. T may be +infinity (a pure heightfield).
-  double thicknessMeters = 0.3;
-  double tolerance = 0.003;
+  // T and tol of the definition: unset, the settings' `thickness` (metres) and `depth_tolerance`
+  // (unitless, relative to depth), those the visibility estimator uses; set, these instead (T may
+  // then be +infinity: a pure heightfield, beyond the setting's range). T is converted to view units
+  // with Camera::metersToViewUnits like the radius.
+  std::optional<double> thicknessMeters;
+  std::optional<double> tolerance;
   // Evaluate every stride-th pixel in x and y only (those with x % stride == 0 and y % stride == 0);
   // the others are NaN, so that a comparison must take the strided pixels only (sao-bench does).
   std::uint32_t stride = 1;
@@ -43,7 +44,8 @@ struct ScreenVisibilityOptions {
 
 // `ao`: camera.width x camera.height, 1 channel, visibility V in [0, 1] per pixel (sky: 1; pixels off
 // the stride: NaN). No intensity, contrast or bias: V is compared with (a) directly. Uses the
-// settings' radius only (and the camera's projection and metersToViewUnits). Errors: the core's for
+// settings' radius, thickness and depth_tolerance only (and the camera's projection and
+// metersToViewUnits). Errors: the core's for
 // bad settings or camera; InvalidInput for a missing depth, inputs whose extent or format disagree
 // (as convergedEstimator), slices or stride 0, a thickness that is NaN or <= 0, or a tolerance
 // outside [0, 1).
