@@ -27,7 +27,7 @@ expect_refusal() {
   if "$bench" "$@" >"$out.refused" 2>&1; then die "sao-bench $* was accepted"; fi
   grep -qF -e "$msg" "$out.refused" || die "sao-bench $*: expected '$msg', got: $(cat "$out.refused")"
 }
-expect_refusal "--time-only computes no references: --rays, --converged-taps and --converged-noise do not apply" \
+expect_refusal "--time-only computes no references: --rays, --converged-taps, --converged-noise and --ao-noise do not apply" \
   --time-only --rays 16
 expect_refusal "--time-only: the spiral section measures error only" --time-only --sections presets,spiral
 echo "time-only smoke: ok"

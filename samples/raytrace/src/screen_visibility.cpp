@@ -144,15 +144,19 @@ class Marcher {
   static Vec3<double> offV(Vec3<double> d, Vec3<double> V) { return plus(d, scaled(V, -dot(d, V))); }
 
   // One side (sign +1: towards +u) of a slice: the screen line at h = 1, 2, ... <= r', each texel's
-  // slab (and the second layer's) as an interval of theta, clamped to [lo, hi].
+  // slab (and the second layer's) as an interval of theta, clamped to [lo, hi]. The march ends where
+  // the line leaves the depth input: nothing is known beyond it (the effect's taps there read the
+  // edge texel again, clamped, which says nothing about the scene), and a radius far beyond the
+  // image (a scene in the wrong unit: r' up to 65536 px) would otherwise march the edge texel for
+  // minutes.
   void march(const Pixel& px, double ux, double uy, Vec3<double> e, int sign, double lo, double hi) {
     const int W = z0_.w, H = z0_.h;
     for (int h = 1; h <= px.rPx; ++h) {
       const int tx = px.cx + int(sign * h * ux), ty = px.cy + int(sign * h * uy);  // int() truncates, as the effect
+      if (tx < 0 || ty < 0 || tx >= W || ty >= H) break;
       if (tx == px.cx && ty == px.cy) continue;  // the pixel's own texel: its slab lies behind C along V
-      const int mx = std::clamp(tx, 0, W - 1), my = std::clamp(ty, 0, H - 1);
-      slab(px, tx, ty, z0_.at(mx, my), e, sign, lo, hi);
-      if (z1_) slab(px, tx, ty, z1_->at(mx, my), e, sign, lo, hi);
+      slab(px, tx, ty, z0_.at(tx, ty), e, sign, lo, hi);
+      if (z1_) slab(px, tx, ty, z1_->at(tx, ty), e, sign, lo, hi);
     }
   }
 
