@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "sampling.h"
+#include "screen_inputs.h"
 #include "sao/constants.h"
 #include "sao/cpu/parallel.h"
 #include "sao_math.h"
@@ -38,15 +39,7 @@ Status invalid(const std::string& what) {
   return Status::error(StatusCode::InvalidInput, "convergedEstimator: " + what);
 }
 
-bool sameExtent(Extent a, Extent b) { return a.width == b.width && a.height == b.height; }
-
-// Level 0 of csz in double, as the linear_z pass computes it.
-Image<double> linearZ(const DepthImage& depth, const Block<double>& P) {
-  Image<double> z(int(depth.extent.width), int(depth.extent.height), 1);
-  for (int y = 0; y < z.h; ++y)
-    for (int x = 0; x < z.w; ++x) z.at(x, y) = cpu::detail::zFromDepth(depth.value(std::uint32_t(x), std::uint32_t(y)), P);
-  return z;
-}
+using detail::linearZ;
 
 // The unit directions of every ring, flattened: ring j holds count[j] taps at angles 2 pi k / count[j].
 struct TapPattern {
@@ -84,24 +77,12 @@ inline double term(Vec3<double> C, Vec3<double> n, double qx, double qy, double 
 Status convergedEstimator(const Settings& settings, const Camera& camera, const ConvergedInputs& in,
                           const ConvergedOptions& options, FloatImage& ao) {
   ao = FloatImage{};
-  if (in.depth == nullptr) return invalid("needs a depth image");
   if (options.rings == 0 || options.taps < options.rings)
     return invalid("needs rings >= 1 and taps >= rings (got " + std::to_string(options.rings) + " rings, " +
                    std::to_string(options.taps) + " taps)");
-  const DepthEncoding encoding = in.depth->format == DepthFormat::LinearZ ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
   gen::ParamBlock block;
-  if (Status st = computeConstants(settings, camera, encoding, block); !st) return st;
+  if (Status st = detail::checkScreenInputs("convergedEstimator", settings, camera, in, block); !st) return st;
   const std::uint32_t g = camera.guardBand;
-  const Extent input{camera.width + 2 * g, camera.height + 2 * g};
-  auto size = [](Extent e) { return std::to_string(e.width) + "x" + std::to_string(e.height); };
-  if (!sameExtent(in.depth->extent, input) || in.depth->texels.size() != std::size_t(input.width) * input.height)
-    return invalid("the depth is " + size(in.depth->extent) + ", the camera needs " + size(input) + " (viewport + guard band)");
-  if (in.depth2 && (!sameExtent(in.depth2->extent, input) || in.depth2->format != in.depth->format ||
-                    in.depth2->texels.size() != in.depth->texels.size()))
-    return invalid("the second depth layer must have the depth's extent and format");
-  if (in.normals && (!sameExtent(in.normals->extent, input) || in.normals->channels < 3 ||
-                     in.normals->data.size() != std::size_t(input.width) * input.height * in.normals->channels))
-    return invalid("the normals must have the depth's extent and at least 3 channels");
 
   // The block as the effect fills it, widened to double; the sum is scaled by 2 sigma r (the
   // effect's intensity_div_s times s), since here it is a mean, not a sum of s terms.

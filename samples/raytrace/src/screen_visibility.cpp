@@ -28,6 +28,7 @@
 #include "sao/constants.h"
 #include "sao/cpu/parallel.h"
 #include "sao_math.h"
+#include "screen_inputs.h"
 
 namespace sao::raytrace {
 namespace {
@@ -50,18 +51,11 @@ Status invalid(const std::string& what) {
   return Status::error(StatusCode::InvalidInput, "screenVisibility: " + what);
 }
 
-bool sameExtent(Extent a, Extent b) { return a.width == b.width && a.height == b.height; }
-
 Vec3<double> scaled(Vec3<double> v, double s) { return {v.x * s, v.y * s, v.z * s}; }
 Vec3<double> plus(Vec3<double> a, Vec3<double> b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 Vec3<double> normalized(Vec3<double> v) { return scaled(v, 1.0 / std::sqrt(dot(v, v))); }
 
-Image<double> linearZ(const DepthImage& depth, const Block<double>& P) {
-  Image<double> z(int(depth.extent.width), int(depth.extent.height), 1);
-  for (int y = 0; y < z.h; ++y)
-    for (int x = 0; x < z.w; ++x) z.at(x, y) = cpu::detail::zFromDepth(depth.value(std::uint32_t(x), std::uint32_t(y)), P);
-  return z;
-}
+using detail::linearZ;
 
 // The cosine measure of theta in [0, x] in a slice whose projected normal is at angle gamma from
 // V: the integral of cos(theta - gamma) |sin theta| (EST_SPEC "Slices"); monotone on the hemisphere.
@@ -202,7 +196,7 @@ class Marcher {
 Status screenVisibility(const Settings& settings, const Camera& camera, const ConvergedInputs& in,
                         const ScreenVisibilityOptions& options, FloatImage& ao) {
   ao = FloatImage{};
-  if (in.depth == nullptr) return invalid("needs a depth image");
+  if (in.depth == nullptr) return invalid("needs a depth image");  // before the options: the order of (c)'s checks
   if (options.slices == 0) return invalid("needs slices >= 1 (got 0)");
   if (options.stride == 0) return invalid("needs stride >= 1 (got 0; 1 evaluates every pixel)");
   const double thicknessMeters = options.thicknessMeters.value_or(double(settings.thickness));
@@ -211,20 +205,9 @@ Status screenVisibility(const Settings& settings, const Camera& camera, const Co
     return invalid("the thickness must be > 0 metres or +infinity (got " + number(thicknessMeters) + ")");
   if (!(tolerance >= 0 && tolerance < 1))
     return invalid("the depth tolerance must be in [0, 1) (got " + number(tolerance) + ")");
-  const DepthEncoding encoding = in.depth->format == DepthFormat::LinearZ ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
   gen::ParamBlock block;
-  if (Status st = computeConstants(settings, camera, encoding, block); !st) return st;
+  if (Status st = detail::checkScreenInputs("screenVisibility", settings, camera, in, block); !st) return st;
   const std::uint32_t g = camera.guardBand;
-  const Extent input{camera.width + 2 * g, camera.height + 2 * g};
-  auto size = [](Extent e) { return std::to_string(e.width) + "x" + std::to_string(e.height); };
-  if (!sameExtent(in.depth->extent, input) || in.depth->texels.size() != std::size_t(input.width) * input.height)
-    return invalid("the depth is " + size(in.depth->extent) + ", the camera needs " + size(input) + " (viewport + guard band)");
-  if (in.depth2 && (!sameExtent(in.depth2->extent, input) || in.depth2->format != in.depth->format ||
-                    in.depth2->texels.size() != in.depth->texels.size()))
-    return invalid("the second depth layer must have the depth's extent and format");
-  if (in.normals && (!sameExtent(in.normals->extent, input) || in.normals->channels < 3 ||
-                     in.normals->data.size() != std::size_t(input.width) * input.height * in.normals->channels))
-    return invalid("the normals must have the depth's extent and at least 3 channels");
 
   const Block<double> P(block);
   const double thickness = thicknessMeters * camera.metersToViewUnits;
