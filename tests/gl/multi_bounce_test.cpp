@@ -1,8 +1,8 @@
 // The multi-bounce term (setting albedo) on OpenGL against the CPU reference (Float): the five
 // analytic scenes x every agreement configuration (each preset, the z hierarchy off, the untuned
 // defaults, and no blur at full resolution, where ao_sample_output stores the output) at albedo 0.6,
-// to the reference tests' bounds (99.9 % within 2/255, none beyond 4/255); and every output format,
-// mask and blend of the output-format tests at albedo 0.6, at full and half resolution.
+// to the reference tests' bounds (99.9 % within 2/255, none beyond 4/255). Every output format,
+// mask and blend at albedo 0.6: output_format_test.cpp (EveryFormatAndMaskMatchesTheCpuReference).
 #include <epoxy/gl.h>
 
 #include <cstdio>
@@ -61,61 +61,6 @@ TEST_F(MultiBounce, AgreesWithTheCpuReferenceOnEveryScene) {
     }
     deleteTexture(depthTex);
   }
-}
-
-// The caller's texture of `format` holding `texels` (each exact in the format).
-GLuint uploadOutput(gen::Format format, const FloatImage& texels) {
-  GLenum internal = GL_R16F;
-  switch (format) {
-    case gen::Format::R8: internal = GL_R8; break;
-    case gen::Format::RGBA8: internal = GL_RGBA8; break;
-    case gen::Format::RGBA16F: internal = GL_RGBA16F; break;
-    default: break;
-  }
-  const GLuint tex = makeTexture(internal, texels.extent);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-  glTextureSubImage2D(tex, 0, 0, 0, GLsizei(texels.extent.width), GLsizei(texels.extent.height),
-                      texels.channels == 1 ? GL_RED : GL_RGBA, GL_FLOAT, texels.data.data());
-  return tex;
-}
-
-TEST_F(MultiBounce, EveryOutputFormatAndBlendMatchesTheCpuReference) {
-  const Camera cam = camera(160, 90, 8);
-  const DepthImage depth = test::renderDepth(sceneByName("sphere"), cam, DepthFormat::D32F);
-  const GLuint depthTex = uploadDepth(depth, GlDepth::D32F);
-  auto effect = makeEffect();
-  ASSERT_TRUE(effect);
-  for (int divisor : {1, 2}) {
-    Settings s = presetSettings(Preset::Medium);
-    s.resolution_divisor = divisor;
-    s.albedo = kAlbedo;
-    for (const test::OutputCase& oc : test::kOutputCases) {
-      const std::string name = "gl_bounce_" + test::caseName(oc) + "_d" + std::to_string(divisor);
-      SCOPED_TRACE(name);
-      const FloatImage sentinel = test::sentinelOutput({cam.width, cam.height}, oc.format);
-      const GLuint out = uploadOutput(oc.format, sentinel);
-      gl::Inputs gi;
-      gi.depth = {depthTex, gl::kDepthComponent32F};
-      gi.output = out;
-      gi.outputChannels = oc.mask;
-      gi.outputBlend = oc.blend;
-      const Status st = effect->render(cam, s, gi);
-      ASSERT_TRUE(st.ok()) << st.message;
-      cpu::Inputs ci;
-      ci.depth = &depth;
-      ci.outputFormat = oc.format;
-      ci.outputChannels = oc.mask;
-      ci.outputBlend = oc.blend;
-      ci.output = &sentinel;
-      cpu::Result ref;
-      const Status cst = cpu::run(s, cam, ci, cpu::Options{cpu::Precision::Float, 2}, ref);
-      ASSERT_TRUE(cst.ok()) << cst.message;
-      test::checkOutput(readTexture(out, channelCount(oc.format)), ref.ao, sentinel, oc.format, oc.mask, compare, name);
-      deleteTexture(out);
-    }
-  }
-  deleteTexture(depthTex);
 }
 
 }  // namespace

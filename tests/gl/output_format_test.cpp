@@ -49,9 +49,10 @@ GLuint uploadOutput(gen::Format format, const FloatImage& texels) {
   return tex;
 }
 
-Settings settingsFor(int divisor) {
+Settings settingsFor(int divisor, float albedo = 0) {
   Settings s = presetSettings(Preset::Medium);
   s.resolution_divisor = divisor;
+  s.albedo = albedo;  // > 0: the multi-bounce fit in the store (docs/effect-math.md 9)
   return s;
 }
 
@@ -63,9 +64,10 @@ TEST_F(OutputFormat, EveryFormatAndMaskMatchesTheCpuReference) {
   const GLuint depthTex = uploadDepth(depth, GlDepth::D32F);
   auto effect = makeEffect();
   ASSERT_TRUE(effect);
-  for (int divisor : {1, 2}) {
+  for (int divisor : {1, 2})
+    for (float albedo : {0.0f, 0.6f})
     for (const test::OutputCase& oc : test::kOutputCases) {
-      const std::string name = "gl_" + test::caseName(oc) + "_d" + std::to_string(divisor);
+      const std::string name = "gl_" + test::caseName(oc) + "_d" + std::to_string(divisor) + (albedo > 0 ? "_bounce" : "");
       SCOPED_TRACE(name);
       const FloatImage sentinel = test::sentinelOutput({cam.width, cam.height}, oc.format);
       const GLuint out = uploadOutput(oc.format, sentinel);
@@ -74,7 +76,7 @@ TEST_F(OutputFormat, EveryFormatAndMaskMatchesTheCpuReference) {
       gi.output = out;
       gi.outputChannels = oc.mask;
       gi.outputBlend = oc.blend;
-      const Status st = effect->render(cam, settingsFor(divisor), gi);
+      const Status st = effect->render(cam, settingsFor(divisor, albedo), gi);
       ASSERT_TRUE(st.ok()) << st.message;
       EXPECT_EQ(effect->aoTexture(), out);
       cpu::Inputs ci;
@@ -84,14 +86,13 @@ TEST_F(OutputFormat, EveryFormatAndMaskMatchesTheCpuReference) {
       ci.outputBlend = oc.blend;
       ci.output = &sentinel;
       cpu::Result ref;
-      const Status cst = cpu::run(settingsFor(divisor), cam, ci, cpu::Options{cpu::Precision::Float, 2}, ref);
+      const Status cst = cpu::run(settingsFor(divisor, albedo), cam, ci, cpu::Options{cpu::Precision::Float, 2}, ref);
       ASSERT_TRUE(cst.ok()) << cst.message;
       EXPECT_EQ(effect->plan().variants, ref.plan.variants) << "the same OUTPUT_FORMAT variant";
       const FloatImage actual = readTexture(out, channelCount(oc.format));
       test::checkOutput(actual, ref.ao, sentinel, oc.format, oc.mask, compare, name);
       deleteTexture(out);
     }
-  }
   deleteTexture(depthTex);
 }
 
