@@ -130,6 +130,16 @@ int runTune(const TuneOptions& o) {
       }
       References refs;
       refs.converged = &converged.ao, refs.mask = &p.mask, refs.silhouette = &p.silhouette;
+      if (c.settings.estimator == 1) {  // its own converged value: reference (d) with its thickness
+        const bool freshScreen = !p.screen.count({c.settings.radius, c.settings.thickness, c.settings.depth_tolerance, c.extra});
+        Screen& screen = screenReference(p, c.settings, c.extra, ScreenOptions{});
+        if (freshScreen) {
+          referenceSeconds += screen.seconds;
+          std::fprintf(stderr, "\r\033[Ksao-bench: reference (d) for %s (%s, thickness %g m): %.1f s\n", scene.c_str(),
+                       inputsName(c.extra), double(c.settings.thickness), screen.seconds);
+        }
+        refs.converged = &screen.ao;
+      }
       if (o.objectiveRays) {
         const bool freshAo = !p.references.count(c.settings.radius);
         const auto aoStart = std::chrono::steady_clock::now();

@@ -9,7 +9,8 @@ namespace sao::bench {
 
 const std::vector<std::string> kTunedSettings = {"samples",           "blur_radius",        "blur_stride",
                                                  "use_z_hierarchy",   "mip_switch_log2",    "resolution_divisor",
-                                                 "blur_edge_sharpness"};
+                                                 "blur_edge_sharpness", "estimator",        "slices",
+                                                 "thickness"};
 
 std::vector<Candidate> tuneGrid(bool quick) {
   struct Blur {
@@ -38,6 +39,30 @@ std::vector<Candidate> tuneGrid(bool quick) {
           out.push_back(c);
         }
   }
+  // The visibility estimator (estimator 1, docs/effect-math.md 5.9): its own knobs (slices, the
+  // thickness) over a coarser grid of the shared ones (q' = 16 px; the blurs that hide its
+  // per-pixel rotation), 252 points (quick: 2).
+  const std::vector<Blur> visBlurs = quick ? std::vector<Blur>{{3, 2}} : std::vector<Blur>{{1, 1}, {2, 1}, {3, 2}};
+  const std::vector<int> visSamples = quick ? std::vector<int>{16, 64} : std::vector<int>{8, 12, 16, 24, 32, 48, 64};
+  const std::vector<int> visSlices = quick ? std::vector<int>{2} : std::vector<int>{2, 4};
+  const std::vector<float> thicknesses = quick ? std::vector<float>{0.3f} : std::vector<float>{0.1f, 0.3f};
+  for (int d : quick ? std::vector<int>{1} : divisors)
+    for (float t : thicknesses)
+      for (int sl : visSlices)
+        for (const Blur& b : visBlurs)
+          for (int s : visSamples) {
+            Candidate c{"grid", "", Settings{}, Extra::None};
+            c.settings.estimator = 1;
+            c.settings.thickness = t;
+            c.settings.slices = sl;
+            c.settings.resolution_divisor = d;
+            c.settings.use_z_hierarchy = true;
+            c.settings.mip_switch_log2 = 4;
+            c.settings.blur_radius = b.radius;
+            c.settings.blur_stride = b.stride;
+            c.settings.samples = s;
+            out.push_back(c);
+          }
   return out;
 }
 
@@ -76,6 +101,12 @@ std::string tunedSettingValue(const Settings& s, const std::string& name) {
   if (name == "use_z_hierarchy") return s.use_z_hierarchy ? "true" : "false";
   if (name == "mip_switch_log2") return std::to_string(s.mip_switch_log2);
   if (name == "resolution_divisor") return std::to_string(s.resolution_divisor);
+  if (name == "estimator") return std::to_string(s.estimator);
+  if (name == "slices") return std::to_string(s.slices);
+  if (name == "thickness") {
+    std::snprintf(b, sizeof b, "%g", double(s.thickness));
+    return b;
+  }
   if (name == "blur_edge_sharpness") {
     std::snprintf(b, sizeof b, "%g", double(s.blur_edge_sharpness));
     return b;
@@ -96,6 +127,10 @@ bool setTunedSetting(Settings& s, const std::string& name, const std::string& va
     s.blur_edge_sharpness = float(v);
     return true;
   }
+  if (name == "thickness") {
+    s.thickness = float(v);
+    return true;
+  }
   const int i = int(v);
   if (double(i) != v) return false;
   if (name == "samples") s.samples = i;
@@ -103,6 +138,8 @@ bool setTunedSetting(Settings& s, const std::string& name, const std::string& va
   else if (name == "blur_stride") s.blur_stride = i;
   else if (name == "mip_switch_log2") s.mip_switch_log2 = i;
   else if (name == "resolution_divisor") s.resolution_divisor = i;
+  else if (name == "estimator") s.estimator = i;
+  else if (name == "slices") s.slices = i;
   else return false;
   return true;
 }
@@ -111,6 +148,8 @@ std::string settingsWords(const Settings& s) {
   std::string out;
   for (const std::string& name : kTunedSettings) {
     if (name == "mip_switch_log2" && !s.use_z_hierarchy) continue;  // unused without the hierarchy
+    if ((name == "slices" || name == "thickness") && s.estimator == 0) continue;  // inert (effect/sao.glsl)
+    if (name == "estimator" && s.estimator == 0) continue;  // the default: preset lines as before
     if (name == "blur_edge_sharpness" && s.blur_edge_sharpness == Settings{}.blur_edge_sharpness) continue;
     out += (out.empty() ? "" : " ") + name + "=" + tunedSettingValue(s, name);
   }
@@ -119,6 +158,11 @@ std::string settingsWords(const Settings& s) {
 
 std::string describeSettings(const Settings& s) {
   std::string d = std::to_string(s.samples) + " taps, 2x2";
+  if (s.estimator == 1) {
+    char t[64];
+    std::snprintf(t, sizeof t, "visibility (%d slices, thickness %g m), ", s.slices, double(s.thickness));
+    d = t + d;
+  }
   if (s.blur_radius == 0) d += ", no blur";
   else d += " + " + std::to_string(2 * s.blur_radius + 1) + "-tap blur (stride " + std::to_string(s.blur_stride) + ")";
   if (s.use_z_hierarchy) d += ", z hierarchy (q' = " + std::to_string(1 << s.mip_switch_log2) + " px)";

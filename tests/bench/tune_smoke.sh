@@ -1,5 +1,5 @@
 #!/bin/sh
-# The sao-bench --tune smoke test (--quick: two scenes, 24 grid candidates, the untuned medium and defaults, today's 5 presets, the
+# The sao-bench --tune smoke test (--quick: two scenes, 26 grid candidates (2 of the visibility estimator), the untuned medium and defaults, today's 5 presets, the
 # AlchemyAO-style baseline and 3 more measurements of medium (the time anchors), on the cpu
 # backend): it writes tune.csv (one row per candidate, a header with the scenes), tune_front.csv/.svg and tune_presets.txt with pasteable preset
 # lines; the chosen chain steps up on every scene (slower, lower RMSE vs (c)); a second run into
@@ -16,9 +16,9 @@ tune() { "$bench" --tune --quick --backends cpu --out "$1" >"$out/stdout" 2>"$ou
 
 tune "$out/t"
 for f in tune.csv tune_front.csv tune_front.svg tune_presets.txt; do test -s "$out/t/$f" || die "missing $f"; done
-grep -q ', 35 to evaluate$' "$out/stderr" || die "first run: expected 35 candidates to evaluate: $(grep 'to evaluate' "$out/stderr")"
-grep -q '\[35/35\] ' "$out/stderr" || die "no progress line [35/35]"
-[ "$(awk 'END { print NR }' "$out/t/tune.csv")" -eq 36 ] || die "tune.csv: expected a header and 35 rows"
+grep -q ', 37 to evaluate$' "$out/stderr" || die "first run: expected 37 candidates to evaluate: $(grep 'to evaluate' "$out/stderr")"
+grep -q '\[37/37\] ' "$out/stderr" || die "no progress line [37/37]"
+[ "$(awk 'END { print NR }' "$out/t/tune.csv")" -eq 38 ] || die "tune.csv: expected a header and 37 rows"
 [ "$(grep -c '^anchor,medium-' "$out/t/tune.csv")" -eq 3 ] || die "tune.csv: expected 3 anchor rows"
 head -1 "$out/t/tune.csv" | grep -q ',crease_rmse_vs_c,.*,sphere-plane_rmse_vs_c,' || die "tune.csv: no per-scene columns"
 for label in "Pareto front" "tuned presets" "today's presets" "AlchemyAO-style baseline"; do
@@ -34,7 +34,7 @@ awk '/^#pragma sao preset/ { print $4 }' "$out/t/tune_presets.txt" | awk '
   BEGIN { rank["low"] = 1; rank["medium"] = 2; rank["high"] = 3; rank["ultra"] = 4; rank["reference"] = 5 }
   { if (!($1 in rank) || rank[$1] <= last) bad = 1; last = rank[$1] } END { exit bad }' ||
   die "preset names: $(cat "$out/t/tune_presets.txt")"
-grep '^#pragma sao preset' "$out/t/tune_presets.txt" | grep -qv ' samples=[0-9]* blur_radius=[0-9] blur_stride=[0-9] use_z_hierarchy=\(true mip_switch_log2=[0-9]\|false\) resolution_divisor=[124] "[^"]*"$' &&
+grep '^#pragma sao preset' "$out/t/tune_presets.txt" | grep -qv ' samples=[0-9]* blur_radius=[0-9] blur_stride=[0-9] use_z_hierarchy=\(true mip_switch_log2=[0-9]\|false\) resolution_divisor=[124]\( estimator=1 slices=[0-9] thickness=[0-9.]*\)\? "[^"]*"$' &&
   die "a preset line is not in the effect's format: $(grep '^#pragma' "$out/t/tune_presets.txt")"
 
 # The chain, cheapest first, from tune_front.csv: on each scene every step is slower and has a
@@ -57,17 +57,17 @@ grep -q '^targets: [2-5] presets' "$out/stdout" || die "no targets line: $(tail 
 cp "$out/t/tune.csv" "$out/tune.csv.first"
 cp "$out/t/tune_presets.txt" "$out/presets.first"
 tune "$out/t"
-grep -q ', 35 in .*, 0 to evaluate$' "$out/stderr" || die "second run evaluated again: $(grep 'to evaluate' "$out/stderr")"
+grep -q ', 37 in .*, 0 to evaluate$' "$out/stderr" || die "second run evaluated again: $(grep 'to evaluate' "$out/stderr")"
 cmp -s "$out/t/tune.csv" "$out/tune.csv.first" || die "the second run changed tune.csv"
 cmp -s "$out/t/tune_presets.txt" "$out/presets.first" || die "the second run wrote another tune_presets.txt: $(diff "$out/presets.first" "$out/t/tune_presets.txt")"
 
-# Interrupted after 20 rows: the rerun evaluates the other 15 only.
+# Interrupted after 20 rows: the rerun evaluates the other 17 only.
 mkdir -p "$out/cut"
 cp "$out/t/sao-bench-outputs.txt" "$out/cut/"  # written before the first row: the folder is the tune's
 head -21 "$out/tune.csv.first" >"$out/cut/tune.csv"
 tune "$out/cut"
-grep -q ', 20 in .*, 15 to evaluate$' "$out/stderr" || die "resume after 20 rows: $(grep 'to evaluate' "$out/stderr")"
-[ "$(awk 'END { print NR }' "$out/cut/tune.csv")" -eq 36 ] || die "resumed tune.csv: expected 35 rows"
+grep -q ', 20 in .*, 17 to evaluate$' "$out/stderr" || die "resume after 20 rows: $(grep 'to evaluate' "$out/stderr")"
+[ "$(awk 'END { print NR }' "$out/cut/tune.csv")" -eq 38 ] || die "resumed tune.csv: expected 37 rows"
 
 # Another header (another scene set) is refused, naming the file.
 mkdir -p "$out/bad"
