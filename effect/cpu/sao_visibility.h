@@ -102,10 +102,18 @@ std::uint32_t bitsBetween(T u1, T u2) {
   return bitsBelow(b2) & ~bitsBelow(b1);
 }
 
-// sao_slab_bits.
+// SaoSlab.
 template <typename T>
-std::uint32_t slabBits(const Slice<T>& sl, Vec3<T> C, Vec3<T> V, T qx, T qy, T z, const Block<T>& P) {
-  if (isSky(z)) return 0u;
+struct Slab {
+  bool valid = false;
+  T u1 = T(0), u2 = T(0), fe = T(0), fv = T(0);
+};
+
+// sao_slab.
+template <typename T>
+Slab<T> slab(const Slice<T>& sl, Vec3<T> C, Vec3<T> V, T qx, T qy, T z, const Block<T>& P) {
+  Slab<T> s;
+  if (isSky(z)) return s;
   const Vec3<T> S = position(qx, qy, z, P);
   const T k = T(1) + P.depth_tolerance;
   Vec3<T> F, B;
@@ -117,7 +125,7 @@ std::uint32_t slabBits(const Slice<T>& sl, Vec3<T> C, Vec3<T> V, T qx, T qy, T z
     B = scale(S, k + P.thickness / -z);
   }
   Vec3<T> f = F - C;
-  if (dot(f, f) > P.radius2) return 0u;
+  if (dot(f, f) > P.radius2) return s;
   Vec3<T> b = B - C;
   f = f - scale(sl.shear, dot(f, sl.a));  // into the slice along the tangent plane
   b = b - scale(sl.shear, dot(b, sl.a));
@@ -125,12 +133,38 @@ std::uint32_t slabBits(const Slice<T>& sl, Vec3<T> C, Vec3<T> V, T qx, T qy, T z
   const T be = dot(b, sl.e), bv = dot(b, V);
   const T tf = atan2Poly(fe, fv);
   const T tb = atan2Poly(be, bv);
-  if (std::abs(tf - tb) > kVisPi<T>) return 0u;
+  if (std::abs(tf - tb) > kVisPi<T>) return s;
   const T gf = slicePosition(sl, tf, fe, fv);
   const T gb = slicePosition(sl, tb, be, bv);
-  const T u1 = (glslMin(gf, gb) - sl.gLo) * sl.invRange;
-  const T u2 = (glslMax(gf, gb) - sl.gLo) * sl.invRange;
-  return bitsBetween(u1, u2);
+  s.valid = true;
+  s.u1 = (glslMin(gf, gb) - sl.gLo) * sl.invRange;
+  s.u2 = (glslMax(gf, gb) - sl.gLo) * sl.invRange;
+  s.fe = fe;
+  s.fv = fv;
+  return s;
+}
+
+// sao_slab_bits.
+template <typename T>
+std::uint32_t slabBits(const Slice<T>& sl, Vec3<T> C, Vec3<T> V, T qx, T qy, T z, const Block<T>& P) {
+  const Slab<T> s = slab(sl, C, V, qx, qy, z, P);
+  return s.valid ? bitsBetween(s.u1, s.u2) : 0u;
+}
+
+// SAO_JOIN_SLOPE.
+template <typename T>
+constexpr T kJoinSlope = T(4);
+
+// sao_joined_bits.
+template <typename T>
+std::uint32_t joinedBits(const Slab<T>& s, const Slab<T>& prev, T thickness) {
+  const T dv = std::abs(s.fv - prev.fv);
+  const T de = std::abs(s.fe - prev.fe);
+  const bool sameSide = (s.fe > T(0)) == (prev.fe > T(0));  // a truncated tap may cross C's view line
+  const bool joined = prev.valid && sameSide && dv <= thickness + kJoinSlope<T> * de;
+  const T u1 = joined ? glslMin(s.u1, prev.u1) : s.u1;
+  const T u2 = joined ? glslMax(s.u2, prev.u2) : s.u2;
+  return s.valid ? bitsBetween(u1, u2) : 0u;
 }
 
 // sao_mip_source: the level-0 texel (x, y) whose z level-m texel (x, y) holds.
@@ -178,6 +212,7 @@ T visibilityOcclusion(const std::vector<Image<T>>& csz, const std::vector<Image<
   T weights = T(0);
   Slice<T> sl;
   std::uint32_t bits = 0u;
+  Slab<T> prev;  // the side's previous tap's slab (first layer)
   T ux = T(1), uy = T(0);
   for (int i = 0; i < used; ++i) {
     const int k = i / perSlice;
@@ -189,6 +224,7 @@ T visibilityOcclusion(const std::vector<Image<T>>& csz, const std::vector<Image<
     }
     const bool negative = r >= m;
     const int j = negative ? r - m : r;
+    if (j == 0) prev.valid = false;  // a new side: nothing to join to
     const T t = (T(j) + xi) * invM;
     const T h = r_px * (t * t);
     const T dx = negative ? -ux : ux, dy = negative ? -uy : uy;
@@ -201,7 +237,9 @@ T visibilityOcclusion(const std::vector<Image<T>>& csz, const std::vector<Image<
       mipSource(sx, sy, lvl, z0.w, z0.h);
       if (sx != cx || sy != cy) {  // a coarse texel may hold the centre's own z
         const T qx = T(sx) + T(0.5), qy = T(sy) + T(0.5);
-        bits |= slabBits(sl, C, V, qx, qy, csz[std::size_t(lvl)].at(mx, my), P);
+        const Slab<T> s = slab(sl, C, V, qx, qy, csz[std::size_t(lvl)].at(mx, my), P);
+        bits |= joinedBits(s, prev, P.thickness);
+        prev = s;  // sky or a sample beyond r breaks the chain
         if (twoLayer) bits |= slabBits(sl, C, V, qx, qy, csz2[std::size_t(lvl)].at(mx, my), P);
       }
     }

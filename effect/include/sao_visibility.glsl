@@ -120,17 +120,32 @@ uint sao_bits_between(float u1, float u2)
     return sao_bits_below(b2) & ~sao_bits_below(b1);
 }
 
-// The bits a stored sample blocks: the slab along its view ray from depth d(1 + tol) to
-// d(1 + tol) + T (S at pixel centre q_pixel, z: perspective S scaled by (1 + tol) and
-// (1 + tol) + T/d; ortho S's z moved), seen from C: its angles in the slice, clamped to the
-// hemisphere, as bits. Sky, a front point farther than r from C, and a slab that would subtend more
-// than pi (only a sample on the pixel's own view ray, behind C) block nothing. The caller never
-// passes the centre's own texel (f = 0 would leave the angle undefined).
-uint sao_slab_bits(SaoSlice sl, vec3 C, vec3 V, vec2 q_pixel, float z, vec4 proj_info, int ortho, float radius2,
-                   float tolerance, float thickness)
+// A stored sample's slab seen from C: its angles in the slice as slice positions [u1, u2] (clamped
+// to the hemisphere) and its front point's in-slice vector (fe, fv) = (f.e, f.V). valid = false
+// (blocks nothing) for sky, a front point farther than r from C, and a slab that would subtend more
+// than pi (only a sample on the pixel's own view ray, behind C).
+struct SaoSlab {
+    bool valid;
+    float u1;
+    float u2;
+    float fe;
+    float fv;
+};
+
+// The slab along a stored sample's view ray from depth d(1 + tol) to d(1 + tol) + T (S at pixel
+// centre q_pixel, z: perspective S scaled by (1 + tol) and (1 + tol) + T/d; ortho S's z moved). The
+// caller never passes the centre's own texel (f = 0 would leave the angle undefined).
+SaoSlab sao_slab(SaoSlice sl, vec3 C, vec3 V, vec2 q_pixel, float z, vec4 proj_info, int ortho, float radius2,
+                 float tolerance, float thickness)
 {
+    SaoSlab s;
+    s.valid = false;
+    s.u1 = 0.0;
+    s.u2 = 0.0;
+    s.fe = 0.0;
+    s.fv = 0.0;
     if (sao_is_sky(z))
-        return 0u;
+        return s;
     // `precise` from here to the bits: no fused multiply-add, so that the backends and the CPU round
     // alike (an angle on a bit boundary would flip the bit).
     precise vec3 S = sao_position(q_pixel, z, proj_info, ortho);
@@ -146,7 +161,7 @@ uint sao_slab_bits(SaoSlice sl, vec3 C, vec3 V, vec2 q_pixel, float z, vec4 proj
     }
     precise vec3 f = F - C;
     if (dot(f, f) > radius2)
-        return 0u;
+        return s;
     precise vec3 b = B - C;
     // Into the slice plane along the tangent plane (a truncated tap lies up to a pixel beside the
     // slice; dropping its a component would lift a point of the surface's own plane above it).
@@ -159,13 +174,44 @@ uint sao_slab_bits(SaoSlice sl, vec3 C, vec3 V, vec2 q_pixel, float z, vec4 proj
     float tf = sao_atan2(fe, fv);
     float tb = sao_atan2(be, bv);
     if (abs(tf - tb) > SAO_PI)
-        return 0u;
+        return s;
     // G is increasing on the hemisphere: the smaller G is the smaller angle's.
     precise float gf = sao_slice_position(sl, tf, fe, fv);
     precise float gb = sao_slice_position(sl, tb, be, bv);
-    precise float u1 = (min(gf, gb) - sl.g_lo) * sl.inv_range;
-    precise float u2 = (max(gf, gb) - sl.g_lo) * sl.inv_range;
-    return sao_bits_between(u1, u2);
+    s.valid = true;
+    s.u1 = (min(gf, gb) - sl.g_lo) * sl.inv_range;
+    s.u2 = (max(gf, gb) - sl.g_lo) * sl.inv_range;
+    s.fe = fe;
+    s.fv = fv;
+    return s;
+}
+
+// The bits a stored sample's slab blocks on its own (the second layer's samples).
+uint sao_slab_bits(SaoSlice sl, vec3 C, vec3 V, vec2 q_pixel, float z, vec4 proj_info, int ortho, float radius2,
+                   float tolerance, float thickness)
+{
+    SaoSlab s = sao_slab(sl, C, V, q_pixel, z, proj_info, ortho, radius2, tolerance, thickness);
+    return s.valid ? sao_bits_between(s.u1, s.u2) : 0u;
+}
+
+// The largest depth slope (along V, per unit across it in the slice) of a surface between two
+// consecutive taps of a slice side that the estimator still takes as continuous (docs/effect-math.md
+// 5.9, "Joining taps"): two taps are joined when |dv| <= T + SAO_JOIN_SLOPE*|de|.
+const float SAO_JOIN_SLOPE = 4.0;
+
+// The first layer's bits of a tap: its slab's interval, or, when the previous tap of the same side
+// is on a continuous surface with it, the interval from the previous slab's angles to this one's
+// (the surface between them taken as linear: the quad of the two slabs subtends the hull of their
+// angles).
+uint sao_joined_bits(SaoSlab s, SaoSlab prev, float thickness)
+{
+    precise float dv = abs(s.fv - prev.fv);
+    precise float de = abs(s.fe - prev.fe);
+    bool same_side = (s.fe > 0.0) == (prev.fe > 0.0);  // a truncated tap may cross C's view line
+    bool joined = prev.valid && same_side && dv <= thickness + SAO_JOIN_SLOPE * de;
+    float u1 = joined ? min(s.u1, prev.u1) : s.u1;
+    float u2 = joined ? max(s.u2, prev.u2) : s.u2;
+    return s.valid ? sao_bits_between(u1, u2) : 0u;
 }
 
 // The csz level-0 texel whose z level-m texel t holds: the rotated grid (Table 1) walked down. A
@@ -214,6 +260,12 @@ float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, bool two_layer, bo
     precise float weights = 0.0;
     SaoSlice sl;
     uint bits = 0u;
+    SaoSlab prev;  // the side's previous tap's slab (first layer), for sao_joined_bits
+    prev.valid = false;
+    prev.u1 = 0.0;
+    prev.u2 = 0.0;
+    prev.fe = 0.0;
+    prev.fv = 0.0;
     vec2 u = vec2(1.0, 0.0);
     int i = 0;  // trips >= 1: a do-while, as the spiral's loop
     do {
@@ -227,6 +279,8 @@ float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, bool two_layer, bo
             }
             bool negative = r >= m;
             int j = negative ? r - m : r;
+            if (j == 0)
+                prev.valid = false;  // a new side: nothing to join to
             float t = (float(j) + xi) * inv_m;
             float h = r_px * (t * t);
             ivec2 tap = c + ivec2(h * (negative ? -u : u));  // conversion truncates toward zero
@@ -236,8 +290,10 @@ float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, bool two_layer, bo
                 ivec2 src = sao_mip_source(tt, lvl, size0);
                 if (src != c) {  // a coarse texel may hold the centre's own z
                     vec2 q = vec2(src) + 0.5;
-                    bits |= sao_slab_bits(sl, C, V, q, texelFetch(csz, tt, lvl).r, proj_info, ortho, radius2,
-                                          tolerance, thickness);
+                    SaoSlab s = sao_slab(sl, C, V, q, texelFetch(csz, tt, lvl).r, proj_info, ortho, radius2,
+                                         tolerance, thickness);
+                    bits |= sao_joined_bits(s, prev, thickness);
+                    prev = s;  // sky or a sample beyond r breaks the chain
                     if (two_layer)
                         bits |= sao_slab_bits(sl, C, V, q, texelFetch(csz2, tt, lvl).r, proj_info, ortho, radius2,
                                               tolerance, thickness);
