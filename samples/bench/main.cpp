@@ -465,7 +465,7 @@ int main(int argc, char** argv) {
         }
       }
       refs.converged = &converged->ao;
-      const bool freshScreen = !p.screen.count({s.radius, s.thickness, s.depth_tolerance, extra});
+      const bool freshScreen = !p.screen.count(screenKey(s, extra));
       ScreenOptions screenOptions;  // 64 slices, every pixel
       screenOptions.nearFieldAo = refs.nearFieldAo;
       screenOptions.converged = &converged->ao;

@@ -24,6 +24,8 @@ std::vector<std::string> benchScenes(bool quick) {
   return {"sponza-like", "sphere-plane", "crease", "thin", "gears"};
 }
 
+ScreenKey screenKey(const Settings& s, Extra extra) { return {s.radius, s.thickness, s.depth_tolerance, extra}; }
+
 ObscuranceKey obscuranceKey(const Settings& s) { return {s.radius, s.intensity, s.bias, s.epsilon, s.contrast}; }
 
 Prepared& SceneCache::prepare(const std::string& name, std::uint32_t w, std::uint32_t h) {
@@ -162,7 +164,7 @@ Converged& convergedReference(Prepared& p, const Settings& s, Extra extra, const
 }
 
 Screen& screenReference(Prepared& p, const Settings& s, Extra extra, const ScreenOptions& options) {
-  const ScreenKey key{s.radius, s.thickness, s.depth_tolerance, extra};
+  const ScreenKey key = screenKey(s, extra);
   auto it = p.screen.find(key);
   if (it != p.screen.end()) return it->second;
   const samples::RunInputs inputs = runInputs(p, extra);

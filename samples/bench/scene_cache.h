@@ -49,6 +49,7 @@ struct Converged {
 
 // Reference (d) depends on the radius, the thickness, the depth tolerance and the inputs.
 using ScreenKey = std::tuple<float, float, float, Extra>;
+ScreenKey screenKey(const Settings& s, Extra extra);
 
 // Reference (d), converged screen-space visibility, with its cost and the two model errors that
 // split (c) - (a): (d) against (a) (what screen space cannot see) and (c) against (d) (the

@@ -14,6 +14,7 @@
 #include "sao/gl/effect.h"
 #include "sao/gl/headless.h"
 #include "sao/presets.h"
+#include "vk_gl_fixture.h"
 #include "vk_support.h"
 
 namespace sao::vktest {
@@ -30,18 +31,7 @@ double maxDiff(const FloatImage& a, const FloatImage& b) {
   return m;
 }
 
-class VkVsGlReduced : public VkTest {
- protected:
-  void SetUp() override {
-    VkTest::SetUp();
-    ASSERT_TRUE(gltest::context().makeCurrent().ok());
-    gltest::context().clearMessages();
-  }
-  void TearDown() override {
-    for (const auto& m : gltest::context().errors()) ADD_FAILURE() << "GL debug message: " << gl::HeadlessContext::format(m);
-    VkTest::TearDown();
-  }
-};
+class VkVsGlReduced : public VkWithGl {};
 
 TEST_F(VkVsGlReduced, SameOutput) {
   std::unique_ptr<gl::Effect> glEffect;

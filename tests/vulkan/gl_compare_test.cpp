@@ -17,6 +17,7 @@
 #include "sao/gl/effect.h"
 #include "sao/gl/headless.h"
 #include "sao/presets.h"
+#include "vk_gl_fixture.h"
 #include "vk_support.h"
 
 namespace sao::vktest {
@@ -116,18 +117,7 @@ class Summary : public ::testing::Environment {
 };
 const auto* const kSummary = ::testing::AddGlobalTestEnvironment(new Summary);
 
-class WithGl : public VkTest {
- protected:
-  void SetUp() override {
-    VkTest::SetUp();
-    ASSERT_TRUE(gltest::context().makeCurrent().ok());
-    gltest::context().clearMessages();
-  }
-  void TearDown() override {
-    for (const auto& m : gltest::context().errors()) ADD_FAILURE() << "GL debug message: " << gl::HeadlessContext::format(m);
-    VkTest::TearDown();
-  }
-};
+using WithGl = VkWithGl;
 class VkVsGl : public WithGl, public ::testing::WithParamInterface<std::tuple<std::size_t, DepthFormat>> {};
 
 TEST_P(VkVsGl, SameOutput) {

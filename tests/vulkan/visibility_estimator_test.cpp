@@ -20,6 +20,7 @@
 #include "sao/cpu/reference.h"
 #include "sao/gl/effect.h"
 #include "sao/gl/headless.h"
+#include "vk_gl_fixture.h"
 #include "vk_support.h"
 
 namespace sao::vktest {
@@ -88,18 +89,7 @@ std::vector<Case> cases() {
   };
 }
 
-class VisibilityEstimator : public VkTest, public ::testing::WithParamInterface<std::tuple<std::size_t, VkDepth>> {
- protected:
-  void SetUp() override {
-    VkTest::SetUp();
-    ASSERT_TRUE(gltest::context().makeCurrent().ok());
-    gltest::context().clearMessages();
-  }
-  void TearDown() override {
-    for (const auto& m : gltest::context().errors()) ADD_FAILURE() << "GL debug message: " << gl::HeadlessContext::format(m);
-    VkTest::TearDown();
-  }
-};
+class VisibilityEstimator : public VkWithGl, public ::testing::WithParamInterface<std::tuple<std::size_t, VkDepth>> {};
 
 TEST_P(VisibilityEstimator, GlVulkanAndCpuAgree) {
   const auto [index, format] = GetParam();
