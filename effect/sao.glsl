@@ -341,13 +341,15 @@ void sao_linear_z2_main()
 #define MOTION_VECTORS 0
 #endif
 #if SAO_TARGET_VULKAN
-// The tap loop's trip count (= samples) as a push constant: Mesa lavapipe 22.3 keeps ~0.4 MB of
+// The tap loops' trip counts (= samples, slices) as push constants: Mesa lavapipe 22.3 keeps ~0.4 MB of
 // host memory per dispatch of a loop whose trip count comes from the uniform block its body also
-// reads (docs/ROBUSTNESS.md, issue 19). The Vulkan backend pushes the block's samples.
-layout(push_constant) uniform SaoLoopCounts { int samples; } sao_loop;
+// reads (docs/ROBUSTNESS.md, issue 19). The Vulkan backend pushes the block's samples and slices.
+layout(push_constant) uniform SaoLoopCounts { int samples; int slices; } sao_loop;
 #define SAO_TAP_COUNT sao_loop.samples
+#define SAO_SLICE_COUNT sao_loop.slices
 #else
 #define SAO_TAP_COUNT samples
+#define SAO_SLICE_COUNT slices
 #endif
 #if TWO_LAYER
 #define SAO_CSZ2 in_csz2
@@ -392,7 +394,7 @@ float sao_ao_sample(ivec2 p, bool inside, out float key_z)
         // jitter: the frame's offset plus the pixel's hash, mod 1.
         float xi = fract(frame_alpha_offset + sao_pixel_jitter(uvec2(p)));
         float sum = sao_visibility_occlusion(in_csz, SAO_CSZ2, TWO_LAYER != 0, Z_HIERARCHY != 0, c, C, n, r_px, phase,
-                                             xi, s, slices, slice_turn, proj_info, ortho, radius2, depth_tolerance,
+                                             xi, s, SAO_SLICE_COUNT, slice_turn, proj_info, ortho, radius2, depth_tolerance,
                                              thickness, log_q, max_mip);
 #else
         float sum = 0.0;

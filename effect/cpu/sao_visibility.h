@@ -46,7 +46,7 @@ T atan2Poly(T y, T x) {
 // SaoSlice.
 template <typename T>
 struct Slice {
-  Vec3<T> e{T(0), T(0), T(0)}, a{T(0), T(0), T(0)}, shear{T(0), T(0), T(0)};
+  Vec3<T> n{T(0), T(0), T(0)}, e{T(0), T(0), T(0)}, a{T(0), T(0), T(0)}, shear{T(0), T(0), T(0)};
   T gamma = T(0), cosGamma = T(1), sinGamma = T(0), lo = T(0), hi = T(0), gLo = T(0), invRange = T(0), weight = T(0);
 };
 
@@ -61,6 +61,7 @@ T sliceG(T x, T c2, T cosGamma, T sinGamma) {
 template <typename T>
 Slice<T> sliceSetup(T ux, T uy, Vec3<T> V, Vec3<T> n, const Block<T>& P) {
   Slice<T> sl;
+  sl.n = n;
   const Vec3<T> D{ux * P.proj_info.x, uy * P.proj_info.y, T(0)};
   sl.e = normalize(D - scale(V, dot(D, V)));
   const Vec3<T> a = normalize(cross(sl.e, V));
@@ -127,9 +128,18 @@ Slab<T> slab(const Slice<T>& sl, Vec3<T> C, Vec3<T> V, T qx, T qy, T z, const Bl
   Vec3<T> f = F - C;
   if (dot(f, f) > P.radius2) return s;
   Vec3<T> b = B - C;
+  const bool below = dot(f, sl.n) <= T(0) && dot(b, sl.n) <= T(0);  // blocks nothing (sao_slab)
   f = f - scale(sl.shear, dot(f, sl.a));  // into the slice along the tangent plane
   b = b - scale(sl.shear, dot(b, sl.a));
   const T fe = dot(f, sl.e), fv = dot(f, V);
+  if (below) {
+    const bool beyondHi = fe > T(0);
+    s.valid = beyondHi == (dot(b, sl.e) > T(0));
+    s.u1 = s.u2 = beyondHi ? T(1) : T(0);
+    s.fe = fe;
+    s.fv = fv;
+    return s;
+  }
   const T be = dot(b, sl.e), bv = dot(b, V);
   const T tf = atan2Poly(fe, fv);
   const T tb = atan2Poly(be, bv);
@@ -167,15 +177,26 @@ std::uint32_t joinedBits(const Slab<T>& s, const Slab<T>& prev, T thickness) {
   return s.valid ? bitsBetween(u1, u2) : 0u;
 }
 
-// sao_mip_source: the level-0 texel (x, y) whose z level-m texel (x, y) holds.
+// The rotated-grid walk sao_mip_source's closed form replaces (tests compare the two).
+inline void mipSourceWalk(int& x, int& y, int m, int w0, int h0) {
+  for (int k = m; k >= 1; --k) {
+    int sx, sy;
+    rotatedGridSource(x, y, std::max(w0 >> (k - 1), 1), std::max(h0 >> (k - 1), 1), sx, sy);
+    x = sx;
+    y = sy;
+  }
+}
+
+// sao_mip_source: the level-0 texel (x, y) whose z level-m texel (x, y) holds, in closed form
+// (exact where w0, h0 >= 2^m; clamped to the image otherwise).
 inline void mipSource(int& x, int& y, int m, int w0, int h0) {
-  for (int k = gen::SAO_MAX_MIP_LEVELS - 1; k >= 1; --k)
-    if (k <= m) {
-      int sx, sy;
-      rotatedGridSource(x, y, std::max(w0 >> (k - 1), 1), std::max(h0 >> (k - 1), 1), sx, sy);
-      x = sx;
-      y = sy;
-    }
+  const std::uint32_t first = m == 0 ? 0u : (0xAAAAAAAAu >> unsigned(32 - m));
+  const std::uint32_t second = ((1u << unsigned(m)) - 1u) ^ first;
+  const std::uint32_t x0 = std::uint32_t(x) & 1u, y0 = std::uint32_t(y) & 1u;
+  const std::uint32_t sx = (std::uint32_t(x) << unsigned(m)) | ((y0 ^ 1u) * first) | (x0 * second);
+  const std::uint32_t sy = (std::uint32_t(y) << unsigned(m)) | ((x0 ^ 1u) * first) | (y0 * second);
+  x = std::min(int(sx), w0 - 1);
+  y = std::min(int(sy), h0 - 1);
 }
 
 // sao_pixel_jitter: 24 bits of a hash of the AO pixel, in [0, 1) (exact in float and double).

@@ -36,6 +36,7 @@ float sao_atan2(float y, float x)
 // around the projected normal's angle gamma (from V, signed towards e), G(lo), 1/(G(hi) - G(lo)) and
 // the slice's weight L*(G(hi) - G(lo)) (L = length of the projected normal).
 struct SaoSlice {
+    vec3 n;      // the pixel's normal (sao_slab's below-the-tangent-plane test)
     vec3 e;
     vec3 a;      // the slice plane's normal
     vec3 shear;  // (a - n (n.a)) / L^2: moves a point into the slice along the surface's tangent plane
@@ -71,6 +72,7 @@ SaoSlice sao_slice_setup(vec2 u, vec3 V, vec3 n, vec4 proj_info)
     precise float na = dot(n, a);
     precise vec3 np = n - a * na;
     precise float L = length(np);
+    sl.n = n;
     sl.e = e;
     sl.a = a;
     precise vec3 shear = (a - n * na) * (1.0 / (L * L));
@@ -163,6 +165,12 @@ SaoSlab sao_slab(SaoSlice sl, vec3 C, vec3 V, vec2 q_pixel, float z, vec4 proj_i
     if (dot(f, f) > radius2)
         return s;
     precise vec3 b = B - C;
+    // A slab wholly on or below the tangent plane blocks nothing (most taps on open ground): its
+    // angles would clamp to the hemisphere's end on its side of V (theta > hi where f.e > 0, else
+    // theta < lo), u1 = u2 = 1 or 0, so the two atans are skipped. It stays valid (with its front
+    // point) for joining: a continuous surface rising from it covers the angles from that horizon
+    // up. Its two ends on opposite sides of V subtend more than pi, invalid as below.
+    bool below = dot(f, sl.n) <= 0.0 && dot(b, sl.n) <= 0.0;
     // Into the slice plane along the tangent plane (a truncated tap lies up to a pixel beside the
     // slice; dropping its a component would lift a point of the surface's own plane above it).
     f -= sl.shear * dot(f, sl.a);
@@ -170,6 +178,15 @@ SaoSlab sao_slab(SaoSlice sl, vec3 C, vec3 V, vec2 q_pixel, float z, vec4 proj_i
     precise float fe = dot(f, sl.e);
     precise float fv = dot(f, V);
     precise float be = dot(b, sl.e);
+    if (below) {
+        bool beyond_hi = fe > 0.0;
+        s.valid = beyond_hi == (be > 0.0);
+        s.u1 = beyond_hi ? 1.0 : 0.0;
+        s.u2 = s.u1;
+        s.fe = fe;
+        s.fv = fv;
+        return s;
+    }
     precise float bv = dot(b, V);
     float tf = sao_atan2(fe, fv);
     float tb = sao_atan2(be, bv);
@@ -214,15 +231,24 @@ uint sao_joined_bits(SaoSlab s, SaoSlab prev, float thickness)
     return s.valid ? sao_bits_between(u1, u2) : 0u;
 }
 
-// The csz level-0 texel whose z level-m texel t holds: the rotated grid (Table 1) walked down. A
-// tap's point is placed there, on the surface its z belongs to (SAO places it at the tap pixel,
-// up to 2^m pixels from where that z was seen: beside a receding floor, above it).
+// The csz level-0 texel whose z level-m texel t holds: the rotated grid (Table 1) walked down, in
+// closed form. A tap's point is placed there, on the surface its z belongs to (SAO places it at the
+// tap pixel, up to 2^m pixels from where that z was seen: beside a receding floor, above it). Each
+// step of the walk appends one bit to x, alternately not(y0) and x0, and one to y, alternately
+// not(x0) and y0 (x0, y0: t's low bits; the parities alternate), so m steps append the m-bit words
+// `first` (bits m-1, m-3, ...) and `second` (the others). Exact where both sides of the image are
+// at least 2^m texels; on a side under that (images under 2^max_mip <= 128 texels) the walk's clamp
+// is not followed and the result is clamped to the image instead: a point up to 2^m texels from
+// its z's, as SAO's own taps. No loop: llvmpipe would run a walk's body masked on every tap.
 ivec2 sao_mip_source(ivec2 t, int m, ivec2 size0)
 {
-    for (int k = SAO_MAX_MIP_LEVELS - 1; k >= 1; --k)  // a constant trip count (no block value)
-        if (k <= m)
-            t = sao_rotated_grid_source(t, max(size0 >> (k - 1), ivec2(1)));
-    return t;
+    uint first = (m == 0) ? 0u : (0xAAAAAAAAu >> uint(32 - m));
+    uint second = ((1u << uint(m)) - 1u) ^ first;
+    uint x0 = uint(t.x) & 1u;
+    uint y0 = uint(t.y) & 1u;
+    uint sx = (uint(t.x) << uint(m)) | ((y0 ^ 1u) * first) | (x0 * second);
+    uint sy = (uint(t.y) << uint(m)) | ((x0 ^ 1u) * first) | (y0 * second);
+    return min(ivec2(sx, sy), size0 - 1);
 }
 
 // The pixel's radial jitter: a hash of the AO pixel, 24 bits, in [0, 1) (exact as a float, so
@@ -240,9 +266,10 @@ float sao_pixel_jitter(uvec2 p)
 // r_px): `slices` slices at angles phase + k*slice_turn (2^-32 turns; slice_turn = half a turn over
 // slices), m = max(1, tap_count/(2*slices)) steps on each side at h_j = r_px*((j + xi)/m)^2, each
 // tap read from the z MIP level for its distance (hierarchy) and, with two_layer, the second
-// layer's slab too. V = sum_k w_k (1 - bits_k/32) / sum_k w_k; 0 when every weight is 0. The loop's
-// trip count comes from tap_count alone (the caller passes SAO_TAP_COUNT: on Vulkan a push constant,
-// see sao.glsl), max(tap_count, 2*SAO_MAX_SLICES) >= 2*slices*m, its extra trips doing nothing.
+// layer's slab too. V = sum_k w_k (1 - bits_k/32) / sum_k w_k; 0 when every weight is 0. Nested
+// loops, so that a slice's setup runs once per slice (llvmpipe runs a branch's body masked on every
+// trip: in one flat loop it ran per tap); the trip counts come from tap_count and slices alone (the
+// caller passes SAO_TAP_COUNT and SAO_SLICE_COUNT: on Vulkan push constants, see sao.glsl).
 float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, bool two_layer, bool hierarchy, ivec2 c, vec3 C,
                                vec3 n, float r_px, uint phase, float xi, int tap_count, int slices,
                                uint slice_turn, vec4 proj_info, int ortho, float radius2, float tolerance,
@@ -252,59 +279,45 @@ float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, bool two_layer, bo
     precise vec3 V = (ortho != 0) ? vec3(0.0, 0.0, 1.0) : normalize(-C);
     int ns = clamp(slices, 1, SAO_MAX_SLICES);
     int m = max(1, tap_count / (2 * ns));
-    int per_slice = 2 * m;
-    int used = ns * per_slice;
-    int trips = max(tap_count, 2 * SAO_MAX_SLICES);
     float inv_m = 1.0 / float(m);
     precise float occluded = 0.0;
     precise float weights = 0.0;
-    SaoSlice sl;
-    uint bits = 0u;
-    SaoSlab prev;  // the side's previous tap's slab (first layer), for sao_joined_bits
-    prev.valid = false;
-    prev.u1 = 0.0;
-    prev.u2 = 0.0;
-    prev.fe = 0.0;
-    prev.fv = 0.0;
-    vec2 u = vec2(1.0, 0.0);
-    int i = 0;  // trips >= 1: a do-while, as the spiral's loop
-    do {
-        if (i < used) {
-            int k = i / per_slice;
-            int r = i - k * per_slice;  // place in the slice: side (r >= m: -u), step j
-            if (r == 0) {
-                u = sao_turn_direction(phase + uint(k) * slice_turn);
-                sl = sao_slice_setup(u, V, n, proj_info);
-                bits = 0u;
-            }
-            bool negative = r >= m;
-            int j = negative ? r - m : r;
-            if (j == 0)
-                prev.valid = false;  // a new side: nothing to join to
-            float t = (float(j) + xi) * inv_m;
-            float h = r_px * (t * t);
-            ivec2 tap = c + ivec2(h * (negative ? -u : u));  // conversion truncates toward zero
-            if (tap != c) {
-                int lvl = hierarchy ? sao_mip_level(h, log_q, max_mip) : 0;
-                ivec2 tt = sao_mip_texel(tap, lvl, size0);
-                ivec2 src = sao_mip_source(tt, lvl, size0);
-                if (src != c) {  // a coarse texel may hold the centre's own z
-                    vec2 q = vec2(src) + 0.5;
-                    SaoSlab s = sao_slab(sl, C, V, q, texelFetch(csz, tt, lvl).r, proj_info, ortho, radius2,
-                                         tolerance, thickness);
-                    bits |= sao_joined_bits(s, prev, thickness);
-                    prev = s;  // sky or a sample beyond r breaks the chain
-                    if (two_layer)
-                        bits |= sao_slab_bits(sl, C, V, q, texelFetch(csz2, tt, lvl).r, proj_info, ortho, radius2,
-                                              tolerance, thickness);
+    for (int k = 0; k < ns; ++k) {
+        vec2 u = sao_turn_direction(phase + uint(k) * slice_turn);
+        SaoSlice sl = sao_slice_setup(u, V, n, proj_info);
+        uint bits = 0u;
+        for (int side = 0; side < 2; ++side) {
+            vec2 dir = (side == 0) ? u : -u;
+            SaoSlab prev;  // the side's previous tap's slab (first layer), for sao_joined_bits
+            prev.valid = false;
+            prev.u1 = 0.0;
+            prev.u2 = 0.0;
+            prev.fe = 0.0;
+            prev.fv = 0.0;
+            for (int j = 0; j < m; ++j) {
+                float t = (float(j) + xi) * inv_m;
+                float h = r_px * (t * t);
+                ivec2 tap = c + ivec2(h * dir);  // conversion truncates toward zero
+                if (tap != c) {
+                    int lvl = hierarchy ? sao_mip_level(h, log_q, max_mip) : 0;
+                    ivec2 tt = sao_mip_texel(tap, lvl, size0);
+                    ivec2 src = sao_mip_source(tt, lvl, size0);
+                    if (src != c) {  // a coarse texel may hold the centre's own z
+                        vec2 q = vec2(src) + 0.5;
+                        SaoSlab s = sao_slab(sl, C, V, q, texelFetch(csz, tt, lvl).r, proj_info, ortho, radius2,
+                                             tolerance, thickness);
+                        bits |= sao_joined_bits(s, prev, thickness);
+                        prev = s;  // sky or a sample beyond r breaks the chain
+                        if (two_layer)
+                            bits |= sao_slab_bits(sl, C, V, q, texelFetch(csz2, tt, lvl).r, proj_info, ortho,
+                                                  radius2, tolerance, thickness);
+                    }
                 }
             }
-            if (r == per_slice - 1) {
-                occluded += sl.weight * (float(bitCount(bits)) * 0.03125);
-                weights += sl.weight;
-            }
         }
-    } while (++i < trips);
+        occluded += sl.weight * (float(bitCount(bits)) * 0.03125);
+        weights += sl.weight;
+    }
     return (weights > 0.0) ? occluded / weights : 0.0;
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "sao/settings.h"
+#include "sao_visibility.h"
 #include "test_support.h"
 
 namespace sao::test {
@@ -158,6 +159,41 @@ TEST(VisibilityEstimator, FloatFollowsDouble) {
     EXPECT_GE(double(within) / double(f.ao.data.size()), 0.999) << "max " << maxAbs * 255 << "/255";
     EXPECT_TRUE(allFinite(f.ao));
   }
+}
+
+// sao_mip_source's closed form is the rotated-grid walk it replaces, on every texel of every level
+// where both sides are at least 2^m texels; on a narrower side (the walk's clamp) it stays inside
+// the image and within 2^m texels of the texel's own corner.
+TEST(VisibilityEstimator, MipSourceClosedFormIsTheWalk) {
+  const int sizes[][2] = {{640, 360}, {641, 359}, {129, 1000}, {128, 128}, {3, 700}, {1, 1}, {1280, 720}};
+  std::size_t checked = 0, clamped = 0;
+  for (const auto& sz : sizes) {
+    const int w0 = sz[0], h0 = sz[1];
+    for (int m = 0; m < gen::SAO_MAX_MIP_LEVELS; ++m) {
+      const int w = std::max(w0 >> m, 1), h = std::max(h0 >> m, 1);
+      const bool exact = w0 >= (1 << m) && h0 >= (1 << m);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          int cx = x, cy = y, wx = x, wy = y;
+          cpu::detail::mipSource(cx, cy, m, w0, h0);
+          cpu::detail::mipSourceWalk(wx, wy, m, w0, h0);
+          const std::string where = std::to_string(w0) + "x" + std::to_string(h0) + " level " + std::to_string(m) +
+                                    " texel " + std::to_string(x) + "," + std::to_string(y);
+          if (exact) {
+            ASSERT_EQ(cx, wx) << where;
+            ASSERT_EQ(cy, wy) << where;
+            ++checked;
+          } else {
+            ASSERT_TRUE(cx >= 0 && cx < w0 && cy >= 0 && cy < h0) << where;
+            ASSERT_TRUE(cx >= std::min(x << m, w0 - 1) && cx < (x + 1) << m) << where;
+            ASSERT_TRUE(cy >= std::min(y << m, h0 - 1) && cy < (y + 1) << m) << where;
+            ++clamped;
+          }
+        }
+    }
+  }
+  EXPECT_GT(clamped, std::size_t(100));
+  EXPECT_GT(checked, std::size_t(1000000));
 }
 
 }  // namespace

@@ -59,9 +59,10 @@ struct ParamBuffer {
 
 // The push constants of every pipeline layout: loop trip counts, also in the parameter block.
 // Mesa lavapipe 22.3 keeps host memory per dispatch of a loop whose trip count it reads from the
-// uniform block the loop body reads (docs/ROBUSTNESS.md); ao_sample takes its count from here.
+// uniform block the loop body reads (docs/ROBUSTNESS.md); ao_sample takes its counts from here.
 struct LoopCounts {
   std::int32_t samples;
+  std::int32_t slices;  // the visibility estimator's outer loop
 };
 
 struct PipelineEntry {

@@ -269,7 +269,7 @@ void recordDispatches(const EffectState& e, VkCommandBuffer cmd, std::uint32_t s
       }
       pipe = findPipeline(e, d.variant);
       e.d.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe->pipeline.get());
-      const LoopCounts counts{e.params.samples};
+      const LoopCounts counts{e.params.samples, e.params.slices};
       e.d.vkCmdPushConstants(cmd, pipe->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof counts, &counts);
     }
     {
