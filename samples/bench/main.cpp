@@ -107,6 +107,7 @@ struct Options {
   bool ortho = false;           // --ortho: every scene's view made orthographic
   bool timeOnly = false;        // --time-only: no references, so no error columns
   std::string objective = "c";  // --objective: the reference --tune minimises the error against
+  std::string screenThickness = "constant";  // --screen-thickness: reference (d)'s thickness model
   std::vector<std::string> sets;  // --set NAME=VALUE, in order: applied to every preset of the presets section
   std::optional<scenes::LengthUnit> units;  // --units
   std::vector<std::string> scenes;          // --scenes; empty: benchScenes(quick)
@@ -214,6 +215,13 @@ Options parse(int argc, char** argv) {
             "with --tune: the reference whose error the front and the presets minimise: c (default), the converged "
             "estimator (what the knobs trade); a, ray-traced near-field AO (what users see, model error included), with "
             "--rays rays per pixel (default 4096 here, which keeps (a)'s own noise below 0.005; --quick: 16). Blotch and silhouette stay against (c)");
+  cl.choice("--screen-thickness", o.screenThickness,
+            [](const std::string& v) { return v == "constant" || v == "width" ? std::optional(v) : std::nullopt; },
+            "constant or width", "M",
+            "with --sections presets: reference (d)'s thickness, constant (default: the setting thickness for every "
+            "slab, what the visibility estimator converges to) or width (each run of continuous depth along a slice "
+            "taken as deep as half its width, from 0.02 m up to thickness: raytrace::ScreenVisibilityOptions::"
+            "thicknessFromWidth, docs/reference.md)");
   cl.flag(samples::kOverwriteOption, o.overwrite, samples::kOverwriteHelp);
   cl.parse(argc, argv);
   o.sizeGiven = cl.given("--size");
@@ -249,6 +257,9 @@ Options parse(int argc, char** argv) {
           cl.fail("--set " + describeInert(*rule) + " (preset " + std::string(p.name) + ")");
     }
   }
+  if (cl.given("--screen-thickness") && (o.tune || o.timeOnly || o.sections != std::set<std::string>{"presets"}))
+    cl.fail("--screen-thickness sets reference (d) of the presets section: add --sections presets (and no --tune or "
+            "--time-only)");
   if (cl.given("--objective") && !o.tune) cl.fail("--objective chooses what --tune minimises: add --tune, or drop it");
   if (o.timeOnly) {
     if (cl.given("--rays") || cl.given("--converged-taps") || cl.given("--converged-noise") || cl.given("--ao-noise"))
@@ -465,15 +476,16 @@ int main(int argc, char** argv) {
         }
       }
       refs.converged = &converged->ao;
-      const bool freshScreen = !p.screen.count(screenKey(s, extra));
       ScreenOptions screenOptions;  // 64 slices, every pixel
+      screenOptions.thicknessFromWidth = o.screenThickness == "width";
+      const bool freshScreen = !p.screen.count(screenKey(s, extra, screenOptions.thicknessFromWidth));
       screenOptions.nearFieldAo = refs.nearFieldAo;
       screenOptions.converged = &converged->ao;
       Screen& screen = screenReference(p, s, extra, screenOptions);
       if (freshScreen) {
         char t[96];
         std::snprintf(t, sizeof t, ": %.1f s (%.1f s CPU)", screen.seconds, screen.cpuSeconds);
-        screenTimes.push_back(scene + " (" + what + ")" + t);
+        screenTimes.push_back(scene + " (" + what + (screenOptions.thicknessFromWidth ? ", thickness from width" : "") + ")" + t);
       }
       refs.screen = &screen.ao;
       refs.screenMask = &screen.mask;

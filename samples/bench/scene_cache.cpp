@@ -24,7 +24,9 @@ std::vector<std::string> benchScenes(bool quick) {
   return {"sponza-like", "sphere-plane", "crease", "thin", "gears"};
 }
 
-ScreenKey screenKey(const Settings& s, Extra extra) { return {s.radius, s.thickness, s.depth_tolerance, extra}; }
+ScreenKey screenKey(const Settings& s, Extra extra, bool thicknessFromWidth) {
+  return {s.radius, s.thickness, s.depth_tolerance, extra, thicknessFromWidth};
+}
 
 ObscuranceKey obscuranceKey(const Settings& s) { return {s.radius, s.intensity, s.bias, s.epsilon, s.contrast}; }
 
@@ -164,7 +166,7 @@ Converged& convergedReference(Prepared& p, const Settings& s, Extra extra, const
 }
 
 Screen& screenReference(Prepared& p, const Settings& s, Extra extra, const ScreenOptions& options) {
-  const ScreenKey key = screenKey(s, extra);
+  const ScreenKey key = screenKey(s, extra, options.thicknessFromWidth);
   auto it = p.screen.find(key);
   if (it != p.screen.end()) return it->second;
   const samples::RunInputs inputs = runInputs(p, extra);
@@ -172,6 +174,7 @@ Screen& screenReference(Prepared& p, const Settings& s, Extra extra, const Scree
   raytrace::ScreenVisibilityOptions so;
   so.slices = options.slices;
   so.stride = options.stride;
+  so.thicknessFromWidth = options.thicknessFromWidth;
   const auto start = std::chrono::steady_clock::now();
   const std::clock_t cpuStart = std::clock();
   if (Status st = raytrace::screenVisibility(s, p.camera, {inputs.depth, inputs.depth2, inputs.normals}, so, d.ao); !st)

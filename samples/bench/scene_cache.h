@@ -47,9 +47,10 @@ struct Converged {
   std::string modelMap;  // maps/ PNG of (c) - (a), relative to the output folder
 };
 
-// Reference (d) depends on the radius, the thickness, the depth tolerance and the inputs.
-using ScreenKey = std::tuple<float, float, float, Extra>;
-ScreenKey screenKey(const Settings& s, Extra extra);
+// Reference (d) depends on the radius, the thickness, the depth tolerance, the inputs and the
+// thickness model (ScreenOptions::thicknessFromWidth).
+using ScreenKey = std::tuple<float, float, float, Extra, bool>;
+ScreenKey screenKey(const Settings& s, Extra extra, bool thicknessFromWidth);
 
 // Reference (d), converged screen-space visibility, with its cost and the two model errors that
 // split (c) - (a): (d) against (a) (what screen space cannot see) and (c) against (d) (the
@@ -122,6 +123,7 @@ Converged& convergedReference(Prepared& p, const Settings& s, Extra extra, const
 struct ScreenOptions {
   std::uint32_t slices = 64;
   std::uint32_t stride = 1;                 // every stride-th pixel in x and y (raytrace::ScreenVisibilityOptions)
+  bool thicknessFromWidth = false;          // raytrace::ScreenVisibilityOptions::thicknessFromWidth
   const FloatImage* nearFieldAo = nullptr;  // given: (d) vs (a) is computed
   const FloatImage* converged = nullptr;    // given: (c) vs (d)
 };

@@ -29,4 +29,16 @@ rows=$(awk -F, 'NR > 1 && $1 == "presets"' "$out/ok/results.csv" | wc -l)
 [ "$rows" -eq 10 ] || die "expected 10 preset rows (2 scenes x 5 presets), got $rows"
 bad=$(awk -F, 'NR > 1 && $1 == "presets" && ($5 != "estimator=1 thickness=0.2" || $7 !~ /ESTIMATOR=1/)' "$out/ok/results.csv" | wc -l)
 [ "$bad" -eq 0 ] || die "rows without the --set variant or ESTIMATOR=1: $(awk -F, 'NR > 1 { print $5 \" | \" $7 }' "$out/ok/results.csv" | head -3)"
+# --screen-thickness: reference (d)'s thickness model (presets section only); width changes (d).
+expect_refusal "--screen-thickness expects constant or width, got 'thick'" --sections presets --screen-thickness thick
+expect_refusal "--screen-thickness sets reference (d) of the presets section" --screen-thickness width
+"$bench" --quick --sections presets --backends cpu --set estimator=1 --set thickness=0.2 --screen-thickness width \
+  --out "$out/width" >"$out/width.out" 2>"$out/width.err" ||
+  die "--screen-thickness width failed: $(tail -3 "$out/width.err")"
+grep -q "thickness from width" "$out/width.out" "$out/width.err" || die "--screen-thickness width: the report does not name it"
+col=$(head -1 "$out/ok/results.csv" | tr ',' '\n' | grep -nx screen_rmse_raw | cut -d: -f1)
+[ -n "$col" ] || die "no screen_rmse_raw column"
+a=$(awk -F, -v c="$col" 'NR > 1 && $1 == "presets" { print $c }' "$out/ok/results.csv" | sort -u | tr '\n' ' ')
+b=$(awk -F, -v c="$col" 'NR > 1 && $1 == "presets" { print $c }' "$out/width/results.csv" | sort -u | tr '\n' ' ')
+[ -n "$b" ] && [ "$a" != "$b" ] || die "--screen-thickness width: reference (d)'s error columns unchanged ($a)"
 echo "set option: ok"

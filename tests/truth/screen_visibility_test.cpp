@@ -403,8 +403,65 @@ TEST(ScreenVisibility, RejectsBadInput) {
     o.tolerance = tol;
     EXPECT_EQ(code({&depth}, o), StatusCode::InvalidInput) << tol;
   }
+  for (double bad : {0.0, -1.0, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()})
+    for (int which = 0; which < 3; ++which) {
+      o = fewSlices();
+      o.thicknessFromWidth = true;
+      (which == 0 ? o.widthScale : which == 1 ? o.widthMinMeters : o.widthJump) = bad;
+      EXPECT_EQ(code({&depth}, o), StatusCode::InvalidInput) << which << " " << bad;
+    }
   s.radius = -1;
   EXPECT_NE(code({&depth}, fewSlices()), StatusCode::Ok);
+}
+
+// Thickness from width: the 10 cm slat before the wall is taken as about 5 cm deep (half its
+// width) instead of a constant 1 m, so the wall behind it sees past it as the ray tracer does
+// (the slat really is 10 cm deep), while open wall far from the slat stays exactly 1 (an open plane
+// is one run reaching the end of the line: T, below the tangent plane anyway).
+TEST(ScreenVisibility, ThicknessFromWidthTakesAThinObjectAsThin) {
+  scenes::MeshBuilder b;
+  b.box({-10, -10, -0.2}, {10, 10, 0});
+  b.box({-0.05, -10, 0.4}, {0.05, 10, 0.5});
+  const scenes::Mesh mesh = b.build();
+  TracedView v;
+  traceFirstView({"slat", mesh, {view({0.6, 0, 4}, {0, 0, 0}, 0, mesh)}}, 96, 64, 16, 1.0, v);
+  Settings s;
+  raytrace::ScreenVisibilityOptions o = fewSlices(32);
+  o.thicknessMeters = 1.0;
+  FloatImage constant, fromWidth, again, reference;
+  ASSERT_TRUE(raytrace::screenVisibility(s, v.camera, {&v.primary.depth}, o, constant).ok());
+  o.thicknessFromWidth = true;
+  ASSERT_TRUE(raytrace::screenVisibility(s, v.camera, {&v.primary.depth}, o, fromWidth).ok());
+  ASSERT_TRUE(raytrace::screenVisibility(s, v.camera, {&v.primary.depth}, o, again).ok());
+  EXPECT_EQ(fromWidth.data, again.data) << "deterministic";
+  raytrace::ReferenceOptions ro;
+  ro.rays = 256;
+  ASSERT_TRUE(raytrace::referenceAmbientOcclusion(*v.rays, v.camera, v.primary, v.scene.views[0], ro, reference).ok());
+  const glm::dmat4 toWorld = glm::inverse(scenes::viewMatrix(v.scene.views[0]));
+  double errConstant = 0, errWidth = 0;
+  std::size_t near = 0, openNotOne = 0, open = 0;
+  for (std::uint32_t y = 0; y < v.camera.height; ++y)
+    for (std::uint32_t x = 0; x < v.camera.width; ++x) {
+      const glm::dvec4 p = cameraPosition(v, x, y);
+      const glm::dvec3 w = toWorld * glm::dvec4(glm::dvec3(p), 1.0);
+      if (p.w == 0 || std::fabs(w.z) > 1e-4) continue;  // the wall only
+      if (std::fabs(w.x) > 2.0) {  // farther from the slat than the 1 m radius can reach
+        ++open;
+        openNotOne += fromWidth.at(x, y) != 1.0f;
+        continue;
+      }
+      if (std::fabs(w.x) > 0.8) continue;
+      errConstant += std::pow(constant.at(x, y) - reference.at(x, y), 2);
+      errWidth += std::pow(fromWidth.at(x, y) - reference.at(x, y), 2);
+      ++near;
+    }
+  ASSERT_GT(near, 200u);
+  ASSERT_GT(open, 200u);
+  errConstant = std::sqrt(errConstant / near), errWidth = std::sqrt(errWidth / near);
+  std::printf("wall near the slat, %zu pixels: RMSE vs (a) %.4f (T 1 m), %.4f (from width, T <= 1 m)\n", near,
+              errConstant, errWidth);
+  EXPECT_LT(errWidth, 0.6 * errConstant);
+  EXPECT_EQ(openNotOne, 0u) << "of " << open << " open wall pixels";
 }
 
 }  // namespace

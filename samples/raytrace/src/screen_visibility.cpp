@@ -75,10 +75,17 @@ struct Pixel {
   double rPx;
 };
 
+// ScreenVisibilityOptions' thickness from width, in view units (scale and jump unitless).
+struct WidthModel {
+  bool on = false;
+  double scale = 0, minT = 0, jump = 0;
+};
+
 class Marcher {
  public:
-  Marcher(const Block<double>& P, const Image<double>& z0, const Image<double>* z1, double thickness, double tol)
-      : P_(P), z0_(z0), z1_(z1), T_(thickness), tol_(tol), ortho_(P.ortho != 0) {}
+  Marcher(const Block<double>& P, const Image<double>& z0, const Image<double>* z1, double thickness, double tol,
+          WidthModel width)
+      : P_(P), z0_(z0), z1_(z1), T_(thickness), tol_(tol), width_(width), ortho_(P.ortho != 0) {}
 
   // Visibility of one pixel from `slices` slices at screen angles pi (k + xi) / slices.
   double visibility(const Pixel& px, std::uint32_t slices, double xi, bool azimuthWeight) {
@@ -144,26 +151,66 @@ class Marcher {
   // image (a scene in the wrong unit: r' up to 65536 px) would otherwise march the edge texel for
   // minutes.
   void march(const Pixel& px, double ux, double uy, Vec3<double> e, int sign, double lo, double hi) {
+    if (width_.on) return marchRuns(px, ux, uy, e, sign, lo, hi);
     const int W = z0_.w, H = z0_.h;
     for (int h = 1; h <= px.rPx; ++h) {
       const int tx = px.cx + int(sign * h * ux), ty = px.cy + int(sign * h * uy);  // int() truncates, as the effect
       if (tx < 0 || ty < 0 || tx >= W || ty >= H) break;
       if (tx == px.cx && ty == px.cy) continue;  // the pixel's own texel: its slab lies behind C along V
-      slab(px, tx, ty, z0_.at(tx, ty), e, sign, lo, hi);
-      if (z1_) slab(px, tx, ty, z1_->at(tx, ty), e, sign, lo, hi);
+      slab(px, tx, ty, z0_.at(tx, ty), T_, e, sign, lo, hi);
+      if (z1_) slab(px, tx, ty, z1_->at(tx, ty), T_, e, sign, lo, hi);
     }
   }
 
-  void slab(const Pixel& px, int tx, int ty, double zq, Vec3<double> e, int sign, double lo, double hi) {
+  // The march with thickness from width: the line's distinct texels from C out to 2 r' (or the
+  // image's edge), split into runs of continuous depth; each run's texels within r' get the run's
+  // thickness.
+  void marchRuns(const Pixel& px, double ux, double uy, Vec3<double> e, int sign, double lo, double hi) {
+    const int W = z0_.w, H = z0_.h;
+    line_.clear();
+    for (int h = 0; h <= int(2.0 * px.rPx) + 1; ++h) {
+      const int tx = px.cx + int(sign * h * ux), ty = px.cy + int(sign * h * uy);
+      if (tx < 0 || ty < 0 || tx >= W || ty >= H) break;
+      if (!line_.empty() && line_.back().x == tx && line_.back().y == ty) continue;
+      line_.push_back({tx, ty, h});
+    }
+    auto z = [&](const LineTexel& t) { return z0_.at(t.x, t.y); };
+    auto point = [&](const LineTexel& t) { return cpu::detail::position(t.x + 0.5, t.y + 0.5, z(t), P_); };
+    std::size_t i = 0;
+    while (i < line_.size()) {
+      std::size_t j = i + 1;
+      while (j < line_.size() && !cpu::detail::isSky(z(line_[j])) && !cpu::detail::isSky(z(line_[j - 1])) &&
+             std::abs(z(line_[j]) - z(line_[j - 1])) <= width_.jump * std::abs(z(line_[j])))
+        ++j;
+      double T = T_;
+      if (j < line_.size() && !cpu::detail::isSky(z(line_[i]))) {  // a run ended inside the line
+        const Vec3<double> a = point(line_[i]), b = point(line_[j - 1]);
+        const Vec3<double> step = cpu::detail::position(line_[i].x + 1.5, line_[i].y + 0.5, z(line_[i]), P_) - a;
+        const Vec3<double> d = b - a;
+        const double width = std::sqrt(dot(d, d)) + std::sqrt(dot(step, step));
+        T = std::min(T_, std::max(width_.minT, width_.scale * width));  // T_ may be under minT
+      }
+      for (std::size_t k = i; k < j; ++k) {
+        const LineTexel& t = line_[k];
+        if (t.h > px.rPx) break;
+        if (t.x == px.cx && t.y == px.cy) continue;  // the pixel's own texel
+        slab(px, t.x, t.y, z(t), T, e, sign, lo, hi);
+        if (z1_) slab(px, t.x, t.y, z1_->at(t.x, t.y), T_, e, sign, lo, hi);
+      }
+      i = j;
+    }
+  }
+
+  void slab(const Pixel& px, int tx, int ty, double zq, double T, Vec3<double> e, int sign, double lo, double hi) {
     if (cpu::detail::isSky(zq)) return;
     const Vec3<double> S = cpu::detail::position(tx + 0.5, ty + 0.5, zq, P_);
     Vec3<double> front, back;
     if (ortho_) {
       front = {S.x, S.y, zq * (1.0 + tol_)};
-      back = {S.x, S.y, zq * (1.0 + tol_) - T_};
+      back = {S.x, S.y, zq * (1.0 + tol_) - T};
     } else {
       front = scaled(S, 1.0 + tol_);
-      back = scaled(S, 1.0 + tol_ + T_ / -zq);  // infinite T: an infinite point, handled below
+      back = scaled(S, 1.0 + tol_ + T / -zq);  // infinite T: an infinite point, handled below
     }
     const Vec3<double> vf = front - px.C;
     if (dot(vf, vf) > P_.radius2) return;  // the radius cut
@@ -171,7 +218,7 @@ class Marcher {
     // rounding from wrapping an angle near +-pi to the other side).
     auto theta = [&](Vec3<double> v) { return sign * std::atan2(std::max(0.0, sign * dot(v, e)), dot(v, px.V)); };
     // The back end: a point, or for an infinite T the direction of the view ray behind S.
-    const Vec3<double> vb = std::isfinite(T_) ? back - px.C : ortho_ ? Vec3<double>{0, 0, -1} : S;
+    const Vec3<double> vb = std::isfinite(T) ? back - px.C : ortho_ ? Vec3<double>{0, 0, -1} : S;
     // Both ends on or below the tangent plane (in 3D, not projected on the slice): all of the slab
     // is, so it blocks nothing (and no angles are needed: most samples on open ground). Without
     // this test a tap off the slice's line (int() truncates up to a pixel sideways) of a plane
@@ -187,8 +234,13 @@ class Marcher {
   const Image<double>& z0_;
   const Image<double>* z1_;
   double T_, tol_;
+  WidthModel width_;
   bool ortho_;
   std::vector<Interval> intervals_;
+  struct LineTexel {
+    int x, y, h;
+  };
+  std::vector<LineTexel> line_;
 };
 
 }  // namespace
@@ -205,6 +257,13 @@ Status screenVisibility(const Settings& settings, const Camera& camera, const Co
     return invalid("the thickness must be > 0 metres or +infinity (got " + number(thicknessMeters) + ")");
   if (!(tolerance >= 0 && tolerance < 1))
     return invalid("the depth tolerance must be in [0, 1) (got " + number(tolerance) + ")");
+  if (options.thicknessFromWidth) {
+    auto positive = [](double v) { return v > 0 && std::isfinite(v); };
+    if (!positive(options.widthScale) || !positive(options.widthMinMeters) || !positive(options.widthJump))
+      return invalid("thickness from width needs widthScale, widthMinMeters and widthJump > 0 and finite (got " +
+                     number(options.widthScale) + ", " + number(options.widthMinMeters) + ", " +
+                     number(options.widthJump) + ")");
+  }
   gen::ParamBlock block;
   if (Status st = detail::checkScreenInputs("screenVisibility", settings, camera, in, block); !st) return st;
   const std::uint32_t g = camera.guardBand;
@@ -222,7 +281,12 @@ Status screenVisibility(const Settings& settings, const Camera& camera, const Co
 
   cpu::parallelFor(int((camera.height + k - 1) / k), options.threads, [&](int row) {
     const int py = row * int(k);
-    Marcher marcher(P, z0, in.depth2 ? &z1 : nullptr, thickness, tolerance);
+    WidthModel width;
+    width.on = options.thicknessFromWidth;
+    width.scale = options.widthScale;
+    width.minT = options.widthMinMeters * camera.metersToViewUnits;
+    width.jump = options.widthJump;
+    Marcher marcher(P, z0, in.depth2 ? &z1 : nullptr, thickness, tolerance, width);
     for (int px = 0; px < int(camera.width); px += int(k)) {
       Pixel p;
       p.cx = px + int(g), p.cy = py + int(g);
