@@ -276,13 +276,18 @@ TEST(ScreenVisibility, DeterministicAndStrided) {
 // through the wall, and the wall beside and behind it loses every direction that passes behind
 // the slat (what a pure heightfield assumes); with T = 0.2 m the slab ends short of the wall. The
 // ray-traced reference (a) on the same view sides with the finite thickness.
-TEST(ScreenVisibility, ThicknessDecidesWhatHidesBehindAThinObject) {
+// A 10 cm slat (10 cm deep) 0.4 m before a wall, seen from 4 m at 96x64.
+void traceSlat(TracedView& v) {
   scenes::MeshBuilder b;
   b.box({-10, -10, -0.2}, {10, 10, 0});
   b.box({-0.05, -10, 0.4}, {0.05, 10, 0.5});
   const scenes::Mesh mesh = b.build();
-  TracedView v;
   traceFirstView({"slat", mesh, {view({0.6, 0, 4}, {0, 0, 0}, 0, mesh)}}, 96, 64, 16, 1.0, v);
+}
+
+TEST(ScreenVisibility, ThicknessDecidesWhatHidesBehindAThinObject) {
+  TracedView v;
+  traceSlat(v);
   Settings s;  // radius 1 m: r' about 15 px on the wall
   FloatImage thin, infinite, reference;
   raytrace::ScreenVisibilityOptions o = fewSlices(32);
@@ -419,12 +424,8 @@ TEST(ScreenVisibility, RejectsBadInput) {
 // (the slat really is 10 cm deep), while open wall far from the slat stays exactly 1 (an open plane
 // is one run reaching the end of the line: T, below the tangent plane anyway).
 TEST(ScreenVisibility, ThicknessFromWidthTakesAThinObjectAsThin) {
-  scenes::MeshBuilder b;
-  b.box({-10, -10, -0.2}, {10, 10, 0});
-  b.box({-0.05, -10, 0.4}, {0.05, 10, 0.5});
-  const scenes::Mesh mesh = b.build();
   TracedView v;
-  traceFirstView({"slat", mesh, {view({0.6, 0, 4}, {0, 0, 0}, 0, mesh)}}, 96, 64, 16, 1.0, v);
+  traceSlat(v);
   Settings s;
   raytrace::ScreenVisibilityOptions o = fewSlices(32);
   o.thicknessMeters = 1.0;
