@@ -44,6 +44,7 @@
 #pragma sao setting float thickness           default=0.3   range=[0.001,100]      unit=m   "Visibility estimator: the thickness T of every stored surface; a ray is blocked where it passes through the slab from the surface (plus the tolerance) to T behind it"
 #pragma sao setting float depth_tolerance     default=0.003 range=[0,0.1]                   "Visibility estimator: relative depth tolerance; the slab behind a stored sample starts at its depth times (1 + tolerance)"
 #pragma sao setting int   slices              default=2     range=[1,8]                     "Visibility estimator: slices (screen directions, both sides each) per pixel; samples/(2*slices) steps on each side"
+#pragma sao setting int   thickness_model     default=0     values=[0,1]                    "Visibility estimator: 0 constant, every stored surface is thickness deep; 1 width, a surface is as deep as SAO_WIDTH_SCALE times its on-screen width along the slice (SAO_WIDTH_PROBES probes each side of a tap at its MIP level), from SAO_WIDTH_MIN_M up to thickness: thin objects (grass, rods) stop few rays, wide ones many (docs/effect-math.md 5.9)"
 // Derived settings: bools plan() computes from the settings, for the passes' skip_when= rules.
 #pragma sao derived direct_output when=blur_radius==0&&resolution_divisor==1&&temporal==false "Nothing follows the AO (no blur, full resolution, no history to keep): ao_sample_output writes the output itself, and neither ao_raw nor a copy pass is planned"
 #pragma sao derived copy_to_output when=resolution_divisor==1&&direct_output==false "Full resolution, and ao_sample wrote (A, key) (for the blur, or for the temporal history): the pass output copies A into the output"
@@ -64,6 +65,7 @@
 #pragma sao inert thickness                when=estimator==0             "the alchemy estimator (eq. 1) has no thickness model; thickness is not uploaded"
 #pragma sao inert depth_tolerance          when=estimator==0             "the alchemy estimator (eq. 1) has no thickness model; depth_tolerance is not uploaded"
 #pragma sao inert slices                   when=estimator==0             "the alchemy estimator (eq. 1) samples the spiral, not slices; slices is not uploaded"
+#pragma sao inert thickness_model          when=estimator==0             "the alchemy estimator (eq. 1) has no thickness model; thickness_model is not uploaded"
 // ---------------------------------------------------------------------------------------------
 // Presets: the chain `sao-bench --tune` chose on the Pareto front of time against error vs the
 // converged estimator (c), over the built-in scenes (docs/BENCHMARKS.md, "Tuning"; 2026-12-03, gl,
@@ -99,7 +101,11 @@
 #pragma sao constant int  SAO_OUTPUT_BLEND_REPLACE=0 "output_blend: the output's selected channels receive A (sao::OutputBlend::Replace)"
 #pragma sao constant int  SAO_DEPTH_SAMPLE_0=0 "depth_sample_policy: a multisampled depth input's sample 0 stands for its texel (sao::DepthSamplePolicy::Sample0)"
 #pragma sao constant int  SAO_DEPTH_SAMPLE_NEAREST=1 "depth_sample_policy: the sample nearest to the camera (the largest geometry z; sky only when every sample is sky) stands for its texel (Nearest)"
-#pragma sao constant int  SAO_MAX_SLICES=8 "Upper bound of slices (its range's end); the visibility estimator's loop runs at least 2*SAO_MAX_SLICES trips"
+#pragma sao constant int  SAO_MAX_SLICES=8 "Upper bound of slices (its range's end)"
+#pragma sao constant int  SAO_WIDTH_PROBES=2 "thickness_model 1: texels probed on each side of a tap along its slice, at its MIP level; a run of continuous depth longer than that on either side is taken as wide (thickness)"
+#pragma sao constant float SAO_WIDTH_SCALE=0.5 "thickness_model 1: a surface's thickness is this times its on-screen width along the slice (reference (d) measured 0.5 best of 0.5, 1, 2: docs/reference.md)"
+#pragma sao constant float SAO_WIDTH_JUMP=0.03 "thickness_model 1: neighbouring texels whose z differ by more than this times z per level-0 texel are a depth discontinuity (an edge of the run)"
+#pragma sao constant float SAO_WIDTH_MIN_M=0.02 "thickness_model 1: the least thickness, metres (uploaded in view units as thickness_min)"
 #pragma sao constant int  SAO_OUTPUT_BLEND_MULTIPLY=1 "output_blend: the output's selected channels are multiplied by A, the apply step of an engine's colour or occlusion target (sao::OutputBlend::Multiply)"
 
 // ---------------------------------------------------------------------------------------------
@@ -215,6 +221,7 @@ layout(std140, binding = 0) uniform SaoParams {
     float depth_tolerance;      // [380] visibility estimator: tol, relative to depth (0 with estimator 0)
     int   slices;               // [384] visibility estimator: slices per pixel, 1..SAO_MAX_SLICES (0 with estimator 0)
     uint  slice_turn;           // [388] visibility estimator: the angle between slices, 2^-32 turns (half a turn over slices)
+    float thickness_min;        // [392] visibility estimator, thickness_model 1: SAO_WIDTH_MIN_M in view units; 0: thickness_model 0 (every slab thickness deep)
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -395,7 +402,7 @@ float sao_ao_sample(ivec2 p, bool inside, out float key_z)
         float xi = fract(frame_alpha_offset + sao_pixel_jitter(uvec2(p)));
         float sum = sao_visibility_occlusion(in_csz, SAO_CSZ2, TWO_LAYER != 0, Z_HIERARCHY != 0, c, C, n, r_px, phase,
                                              xi, s, SAO_SLICE_COUNT, slice_turn, proj_info, ortho, radius2, depth_tolerance,
-                                             thickness, log_q, max_mip);
+                                             thickness, thickness_min, log_q, max_mip);
 #else
         float sum = 0.0;
         vec2 u = sao_turn_direction(tap_turn0 + phase);  // tap 0's direction; each tap turns it by tap_step

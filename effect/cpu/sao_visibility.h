@@ -108,22 +108,24 @@ template <typename T>
 struct Slab {
   bool valid = false;
   T u1 = T(0), u2 = T(0), fe = T(0), fv = T(0);
+  T t = T(0);  // its thickness
 };
 
 // sao_slab.
 template <typename T>
-Slab<T> slab(const Slice<T>& sl, Vec3<T> C, Vec3<T> V, T qx, T qy, T z, const Block<T>& P) {
+Slab<T> slab(const Slice<T>& sl, Vec3<T> C, Vec3<T> V, T qx, T qy, T z, T thickness, const Block<T>& P) {
   Slab<T> s;
+  s.t = thickness;
   if (isSky(z)) return s;
   const Vec3<T> S = position(qx, qy, z, P);
   const T k = T(1) + P.depth_tolerance;
   Vec3<T> F, B;
   if (P.ortho != 0) {
     F = {S.x, S.y, z * k};
-    B = {S.x, S.y, z * k - P.thickness};
+    B = {S.x, S.y, z * k - thickness};
   } else {
     F = scale(S, k);
-    B = scale(S, k + P.thickness / -z);
+    B = scale(S, k + thickness / -z);
   }
   Vec3<T> f = F - C;
   if (dot(f, f) > P.radius2) return s;
@@ -157,7 +159,7 @@ Slab<T> slab(const Slice<T>& sl, Vec3<T> C, Vec3<T> V, T qx, T qy, T z, const Bl
 // sao_slab_bits.
 template <typename T>
 std::uint32_t slabBits(const Slice<T>& sl, Vec3<T> C, Vec3<T> V, T qx, T qy, T z, const Block<T>& P) {
-  const Slab<T> s = slab(sl, C, V, qx, qy, z, P);
+  const Slab<T> s = slab(sl, C, V, qx, qy, z, P.thickness, P);
   return s.valid ? bitsBetween(s.u1, s.u2) : 0u;
 }
 
@@ -167,11 +169,11 @@ constexpr T kJoinSlope = T(4);
 
 // sao_joined_bits.
 template <typename T>
-std::uint32_t joinedBits(const Slab<T>& s, const Slab<T>& prev, T thickness) {
+std::uint32_t joinedBits(const Slab<T>& s, const Slab<T>& prev) {
   const T dv = std::abs(s.fv - prev.fv);
   const T de = std::abs(s.fe - prev.fe);
   const bool sameSide = (s.fe > T(0)) == (prev.fe > T(0));  // a truncated tap may cross C's view line
-  const bool joined = prev.valid && sameSide && dv <= thickness + kJoinSlope<T> * de;
+  const bool joined = prev.valid && sameSide && dv <= glslMin(s.t, prev.t) + kJoinSlope<T> * de;
   const T u1 = joined ? glslMin(s.u1, prev.u1) : s.u1;
   const T u2 = joined ? glslMax(s.u2, prev.u2) : s.u2;
   return s.valid ? bitsBetween(u1, u2) : 0u;
@@ -197,6 +199,49 @@ inline void mipSource(int& x, int& y, int m, int w0, int h0) {
   const std::uint32_t sy = (std::uint32_t(y) << unsigned(m)) | ((x0 ^ 1u) * first) | (y0 * second);
   x = std::min(int(sx), w0 - 1);
   y = std::min(int(sy), h0 - 1);
+}
+
+// sao_tap_thickness (thickness_model 1): the thickness of the surface a tap at level lvl texel
+// (tx, ty) with z sees, from its on-screen width along (dx, dy).
+template <typename T>
+T tapThickness(const Image<T>& zl, int tx, int ty, int lvl, T z, T dx, T dy, int w0, int h0, const Block<T>& P) {
+  const int lw = std::max(w0 >> lvl, 1), lh = std::max(h0 >> lvl, 1);
+  const T jump = T(gen::SAO_WIDTH_JUMP) * T(1 << lvl);
+  const T major = glslMax(std::abs(dx), std::abs(dy));
+  const T sx = dx / major, sy = dy / major;
+  bool wide = false;
+  int ex[2], ey[2];
+  T ez[2];
+  for (int side = 0; side < 2; ++side) {
+    const T ux = side == 0 ? sx : -sx, uy = side == 0 ? sy : -sy;
+    T zp = z;
+    int lx = tx, ly = ty;
+    bool walking = true, edge = false;
+    for (int k = 1; k <= gen::SAO_WIDTH_PROBES; ++k) {
+      const int qx = tx + static_cast<int>(std::floor(T(k) * ux + T(0.5)));
+      const int qy = ty + static_cast<int>(std::floor(T(k) * uy + T(0.5)));
+      const bool inside = qx >= 0 && qy >= 0 && qx < lw && qy < lh;
+      edge = edge || (walking && !inside);
+      const T zq = zl.at(std::clamp(qx, 0, lw - 1), std::clamp(qy, 0, lh - 1));
+      const T dz = std::abs(zq - zp);
+      const bool next = walking && inside && !isSky(zq) && dz <= jump * std::abs(zq);
+      if (next) lx = qx, ly = qy, zp = zq;
+      walking = next;
+    }
+    wide = wide || walking || edge;
+    ex[side] = lx, ey[side] = ly, ez[side] = zp;
+  }
+  if (wide) return P.thickness;
+  Vec3<T> end[2];
+  for (int side = 0; side < 2; ++side) {
+    int sx0 = ex[side], sy0 = ey[side];
+    mipSource(sx0, sy0, lvl, w0, h0);
+    end[side] = position(T(sx0) + T(0.5), T(sy0) + T(0.5), ez[side], P);
+  }
+  const Vec3<T> d = end[0] - end[1];
+  const T footprint = std::abs(P.proj_info.x) * ((P.ortho != 0) ? T(1) : std::abs(z)) * T(1 << lvl);
+  const T width = std::sqrt(dot(d, d)) + footprint;
+  return glslMin(P.thickness, glslMax(P.thickness_min, T(gen::SAO_WIDTH_SCALE) * width));
 }
 
 // sao_pixel_jitter: 24 bits of a hash of the AO pixel, in [0, 1) (exact in float and double).
@@ -258,8 +303,11 @@ T visibilityOcclusion(const std::vector<Image<T>>& csz, const std::vector<Image<
       mipSource(sx, sy, lvl, z0.w, z0.h);
       if (sx != cx || sy != cy) {  // a coarse texel may hold the centre's own z
         const T qx = T(sx) + T(0.5), qy = T(sy) + T(0.5);
-        const Slab<T> s = slab(sl, C, V, qx, qy, csz[std::size_t(lvl)].at(mx, my), P);
-        bits |= joinedBits(s, prev, P.thickness);
+        const T z = csz[std::size_t(lvl)].at(mx, my);
+        const T t = P.thickness_min > T(0) ? tapThickness(csz[std::size_t(lvl)], mx, my, lvl, z, dx, dy, z0.w, z0.h, P)
+                                           : P.thickness;
+        const Slab<T> s = slab(sl, C, V, qx, qy, z, t, P);
+        bits |= joinedBits(s, prev);
         prev = s;  // sky or a sample beyond r breaks the chain
         if (twoLayer) bits |= slabBits(sl, C, V, qx, qy, csz2[std::size_t(lvl)].at(mx, my), P);
       }

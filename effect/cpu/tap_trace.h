@@ -138,6 +138,19 @@ void AoSampleTrace::group(int gx, int gy, Sink& out) const {
         mipSource(sx, sy, lvl, z0.w, z0.h);
         if (sx == l.cx && sy == l.cy) continue;  // a coarse texel holding the centre's z: not read
         out.read(li, Surface::Csz, lvl, mx, my);
+        if (P.thickness_min > 0.0f) {  // thickness_model 1: sao_tap_thickness's probes, every one fetched
+          const float dx = negative ? -l.ux : l.ux, dy = negative ? -l.uy : l.uy;
+          const float major = std::max(std::abs(dx), std::abs(dy));
+          const int lw = std::max(z0.w >> lvl, 1), lh = std::max(z0.h >> lvl, 1);
+          for (int side = 0; side < 2; ++side)
+            for (int p = 1; p <= gen::SAO_WIDTH_PROBES; ++p) {
+              const float ox = float(p) * ((side == 0 ? dx : -dx) / major) + 0.5f;
+              const float oy = float(p) * ((side == 0 ? dy : -dy) / major) + 0.5f;
+              const int qx = std::clamp(mx + static_cast<int>(std::floor(ox)), 0, lw - 1);
+              const int qy = std::clamp(my + static_cast<int>(std::floor(oy)), 0, lh - 1);
+              out.read(li, Surface::Csz, lvl, qx, qy);
+            }
+        }
       }
     }
     out.beginStep();  // closes the last step

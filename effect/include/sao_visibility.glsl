@@ -132,6 +132,7 @@ struct SaoSlab {
     float u2;
     float fe;
     float fv;
+    float t;  // its thickness (sao_joined_bits bridges up to the smaller of two)
 };
 
 // The slab along a stored sample's view ray from depth d(1 + tol) to d(1 + tol) + T (S at pixel
@@ -146,6 +147,7 @@ SaoSlab sao_slab(SaoSlice sl, vec3 C, vec3 V, vec2 q_pixel, float z, vec4 proj_i
     s.u2 = 0.0;
     s.fe = 0.0;
     s.fv = 0.0;
+    s.t = thickness;
     if (sao_is_sky(z))
         return s;
     // `precise` from here to the bits: no fused multiply-add, so that the backends and the CPU round
@@ -220,12 +222,12 @@ const float SAO_JOIN_SLOPE = 4.0;
 // is on a continuous surface with it, the interval from the previous slab's angles to this one's
 // (the surface between them taken as linear: the quad of the two slabs subtends the hull of their
 // angles).
-uint sao_joined_bits(SaoSlab s, SaoSlab prev, float thickness)
+uint sao_joined_bits(SaoSlab s, SaoSlab prev)
 {
     precise float dv = abs(s.fv - prev.fv);
     precise float de = abs(s.fe - prev.fe);
     bool same_side = (s.fe > 0.0) == (prev.fe > 0.0);  // a truncated tap may cross C's view line
-    bool joined = prev.valid && same_side && dv <= thickness + SAO_JOIN_SLOPE * de;
+    bool joined = prev.valid && same_side && dv <= min(s.t, prev.t) + SAO_JOIN_SLOPE * de;
     float u1 = joined ? min(s.u1, prev.u1) : s.u1;
     float u2 = joined ? max(s.u2, prev.u2) : s.u2;
     return s.valid ? sao_bits_between(u1, u2) : 0u;
@@ -251,6 +253,51 @@ ivec2 sao_mip_source(ivec2 t, int m, ivec2 size0)
     return min(ivec2(sx, sy), size0 - 1);
 }
 
+// thickness_model 1: the thickness of the surface a tap sees, from its on-screen width along the
+// slice (docs/effect-math.md 5.9, "Thickness from width"). From the tap's texel tt at MIP level lvl,
+// SAO_WIDTH_PROBES texels are probed on each side along `dir` (a step of one texel on its major
+// axis); the run continues while neighbours' z differ by at most SAO_WIDTH_JUMP * 2^lvl * z. A run
+// that continues through every probe (or to the image's edge) on either side is wide: thickness.
+// Otherwise its width is the distance between its end texels' points plus one texel's footprint,
+// and the thickness SAO_WIDTH_SCALE times that, clamped to [thickness_min, thickness].
+float sao_tap_thickness(sampler2D csz, ivec2 tt, int lvl, float z, vec2 dir, ivec2 size0, vec4 proj_info, int ortho,
+                        float thickness, float thickness_min)
+{
+    ivec2 lsize = max(size0 >> lvl, ivec2(1));
+    precise float jump = SAO_WIDTH_JUMP * float(1 << lvl);
+    vec2 stride = dir / max(abs(dir.x), abs(dir.y));
+    bool wide = false;
+    ivec2 ends[2];
+    float zends[2];
+    for (int side = 0; side < 2; ++side) {
+        vec2 sd = (side == 0) ? stride : -stride;
+        float zp = z;
+        ivec2 last = tt;
+        bool walking = true;
+        bool edge = false;
+        for (int k = 1; k <= SAO_WIDTH_PROBES; ++k) {
+            precise vec2 o = float(k) * sd + 0.5;  // no fused multiply-add: the CPU rounds the product
+            ivec2 q = tt + ivec2(floor(o));
+            bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, lsize));
+            edge = edge || (walking && !inside);
+            float zq = texelFetch(csz, clamp(q, ivec2(0), lsize - 1), lvl).r;
+            precise float dz = abs(zq - zp);
+            bool next = walking && inside && !sao_is_sky(zq) && dz <= jump * abs(zq);
+            last = next ? q : last;
+            zp = next ? zq : zp;
+            walking = next;
+        }
+        wide = wide || walking || edge;
+        ends[side] = last;
+        zends[side] = zp;
+    }
+    precise vec3 a = sao_position(vec2(sao_mip_source(ends[0], lvl, size0)) + 0.5, zends[0], proj_info, ortho);
+    precise vec3 b = sao_position(vec2(sao_mip_source(ends[1], lvl, size0)) + 0.5, zends[1], proj_info, ortho);
+    precise float footprint = abs(proj_info.x) * ((ortho != 0) ? 1.0 : abs(z)) * float(1 << lvl);
+    precise float width = length(a - b) + footprint;
+    return wide ? thickness : min(thickness, max(thickness_min, SAO_WIDTH_SCALE * width));
+}
+
 // The pixel's radial jitter: a hash of the AO pixel, 24 bits, in [0, 1) (exact as a float, so
 // every backend has the same value). Decorrelated from eq. 8's rotation hash.
 float sao_pixel_jitter(uvec2 p)
@@ -273,7 +320,7 @@ float sao_pixel_jitter(uvec2 p)
 float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, bool two_layer, bool hierarchy, ivec2 c, vec3 C,
                                vec3 n, float r_px, uint phase, float xi, int tap_count, int slices,
                                uint slice_turn, vec4 proj_info, int ortho, float radius2, float tolerance,
-                               float thickness, int log_q, int max_mip)
+                               float thickness, float thickness_min, int log_q, int max_mip)
 {
     ivec2 size0 = textureSize(csz, 0);
     precise vec3 V = (ortho != 0) ? vec3(0.0, 0.0, 1.0) : normalize(-C);
@@ -294,6 +341,7 @@ float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, bool two_layer, bo
             prev.u2 = 0.0;
             prev.fe = 0.0;
             prev.fv = 0.0;
+            prev.t = thickness;
             for (int j = 0; j < m; ++j) {
                 float t = (float(j) + xi) * inv_m;
                 float h = r_px * (t * t);
@@ -304,9 +352,13 @@ float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, bool two_layer, bo
                     ivec2 src = sao_mip_source(tt, lvl, size0);
                     if (src != c) {  // a coarse texel may hold the centre's own z
                         vec2 q = vec2(src) + 0.5;
-                        SaoSlab s = sao_slab(sl, C, V, q, texelFetch(csz, tt, lvl).r, proj_info, ortho, radius2,
-                                             tolerance, thickness);
-                        bits |= sao_joined_bits(s, prev, thickness);
+                        float z = texelFetch(csz, tt, lvl).r;
+                        float t = (thickness_min > 0.0)
+                                      ? sao_tap_thickness(csz, tt, lvl, z, dir, size0, proj_info, ortho, thickness,
+                                                          thickness_min)
+                                      : thickness;
+                        SaoSlab s = sao_slab(sl, C, V, q, z, proj_info, ortho, radius2, tolerance, t);
+                        bits |= sao_joined_bits(s, prev);
                         prev = s;  // sky or a sample beyond r breaks the chain
                         if (two_layer)
                             bits |= sao_slab_bits(sl, C, V, q, texelFetch(csz2, tt, lvl).r, proj_info, ortho,

@@ -107,7 +107,7 @@ struct Options {
   bool ortho = false;           // --ortho: every scene's view made orthographic
   bool timeOnly = false;        // --time-only: no references, so no error columns
   std::string objective = "c";  // --objective: the reference --tune minimises the error against
-  std::string screenThickness = "constant";  // --screen-thickness: reference (d)'s thickness model
+  std::string screenThickness;  // --screen-thickness: reference (d)'s thickness model ("": the setting thickness_model)
   std::vector<std::string> sets;  // --set NAME=VALUE, in order: applied to every preset of the presets section
   std::optional<scenes::LengthUnit> units;  // --units
   std::vector<std::string> scenes;          // --scenes; empty: benchScenes(quick)
@@ -218,10 +218,10 @@ Options parse(int argc, char** argv) {
   cl.choice("--screen-thickness", o.screenThickness,
             [](const std::string& v) { return v == "constant" || v == "width" ? std::optional(v) : std::nullopt; },
             "constant or width", "M",
-            "with --sections presets: reference (d)'s thickness, constant (default: the setting thickness for every "
-            "slab, what the visibility estimator converges to) or width (each run of continuous depth along a slice "
-            "taken as deep as half its width, from 0.02 m up to thickness: raytrace::ScreenVisibilityOptions::"
-            "thicknessFromWidth, docs/reference.md)");
+            "with --sections presets: reference (d)'s thickness model whatever the setting thickness_model (which it "
+            "follows by default, as the visibility estimator does): constant (the setting thickness for every slab) or "
+            "width (each run of continuous depth along a slice taken as deep as half its width, from 0.02 m up to "
+            "thickness: raytrace::ScreenVisibilityOptions::thicknessFromWidth, docs/reference.md)");
   cl.flag(samples::kOverwriteOption, o.overwrite, samples::kOverwriteHelp);
   cl.parse(argc, argv);
   o.sizeGiven = cl.given("--size");
@@ -477,7 +477,7 @@ int main(int argc, char** argv) {
       }
       refs.converged = &converged->ao;
       ScreenOptions screenOptions;  // 64 slices, every pixel
-      screenOptions.thicknessFromWidth = o.screenThickness == "width";
+      if (!o.screenThickness.empty()) screenOptions.thicknessFromWidth = o.screenThickness == "width";
       const bool freshScreen = !p.screen.count(screenKey(s, extra, screenOptions.thicknessFromWidth));
       screenOptions.nearFieldAo = refs.nearFieldAo;
       screenOptions.converged = &converged->ao;
@@ -485,7 +485,7 @@ int main(int argc, char** argv) {
       if (freshScreen) {
         char t[96];
         std::snprintf(t, sizeof t, ": %.1f s (%.1f s CPU)", screen.seconds, screen.cpuSeconds);
-        screenTimes.push_back(scene + " (" + what + (screenOptions.thicknessFromWidth ? ", thickness from width" : "") + ")" + t);
+        screenTimes.push_back(scene + " (" + what + (std::get<4>(screenKey(s, extra, screenOptions.thicknessFromWidth)) ? ", thickness from width" : "") + ")" + t);
       }
       refs.screen = &screen.ao;
       refs.screenMask = &screen.mask;

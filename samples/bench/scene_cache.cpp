@@ -24,8 +24,8 @@ std::vector<std::string> benchScenes(bool quick) {
   return {"sponza-like", "sphere-plane", "crease", "thin", "gears"};
 }
 
-ScreenKey screenKey(const Settings& s, Extra extra, bool thicknessFromWidth) {
-  return {s.radius, s.thickness, s.depth_tolerance, extra, thicknessFromWidth};
+ScreenKey screenKey(const Settings& s, Extra extra, std::optional<bool> thicknessFromWidth) {
+  return {s.radius, s.thickness, s.depth_tolerance, extra, thicknessFromWidth.value_or(s.thickness_model == 1)};
 }
 
 ObscuranceKey obscuranceKey(const Settings& s) { return {s.radius, s.intensity, s.bias, s.epsilon, s.contrast}; }

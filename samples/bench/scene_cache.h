@@ -48,9 +48,9 @@ struct Converged {
 };
 
 // Reference (d) depends on the radius, the thickness, the depth tolerance, the inputs and the
-// thickness model (ScreenOptions::thicknessFromWidth).
+// thickness model (ScreenOptions::thicknessFromWidth, unset: the setting thickness_model).
 using ScreenKey = std::tuple<float, float, float, Extra, bool>;
-ScreenKey screenKey(const Settings& s, Extra extra, bool thicknessFromWidth);
+ScreenKey screenKey(const Settings& s, Extra extra, std::optional<bool> thicknessFromWidth);
 
 // Reference (d), converged screen-space visibility, with its cost and the two model errors that
 // split (c) - (a): (d) against (a) (what screen space cannot see) and (c) against (d) (the
@@ -123,7 +123,7 @@ Converged& convergedReference(Prepared& p, const Settings& s, Extra extra, const
 struct ScreenOptions {
   std::uint32_t slices = 64;
   std::uint32_t stride = 1;                 // every stride-th pixel in x and y (raytrace::ScreenVisibilityOptions)
-  bool thicknessFromWidth = false;          // raytrace::ScreenVisibilityOptions::thicknessFromWidth
+  std::optional<bool> thicknessFromWidth;   // raytrace::ScreenVisibilityOptions's (unset: thickness_model)
   const FloatImage* nearFieldAo = nullptr;  // given: (d) vs (a) is computed
   const FloatImage* converged = nullptr;    // given: (c) vs (d)
 };

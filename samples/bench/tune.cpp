@@ -131,7 +131,7 @@ int runTune(const TuneOptions& o) {
       References refs;
       refs.converged = &converged.ao, refs.mask = &p.mask, refs.silhouette = &p.silhouette;
       if (c.settings.estimator == 1) {  // its own converged value: reference (d) with its thickness
-        const bool freshScreen = !p.screen.count(screenKey(c.settings, c.extra, false));
+        const bool freshScreen = !p.screen.count(screenKey(c.settings, c.extra, std::nullopt));
         Screen& screen = screenReference(p, c.settings, c.extra, ScreenOptions{});
         if (freshScreen) {
           referenceSeconds += screen.seconds;

@@ -78,5 +78,38 @@ TEST(VisibilityTraffic, CountsTheSliceTapsAndStaysFlatInTheRadius) {
   EXPECT_GT(b4Flat, 4.0 * b4) << "without the hierarchy far taps miss";
 }
 
+// thickness_model 1 adds 2 * SAO_WIDTH_PROBES probe reads per tap beside the tap at its own MIP
+// level: the reads grow by that factor, and the L2 bytes per pixel do not grow with r (at most 10 %
+// above r = 1 m's over r = 1 .. 16 m; like SAO's they fall as the taps move up the hierarchy).
+TEST(VisibilityTraffic, WidthProbesStayFlatInTheRadius) {
+  const Plane plane;
+  std::unique_ptr<TrafficScene> scene;
+  ASSERT_TRUE(TrafficScene::create(plane.depth, plane.camera, scene));
+  const std::vector<Machine> machines = {smallGpu()};
+  Settings s;
+  s.estimator = 1;
+  s.samples = 16;
+  s.slices = 2;
+  s.resolution_divisor = 1;
+  s.thickness_model = 1;
+  double first = 0, hi = 0;
+  for (float radius : {1.0f, 2.0f, 4.0f, 8.0f, 16.0f}) {
+    s.radius = radius;
+    ReplayResult r;
+    ASSERT_TRUE(scene->replay(s, {"visibility", true, false, 4}, machines, r));
+    const double b = double(r.traffic[0].l2Misses) * r.traffic[0].lineBytes / double(r.pixels);
+    std::printf("[traffic] plane 256x256, 16 taps, thickness_model 1, r %5.1f m: L2 bytes/pixel %.1f, reads/pixel %.1f\n",
+                radius, b, double(r.traffic[0].reads) / double(r.pixels));
+    if (radius == 4.0f) {  // as the test above: all 16 taps leave the centre texel but for a small xi
+      const std::uint64_t perTap = 1 + 2 * gen::SAO_WIDTH_PROBES;
+      EXPECT_LE(r.traffic[0].reads, (1u + 4u + 16u * perTap) * 256 * 256);
+      EXPECT_GT(r.traffic[0].reads, (1u + 4u + 15u * perTap) * 256 * 256);
+    }
+    if (radius == 1.0f) first = b;
+    hi = std::max(hi, b);
+  }
+  EXPECT_LE(hi, 1.1 * first) << "no growth in r with the hierarchy";
+}
+
 }  // namespace
 }  // namespace sao::bench

@@ -39,6 +39,7 @@ TEST(InertRules, DeclaredRelations) {
                        "thickness while estimator = 0",
                        "depth_tolerance while estimator = 0",
                        "slices while estimator = 0",
+                       "thickness_model while estimator = 0",
                    }));
 }
 
@@ -153,6 +154,7 @@ TEST(InertRules, WhereNoRuleHoldsTheSettingChangesTheOutput) {
       {SettingId::blur_edge_sharpness, blur}, {SettingId::mip_switch_log2, mips},
       {SettingId::half_intermediates, direct}, {SettingId::thickness, visibility},
       {SettingId::depth_tolerance, visibility}, {SettingId::slices, visibility},
+      {SettingId::thickness_model, visibility},
       {SettingId::bias, alchemy},            {SettingId::epsilon, alchemy},
       {SettingId::spiral_turns, alchemy}};
   for (const auto& [id, s] : cases) {

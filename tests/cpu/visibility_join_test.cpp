@@ -16,9 +16,10 @@ using cpu::detail::bitsBetween;
 using cpu::detail::joinedBits;
 using cpu::detail::Slab;
 
-Slab<double> slabAt(double u1, double u2, double fe, double fv) {
+Slab<double> slabAt(double u1, double u2, double fe, double fv, double t = 0.25) {
   Slab<double> s;
   s.valid = true;
+  s.t = t;
   s.u1 = u1;
   s.u2 = u2;
   s.fe = fe;
@@ -27,22 +28,26 @@ Slab<double> slabAt(double u1, double u2, double fe, double fv) {
 }
 
 TEST(VisibilityJoin, ContinuousNeighboursSetTheHullOfTheirAngles) {
-  const double T = 0.25;
+  // Thickness T = 0.25 on every slab (slabAt's default).
   const Slab<double> prev = slabAt(0.50, 0.55, 1.0, -0.25);
   // Same depth along V, 0.5 across: one surface facing the eye.
-  EXPECT_EQ(joinedBits(slabAt(0.80, 0.85, 1.5, -0.25), prev, T), bitsBetween(0.50, 0.85));
+  EXPECT_EQ(joinedBits(slabAt(0.80, 0.85, 1.5, -0.25), prev), bitsBetween(0.50, 0.85));
   // A step of T + 4|de| (the bound, slope 4) still joins; beyond it is a discontinuity.
-  EXPECT_EQ(joinedBits(slabAt(0.80, 0.85, 1.5, -2.5), prev, T), bitsBetween(0.50, 0.85));
-  EXPECT_EQ(joinedBits(slabAt(0.80, 0.85, 1.5, -2.5625), prev, T), bitsBetween(0.80, 0.85));
+  EXPECT_EQ(joinedBits(slabAt(0.80, 0.85, 1.5, -2.5), prev), bitsBetween(0.50, 0.85));
+  EXPECT_EQ(joinedBits(slabAt(0.80, 0.85, 1.5, -2.5625), prev), bitsBetween(0.80, 0.85));
   // The hull, whichever side the previous slab's angles lie on.
-  EXPECT_EQ(joinedBits(slabAt(0.10, 0.20, 1.5, -0.25), prev, T), bitsBetween(0.10, 0.55));
+  EXPECT_EQ(joinedBits(slabAt(0.10, 0.20, 1.5, -0.25), prev), bitsBetween(0.10, 0.55));
   // A previous slab across C's view line (a truncated tap, or a MIP texel's source, on the other
   // side of C): its angles lie at the other end of the hemisphere, never joined.
-  EXPECT_EQ(joinedBits(slabAt(0.80, 0.85, 1.5, -0.25), slabAt(0.10, 0.15, -0.01, -0.25), T), bitsBetween(0.80, 0.85));
+  EXPECT_EQ(joinedBits(slabAt(0.80, 0.85, 1.5, -0.25), slabAt(0.10, 0.15, -0.01, -0.25)), bitsBetween(0.80, 0.85));
   // No previous slab (sky, beyond r, a new side): the tap's own angles; an invalid tap: nothing.
   Slab<double> none;
-  EXPECT_EQ(joinedBits(slabAt(0.80, 0.85, 1.5, -0.25), none, T), bitsBetween(0.80, 0.85));
-  EXPECT_EQ(joinedBits(none, prev, T), 0u);
+  EXPECT_EQ(joinedBits(slabAt(0.80, 0.85, 1.5, -0.25), none), bitsBetween(0.80, 0.85));
+  EXPECT_EQ(joinedBits(none, prev), 0u);
+  // thickness_model 1: slabs of their own thickness; the step bridged is the smaller one's, so a
+  // thin blade (0.02) before a surface 0.5 behind it is not joined to it even when that is thick.
+  EXPECT_EQ(joinedBits(slabAt(0.80, 0.85, 1.5, -0.75, 1.0), slabAt(0.50, 0.55, 1.4, -0.25, 0.02)), bitsBetween(0.80, 0.85));
+  EXPECT_EQ(joinedBits(slabAt(0.80, 0.85, 1.5, -0.75, 1.0), slabAt(0.50, 0.55, 1.4, -0.25, 0.2)), bitsBetween(0.50, 0.85));
 }
 
 double meanOcclusion(const FloatImage& ao) {

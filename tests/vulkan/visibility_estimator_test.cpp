@@ -86,6 +86,8 @@ std::vector<Case> cases() {
       {"normals", [](Settings&) {}, false, true, false},
       {"two_layer_normals_full_res", [](Settings& s) { s.resolution_divisor = 1; }, false, true, true},
       {"ortho", [](Settings&) {}, true},
+      {"width_thickness", [](Settings& s) { s.thickness_model = 1, s.thickness = 1.0f; }},
+      {"width_thickness_full_res_ortho", [](Settings& s) { s.thickness_model = 1, s.resolution_divisor = 1; }, true},
   };
 }
 

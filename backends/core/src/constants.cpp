@@ -219,6 +219,7 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
     p.depth_tolerance = s.depth_tolerance;
     p.slices = s.slices;
     p.slice_turn = static_cast<std::uint32_t>(std::llround(2147483648.0 / s.slices));  // half a turn over slices
+    p.thickness_min = s.thickness_model == 1 ? f(double(gen::SAO_WIDTH_MIN_M) * u) : 0.0f;
   }
   p.epsilon = f(double(s.epsilon) * u * u);
   p.contrast = s.contrast;

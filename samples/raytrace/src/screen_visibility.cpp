@@ -257,7 +257,8 @@ Status screenVisibility(const Settings& settings, const Camera& camera, const Co
     return invalid("the thickness must be > 0 metres or +infinity (got " + number(thicknessMeters) + ")");
   if (!(tolerance >= 0 && tolerance < 1))
     return invalid("the depth tolerance must be in [0, 1) (got " + number(tolerance) + ")");
-  if (options.thicknessFromWidth) {
+  const bool fromWidth = options.thicknessFromWidth.value_or(settings.thickness_model == 1);
+  if (fromWidth) {
     auto positive = [](double v) { return v > 0 && std::isfinite(v); };
     if (!positive(options.widthScale) || !positive(options.widthMinMeters) || !positive(options.widthJump))
       return invalid("thickness from width needs widthScale, widthMinMeters and widthJump > 0 and finite (got " +
@@ -282,7 +283,7 @@ Status screenVisibility(const Settings& settings, const Camera& camera, const Co
   cpu::parallelFor(int((camera.height + k - 1) / k), options.threads, [&](int row) {
     const int py = row * int(k);
     WidthModel width;
-    width.on = options.thicknessFromWidth;
+    width.on = fromWidth;
     width.scale = options.widthScale;
     width.minT = options.widthMinMeters * camera.metersToViewUnits;
     width.jump = options.widthJump;

@@ -1,6 +1,7 @@
 // The visibility estimator (estimator = 1) at the extremes, on every backend (runScene: finite,
 // in [0, 1], sky = 1, GL = Vulkan): radius 0.01 and 100 m, thickness 0.001 and 100 m,
-// depth_tolerance 0 and 0.1, 1 and 8 slices with 1 and 64 samples, temporal, and far depths (a
+// depth_tolerance 0 and 0.1, 1 and 8 slices with 1 and 64 samples, thickness_model 1 (a cap under
+// its least thickness, huge radius and cap, a tiny radius), temporal, and far depths (a
 // scene 1000x farther, reversed and standard depth).
 #include <algorithm>
 #include <string>
@@ -30,6 +31,9 @@ TEST(VisibilityEstimator, ExtremesStayInZeroOne) {
       {"slices 8 samples 1", [](Settings& s) { s.slices = 8, s.samples = 1; }},
       {"slices 8 samples 64", [](Settings& s) { s.slices = 8, s.samples = 64; }},
       {"slices 1 samples 64 intensity 10 contrast 8", [](Settings& s) { s.slices = 1, s.samples = 64, s.intensity = 10.0f, s.contrast = 8.0f; }},
+      {"thickness_model 1 thickness 0.001", [](Settings& s) { s.thickness_model = 1, s.thickness = 0.001f; }},
+      {"thickness_model 1 thickness 100 radius 100", [](Settings& s) { s.thickness_model = 1, s.thickness = 100.0f, s.radius = 100.0f; }},
+      {"thickness_model 1 radius 0.01 slices 8 samples 64", [](Settings& s) { s.thickness_model = 1, s.radius = 0.01f, s.slices = 8, s.samples = 64; }},
   };
   double lo = 1, hi = 0;
   std::size_t runs = 0;

@@ -30,17 +30,18 @@ struct ScreenVisibilityOptions {
   // with Camera::metersToViewUnits like the radius.
   std::optional<double> thicknessMeters;
   std::optional<double> tolerance;
-  // Thickness from width (docs/reference.md, "A thickness model"): off, every slab is T deep; on,
+  // Thickness from width (docs/reference.md, "A thickness model"; unset: the setting thickness_model,
+  // 1 = on, what the visibility estimator approximates with probes): off, every slab is T deep; on,
   // each run of continuous depth along a slice's line (consecutive texels whose depths differ by at
   // most widthJump of the depth; the line marched to 2 r' for this) is taken as deep as widthScale
   // times its width (the distance between its ends' points plus one texel's footprint), clamped to
   // [widthMinMeters, T]; a run that reaches the end of the line takes T. The second layer's slabs
   // stay T deep. Measured against (a) it beats every constant T on every built-in scene (thin
   // grass and a thick sphere need opposite T).
-  bool thicknessFromWidth = false;
-  double widthScale = 0.5;
-  double widthMinMeters = 0.02;
-  double widthJump = 0.03;
+  std::optional<bool> thicknessFromWidth;
+  double widthScale = gen::SAO_WIDTH_SCALE;
+  double widthMinMeters = gen::SAO_WIDTH_MIN_M;
+  double widthJump = gen::SAO_WIDTH_JUMP;
   // Evaluate every stride-th pixel in x and y only (those with x % stride == 0 and y % stride == 0);
   // the others are NaN, so that a comparison must take the strided pixels only (sao-bench does).
   std::uint32_t stride = 1;
