@@ -85,7 +85,11 @@ RunOptions msaaOptions(const MsaaImage& m, VkImageLayout layout) {
 class MsaaDepth : public VkTest {};
 
 TEST_F(MsaaDepth, BothPoliciesMatchTheCpuReference) {
-  const Settings settings = presetSettings(Preset::Medium);
+  for (int estimator : {0, 1}) {  // 1: the visibility estimator, with thickness from width
+  Settings settings = presetSettings(Preset::Medium);
+  settings.estimator = estimator;
+  settings.thickness_model = estimator;
+  SCOPED_TRACE("estimator " + std::to_string(estimator));
   for (const Convention& conv : conventions()) {
     SCOPED_TRACE(conv.name);
     const DepthImage depth = msaaDepth(conv.camera);
@@ -165,6 +169,7 @@ TEST_F(MsaaDepth, BothPoliciesMatchTheCpuReference) {
     std::printf("msaa %-17s Sample0 vs Nearest: csz0 differs on %zu of %zu texels, final AO on %zu of %zu; "
                 "Nearest vs the single-sample runs' nearer csz: %zu differ\n",
                 conv.name, policyDiff, texels, aoDiff, vkRuns[0].ao.data.size(), nearestDiff);
+  }
   }
 }
 

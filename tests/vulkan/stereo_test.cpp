@@ -174,7 +174,7 @@ Status readLayer(const ArrayImage& image, std::uint32_t layer, VkImageLayout lay
 }
 
 class Stereo : public VkTest {
- protected:
+ public:  // the helpers below the class use the fixture
   void SetUp() override {
     VkTest::SetUp();
     const test::Scene scene = test::sphereOnPlaneScene();
@@ -194,9 +194,10 @@ class Stereo : public VkTest {
     VkTest::TearDown();
   }
 
-  static vk::Config config(const Camera& camera, std::uint32_t framesInFlight) {
+  static vk::Config config(const Camera& camera, std::uint32_t framesInFlight,
+                           const Settings& settings = presetSettings(Preset::Medium)) {
     vk::Config c;
-    c.settings = presetSettings(Preset::Medium);
+    c.settings = settings;
     c.camera = camera;
     c.depthFormat = VK_FORMAT_D32_SFLOAT;
     c.userOutput = true;  // stereo needs the caller's output: one layer per eye
@@ -210,7 +211,9 @@ class Stereo : public VkTest {
     return e;
   }
   // The stereo effect: Config::camera is the left eye; 2 frames in flight x 2 eyes.
-  static std::unique_ptr<vk::Effect> createStereo() { return create(config(eyeCamera(0), 2 * kEyes)); }
+  static std::unique_ptr<vk::Effect> createStereo(const Settings& settings = presetSettings(Preset::Medium)) {
+    return create(config(eyeCamera(0), 2 * kEyes, settings));
+  }
 
   vk::Inputs eyeInputs(std::uint32_t eye) const {
     vk::Inputs in;
@@ -238,13 +241,13 @@ class Stereo : public VkTest {
   }
 
   // A single-eye effect created with that eye's camera on plain 2D images: the reference.
-  FloatImage mono(std::uint32_t eye) const {
+  FloatImage mono(std::uint32_t eye, const Settings& settings) const {
     Image depthImage, out;
     EXPECT_TRUE(
         context().uploadDepth(depth[eye], VK_FORMAT_D32_SFLOAT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depthImage).ok());
     EXPECT_TRUE(context().createStorageImage(VK_FORMAT_R16_SFLOAT, {kW, kH}, out).ok());
     FloatImage ao;
-    if (auto e = create(config(cameras[eye], 2))) {
+    if (auto e = create(config(cameras[eye], 2, settings))) {
       vk::Inputs in;
       in.depth = {depthImage.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth[eye].extent, VK_FORMAT_D32_SFLOAT};
       const vk::OutputImage o{out.image, out.view, VK_FORMAT_R16_SFLOAT, {kW, kH}};
@@ -292,27 +295,29 @@ TEST_F(Stereo, EyesPlanAlike) {
 
 // One command buffer, both eyes: each layer is the single-eye effect's result bit for bit and
 // agrees with the CPU reference.
-TEST_F(Stereo, OneEffectTwoLayersMatchesTwoSingleEyeEffects) {
-  auto effect = createStereo();
+// Both eyes of one effect equal two single-eye effects bit for bit, and the CPU reference within
+// the agreement bounds, with `settings`.
+void expectEyesMatchSingleEyeEffects(Stereo& t, const Settings& settings) {
+  auto effect = Stereo::createStereo(settings);
   ASSERT_TRUE(effect);
   Status recorded;
-  ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = recordStereo(*effect, cmd); }).ok());
+  ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = t.recordStereo(*effect, cmd); }).ok());
   ASSERT_TRUE(recorded.ok()) << recorded.message;
   FloatImage stereo[kEyes];
-  readEyes(*effect, stereo);
+  t.readEyes(*effect, stereo);
   expectNoMessages("recording and running both eyes");
 
   const char* names[kEyes] = {"left", "right"};
   FloatImage expected[kEyes];
   for (std::uint32_t eye = 0; eye < kEyes; ++eye) {
     SCOPED_TRACE(names[eye]);
-    expected[eye] = mono(eye);
+    expected[eye] = t.mono(eye, settings);
     EXPECT_EQ(differences(stereo[eye], expected[eye]), 0u) << "texels unlike the single-eye effect";
 
     cpu::Result ref;
     cpu::Inputs in;
-    in.depth = &depth[eye];
-    const Status cs = cpu::run(presetSettings(Preset::Medium), cameras[eye], in, {cpu::Precision::Float, 2}, ref);
+    in.depth = &t.depth[eye];
+    const Status cs = cpu::run(settings, t.cameras[eye], in, {cpu::Precision::Float, 2}, ref);
     ASSERT_TRUE(cs.ok()) << cs.message;
     std::string note;
     const Agreement a = compare(stereo[eye], ref.ao, 0, kWithin, kNever, std::string("vk_stereo_") + names[eye], &note);
@@ -324,6 +329,18 @@ TEST_F(Stereo, OneEffectTwoLayersMatchesTwoSingleEyeEffects) {
   EXPECT_GT(differences(stereo[0], stereo[1]), 0u) << "the eyes gave the same image: the test would prove nothing";
   for (const FloatImage& ao : stereo)
     EXPECT_LT(*std::min_element(ao.data.begin(), ao.data.end()), 0.5f) << "no occlusion: the test would prove little";
+}
+
+TEST_F(Stereo, OneEffectTwoLayersMatchesTwoSingleEyeEffects) {
+  expectEyesMatchSingleEyeEffects(*this, presetSettings(Preset::Medium));
+}
+
+// The visibility estimator (estimator 1, with thickness from width) per eye as well.
+TEST_F(Stereo, VisibilityEstimatorEyesMatchSingleEyeEffects) {
+  Settings settings = presetSettings(Preset::Medium);
+  settings.estimator = 1;
+  settings.thickness_model = 1;
+  expectEyesMatchSingleEyeEffects(*this, settings);
 }
 
 // The fixed costs of stereo are one eye's: the stereo effect holds exactly the device memory and
@@ -405,7 +422,7 @@ TEST_F(Stereo, RefusesALayerNoImageHas) {
   ASSERT_TRUE(recorded.ok()) << recorded.message;
   FloatImage eyes[kEyes];
   readEyes(*effect, eyes);
-  EXPECT_EQ(differences(eyes[1], mono(1)), 0u);
+  EXPECT_EQ(differences(eyes[1], mono(1, presetSettings(Preset::Medium))), 0u);
 }
 
 }  // namespace

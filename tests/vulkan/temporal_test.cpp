@@ -135,6 +135,30 @@ TEST_F(Temporal, StrafeFramesMatchTheCpuReferenceWithoutAllocating) {
   context().destroy(out);
 }
 
+// The visibility estimator (with thickness from width) accumulates its occlusion the same way:
+// every frame of the strafe within the agreement bounds of the CPU reference.
+TEST_F(Temporal, VisibilityEstimatorStrafeFramesMatchTheCpuReference) {
+  settings.estimator = 1;
+  settings.thickness_model = 1;
+  auto effect = create();
+  ASSERT_TRUE(effect);
+  const std::vector<FloatImage> expected = cpuFrames(kFrames);
+  Image out;
+  ASSERT_TRUE(context().createStorageImage(VK_FORMAT_R16_SFLOAT, {kW, kH}, out).ok());
+  const vk::OutputImage o = outputOf(out);
+  for (std::uint32_t f = 0; f < kFrames; ++f) {
+    const std::string name = "vk_temporal_visibility" + std::to_string(f);
+    Status recorded;
+    ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, inputs(f), &o); }).ok());
+    ASSERT_TRUE(recorded.ok()) << recorded.message;
+    const Agreement a = compare(read(*effect, out), expected[f], 0, 2.0 / 255.0, 4.0 / 255.0, name);
+    EXPECT_TRUE(acceptable(a)) << name << ": max " << a.maxAbs * 255 << "/255, p99.9 " << a.p999 * 255 << "/255";
+    std::printf("TEMPORAL %-24s vs CPU: max %.3f/255, p99.9 %.3f/255\n", name.c_str(), a.maxAbs * 255, a.p999 * 255);
+    expectNoMessages(name.c_str());
+  }
+  context().destroy(out);
+}
+
 TEST_F(Temporal, TwoFramesInFlightGiveWhatOneAfterTheOtherGives) {
   auto sequential = create();
   auto inFlight = create();
