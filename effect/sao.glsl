@@ -120,6 +120,7 @@
 #pragma sao variant HALF_INTERMEDIATES values=[0,1] default=0 select=half_intermediates "1: the (A, key) intermediates are rg16f: the passes writing them round A and the key (z times key_scale = 1/metersToViewUnits: z in metres) to binary16 themselves"
 #pragma sao variant MOTION_VECTORS values=[0,1] default=0 select=input:motion "1: temporal accumulation finds each pixel's history where the motion input says the surface was (moving objects) instead of reprojecting through the cameras"
 #pragma sao variant ESTIMATOR values=[0,1] default=0 select=estimator "0: the AlchemyAO estimator (eq. 1) over the spiral taps; 1: the visibility estimator, cosine-weighted visibility with a finite thickness over slices with a visibility bitmask (sao_visibility.glsl)"
+#pragma sao variant THICKNESS_FROM_WIDTH values=[0,1] default=0 select=thickness_model "1: the visibility estimator's width probes (sao_tap_thickness) are compiled in; a variant, not a branch, because llvmpipe runs a branch's body masked on every tap (the probes doubled ao_sample's time there even with thickness_model 0). With ESTIMATOR 0 it changes nothing (thickness_model is inert then)"
 #pragma sao exclude MOTION_VECTORS=1 TEMPORAL=0 "motion vectors serve temporal accumulation only: set the temporal setting, or give no motion input"
 #pragma sao exclude DEPTH_MULTISAMPLE=1 TWO_LAYER=1 "a multisampled depth input has no second layer: give depth peeling's layers single-sample, or resolve the depth first"
 #pragma sao exclude Z_HIERARCHY=0 TWO_LAYER=1 "the no-hierarchy baseline is a single-layer benchmark path"
@@ -471,7 +472,7 @@ float sao_ao_sample(ivec2 p, bool inside, out float key_z)
 }
 #endif
 
-#pragma sao pass ao_sample entry=sao_ao_main local=8x8 reads=csz,csz2,normals,history,motion writes=ao_raw,history variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,TEMPORAL,MOTION_VECTORS,HALF_INTERMEDIATES,ESTIMATOR skip_when=direct_output==true "Obscurance from s spiral taps over the z hierarchy (eq. 1, 3-10), with TEMPORAL blended with the reprojected history (and this frame's history written), 2x2 bilateral reconstruction; writes (A, key z)"
+#pragma sao pass ao_sample entry=sao_ao_main local=8x8 reads=csz,csz2,normals,history,motion writes=ao_raw,history variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,TEMPORAL,MOTION_VECTORS,HALF_INTERMEDIATES,ESTIMATOR,THICKNESS_FROM_WIDTH skip_when=direct_output==true "Obscurance from s spiral taps over the z hierarchy (eq. 1, 3-10), with TEMPORAL blended with the reprojected history (and this frame's history written), 2x2 bilateral reconstruction; writes (A, key z)"
 void sao_ao_main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -488,7 +489,7 @@ void sao_ao_main()
 }
 #pragma sao end
 
-#pragma sao pass ao_sample_output entry=sao_ao_output_main local=8x8 reads=csz,csz2,normals writes=ao variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,OUTPUT_FORMAT,ESTIMATOR skip_when=direct_output==false "No blur at full resolution without temporal only: ao_sample's obscurance and 2x2 reconstruction, A stored straight into the output's format (no ao_raw, no output pass)"
+#pragma sao pass ao_sample_output entry=sao_ao_output_main local=8x8 reads=csz,csz2,normals writes=ao variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,OUTPUT_FORMAT,ESTIMATOR,THICKNESS_FROM_WIDTH skip_when=direct_output==false "No blur at full resolution without temporal only: ao_sample's obscurance and 2x2 reconstruction, A stored straight into the output's format (no ao_raw, no output pass)"
 void sao_ao_output_main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);

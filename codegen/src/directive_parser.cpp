@@ -421,7 +421,7 @@ class Parser {
   }
 
   // The most combinations of its variants a pass may list (before exclusions): each is compiled twice.
-  static constexpr std::size_t kMaxPassVariants = 128;
+  static constexpr std::size_t kMaxPassVariants = 256;
 
   void parseResource(const Directive& d) {
     auto a = attrs(d, {"kind", "format", "formats", "format_when", "mips", "scale", "when", "extent", "divide_by", "history"});

@@ -2,10 +2,14 @@
 // hemisphere around n with a finite thickness, sampled in slices (the plane through the eye that
 // holds V and a screen direction u: marching the screen line c + h u tests every ray of the slice)
 // with a 32-bit visibility bitmask per slice (Therrien et al. 2023) over the cosine-weighted measure.
-// Library code: depends on sao_depth.glsl, sao_position.glsl, sao_zmip.glsl and sao_spiral.glsl.
+// Library code: depends on sao_depth.glsl, sao_position.glsl, sao_zmip.glsl and sao_spiral.glsl; the
+// width probes are compiled where the variant THICKNESS_FROM_WIDTH is 1.
 // Math: docs/effect-math.md, "The visibility estimator"; the definition it samples is reference (d)'s.
 #ifndef SAO_VISIBILITY_GLSL
 #define SAO_VISIBILITY_GLSL
+#ifndef THICKNESS_FROM_WIDTH  // a pass without the variant: no width probes
+#define THICKNESS_FROM_WIDTH 0
+#endif
 
 const float SAO_PI = 3.14159265;
 const float SAO_HALF_PI = 1.57079633;
@@ -353,10 +357,12 @@ float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, bool two_layer, bo
                     if (src != c) {  // a coarse texel may hold the centre's own z
                         vec2 q = vec2(src) + 0.5;
                         float z = texelFetch(csz, tt, lvl).r;
-                        float t = (thickness_min > 0.0)
-                                      ? sao_tap_thickness(csz, tt, lvl, z, dir, size0, proj_info, ortho, thickness,
-                                                          thickness_min)
-                                      : thickness;
+#if THICKNESS_FROM_WIDTH
+                        float t = sao_tap_thickness(csz, tt, lvl, z, dir, size0, proj_info, ortho, thickness,
+                                                    thickness_min);
+#else
+                        float t = thickness;
+#endif
                         SaoSlab s = sao_slab(sl, C, V, q, z, proj_info, ortho, radius2, tolerance, t);
                         bits |= sao_joined_bits(s, prev);
                         prev = s;  // sky or a sample beyond r breaks the chain

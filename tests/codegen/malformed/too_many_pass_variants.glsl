@@ -2,13 +2,14 @@
 #pragma sao variant A values=[0,1,2,3] "doc"
 #pragma sao variant B values=[0,1,2,3] "doc"
 #pragma sao variant C values=[0,1,2,3] "doc"
-#pragma sao variant D values=[0,1,2,3] "a pass listing all four compiles 256 > 128 variants"
+#pragma sao variant D values=[0,1,2,3] "doc"
+#pragma sao variant E values=[0,1,2,3] "a pass listing all five compiles 1024 > 256 variants"
 #pragma sao resource src kind=input format=depth "in"
 #pragma sao resource dst kind=output format=r16f "out"
 #pragma sao block P
 layout(std140, binding = 0) uniform P {
   vec4 a;
 };
-#pragma sao pass main entry=run local=8x8 reads=src writes=dst variants=A,B,C,D "p"
+#pragma sao pass main entry=run local=8x8 reads=src writes=dst variants=A,B,C,D,E "p"
 void run() { imageStore(out_dst, ivec2(0), texelFetch(in_src, ivec2(0), 0) * a); }
 #pragma sao end
