@@ -33,16 +33,22 @@ Machine smallGpu() {
   return m;
 }
 
+// The visibility estimator with 16 taps: 2 slices x 2 sides x 4 steps, at full resolution.
+Settings visibility16() {
+  Settings s;
+  s.estimator = 1;
+  s.samples = 16;
+  s.slices = 2;
+  s.resolution_divisor = 1;
+  return s;
+}
+
 TEST(VisibilityTraffic, CountsTheSliceTapsAndStaysFlatInTheRadius) {
   const Plane plane;
   std::unique_ptr<TrafficScene> scene;
   ASSERT_TRUE(TrafficScene::create(plane.depth, plane.camera, scene));
   const std::vector<Machine> machines = {smallGpu()};
-  Settings s;
-  s.estimator = 1;
-  s.samples = 16;  // 2 slices x 2 sides x 4 steps
-  s.slices = 2;
-  s.resolution_divisor = 1;
+  Settings s = visibility16();
   auto l2BytesPerPixel = [&](float radius, bool hierarchy, ReplayResult& r) {
     s.radius = radius;
     EXPECT_TRUE(scene->replay(s, {"visibility", hierarchy, false, 4}, machines, r));
@@ -86,11 +92,7 @@ TEST(VisibilityTraffic, WidthProbesStayFlatInTheRadius) {
   std::unique_ptr<TrafficScene> scene;
   ASSERT_TRUE(TrafficScene::create(plane.depth, plane.camera, scene));
   const std::vector<Machine> machines = {smallGpu()};
-  Settings s;
-  s.estimator = 1;
-  s.samples = 16;
-  s.slices = 2;
-  s.resolution_divisor = 1;
+  Settings s = visibility16();
   s.thickness_model = 1;
   double first = 0, hi = 0;
   for (float radius : {1.0f, 2.0f, 4.0f, 8.0f, 16.0f}) {

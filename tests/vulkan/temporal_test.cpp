@@ -22,7 +22,7 @@ using vk::headless::Image;
 constexpr std::uint32_t kW = 160, kH = 90, kGuard = 8;
 
 class Temporal : public VkTest {
- protected:
+ public:  // expectStrafeMatchesCpu uses the fixture
   void SetUp() override {
     VkTest::SetUp();
     base = vulkanCamera(kW, kH, kGuard);
@@ -101,22 +101,24 @@ std::size_t differences(const FloatImage& a, const FloatImage& b) {
   return n + (a.data.size() != b.data.size());
 }
 
-TEST_F(Temporal, StrafeFramesMatchTheCpuReferenceWithoutAllocating) {
+// The strafe's frames through one effect, each within the agreement bounds of the CPU reference,
+// with no library or device allocation in record() after the first frames. The test's `settings`.
+void expectStrafeMatchesCpu(Temporal& t, const std::string& prefix) {
   ASSERT_TRUE(test::watchLibraryOf(reinterpret_cast<const void*>(&vk::processMemoryStats)));
-  auto effect = create();
+  auto effect = t.create();
   ASSERT_TRUE(effect);
-  const std::vector<FloatImage> expected = cpuFrames(kFrames);
+  const std::vector<FloatImage> expected = t.cpuFrames(Temporal::kFrames);
   Image out;
   ASSERT_TRUE(context().createStorageImage(VK_FORMAT_R16_SFLOAT, {kW, kH}, out).ok());
-  const vk::OutputImage o = outputOf(out);
+  const vk::OutputImage o = t.outputOf(out);
   const std::uint64_t allocationsBefore = effect->memoryStats().totalAllocations;
   long counted = 0;
-  for (std::uint32_t f = 0; f < kFrames; ++f) {
-    const std::string name = "vk_temporal" + std::to_string(f);
+  for (std::uint32_t f = 0; f < Temporal::kFrames; ++f) {
+    const std::string name = prefix + std::to_string(f);
     Status recorded;
     ASSERT_TRUE(context()
                     .submit([&](VkCommandBuffer cmd) {
-                      const vk::Inputs in = inputs(f);
+                      const vk::Inputs in = t.inputs(f);
                       test::startCountingAllocations();
                       recorded = effect->record(cmd, in, &o);
                       test::stopCountingAllocations();
@@ -124,7 +126,7 @@ TEST_F(Temporal, StrafeFramesMatchTheCpuReferenceWithoutAllocating) {
                     })
                     .ok());
     ASSERT_TRUE(recorded.ok()) << recorded.message;
-    const FloatImage actual = read(*effect, out);
+    const FloatImage actual = t.read(*effect, out);
     const Agreement a = compare(actual, expected[f], 0, 2.0 / 255.0, 4.0 / 255.0, name);
     EXPECT_TRUE(acceptable(a)) << name << ": max " << a.maxAbs * 255 << "/255, p99.9 " << a.p999 * 255 << "/255";
     std::printf("TEMPORAL %-14s vs CPU: max %.3f/255, p99.9 %.3f/255\n", name.c_str(), a.maxAbs * 255, a.p999 * 255);
@@ -135,28 +137,13 @@ TEST_F(Temporal, StrafeFramesMatchTheCpuReferenceWithoutAllocating) {
   context().destroy(out);
 }
 
-// The visibility estimator (with thickness from width) accumulates its occlusion the same way:
-// every frame of the strafe within the agreement bounds of the CPU reference.
+TEST_F(Temporal, StrafeFramesMatchTheCpuReferenceWithoutAllocating) { expectStrafeMatchesCpu(*this, "vk_temporal"); }
+
+// The visibility estimator (with thickness from width) accumulates its occlusion the same way.
 TEST_F(Temporal, VisibilityEstimatorStrafeFramesMatchTheCpuReference) {
   settings.estimator = 1;
   settings.thickness_model = 1;
-  auto effect = create();
-  ASSERT_TRUE(effect);
-  const std::vector<FloatImage> expected = cpuFrames(kFrames);
-  Image out;
-  ASSERT_TRUE(context().createStorageImage(VK_FORMAT_R16_SFLOAT, {kW, kH}, out).ok());
-  const vk::OutputImage o = outputOf(out);
-  for (std::uint32_t f = 0; f < kFrames; ++f) {
-    const std::string name = "vk_temporal_visibility" + std::to_string(f);
-    Status recorded;
-    ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, inputs(f), &o); }).ok());
-    ASSERT_TRUE(recorded.ok()) << recorded.message;
-    const Agreement a = compare(read(*effect, out), expected[f], 0, 2.0 / 255.0, 4.0 / 255.0, name);
-    EXPECT_TRUE(acceptable(a)) << name << ": max " << a.maxAbs * 255 << "/255, p99.9 " << a.p999 * 255 << "/255";
-    std::printf("TEMPORAL %-24s vs CPU: max %.3f/255, p99.9 %.3f/255\n", name.c_str(), a.maxAbs * 255, a.p999 * 255);
-    expectNoMessages(name.c_str());
-  }
-  context().destroy(out);
+  expectStrafeMatchesCpu(*this, "vk_temporal_visibility");
 }
 
 TEST_F(Temporal, TwoFramesInFlightGiveWhatOneAfterTheOtherGives) {
