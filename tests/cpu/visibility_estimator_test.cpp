@@ -101,17 +101,17 @@ TEST(VisibilityEstimator, OpenPlaneIsExactlyOneInDouble) {
     for (int slices : {1, 2, 5}) {
       for (int samples : {4, 48}) {
         for (int model : {0, 1}) {  // thickness_model 1: a plane is one run, wide
-        Settings s = visibilitySettings();
-        s.thickness_model = model;
-        s.slices = slices;
-        s.samples = samples;
-        s.resolution_divisor = c.divisor;
-        s.depth_tolerance = c.tolerance;
-        s.radius = 2.0f;
-        const cpu::Result r = runOrFail(s, c.camera, in, cpu::Precision::Double);
-        ASSERT_FALSE(r.ao.data.empty());
-        EXPECT_EQ(pixelsNotOne(r.ao), 0u) << slices << " slices, " << samples << " samples, thickness_model " << model
-                                          << ": mean A " << meanOf(r.ao);
+          Settings s = visibilitySettings();
+          s.thickness_model = model;
+          s.slices = slices;
+          s.samples = samples;
+          s.resolution_divisor = c.divisor;
+          s.depth_tolerance = c.tolerance;
+          s.radius = 2.0f;
+          const cpu::Result r = runOrFail(s, c.camera, in, cpu::Precision::Double);
+          ASSERT_FALSE(r.ao.data.empty());
+          EXPECT_EQ(pixelsNotOne(r.ao), 0u) << slices << " slices, " << samples << " samples, thickness_model " << model
+                                            << ": mean A " << meanOf(r.ao);
         }
       }
     }

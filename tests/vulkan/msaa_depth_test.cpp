@@ -86,90 +86,90 @@ class MsaaDepth : public VkTest {};
 
 TEST_F(MsaaDepth, BothPoliciesMatchTheCpuReference) {
   for (int estimator : {0, 1}) {  // 1: the visibility estimator, with thickness from width
-  Settings settings = presetSettings(Preset::Medium);
-  settings.estimator = estimator;
-  settings.thickness_model = estimator;
-  SCOPED_TRACE("estimator " + std::to_string(estimator));
-  for (const Convention& conv : conventions()) {
-    SCOPED_TRACE(conv.name);
-    const DepthImage depth = msaaDepth(conv.camera);
-    MsaaImage msaa;
-    const Status ws = writeMultisampledDepth(context(), depth, conv.layout, msaa.image);
-    ASSERT_TRUE(ws.ok()) << ws.message;
+    Settings settings = presetSettings(Preset::Medium);
+    settings.estimator = estimator;
+    settings.thickness_model = estimator;
+    SCOPED_TRACE("estimator " + std::to_string(estimator));
+    for (const Convention& conv : conventions()) {
+      SCOPED_TRACE(conv.name);
+      const DepthImage depth = msaaDepth(conv.camera);
+      MsaaImage msaa;
+      const Status ws = writeMultisampledDepth(context(), depth, conv.layout, msaa.image);
+      ASSERT_TRUE(ws.ok()) << ws.message;
 
-    RunResult vkRuns[2];
-    const DepthSamplePolicy policies[2] = {DepthSamplePolicy::Sample0, DepthSamplePolicy::Nearest};
-    for (int i = 0; i < 2; ++i) {
-      const char* policyName = i == 0 ? "Sample0" : "Nearest";
-      SCOPED_TRACE(policyName);
-      const Camera camera = withPolicy(conv.camera, policies[i]);
-      RunResult& vk = vkRuns[i];
-      const Status st = runEffect(settings, camera, depth, VkDepth::D32F, vk, msaaOptions(msaa, conv.layout));
-      ASSERT_TRUE(st.ok()) << st.message;
-      EXPECT_EQ(vk.plan.variants[kMultisample], 1) << "DEPTH_MULTISAMPLE";
+      RunResult vkRuns[2];
+      const DepthSamplePolicy policies[2] = {DepthSamplePolicy::Sample0, DepthSamplePolicy::Nearest};
+      for (int i = 0; i < 2; ++i) {
+        const char* policyName = i == 0 ? "Sample0" : "Nearest";
+        SCOPED_TRACE(policyName);
+        const Camera camera = withPolicy(conv.camera, policies[i]);
+        RunResult& vk = vkRuns[i];
+        const Status st = runEffect(settings, camera, depth, VkDepth::D32F, vk, msaaOptions(msaa, conv.layout));
+        ASSERT_TRUE(st.ok()) << st.message;
+        EXPECT_EQ(vk.plan.variants[kMultisample], 1) << "DEPTH_MULTISAMPLE";
 
-      cpu::Inputs in;
-      in.depth = &depth;
-      cpu::Result ref;
-      const Status cs = cpu::run(settings, camera, in, {cpu::Precision::Float, 2}, ref);
-      ASSERT_TRUE(cs.ok()) << cs.message;
-      EXPECT_EQ(ref.plan.variants[kMultisample], 1) << "the CPU reference's DEPTH_MULTISAMPLE";
-      EXPECT_EQ(vk.params.depth_samples, 4);
-      EXPECT_EQ(vk.params.depth_sample_policy, int(policies[i]));
-      EXPECT_EQ(std::memcmp(&vk.params, &ref.params, sizeof(ParamBlock)), 0) << "same parameter block";
+        cpu::Inputs in;
+        in.depth = &depth;
+        cpu::Result ref;
+        const Status cs = cpu::run(settings, camera, in, {cpu::Precision::Float, 2}, ref);
+        ASSERT_TRUE(cs.ok()) << cs.message;
+        EXPECT_EQ(ref.plan.variants[kMultisample], 1) << "the CPU reference's DEPTH_MULTISAMPLE";
+        EXPECT_EQ(vk.params.depth_samples, 4);
+        EXPECT_EQ(vk.params.depth_sample_policy, int(policies[i]));
+        EXPECT_EQ(std::memcmp(&vk.params, &ref.params, sizeof(ParamBlock)), 0) << "same parameter block";
 
-      const std::size_t cszDiff = bitDifferences(vk.csz0, ref.csz[0]);
-      EXPECT_EQ(cszDiff, 0u) << "csz level 0 bit for bit";
-      const std::string name = std::string("vk_cpu_msaa_") + conv.name + "_" + policyName;
-      std::string noteF, noteR;
-      const Agreement f = compare(vk.ao, ref.ao, 0, kWithin, kNever, name + "_final", &noteF);
-      const Agreement r = compare(vk.aoRaw, ref.aoRaw, 0, kWithin, kNever, name + "_raw", &noteR);
-      EXPECT_TRUE(acceptable(f)) << "final AO: " << f.fractionWithin * 100 << "% within 2/255, " << f.beyond
-                                 << " beyond 4/255, max " << f.maxAbs * 255 << "/255. " << noteF;
-      EXPECT_TRUE(acceptable(r)) << "raw AO: " << r.fractionWithin * 100 << "% within 2/255, " << r.beyond
-                                 << " beyond 4/255, max " << r.maxAbs * 255 << "/255. " << noteR;
-      std::printf("msaa %-17s %-7s final max %.3g p999 %.3g within 2/255 %.3f%% | raw max %.3g p999 %.3g | "
-                  "csz0 bits differ %zu of %zu\n",
-                  conv.name, policyName, f.maxAbs, f.p999, f.fractionWithin * 100, r.maxAbs, r.p999, cszDiff,
-                  vk.csz0.data.size());
-    }
-
-    // The same effect on each sample alone, single-sample: Sample0 must be its sample-0 run bit for
-    // bit (only linear_z reads differently), Nearest the nearer of the four runs' csz per texel.
-    FloatImage nearest;
-    for (std::uint32_t s = 0; s < kSamples; ++s) {
-      const DepthImage one = test::sampleImage(depth, s);
-      RunResult single;
-      const Status st = runEffect(settings, conv.camera, one, VkDepth::D32F, single);
-      ASSERT_TRUE(st.ok()) << st.message;
-      EXPECT_EQ(single.plan.variants[kMultisample], 0);
-      if (s == 0) {
-        EXPECT_TRUE(test::sameBits(vkRuns[0].csz0, single.csz0)) << "Sample0: csz of the sample-0 image";
-        EXPECT_TRUE(test::sameBits(vkRuns[0].aoRaw, single.aoRaw)) << "Sample0: raw AO of the sample-0 image";
-        EXPECT_TRUE(test::sameBits(vkRuns[0].ao, single.ao)) << "Sample0: final AO of the sample-0 image";
-        nearest = single.csz0;
-        continue;
+        const std::size_t cszDiff = bitDifferences(vk.csz0, ref.csz[0]);
+        EXPECT_EQ(cszDiff, 0u) << "csz level 0 bit for bit";
+        const std::string name = std::string("vk_cpu_msaa_") + conv.name + "_" + policyName;
+        std::string noteF, noteR;
+        const Agreement f = compare(vk.ao, ref.ao, 0, kWithin, kNever, name + "_final", &noteF);
+        const Agreement r = compare(vk.aoRaw, ref.aoRaw, 0, kWithin, kNever, name + "_raw", &noteR);
+        EXPECT_TRUE(acceptable(f)) << "final AO: " << f.fractionWithin * 100 << "% within 2/255, " << f.beyond
+                                   << " beyond 4/255, max " << f.maxAbs * 255 << "/255. " << noteF;
+        EXPECT_TRUE(acceptable(r)) << "raw AO: " << r.fractionWithin * 100 << "% within 2/255, " << r.beyond
+                                   << " beyond 4/255, max " << r.maxAbs * 255 << "/255. " << noteR;
+        std::printf("msaa %-17s %-7s final max %.3g p999 %.3g within 2/255 %.3f%% | raw max %.3g p999 %.3g | "
+                    "csz0 bits differ %zu of %zu\n",
+                    conv.name, policyName, f.maxAbs, f.p999, f.fractionWithin * 100, r.maxAbs, r.p999, cszDiff,
+                    vk.csz0.data.size());
       }
-      ASSERT_EQ(single.csz0.data.size(), nearest.data.size());
-      for (std::size_t i = 0; i < nearest.data.size(); ++i) {
-        const float z = single.csz0.data[i];
-        float& n = nearest.data[i];
-        if (geometry(z) && (!geometry(n) || z > n)) n = z;
-      }
-    }
-    const std::size_t nearestDiff = bitDifferences(vkRuns[1].csz0, nearest);
-    EXPECT_EQ(nearestDiff, 0u) << "Nearest: the nearer of the single-sample runs' csz";
 
-    // Not vacuous: sample 0 is not the nearest sample in many texels.
-    const std::size_t texels = vkRuns[0].csz0.data.size();
-    const std::size_t policyDiff = bitDifferences(vkRuns[0].csz0, vkRuns[1].csz0);
-    const std::size_t aoDiff = bitDifferences(vkRuns[0].ao, vkRuns[1].ao);
-    EXPECT_GT(policyDiff, texels / 10) << "Sample0 and Nearest csz differ on too few texels";
-    EXPECT_GT(aoDiff, 0u) << "Sample0 and Nearest give the same AO";
-    std::printf("msaa %-17s Sample0 vs Nearest: csz0 differs on %zu of %zu texels, final AO on %zu of %zu; "
-                "Nearest vs the single-sample runs' nearer csz: %zu differ\n",
-                conv.name, policyDiff, texels, aoDiff, vkRuns[0].ao.data.size(), nearestDiff);
-  }
+      // The same effect on each sample alone, single-sample: Sample0 must be its sample-0 run bit for
+      // bit (only linear_z reads differently), Nearest the nearer of the four runs' csz per texel.
+      FloatImage nearest;
+      for (std::uint32_t s = 0; s < kSamples; ++s) {
+        const DepthImage one = test::sampleImage(depth, s);
+        RunResult single;
+        const Status st = runEffect(settings, conv.camera, one, VkDepth::D32F, single);
+        ASSERT_TRUE(st.ok()) << st.message;
+        EXPECT_EQ(single.plan.variants[kMultisample], 0);
+        if (s == 0) {
+          EXPECT_TRUE(test::sameBits(vkRuns[0].csz0, single.csz0)) << "Sample0: csz of the sample-0 image";
+          EXPECT_TRUE(test::sameBits(vkRuns[0].aoRaw, single.aoRaw)) << "Sample0: raw AO of the sample-0 image";
+          EXPECT_TRUE(test::sameBits(vkRuns[0].ao, single.ao)) << "Sample0: final AO of the sample-0 image";
+          nearest = single.csz0;
+          continue;
+        }
+        ASSERT_EQ(single.csz0.data.size(), nearest.data.size());
+        for (std::size_t i = 0; i < nearest.data.size(); ++i) {
+          const float z = single.csz0.data[i];
+          float& n = nearest.data[i];
+          if (geometry(z) && (!geometry(n) || z > n)) n = z;
+        }
+      }
+      const std::size_t nearestDiff = bitDifferences(vkRuns[1].csz0, nearest);
+      EXPECT_EQ(nearestDiff, 0u) << "Nearest: the nearer of the single-sample runs' csz";
+
+      // Not vacuous: sample 0 is not the nearest sample in many texels.
+      const std::size_t texels = vkRuns[0].csz0.data.size();
+      const std::size_t policyDiff = bitDifferences(vkRuns[0].csz0, vkRuns[1].csz0);
+      const std::size_t aoDiff = bitDifferences(vkRuns[0].ao, vkRuns[1].ao);
+      EXPECT_GT(policyDiff, texels / 10) << "Sample0 and Nearest csz differ on too few texels";
+      EXPECT_GT(aoDiff, 0u) << "Sample0 and Nearest give the same AO";
+      std::printf("msaa %-17s Sample0 vs Nearest: csz0 differs on %zu of %zu texels, final AO on %zu of %zu; "
+                  "Nearest vs the single-sample runs' nearer csz: %zu differ\n",
+                  conv.name, policyDiff, texels, aoDiff, vkRuns[0].ao.data.size(), nearestDiff);
+    }
   }
 }
 
