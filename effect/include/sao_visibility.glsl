@@ -139,19 +139,19 @@ struct SaoSlab {
     float t;  // its thickness (sao_joined_bits bridges up to the smaller of two)
 };
 
+// A slab that blocks nothing (and starts no join).
+SaoSlab sao_no_slab(float thickness)
+{
+    return SaoSlab(false, 0.0, 0.0, 0.0, 0.0, thickness);
+}
+
 // The slab along a stored sample's view ray from depth d(1 + tol) to d(1 + tol) + T (S at pixel
 // centre q_pixel, z: perspective S scaled by (1 + tol) and (1 + tol) + T/d; ortho S's z moved). The
 // caller never passes the centre's own texel (f = 0 would leave the angle undefined).
 SaoSlab sao_slab(SaoSlice sl, vec3 C, vec3 V, vec2 q_pixel, float z, vec4 proj_info, int ortho, float radius2,
                  float tolerance, float thickness)
 {
-    SaoSlab s;
-    s.valid = false;
-    s.u1 = 0.0;
-    s.u2 = 0.0;
-    s.fe = 0.0;
-    s.fv = 0.0;
-    s.t = thickness;
+    SaoSlab s = sao_no_slab(thickness);
     if (sao_is_sky(z))
         return s;
     // `precise` from here to the bits: no fused multiply-add, so that the backends and the CPU round
@@ -339,13 +339,7 @@ float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, bool two_layer, bo
         uint bits = 0u;
         for (int side = 0; side < 2; ++side) {
             vec2 dir = (side == 0) ? u : -u;
-            SaoSlab prev;  // the side's previous tap's slab (first layer), for sao_joined_bits
-            prev.valid = false;
-            prev.u1 = 0.0;
-            prev.u2 = 0.0;
-            prev.fe = 0.0;
-            prev.fv = 0.0;
-            prev.t = thickness;
+            SaoSlab prev = sao_no_slab(thickness);  // the side's previous tap's slab, for sao_joined_bits
             for (int j = 0; j < m; ++j) {
                 float t = (float(j) + xi) * inv_m;
                 float h = r_px * (t * t);
