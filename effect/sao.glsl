@@ -102,7 +102,7 @@
 #pragma sao constant int  SAO_DEPTH_SAMPLE_0=0 "depth_sample_policy: a multisampled depth input's sample 0 stands for its texel (sao::DepthSamplePolicy::Sample0)"
 #pragma sao constant int  SAO_DEPTH_SAMPLE_NEAREST=1 "depth_sample_policy: the sample nearest to the camera (the largest geometry z; sky only when every sample is sky) stands for its texel (Nearest)"
 #pragma sao constant int  SAO_MAX_SLICES=8 "Upper bound of slices (its range's end)"
-#pragma sao constant int  SAO_WIDTH_PROBES=2 "thickness_model 1: texels probed on each side of a tap along its slice, at its MIP level; a run of continuous depth longer than that on either side is taken as wide (thickness)"
+#pragma sao constant int  SAO_WIDTH_REACH=16 "thickness_model 1: level-0 texels the width pass walks on each side of a texel along x and along y; a run of continuous depth that goes on through all of them on either side is taken as wide (thickness)"
 #pragma sao constant float SAO_WIDTH_SCALE=0.5 "thickness_model 1: a surface's thickness is this times its on-screen width along the slice (reference (d) measured 0.5 best of 0.5, 1, 2: docs/reference.md)"
 #pragma sao constant float SAO_WIDTH_JUMP=0.03 "thickness_model 1: neighbouring texels whose z differ by more than this times z per level-0 texel are a depth discontinuity (an edge of the run)"
 #pragma sao constant float SAO_WIDTH_MIN_M=0.02 "thickness_model 1: the least thickness, metres (uploaded in view units as thickness_min)"
@@ -120,7 +120,7 @@
 #pragma sao variant HALF_INTERMEDIATES values=[0,1] default=0 select=half_intermediates "1: the (A, key) intermediates are rg16f: the passes writing them round A and the key (z times key_scale = 1/metersToViewUnits: z in metres) to binary16 themselves"
 #pragma sao variant MOTION_VECTORS values=[0,1] default=0 select=input:motion "1: temporal accumulation finds each pixel's history where the motion input says the surface was (moving objects) instead of reprojecting through the cameras"
 #pragma sao variant ESTIMATOR values=[0,1] default=0 select=estimator "0: the AlchemyAO estimator (eq. 1) over the spiral taps; 1: the visibility estimator, cosine-weighted visibility with a finite thickness over slices with a visibility bitmask (sao_visibility.glsl)"
-#pragma sao variant THICKNESS_FROM_WIDTH values=[0,1] default=0 select=thickness_model "1: the visibility estimator's width probes (sao_tap_thickness) are compiled in; a variant, not a branch, because llvmpipe runs a branch's body masked on every tap (the probes doubled ao_sample's time there even with thickness_model 0). With ESTIMATOR 0 it changes nothing (thickness_model is inert then)"
+#pragma sao variant THICKNESS_FROM_WIDTH values=[0,1] default=0 select=thickness_model "1: the width pass writes width_share, each texel's share of thickness from its run of continuous depth along x and y, and the visibility estimator's taps read it; a variant, not a branch, because llvmpipe runs a branch's body masked on every tap. With ESTIMATOR 0 it changes nothing (thickness_model is inert then: the width pass is skipped)"
 #pragma sao exclude MOTION_VECTORS=1 TEMPORAL=0 "motion vectors serve temporal accumulation only: set the temporal setting, or give no motion input"
 #pragma sao exclude DEPTH_MULTISAMPLE=1 TWO_LAYER=1 "a multisampled depth input has no second layer: give depth peeling's layers single-sample, or resolve the depth first"
 #pragma sao exclude Z_HIERARCHY=0 TWO_LAYER=1 "the no-hierarchy baseline is a single-layer benchmark path"
@@ -134,6 +134,7 @@
 #pragma sao resource motion    kind=input  format=rg16f when=MOTION_VECTORS "Motion vectors, same size and region as depth: .xy the offset in pixels from this frame's texel to where its surface was in the previous frame (previous = current + motion; rows in the depth's order)"
 #pragma sao resource csz       kind=image  format=r32f mips=auto extent=input "Camera-space z MIP chain (z < 0, +0.0 = sky), the depth input's size including the guard band"
 #pragma sao resource csz2      kind=image  format=r32f mips=auto extent=input when=TWO_LAYER "Camera-space z MIP chain of the second layer"
+#pragma sao resource width_share kind=image format=rg16f mips=auto extent=input when=THICKNESS_FROM_WIDTH "thickness_model 1: x, y each csz texel's thickness along that axis over thickness, in (0, 1] (1 = wide), binary16-rounded by the width pass; its chain copies csz's rotated grid, so a level's texel holds the share of the texel its z came from"
 #pragma sao resource ao_raw    kind=image  format=rg32f format_when=HALF_INTERMEDIATES:rg16f divide_by=resolution_divisor "x: visibility A after the 2x2 reconstruction, y: key = camera-space z times key_scale (+0.0 = sky); the viewport over resolution_divisor"
 #pragma sao resource ao_low    kind=image  format=rg32f format_when=HALF_INTERMEDIATES:rg16f divide_by=resolution_divisor "(A, key) after the bilateral blur, the upsample's input (with blur_radius 0 the upsample reads ao_raw instead)"
 #pragma sao resource history  kind=image  format=rgba32f divide_by=resolution_divisor when=TEMPORAL history=true "Temporal: x the accumulated obscurance sum, y its key z (+0.0 = sky), z the frames it holds (0 = none), w its normal (octahedral, 12 bits a component, as the integer qx*4096 + qy); ao_raw's size, two images that trade places every frame"
@@ -241,25 +242,25 @@ layout(std140, binding = 0) uniform SaoParams {
 #error "SAO_CHAIN_FROM_BLOCK writes a whole chain: levels=0..SAO_MAX_MIP_LEVELS-1"
 #endif
 #define SAO_CHAIN_UP(IMG, J, z) \
-    if (sao_up && (J) <= max_mip) { sao_up = sao_rotated_grid_parent(sao_cur, sao_size); if (sao_up) imageStore(IMG[J], sao_cur, vec4(z, 0.0, 0.0, 0.0)); }
-// Invocation b (texels=2x2): Z_OF(p) into the level-0 texels 2b .. 2b + 1 that lie inside size0,
-// then level-1 texel b, which copies one of them (the rotated grid picks inside the block, clamp
-// included), then up from there.
-#define SAO_CHAIN_FROM_BLOCK(IMG, b, size0, Z_OF) { \
-    float sao_zb[4]; \
+    if (sao_up && (J) <= max_mip) { sao_up = sao_rotated_grid_parent(sao_cur, sao_size); if (sao_up) imageStore(IMG[J], sao_cur, sao_texel4(z)); }
+// Invocation b (texels=2x2): Z_OF(p) (a TYPE: float, or vec2 for width_share) into the level-0
+// texels 2b .. 2b + 1 that lie inside size0, then level-1 texel b, which copies one of them (the
+// rotated grid picks inside the block, clamp included), then up from there.
+#define SAO_CHAIN_FROM_BLOCK(IMG, b, size0, Z_OF, TYPE) { \
+    TYPE sao_zb[4]; \
     for (int sao_k = 0; sao_k < 4; ++sao_k) { \
         ivec2 sao_p = 2 * (b) + ivec2(sao_k & 1, sao_k >> 1); \
-        sao_zb[sao_k] = 0.0; \
+        sao_zb[sao_k] = TYPE(0.0); \
         if (all(lessThan(sao_p, size0))) { \
             sao_zb[sao_k] = Z_OF(sao_p); \
-            imageStore(IMG[0], sao_p, vec4(sao_zb[sao_k], 0.0, 0.0, 0.0)); \
+            imageStore(IMG[0], sao_p, sao_texel4(sao_zb[sao_k])); \
         } \
     } \
     ivec2 sao_size = max((size0) >> 1, ivec2(1)); \
     if (max_mip >= 1 && all(lessThan(b, sao_size))) { \
         ivec2 sao_s = sao_rotated_grid_source(b, size0) - 2 * (b); \
-        float sao_z = sao_zb[sao_s.y * 2 + sao_s.x]; \
-        imageStore(IMG[1], b, vec4(sao_z, 0.0, 0.0, 0.0)); \
+        TYPE sao_z = sao_zb[sao_s.y * 2 + sao_s.x]; \
+        imageStore(IMG[1], b, sao_texel4(sao_z)); \
         ivec2 sao_cur = b; \
         bool sao_up = true; \
         SAO_CHAIN_UP(IMG, 2, sao_z) \
@@ -269,6 +270,18 @@ layout(std140, binding = 0) uniform SaoParams {
         SAO_CHAIN_UP(IMG, 6, sao_z) \
         SAO_CHAIN_UP(IMG, 7, sao_z) \
     } \
+}
+// A chain texel as imageStore takes it.
+vec4 sao_texel4(float z) { return vec4(z, 0.0, 0.0, 0.0); }
+vec4 sao_texel4(vec2 v) { return vec4(v, 0.0, 0.0); }
+// A chain pass's main: invocation b = the global id stores its block and the walk up, if its
+// level-0 block starts inside IMG's level 0.
+#define SAO_CHAIN_PASS(IMG, Z_OF, TYPE) { \
+    ivec2 b = ivec2(gl_GlobalInvocationID.xy); \
+    ivec2 size0 = imageSize(IMG[0]); \
+    if (any(greaterThanEqual(2 * b, size0))) \
+        return; \
+    SAO_CHAIN_FROM_BLOCK(IMG, b, size0, Z_OF, TYPE); \
 }
 #endif
 
@@ -299,11 +312,7 @@ float sao_linear_z_texel(ivec2 p)
 
 void sao_linear_z_main()
 {
-    ivec2 b = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 size0 = imageSize(out_csz[0]);
-    if (any(greaterThanEqual(2 * b, size0)))
-        return;
-    SAO_CHAIN_FROM_BLOCK(out_csz, b, size0, sao_linear_z_texel);
+    SAO_CHAIN_PASS(out_csz, sao_linear_z_texel, float)
 }
 #pragma sao end
 
@@ -323,11 +332,37 @@ float sao_linear_z2_texel(ivec2 p)
 void sao_linear_z2_main()
 {
 #if TWO_LAYER
-    ivec2 b = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 size0 = imageSize(out_csz2[0]);
-    if (any(greaterThanEqual(2 * b, size0)))
-        return;
-    SAO_CHAIN_FROM_BLOCK(out_csz2, b, size0, sao_linear_z2_texel);
+    SAO_CHAIN_PASS(out_csz2, sao_linear_z2_texel, float)
+#endif
+}
+#pragma sao end
+
+// ---------------------------------------------------------------------------------------------
+// Pass 2b (THICKNESS_FROM_WIDTH only): each csz texel's share of thickness along x and y from its
+// run of continuous depth (sao_run_share), once per texel, so that a tap costs one fetch of
+// width_share instead of a walk of its own; the chain above level 0 as csz's (the rotated grid),
+// by the walk up of SAO_CHAIN_FROM_BLOCK. Without the variant it writes nothing and the plan leaves
+// it out.
+// ---------------------------------------------------------------------------------------------
+#pragma sao pass width entry=sao_width_main local=8x8 texels=2x2 reads=csz writes=width_share variants=THICKNESS_FROM_WIDTH levels=0..7 "thickness_model 1 only: each csz texel's share of thickness along x and y from its run of continuous depth (up to SAO_WIDTH_REACH texels each side), into width_share level 0 and its chain (csz's rotated grid)"
+#if THICKNESS_FROM_WIDTH
+vec2 sao_width_texel(ivec2 p)
+{
+    float z = texelFetch(in_csz, p, 0).r;
+    if (sao_is_sky(z) || !(thickness > 0.0))
+        return vec2(1.0);  // never read: a sky tap blocks nothing
+    ivec2 size0 = textureSize(in_csz, 0);
+    float sx = sao_run_share(in_csz, p, z, ivec2(1, 0), size0, proj_info, ortho, thickness, thickness_min);
+    float sy = sao_run_share(in_csz, p, z, ivec2(0, 1), size0, proj_info, ortho, thickness, thickness_min);
+    // Rounded here, so that the stored bits do not depend on the driver's float-to-half conversion.
+    return vec2(sao_round_to_half(sx), sao_round_to_half(sy));
+}
+#endif
+
+void sao_width_main()
+{
+#if THICKNESS_FROM_WIDTH
+    SAO_CHAIN_PASS(out_width_share, sao_width_texel, vec2)
 #endif
 }
 #pragma sao end
@@ -363,6 +398,11 @@ layout(push_constant) uniform SaoLoopCounts { int samples; int slices; } sao_loo
 #define SAO_CSZ2 in_csz2
 #else
 #define SAO_CSZ2 in_csz  // not read (two_layer false): a bound sampler of the right type
+#endif
+#if THICKNESS_FROM_WIDTH
+#define SAO_WIDTH_SHARE in_width_share
+#else
+#define SAO_WIDTH_SHARE in_csz  // not read (no THICKNESS_FROM_WIDTH): a bound sampler of the right type
 #endif
 shared float sao_quad_a[gl_WorkGroupSize.x * gl_WorkGroupSize.y];  // A per invocation
 shared float sao_quad_h[gl_WorkGroupSize.x * gl_WorkGroupSize.y];  // A after the horizontal step
@@ -401,9 +441,9 @@ float sao_ao_sample(ivec2 p, bool inside, out float key_z)
         // sao_visibility gives max(0, 1 - sigma (1 - V))^k and TEMPORAL blends the occlusion. Radial
         // jitter: the frame's offset plus the pixel's hash, mod 1.
         float xi = fract(frame_alpha_offset + sao_pixel_jitter(uvec2(p)));
-        float sum = sao_visibility_occlusion(in_csz, SAO_CSZ2, TWO_LAYER != 0, Z_HIERARCHY != 0, c, C, n, r_px, phase,
-                                             xi, s, SAO_SLICE_COUNT, slice_turn, proj_info, ortho, radius2, depth_tolerance,
-                                             thickness, thickness_min, log_q, max_mip);
+        float sum = sao_visibility_occlusion(in_csz, SAO_CSZ2, SAO_WIDTH_SHARE, TWO_LAYER != 0, Z_HIERARCHY != 0, c, C,
+                                             n, r_px, phase, xi, s, SAO_SLICE_COUNT, slice_turn, proj_info, ortho,
+                                             radius2, depth_tolerance, thickness, log_q, max_mip);
 #else
         float sum = 0.0;
         vec2 u = sao_turn_direction(tap_turn0 + phase);  // tap 0's direction; each tap turns it by tap_step
@@ -472,7 +512,7 @@ float sao_ao_sample(ivec2 p, bool inside, out float key_z)
 }
 #endif
 
-#pragma sao pass ao_sample entry=sao_ao_main local=8x8 reads=csz,csz2,normals,history,motion writes=ao_raw,history variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,TEMPORAL,MOTION_VECTORS,HALF_INTERMEDIATES,ESTIMATOR,THICKNESS_FROM_WIDTH skip_when=direct_output==true "Obscurance from s spiral taps over the z hierarchy (eq. 1, 3-10), with TEMPORAL blended with the reprojected history (and this frame's history written), 2x2 bilateral reconstruction; writes (A, key z)"
+#pragma sao pass ao_sample entry=sao_ao_main local=8x8 reads=csz,csz2,width_share,normals,history,motion writes=ao_raw,history variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,TEMPORAL,MOTION_VECTORS,HALF_INTERMEDIATES,ESTIMATOR,THICKNESS_FROM_WIDTH skip_when=direct_output==true "Obscurance from s spiral taps over the z hierarchy (eq. 1, 3-10), with TEMPORAL blended with the reprojected history (and this frame's history written), 2x2 bilateral reconstruction; writes (A, key z)"
 void sao_ao_main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -489,7 +529,7 @@ void sao_ao_main()
 }
 #pragma sao end
 
-#pragma sao pass ao_sample_output entry=sao_ao_output_main local=8x8 reads=csz,csz2,normals writes=ao variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,OUTPUT_FORMAT,ESTIMATOR,THICKNESS_FROM_WIDTH skip_when=direct_output==false "No blur at full resolution without temporal only: ao_sample's obscurance and 2x2 reconstruction, A stored straight into the output's format (no ao_raw, no output pass)"
+#pragma sao pass ao_sample_output entry=sao_ao_output_main local=8x8 reads=csz,csz2,width_share,normals writes=ao variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,OUTPUT_FORMAT,ESTIMATOR,THICKNESS_FROM_WIDTH skip_when=direct_output==false "No blur at full resolution without temporal only: ao_sample's obscurance and 2x2 reconstruction, A stored straight into the output's format (no ao_raw, no output pass)"
 void sao_ao_output_main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);

@@ -61,15 +61,15 @@ inline bool holdsRegion(const DepthImage& d, int ox, int oy, int w, int h) {
          std::int64_t(oy) + h <= std::int64_t(d.extent.height);
 }
 
-// Level m of a z chain from level m - 1 by the rotated grid (Table 1), level by level: the
-// oracle the GPU's walk up the chain (SAO_CHAIN_FROM_BLOCK in effect/sao.glsl) must equal.
+// Level m of a z chain (or width_share's, every channel) from level m - 1 by the rotated grid
+// (Table 1), level by level: the oracle the GPU's walk up the chain (SAO_CHAIN_FROM_BLOCK in effect/sao.glsl) must equal.
 template <typename T>
 void rotatedGridLevel(const Image<T>& prev, Image<T>& next, unsigned threads) {
   parallelFor(next.h, threads, [&](int y) {
     for (int x = 0; x < next.w; ++x) {
       int sx, sy;
       rotatedGridSource(x, y, prev.w, prev.h, sx, sy);
-      next.at(x, y) = prev.at(sx, sy);
+      for (int c = 0; c < next.ch; ++c) next.at(x, y, c) = prev.at(sx, sy, c);
     }
   });
 }
@@ -116,13 +116,44 @@ Status linearZPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<co
   return Status::success();
 }
 
+// Pass width (THICKNESS_FROM_WIDTH): each csz level-0 texel's shares of thickness along x and y
+// (runShare; binary16-rounded in Float, as sao_width_texel stores them, kept in Double; 1 for sky),
+// then the levels above it by the rotated grid.
+template <typename T>
+Status widthPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
+  const ScheduledBinding* in = binding(d, bindings, gen::ResourceId::csz, false);
+  const ScheduledBinding* out = binding(d, bindings, gen::ResourceId::width_share, true);
+  if (in == nullptr) return missingBinding(d, gen::ResourceId::csz, false);
+  if (out == nullptr) return missingBinding(d, gen::ResourceId::width_share, true);
+  const Image<T>& z0 = ctx.image(in->resource, 0);
+  Image<T>& share = ctx.image(*out);
+  if (share.w != z0.w || share.h != z0.h || share.ch < 2)
+    return passError(d, "width_share's level 0 is not csz's extent with two channels");
+  const Block<T>& P = ctx.P;
+  parallelFor(share.h, ctx.threads, [&](int y) {
+    for (int x = 0; x < share.w; ++x) {
+      const T z = z0.at(x, y);
+      T sx = T(1), sy = T(1);
+      if (!isSky(z) && P.thickness > T(0)) {
+        sx = runShare(z0, x, y, z, 1, 0, P);
+        sy = runShare(z0, x, y, z, 0, 1, P);
+        if constexpr (std::is_same_v<T, float>) sx = roundToHalf(sx), sy = roundToHalf(sy);
+      }
+      share.at(x, y, 0) = sx;
+      share.at(x, y, 1) = sy;
+    }
+  });
+  chainAbove(ctx, *out);
+  return Status::success();
+}
+
 // Pass ao_sample: the body of sao_ao_main up to the shared-memory exchange, for one invocation.
 template <typename T>
 class AoSampleInvocation {
  public:
   AoSampleInvocation(const PassContext<T>& ctx, const std::vector<Image<T>>& csz, const std::vector<Image<T>>& csz2,
-                     const Image<T>& aoRaw, const Image<T>* history)
-      : in_(ctx.in), P_(ctx.P), csz_(csz), csz2_(csz2), aoRaw_(aoRaw), history_(history),
+                     const std::vector<Image<T>>* widthShare, const Image<T>& aoRaw, const Image<T>* history)
+      : in_(ctx.in), P_(ctx.P), csz_(csz), csz2_(csz2), widthShare_(widthShare), aoRaw_(aoRaw), history_(history),
         normalsSupplied_(ctx.variant(gen::VariantId::NORMALS_SUPPLIED)),
         twoLayer_(ctx.variant(gen::VariantId::TWO_LAYER)),
         zHierarchy_(ctx.variant(gen::VariantId::Z_HIERARCHY)),
@@ -165,7 +196,7 @@ class AoSampleInvocation {
     SpiralDirection<T> u = SpiralDirection<T>::start(phase, P_);
     // ESTIMATOR 1: the occlusion 1 - V of the visibility estimator (sao_visibility.h) is the sum.
     if (visibilityEstimator_)
-      sum = visibilityOcclusion(csz_, csz2_, twoLayer_, zHierarchy_, cx, cy, C, n, r_px, phase,
+      sum = visibilityOcclusion(csz_, csz2_, widthShare_, twoLayer_, zHierarchy_, cx, cy, C, n, r_px, phase,
                                 radialJitter(std::uint32_t(px), std::uint32_t(py), P_), s, P_);
     for (int i = 0; i < s && !visibilityEstimator_; ++i) {
       T h;
@@ -203,6 +234,7 @@ class AoSampleInvocation {
   const Block<T>& P_;
   const std::vector<Image<T>>& csz_;
   const std::vector<Image<T>>& csz2_;
+  const std::vector<Image<T>>* widthShare_;  // THICKNESS_FROM_WIDTH's chain, else null
   const Image<T>& aoRaw_;
   const Image<T>* history_;  // the previous frame's (TEMPORAL), else null
   const bool normalsSupplied_, twoLayer_, zHierarchy_, motionVectors_, visibilityEstimator_;
@@ -256,12 +288,17 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
   if (in == nullptr) return missingBinding(d, gen::ResourceId::csz, false);
   if (twoLayer && in2 == nullptr) return missingBinding(d, gen::ResourceId::csz2, false);
   if (out == nullptr) return missingBinding(d, target, true);
+  // THICKNESS_FROM_WIDTH: the width pass's chain, read by the visibility estimator's taps.
+  const bool fromWidth = ctx.variant(gen::VariantId::THICKNESS_FROM_WIDTH) && ctx.variant(gen::VariantId::ESTIMATOR);
+  const ScheduledBinding* inWidth = fromWidth ? binding(d, bindings, gen::ResourceId::width_share, false) : nullptr;
+  if (fromWidth && inWidth == nullptr) return missingBinding(d, gen::ResourceId::width_share, false);
   if (ctx.variant(gen::VariantId::NORMALS_SUPPLIED) && ctx.in.normals == nullptr)
     return passError(d, "reads normals, but none were supplied");
   if (ctx.variant(gen::VariantId::MOTION_VECTORS) && ctx.in.motion == nullptr)
     return passError(d, "reads motion vectors, but none were supplied");
   const std::vector<Image<T>>& csz = ctx.levels(in->resource);  // the whole chain
   const std::vector<Image<T>>& csz2 = ctx.levels(twoLayer ? in2->resource : gen::ResourceId::csz2);
+  const std::vector<Image<T>>* widthShare = fromWidth ? &ctx.levels(inWidth->resource) : nullptr;
   Image<T>& dst = ctx.image(*out);
   const auto& P = ctx.P;
 
@@ -271,7 +308,8 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
     return Status::error(StatusCode::InvalidInput,
                          "ao_sample's local size " + std::to_string(LX) + "x" + std::to_string(LY) +
                              " is not even; the 2x2 reconstruction needs whole quads in a work group");
-  if (P.max_mip < 0 || std::size_t(P.max_mip) >= csz.size() || (twoLayer && csz2.size() != csz.size()))
+  if (P.max_mip < 0 || std::size_t(P.max_mip) >= csz.size() || (twoLayer && csz2.size() != csz.size()) ||
+      (widthShare && widthShare->size() != csz.size()))
     return Status::error(StatusCode::InvalidInput, "max_mip " + std::to_string(P.max_mip) + " does not match the " +
                                                        std::to_string(csz.size()) + " csz levels computed");
   if (!direct && dst.ch != 2) return passError(d, "needs a 2-channel ao_raw");
@@ -289,7 +327,7 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
   const int W = dst.w, H = dst.h;
   const int groupsX = int(d.groupsX), groupsY = int(d.groupsY);
   const T threshold = P.quad_edge_threshold;
-  const AoSampleInvocation<T> sampleInvocation(ctx, csz, csz2, dst, previous);
+  const AoSampleInvocation<T> sampleInvocation(ctx, csz, csz2, widthShare, dst, previous);
   parallelFor(groupsY, ctx.threads, [&](int gy) {
     std::vector<T> quadA(std::size_t(LX) * LY), quadH(quadA.size()), quadZ(quadA.size()), kept(quadA.size()),
         frames(quadA.size()), normalCode(quadA.size());
@@ -416,6 +454,7 @@ Status runSaoPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<con
   switch (d.pass) {
     case gen::PassId::linear_z: return detail::linearZPass(ctx, d, bindings, false);
     case gen::PassId::linear_z2: return detail::linearZPass(ctx, d, bindings, true);
+    case gen::PassId::width: return detail::widthPass(ctx, d, bindings);
     case gen::PassId::ao_sample:
     case gen::PassId::ao_sample_output: return detail::aoSamplePass(ctx, d, bindings);
     case gen::PassId::blur: return detail::blurPass(ctx, d, bindings);

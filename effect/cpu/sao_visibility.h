@@ -201,47 +201,47 @@ inline void mipSource(int& x, int& y, int m, int w0, int h0) {
   y = std::min(int(sy), h0 - 1);
 }
 
-// sao_tap_thickness (thickness_model 1): the thickness of the surface a tap at level lvl texel
-// (tx, ty) with z sees, from its on-screen width along (dx, dy).
+// sao_run_share (thickness_model 1, the width pass): the share of thickness of csz level-0 texel
+// (px, py) with z (not sky) along axis (ax, ay) = (1, 0) or (0, 1), from its run of continuous depth.
 template <typename T>
-T tapThickness(const Image<T>& zl, int tx, int ty, int lvl, T z, T dx, T dy, int w0, int h0, const Block<T>& P) {
-  const int lw = std::max(w0 >> lvl, 1), lh = std::max(h0 >> lvl, 1);
-  const T jump = T(gen::SAO_WIDTH_JUMP) * T(1 << lvl);
-  const T major = glslMax(std::abs(dx), std::abs(dy));
-  const T sx = dx / major, sy = dy / major;
+T runShare(const Image<T>& z0, int px, int py, T z, int ax, int ay, const Block<T>& P) {
   bool wide = false;
   int ex[2], ey[2];
   T ez[2];
   for (int side = 0; side < 2; ++side) {
-    const T ux = side == 0 ? sx : -sx, uy = side == 0 ? sy : -sy;
+    const int dx = side == 0 ? ax : -ax, dy = side == 0 ? ay : -ay;
+    int lx = px, ly = py;
     T zp = z;
-    int lx = tx, ly = ty;
-    bool walking = true, edge = false;
-    for (int k = 1; k <= gen::SAO_WIDTH_PROBES; ++k) {
-      const int qx = tx + static_cast<int>(std::floor(T(k) * ux + T(0.5)));
-      const int qy = ty + static_cast<int>(std::floor(T(k) * uy + T(0.5)));
-      const bool inside = qx >= 0 && qy >= 0 && qx < lw && qy < lh;
-      edge = edge || (walking && !inside);
-      const T zq = zl.at(std::clamp(qx, 0, lw - 1), std::clamp(qy, 0, lh - 1));
+    bool walking = true;
+    for (int k = 1; k <= gen::SAO_WIDTH_REACH && walking; ++k) {
+      const int qx = px + k * dx, qy = py + k * dy;
+      const bool inside = qx >= 0 && qy >= 0 && qx < z0.w && qy < z0.h;
+      wide = wide || !inside;
+      const T zq = z0.at(std::clamp(qx, 0, z0.w - 1), std::clamp(qy, 0, z0.h - 1));
       const T dz = std::abs(zq - zp);
-      const bool next = walking && inside && !isSky(zq) && dz <= jump * std::abs(zq);
-      if (next) lx = qx, ly = qy, zp = zq;
-      walking = next;
+      walking = inside && !isSky(zq) && dz <= T(gen::SAO_WIDTH_JUMP) * std::abs(zq);
+      if (walking) lx = qx, ly = qy, zp = zq;
     }
-    wide = wide || walking || edge;
+    wide = wide || walking;
     ex[side] = lx, ey[side] = ly, ez[side] = zp;
   }
-  if (wide) return P.thickness;
-  Vec3<T> end[2];
-  for (int side = 0; side < 2; ++side) {
-    int sx0 = ex[side], sy0 = ey[side];
-    mipSource(sx0, sy0, lvl, w0, h0);
-    end[side] = position(T(sx0) + T(0.5), T(sy0) + T(0.5), ez[side], P);
-  }
-  const Vec3<T> d = end[0] - end[1];
-  const T footprint = std::abs(P.proj_info.x) * ((P.ortho != 0) ? T(1) : std::abs(z)) * T(1 << lvl);
+  const Vec3<T> a = position(T(ex[0]) + T(0.5), T(ey[0]) + T(0.5), ez[0], P);
+  const Vec3<T> b = position(T(ex[1]) + T(0.5), T(ey[1]) + T(0.5), ez[1], P);
+  const Vec3<T> d = a - b;
+  const T scale = ax != 0 ? std::abs(P.proj_info.x) : std::abs(P.proj_info.y);
+  const T footprint = scale * ((P.ortho != 0) ? T(1) : std::abs(z));
   const T width = std::sqrt(dot(d, d)) + footprint;
-  return glslMin(P.thickness, glslMax(P.thickness_min, T(gen::SAO_WIDTH_SCALE) * width));
+  const T t = glslMin(P.thickness, glslMax(P.thickness_min, T(gen::SAO_WIDTH_SCALE) * width));
+  return wide ? T(1) : t / P.thickness;
+}
+
+// sao_tap_thickness (thickness_model 1, a tap): the thickness of the surface a tap sees along
+// (dx, dy) (unit) from its width_share texel's shares along x and y.
+template <typename T>
+T tapThickness(T shareX, T shareY, T dx, T dy, T thickness) {
+  const T fx = shareX / glslMax(std::abs(dx), T(1.0e-6f));
+  const T fy = shareY / glslMax(std::abs(dy), T(1.0e-6f));
+  return thickness * glslMin(T(1), glslMin(fx, fy));
 }
 
 // sao_pixel_jitter: 24 bits of a hash of the AO pixel, in [0, 1) (exact in float and double).
@@ -262,11 +262,12 @@ T radialJitter(std::uint32_t px, std::uint32_t py, const Block<T>& P) {
 }
 
 // sao_visibility_occlusion: the occlusion 1 - V of the pixel at csz texel (cx, cy). csz2 is read
-// only with twoLayer; `tapCount` is the block's samples (the shader's SAO_TAP_COUNT).
+// only with twoLayer, widthShare (the width pass's chain, 2 channels) only when not null
+// (THICKNESS_FROM_WIDTH); `tapCount` is the block's samples (the shader's SAO_TAP_COUNT).
 template <typename T>
-T visibilityOcclusion(const std::vector<Image<T>>& csz, const std::vector<Image<T>>& csz2, bool twoLayer,
-                      bool hierarchy, int cx, int cy, Vec3<T> C, Vec3<T> n, T r_px, std::uint32_t phase, T xi,
-                      int tapCount, const Block<T>& P) {
+T visibilityOcclusion(const std::vector<Image<T>>& csz, const std::vector<Image<T>>& csz2,
+                      const std::vector<Image<T>>* widthShare, bool twoLayer, bool hierarchy, int cx, int cy,
+                      Vec3<T> C, Vec3<T> n, T r_px, std::uint32_t phase, T xi, int tapCount, const Block<T>& P) {
   const Image<T>& z0 = csz[0];
   const Vec3<T> V = (P.ortho != 0) ? Vec3<T>{T(0), T(0), T(1)} : normalize(Vec3<T>{-C.x, -C.y, -C.z});
   const int ns = std::clamp(P.slices, 1, gen::SAO_MAX_SLICES);
@@ -304,8 +305,8 @@ T visibilityOcclusion(const std::vector<Image<T>>& csz, const std::vector<Image<
       if (sx != cx || sy != cy) {  // a coarse texel may hold the centre's own z
         const T qx = T(sx) + T(0.5), qy = T(sy) + T(0.5);
         const T z = csz[std::size_t(lvl)].at(mx, my);
-        const T t = P.thickness_min > T(0) ? tapThickness(csz[std::size_t(lvl)], mx, my, lvl, z, dx, dy, z0.w, z0.h, P)
-                                           : P.thickness;
+        const Image<T>* share = widthShare ? &(*widthShare)[std::size_t(lvl)] : nullptr;
+        const T t = share ? tapThickness(share->at(mx, my, 0), share->at(mx, my, 1), dx, dy, P.thickness) : P.thickness;
         const Slab<T> s = slab(sl, C, V, qx, qy, z, t, P);
         bits |= joinedBits(s, prev);
         prev = s;  // sky or a sample beyond r breaks the chain

@@ -6,7 +6,8 @@
 // centre z of every invocation (inside or not), then, for the invocations with geometry, the
 // normal (one normals fetch, or the four csz neighbours of eq. 4), then the s taps (with the
 // visibility estimator, ESTIMATOR 1: its 2*slices*m slice taps, those that leave the centre texel and
-// whose MIP texel does not hold the centre's own z).
+// whose MIP texel does not hold the centre's own z, each with its width_share texel under
+// thickness_model 1). The width pass that writes width_share is not replayed.
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -17,7 +18,7 @@
 
 namespace sao::cpu::trace {
 
-enum class Surface : std::uint8_t { Csz, Normals };  // the textures ao_sample reads
+enum class Surface : std::uint8_t { Csz, Normals, WidthShare };  // the textures ao_sample reads
 
 // A trace writes to a sink: `beginStep()` before each step's reads and once after the last,
 // `read(lane, surface, level, x, y)` per texel fetch (lane = gl_LocalInvocationIndex; level the
@@ -138,19 +139,8 @@ void AoSampleTrace::group(int gx, int gy, Sink& out) const {
         mipSource(sx, sy, lvl, z0.w, z0.h);
         if (sx == l.cx && sy == l.cy) continue;  // a coarse texel holding the centre's z: not read
         out.read(li, Surface::Csz, lvl, mx, my);
-        if (P.thickness_min > 0.0f) {  // thickness_model 1: sao_tap_thickness's probes, every one fetched
-          const float dx = negative ? -l.ux : l.ux, dy = negative ? -l.uy : l.uy;
-          const float major = std::max(std::abs(dx), std::abs(dy));
-          const int lw = std::max(z0.w >> lvl, 1), lh = std::max(z0.h >> lvl, 1);
-          for (int side = 0; side < 2; ++side)
-            for (int p = 1; p <= gen::SAO_WIDTH_PROBES; ++p) {
-              const float ox = float(p) * ((side == 0 ? dx : -dx) / major) + 0.5f;
-              const float oy = float(p) * ((side == 0 ? dy : -dy) / major) + 0.5f;
-              const int qx = std::clamp(mx + static_cast<int>(std::floor(ox)), 0, lw - 1);
-              const int qy = std::clamp(my + static_cast<int>(std::floor(oy)), 0, lh - 1);
-              out.read(li, Surface::Csz, lvl, qx, qy);
-            }
-        }
+        // thickness_model 1: the tap's width_share texel, same level and texel as its z.
+        if (P.thickness_min > 0.0f) out.read(li, Surface::WidthShare, lvl, mx, my);
       }
     }
     out.beginStep();  // closes the last step

@@ -3,11 +3,11 @@
 // holds V and a screen direction u: marching the screen line c + h u tests every ray of the slice)
 // with a 32-bit visibility bitmask per slice (Therrien et al. 2023) over the cosine-weighted measure.
 // Library code: depends on sao_depth.glsl, sao_position.glsl, sao_zmip.glsl and sao_spiral.glsl; the
-// width probes are compiled where the variant THICKNESS_FROM_WIDTH is 1.
+// taps read width_share (the width pass's shares of thickness) where the variant THICKNESS_FROM_WIDTH is 1.
 // Math: docs/effect-math.md, "The visibility estimator"; the definition it samples is reference (d)'s.
 #ifndef SAO_VISIBILITY_GLSL
 #define SAO_VISIBILITY_GLSL
-#ifndef THICKNESS_FROM_WIDTH  // a pass without the variant: no width probes
+#ifndef THICKNESS_FROM_WIDTH  // a pass without the variant: every slab thickness deep
 #define THICKNESS_FROM_WIDTH 0
 #endif
 
@@ -257,49 +257,58 @@ ivec2 sao_mip_source(ivec2 t, int m, ivec2 size0)
     return min(ivec2(sx, sy), size0 - 1);
 }
 
-// thickness_model 1: the thickness of the surface a tap sees, from its on-screen width along the
-// slice (docs/effect-math.md 5.9, "Thickness from width"). From the tap's texel tt at MIP level lvl,
-// SAO_WIDTH_PROBES texels are probed on each side along `dir` (a step of one texel on its major
-// axis); the run continues while neighbours' z differ by at most SAO_WIDTH_JUMP * 2^lvl * z. A run
-// that continues through every probe (or to the image's edge) on either side is wide: thickness.
-// Otherwise its width is the distance between its end texels' points plus one texel's footprint,
-// and the thickness SAO_WIDTH_SCALE times that, clamped to [thickness_min, thickness].
-float sao_tap_thickness(sampler2D csz, ivec2 tt, int lvl, float z, vec2 dir, ivec2 size0, vec4 proj_info, int ortho,
-                        float thickness, float thickness_min)
+// thickness_model 1 (docs/effect-math.md 5.9, "Thickness from width"), the width pass's half: the
+// run of continuous depth through csz level-0 texel p (z, not sky) along the axis `axis` ((1, 0) or
+// (0, 1)). It goes on, up to SAO_WIDTH_REACH texels on each side, while neighbours' z differ by at
+// most SAO_WIDTH_JUMP * z (the rule reference (d) applies along its slices). A run that goes on
+// through every texel on either side, or reaches the image's edge, is wide: share 1. Otherwise its
+// width is the distance between its end texels' points plus one texel's footprint, and its share
+// SAO_WIDTH_SCALE times that, clamped to [thickness_min, thickness], over thickness (> 0).
+float sao_run_share(sampler2D csz, ivec2 p, float z, ivec2 axis, ivec2 size0, vec4 proj_info, int ortho,
+                    float thickness, float thickness_min)
 {
-    ivec2 lsize = max(size0 >> lvl, ivec2(1));
-    precise float jump = SAO_WIDTH_JUMP * float(1 << lvl);
-    vec2 stride = dir / max(abs(dir.x), abs(dir.y));
     bool wide = false;
     ivec2 ends[2];
     float zends[2];
     for (int side = 0; side < 2; ++side) {
-        vec2 sd = (side == 0) ? stride : -stride;
+        ivec2 d = (side == 0) ? axis : -axis;
+        ivec2 last = p;
         float zp = z;
-        ivec2 last = tt;
         bool walking = true;
-        bool edge = false;
-        for (int k = 1; k <= SAO_WIDTH_PROBES; ++k) {
-            precise vec2 o = float(k) * sd + 0.5;  // no fused multiply-add: the CPU rounds the product
-            ivec2 q = tt + ivec2(floor(o));
-            bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, lsize));
-            edge = edge || (walking && !inside);
-            float zq = texelFetch(csz, clamp(q, ivec2(0), lsize - 1), lvl).r;
+        for (int k = 1; k <= SAO_WIDTH_REACH && walking; ++k) {
+            ivec2 q = p + k * d;
+            bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size0));
+            wide = wide || !inside;
+            float zq = texelFetch(csz, clamp(q, ivec2(0), size0 - 1), 0).r;
             precise float dz = abs(zq - zp);
-            bool next = walking && inside && !sao_is_sky(zq) && dz <= jump * abs(zq);
-            last = next ? q : last;
-            zp = next ? zq : zp;
-            walking = next;
+            walking = inside && !sao_is_sky(zq) && dz <= SAO_WIDTH_JUMP * abs(zq);
+            last = walking ? q : last;
+            zp = walking ? zq : zp;
         }
-        wide = wide || walking || edge;
+        wide = wide || walking;
         ends[side] = last;
         zends[side] = zp;
     }
-    precise vec3 a = sao_position(vec2(sao_mip_source(ends[0], lvl, size0)) + 0.5, zends[0], proj_info, ortho);
-    precise vec3 b = sao_position(vec2(sao_mip_source(ends[1], lvl, size0)) + 0.5, zends[1], proj_info, ortho);
-    precise float footprint = abs(proj_info.x) * ((ortho != 0) ? 1.0 : abs(z)) * float(1 << lvl);
+    precise vec3 a = sao_position(vec2(ends[0]) + 0.5, zends[0], proj_info, ortho);
+    precise vec3 b = sao_position(vec2(ends[1]) + 0.5, zends[1], proj_info, ortho);
+    float scale = (axis.x != 0) ? abs(proj_info.x) : abs(proj_info.y);
+    precise float footprint = scale * ((ortho != 0) ? 1.0 : abs(z));
     precise float width = length(a - b) + footprint;
-    return wide ? thickness : min(thickness, max(thickness_min, SAO_WIDTH_SCALE * width));
+    precise float t = min(thickness, max(thickness_min, SAO_WIDTH_SCALE * width));
+    return wide ? 1.0 : t / thickness;
+}
+
+// thickness_model 1, the tap's half: the thickness of the surface a tap sees along its slice's
+// screen direction dir (unit), from the width pass's shares of thickness along x and y (its texel
+// of width_share at the tap's level: the same level-0 texel as its z). A slice crossing an axis'
+// run at an angle crosses 1/|cos| as much of it: thickness times the smaller of share.x/|dir.x|
+// and share.y/|dir.y|, at most thickness (the max() keeps an axis the slice runs along out of it).
+float sao_tap_thickness(vec2 share, vec2 dir, float thickness)
+{
+    precise float fx = share.x / max(abs(dir.x), 1.0e-6);
+    precise float fy = share.y / max(abs(dir.y), 1.0e-6);
+    precise float t = thickness * min(1.0, min(fx, fy));
+    return t;
 }
 
 // The pixel's radial jitter: a hash of the AO pixel, 24 bits, in [0, 1) (exact as a float, so
@@ -316,15 +325,16 @@ float sao_pixel_jitter(uvec2 p)
 // The occlusion 1 - V of the pixel at csz level-0 texel c (position C, normal n, projected radius
 // r_px): `slices` slices at angles phase + k*slice_turn (2^-32 turns; slice_turn = half a turn over
 // slices), m = max(1, tap_count/(2*slices)) steps on each side at h_j = r_px*((j + xi)/m)^2, each
-// tap read from the z MIP level for its distance (hierarchy) and, with two_layer, the second
-// layer's slab too. V = sum_k w_k (1 - bits_k/32) / sum_k w_k; 0 when every weight is 0. Nested
+// tap read from the z MIP level for its distance (hierarchy), with THICKNESS_FROM_WIDTH its
+// thickness from width_share's texel of the same level, and with two_layer the second layer's slab
+// too (thickness deep). V = sum_k w_k (1 - bits_k/32) / sum_k w_k; 0 when every weight is 0. Nested
 // loops, so that a slice's setup runs once per slice (llvmpipe runs a branch's body masked on every
 // trip: in one flat loop it ran per tap); the trip counts come from tap_count and slices alone (the
 // caller passes SAO_TAP_COUNT and SAO_SLICE_COUNT: on Vulkan push constants, see sao.glsl).
-float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, bool two_layer, bool hierarchy, ivec2 c, vec3 C,
-                               vec3 n, float r_px, uint phase, float xi, int tap_count, int slices,
+float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, sampler2D width_share, bool two_layer, bool hierarchy,
+                               ivec2 c, vec3 C, vec3 n, float r_px, uint phase, float xi, int tap_count, int slices,
                                uint slice_turn, vec4 proj_info, int ortho, float radius2, float tolerance,
-                               float thickness, float thickness_min, int log_q, int max_mip)
+                               float thickness, int log_q, int max_mip)
 {
     ivec2 size0 = textureSize(csz, 0);
     precise vec3 V = (ortho != 0) ? vec3(0.0, 0.0, 1.0) : normalize(-C);
@@ -352,8 +362,7 @@ float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, bool two_layer, bo
                         vec2 q = vec2(src) + 0.5;
                         float z = texelFetch(csz, tt, lvl).r;
 #if THICKNESS_FROM_WIDTH
-                        float t = sao_tap_thickness(csz, tt, lvl, z, dir, size0, proj_info, ortho, thickness,
-                                                    thickness_min);
+                        float t = sao_tap_thickness(texelFetch(width_share, tt, lvl).rg, dir, thickness);
 #else
                         float t = thickness;
 #endif

@@ -65,12 +65,18 @@ Status TrafficScene::replay(const Settings& settings, const TrafficVariant& vari
   if (params.ao_size.x + 2 * params.guard.x != z0.w || params.ao_size.y + 2 * params.guard.y != z0.h)
     return Status::error(StatusCode::InvalidInput, "traffic replay: the camera does not match the scene's depth");
 
-  // Surface 0: csz (its levels), surface 1: the normals input at the depth's extent (rgba16f).
-  std::vector<SurfaceShape> surfaces(2);
+  // Surface 0: csz (its levels), surface 1: the normals input at the depth's extent (rgba16f),
+  // surface 2: width_share (rg16f, csz's levels; read with thickness_model 1).
+  std::vector<SurfaceShape> surfaces(3);
   surfaces[0].texelBytes = variant.zTexelBytes;
-  for (const auto& l : impl_->csz) surfaces[0].levels.push_back({std::uint32_t(l.w), std::uint32_t(l.h)});
+  surfaces[2].texelBytes = 4;
+  for (const auto& l : impl_->csz) {
+    surfaces[0].levels.push_back({std::uint32_t(l.w), std::uint32_t(l.h)});
+    surfaces[2].levels.push_back({std::uint32_t(l.w), std::uint32_t(l.h)});
+  }
   surfaces[1] = {8, {{impl_->depthExtent.width, impl_->depthExtent.height}}};
-  static_assert(int(cpu::trace::Surface::Csz) == 0 && int(cpu::trace::Surface::Normals) == 1);
+  static_assert(int(cpu::trace::Surface::Csz) == 0 && int(cpu::trace::Surface::Normals) == 1 &&
+                int(cpu::trace::Surface::WidthShare) == 2);
 
   std::vector<TrafficModel> models;
   for (const Machine& m : machines) {
