@@ -258,40 +258,17 @@ ivec2 sao_mip_source(ivec2 t, int m, ivec2 size0)
 }
 
 // thickness_model 1 (docs/effect-math.md 5.9, "Thickness from width"), the width pass's half: the
-// run of continuous depth through csz level-0 texel p (z, not sky) along the axis `axis` ((1, 0) or
-// (0, 1)). It goes on, up to SAO_WIDTH_REACH texels on each side, while neighbours' z differ by at
-// most SAO_WIDTH_JUMP * z (the rule reference (d) applies along its slices). A run that goes on
-// through every texel on either side, or reaches the image's edge, is wide: share 1. Otherwise its
-// width is the distance between its end texels' points plus one texel's footprint, and its share
-// SAO_WIDTH_SCALE times that, clamped to [thickness_min, thickness], over thickness (> 0).
-float sao_run_share(sampler2D csz, ivec2 p, float z, ivec2 axis, ivec2 size0, vec4 proj_info, int ortho,
-                    float thickness, float thickness_min)
+// share of thickness of a texel (z) whose run of continuous depth along x (x_axis) or y ends at
+// level-0 texels e0 and e1 (z0, z1): SAO_WIDTH_SCALE times its width (the distance between the end
+// texels' points plus one texel's footprint along the axis), clamped to [thickness_min, thickness],
+// over thickness (> 0); 1 for a wide run (one that went on through SAO_WIDTH_REACH texels on either
+// side or reached the image's edge; the width pass finds the ends, sao.glsl).
+float sao_run_share_of(ivec2 e0, float z0, ivec2 e1, float z1, bool wide, float z, bool x_axis, vec4 proj_info,
+                       int ortho, float thickness, float thickness_min)
 {
-    bool wide = false;
-    ivec2 ends[2];
-    float zends[2];
-    for (int side = 0; side < 2; ++side) {
-        ivec2 d = (side == 0) ? axis : -axis;
-        ivec2 last = p;
-        float zp = z;
-        bool walking = true;
-        for (int k = 1; k <= SAO_WIDTH_REACH && walking; ++k) {
-            ivec2 q = p + k * d;
-            bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size0));
-            wide = wide || !inside;
-            float zq = texelFetch(csz, clamp(q, ivec2(0), size0 - 1), 0).r;
-            precise float dz = abs(zq - zp);
-            walking = inside && !sao_is_sky(zq) && dz <= SAO_WIDTH_JUMP * abs(zq);
-            last = walking ? q : last;
-            zp = walking ? zq : zp;
-        }
-        wide = wide || walking;
-        ends[side] = last;
-        zends[side] = zp;
-    }
-    precise vec3 a = sao_position(vec2(ends[0]) + 0.5, zends[0], proj_info, ortho);
-    precise vec3 b = sao_position(vec2(ends[1]) + 0.5, zends[1], proj_info, ortho);
-    float scale = (axis.x != 0) ? abs(proj_info.x) : abs(proj_info.y);
+    precise vec3 a = sao_position(vec2(e0) + 0.5, z0, proj_info, ortho);
+    precise vec3 b = sao_position(vec2(e1) + 0.5, z1, proj_info, ortho);
+    float scale = x_axis ? abs(proj_info.x) : abs(proj_info.y);
     precise float footprint = scale * ((ortho != 0) ? 1.0 : abs(z));
     precise float width = length(a - b) + footprint;
     precise float t = min(thickness, max(thickness_min, SAO_WIDTH_SCALE * width));

@@ -64,4 +64,49 @@ inline ZChainReference zChainReference(const ZChainCase& c, const Camera& camera
   return r;
 }
 
+// thickness_model 1's width_share chain (the width pass): depth of rectangular blocks of constant z
+// whose widths and heights cycle through 1 .. 40 texels (runs that end inside a 16x16 work-group
+// tile, across its edges and beyond the pass's reach of 16), every 11th block sky, and every 5th
+// block along x at its left neighbour's depth (a run that goes on across a block's edge).
+inline DepthImage blockDepth(Extent e) {
+  static constexpr std::uint32_t kSides[] = {1, 2, 3, 5, 8, 13, 16, 17, 21, 31, 32, 33, 40};
+  auto blocks = [](std::uint32_t n) {
+    std::vector<std::uint32_t> index(n);
+    std::uint32_t b = 0, left = kSides[0];
+    for (std::uint32_t i = 0; i < n; ++i) {
+      if (left == 0) left = kSides[++b % std::size(kSides)];
+      index[i] = b;
+      --left;
+    }
+    return index;
+  };
+  const std::vector<std::uint32_t> bx = blocks(e.width), by = blocks(e.height);
+  auto value = [](std::uint32_t x, std::uint32_t y) { return 0.55f + 0.03f * float((x * 7 + y * 3) % 13); };
+  DepthImage d;
+  d.extent = e;
+  d.format = DepthFormat::D32F;
+  d.texels.resize(std::size_t(e.width) * e.height);
+  for (std::uint32_t y = 0; y < e.height; ++y)
+    for (std::uint32_t x = 0; x < e.width; ++x) {
+      const std::uint32_t i = bx[x], j = by[y];
+      const float v = (i * 3 + j) % 11 == 10 ? 1.0f : value(i % 5 == 4 && i > 0 ? i - 1 : i, j);
+      d.texels[std::size_t(y) * e.width + x] = std::bit_cast<std::uint32_t>(v);
+    }
+  return d;
+}
+
+// The CPU reference's run of the visibility estimator with thickness_model 1 on blockDepth: its
+// width_share chain (cpu::Result::images) is what a backend's width pass must equal bit for bit.
+inline ZChainReference widthShareReference(const ZChainCase& c, const Camera& camera) {
+  ZChainReference r;
+  r.settings.radius = float(c.radius);
+  r.settings.estimator = 1;
+  r.settings.thickness_model = 1;
+  r.depth = blockDepth({c.width + 2 * c.guard, c.height + 2 * c.guard});
+  cpu::Inputs in;
+  in.depth = &r.depth;
+  r.status = cpu::run(r.settings, camera, in, cpu::Options{cpu::Precision::Float, 2}, r.cpu);
+  return r;
+}
+
 }  // namespace sao::test

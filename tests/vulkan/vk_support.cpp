@@ -147,11 +147,10 @@ Status runEffect(const Settings& settings, const Camera& camera, const DepthImag
                                  VK_ACCESS_SHADER_WRITE_BIT, out.csz0);
         !st)
       return st;
-    for (const bool second : {false, true}) {
-      const gen::ResourceId id = second ? gen::ResourceId::csz2 : gen::ResourceId::csz;
+    for (const gen::ResourceId id : {gen::ResourceId::csz, gen::ResourceId::csz2, gen::ResourceId::width_share}) {
       if (!options.readChain || out.plan.image(id) == nullptr) continue;
       const auto chain = effect->ownedImage(id);
-      auto& levels = second ? out.csz2 : out.csz;
+      auto& levels = id == gen::ResourceId::csz ? out.csz : id == gen::ResourceId::csz2 ? out.csz2 : out.widthShare;
       levels.resize(out.plan.cszLevels);
       for (std::uint32_t m = 0; m < out.plan.cszLevels; ++m)
         if (Status st = ctx.readback(chain.image, chain.format, chain.extent, m, chain.layout,

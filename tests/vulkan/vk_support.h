@@ -45,7 +45,7 @@ struct RunOptions {
   VkFormat normalsFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
   const DepthImage* depth2 = nullptr;
   bool readIntermediates = true;        // ao_raw (and csz level 0)
-  bool readChain = false;               // every level of csz (and csz2 with depth2)
+  bool readChain = false;               // every level of csz (and csz2 with depth2, width_share with thickness_model 1)
   std::optional<Offset> region;                              // vk::Inputs::offset: the region inside larger inputs
   // A depth image the test made itself (e.g. multisampled), bound instead of uploading `depth`
   // (runEffect then does not read `depth`); depthSamples goes into Config::depthSamples.
@@ -62,6 +62,7 @@ struct RunResult {
   FloatImage csz0;    // csz level 0
   FloatImage aoLow;   // 2 channels (A, key z) when the plan has ao_low (resolution_divisor > 1)
   std::vector<FloatImage> csz, csz2;  // every level, with RunOptions::readChain
+  std::vector<FloatImage> widthShare;  // every level (2 channels), with readChain where the plan has it
 };
 
 // Uploads `depth` in `format`, creates an effect, records it once, submits, waits and reads back.

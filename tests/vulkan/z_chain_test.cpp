@@ -2,7 +2,8 @@
 // array, each invocation walking up the rotated grid from its 2x2 block; effect/sao.glsl,
 // SAO_CHAIN_FROM_BLOCK) equals the CPU reference's level-by-level chain bit for bit, on every level,
 // for chains of 1 to 8 levels, odd extents, 1-texel-wide levels, guard bands and the second depth
-// layer, under the validation layers (array slots past the chain's end bound, never written).
+// layer, under the validation layers (array slots past the chain's end bound, never written); so
+// does the width pass's width_share chain (thickness_model 1).
 #include <cstdint>
 
 #include "image_compare.h"
@@ -47,6 +48,24 @@ TEST_P(ZChain, EveryLevelEqualsTheCpuChainBitForBit) {
         EXPECT_EQ(test::differingValues(r.csz2[m], ref.csz2[m]), 0u) << c.name << " csz2 level " << m << " of " << levels;
     }
   }
+}
+
+// thickness_model 1: every level of width_share (the width pass's shared-memory bit scans and its
+// chain) equals the CPU reference's bit for bit (tests/gl/z_chain_test.cpp says why these inputs).
+TEST_P(ZChain, WidthShareEqualsTheCpuBitForBit) {
+  const test::ZChainCase& c = GetParam();
+  const Camera cam = vulkanCamera(c.width, c.height, c.guard);
+  const test::ZChainReference z = test::widthShareReference(c, cam);
+  ASSERT_TRUE(z.status.ok()) << z.status.message;
+  const std::vector<FloatImage>& ref = z.cpu.images[std::size_t(gen::ResourceId::width_share)];
+  RunOptions options;
+  options.readChain = true;
+  RunResult r;
+  const Status st = runEffect(z.settings, cam, z.depth, VkDepth::D32F, r, options);
+  ASSERT_TRUE(st.ok()) << st.message;
+  ASSERT_EQ(r.widthShare.size(), ref.size());
+  for (std::size_t m = 0; m < ref.size(); ++m)
+    EXPECT_EQ(test::differingValues(r.widthShare[m], ref[m]), 0u) << c.name << " width_share level " << m;
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, ZChain, ::testing::ValuesIn(test::zChainCases()),

@@ -167,13 +167,14 @@ Status uploadNormals(const FloatImage& normals, std::uint32_t& texture) {
   return Status::success();
 }
 
-FloatImage readTextureLevel(std::uint32_t texture, std::uint32_t level) {
+FloatImage readTextureLevel(std::uint32_t texture, std::uint32_t level, std::uint32_t channels) {
   GLint w = 0, h = 0;
   glGetTextureLevelParameteriv(texture, GLint(level), GL_TEXTURE_WIDTH, &w);
   glGetTextureLevelParameteriv(texture, GLint(level), GL_TEXTURE_HEIGHT, &h);
-  FloatImage img({std::uint32_t(w), std::uint32_t(h)}, 1);
+  FloatImage img({std::uint32_t(w), std::uint32_t(h)}, channels);
+  const GLenum f = channels == 1 ? GL_RED : channels == 2 ? GL_RG : GL_RGBA;
   tightPixelStore();
-  glGetTextureImage(texture, GLint(level), GL_RED, GL_FLOAT, GLsizei(img.data.size() * sizeof(float)), img.data.data());
+  glGetTextureImage(texture, GLint(level), f, GL_FLOAT, GLsizei(img.data.size() * sizeof(float)), img.data.data());
   return img;
 }
 

@@ -25,8 +25,8 @@ Status uploadDepth(const DepthImage& depth, GlDepth format, std::uint32_t& textu
 Status uploadNormals(const FloatImage& normals, std::uint32_t& texture);
 std::uint32_t makeTexture(std::uint32_t internalFormat, Extent extent);
 void deleteTexture(std::uint32_t texture);
-// Level 0 as floats (1, 2 or 4 channels); level `level` of a single-channel float texture.
+// Level 0, or level `level`, as floats (1, 2 or 4 channels).
 FloatImage readTexture(std::uint32_t texture, std::uint32_t channels);
-FloatImage readTextureLevel(std::uint32_t texture, std::uint32_t level);
+FloatImage readTextureLevel(std::uint32_t texture, std::uint32_t level, std::uint32_t channels = 1);
 
 }  // namespace sao::gl
