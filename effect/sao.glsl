@@ -354,38 +354,36 @@ void sao_linear_z2_main()
 #error "the width pass's bands hold 16 texels of halo: one 16-bit scan per run end"
 #endif
 const int SAO_BAND = 48;  // a band's length: 16 texels of the tile and SAO_WIDTH_REACH each side
-shared float sao_row_z[16 * SAO_BAND];  // row r of the tile, x from its origin - 16 (clamped fetches)
-shared float sao_col_z[16 * SAO_BAND];  // column c, y from its origin - 16
-// Links of band texel i (0..46) to i + 1, two words per band: [band][word] for the walk towards
-// +x/+y (the next texel i + 1) and towards -x/-y (from i + 1 to the next texel i).
-shared uint sao_row_up[32];
-shared uint sao_row_down[32];
-shared uint sao_col_up[32];
-shared uint sao_col_down[32];
+// The tile's bands: kind 0 the 16 rows (x from the tile's origin - 16), kind 1 the 16 columns (y
+// from its origin - 16), clamped fetches: band texel i of band b of kind k at ((k * 16 + b) * 48 + i).
+shared float sao_band_z[2 * 16 * SAO_BAND];
+// Their links, two words per band (texels 0..31, 32..46): bit i says the walk steps on from band
+// texel i to i + 1 (direction 0, towards +x/+y) or from i + 1 to i (direction 1); word w of band b
+// of kind k and direction d at (((k * 2 + d) * 16 + b) * 2 + w).
+shared uint sao_band_links[2 * 2 * 16 * 2];
 
-// Whether a walk steps on from z_from to z_next (at a texel inside the image or not): as
-// sao_run_share's walk, a texel outside continues it (the walk then runs through its reach: wide).
+// Whether a walk steps on from z_from to z_next (at a texel inside the image or not): as the CPU
+// reference's walk (runShare), a texel outside continues it (the walk then runs through its reach:
+// wide).
 bool sao_width_link(float z_from, float z_next, bool next_inside)
 {
     precise float dz = abs(z_next - z_from);
     return !next_inside || (!sao_is_sky(z_next) && dz <= SAO_WIDTH_JUMP * abs(z_next));
 }
 
-// One word of links: band `band` of the row (rows) or column bands, word w (band texels 32w ..
-// 32w + 31), towards +1 (up) or -1; `first` is the band's texel 0 in the image and `step` its axis.
-uint sao_width_links(bool rows, int band, int w, bool up, ivec2 first, ivec2 step, ivec2 size0)
+// Word w of the links of the band at `base` in sao_band_z, direction 0 (up) or 1; `first` is the
+// band's texel 0 along its axis and `size` the image's extent along it.
+uint sao_width_links(int base, int w, bool up, int first, int size)
 {
     uint bits = 0u;
-    for (int b = 0; b < 32; ++b) {
+    int n = min(32, SAO_BAND - 1 - 32 * w);
+    for (int b = 0; b < n; ++b) {
         int i = 32 * w + b;
-        if (i < SAO_BAND - 1) {
-            float zi = rows ? sao_row_z[band * SAO_BAND + i] : sao_col_z[band * SAO_BAND + i];
-            float zj = rows ? sao_row_z[band * SAO_BAND + i + 1] : sao_col_z[band * SAO_BAND + i + 1];
-            ivec2 next = first + (up ? i + 1 : i) * step;
-            bool inside = all(greaterThanEqual(next, ivec2(0))) && all(lessThan(next, size0));
-            bool link = up ? sao_width_link(zi, zj, inside) : sao_width_link(zj, zi, inside);
-            bits |= link ? (1u << uint(b)) : 0u;
-        }
+        float zi = sao_band_z[base + i];
+        float zj = sao_band_z[base + i + 1];
+        int next = first + (up ? i + 1 : i);
+        bool link = sao_width_link(up ? zi : zj, up ? zj : zi, next >= 0 && next < size);
+        bits |= link ? (1u << uint(b)) : 0u;
     }
     return bits;
 }
@@ -398,27 +396,23 @@ uint sao_width_window(uint w0, uint w1, int start)
     return (lo | hi) & 0xFFFFu;
 }
 
-// The share of the tile texel at band index 16 + t of band `band` (rows: along x; else along y).
-float sao_width_band_share(bool rows, int band, int t, ivec2 first, ivec2 step, float z)
+// The share of the tile texel at index 16 + t of band `band` of kind `kind` (0: along x, its row;
+// 1: along y, its column); `first` is the band's texel 0 in the image, `step` its axis.
+float sao_width_band_share(int kind, int band, int t, ivec2 first, ivec2 step, float z)
 {
+    int base = (kind * 16 + band) * SAO_BAND;
+    int up = ((kind * 2) * 16 + band) * 2;
+    int dn = ((kind * 2 + 1) * 16 + band) * 2;
     int i0 = 16 + t;
-    uint up0 = rows ? sao_row_up[2 * band] : sao_col_up[2 * band];
-    uint up1 = rows ? sao_row_up[2 * band + 1] : sao_col_up[2 * band + 1];
-    uint dn0 = rows ? sao_row_down[2 * band] : sao_col_down[2 * band];
-    uint dn1 = rows ? sao_row_down[2 * band + 1] : sao_col_down[2 * band + 1];
     // Towards +: links i0 .. i0 + 15, the first broken one (lowest clear bit) is the run's end.
-    uint stop_up = ~sao_width_window(up0, up1, i0) & 0xFFFFu;
+    uint stop_up = ~sao_width_window(sao_band_links[up], sao_band_links[up + 1], i0) & 0xFFFFu;
     // Towards -: links i0 - 1 down to i0 - 16 (bits 15 .. 0 of the window from i0 - 16).
-    uint stop_dn = ~sao_width_window(dn0, dn1, i0 - 16) & 0xFFFFu;
+    uint stop_dn = ~sao_width_window(sao_band_links[dn], sao_band_links[dn + 1], i0 - 16) & 0xFFFFu;
     bool wide = stop_up == 0u || stop_dn == 0u;
-    int e_up = i0 + findLSB(stop_up);             // its last texel: the broken link's own
-    int e_dn = i0 - 16 + findMSB(stop_dn) + 1;     // the texel after the broken link
-    e_up = wide ? i0 : e_up;
-    e_dn = wide ? i0 : e_dn;
-    float z_up = rows ? sao_row_z[band * SAO_BAND + e_up] : sao_col_z[band * SAO_BAND + e_up];
-    float z_dn = rows ? sao_row_z[band * SAO_BAND + e_dn] : sao_col_z[band * SAO_BAND + e_dn];
-    return sao_run_share_of(first + e_dn * step, z_dn, first + e_up * step, z_up, wide, z, rows, proj_info, ortho,
-                            thickness, thickness_min);
+    int e_up = wide ? i0 : i0 + findLSB(stop_up);           // the last texel: the broken link's own
+    int e_dn = wide ? i0 : i0 - 16 + findMSB(stop_dn) + 1;  // the texel after the broken link
+    return sao_run_share_of(first + e_dn * step, sao_band_z[base + e_dn], first + e_up * step, sao_band_z[base + e_up],
+                            wide, z, kind == 0, proj_info, ortho, thickness, thickness_min);
 }
 
 // Level-0 texel p of the work group's tile: its shares along x and y (1 for sky: never read, a sky
@@ -428,11 +422,11 @@ vec2 sao_width_texel(ivec2 p)
 {
     ivec2 origin = 16 * ivec2(gl_WorkGroupID.xy);
     ivec2 t = p - origin;
-    float z = sao_row_z[t.y * SAO_BAND + 16 + t.x];
+    float z = sao_band_z[t.y * SAO_BAND + 16 + t.x];
     if (sao_is_sky(z) || !(thickness > 0.0))
         return vec2(1.0);
-    float sx = sao_width_band_share(true, t.y, t.x, origin + ivec2(-16, t.y), ivec2(1, 0), z);
-    float sy = sao_width_band_share(false, t.x, t.y, origin + ivec2(t.x, -16), ivec2(0, 1), z);
+    float sx = sao_width_band_share(0, t.y, t.x, origin + ivec2(-16, t.y), ivec2(1, 0), z);
+    float sy = sao_width_band_share(1, t.x, t.y, origin + ivec2(t.x, -16), ivec2(0, 1), z);
     return vec2(sao_round_to_half(sx), sao_round_to_half(sy));
 }
 #endif
@@ -443,29 +437,24 @@ void sao_width_main()
     ivec2 size0 = imageSize(out_width_share[0]);
     ivec2 origin = 16 * ivec2(gl_WorkGroupID.xy);
     int li = int(gl_LocalInvocationIndex);
-    // The bands' z, 768 texels each, 12 fetches per invocation and band (clamped to the image).
+    // The bands' z, 768 texels a kind, 12 fetches per invocation and kind (clamped to the image).
     for (int k = li; k < 16 * SAO_BAND; k += 64) {
         ivec2 r = origin + ivec2(k % SAO_BAND - 16, k / SAO_BAND);
         ivec2 c = origin + ivec2(k / SAO_BAND, k % SAO_BAND - 16);
-        sao_row_z[k] = texelFetch(in_csz, clamp(r, ivec2(0), size0 - 1), 0).r;
-        sao_col_z[k] = texelFetch(in_csz, clamp(c, ivec2(0), size0 - 1), 0).r;
+        sao_band_z[k] = texelFetch(in_csz, clamp(r, ivec2(0), size0 - 1), 0).r;
+        sao_band_z[16 * SAO_BAND + k] = texelFetch(in_csz, clamp(c, ivec2(0), size0 - 1), 0).r;
     }
     memoryBarrierShared();
     barrier();
-    // One word of each kind per invocation: band li >> 2, word (li >> 1) & 1, direction li & 1.
+    // One word per invocation and kind: band li >> 2, word (li >> 1) & 1, direction li & 1.
     {
         int band = li >> 2;
         int w = (li >> 1) & 1;
-        bool up = (li & 1) == 0;
-        uint rw = sao_width_links(true, band, w, up, origin + ivec2(-16, band), ivec2(1, 0), size0);
-        uint cw = sao_width_links(false, band, w, up, origin + ivec2(band, -16), ivec2(0, 1), size0);
-        if (up) {
-            sao_row_up[2 * band + w] = rw;
-            sao_col_up[2 * band + w] = cw;
-        } else {
-            sao_row_down[2 * band + w] = rw;
-            sao_col_down[2 * band + w] = cw;
-        }
+        int d = li & 1;
+        sao_band_links[((0 * 2 + d) * 16 + band) * 2 + w] =
+            sao_width_links(band * SAO_BAND, w, d == 0, origin.x - 16, size0.x);
+        sao_band_links[((1 * 2 + d) * 16 + band) * 2 + w] =
+            sao_width_links((16 + band) * SAO_BAND, w, d == 0, origin.y - 16, size0.y);
     }
     memoryBarrierShared();
     barrier();
