@@ -343,9 +343,10 @@ void sao_linear_z2_main()
 // of width_share instead of a walk of its own; the chain above level 0 as csz's (the rotated grid),
 // by the walk up of SAO_CHAIN_FROM_BLOCK. A work group's 16x16 texels find their runs in shared
 // memory: the 16 rows with SAO_WIDTH_REACH texels of halo left and right, the 16 columns with as
-// many above and below, one fetch each; then one 32-bit word of links per invocation and direction
-// (bit i: the walk from band texel i to its neighbour continues); then each run's end is a bit scan
-// (findLSB / findMSB over 16 links), the walk of the CPU reference's runShare step for step. Without
+// many above and below, each invocation fetching 12 consecutive texels of a row and of a column
+// (and the next one) and or-ing the links between them into the band's 32-bit words (bit i: the
+// walk from band texel i to its neighbour continues); then each run's end is a bit scan (findLSB /
+// findMSB over 16 links), the walk of the CPU reference's runShare step for step. Without
 // the variant it writes nothing and the plan leaves it out.
 // ---------------------------------------------------------------------------------------------
 #pragma sao pass width entry=sao_width_main local=8x8 texels=2x2 reads=csz writes=width_share variants=THICKNESS_FROM_WIDTH levels=0..7 "thickness_model 1 only: each csz texel's share of thickness along x and y from its run of continuous depth (up to SAO_WIDTH_REACH texels each side, found by bit scans in shared memory), into width_share level 0 and its chain (csz's rotated grid)"
@@ -371,21 +372,39 @@ bool sao_width_link(float z_from, float z_next, bool next_inside)
     return !next_inside || (!sao_is_sky(z_next) && dz <= SAO_WIDTH_JUMP * abs(z_next));
 }
 
-// Word w of the links of the band at `base` in sao_band_z, direction 0 (up) or 1; `first` is the
-// band's texel 0 along its axis and `size` the image's extent along it.
-uint sao_width_links(int base, int w, bool up, int first, int size)
+// Segment seg (texels 12 seg .. 12 seg + 11) of the band at `base` in sao_band_z: their z from the
+// image (from `first` along `step`, clamped; `pos0` and `size` the band's texel 0 and the image's
+// extent along its axis) into shared memory, and the links between them and to the next segment's
+// first texel, both directions, or'ed into the band's words at `up` and `dn` (zeroed before).
+void sao_width_segment(int base, int seg, ivec2 first, ivec2 step, int pos0, int size, ivec2 size0, int up, int dn)
 {
-    uint bits = 0u;
-    int n = min(32, SAO_BAND - 1 - 32 * w);
-    for (int b = 0; b < n; ++b) {
-        int i = 32 * w + b;
-        float zi = sao_band_z[base + i];
-        float zj = sao_band_z[base + i + 1];
-        int next = first + (up ? i + 1 : i);
-        bool link = sao_width_link(up ? zi : zj, up ? zj : zi, next >= 0 && next < size);
-        bits |= link ? (1u << uint(b)) : 0u;
+    int i = 12 * seg;
+    float zp = texelFetch(in_csz, clamp(first + i * step, ivec2(0), size0 - 1), 0).r;
+    sao_band_z[base + i] = zp;
+    uint bits_up = 0u;  // links i .. i + 11 of this segment, bit k = link 12 seg + k
+    uint bits_dn = 0u;
+    int n = min(12, SAO_BAND - 1 - i);
+    for (int k = 0; k < n; ++k) {
+        int j = i + k + 1;
+        float zj = texelFetch(in_csz, clamp(first + j * step, ivec2(0), size0 - 1), 0).r;
+        if (k < 11)
+            sao_band_z[base + j] = zj;
+        int pj = pos0 + j;
+        bool l_up = sao_width_link(zp, zj, pj >= 0 && pj < size);
+        bool l_dn = sao_width_link(zj, zp, pj - 1 >= 0 && pj - 1 < size);
+        bits_up |= l_up ? (1u << uint(k)) : 0u;
+        bits_dn |= l_dn ? (1u << uint(k)) : 0u;
+        zp = zj;
     }
-    return bits;
+    // Links 12 seg + k into words 0 (links 0..31) and 1 (32..46).
+    uint sh = uint(i & 31);
+    int w = i >> 5;
+    atomicOr(sao_band_links[up + w], bits_up << sh);
+    atomicOr(sao_band_links[dn + w], bits_dn << sh);
+    if (w == 0 && i + 12 > 32) {
+        atomicOr(sao_band_links[up + 1], bits_up >> (32u - sh));
+        atomicOr(sao_band_links[dn + 1], bits_dn >> (32u - sh));
+    }
 }
 
 // 16 links of a band from texel index `start` (0 <= start <= 31): bit k is link start + k.
@@ -437,24 +456,20 @@ void sao_width_main()
     ivec2 size0 = imageSize(out_width_share[0]);
     ivec2 origin = 16 * ivec2(gl_WorkGroupID.xy);
     int li = int(gl_LocalInvocationIndex);
-    // The bands' z, 768 texels a kind, 12 fetches per invocation and kind (clamped to the image).
-    for (int k = li; k < 16 * SAO_BAND; k += 64) {
-        ivec2 r = origin + ivec2(k % SAO_BAND - 16, k / SAO_BAND);
-        ivec2 c = origin + ivec2(k / SAO_BAND, k % SAO_BAND - 16);
-        sao_band_z[k] = texelFetch(in_csz, clamp(r, ivec2(0), size0 - 1), 0).r;
-        sao_band_z[16 * SAO_BAND + k] = texelFetch(in_csz, clamp(c, ivec2(0), size0 - 1), 0).r;
-    }
+    // Invocation li: segment li & 3 of band li >> 2 of each kind (13 fetches a kind: its 12 texels
+    // and the next one, for the link), its links or'ed into the band's words, zeroed first (two
+    // words an invocation).
+    sao_band_links[2 * li] = 0u;
+    sao_band_links[2 * li + 1] = 0u;
     memoryBarrierShared();
     barrier();
-    // One word per invocation and kind: band li >> 2, word (li >> 1) & 1, direction li & 1.
     {
         int band = li >> 2;
-        int w = (li >> 1) & 1;
-        int d = li & 1;
-        sao_band_links[((0 * 2 + d) * 16 + band) * 2 + w] =
-            sao_width_links(band * SAO_BAND, w, d == 0, origin.x - 16, size0.x);
-        sao_band_links[((1 * 2 + d) * 16 + band) * 2 + w] =
-            sao_width_links((16 + band) * SAO_BAND, w, d == 0, origin.y - 16, size0.y);
+        int seg = li & 3;
+        sao_width_segment(band * SAO_BAND, seg, origin + ivec2(-16, band), ivec2(1, 0), origin.x - 16, size0.x, size0,
+                          ((0 * 2 + 0) * 16 + band) * 2, ((0 * 2 + 1) * 16 + band) * 2);
+        sao_width_segment((16 + band) * SAO_BAND, seg, origin + ivec2(band, -16), ivec2(0, 1), origin.y - 16, size0.y,
+                          size0, ((1 * 2 + 0) * 16 + band) * 2, ((1 * 2 + 1) * 16 + band) * 2);
     }
     memoryBarrierShared();
     barrier();
