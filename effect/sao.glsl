@@ -120,7 +120,7 @@
 #pragma sao variant HALF_INTERMEDIATES values=[0,1] default=0 select=half_intermediates "1: the (A, key) intermediates are rg16f: the passes writing them round A and the key (z times key_scale = 1/metersToViewUnits: z in metres) to binary16 themselves"
 #pragma sao variant MOTION_VECTORS values=[0,1] default=0 select=input:motion "1: temporal accumulation finds each pixel's history where the motion input says the surface was (moving objects) instead of reprojecting through the cameras"
 #pragma sao variant ESTIMATOR values=[0,1] default=0 select=estimator "0: the AlchemyAO estimator (eq. 1) over the spiral taps; 1: the visibility estimator, cosine-weighted visibility with a finite thickness over slices with a visibility bitmask (sao_visibility.glsl)"
-#pragma sao variant THICKNESS_FROM_WIDTH values=[0,1] default=0 select=thickness_model "1: the width pass writes width_share, each texel's share of thickness from its run of continuous depth along x and y, and the visibility estimator's taps read it; a variant, not a branch, because llvmpipe runs a branch's body masked on every tap. With ESTIMATOR 0 it changes nothing (thickness_model is inert then: the width pass is skipped)"
+#pragma sao variant THICKNESS_FROM_WIDTH values=[0,1] default=0 select=thickness_model "1: the width pass writes width_share, each texel's share of thickness from its run of continuous depth along x and y, and the visibility estimator's taps read it; a variant, not a branch, because llvmpipe runs a branch's body masked on every tap. With ESTIMATOR 0 the AO does not change (thickness_model is inert then), but the width pass still runs, writing 1s (thickness is 0): ao_sample's width_share binding needs a writer"
 #pragma sao exclude MOTION_VECTORS=1 TEMPORAL=0 "motion vectors serve temporal accumulation only: set the temporal setting, or give no motion input"
 #pragma sao exclude DEPTH_MULTISAMPLE=1 TWO_LAYER=1 "a multisampled depth input has no second layer: give depth peeling's layers single-sample, or resolve the depth first"
 #pragma sao exclude Z_HIERARCHY=0 TWO_LAYER=1 "the no-hierarchy baseline is a single-layer benchmark path"
@@ -358,10 +358,13 @@ const int SAO_BAND = 48;  // a band's length: 16 texels of the tile and SAO_WIDT
 // The tile's bands: kind 0 the 16 rows (x from the tile's origin - 16), kind 1 the 16 columns (y
 // from its origin - 16), clamped fetches: band texel i of band b of kind k at ((k * 16 + b) * 48 + i).
 shared float sao_band_z[2 * 16 * SAO_BAND];
-// Their links, two words per band (texels 0..31, 32..46): bit i says the walk steps on from band
-// texel i to i + 1 (direction 0, towards +x/+y) or from i + 1 to i (direction 1); word w of band b
-// of kind k and direction d at (((k * 2 + d) * 16 + b) * 2 + w).
+// Their links, two words per band (links 0..31, 32..46): bit i says the walk steps on from band
+// texel i to i + 1 (direction 0, towards +x/+y) or from i + 1 to i (direction 1).
 shared uint sao_band_links[2 * 2 * 16 * 2];
+
+// Band b of kind k: its texel 0 in sao_band_z, and its direction d's word 0 in sao_band_links.
+int sao_band_base(int k, int b) { return (k * 16 + b) * SAO_BAND; }
+int sao_band_words(int k, int d, int b) { return ((k * 2 + d) * 16 + b) * 2; }
 
 // Whether a walk steps on from z_from to z_next (at a texel inside the image or not): as the CPU
 // reference's walk (runShare), a texel outside continues it (the walk then runs through its reach:
@@ -372,12 +375,17 @@ bool sao_width_link(float z_from, float z_next, bool next_inside)
     return !next_inside || (!sao_is_sky(z_next) && dz <= SAO_WIDTH_JUMP * abs(z_next));
 }
 
-// Segment seg (texels 12 seg .. 12 seg + 11) of the band at `base` in sao_band_z: their z from the
-// image (from `first` along `step`, clamped; `pos0` and `size` the band's texel 0 and the image's
-// extent along its axis) into shared memory, and the links between them and to the next segment's
-// first texel, both directions, or'ed into the band's words at `up` and `dn` (zeroed before).
-void sao_width_segment(int base, int seg, ivec2 first, ivec2 step, int pos0, int size, ivec2 size0, int up, int dn)
+// Segment seg (texels 12 seg .. 12 seg + 11) of band `band` of kind `kind` (texel 0 at `first`
+// in the image, along `step`): their z (clamped fetches) into shared memory, and the links between
+// them and to the next segment's first texel, both directions, or'ed into the band's words (zeroed
+// before).
+void sao_width_segment(int kind, int band, int seg, ivec2 first, ivec2 step, ivec2 size0)
 {
+    int base = sao_band_base(kind, band);
+    int up = sao_band_words(kind, 0, band);
+    int dn = sao_band_words(kind, 1, band);
+    int pos0 = (kind == 0) ? first.x : first.y;  // texel 0 along the band's axis
+    int size = (kind == 0) ? size0.x : size0.y;
     int i = 12 * seg;
     float zp = texelFetch(in_csz, clamp(first + i * step, ivec2(0), size0 - 1), 0).r;
     sao_band_z[base + i] = zp;
@@ -419,9 +427,9 @@ uint sao_width_window(uint w0, uint w1, int start)
 // 1: along y, its column); `first` is the band's texel 0 in the image, `step` its axis.
 float sao_width_band_share(int kind, int band, int t, ivec2 first, ivec2 step, float z)
 {
-    int base = (kind * 16 + band) * SAO_BAND;
-    int up = ((kind * 2) * 16 + band) * 2;
-    int dn = ((kind * 2 + 1) * 16 + band) * 2;
+    int base = sao_band_base(kind, band);
+    int up = sao_band_words(kind, 0, band);
+    int dn = sao_band_words(kind, 1, band);
     int i0 = 16 + t;
     // Towards +: links i0 .. i0 + 15, the first broken one (lowest clear bit) is the run's end.
     uint stop_up = ~sao_width_window(sao_band_links[up], sao_band_links[up + 1], i0) & 0xFFFFu;
@@ -441,7 +449,7 @@ vec2 sao_width_texel(ivec2 p)
 {
     ivec2 origin = 16 * ivec2(gl_WorkGroupID.xy);
     ivec2 t = p - origin;
-    float z = sao_band_z[t.y * SAO_BAND + 16 + t.x];
+    float z = sao_band_z[sao_band_base(0, t.y) + 16 + t.x];
     if (sao_is_sky(z) || !(thickness > 0.0))
         return vec2(1.0);
     float sx = sao_width_band_share(0, t.y, t.x, origin + ivec2(-16, t.y), ivec2(1, 0), z);
@@ -466,10 +474,8 @@ void sao_width_main()
     {
         int band = li >> 2;
         int seg = li & 3;
-        sao_width_segment(band * SAO_BAND, seg, origin + ivec2(-16, band), ivec2(1, 0), origin.x - 16, size0.x, size0,
-                          ((0 * 2 + 0) * 16 + band) * 2, ((0 * 2 + 1) * 16 + band) * 2);
-        sao_width_segment((16 + band) * SAO_BAND, seg, origin + ivec2(band, -16), ivec2(0, 1), origin.y - 16, size0.y,
-                          size0, ((1 * 2 + 0) * 16 + band) * 2, ((1 * 2 + 1) * 16 + band) * 2);
+        sao_width_segment(0, band, seg, origin + ivec2(-16, band), ivec2(1, 0), size0);
+        sao_width_segment(1, band, seg, origin + ivec2(band, -16), ivec2(0, 1), size0);
     }
     memoryBarrierShared();
     barrier();

@@ -62,7 +62,8 @@ inline bool holdsRegion(const DepthImage& d, int ox, int oy, int w, int h) {
 }
 
 // Level m of a z chain (or width_share's, every channel) from level m - 1 by the rotated grid
-// (Table 1), level by level: the oracle the GPU's walk up the chain (SAO_CHAIN_FROM_BLOCK in effect/sao.glsl) must equal.
+// (Table 1), level by level: the oracle the GPU's walk up the chain (SAO_CHAIN_FROM_BLOCK in
+// effect/sao.glsl) must equal.
 template <typename T>
 void rotatedGridLevel(const Image<T>& prev, Image<T>& next, unsigned threads) {
   parallelFor(next.h, threads, [&](int y) {

@@ -4,6 +4,7 @@
 
 #include "sao/constants.h"
 #include "sao/cpu/reference.h"
+#include "sao/plan.h"
 #include "sao/presets.h"
 #include "tap_trace.h"
 
@@ -69,12 +70,9 @@ Status TrafficScene::replay(const Settings& settings, const TrafficVariant& vari
   // surface 2: width_share (rg16f, csz's levels; read with thickness_model 1).
   std::vector<SurfaceShape> surfaces(3);
   surfaces[0].texelBytes = variant.zTexelBytes;
-  surfaces[2].texelBytes = 4;
-  for (const auto& l : impl_->csz) {
-    surfaces[0].levels.push_back({std::uint32_t(l.w), std::uint32_t(l.h)});
-    surfaces[2].levels.push_back({std::uint32_t(l.w), std::uint32_t(l.h)});
-  }
+  for (const auto& l : impl_->csz) surfaces[0].levels.push_back({std::uint32_t(l.w), std::uint32_t(l.h)});
   surfaces[1] = {8, {{impl_->depthExtent.width, impl_->depthExtent.height}}};
+  surfaces[2] = {bytesPerTexel(gen::kResources[std::size_t(gen::ResourceId::width_share)].format), surfaces[0].levels};
   static_assert(int(cpu::trace::Surface::Csz) == 0 && int(cpu::trace::Surface::Normals) == 1 &&
                 int(cpu::trace::Surface::WidthShare) == 2);
 
