@@ -44,7 +44,7 @@
 #pragma sao setting float thickness           default=0.3   range=[0.001,100]      unit=m   "Visibility estimator: the thickness T of every stored surface; a ray is blocked where it passes through the slab from the surface (plus the tolerance) to T behind it"
 #pragma sao setting float depth_tolerance     default=0.003 range=[0,0.1]                   "Visibility estimator: relative depth tolerance; the slab behind a stored sample starts at its depth times (1 + tolerance)"
 #pragma sao setting int   slices              default=2     range=[1,8]                     "Visibility estimator: slices (screen directions, both sides each) per pixel; samples/(2*slices) steps on each side"
-#pragma sao setting int   thickness_model     default=0     values=[0,1]                    "Visibility estimator: 0 constant, every stored surface is thickness deep; 1 width, a surface is as deep as SAO_WIDTH_SCALE times its on-screen width along the slice (SAO_WIDTH_PROBES probes each side of a tap at its MIP level), from SAO_WIDTH_MIN_M up to thickness: thin objects (grass, rods) stop few rays, wide ones many (docs/effect-math.md 5.9)"
+#pragma sao setting int   thickness_model     default=0     values=[0,1]                    "Visibility estimator: 0 constant, every stored surface is thickness deep; 1 width, a surface is as deep as SAO_WIDTH_SCALE times its on-screen width along the slice (its run of continuous depth along x and y, measured by the width pass up to SAO_WIDTH_REACH texels each side), from SAO_WIDTH_MIN_M up to thickness: thin objects (grass, rods) stop few rays, wide ones many (docs/effect-math.md 5.9)"
 // Derived settings: bools plan() computes from the settings, for the passes' skip_when= rules.
 #pragma sao derived direct_output when=blur_radius==0&&resolution_divisor==1&&temporal==false "Nothing follows the AO (no blur, full resolution, no history to keep): ao_sample_output writes the output itself, and neither ao_raw nor a copy pass is planned"
 #pragma sao derived copy_to_output when=resolution_divisor==1&&direct_output==false "Full resolution, and ao_sample wrote (A, key) (for the blur, or for the temporal history): the pass output copies A into the output"
@@ -343,10 +343,11 @@ void sao_linear_z2_main()
 // of width_share instead of a walk of its own; the chain above level 0 as csz's (the rotated grid),
 // by the walk up of SAO_CHAIN_FROM_BLOCK. A work group's 16x16 texels find their runs in shared
 // memory: the 16 rows with SAO_WIDTH_REACH texels of halo left and right, the 16 columns with as
-// many above and below, each invocation fetching 12 consecutive texels of a row and of a column
-// (and the next one) and or-ing the links between them into the band's 32-bit words (bit i: the
-// walk from band texel i to its neighbour continues); then each run's end is a bit scan (findLSB /
-// findMSB over 16 links), the walk of the CPU reference's runShare step for step. Without
+// many above and below, fetched by textureGather (six 2x2 quads an invocation); each invocation
+// then takes 12 consecutive texels of a row and of a column (and the next one) and ors the links
+// between them into the band's 32-bit words (bit i: the walk from band texel i to its neighbour
+// continues); then each run's end is a bit scan (findLSB / findMSB over 16 links), the walk of the
+// CPU reference's runShare step for step. Without
 // the variant it writes nothing and the plan leaves it out.
 // ---------------------------------------------------------------------------------------------
 #pragma sao pass width entry=sao_width_main local=8x8 texels=2x2 reads=csz writes=width_share variants=THICKNESS_FROM_WIDTH levels=0..7 "thickness_model 1 only: each csz texel's share of thickness along x and y from its run of continuous depth (up to SAO_WIDTH_REACH texels each side, found by bit scans in shared memory), into width_share level 0 and its chain (csz's rotated grid)"
@@ -375,11 +376,38 @@ bool sao_width_link(float z_from, float z_next, bool next_inside)
     return !next_inside || (!sao_is_sky(z_next) && dz <= SAO_WIDTH_JUMP * abs(z_next));
 }
 
+// Quad q (0 <= q < 192) of the tile's bands of kind `kind`: the rows' 48x16 texels as 24x8 2x2
+// quads, the columns' 16x48 as 8x24, each quad's four z (clamped to the image as clamp-to-edge
+// does) into its two bands' texels. One gather fetches what four texelFetches did: llvmpipe pays
+// per fetch call, a GPU per instruction.
+void sao_width_gather(int kind, int q, ivec2 origin, ivec2 size0)
+{
+    // The quad's lower-left texel, in band coordinates (i along the band, b across it).
+    int qi = 2 * (kind == 0 ? q % 24 : q / 8);
+    int qb = 2 * (kind == 0 ? q / 24 : q % 8);
+    ivec2 corner = kind == 0 ? origin + ivec2(qi - 16, qb) : origin + ivec2(qb, qi - 16);
+    // The gather's footprint is the 2x2 texels around its coordinate: the shared corner of the four.
+    vec4 z4 = textureGather(in_csz, vec2(corner + 1) / vec2(size0), 0);
+    // textureGather's order: x (0, 1), y (1, 1), z (1, 0), w (0, 0) from the lower-left texel.
+    float z00 = z4.w, z10 = z4.z, z01 = z4.x, z11 = z4.y;
+    if (kind == 0) {  // bands qb, qb + 1 (rows), texels qi, qi + 1 (x)
+        sao_band_z[sao_band_base(0, qb) + qi] = z00;
+        sao_band_z[sao_band_base(0, qb) + qi + 1] = z10;
+        sao_band_z[sao_band_base(0, qb + 1) + qi] = z01;
+        sao_band_z[sao_band_base(0, qb + 1) + qi + 1] = z11;
+    } else {  // bands qb, qb + 1 (columns), texels qi, qi + 1 (y)
+        sao_band_z[sao_band_base(1, qb) + qi] = z00;
+        sao_band_z[sao_band_base(1, qb) + qi + 1] = z01;
+        sao_band_z[sao_band_base(1, qb + 1) + qi] = z10;
+        sao_band_z[sao_band_base(1, qb + 1) + qi + 1] = z11;
+    }
+}
+
 // Segment seg (texels 12 seg .. 12 seg + 11) of band `band` of kind `kind` (texel 0 at `first`
-// in the image, along `step`): their z (clamped fetches) into shared memory, and the links between
-// them and to the next segment's first texel, both directions, or'ed into the band's words (zeroed
+// in the image, along `step`): the links between its texels and to the next segment's first
+// texel, both directions, from the band's z in shared memory, or'ed into the band's words (zeroed
 // before).
-void sao_width_segment(int kind, int band, int seg, ivec2 first, ivec2 step, ivec2 size0)
+void sao_width_segment(int kind, int band, int seg, ivec2 first, ivec2 size0)
 {
     int base = sao_band_base(kind, band);
     int up = sao_band_words(kind, 0, band);
@@ -387,16 +415,13 @@ void sao_width_segment(int kind, int band, int seg, ivec2 first, ivec2 step, ive
     int pos0 = (kind == 0) ? first.x : first.y;  // texel 0 along the band's axis
     int size = (kind == 0) ? size0.x : size0.y;
     int i = 12 * seg;
-    float zp = texelFetch(in_csz, clamp(first + i * step, ivec2(0), size0 - 1), 0).r;
-    sao_band_z[base + i] = zp;
+    float zp = sao_band_z[base + i];
     uint bits_up = 0u;  // links i .. i + 11 of this segment, bit k = link 12 seg + k
     uint bits_dn = 0u;
     int n = min(12, SAO_BAND - 1 - i);
     for (int k = 0; k < n; ++k) {
         int j = i + k + 1;
-        float zj = texelFetch(in_csz, clamp(first + j * step, ivec2(0), size0 - 1), 0).r;
-        if (k < 11)
-            sao_band_z[base + j] = zj;
+        float zj = sao_band_z[base + j];
         int pj = pos0 + j;
         bool l_up = sao_width_link(zp, zj, pj >= 0 && pj < size);
         bool l_dn = sao_width_link(zj, zp, pj - 1 >= 0 && pj - 1 < size);
@@ -464,18 +489,22 @@ void sao_width_main()
     ivec2 size0 = imageSize(out_width_share[0]);
     ivec2 origin = 16 * ivec2(gl_WorkGroupID.xy);
     int li = int(gl_LocalInvocationIndex);
-    // Invocation li: segment li & 3 of band li >> 2 of each kind (13 fetches a kind: its 12 texels
-    // and the next one, for the link), its links or'ed into the band's words, zeroed first (two
-    // words an invocation).
+    // Invocation li: quads li, li + 64 and li + 128 of each kind's bands (six gathers), and zeroes
+    // two words of links; then segment li & 3 of band li >> 2 of each kind, its links or'ed into
+    // the band's words.
     sao_band_links[2 * li] = 0u;
     sao_band_links[2 * li + 1] = 0u;
+    for (int k = 0; k < 3; ++k) {
+        sao_width_gather(0, li + 64 * k, origin, size0);
+        sao_width_gather(1, li + 64 * k, origin, size0);
+    }
     memoryBarrierShared();
     barrier();
     {
         int band = li >> 2;
         int seg = li & 3;
-        sao_width_segment(0, band, seg, origin + ivec2(-16, band), ivec2(1, 0), size0);
-        sao_width_segment(1, band, seg, origin + ivec2(band, -16), ivec2(0, 1), size0);
+        sao_width_segment(0, band, seg, origin + ivec2(-16, band), size0);
+        sao_width_segment(1, band, seg, origin + ivec2(band, -16), size0);
     }
     memoryBarrierShared();
     barrier();
