@@ -135,8 +135,9 @@ int runTune(const TuneOptions& o) {
         Screen& screen = screenReference(p, c.settings, c.extra, ScreenOptions{});
         if (freshScreen) {
           referenceSeconds += screen.seconds;
-          std::fprintf(stderr, "\r\033[Ksao-bench: reference (d) for %s (%s, thickness %g m): %.1f s\n", scene.c_str(),
-                       inputsName(c.extra), double(c.settings.thickness), screen.seconds);
+          std::fprintf(stderr, "\r\033[Ksao-bench: reference (d) for %s (%s, thickness %s%g m): %.1f s\n", scene.c_str(),
+                       inputsName(c.extra), c.settings.thickness_model == 1 ? "from width up to " : "",
+                       double(c.settings.thickness), screen.seconds);
         }
         refs.converged = &screen.ao;
       }

@@ -10,7 +10,7 @@ namespace sao::bench {
 const std::vector<std::string> kTunedSettings = {"samples",           "blur_radius",        "blur_stride",
                                                  "use_z_hierarchy",   "mip_switch_log2",    "resolution_divisor",
                                                  "blur_edge_sharpness", "estimator",        "slices",
-                                                 "thickness"};
+                                                 "thickness",         "thickness_model"};
 
 std::vector<Candidate> tuneGrid(bool quick) {
   struct Blur {
@@ -40,20 +40,28 @@ std::vector<Candidate> tuneGrid(bool quick) {
         }
   }
   // The visibility estimator (estimator 1, docs/effect-math.md 5.9): its own knobs (slices, the
-  // thickness) over a coarser grid of the shared ones (q' = 16 px; the blurs that hide its
-  // per-pixel rotation), 252 points (quick: 2).
+  // thickness: constant 0.1 m, or from width with a 0.3 m cap) over a coarser grid of the shared
+  // ones (q' = 16 px; the blurs that hide its per-pixel rotation), 252 points (quick: 2, from
+  // width). A constant 0.3 m walls in thin objects (BENCHMARKS: thin's (d) 0.30 from (a)), and the
+  // width model with a 1 m cap darkens thin at more taps; the two kept are each best somewhere.
   const std::vector<Blur> visBlurs = quick ? std::vector<Blur>{{3, 2}} : std::vector<Blur>{{1, 1}, {2, 1}, {3, 2}};
   const std::vector<int> visSamples = quick ? std::vector<int>{16, 64} : std::vector<int>{8, 12, 16, 24, 32, 48, 64};
   const std::vector<int> visSlices = quick ? std::vector<int>{2} : std::vector<int>{2, 4};
-  const std::vector<float> thicknesses = quick ? std::vector<float>{0.3f} : std::vector<float>{0.1f, 0.3f};
+  struct Thickness {
+    int model;  // thickness_model
+    float cap;  // thickness
+  };
+  const std::vector<Thickness> thicknesses = quick ? std::vector<Thickness>{{1, 0.3f}}
+                                                   : std::vector<Thickness>{{0, 0.1f}, {1, 0.3f}};
   for (int d : quick ? std::vector<int>{1} : divisors)
-    for (float t : thicknesses)
+    for (const Thickness& t : thicknesses)
       for (int sl : visSlices)
         for (const Blur& b : visBlurs)
           for (int s : visSamples) {
             Candidate c{"grid", "", Settings{}, Extra::None};
             c.settings.estimator = 1;
-            c.settings.thickness = t;
+            c.settings.thickness = t.cap;
+            c.settings.thickness_model = t.model;
             c.settings.slices = sl;
             c.settings.resolution_divisor = d;
             c.settings.use_z_hierarchy = true;
@@ -103,6 +111,7 @@ std::string tunedSettingValue(const Settings& s, const std::string& name) {
   if (name == "resolution_divisor") return std::to_string(s.resolution_divisor);
   if (name == "estimator") return std::to_string(s.estimator);
   if (name == "slices") return std::to_string(s.slices);
+  if (name == "thickness_model") return std::to_string(s.thickness_model);
   if (name == "thickness") {
     std::snprintf(b, sizeof b, "%g", double(s.thickness));
     return b;
@@ -140,6 +149,7 @@ bool setTunedSetting(Settings& s, const std::string& name, const std::string& va
   else if (name == "resolution_divisor") s.resolution_divisor = i;
   else if (name == "estimator") s.estimator = i;
   else if (name == "slices") s.slices = i;
+  else if (name == "thickness_model") s.thickness_model = i;
   else return false;
   return true;
 }
@@ -148,7 +158,8 @@ std::string settingsWords(const Settings& s) {
   std::string out;
   for (const std::string& name : kTunedSettings) {
     if (name == "mip_switch_log2" && !s.use_z_hierarchy) continue;  // unused without the hierarchy
-    if ((name == "slices" || name == "thickness") && s.estimator == 0) continue;  // inert (effect/sao.glsl)
+    if ((name == "slices" || name == "thickness" || name == "thickness_model") && s.estimator == 0)
+      continue;  // inert (effect/sao.glsl)
     if (name == "estimator" && s.estimator == 0) continue;  // the default: preset lines as before
     if (name == "blur_edge_sharpness" && s.blur_edge_sharpness == Settings{}.blur_edge_sharpness) continue;
     out += (out.empty() ? "" : " ") + name + "=" + tunedSettingValue(s, name);
@@ -159,8 +170,12 @@ std::string settingsWords(const Settings& s) {
 std::string describeSettings(const Settings& s) {
   std::string d = std::to_string(s.samples) + " taps, 2x2";
   if (s.estimator == 1) {
-    char t[64];
-    std::snprintf(t, sizeof t, "visibility (%d slices, thickness %g m), ", s.slices, double(s.thickness));
+    char t[96];
+    if (s.thickness_model == 1)
+      std::snprintf(t, sizeof t, "visibility (%d slices, thickness from width up to %g m), ", s.slices,
+                    double(s.thickness));
+    else
+      std::snprintf(t, sizeof t, "visibility (%d slices, thickness %g m), ", s.slices, double(s.thickness));
     d = t + d;
   }
   if (s.blur_radius == 0) d += ", no blur";

@@ -34,7 +34,7 @@ awk '/^#pragma sao preset/ { print $4 }' "$out/t/tune_presets.txt" | awk '
   BEGIN { rank["low"] = 1; rank["medium"] = 2; rank["high"] = 3; rank["ultra"] = 4; rank["reference"] = 5 }
   { if (!($1 in rank) || rank[$1] <= last) bad = 1; last = rank[$1] } END { exit bad }' ||
   die "preset names: $(cat "$out/t/tune_presets.txt")"
-grep '^#pragma sao preset' "$out/t/tune_presets.txt" | grep -qv ' samples=[0-9]* blur_radius=[0-9] blur_stride=[0-9] use_z_hierarchy=\(true mip_switch_log2=[0-9]\|false\) resolution_divisor=[124]\( estimator=1 slices=[0-9] thickness=[0-9.]*\)\? "[^"]*"$' &&
+grep '^#pragma sao preset' "$out/t/tune_presets.txt" | grep -qv ' samples=[0-9]* blur_radius=[0-9] blur_stride=[0-9] use_z_hierarchy=\(true mip_switch_log2=[0-9]\|false\) resolution_divisor=[124]\( estimator=1 slices=[0-9] thickness=[0-9.]* thickness_model=[01]\)\? "[^"]*"$' &&
   die "a preset line is not in the effect's format: $(grep '^#pragma' "$out/t/tune_presets.txt")"
 
 # The chain, cheapest first, from tune_front.csv: on each scene every step is slower and has a
