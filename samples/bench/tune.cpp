@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -14,6 +15,7 @@
 #include "tune_grid.h"
 #include "tune_report.h"
 #include "tune_select.h"
+#include "visibility_converged.h"
 #include "sao/prepass/prepass.h"
 
 namespace sao::bench {
@@ -22,6 +24,9 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr std::size_t kAnchorEvery = 10;  // grid points between two measurements of medium
+// Frames averaged into the visibility estimator's own converged value (visibility_converged.h):
+// 32 frames of 2 slices, 64 slice directions a pixel; --quick 4.
+std::uint32_t kVisibilityFrames(bool quick) { return quick ? 4 : 32; }
 
 std::string duration(double seconds) {
   char b[32];
@@ -98,6 +103,7 @@ int runTune(const TuneOptions& o) {
     TuneRow r;
     r.kind = c.kind, r.name = c.name, r.backend = backendName, r.depth = o.depthSource, r.inputs = inputsName(c.extra);
     r.size = o.size, r.convergedTaps = o.convergedTaps, r.objectiveRays = o.objectiveRays, r.settings = c.settings;
+    r.visibilityFrames = c.settings.estimator == 1 ? kVisibilityFrames(o.quick) : 0;
     r.runs = o.runs;
     return r;
   };
@@ -112,6 +118,9 @@ int runTune(const TuneOptions& o) {
   const Settings appearance{};  // (c) depends on radius, intensity, bias, epsilon, contrast only: the defaults
   const auto start = std::chrono::steady_clock::now();
   double referenceSeconds = 0;  // time spent on (c), left out of the eta
+  // The visibility estimator's own converged values, per scene, inputs and settings of the run.
+  std::map<std::string, FloatImage> visibilityConverged;
+  const std::uint32_t visibilityFrames = kVisibilityFrames(o.quick);
   for (std::size_t k = 0; k < todo.size(); ++k) {
     const Candidate& c = *todo[k];
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - referenceSeconds;
@@ -130,16 +139,22 @@ int runTune(const TuneOptions& o) {
       }
       References refs;
       refs.converged = &converged.ao, refs.mask = &p.mask, refs.silhouette = &p.silhouette;
-      if (c.settings.estimator == 1) {  // its own converged value: reference (d) with its thickness
-        const bool freshScreen = !p.screen.count(screenKey(c.settings, c.extra, std::nullopt));
-        Screen& screen = screenReference(p, c.settings, c.extra, ScreenOptions{});
-        if (freshScreen) {
-          referenceSeconds += screen.seconds;
-          std::fprintf(stderr, "\r\033[Ksao-bench: reference (d) for %s (%s, thickness %s%g m): %.1f s\n", scene.c_str(),
-                       inputsName(c.extra), c.settings.thickness_model == 1 ? "from width up to " : "",
-                       double(c.settings.thickness), screen.seconds);
+      if (c.settings.estimator == 1) {  // its own converged value (visibility_converged.h), not (d)
+        const std::string key = scene + "|" + inputsName(c.extra) + "|" + settingsWords(convergedVisibilitySettings(c.settings));
+        auto it = visibilityConverged.find(key);
+        if (it == visibilityConverged.end()) {
+          const auto visStart = std::chrono::steady_clock::now();
+          FloatImage ao;
+          if (Status st = convergedVisibility(*backend, c.settings, p.camera, runInputs(p, c.extra), visibilityFrames, ao); !st)
+            fail("--tune: the visibility estimator's converged value on " + scene + ": " + st.message);
+          const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - visStart).count();
+          referenceSeconds += seconds;
+          std::fprintf(stderr, "\r\033[Ksao-bench: converged visibility for %s (%s, thickness %s%g m, %u frames): %.1f s\n",
+                       scene.c_str(), inputsName(c.extra), c.settings.thickness_model == 1 ? "from width up to " : "",
+                       double(c.settings.thickness), visibilityFrames, seconds);
+          it = visibilityConverged.emplace(key, std::move(ao)).first;
         }
-        refs.converged = &screen.ao;
+        refs.converged = &it->second;
       }
       if (o.objectiveRays) {
         const bool freshAo = !p.references.count(c.settings.radius);

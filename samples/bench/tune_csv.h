@@ -19,7 +19,8 @@ namespace sao::bench {
 struct SceneFigures {
   double ms = 0;  // median total time of the runs
   double rmse = 0;  // vs the objective: (c), or (a) when the row's objectiveRays > 0
-  double blotch = 0, highFrequency = 0, silhouette = 0;  // vs (c); silhouette NaN: no band
+  // vs (c), or the visibility estimator's own converged value; silhouette NaN: no band
+  double blotch = 0, highFrequency = 0, silhouette = 0;
 };
 
 struct TuneRow {
@@ -27,6 +28,9 @@ struct TuneRow {
   Extent size{0, 0};
   std::uint32_t convergedTaps = 0;
   std::uint32_t objectiveRays = 0;  // 0: rmse is vs (c); else vs (a) with this many rays (column a_rays)
+  // Estimator 1: the frames of its own converged value (visibility_converged.h), the reference of
+  // its blotch, high-frequency and silhouette figures and of its rmse vs (c); 0 for estimator 0.
+  std::uint32_t visibilityFrames = 0;
   Settings settings;
   std::uint32_t runs = 0;
   std::vector<SceneFigures> scenes;  // in the header's scene order

@@ -40,10 +40,10 @@ std::vector<Candidate> tuneGrid(bool quick) {
         }
   }
   // The visibility estimator (estimator 1, docs/effect-math.md 5.9): its own knobs (slices, the
-  // thickness: constant 0.1 m, or from width with a 0.3 m cap) over a coarser grid of the shared
-  // ones (q' = 16 px; the blurs that hide its per-pixel rotation), 252 points (quick: 2, from
-  // width). A constant 0.3 m walls in thin objects (BENCHMARKS: thin's (d) 0.30 from (a)), and the
-  // width model with a 1 m cap darkens thin at more taps; the two kept are each best somewhere.
+  // thickness: constant 0.1 m, or from width with a 0.3 m or 1 m cap) over a coarser grid of the
+  // shared ones (q' = 16 px; the blurs that hide its per-pixel rotation), 378 points (quick: 2,
+  // from width up to 0.3 m). A constant 0.3 m walls in thin objects (BENCHMARKS: thin's (d) 0.30
+  // from (a)); from width, the 1 m cap suits sphere-plane, 0.3 m sponza-like.
   const std::vector<Blur> visBlurs = quick ? std::vector<Blur>{{3, 2}} : std::vector<Blur>{{1, 1}, {2, 1}, {3, 2}};
   const std::vector<int> visSamples = quick ? std::vector<int>{16, 64} : std::vector<int>{8, 12, 16, 24, 32, 48, 64};
   const std::vector<int> visSlices = quick ? std::vector<int>{2} : std::vector<int>{2, 4};
@@ -52,7 +52,7 @@ std::vector<Candidate> tuneGrid(bool quick) {
     float cap;  // thickness
   };
   const std::vector<Thickness> thicknesses = quick ? std::vector<Thickness>{{1, 0.3f}}
-                                                   : std::vector<Thickness>{{0, 0.1f}, {1, 0.3f}};
+                                                   : std::vector<Thickness>{{0, 0.1f}, {1, 0.3f}, {1, 1.0f}};
   for (int d : quick ? std::vector<int>{1} : divisors)
     for (const Thickness& t : thicknesses)
       for (int sl : visSlices)

@@ -28,11 +28,11 @@ struct Candidate {
 // pruned from 840 points) lacked the light blurs (1,1) and (2,1) that the accurate end needs.
 // `quick`: samples {4, 16, 64} x blur {(0,1), (3,2)} x q' {8, 16} x divisor {1, 2}.
 // Then the visibility estimator (estimator 1): divisor {1, 2, 4} x thickness {constant 0.1 m, from
-// width up to 0.3 m (thickness_model 1)} x slices {2, 4} x blur {(1,1), (2,1), (3,2)} x samples {8,
-// 12, 16, 24, 32, 48, 64} at q' = 16 px, 252 points (quick: samples {16, 64} at divisor 1, from
-// width up to 0.3 m, 2 slices, blur (3,2)). Its blotch, high-frequency and silhouette figures (and
-// its error with --objective c) are against its own converged value, reference (d) with its
-// thickness model, not (c).
+// width (thickness_model 1) up to 0.3 m, up to 1 m} x slices {2, 4} x blur {(1,1), (2,1), (3,2)} x
+// samples {8, 12, 16, 24, 32, 48, 64} at q' = 16 px, 378 points (quick: samples {16, 64} at divisor
+// 1, from width up to 0.3 m, 2 slices, blur (3,2)). Its blotch, high-frequency and silhouette
+// figures (and its error with --objective c) are against its own converged value
+// (visibility_converged.h), not (c).
 std::vector<Candidate> tuneGrid(bool quick);
 
 // The time unit and the blotch baseline, fixed: the medium preset and the settings' defaults as they
