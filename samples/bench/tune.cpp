@@ -25,8 +25,8 @@ namespace fs = std::filesystem;
 
 constexpr std::size_t kAnchorEvery = 10;  // grid points between two measurements of medium
 // Frames averaged into the visibility estimator's own converged value (visibility_converged.h):
-// 32 frames of 2 slices, 64 slice directions a pixel; --quick 4.
-std::uint32_t kVisibilityFrames(bool quick) { return quick ? 4 : 32; }
+// 32 frames of 2 slices, 64 slice directions a pixel.
+constexpr std::uint32_t kVisibilityFrames = 32, kVisibilityFramesQuick = 4;
 
 std::string duration(double seconds) {
   char b[32];
@@ -99,11 +99,12 @@ int runTune(const TuneOptions& o) {
     if (++gridCount % kAnchorEvery == 0) anchors.push_back(candidates.size()), candidates.push_back(timeAnchor(candidates.size()));
   }
   if (gridCount % kAnchorEvery) anchors.push_back(candidates.size()), candidates.push_back(timeAnchor(candidates.size()));
+  const std::uint32_t visibilityFrames = o.quick ? kVisibilityFramesQuick : kVisibilityFrames;
   auto templateRow = [&](const Candidate& c) {
     TuneRow r;
     r.kind = c.kind, r.name = c.name, r.backend = backendName, r.depth = o.depthSource, r.inputs = inputsName(c.extra);
     r.size = o.size, r.convergedTaps = o.convergedTaps, r.objectiveRays = o.objectiveRays, r.settings = c.settings;
-    r.visibilityFrames = c.settings.estimator == 1 ? kVisibilityFrames(o.quick) : 0;
+    r.visibilityFrames = c.settings.estimator == 1 ? visibilityFrames : 0;
     r.runs = o.runs;
     return r;
   };
@@ -120,7 +121,6 @@ int runTune(const TuneOptions& o) {
   double referenceSeconds = 0;  // time spent on (c), left out of the eta
   // The visibility estimator's own converged values, per scene, inputs and settings of the run.
   std::map<std::string, FloatImage> visibilityConverged;
-  const std::uint32_t visibilityFrames = kVisibilityFrames(o.quick);
   for (std::size_t k = 0; k < todo.size(); ++k) {
     const Candidate& c = *todo[k];
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - referenceSeconds;
@@ -149,9 +149,9 @@ int runTune(const TuneOptions& o) {
             fail("--tune: the visibility estimator's converged value on " + scene + ": " + st.message);
           const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - visStart).count();
           referenceSeconds += seconds;
-          std::fprintf(stderr, "\r\033[Ksao-bench: converged visibility for %s (%s, thickness %s%g m, %u frames): %.1f s\n",
-                       scene.c_str(), inputsName(c.extra), c.settings.thickness_model == 1 ? "from width up to " : "",
-                       double(c.settings.thickness), visibilityFrames, seconds);
+          std::fprintf(stderr, "\r\033[Ksao-bench: converged visibility for %s (%s, %s, %u frames): %.1f s\n",
+                       scene.c_str(), inputsName(c.extra), describeThickness(c.settings).c_str(), visibilityFrames,
+                       seconds);
           it = visibilityConverged.emplace(key, std::move(ao)).first;
         }
         refs.converged = &it->second;

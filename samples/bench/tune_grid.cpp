@@ -167,16 +167,16 @@ std::string settingsWords(const Settings& s) {
   return out;
 }
 
+std::string describeThickness(const Settings& s) {
+  char t[64];
+  std::snprintf(t, sizeof t, "thickness %s%g m", s.thickness_model == 1 ? "from width up to " : "", double(s.thickness));
+  return t;
+}
+
 std::string describeSettings(const Settings& s) {
   std::string d = std::to_string(s.samples) + " taps, 2x2";
   if (s.estimator == 1) {
-    char t[96];
-    if (s.thickness_model == 1)
-      std::snprintf(t, sizeof t, "visibility (%d slices, thickness from width up to %g m), ", s.slices,
-                    double(s.thickness));
-    else
-      std::snprintf(t, sizeof t, "visibility (%d slices, thickness %g m), ", s.slices, double(s.thickness));
-    d = t + d;
+    d = "visibility (" + std::to_string(s.slices) + " slices, " + describeThickness(s) + "), " + d;
   }
   if (s.blur_radius == 0) d += ", no blur";
   else d += " + " + std::to_string(2 * s.blur_radius + 1) + "-tap blur (stride " + std::to_string(s.blur_stride) + ")";

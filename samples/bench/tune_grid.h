@@ -62,6 +62,9 @@ extern const std::vector<std::string> kTunedSettings;
 bool setTunedSetting(Settings& s, const std::string& name, const std::string& value);
 std::string tunedSettingValue(const Settings& s, const std::string& name);
 
+// The visibility estimator's thickness: "thickness 0.1 m", "thickness from width up to 0.3 m".
+std::string describeThickness(const Settings& s);
+
 // A preset's summary: "11 taps, 2x2 + 7-tap blur (stride 2), z hierarchy (q' = 8 px), full resolution"
 // ("2x2, no blur" without the blur).
 std::string describeSettings(const Settings& s);
