@@ -25,7 +25,7 @@ namespace fs = std::filesystem;
 
 constexpr std::size_t kAnchorEvery = 10;  // grid points between two measurements of medium
 // Frames averaged into the visibility estimator's own converged value (visibility_converged.h):
-// 32 frames of 2 slices, 64 slice directions a pixel.
+// 32 frames of the candidate's 2 or 4 slices, 64 or 128 slice directions a pixel.
 constexpr std::uint32_t kVisibilityFrames = 32, kVisibilityFramesQuick = 4;
 
 std::string duration(double seconds) {

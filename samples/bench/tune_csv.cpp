@@ -15,7 +15,7 @@ namespace {
 // With the objective (a), the header gains a_rays and names the error column rmse_vs_a: a file of
 // one objective is refused by a tune of the other.
 std::string header(const std::vector<std::string>& scenes, std::uint32_t objectiveRays) {
-  std::string h = "kind,name,backend,depth,inputs,size,converged_taps,visibility_frames";
+  std::string h = "kind,name,backend,depth,inputs,size,converged_taps,own_converged_frames";
   if (objectiveRays) h += ",a_rays";
   for (const std::string& s : kTunedSettings) h += "," + s;
   h += ",runs";
@@ -122,7 +122,7 @@ Status TuneCsv::open(const std::string& path, const std::vector<std::string>& sc
         if (std::sscanf(size.c_str(), "%ux%u%c", &w, &h, &tail) != 2) return bad("bad size '" + size + "'");
         r.size = {w, h};
         if (!parseWhole(f[i++], r.convergedTaps)) return bad("bad converged_taps");
-        if (!parseWhole(f[i++], r.visibilityFrames)) return bad("bad visibility_frames");
+        if (!parseWhole(f[i++], r.visibilityFrames)) return bad("bad own_converged_frames");
         if (objectiveRays && (!parseWhole(f[i++], r.objectiveRays) || r.objectiveRays == 0)) return bad("bad a_rays");
         for (const std::string& s : kTunedSettings)
           if (!setTunedSetting(r.settings, s, f[i++])) return bad("bad " + s + " '" + f[i - 1] + "'");

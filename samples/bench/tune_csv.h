@@ -28,8 +28,9 @@ struct TuneRow {
   Extent size{0, 0};
   std::uint32_t convergedTaps = 0;
   std::uint32_t objectiveRays = 0;  // 0: rmse is vs (c); else vs (a) with this many rays (column a_rays)
-  // Estimator 1: the frames of its own converged value (visibility_converged.h), the reference of
-  // its blotch, high-frequency and silhouette figures and of its rmse vs (c); 0 for estimator 0.
+  // Estimator 1: the frames of its own converged value (visibility_converged.h, its samples and
+  // slices since 2026-12-05's third tune; column own_converged_frames), the reference of its
+  // blotch, high-frequency and silhouette figures and of its rmse vs (c); 0 for estimator 0.
   std::uint32_t visibilityFrames = 0;
   Settings settings;
   std::uint32_t runs = 0;

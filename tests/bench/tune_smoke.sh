@@ -79,13 +79,13 @@ grep -q 'tune.csv was written by another tune (its header differs' "$out/stderr"
 # the paper's estimator's 0.
 grep -q '^grid,,cpu,[a-z]*,depth,160x90,4096,4,.*,1,2,0.3,1,' "$out/t/tune.csv" ||
   die "no visibility-estimator row with 4 frames of its converged value: $(grep -m1 ',1,2,0.3,' "$out/t/tune.csv")"
-grep -q '^grid,,cpu,[a-z]*,depth,160x90,4096,0,' "$out/t/tune.csv" || die "no paper's-estimator row with visibility_frames 0"
+grep -q '^grid,,cpu,[a-z]*,depth,160x90,4096,0,' "$out/t/tune.csv" || die "no paper's-estimator row with own_converged_frames 0"
 
 # --objective a: the error vs reference (a) (16 rays with --quick), its own header; a tune.csv of
 # the other objective is refused rather than mixed; the options it needs are checked.
 "$bench" --tune --quick --backends cpu --objective a --out "$out/a" >"$out/stdout" 2>"$out/stderr" ||
   die "--objective a failed: $(tail -3 "$out/stderr")"
-head -1 "$out/a/tune.csv" | grep -q ',converged_taps,visibility_frames,a_rays,.*,crease_rmse_vs_a,.*,sphere-plane_rmse_vs_a,' ||
+head -1 "$out/a/tune.csv" | grep -q ',converged_taps,own_converged_frames,a_rays,.*,crease_rmse_vs_a,.*,sphere-plane_rmse_vs_a,' ||
   die "--objective a: tune.csv header: $(head -1 "$out/a/tune.csv")"
 grep -q '^unit,untuned-medium,cpu,[a-z]*,depth,160x90,4096,0,16,' "$out/a/tune.csv" || die "--objective a: no a_rays 16 in the rows"
 grep -q 'the error vs reference (a) with 16 rays' "$out/stdout" || die "--objective a: not said: $(head -3 "$out/stdout")"
