@@ -349,6 +349,8 @@ std::vector<std::pair<std::string, std::string>> notes(const std::string& depthS
                                   "blur passes are SAO's."},
       {"radius: visibility (z hierarchy)", "the visibility estimator (estimator=1, docs/effect-math.md 5.9) with the z "
                                            "MIP hierarchy, normals rebuilt from depth: its cost against the radius."},
+      {"radius: visibility from width (z hierarchy)", "the same with thickness_model=1 (thickness from width): the width pass "
+                                                  "and the tap's width_share fetch against the radius."},
       {"two_layer", std::string("medium settings with and without TWO_LAYER; depth2 is the nearest surface at least ") +
                         separation +
                         " m behind the first layer in camera-space z, D32F like depth: with the raster depth source "
@@ -560,17 +562,20 @@ int main(int argc, char** argv) {
       bool hierarchy;
       Extra extra;
       int estimator;
+      int thicknessModel;
     };
-    const Curve curves[] = {{"SAO (z hierarchy)", true, Extra::None, 0},
-                            {"SAO (no hierarchy)", false, Extra::None, 0},
-                            {"AlchemyAO-style", false, Extra::Normals, 0},
-                            {"visibility (z hierarchy)", true, Extra::None, 1}};
+    const Curve curves[] = {{"SAO (z hierarchy)", true, Extra::None, 0, 0},
+                            {"SAO (no hierarchy)", false, Extra::None, 0, 0},
+                            {"AlchemyAO-style", false, Extra::Normals, 0, 0},
+                            {"visibility (z hierarchy)", true, Extra::None, 1, 0},
+                            {"visibility from width (z hierarchy)", true, Extra::None, 1, 1}};
     for (double r : o.quick ? std::vector<double>{0.1, 1.5} : std::vector<double>{0.1, 0.25, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0})
       for (const Curve& c : curves) {
         Settings t = base;
         t.radius = float(r);
         t.use_z_hierarchy = c.hierarchy;
         t.estimator = c.estimator;
+        t.thickness_model = c.thicknessModel;
         run("radius", mainScene, first, "medium", c.label, t, radiusSize, false, c.extra);
       }
   }
