@@ -107,6 +107,7 @@
 #pragma sao constant float SAO_WIDTH_JUMP=0.03 "thickness_model 1: neighbouring texels whose z differ by more than this times z per level-0 texel are a depth discontinuity (an edge of the run)"
 #pragma sao constant float SAO_WIDTH_MIN_M=0.02 "thickness_model 1: the least thickness, metres (uploaded in view units as thickness_min)"
 #pragma sao constant int  SAO_OUTPUT_BLEND_MULTIPLY=1 "output_blend: the output's selected channels are multiplied by A, the apply step of an engine's colour or occlusion target (sao::OutputBlend::Multiply)"
+#pragma sao constant int  SAO_BENT_BISECTIONS=16 "Bent normal of the visibility estimator: halvings of a slice's hemisphere [lo, hi] that find the angle of a visible run's end from its slice position (G inverted; pi / 2^16 = 5e-5 rad)"
 
 // ---------------------------------------------------------------------------------------------
 // Variants
