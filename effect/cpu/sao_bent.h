@@ -53,23 +53,31 @@ void arcMomentFromZero(const Slice<T>& sl, T theta, T& e, T& v) {
   v = sign * (sl.cosGamma * (T(1) - c3) / T(3) + sl.sinGamma * s3 / T(3));
 }
 
-// The first moment of one slice's unoccluded rays (the bits not set in `bits`), in camera space,
-// times the slice's L (so that slices add as the estimator's weights do); zero when every bit is set.
-template <typename T>
-Vec3<T> sliceBentMoment(const Slice<T>& sl, Vec3<T> V, std::uint32_t bits) {
-  T me = T(0), mv = T(0);
+// Calls run(b0, b1) for each run [b0, b1) of clear bits of `bits` (at most 16), lowest first.
+template <typename Run>
+void forEachVisibleRun(std::uint32_t bits, Run run) {
   std::uint32_t visible = ~bits;
   while (visible != 0u) {
     const int b0 = std::countr_zero(visible);
     const std::uint32_t above = ~visible & ~bitsBelow(b0);  // occluded bits from b0 up
     const int b1 = above != 0u ? std::countr_zero(above) : 32;
+    run(b0, b1);
+    visible &= ~bitsBelow(b1);
+  }
+}
+
+// The first moment of one slice's unoccluded rays (the bits not set in `bits`), in camera space,
+// times the slice's L (so that slices add as the estimator's weights do); zero when every bit is set.
+template <typename T>
+Vec3<T> sliceBentMoment(const Slice<T>& sl, Vec3<T> V, std::uint32_t bits) {
+  T me = T(0), mv = T(0);
+  forEachVisibleRun(bits, [&](int b0, int b1) {
     T e0, v0, e1, v1;
     arcMomentFromZero(sl, sliceAngle(sl, T(b0) * T(0.03125)), e0, v0);
     arcMomentFromZero(sl, sliceAngle(sl, T(b1) * T(0.03125)), e1, v1);
     me += e1 - e0;
     mv += v1 - v0;
-    visible &= ~bitsBelow(b1);
-  }
+  });
   const T L = sl.weight * sl.invRange;
   return {(sl.e.x * me + V.x * mv) * L, (sl.e.y * me + V.y * mv) * L, (sl.e.z * me + V.z * mv) * L};
 }

@@ -104,7 +104,7 @@ int runTune(const TuneOptions& o) {
     TuneRow r;
     r.kind = c.kind, r.name = c.name, r.backend = backendName, r.depth = o.depthSource, r.inputs = inputsName(c.extra);
     r.size = o.size, r.convergedTaps = o.convergedTaps, r.objectiveRays = o.objectiveRays, r.settings = c.settings;
-    r.visibilityFrames = c.settings.estimator == 1 ? visibilityFrames : 0;
+    r.ownConvergedFrames = c.settings.estimator == 1 ? visibilityFrames : 0;
     r.runs = o.runs;
     return r;
   };

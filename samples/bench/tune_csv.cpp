@@ -58,7 +58,7 @@ bool parseWhole(const std::string& text, std::uint32_t& out) {
 
 std::string TuneRow::key() const {
   std::string k = kind + "," + name + "," + backend + "," + depth + "," + inputs + "," + std::to_string(size.width) + "x" +
-                  std::to_string(size.height) + "," + std::to_string(convergedTaps) + "," + std::to_string(visibilityFrames);
+                  std::to_string(size.height) + "," + std::to_string(convergedTaps) + "," + std::to_string(ownConvergedFrames);
   if (objectiveRays) k += "," + std::to_string(objectiveRays);
   for (const std::string& s : kTunedSettings) k += "," + tunedSettingValue(settings, s);
   return k;
@@ -122,7 +122,7 @@ Status TuneCsv::open(const std::string& path, const std::vector<std::string>& sc
         if (std::sscanf(size.c_str(), "%ux%u%c", &w, &h, &tail) != 2) return bad("bad size '" + size + "'");
         r.size = {w, h};
         if (!parseWhole(f[i++], r.convergedTaps)) return bad("bad converged_taps");
-        if (!parseWhole(f[i++], r.visibilityFrames)) return bad("bad own_converged_frames");
+        if (!parseWhole(f[i++], r.ownConvergedFrames)) return bad("bad own_converged_frames");
         if (objectiveRays && (!parseWhole(f[i++], r.objectiveRays) || r.objectiveRays == 0)) return bad("bad a_rays");
         for (const std::string& s : kTunedSettings)
           if (!setTunedSetting(r.settings, s, f[i++])) return bad("bad " + s + " '" + f[i - 1] + "'");

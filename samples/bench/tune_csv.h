@@ -31,7 +31,7 @@ struct TuneRow {
   // Estimator 1: the frames of its own converged value (visibility_converged.h, its samples and
   // slices since 2026-12-05's third tune; column own_converged_frames), the reference of its
   // blotch, high-frequency and silhouette figures and of its rmse vs (c); 0 for estimator 0.
-  std::uint32_t visibilityFrames = 0;
+  std::uint32_t ownConvergedFrames = 0;
   Settings settings;
   std::uint32_t runs = 0;
   std::vector<SceneFigures> scenes;  // in the header's scene order

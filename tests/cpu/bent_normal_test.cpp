@@ -17,6 +17,8 @@ namespace {
 using cpu::detail::arcMomentFromZero;
 using cpu::detail::bentNormal;
 using cpu::detail::Block;
+using cpu::detail::dot;
+using cpu::detail::forEachVisibleRun;
 using cpu::detail::Slice;
 using cpu::detail::sliceAngle;
 using cpu::detail::sliceBentMoment;
@@ -27,10 +29,11 @@ using cpu::detail::Vec3;
 constexpr double kPi = 3.14159265358979323846;
 
 // A block whose slices' screen direction u is their e (V = +z, proj_info x = y = 1).
-Block<double> block() {
+template <typename T = double>
+Block<T> block() {
   gen::SaoParams p{};
   p.proj_info = {1.0f, 1.0f, 0.0f, 0.0f};
-  return Block<double>(p);
+  return Block<T>(p);
 }
 
 const Vec3<double> kV{0.0, 0.0, 1.0};
@@ -46,8 +49,7 @@ Slice<double> sliceAt(double phi, Vec3<double> n) {
 }
 
 double angleBetween(Vec3<double> a, Vec3<double> b) {
-  const double c = (a.x * b.x + a.y * b.y + a.z * b.z);
-  return std::acos(std::clamp(c, -1.0, 1.0));
+  return std::acos(std::clamp(dot(a, b), -1.0, 1.0));
 }
 
 TEST(BentNormal, ArcMomentIsTheIntegral) {
@@ -100,14 +102,12 @@ TEST(BentNormal, VisibleRunsCoverTheClearBits) {
   for (int trial = 0; trial < 200; ++trial) {
     const std::uint32_t bits = std::uint32_t(rng());
     double measure = 0;
-    std::uint32_t visible = ~bits;
-    while (visible) {
-      const int b0 = std::countr_zero(visible);
-      const std::uint32_t above = ~visible & ~cpu::detail::bitsBelow(b0);
-      const int b1 = above ? std::countr_zero(above) : 32;
+    int covered = 0;  // the runs' bits, which must be exactly the clear ones
+    forEachVisibleRun(bits, [&](int b0, int b1) {
       measure += sliceGAt(sl, sliceAngle(sl, b1 / 32.0)) - sliceGAt(sl, sliceAngle(sl, b0 / 32.0));
-      visible &= ~cpu::detail::bitsBelow(b1);
-    }
+      covered += b1 - b0;
+    });
+    EXPECT_EQ(covered, 32 - std::popcount(bits)) << std::hex << bits;
     EXPECT_NEAR(measure / range, (32 - std::popcount(bits)) / 32.0, 1e-4) << std::hex << bits;
   }
 }
@@ -161,9 +161,7 @@ TEST(BentNormal, AFullyOccludedPixelKeepsItsNormal) {
 TEST(BentNormal, FloatFollowsDouble) {
   const Vec3<double> nd = unit(0.5, 0.2, 0.8);
   const Vec3<float> nf{float(nd.x), float(nd.y), float(nd.z)};
-  gen::SaoParams p{};
-  p.proj_info = {1.0f, 1.0f, 0.0f, 0.0f};
-  const Block<float> bf(p);
+  const Block<float> bf = block<float>();
   for (const std::uint32_t bits : {0u, 0x0000FFF0u, 0xF00F00F0u, 0x7FFFFFFEu}) {
     const double phi = 0.7;
     const Vec3<double> md = sliceBentMoment(sliceAt(phi, nd), kV, bits);
