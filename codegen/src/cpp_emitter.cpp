@@ -180,18 +180,25 @@ void emitPresets(std::ostringstream& h, const Effect& e) {
   h << "}};\n\n";
 }
 
-// `#pragma sao inert`: the settings that have no effect while a condition holds.
-void emitInertRules(std::ostringstream& h, const Effect& e) {
-  h << "// ---- Inert settings: `setting` has no effect while `when` holds (its value reaches no pass that runs).\n"
+// `#pragma sao inert`: the settings that have no effect while a condition holds; `#pragma sao
+// refuse`: the settings plan() refuses at a value other than their default while one holds.
+void emitSettingRules(std::ostringstream& h, const Effect& e) {
+  h << "// ---- Rules on a setting: `setting` has no effect (kInertRules: its value reaches no pass that runs), or\n"
+    << "// is refused at any value but its default (kRefusalRules: plan() fails), while `when` holds.\n"
     << "struct InertRule {\n  SettingId setting;\n  SettingCondition when;\n"
     << "  std::string_view whenText;  // `when` in words, a derived setting's terms spelled out\n"
     << "  std::string_view fixText;   // what makes `when` false\n"
-    << "  std::string_view reason;    // why the setting has no effect then\n};\n"
-    << "inline constexpr std::array<InertRule, " << e.inert.size() << "> kInertRules = {{\n";
-  for (const auto& r : e.inert)
-    h << "  {SettingId::" << e.settings[r.setting].name << ", " << conditionValue(e, r.when) << ", " << quoted(r.whenText)
-      << ", " << quoted(r.fixText) << ", " << quoted(r.doc) << "},\n";
-  h << "}};\n\n";
+    << "  std::string_view reason;    // why the rule holds\n};\n";
+  const auto list = [&](const char* name, const std::vector<InertRule>& rules) {
+    h << "inline constexpr std::array<InertRule, " << rules.size() << "> " << name << " = {{\n";
+    for (const auto& r : rules)
+      h << "  {SettingId::" << e.settings[r.setting].name << ", " << conditionValue(e, r.when) << ", "
+        << quoted(r.whenText) << ", " << quoted(r.fixText) << ", " << quoted(r.doc) << "},\n";
+    h << "}};\n";
+  };
+  list("kInertRules", e.inert);
+  list("kRefusalRules", e.refusals);
+  h << "\n";
 }
 
 }  // namespace
@@ -388,7 +395,7 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     << "std::span<const std::uint32_t> spirvModule(std::uint32_t blob);  // SPIR-V 1.3 for Vulkan 1.1+\n"
     << "inline constexpr std::size_t kGlslBlobCount = " << glslBlobs.size() << ";\n"
     << "inline constexpr std::size_t kSpirvBlobCount = " << spirvBlobs.size() << ";\n\n";
-  emitInertRules(h, e);
+  emitSettingRules(h, e);
   h << "}  // namespace sao::gen\n";
 
   // ================= source

@@ -126,6 +126,8 @@ struct DerivedSetting {
 // `#pragma sao inert SETTING when=COND "why"`: SETTING has no effect while COND holds (its value
 // reaches no pass that runs then). COND as in skip_when=, on any setting, a float one too, or a
 // derived setting. Programs refuse a setting the user gave that a rule makes inert.
+// `#pragma sao refuse SETTING when=COND "why"` has the same shape: plan() refuses SETTING at any
+// value but its default while COND holds (a feature that the passes planned then cannot carry).
 struct InertRule {
   SourceLoc loc;
   int setting = -1;
@@ -177,6 +179,7 @@ struct Effect {
   std::vector<Setting> settings;
   std::vector<DerivedSetting> derived;
   std::vector<InertRule> inert;
+  std::vector<InertRule> refusals;  // `refuse` rules
   std::vector<Constant> constants;
   std::vector<Variant> variants;
   std::vector<Exclusion> exclusions;

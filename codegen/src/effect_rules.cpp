@@ -592,11 +592,12 @@ void conditionReach(const Effect& e, const SettingCondition& c, bool& some, bool
 
 }  // namespace
 
-void parseInert(Effect& e, const SourceLoc& loc, const std::vector<std::string>& words,
-                const std::vector<std::pair<std::string, std::string>>& attrs, const std::string& doc, bool hasDoc,
-                Diagnostics& diags) {
+void parseSettingRule(Effect& e, bool refusal, const SourceLoc& loc, const std::vector<std::string>& words,
+                      const std::vector<std::pair<std::string, std::string>>& attrs, const std::string& doc,
+                      bool hasDoc, Diagnostics& diags) {
+  const std::string kind = refusal ? "refuse" : "inert";
   if (words.size() != 1 || attrs.size() != 1 || attrs[0].first != "when") {
-    diags.error(loc, "expected '#pragma sao inert SETTING when=SETTING==VALUE \"why\"'");
+    diags.error(loc, "expected '#pragma sao " + kind + " SETTING when=SETTING==VALUE \"why\"'");
     return;
   }
   const std::string& name = words[0];
@@ -606,40 +607,44 @@ void parseInert(Effect& e, const SourceLoc& loc, const std::vector<std::string>&
   r.setting = findSetting(e, name);
   if (r.setting < 0) {
     const bool derived = std::any_of(e.derived.begin(), e.derived.end(), [&](const DerivedSetting& d) { return d.name == name; });
-    diags.error(loc, derived ? "inert names derived setting '" + name + "', which nobody sets (plan() computes it)"
-                             : "inert names unknown setting '" + name + "'");
+    diags.error(loc, derived ? kind + " names derived setting '" + name + "', which nobody sets (plan() computes it)"
+                             : kind + " names unknown setting '" + name + "'");
     return;
   }
-  const std::string owner = "when= of inert setting '" + name + "'";
+  const std::string owner = "when= of " + std::string(refusal ? "refused" : "inert") + " setting '" + name + "'";
   if (!hasDoc || doc.empty()) {
-    diags.error(loc, "inert setting '" + name + "' has no \"why\" (the reason messages give)");
+    diags.error(loc, std::string(refusal ? "refused" : "inert") + " setting '" + name +
+                         "' has no \"why\" (the reason messages give)");
     return;
   }
   if (!parseCondition(e, attrs[0].second, loc, owner, r.when, diags, /*allowFloat=*/true)) return;
   std::map<int, std::vector<double>> named;
   collectSettings(e, r.when, named);
   if (named.count(r.setting)) {
-    diags.error(loc, owner + " names '" + name + "' itself: a setting's own value cannot make it have no effect");
+    diags.error(loc, owner + " names '" + name + "' itself: " +
+                         (refusal ? "a rule on a setting's own value is its range's job"
+                                  : "a setting's own value cannot make it have no effect"));
     return;
   }
   bool some = false, every = false;
   conditionReach(e, r.when, some, every);
   if (!some || every) {
     const std::string of = " of " + conditionSettingName(e, r.when.setting);
-    diags.error(loc, owner + (some ? " holds for every value" + of + ", so '" + name +
-                                         "' never has an effect: drop the setting or the rule"
+    const std::string never = refusal ? "' is always refused" : "' never has an effect";
+    diags.error(loc, owner + (some ? " holds for every value" + of + ", so '" + name + never + ": drop the setting or the rule"
                                    : " holds for no value" + of + ", so the rule never applies: drop it"));
     return;
   }
-  for (const auto& other : e.inert)
+  std::vector<InertRule>& rules = refusal ? e.refusals : e.inert;
+  for (const auto& other : rules)
     if (other.setting == r.setting && other.when.text == r.when.text) {
-      diags.error(loc, "duplicate inert rule for '" + name + "' (first declared at line " +
+      diags.error(loc, "duplicate " + kind + " rule for '" + name + "' (first declared at line " +
                            std::to_string(other.loc.line) + ")");
       return;
     }
   r.whenText = conditionWords(e, r.when, false);
   r.fixText = conditionWords(e, r.when, true);
-  e.inert.push_back(r);
+  rules.push_back(r);
 }
 
 void parsePreset(Effect& e, const SourceLoc& loc, const std::vector<std::string>& words,

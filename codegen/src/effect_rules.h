@@ -31,10 +31,11 @@ void parseDerived(Effect& e, const SourceLoc& loc, const std::vector<std::string
                   const std::vector<std::pair<std::string, std::string>>& attrs, const std::string& doc, bool hasDoc,
                   Diagnostics& diags);
 
-// `inert SETTING when=COND "why"` (settings and derived settings all parsed).
-void parseInert(Effect& e, const SourceLoc& loc, const std::vector<std::string>& words,
-                const std::vector<std::pair<std::string, std::string>>& attrs, const std::string& doc, bool hasDoc,
-                Diagnostics& diags);
+// `inert SETTING when=COND "why"`, or with `refusal` `refuse SETTING when=COND "why"` (settings and
+// derived settings all parsed).
+void parseSettingRule(Effect& e, bool refusal, const SourceLoc& loc, const std::vector<std::string>& words,
+                      const std::vector<std::pair<std::string, std::string>>& attrs, const std::string& doc,
+                      bool hasDoc, Diagnostics& diags);
 
 // The name of setting index `i` of a condition (a setting, or a derived setting past them).
 const std::string& conditionSettingName(const Effect& e, int i);

@@ -119,6 +119,20 @@ TEST(MiniGlue, EmbeddedBlobsArePresent) {
   EXPECT_TRUE(gen::glslSource(999).empty());
 }
 
+TEST(MiniGlue, RefusalRuleHoldsOnItsSetting) {
+  // `#pragma sao refuse enabled when=taps>=16`: a rule of the inert rules' shape in its own list.
+  ASSERT_EQ(gen::kRefusalRules.size(), 1u);
+  const auto& rule = gen::kRefusalRules[0];
+  EXPECT_EQ(rule.setting, gen::SettingId::enabled);
+  EXPECT_EQ(rule.whenText, "taps >= 16");
+  EXPECT_EQ(rule.fixText, "taps < 16");
+  EXPECT_EQ(rule.reason, "the plain path takes at most 15 taps");
+  gen::Settings s;
+  EXPECT_FALSE(gen::holds(rule.when, s));
+  s.taps = 16;
+  EXPECT_TRUE(gen::holds(rule.when, s));
+}
+
 TEST(MiniGlue, InertRulesHoldOnTheirSetting) {
   // `#pragma sao inert strength when=enabled==false` and `taps when=strength==0` (a float setting).
   ASSERT_EQ(gen::kInertRules.size(), 2u);

@@ -266,17 +266,21 @@ std::span<const std::uint32_t> spirvModule(std::uint32_t blob);  // SPIR-V 1.3 f
 inline constexpr std::size_t kGlslBlobCount = 5;
 inline constexpr std::size_t kSpirvBlobCount = 5;
 
-// ---- Inert settings: `setting` has no effect while `when` holds (its value reaches no pass that runs).
+// ---- Rules on a setting: `setting` has no effect (kInertRules: its value reaches no pass that runs), or
+// is refused at any value but its default (kRefusalRules: plan() fails), while `when` holds.
 struct InertRule {
   SettingId setting;
   SettingCondition when;
   std::string_view whenText;  // `when` in words, a derived setting's terms spelled out
   std::string_view fixText;   // what makes `when` false
-  std::string_view reason;    // why the setting has no effect then
+  std::string_view reason;    // why the rule holds
 };
 inline constexpr std::array<InertRule, 2> kInertRules = {{
   {SettingId::strength, {true, SettingId::enabled, Compare::Eq, 0.0}, "enabled = false", "enabled = true", "the plain path has no strength"},
   {SettingId::taps, {true, SettingId::strength, Compare::Eq, 0.0}, "strength = 0", "strength > 0", "no strength, nothing to tap"},
+}};
+inline constexpr std::array<InertRule, 1> kRefusalRules = {{
+  {SettingId::enabled, {true, SettingId::taps, Compare::Ge, 16.0}, "taps >= 16", "taps < 16", "the plain path takes at most 15 taps"},
 }};
 
 }  // namespace sao::gen

@@ -9,7 +9,7 @@ layout(binding = 0) uniform sampler2D in_smooth;
 layout(binding = 0, r16f) writeonly uniform image2D out_dst;
 // A small effect for the codegen's golden tests: three passes (one skipped for a single tap, its
 // reader then aliased), two variants selected by a setting and an input, an exclusion, two presets,
-// two inert rules (one on a float setting).
+// two inert rules (one on a float setting) and a refusal.
 
 // Shared library code of the mini effect.
 float mini_twice(float x) { return 2.0 * x; }

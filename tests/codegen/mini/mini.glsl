@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // A small effect for the codegen's golden tests: three passes (one skipped for a single tap, its
 // reader then aliased), two variants selected by a setting and an input, an exclusion, two presets,
-// two inert rules (one on a float setting).
+// two inert rules (one on a float setting) and a refusal.
 #pragma sao effect mini version=2
 #pragma sao setting float strength default=0.5 range=[0,2] unit=m "How strong"
 #pragma sao setting int taps default=4 range=[1,16] "Taps per pixel"
@@ -18,6 +18,7 @@
 #pragma sao resource dst kind=output format=r16f "Result"
 #pragma sao inert strength when=enabled==false "the plain path has no strength"
 #pragma sao inert taps when=strength==0 "no strength, nothing to tap"
+#pragma sao refuse enabled when=taps>=16 "the plain path takes at most 15 taps"
 #pragma sao preset fast taps=1 enabled=false "One tap, plain path"
 #pragma sao preset best taps=16 strength=1.5 "All taps, stronger"
 
