@@ -45,6 +45,7 @@
 #pragma sao setting float depth_tolerance     default=0.003 range=[0,0.1]                   "Visibility estimator: relative depth tolerance; the slab behind a stored sample starts at its depth times (1 + tolerance)"
 #pragma sao setting int   slices              default=2     range=[1,8]                     "Visibility estimator: slices (screen directions, both sides each) per pixel; samples/(2*slices) steps on each side"
 #pragma sao setting int   thickness_model     default=0     values=[0,1]                    "Visibility estimator: 0 constant, every stored surface is thickness deep; 1 width, a surface is as deep as SAO_WIDTH_SCALE times its on-screen width along the slice (its run of continuous depth along x and y, measured by the width pass up to SAO_WIDTH_REACH texels each side), from SAO_WIDTH_MIN_M up to thickness: thin objects (grass, rods) stop few rays, wide ones many (docs/effect-math.md 5.9)"
+#pragma sao setting bool  bent_normals        default=false                                 "Visibility estimator: also write the bent normal, the cosine-weighted mean direction of the unoccluded rays over the slices (camera space, unit length; the normal where no ray is clear, 0 for sky), into the output's R, G, B (rgba8: 0.5 + 0.5 b) and A into A; needs estimator 1, an rgba8 or rgba16f output, every channel, the replace blend and the direct path (blur_radius 0, resolution_divisor 1, temporal false). The 2x2 reconstruction averages A only: the bent normal is the pixel's own (docs/effect-math.md 5.10)"
 // Derived settings: bools plan() computes from the settings, for the passes' skip_when= rules.
 #pragma sao derived direct_output when=blur_radius==0&&resolution_divisor==1&&temporal==false "Nothing follows the AO (no blur, full resolution, no history to keep): ao_sample_output writes the output itself, and neither ao_raw nor a copy pass is planned"
 #pragma sao derived copy_to_output when=resolution_divisor==1&&direct_output==false "Full resolution, and ao_sample wrote (A, key) (for the blur, or for the temporal history): the pass output copies A into the output"
@@ -66,6 +67,10 @@
 #pragma sao inert depth_tolerance          when=estimator==0             "the alchemy estimator (eq. 1) has no thickness model; depth_tolerance is not uploaded"
 #pragma sao inert slices                   when=estimator==0             "the alchemy estimator (eq. 1) samples the spiral, not slices; slices is not uploaded"
 #pragma sao inert thickness_model          when=estimator==0             "the alchemy estimator (eq. 1) has no thickness model; thickness_model is not uploaded"
+// Refused settings: a value other than the default that the passes planned under the others cannot
+// carry; plan() fails with the rule (sao::checkRefusals), every program too.
+#pragma sao refuse bent_normals            when=estimator==0             "the alchemy estimator (eq. 1) has no slices of unoccluded rays to average"
+#pragma sao refuse bent_normals            when=direct_output==false     "ao_sample_output alone writes the bent normal: the blur, the upsample and the temporal history carry A only"
 // ---------------------------------------------------------------------------------------------
 // Presets: the chain `sao-bench --tune` chose on the Pareto front of time against error vs the
 // converged estimator (c), over the built-in scenes (docs/BENCHMARKS.md, "Tuning"; 2026-12-03, gl,
@@ -122,9 +127,13 @@
 #pragma sao variant MOTION_VECTORS values=[0,1] default=0 select=input:motion "1: temporal accumulation finds each pixel's history where the motion input says the surface was (moving objects) instead of reprojecting through the cameras"
 #pragma sao variant ESTIMATOR values=[0,1] default=0 select=estimator "0: the AlchemyAO estimator (eq. 1) over the spiral taps; 1: the visibility estimator, cosine-weighted visibility with a finite thickness over slices with a visibility bitmask (sao_visibility.glsl)"
 #pragma sao variant THICKNESS_FROM_WIDTH values=[0,1] default=0 select=thickness_model "1: the width pass writes width_share, each texel's share of thickness from its run of continuous depth along x and y, and the visibility estimator's taps read it; a variant, not a branch, because llvmpipe runs a branch's body masked on every tap. With ESTIMATOR 0 the AO does not change (thickness_model is inert then), but the width pass still runs, writing 1s (thickness is 0): ao_sample's width_share binding needs a writer"
+#pragma sao variant BENT_NORMALS values=[0,1] default=0 select=bent_normals "1: ao_sample_output sums the slices' first moments of their unoccluded rays with the occlusion (sao_bent.glsl) and stores (bent normal, A) into the rgba output"
 #pragma sao exclude MOTION_VECTORS=1 TEMPORAL=0 "motion vectors serve temporal accumulation only: set the temporal setting, or give no motion input"
 #pragma sao exclude DEPTH_MULTISAMPLE=1 TWO_LAYER=1 "a multisampled depth input has no second layer: give depth peeling's layers single-sample, or resolve the depth first"
 #pragma sao exclude Z_HIERARCHY=0 TWO_LAYER=1 "the no-hierarchy baseline is a single-layer benchmark path"
+#pragma sao exclude BENT_NORMALS=1 ESTIMATOR=0 "bent normals come from the visibility estimator's slices: set estimator 1"
+#pragma sao exclude BENT_NORMALS=1 OUTPUT_FORMAT=0 "bent normals need an rgba output (rgba8 or rgba16f) for the normal's three components and A"
+#pragma sao exclude BENT_NORMALS=1 OUTPUT_FORMAT=1 "bent normals need an rgba output (rgba8 or rgba16f) for the normal's three components and A"
 
 // ---------------------------------------------------------------------------------------------
 // Resources
@@ -151,6 +160,7 @@
 #include "include/sao_spiral.glsl"
 #include "include/sao_estimator.glsl"
 #include "include/sao_visibility.glsl"
+#include "include/sao_bent.glsl"
 #include "include/sao_blur.glsl"
 #include "include/sao_upsample.glsl"
 #include "include/sao_output.glsl"
@@ -529,6 +539,8 @@ void sao_width_main()
 // GLSL's #if does not take an undefined name as 0.
 #define TEMPORAL 0
 #define MOTION_VECTORS 0
+#else
+#define BENT_NORMALS 0  // ao_sample does not list it: the blur and the upsample carry A only
 #endif
 #if SAO_TARGET_VULKAN
 // The tap loops' trip counts (= samples, slices) as push constants: Mesa lavapipe 22.3 keeps ~0.4 MB of
@@ -558,8 +570,11 @@ shared float sao_quad_z[gl_WorkGroupSize.x * gl_WorkGroupSize.y];  // key z (+0.
 // A of AO pixel p (of the reduced image when ao_divisor > 1) after the 2x2 reconstruction, and its
 // key z in key_z (+0.0 = sky or outside); with TEMPORAL also this frame's history texel, stored.
 // Every invocation of the group calls it (it holds the barriers); `inside` says whether p is stored.
-float sao_ao_sample(ivec2 p, bool inside, out float key_z)
+// With BENT_NORMALS `bent` is the pixel's bent normal (camera space; 0 for sky and outside), not
+// reconstructed; otherwise 0.
+float sao_ao_sample(ivec2 p, bool inside, out float key_z, out vec3 bent)
 {
+    bent = vec3(0.0);
     ivec2 size0 = textureSize(in_csz, 0);
     ivec2 f = sao_low_representative(p, ao_divisor, ao_size);  // its viewport pixel (p itself at d = 1)
     ivec2 c = clamp(f + guard, ivec2(0), size0 - 1);  // csz level-0 texel
@@ -588,9 +603,14 @@ float sao_ao_sample(ivec2 p, bool inside, out float key_z)
         // sao_visibility gives max(0, 1 - sigma (1 - V))^k and TEMPORAL blends the occlusion. Radial
         // jitter: the frame's offset plus the pixel's hash, mod 1.
         float xi = fract(frame_alpha_offset + sao_pixel_jitter(uvec2(p)));
+        vec3 moment;
         float sum = sao_visibility_occlusion(in_csz, SAO_CSZ2, SAO_WIDTH_SHARE, TWO_LAYER != 0, Z_HIERARCHY != 0, c, C,
                                              n, r_px, phase, xi, s, SAO_SLICE_COUNT, slice_turn, proj_info, ortho,
-                                             radius2, depth_tolerance, thickness, log_q, max_mip);
+                                             radius2, depth_tolerance, thickness, log_q, max_mip,
+                                             BENT_NORMALS != 0, moment);
+#if BENT_NORMALS
+        bent = sao_bent_normal(moment, n);
+#endif
 #else
         float sum = 0.0;
         vec2 u = sao_turn_direction(tap_turn0 + phase);  // tap 0's direction; each tap turns it by tap_step
@@ -665,7 +685,8 @@ void sao_ao_main()
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     bool inside = all(lessThan(p, min(ao_size, imageSize(out_ao_raw))));
     float key;
-    float a = sao_ao_sample(p, inside, key);
+    vec3 bent;  // BENT_NORMALS is 0 here
+    float a = sao_ao_sample(p, inside, key, bent);
 #if HALF_INTERMEDIATES
     vec2 stored = sao_half_texel(vec2(a, key * key_scale));
 #else
@@ -676,15 +697,21 @@ void sao_ao_main()
 }
 #pragma sao end
 
-#pragma sao pass ao_sample_output entry=sao_ao_output_main local=8x8 reads=csz,csz2,width_share,normals writes=ao variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,OUTPUT_FORMAT,ESTIMATOR,THICKNESS_FROM_WIDTH skip_when=direct_output==false "No blur at full resolution without temporal only: ao_sample's obscurance and 2x2 reconstruction, A stored straight into the output's format (no ao_raw, no output pass)"
+#pragma sao pass ao_sample_output entry=sao_ao_output_main local=8x8 reads=csz,csz2,width_share,normals writes=ao variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,OUTPUT_FORMAT,ESTIMATOR,THICKNESS_FROM_WIDTH,BENT_NORMALS skip_when=direct_output==false "No blur at full resolution without temporal only: ao_sample's obscurance and 2x2 reconstruction, A stored straight into the output's format (no ao_raw, no output pass)"
 void sao_ao_output_main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     bool inside = all(lessThan(p, min(ao_size, imageSize(out_ao))));
     float key;
-    float a = sao_ao_sample(p, inside, key);
+    vec3 bent;
+    float a = sao_ao_sample(p, inside, key, bent);
+#if BENT_NORMALS
+    if (inside)
+        SAO_STORE_BENT_OUTPUT(p, bent, a);
+#else
     if (inside)
         SAO_STORE_OUTPUT(p, a);
+#endif
 }
 #pragma sao end
 

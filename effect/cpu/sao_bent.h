@@ -4,8 +4,9 @@
 // L cos(theta - gamma) |sin(theta)| (the one whose integral G the bitmask's 32 bits split evenly);
 // a visible run of bits is an arc [theta0, theta1] (its ends' slice positions through G inverted),
 // and the arc's first moment has a closed form. The bent normal is the sum of the slices' moments,
-// normalised. Templated on T like sao_visibility.h (double is the reference). The shader side and
-// the output that carries it are the next step (issue 40's progress notes).
+// normalised. Templated on T like sao_visibility.h (double is the reference); the shader's
+// sao_bent.glsl, function for function. visibilityOcclusion (sao_visibility.h, which includes this
+// file at its end) sums sliceBentMoment over the slices under BENT_NORMALS.
 #pragma once
 #include <bit>
 #include <cmath>

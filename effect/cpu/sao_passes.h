@@ -159,11 +159,13 @@ class AoSampleInvocation {
         twoLayer_(ctx.variant(gen::VariantId::TWO_LAYER)),
         zHierarchy_(ctx.variant(gen::VariantId::Z_HIERARCHY)),
         motionVectors_(ctx.variant(gen::VariantId::MOTION_VECTORS)),
-        visibilityEstimator_(ctx.variant(gen::VariantId::ESTIMATOR)) {}
+        visibilityEstimator_(ctx.variant(gen::VariantId::ESTIMATOR)),
+        bentNormals_(ctx.variant(gen::VariantId::BENT_NORMALS)) {}
 
   // A and key for the 2x2 step; with TEMPORAL (history_ set) also this frame's history texel:
-  // the accumulated sum, its frames and the packed normal (all 0 for sky and outside).
-  void operator()(int px, int py, T& A, T& key, T& kept, T& frames, T& normalCode) const {
+  // the accumulated sum, its frames and the packed normal (all 0 for sky and outside); with
+  // BENT_NORMALS the pixel's bent normal (0 for sky and outside).
+  void operator()(int px, int py, T& A, T& key, T& kept, T& frames, T& normalCode, Vec3<T>& bent) const {
     const Image<T>& z0 = csz_[0];
     const bool inside = px < std::min(P_.ao_size.x, aoRaw_.w) && py < std::min(P_.ao_size.y, aoRaw_.h);
     // The viewport pixel the (reduced) AO pixel stands for: itself at divisor 1.
@@ -177,6 +179,7 @@ class AoSampleInvocation {
     kept = T(0);
     frames = T(0);
     normalCode = T(0);
+    bent = Vec3<T>{T(0), T(0), T(0)};
     if (!inside || isSky(zc)) return;
 
     const Vec3<T> C = position(T(cx) + T(0.5), T(cy) + T(0.5), zc, P_);
@@ -196,9 +199,13 @@ class AoSampleInvocation {
     T sum = T(0);
     SpiralDirection<T> u = SpiralDirection<T>::start(phase, P_);
     // ESTIMATOR 1: the occlusion 1 - V of the visibility estimator (sao_visibility.h) is the sum.
-    if (visibilityEstimator_)
+    if (visibilityEstimator_) {
+      Vec3<T> moment{};
       sum = visibilityOcclusion(csz_, csz2_, widthShare_, twoLayer_, zHierarchy_, cx, cy, C, n, r_px, phase,
-                                radialJitter(std::uint32_t(px), std::uint32_t(py), P_), s, P_);
+                                radialJitter(std::uint32_t(px), std::uint32_t(py), P_), s, P_,
+                                bentNormals_ ? &moment : nullptr);
+      if (bentNormals_) bent = bentNormal(moment, n);
+    }
     for (int i = 0; i < s && !visibilityEstimator_; ++i) {
       T h;
       int tx, ty;
@@ -238,7 +245,7 @@ class AoSampleInvocation {
   const std::vector<Image<T>>* widthShare_;  // THICKNESS_FROM_WIDTH's chain, else null
   const Image<T>& aoRaw_;
   const Image<T>* history_;  // the previous frame's (TEMPORAL), else null
-  const bool normalsSupplied_, twoLayer_, zHierarchy_, motionVectors_, visibilityEstimator_;
+  const bool normalsSupplied_, twoLayer_, zHierarchy_, motionVectors_, visibilityEstimator_, bentNormals_;
 };
 
 // The output texel at (x, y) as sao_output_texel stores it: into the channels output_mask selects,
@@ -263,6 +270,30 @@ void storeOutput(const PassContext<T>& ctx, Image<T>& dst, int x, int y, T a) {
     a = std::clamp(a, T(0), T(1));  // the shader's channel clamp: the fit reaches 1.0001 at A = 1 for albedo > 0.8
   for (int c = 0; c < dst.ch; ++c)
     if ((ctx.P.output_mask >> c) & 1) dst.at(x, y, c) = a;
+}
+
+// The bent normal output's texel (BENT_NORMALS, sao_output_bent_texel): b in R, G, B (rgba8:
+// 0.5 + 0.5 b), A (through the multi-bounce fit) in A; every channel, replace (plan() refuses other
+// masks and blends). Float rounds each as the format holds it, Double keeps them unrounded.
+template <typename T>
+void storeBentOutput(const PassContext<T>& ctx, Image<T>& dst, int x, int y, Vec3<T> b, T a) {
+  a = multiBounce(a, ctx.P);
+  const std::int32_t v = ctx.plan.variants[static_cast<std::size_t>(gen::VariantId::OUTPUT_FORMAT)];
+  const gen::Format f = gen::kResources[static_cast<std::size_t>(gen::ResourceId::ao)].formats[std::size_t(v)];
+  const bool unorm8 = f == gen::Format::RGBA8;
+  T c[3] = {b.x, b.y, b.z};
+  for (T& e : c) {
+    if (unorm8) e = T(0.5) + T(0.5) * e;
+    if constexpr (std::is_same_v<T, float>) e = unorm8 ? roundToUnorm8(e) : roundToHalfSigned(e);
+  }
+  if constexpr (std::is_same_v<T, float>)
+    a = unorm8 ? roundToUnorm8(a) : roundToHalf(a);
+  else
+    a = std::clamp(a, T(0), T(1));
+  dst.at(x, y, 0) = c[0];
+  dst.at(x, y, 1) = c[1];
+  dst.at(x, y, 2) = c[2];
+  dst.at(x, y, 3) = a;
 }
 
 // An (A, key) intermediate's texel (ao_raw, ao_low): with HALF_INTERMEDIATES as the rg16f
@@ -314,6 +345,8 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
     return Status::error(StatusCode::InvalidInput, "max_mip " + std::to_string(P.max_mip) + " does not match the " +
                                                        std::to_string(csz.size()) + " csz levels computed");
   if (!direct && dst.ch != 2) return passError(d, "needs a 2-channel ao_raw");
+  const bool bentNormals = direct && ctx.variant(gen::VariantId::BENT_NORMALS);
+  if (bentNormals && dst.ch != 4) return passError(d, "writes bent normals, which need a 4-channel output");
   // TEMPORAL: the previous frame's history in, this frame's out (sao_temporal.glsl).
   const bool temporal = ctx.variant(gen::VariantId::TEMPORAL);
   const ScheduledBinding* historyIn = temporal ? binding(d, bindings, gen::ResourceId::history, false) : nullptr;
@@ -332,12 +365,14 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
   parallelFor(groupsY, ctx.threads, [&](int gy) {
     std::vector<T> quadA(std::size_t(LX) * LY), quadH(quadA.size()), quadZ(quadA.size()), kept(quadA.size()),
         frames(quadA.size()), normalCode(quadA.size());
+    std::vector<Vec3<T>> bent(quadA.size());
     for (int gx = 0; gx < groupsX; ++gx) {
       // Up to the first barrier: every invocation's A and key.
       for (int ly = 0; ly < LY; ++ly)
         for (int lx = 0; lx < LX; ++lx) {
           const std::size_t li = std::size_t(ly) * LX + lx;
-          sampleInvocation(gx * LX + lx, gy * LY + ly, quadA[li], quadZ[li], kept[li], frames[li], normalCode[li]);
+          sampleInvocation(gx * LX + lx, gy * LY + ly, quadA[li], quadZ[li], kept[li], frames[li], normalCode[li],
+                           bent[li]);
         }
       // Between the barriers: the step along x.
       for (int ly = 0; ly < LY; ++ly)
@@ -354,7 +389,9 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
           const T av = quadMix(quadH[li], quadZ[li], quadH[ny], quadZ[ny], threshold);
           const int px = gx * LX + lx, py = gy * LY + ly;
           if (px < std::min(P.ao_size.x, W) && py < std::min(P.ao_size.y, H)) {
-            if (direct)
+            if (bentNormals)
+              storeBentOutput(ctx, dst, px, py, bent[li], av);
+            else if (direct)
               storeOutput(ctx, dst, px, py, av);
             else
               storeAKey(ctx, dst, px, py, av, quadZ[li] * P.key_scale);

@@ -261,13 +261,20 @@ T radialJitter(std::uint32_t px, std::uint32_t py, const Block<T>& P) {
   return x - std::floor(x);
 }
 
+// sao_slice_bent_moment (sao_bent.h, included at the end of this file): declared ahead, as the shader does.
+template <typename T>
+Vec3<T> sliceBentMoment(const Slice<T>& sl, Vec3<T> V, std::uint32_t bits);
+
 // sao_visibility_occlusion: the occlusion 1 - V of the pixel at csz texel (cx, cy). csz2 is read
 // only with twoLayer, widthShare (the width pass's chain, 2 channels) only when not null
-// (THICKNESS_FROM_WIDTH); `tapCount` is the block's samples (the shader's SAO_TAP_COUNT).
+// (THICKNESS_FROM_WIDTH); `tapCount` is the block's samples (the shader's SAO_TAP_COUNT). With
+// `moment` (BENT_NORMALS) the slices' first moments of their unoccluded rays are summed into it.
 template <typename T>
 T visibilityOcclusion(const std::vector<Image<T>>& csz, const std::vector<Image<T>>& csz2,
                       const std::vector<Image<T>>* widthShare, bool twoLayer, bool hierarchy, int cx, int cy,
-                      Vec3<T> C, Vec3<T> n, T r_px, std::uint32_t phase, T xi, int tapCount, const Block<T>& P) {
+                      Vec3<T> C, Vec3<T> n, T r_px, std::uint32_t phase, T xi, int tapCount, const Block<T>& P,
+                      Vec3<T>* moment = nullptr) {
+  if (moment) *moment = Vec3<T>{T(0), T(0), T(0)};
   const Image<T>& z0 = csz[0];
   const Vec3<T> V = (P.ortho != 0) ? Vec3<T>{T(0), T(0), T(1)} : normalize(Vec3<T>{-C.x, -C.y, -C.z});
   const int ns = std::clamp(P.slices, 1, gen::SAO_MAX_SLICES);
@@ -316,9 +323,16 @@ T visibilityOcclusion(const std::vector<Image<T>>& csz, const std::vector<Image<
     if (r == perSlice - 1) {
       occluded += sl.weight * (T(std::popcount(bits)) * T(0.03125));
       weights += sl.weight;
+      if (moment) {
+        const Vec3<T> b = sliceBentMoment(sl, V, bits);
+        *moment = Vec3<T>{moment->x + b.x, moment->y + b.y, moment->z + b.z};
+      }
     }
   }
   return (weights > T(0)) ? occluded / weights : T(0);
 }
 
 }  // namespace sao::cpu::detail
+
+// The bent normal's functions (sliceBentMoment above): after this file's, which they use.
+#include "sao_bent.h"

@@ -51,6 +51,18 @@ vec4 sao_output_texel_r(float a, bool unorm8, float kept, int mask, int blend)
     return vec4((mask & 1) != 0 ? v : kept, 0.0, 0.0, 1.0);
 }
 
+// The bent normal output's texel (BENT_NORMALS; every channel, replace: plan() refuses other masks
+// and blends): the bent normal b in R, G, B, as 0.5 + 0.5 b in an rgba8 output (each rounded to a
+// multiple of 1/255) or b itself rounded to binary16 in an rgba16f one, and A in A as
+// sao_output_channel stores it.
+vec4 sao_output_bent_texel(vec3 b, float a, bool unorm8)
+{
+    vec3 v = unorm8 ? vec3(sao_round_to_unorm8(0.5 + 0.5 * b.x), sao_round_to_unorm8(0.5 + 0.5 * b.y),
+                           sao_round_to_unorm8(0.5 + 0.5 * b.z))
+                    : vec3(sao_round_to_half_signed(b.x), sao_round_to_half_signed(b.y), sao_round_to_half_signed(b.z));
+    return vec4(v, sao_output_channel(0.0, a, unorm8, false));
+}
+
 // Multi-bounce (Jimenez et al. 2016, "Practical Real-Time Strategies for Accurate Indirect
 // Occlusion"): the visibility after many bounces on a surface of albedo rho, fitted from the
 // single-bounce visibility x as max(x, ((a x + b) x + c) x), a, b, c from rho on the host (block
@@ -68,6 +80,8 @@ float sao_multi_bounce(float x, bool on, float a, float b, float c)
 // the texel first only when it is needed: an RGBA output whose mask keeps channels, or a multiply.
 // Defined only in the passes that have the OUTPUT_FORMAT variant.
 #if defined(OUTPUT_FORMAT) && SAO_OUTPUT_IS_RGBA(OUTPUT_FORMAT)
+#define SAO_STORE_BENT_OUTPUT(p, b, a) \
+    imageStore(out_ao, (p), sao_output_bent_texel((b), SAO_BOUNCED(a), SAO_OUTPUT_IS_UNORM8(OUTPUT_FORMAT)))
 #define SAO_STORE_OUTPUT(p, a) \
     imageStore(out_ao, (p), sao_output_texel(SAO_BOUNCED(a), SAO_OUTPUT_IS_UNORM8(OUTPUT_FORMAT), \
         output_mask == SAO_OUTPUT_ALL_CHANNELS && output_blend == SAO_OUTPUT_BLEND_REPLACE ? vec4(0.0) \

@@ -307,12 +307,16 @@ float sao_pixel_jitter(uvec2 p)
 // too (thickness deep). V = sum_k w_k (1 - bits_k/32) / sum_k w_k; 0 when every weight is 0. Nested
 // loops, so that a slice's setup runs once per slice (llvmpipe runs a branch's body masked on every
 // trip: in one flat loop it ran per tap); the trip counts come from tap_count and slices alone (the
-// caller passes SAO_TAP_COUNT and SAO_SLICE_COUNT: on Vulkan push constants, see sao.glsl).
+// caller passes SAO_TAP_COUNT and SAO_SLICE_COUNT: on Vulkan push constants, see sao.glsl). With
+// `bent` (a constant: BENT_NORMALS) `moment` sums the slices' first moments of their unoccluded
+// rays (sao_bent.glsl, included after this file: declared here); otherwise it is left 0.
+vec3 sao_slice_bent_moment(SaoSlice sl, vec3 V, uint bits);
 float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, sampler2D width_share, bool two_layer, bool hierarchy,
                                ivec2 c, vec3 C, vec3 n, float r_px, uint phase, float xi, int tap_count, int slices,
                                uint slice_turn, vec4 proj_info, int ortho, float radius2, float tolerance,
-                               float thickness, int log_q, int max_mip)
+                               float thickness, int log_q, int max_mip, bool bent, out vec3 moment)
 {
+    moment = vec3(0.0);
     ivec2 size0 = textureSize(csz, 0);
     precise vec3 V = (ortho != 0) ? vec3(0.0, 0.0, 1.0) : normalize(-C);
     int ns = clamp(slices, 1, SAO_MAX_SLICES);
@@ -355,6 +359,8 @@ float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, sampler2D width_sh
         }
         occluded += sl.weight * (float(bitCount(bits)) * 0.03125);
         weights += sl.weight;
+        if (bent)
+            moment += sao_slice_bent_moment(sl, V, bits);
     }
     return (weights > 0.0) ? occluded / weights : 0.0;
 }

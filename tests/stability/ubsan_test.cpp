@@ -12,6 +12,7 @@
 #include <string>
 
 #include "analytic_scenes.h"
+#include "refused_settings.h"
 #include "sao/cpu/reference.h"
 
 namespace sao {
@@ -82,7 +83,8 @@ TEST(UBSan, ExtremeDepthValuesAndSettings) {
              gen::setSettingValue(hi, gen::SettingId(i), gen::kSettings[i].maxValue);
            }
            // clamped(): fade_start = fade_end (both at their max) breaks their rule; start just below.
-           return std::vector<Settings>{Settings{}, lo, clamped(hi)};
+           // bent_normals at its max is refused with the r16f output: back at its default.
+           return std::vector<Settings>{Settings{}, lo, test::withoutRefusedSettings(clamped(hi))};
          }())
       runBoth("extreme depth " + std::to_string(v), s, c, d);
   }

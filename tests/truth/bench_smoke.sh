@@ -94,11 +94,11 @@ monotone crease
 # radius: five curves with two radii each, each curve the variant it says it is.
 v=$(col variant) s=$(col shader_variant) i=$(col inputs)
 curve() { count "\$1==\"radius\" && \$$v==\"$1\" && \$$s==\"$2\" && \$$i==\"$3\""; }
-[ "$(curve 'SAO (z hierarchy)' 'NORMALS_SUPPLIED=0 TWO_LAYER=0 Z_HIERARCHY=1 OUTPUT_FORMAT=0 DEPTH_MULTISAMPLE=0 TEMPORAL=0 HALF_INTERMEDIATES=1 MOTION_VECTORS=0 ESTIMATOR=0 THICKNESS_FROM_WIDTH=0' depth)" -eq 2 ] || die "radius: SAO (z hierarchy) curve"
-[ "$(curve 'SAO (no hierarchy)' 'NORMALS_SUPPLIED=0 TWO_LAYER=0 Z_HIERARCHY=0 OUTPUT_FORMAT=0 DEPTH_MULTISAMPLE=0 TEMPORAL=0 HALF_INTERMEDIATES=1 MOTION_VECTORS=0 ESTIMATOR=0 THICKNESS_FROM_WIDTH=0' depth)" -eq 2 ] || die "radius: SAO (no hierarchy) curve"
-[ "$(curve 'AlchemyAO-style' 'NORMALS_SUPPLIED=1 TWO_LAYER=0 Z_HIERARCHY=0 OUTPUT_FORMAT=0 DEPTH_MULTISAMPLE=0 TEMPORAL=0 HALF_INTERMEDIATES=1 MOTION_VECTORS=0 ESTIMATOR=0 THICKNESS_FROM_WIDTH=0' depth+normals)" -eq 2 ] || die "radius: AlchemyAO-style curve"
-[ "$(curve 'visibility (z hierarchy)' 'NORMALS_SUPPLIED=0 TWO_LAYER=0 Z_HIERARCHY=1 OUTPUT_FORMAT=0 DEPTH_MULTISAMPLE=0 TEMPORAL=0 HALF_INTERMEDIATES=1 MOTION_VECTORS=0 ESTIMATOR=1 THICKNESS_FROM_WIDTH=0' depth)" -eq 2 ] || die "radius: visibility (z hierarchy) curve"
-[ "$(curve 'visibility from width (z hierarchy)' 'NORMALS_SUPPLIED=0 TWO_LAYER=0 Z_HIERARCHY=1 OUTPUT_FORMAT=0 DEPTH_MULTISAMPLE=0 TEMPORAL=0 HALF_INTERMEDIATES=1 MOTION_VECTORS=0 ESTIMATOR=1 THICKNESS_FROM_WIDTH=1' depth)" -eq 2 ] || die "radius: visibility from width (z hierarchy) curve"
+[ "$(curve 'SAO (z hierarchy)' 'NORMALS_SUPPLIED=0 TWO_LAYER=0 Z_HIERARCHY=1 OUTPUT_FORMAT=0 DEPTH_MULTISAMPLE=0 TEMPORAL=0 HALF_INTERMEDIATES=1 MOTION_VECTORS=0 ESTIMATOR=0 THICKNESS_FROM_WIDTH=0 BENT_NORMALS=0' depth)" -eq 2 ] || die "radius: SAO (z hierarchy) curve"
+[ "$(curve 'SAO (no hierarchy)' 'NORMALS_SUPPLIED=0 TWO_LAYER=0 Z_HIERARCHY=0 OUTPUT_FORMAT=0 DEPTH_MULTISAMPLE=0 TEMPORAL=0 HALF_INTERMEDIATES=1 MOTION_VECTORS=0 ESTIMATOR=0 THICKNESS_FROM_WIDTH=0 BENT_NORMALS=0' depth)" -eq 2 ] || die "radius: SAO (no hierarchy) curve"
+[ "$(curve 'AlchemyAO-style' 'NORMALS_SUPPLIED=1 TWO_LAYER=0 Z_HIERARCHY=0 OUTPUT_FORMAT=0 DEPTH_MULTISAMPLE=0 TEMPORAL=0 HALF_INTERMEDIATES=1 MOTION_VECTORS=0 ESTIMATOR=0 THICKNESS_FROM_WIDTH=0 BENT_NORMALS=0' depth+normals)" -eq 2 ] || die "radius: AlchemyAO-style curve"
+[ "$(curve 'visibility (z hierarchy)' 'NORMALS_SUPPLIED=0 TWO_LAYER=0 Z_HIERARCHY=1 OUTPUT_FORMAT=0 DEPTH_MULTISAMPLE=0 TEMPORAL=0 HALF_INTERMEDIATES=1 MOTION_VECTORS=0 ESTIMATOR=1 THICKNESS_FROM_WIDTH=0 BENT_NORMALS=0' depth)" -eq 2 ] || die "radius: visibility (z hierarchy) curve"
+[ "$(curve 'visibility from width (z hierarchy)' 'NORMALS_SUPPLIED=0 TWO_LAYER=0 Z_HIERARCHY=1 OUTPUT_FORMAT=0 DEPTH_MULTISAMPLE=0 TEMPORAL=0 HALF_INTERMEDIATES=1 MOTION_VECTORS=0 ESTIMATOR=1 THICKNESS_FROM_WIDTH=1 BENT_NORMALS=0' depth)" -eq 2 ] || die "radius: visibility from width (z hierarchy) curve"
 [ "$(rows radius section !=)" -eq 10 ] || die "expected 10 radius rows"
 for label in 'SAO (z hierarchy)' 'SAO (no hierarchy)' 'AlchemyAO-style'; do
   grep -qF ">$label<" "$out/all/radius.svg" || die "radius.svg has no curve '$label'"

@@ -75,6 +75,7 @@ void addSettings(CommandLine& cl, Settings& settings, const std::string& setHelp
   // A setting given that the final settings (the preset's and every --set, and what a program's
   // own options set after them) make inert is refused; a preset's values never are.
   cl.check([&settings, given] {
+    if (Status s = checkRefusals(settings); !s) reject(s.message);
     for (SettingId id : *given)
       if (const gen::InertRule* rule = inertRule(settings, id)) reject("--set " + describeInert(*rule));
   });

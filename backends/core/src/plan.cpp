@@ -109,6 +109,7 @@ std::string Plan::describe() const {
 Status plan(const Settings& settings, const Camera& camera, const PlanInputs& inputs, Plan& out) {
   out = Plan{};
   if (Status st = validate(settings); !st) return st;
+  if (Status st = checkRefusals(settings); !st) return st;
   DepthModel model;
   if (Status st = analyze(camera, model); !st) return st;
   if (Status st = checkExtents(camera, out.inputExtent, out.aoExtent); !st) return st;
@@ -158,6 +159,16 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
                          "these inputs and settings select an excluded variant combination (" + combo.substr(1) +
                              "): " + std::string(why));
   }
+
+  // BENT_NORMALS stores (bent normal, A) into all four channels: a mask that keeps some, or the
+  // multiply blend, would leave a texel half bent normal, half the caller's.
+  if (out.variants[static_cast<std::size_t>(gen::VariantId::BENT_NORMALS)] != 0 &&
+      ((inputs.outputChannels & kAllChannels) != kAllChannels || inputs.outputBlend != OutputBlend::Replace))
+    return Status::error(StatusCode::InvalidInput,
+                         "bent_normals writes the bent normal into R, G, B and A into A of every output texel: it "
+                         "needs the output channel mask kAllChannels (15, got " +
+                             std::to_string(inputs.outputChannels) + ") and output blend replace (got " +
+                             toString(inputs.outputBlend) + ")");
 
   out.cszLevels = mipLevelsNeeded(settings, camera, model);
   for (std::size_t r = 0; r < gen::kResources.size(); ++r)

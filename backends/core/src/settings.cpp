@@ -152,6 +152,21 @@ Status setFromAssignment(Settings& settings, std::string_view assignment) {
   return setFromText(settings, assignment.substr(0, eq), assignment.substr(eq + 1));
 }
 
+Status checkRefusals(const Settings& settings) {
+  for (const gen::InertRule& rule : gen::kRefusalRules) {
+    const SettingInfo& info = gen::kSettings[static_cast<size_t>(rule.setting)];
+    const double v = gen::settingValue(settings, rule.setting);
+    if (v == info.defaultValue || !gen::holds(rule.when, settings)) continue;
+    const std::string name(info.name);
+    const std::string value = info.type == gen::SettingType::Bool ? (v != 0 ? "true" : "false") : describe(v);
+    return Status::error(StatusCode::InvalidSetting,
+                         "setting '" + name + "' = " + value + " is refused while " + std::string(rule.whenText) +
+                             " (" + std::string(rule.reason) + "): also set " + std::string(rule.fixText) +
+                             ", or drop " + name);
+  }
+  return Status::success();
+}
+
 const gen::InertRule* inertRule(const Settings& settings, SettingId id) {
   for (const gen::InertRule& rule : gen::kInertRules)
     if (rule.setting == id && gen::holds(rule.when, settings)) return &rule;

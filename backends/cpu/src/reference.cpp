@@ -259,8 +259,8 @@ Status validateAndPlan(const Settings& settings, const Camera& camera, const Inp
   const DepthEncoding encoding =
       in.depth->format == DepthFormat::LinearZ ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
   if (in.depth->samples == 0) return invalid("depth has 0 samples per texel (1: single-sample)");
-  const PlanInputs planInputs{encoding,         in.normals != nullptr, in.depth2 != nullptr, false, in.outputFormat,
-                              in.depth->samples, in.motion != nullptr};
+  const PlanInputs planInputs{encoding,          in.normals != nullptr, in.depth2 != nullptr, false, in.outputFormat,
+                              in.depth->samples, in.motion != nullptr,  in.outputChannels,     in.outputBlend};
   if (Status st = plan(settings, camera, planInputs, r.plan); !st) return st;
   if (Status st = checkOutputChannels(in.outputFormat, in.outputChannels, "sao::cpu"); !st) return st;
   if (Status st = checkOutputBlend(in.outputBlend, in.output != nullptr, "sao::cpu"); !st) return st;

@@ -241,8 +241,10 @@ Status checkInputs(const GlFunctions& gl, GLuint unit, const Inputs& inputs, Nor
   }
   if (Status st = checkOutputChannels(out.planInputs.outputFormat, inputs.outputChannels, "sao::gl"); !st) return st;
   out.outputChannels = inputs.outputChannels;
+  out.planInputs.outputChannels = inputs.outputChannels;
   if (Status st = checkOutputBlend(inputs.outputBlend, inputs.output != 0, "sao::gl"); !st) return st;
   out.outputBlend = inputs.outputBlend;
+  out.planInputs.outputBlend = inputs.outputBlend;
   return Status::success();
 }
 

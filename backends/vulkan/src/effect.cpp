@@ -224,7 +224,8 @@ Status checkConfig(const EffectState& e, const Config& c, Plan& plan, ParamBlock
   PlanInputs pi{encoding,     c.normalsFormat != VK_FORMAT_UNDEFINED,
                 c.secondLayer, c.userOutput,
                 outputFormat, static_cast<std::uint32_t>(c.depthSamples),
-                c.motionFormat != VK_FORMAT_UNDEFINED};
+                c.motionFormat != VK_FORMAT_UNDEFINED,
+                c.outputChannels, c.outputBlend};
   if (Status st = sao::plan(c.settings, c.camera, pi, plan); !st) return st;
   if (Status st = computeConstants(c.settings, c.camera, encoding, params); !st) return st;
   params.output_mask = outputMaskParam(c.outputChannels);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "extremes_support.h"
+#include "refused_settings.h"
 
 namespace sao::stability {
 namespace {
@@ -56,11 +57,13 @@ TEST(Settings, BothEndsOfEveryRangeStayInZeroOne) {
       Settings s = fullResolution();
       gen::setSettingValue(s, id, v);
       ASSERT_TRUE(validate(s).ok()) << gen::kSettings[i].name << " = " << v;
+      if (test::refused(s)) continue;  // bent_normals alone (estimator 0, r16f): tests/vulkan/bent_normal_test.cpp
       check(fmt("%s = %g", std::string(gen::kSettings[i].name).c_str(), v), s, persp, DepthFormat::D24);
     }
   }
   // fade_start = fade_end (both at their max) breaks the rule between them: start just below the end.
-  allMax = clamped(allMax);
+  // bent_normals at its max is refused with a blur and the r16f output: back at its default.
+  allMax = test::withoutRefusedSettings(clamped(allMax));
   ASSERT_TRUE(validate(allMax).ok()) << validate(allMax).message;
   check("every setting at its max", allMax, persp, DepthFormat::D24);
   check("every setting at its min", allMin, persp, DepthFormat::D24);

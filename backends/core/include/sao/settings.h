@@ -38,6 +38,12 @@ Status setFromText(Settings& settings, std::string_view name, std::string_view v
 // "name=value" as the CLI's --set takes it.
 Status setFromAssignment(Settings& settings, std::string_view assignment);
 
+// The effect's refusals (`#pragma sao refuse` in effect/sao.glsl, gen::kRefusalRules): an error
+// naming the first setting away from its default that the others rule out (bent_normals = true
+// with a blur), what rules it out and what to change. plan() checks it after validate(); it is not
+// part of validate(), which holds for each assignment on its own (a CLI's --set order is free).
+Status checkRefusals(const Settings& settings);
+
 // A setting that has no effect under `settings`: the effect's first rule (`#pragma sao inert` in
 // effect/sao.glsl, gen::kInertRules) under which setting `id`'s value reaches no pass that runs,
 // or null when it has an effect. Programs refuse a setting the user gave that has none.
