@@ -189,23 +189,51 @@ Status castSecondLayer(const RayScene& scene, const scenes::View& view, const Ca
   return castLayer(scene, view, camera, format, minSeparation, out, threads);
 }
 
-double visibilityAt(const RayScene& scene, glm::dvec3 p, glm::dvec3 n, double radius, std::uint32_t rays,
-                    std::uint64_t seed, double offset) {
+namespace {
+
+// `rays` cosine-weighted rays about n from p (offset along n by `offset`), seeded by `seed`:
+// perRay(direction, clear) with clear true when the ray travels `radius` without a hit.
+template <typename PerRay>
+void traceCosineRays(const RayScene& scene, glm::dvec3 p, glm::dvec3 n, double radius, std::uint32_t rays,
+                     std::uint64_t seed, double offset, PerRay perRay) {
   const detail::Frame frame(n);
   const glm::dvec3 origin = p + n * offset;
   std::uint64_t state = seed;
   detail::splitmix(state);
-  std::uint32_t open = 0;
   for (std::uint32_t r = 0; r < rays; ++r) {
     double cosTheta = 0;
     const glm::dvec3 dir = detail::cosineDirection(frame, state, cosTheta);
-    if (!scene.occluded(origin, dir, radius)) ++open;
+    perRay(dir, !scene.occluded(origin, dir, radius));
   }
+}
+
+}  // namespace
+
+double visibilityAt(const RayScene& scene, glm::dvec3 p, glm::dvec3 n, double radius, std::uint32_t rays,
+                    std::uint64_t seed, double offset) {
+  std::uint32_t open = 0;
+  traceCosineRays(scene, p, n, radius, rays, seed, offset, [&](glm::dvec3, bool clear) { open += clear; });
   return rays ? double(open) / rays : 1.0;
 }
 
-Status referenceAmbientOcclusion(const RayScene& scene, const Camera& camera, const Primary& primary,
-                                 const scenes::View& view, const ReferenceOptions& o, FloatImage& ao) {
+glm::dvec3 bentNormalAt(const RayScene& scene, glm::dvec3 p, glm::dvec3 n, double radius, std::uint32_t rays,
+                        std::uint64_t seed, double offset) {
+  glm::dvec3 sum(0.0);
+  traceCosineRays(scene, p, n, radius, rays, seed, offset, [&](glm::dvec3 dir, bool clear) {
+    if (clear) sum += dir;
+  });
+  const double l = glm::length(sum);
+  return l > 0 ? sum / l : n;
+}
+
+namespace {
+
+// The per-pixel references' loop: for each AO viewport pixel with geometry, its visible point p and
+// geometric normal n in world space, its seed and its ray origin's offset along n, in parallel rows
+// (o.progress after each). Checks the options and the primary images first.
+template <typename PerPixel>
+Status forEachReferencePixel(const Camera& camera, const Primary& primary, const scenes::View& view,
+                             const ReferenceOptions& o, PerPixel perPixel) {
   if (!(o.radius > 0) || !std::isfinite(o.radius))
     return Status::error(StatusCode::InvalidInput, "reference radius must be a finite number > 0");
   if (o.rays == 0) return Status::error(StatusCode::InvalidInput, "reference needs at least one ray per pixel");
@@ -213,7 +241,6 @@ Status referenceAmbientOcclusion(const RayScene& scene, const Camera& camera, co
   if (primary.position.extent != input || primary.normal.extent != input)
     return Status::error(StatusCode::InvalidInput, "primary images do not match the camera's depth extent");
   const glm::dmat4 toWorld = glm::inverse(scenes::viewMatrix(view));
-  ao = FloatImage({camera.width, camera.height}, 1, 1.0f);
   const std::uint32_t g = camera.guardBand;
   std::mutex progressMutex;
   std::uint32_t rowsDone = 0;
@@ -226,8 +253,7 @@ Status referenceAmbientOcclusion(const RayScene& scene, const Camera& camera, co
                             primary.normal.at(x + g, y + g, 2));
       const glm::dvec3 p = glm::dvec3(toWorld * glm::dvec4(pc, 1.0));
       const glm::dvec3 n = glm::normalize(glm::dvec3(toWorld * glm::dvec4(ncam, 0.0)));
-      const std::uint64_t seed = detail::pixelSeed(o.seed, x, y);
-      ao.at(x, y) = float(visibilityAt(scene, p, n, o.radius, o.rays, seed, 1e-4 * std::max(1.0, glm::length(pc))));
+      perPixel(x, y, p, n, detail::pixelSeed(o.seed, x, y), 1e-4 * std::max(1.0, glm::length(pc)));
     }
     if (o.progress) {
       std::lock_guard lock(progressMutex);
@@ -235,6 +261,29 @@ Status referenceAmbientOcclusion(const RayScene& scene, const Camera& camera, co
     }
   });
   return Status::success();
+}
+
+}  // namespace
+
+Status referenceBentNormals(const RayScene& scene, const Camera& camera, const Primary& primary,
+                            const scenes::View& view, const ReferenceOptions& o, FloatImage& bent) {
+  const glm::dmat4 fromWorld = scenes::viewMatrix(view);
+  bent = FloatImage({camera.width, camera.height}, 3, 0.0f);
+  return forEachReferencePixel(camera, primary, view, o, [&](std::uint32_t x, std::uint32_t y, glm::dvec3 p, glm::dvec3 n,
+                                                              std::uint64_t seed, double offset) {
+    const glm::dvec3 b = bentNormalAt(scene, p, n, o.radius, o.rays, seed, offset);
+    const glm::dvec3 bc = glm::normalize(glm::dvec3(fromWorld * glm::dvec4(b, 0.0)));
+    for (std::uint32_t c = 0; c < 3; ++c) bent.at(x, y, c) = float(bc[int(c)]);
+  });
+}
+
+Status referenceAmbientOcclusion(const RayScene& scene, const Camera& camera, const Primary& primary,
+                                 const scenes::View& view, const ReferenceOptions& o, FloatImage& ao) {
+  ao = FloatImage({camera.width, camera.height}, 1, 1.0f);
+  return forEachReferencePixel(camera, primary, view, o, [&](std::uint32_t x, std::uint32_t y, glm::dvec3 p, glm::dvec3 n,
+                                                              std::uint64_t seed, double offset) {
+    ao.at(x, y) = float(visibilityAt(scene, p, n, o.radius, o.rays, seed, offset));
+  });
 }
 
 }  // namespace sao::raytrace

@@ -74,6 +74,18 @@ struct ReferenceOptions {
 double visibilityAt(const RayScene& scene, glm::dvec3 p, glm::dvec3 n, double radius, std::uint32_t rays,
                     std::uint64_t seed, double offset);
 
+// The bent normal at the same point, from the same rays as visibilityAt (same seed and offset):
+// the mean direction of the cosine-weighted rays that travel `radius` without a hit, normalised,
+// or n when none does. Its expectation is the cosine-weighted mean unoccluded direction, the one
+// the effect's bent_normals estimates (docs/effect-math.md 5.10).
+glm::dvec3 bentNormalAt(const RayScene& scene, glm::dvec3 p, glm::dvec3 n, double radius, std::uint32_t rays,
+                        std::uint64_t seed, double offset);
+
+// referenceAmbientOcclusion's bent normals: camera space, 3 channels, per AO viewport pixel (the
+// same rays per pixel as its visibility); 0 for sky.
+Status referenceBentNormals(const RayScene& scene, const Camera& camera, const Primary& primary,
+                            const scenes::View& view, const ReferenceOptions& options, FloatImage& bent);
+
 // Near-field ambient occlusion over the AO viewport (the depth input minus its guard band): the
 // fraction of cosine-weighted rays from each visible point (offset along its geometric normal by
 // 1e-4 * distance) that travel `radius` without a hit. Sky pixels are 1.
