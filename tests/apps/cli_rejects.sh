@@ -73,8 +73,8 @@ case $name in
     check "--standard-depth has no effect with --backend vulkan: it turns off the GL viewer's glClipControl" --backend vulkan --standard-depth
     check "--set fade_start has no effect while fade_end = 0 (no distance fade" --set fade_start=2
     check "--set temporal_hysteresis has no effect while temporal = false" --set temporal_hysteresis=0.5
-    check "--set blur_stride has no effect while blur_radius = 0 (no bilateral blur" --preset low --set blur_stride=2
-    check "--set half_intermediates has no effect while blur_radius = 0, resolution_divisor = 1 and temporal = false" --preset ultra --set blur_radius=0 --set half_intermediates=false
+    check "--set blur_stride has no effect while blur_radius = 0 (no bilateral blur" --preset low --set blur_radius=0 --set blur_stride=2
+    check "--set half_intermediates has no effect while blur_radius = 0, resolution_divisor = 1 and temporal = false" --preset reference --set blur_radius=0 --set half_intermediates=false
     ;;
   sao-gl-timing)
     # Were std::atoi: 'x' ran 5 runs, -1 a guard band of 4294967295, 3 runs silently 5.

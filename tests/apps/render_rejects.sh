@@ -142,7 +142,7 @@ check 1 "not a regular file" --depth fifo.exr
 check 2 "--set fade_start has no effect while fade_end = 0 (no distance fade" --scene crease --set fade_start=2
 check 2 "also set fade_end > 0, or drop fade_start" --scene crease --set fade_end=4 --set fade_start=2 --set fade_end=0
 check 2 "--set temporal_depth_tolerance has no effect while temporal = false" --scene crease --set temporal_depth_tolerance=0.1
-check 2 "--set blur_stride has no effect while blur_radius = 0 (no bilateral blur" --scene crease --preset low --set blur_stride=2
+check 2 "--set blur_stride has no effect while blur_radius = 0 (no bilateral blur" --scene crease --preset low --set blur_radius=0 --set blur_stride=2
 # bent_normals: refused by the effect's rules (exit 2, before any work), and on the direct path by
 # its r16f output, which has no room for the bent normal (exit 1, from plan()).
 check 2 "setting 'bent_normals' = true is refused while estimator = 0 (the alchemy estimator (eq. 1) has no slices of unoccluded rays to average): also set estimator > 0, or drop bent_normals" --scene crease --set bent_normals=true

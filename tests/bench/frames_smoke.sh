@@ -18,8 +18,8 @@ test -s "$csv" || die "missing frames.csv"
 [ "$(head -1 "$csv")" = "scene,preset,samples,frames,converged_rmse_one_frame,converged_rmse_mean_of_frames,samples_4x,converged_rmse_4x_taps,converged_rmse_temporal" ] ||
   die "unexpected header $(head -1 "$csv")"
 [ "$(awk 'NR > 1' "$csv" | wc -l)" -eq 2 ] || die "expected 2 rows, got $(awk 'NR > 1' "$csv" | wc -l)"
-awk -F, 'NR > 1 && !($2 == "medium" && $4 == 4 && $7 == 4 * $3) { bad = 1 } END { exit bad }' "$csv" ||
-  die "a row is not medium, 4 frames, 4x the taps"
+awk -F, 'NR > 1 && !($2 == "medium" && $4 == 4 && $7 == (4 * $3 < 64 ? 4 * $3 : 64)) { bad = 1 } END { exit bad }' "$csv" ||
+  die "a row is not medium, 4 frames, 4x the taps (at most 64)"
 awk -F, 'NR > 1 && !($5 > 0 && $5 < 1 && $6 > 0 && $6 < 1 && $8 > 0 && $8 < 1 && $9 > 0 && $9 < 1) { bad = 1 } END { exit bad }' "$csv" ||
   die "an RMSE is not in (0, 1)"
 awk -F, 'NR > 1 && !($6 < $5) { bad = 1 } END { exit bad }' "$csv" ||

@@ -107,15 +107,15 @@ TEST(MultiBounce, AlbedoZeroSkipsTheFit) {
 }
 
 // The output at an albedo is the fit of the single-bounce output (Double: unrounded), clamped to
-// [0, 1], at every pass that stores the output: upsample (medium, half resolution), output (ultra,
+// [0, 1], at every pass that stores the output: upsample (medium, half resolution), output (reference,
 // full resolution after the blur) and ao_sample_output (no blur, full resolution); with the
 // multiply blend, the caller's texel times that.
 TEST(MultiBounce, OutputIsTheFitOfTheSingleBounceOutput) {
   const Camera cam = testCamera();
-  Settings direct = presetSettings(Preset::Ultra);
+  Settings direct = presetSettings(Preset::Reference);
   direct.blur_radius = 0;
   const std::pair<const char*, Settings> configs[] = {
-      {"medium", presetSettings(Preset::Medium)}, {"ultra", presetSettings(Preset::Ultra)}, {"direct", direct}};
+      {"medium", presetSettings(Preset::Medium)}, {"reference", presetSettings(Preset::Reference)}, {"direct", direct}};
   for (const Scene& scene : {sphereOnPlaneScene(), stairsScene(), creaseScene(2.0)}) {
     const DepthImage depth = renderDepth(scene, cam, DepthFormat::D32F);
     for (const auto& [name, base] : configs) {

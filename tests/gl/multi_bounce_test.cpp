@@ -24,7 +24,7 @@ constexpr double kWithin = 2.0 / 255.0, kNever = 4.0 / 255.0;
 
 std::vector<test::NamedSettings> configurations() {
   std::vector<test::NamedSettings> v = test::agreementSettings();
-  Settings direct = presetSettings(Preset::Ultra);
+  Settings direct = presetSettings(Preset::Reference);
   direct.blur_radius = 0;  // with resolution_divisor 1: ao_sample_output writes the output
   v.push_back({"direct", direct});
   for (auto& c : v) c.settings.albedo = kAlbedo;

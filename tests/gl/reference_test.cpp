@@ -150,7 +150,10 @@ class Variants : public GlTest {
     const DepthImage depth2 = test::renderDepth(scene, cam, cpuFormat(format), 1);
     const FloatImage n = test::renderNormals(scene, cam);
     auto effect = makeEffect();
-    Settings flat = presetSettings(Preset::Reference);
+    Settings flat;  // the reference preset of 2026-12-03 (64 taps, 5-tap blur, full resolution)
+    flat.samples = 64;
+    flat.blur_radius = 2;
+    flat.resolution_divisor = 1;
     flat.use_z_hierarchy = false;  // the Z_HIERARCHY=0 variant
     for (const auto& [label, base] : {std::pair{"medium", presetSettings(Preset::Medium)}, std::pair{"no_hierarchy", flat}}) {
       if (twoLayer && !base.use_z_hierarchy) continue;  // TWO_LAYER needs the z hierarchy

@@ -27,7 +27,7 @@ constexpr double kWithin = 2.0 / 255.0, kNever = 4.0 / 255.0;
 TEST_F(VkTest, MultiBounceAgreesWithTheCpuReferenceOnEveryScene) {
   const Camera camera = vulkanCamera(160, 90, 8, 100.0);
   std::vector<test::NamedSettings> configs = test::agreementSettings();
-  Settings direct = presetSettings(Preset::Ultra);
+  Settings direct = presetSettings(Preset::Reference);
   direct.blur_radius = 0;  // with resolution_divisor 1: ao_sample_output writes the output
   configs.push_back({"direct", direct});
   for (const test::Scene& scene : {test::planeScene(2.0), test::creaseScene(2.0), test::sphereOnPlaneScene(),
