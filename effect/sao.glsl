@@ -134,6 +134,8 @@
 #pragma sao exclude MOTION_VECTORS=1 TEMPORAL=0 "motion vectors serve temporal accumulation only: set the temporal setting, or give no motion input"
 #pragma sao exclude DEPTH_MULTISAMPLE=1 TWO_LAYER=1 "a multisampled depth input has no second layer: give depth peeling's layers single-sample, or resolve the depth first"
 #pragma sao exclude Z_HIERARCHY=0 TWO_LAYER=1 "the no-hierarchy baseline is a single-layer benchmark path"
+// (The setting side of the next one is `refuse bent_normals when=estimator==0`, which plan() meets
+// first; the exclusion keeps those variants from being compiled.)
 #pragma sao exclude BENT_NORMALS=1 ESTIMATOR=0 "bent normals come from the visibility estimator's slices: set estimator 1"
 #pragma sao exclude BENT_NORMALS=1 OUTPUT_FORMAT=0 "bent normals need an rgba output (rgba8 or rgba16f) for the normal's three components and A"
 #pragma sao exclude BENT_NORMALS=1 OUTPUT_FORMAT=1 "bent normals need an rgba output (rgba8 or rgba16f) for the normal's three components and A"

@@ -106,7 +106,7 @@ class Parser {
         // Parsed once every setting is known (below); its name is claimed here, in source order.
         if (d.words.size() != 1 || nameIsNew(d, "derived setting", d.words[0])) pendingDerived_.push_back(d);
       }
-      else if (d.kind == "inert" || d.kind == "refuse") pendingInert_.push_back(d);  // once every setting is known
+      else if (d.kind == "inert" || d.kind == "refuse") pendingSettingRules_.push_back(d);  // once every setting is known
       else if (d.kind == "end") {
         if (!open) diags_.error(d.loc, "'#pragma sao end' without an open pass section");
         open = nullptr;
@@ -119,7 +119,7 @@ class Parser {
     if (!sawEffect_) diags_.error(fileLoc, "no '#pragma sao effect' directive: not an annotated effect");
     for (const auto& d : pendingExcludes_) parseExclude(d);
     for (const auto& d : pendingDerived_) parseDerived(effect_, d.loc, d.words, d.attrs, d.doc, d.hasDoc, diags_);
-    for (const auto& d : pendingInert_)
+    for (const auto& d : pendingSettingRules_)
       parseSettingRule(effect_, d.kind == "refuse", d.loc, d.words, d.attrs, d.doc, d.hasDoc, diags_);
     // Rules name settings and resources, which may be declared after the variant or pass.
     for (const auto& [v, d] : pendingSelects_) resolveVariantSelect(effect_, effect_.variants[v], d.loc, d.text, diags_);
@@ -769,7 +769,7 @@ class Parser {
   std::vector<std::pair<size_t, PendingText>> pendingSelects_;  // (variant index, select=)
   std::vector<Directive> pendingPresets_;
   std::vector<Directive> pendingDerived_;
-  std::vector<Directive> pendingInert_;
+  std::vector<Directive> pendingSettingRules_;
 };
 
 }  // namespace

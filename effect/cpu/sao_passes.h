@@ -254,20 +254,33 @@ class AoSampleInvocation {
 // keep what the image holds (the caller's contents, Inputs::output). A goes through the
 // multi-bounce fit first (SAO_BOUNCED; A itself with albedo 0).
 template <typename T>
-void storeOutput(const PassContext<T>& ctx, Image<T>& dst, int x, int y, T a) {
-  a = multiBounce(a, ctx.P);
+bool outputIsUnorm8(const PassContext<T>& ctx) {
   const std::int32_t v = ctx.plan.variants[static_cast<std::size_t>(gen::VariantId::OUTPUT_FORMAT)];
   const gen::Format f = gen::kResources[static_cast<std::size_t>(gen::ResourceId::ao)].formats[std::size_t(v)];
-  const bool unorm8 = f == gen::Format::R8 || f == gen::Format::RGBA8;
+  return f == gen::Format::R8 || f == gen::Format::RGBA8;
+}
+
+// A (after the multi-bounce fit) as the replace blend stores it: Float rounded as the format holds
+// it, Double unrounded but for the shader's channel clamp (the fit reaches 1.0001 at A = 1 for
+// albedo > 0.8).
+template <typename T>
+T replacedA(const PassContext<T>& ctx, T a, bool unorm8) {
+  if constexpr (std::is_same_v<T, float>)
+    return unorm8 ? roundToUnorm8(a) : roundToHalf(a);
+  else
+    return ctx.P.multi_bounce != 0 ? std::clamp(a, T(0), T(1)) : a;
+}
+
+template <typename T>
+void storeOutput(const PassContext<T>& ctx, Image<T>& dst, int x, int y, T a) {
+  a = multiBounce(a, ctx.P);
+  const bool unorm8 = outputIsUnorm8(ctx);
   if (ctx.P.output_blend == gen::SAO_OUTPUT_BLEND_MULTIPLY) {
     for (int c = 0; c < dst.ch; ++c)
       if ((ctx.P.output_mask >> c) & 1) dst.at(x, y, c) = outputMultiply(dst.at(x, y, c), a, unorm8);
     return;
   }
-  if constexpr (std::is_same_v<T, float>)
-    a = unorm8 ? roundToUnorm8(a) : roundToHalf(a);
-  else if (ctx.P.multi_bounce != 0)
-    a = std::clamp(a, T(0), T(1));  // the shader's channel clamp: the fit reaches 1.0001 at A = 1 for albedo > 0.8
+  a = replacedA(ctx, a, unorm8);
   for (int c = 0; c < dst.ch; ++c)
     if ((ctx.P.output_mask >> c) & 1) dst.at(x, y, c) = a;
 }
@@ -277,23 +290,16 @@ void storeOutput(const PassContext<T>& ctx, Image<T>& dst, int x, int y, T a) {
 // masks and blends). Float rounds each as the format holds it, Double keeps them unrounded.
 template <typename T>
 void storeBentOutput(const PassContext<T>& ctx, Image<T>& dst, int x, int y, Vec3<T> b, T a) {
-  a = multiBounce(a, ctx.P);
-  const std::int32_t v = ctx.plan.variants[static_cast<std::size_t>(gen::VariantId::OUTPUT_FORMAT)];
-  const gen::Format f = gen::kResources[static_cast<std::size_t>(gen::ResourceId::ao)].formats[std::size_t(v)];
-  const bool unorm8 = f == gen::Format::RGBA8;
+  const bool unorm8 = outputIsUnorm8(ctx);
   T c[3] = {b.x, b.y, b.z};
   for (T& e : c) {
     if (unorm8) e = T(0.5) + T(0.5) * e;
     if constexpr (std::is_same_v<T, float>) e = unorm8 ? roundToUnorm8(e) : roundToHalfSigned(e);
   }
-  if constexpr (std::is_same_v<T, float>)
-    a = unorm8 ? roundToUnorm8(a) : roundToHalf(a);
-  else
-    a = std::clamp(a, T(0), T(1));
   dst.at(x, y, 0) = c[0];
   dst.at(x, y, 1) = c[1];
   dst.at(x, y, 2) = c[2];
-  dst.at(x, y, 3) = a;
+  dst.at(x, y, 3) = replacedA(ctx, multiBounce(a, ctx.P), unorm8);
 }
 
 // An (A, key) intermediate's texel (ao_raw, ao_low): with HALF_INTERMEDIATES as the rg16f

@@ -163,7 +163,7 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
   // BENT_NORMALS stores (bent normal, A) into all four channels: a mask that keeps some, or the
   // multiply blend, would leave a texel half bent normal, half the caller's.
   if (out.variants[static_cast<std::size_t>(gen::VariantId::BENT_NORMALS)] != 0 &&
-      ((inputs.outputChannels & kAllChannels) != kAllChannels || inputs.outputBlend != OutputBlend::Replace))
+      keepsChannels(inputs.outputFormat, inputs.outputChannels, inputs.outputBlend))
     return Status::error(StatusCode::InvalidInput,
                          "bent_normals writes the bent normal into R, G, B and A into A of every output texel: it "
                          "needs the output channel mask kAllChannels (15, got " +

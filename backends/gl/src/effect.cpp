@@ -223,8 +223,8 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
   // checkSupplied put the region inside the textures, whose sides GL keeps far below 2^31.
   const Offset offset = checked.region.value_or(Offset{});
   block.input_offset = {static_cast<std::int32_t>(offset.x), static_cast<std::int32_t>(offset.y)};
-  block.output_mask = outputMaskParam(checked.outputChannels);  // per render, like the offset
-  block.output_blend = static_cast<std::int32_t>(checked.outputBlend);
+  block.output_mask = outputMaskParam(checked.planInputs.outputChannels);  // per render, like the offset
+  block.output_blend = static_cast<std::int32_t>(checked.planInputs.outputBlend);
   block.depth_samples = static_cast<std::int32_t>(checked.depth.samples);  // DEPTH_MULTISAMPLE's sample count
   setFrameIndex(block, inputs.frameIndex);  // the frame's spiral (sao/spiral.h)
   if (settings.temporal) {
