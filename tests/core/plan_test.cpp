@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "untuned_settings.h"
+#include "sao/frame.h"
 #include "sao/plan.h"
 #include "sao/settings.h"
 
@@ -199,7 +200,8 @@ TEST(Plan, RejectsBadExtentsAndIsDeterministic) {
 }
 
 // cameraKeepsPlan: jitter and a mirrored stereo eye keep the plan (and plan() agrees), a new size,
-// guard band, kind or csz level count does not, nor an invalid camera.
+// guard band or csz level count does not (an orthographic camera here needs fewer levels), nor an
+// invalid camera. tests/core/frame_test.cpp has the rule's messages and the projection kind.
 TEST(Plan, CameraKeepsPlanExactlyWhenThePlanIsTheSame) {
   const sao::Settings s = sao::test::untunedDefaults();
   const sao::Camera base = sao::perspectiveCamera(std::numbers::pi / 3.0, 320, 180, 0.1, 100, sao::ClipDepth::ZeroToOne, false);
@@ -228,6 +230,7 @@ TEST(Plan, CameraKeepsPlanExactlyWhenThePlanIsTheSame) {
   broken.projection[0] = NAN;
   for (const sao::Camera& c : {wider, guarded, ortho, broken}) EXPECT_FALSE(sao::cameraKeepsPlan(s, base, c));
   // A nearer near plane projects the radius larger: more csz levels, unless the chain is capped.
+  EXPECT_FALSE(samePlan(ortho));
   EXPECT_EQ(sao::cameraKeepsPlan(s, base, nearer), samePlan(nearer));
   sao::Settings noHierarchy = s;
   noHierarchy.use_z_hierarchy = false;

@@ -334,13 +334,13 @@ TEST_F(PerRecordCamera, RefusesCamerasThatChangeThePlanOrAreInvalid) {
   };
   const Case cases[] = {
       {"another size", worldNormals(cameraWith(60, 0.1, kW + 2, kH), r0), StatusCode::InvalidInput,
-       "is 162x90 with guard band 8 but Config::camera (the plan) is 160x90 with guard band 8", false},
+       "is 162x90 with guard band 8 but the plan's camera is 160x90 with guard band 8", false},
       {"another guard band", worldNormals(cameraWith(60, 0.1, kW, kH, kGuard + 1), r0), StatusCode::InvalidInput,
-       "is 160x90 with guard band 9 but Config::camera (the plan) is 160x90 with guard band 8", false},
+       "is 160x90 with guard band 9 but the plan's camera is 160x90 with guard band 8", false},
       {"a near plane that needs fewer csz levels", worldNormals(cameraWith(60, 1.0), r0), StatusCode::InvalidInput,
-       "csz MIP levels but the plan (Config::camera) has", false},
+       "csz MIP levels but the plan has", false},
       {"orthographic (fewer csz levels here)", orthographic, StatusCode::InvalidInput,
-       "csz MIP levels but the plan (Config::camera) has", false},
+       "csz MIP levels but the plan has", false},
       {"a non-finite projection", nonFinite, StatusCode::InvalidCamera, "non-finite element P11", true},
       {"world normals without a rotation", noRotation, StatusCode::InvalidCamera, "needs Camera::viewRotation", true},
       {"a scaled rotation", scaled, StatusCode::InvalidCamera, "is not a rotation", true},

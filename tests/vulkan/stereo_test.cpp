@@ -13,6 +13,7 @@
 
 #include "analytic_scenes.h"
 #include "library_allocations.h"
+#include "sao/frame.h"
 #include "sao/cpu/reference.h"
 #include "sao/presets.h"
 #include "vk_support.h"

@@ -219,15 +219,6 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
   return Status::success();
 }
 
-bool cameraKeepsPlan(const Settings& settings, const Camera& planned, const Camera& next) {
-  if (planned.width != next.width || planned.height != next.height || planned.guardBand != next.guardBand ||
-      planned.kind != next.kind)
-    return false;
-  DepthModel a, b;
-  if (!analyze(planned, a) || !analyze(next, b)) return false;
-  return mipLevelsNeeded(settings, planned, a) == mipLevelsNeeded(settings, next, b);
-}
-
 std::uint64_t fullAllocationBytes(const Camera& camera, const PlanInputs& inputs) {
   Extent input, ao;
   if (!checkExtents(camera, input, ao)) return 0;

@@ -18,7 +18,9 @@ Status prepareTemporalFrame(const TemporalHistory& h, const Settings& settings, 
       return bad("differs from this frame's camera in size, guard band or projection kind: the history of "
                  "another plan cannot be reused (set Inputs::resetHistory)");
   }
-  const bool reuse = !reset && settings.temporal && h.holdsFrame && h.settings == settings;
+  // The plan's rule (sao/frame.h) lets a camera change its projection kind; the history cannot
+  // follow (its reprojection takes both cameras as the current one's kind): start again.
+  const bool reuse = !reset && settings.temporal && h.holdsFrame && h.settings == settings && h.camera.kind == current.kind;
   setPreviousFrame(block, current, reuse ? (previous ? previous : &h.camera) : nullptr);
   return Status::success();
 }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sao/cpu/parallel.h"
+#include "sao/frame.h"
 #include "sao/schedule.h"
 #include "sao/temporal.h"
 
@@ -290,12 +291,7 @@ Status validateAndPlan(const Settings& settings, const Camera& camera, const Inp
   if (offset.x > std::uint32_t(INT32_MAX) || offset.y > std::uint32_t(INT32_MAX))
     return invalid("the offset (" + std::to_string(offset.x) + ", " + std::to_string(offset.y) +
                    ") does not fit the shaders' int (at most 2^31 - 1)");
-  if (Status st = computeConstants(settings, camera, encoding, r.params); !st) return st;
-  r.params.input_offset = {std::int32_t(offset.x), std::int32_t(offset.y)};
-  r.params.output_mask = outputMaskParam(in.outputChannels);
-  r.params.output_blend = static_cast<std::int32_t>(in.outputBlend);
-  r.params.depth_samples = static_cast<std::int32_t>(in.depth->samples);
-  setFrameIndex(r.params, in.frameIndex);
+  if (Status st = frameConstants(settings, camera, planInputs, {offset, in.frameIndex}, r.params); !st) return st;
   if (Status st = checkHistory(settings, camera, in, r); !st) return st;
   // The block and the plan come from the same core functions; check that they agree anyway.
   if (std::uint32_t(r.params.max_mip) + 1 != r.plan.cszLevels)

@@ -13,6 +13,7 @@
 #include "inputs.h"
 #include "programs.h"
 #include "resources.h"
+#include "sao/frame.h"
 #include "sao/temporal.h"
 #include "state.h"
 #include "timing.h"
@@ -219,14 +220,9 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
   const Schedule& s = replan ? newSchedule : schedule;
   if (Status st = checkSupplied(p, supplied(checked), checked.planInputs.userOutput, "sao::gl"); !st) return st;
   ParamBlock block{};
-  if (Status st = computeConstants(settings, camera, checked.planInputs.depthEncoding, block); !st) return st;
   // checkSupplied put the region inside the textures, whose sides GL keeps far below 2^31.
-  const Offset offset = checked.region.value_or(Offset{});
-  block.input_offset = {static_cast<std::int32_t>(offset.x), static_cast<std::int32_t>(offset.y)};
-  block.output_mask = outputMaskParam(checked.planInputs.outputChannels);  // per render, like the offset
-  block.output_blend = static_cast<std::int32_t>(checked.planInputs.outputBlend);
-  block.depth_samples = static_cast<std::int32_t>(checked.depth.samples);  // DEPTH_MULTISAMPLE's sample count
-  setFrameIndex(block, inputs.frameIndex);  // the frame's spiral (sao/spiral.h)
+  const FrameValues frame{checked.region.value_or(Offset{}), inputs.frameIndex};
+  if (Status st = frameConstants(settings, camera, checked.planInputs, frame, block); !st) return st;
   if (settings.temporal) {
     if (inputs.layer != 0)
       return Status::error(StatusCode::InvalidInput, "sao::gl: temporal accumulation keeps one view's history: render "

@@ -149,7 +149,7 @@ Status checkDepthSamples(const EffectState& e, const Config& c) {
 
 // Everything a configuration needs that does not allocate: format and layout checks, the plan, the
 // parameter block, device limits.
-Status checkConfig(const EffectState& e, const Config& c, Plan& plan, ParamBlock& params) {
+Status checkConfig(const EffectState& e, const Config& c, PlanInputs& pi, Plan& plan, ParamBlock& params) {
   if (c.framesInFlight < 1 || c.framesInFlight > kMaxFramesInFlight)
     return Status::error(StatusCode::InvalidInput, "Config::framesInFlight is " + std::to_string(c.framesInFlight) +
                                                        "; allowed 1.." + std::to_string(kMaxFramesInFlight));
@@ -221,16 +221,13 @@ Status checkConfig(const EffectState& e, const Config& c, Plan& plan, ParamBlock
                              "or use kAllChannels");
 
   const DepthEncoding encoding = depthEncodingOf(c.depthFormat);
-  PlanInputs pi{encoding,     c.normalsFormat != VK_FORMAT_UNDEFINED,
-                c.secondLayer, c.userOutput,
-                outputFormat, static_cast<std::uint32_t>(c.depthSamples),
-                c.motionFormat != VK_FORMAT_UNDEFINED,
-                c.outputChannels, c.outputBlend};
+  pi = {encoding,     c.normalsFormat != VK_FORMAT_UNDEFINED,
+        c.secondLayer, c.userOutput,
+        outputFormat, static_cast<std::uint32_t>(c.depthSamples),
+        c.motionFormat != VK_FORMAT_UNDEFINED,
+        c.outputChannels, c.outputBlend};
   if (Status st = sao::plan(c.settings, c.camera, pi, plan); !st) return st;
-  if (Status st = computeConstants(c.settings, c.camera, encoding, params); !st) return st;
-  params.output_mask = outputMaskParam(c.outputChannels);
-  params.output_blend = static_cast<std::int32_t>(c.outputBlend);
-  params.depth_samples = static_cast<std::int32_t>(c.depthSamples);
+  if (Status st = frameConstants(c.settings, c.camera, pi, {}, params); !st) return st;
   // Per pass: its storage images (a levels= write counts one per slot) and sampled images.
   for (const PlannedPass& p : plan.passes) {
     std::uint32_t storage = 0, sampled = 0;
@@ -331,7 +328,7 @@ Status createEffect(const DeviceContext& context, const Config& config, EffectSt
                          "r16f storage images): enable it in VkDeviceCreateInfo");
   e.ctx.enabledFeatures = nullptr;  // the caller's pointer is read here only
 
-  if (Status st = checkConfig(e, config, e.plan, e.params); !st) return st;
+  if (Status st = checkConfig(e, config, e.planInputs, e.plan, e.params); !st) return st;
   e.schedule = makeSchedule(e.plan);
   e.config = config;
   e.allocator.init(&e.d, context.device, e.memoryProps, e.props.limits.bufferImageGranularity, context.allocator);
@@ -366,9 +363,10 @@ Status Effect::create(const DeviceContext& context, const Config& config, std::u
 Status Effect::update(const Config& config) {
   return guarded("sao::vk::Effect::update()", [&] {
     EffectState& e = *impl_;
+    PlanInputs planInputs;
     Plan plan;
     ParamBlock params{};
-    if (Status st = checkConfig(e, config, plan, params); !st) return st;
+    if (Status st = checkConfig(e, config, planInputs, plan, params); !st) return st;
     Schedule schedule = makeSchedule(plan);
     if (Status st = ensurePipelines(e, plan); !st) return st;  // a cache: kept even if a later step fails
     const bool newImages = !sameImages(e.plan, plan);
@@ -407,6 +405,7 @@ Status Effect::update(const Config& config) {
       std::swap(e.queryPool, queries);
     }
     e.config = std::move(next);
+    e.planInputs = planInputs;
     e.plan = std::move(plan);
     e.temporal.holdsFrame = false;  // new settings or images: the history starts again
     e.schedule = std::move(schedule);

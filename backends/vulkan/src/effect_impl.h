@@ -14,6 +14,7 @@
 #include "allocator.h"
 #include "dispatch.h"
 #include "handle.h"
+#include "sao/frame.h"
 #include "sao/schedule.h"
 #include "sao/temporal.h"
 #include "sao/vulkan/effect.h"
@@ -109,6 +110,7 @@ struct __attribute__((visibility("hidden"))) EffectState {
 
   Config config;
   Plan plan;
+  PlanInputs planInputs;  // of `config`: what completeFrame (sao/frame.h) reads per record
   Schedule schedule;  // of `plan`: what record() translates
   ParamBlock params{};
 

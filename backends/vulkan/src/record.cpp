@@ -172,17 +172,14 @@ std::uint32_t acquireSlot(EffectState& e, const Inputs& in, const OutputTarget& 
   // stale set). The slot's previous command buffer has completed (the ring contract), and a few
   // dozen descriptor writes per record cost next to nothing.
   writeDescriptors(e, slot, in, output);
-  // The region's offset is per record (checkInputs put it inside the textures, whose sides are at
-  // most maxImageDimension2D, so it fits the shader's int).
-  const Offset offset = in.region.value_or(Offset{});
-  e.params.input_offset = {static_cast<std::int32_t>(offset.x), static_cast<std::int32_t>(offset.y)};
-  setFrameIndex(e.params, in.frameIndex);  // the frame's spiral, per record like the offset
-  // This record's camera (Inputs::camera) goes into this slot only; e.params stays Config's.
-  const ParamBlock* block = &e.params;
+  // The region's offset and the frame index are per record (checkInputs put the offset inside the
+  // textures, whose sides are at most maxImageDimension2D, so it fits the shader's int). params()
+  // shows the last record's; Inputs::camera's block goes into this slot only.
+  const FrameValues frame{in.region.value_or(Offset{}), in.frameIndex};
+  completeFrame(e.params, e.planInputs, frame);
+  ParamBlock* block = &e.params;
   if (cameraBlock) {
-    cameraBlock->input_offset = e.params.input_offset;
-    cameraBlock->frame_phase = e.params.frame_phase;
-    cameraBlock->frame_alpha_offset = e.params.frame_alpha_offset;
+    completeFrame(*cameraBlock, e.planInputs, frame);
     block = cameraBlock;
   }
   // The slot's copy of the parameter block (its previous command buffer has completed: the ring

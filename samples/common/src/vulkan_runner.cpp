@@ -5,6 +5,7 @@
 #include <string>
 
 #include "runners.h"
+#include "sao/frame.h"
 #include "sao/vulkan/effect.h"
 #include "sao/vulkan/headless.h"
 

@@ -95,12 +95,6 @@ struct Plan {
 
 Status plan(const Settings& settings, const Camera& camera, const PlanInputs& inputs, Plan& out);
 
-// Whether `next` plans exactly as `planned` does with these settings (the same viewport, guard
-// band, projection kind and csz levels), so that a new camera per frame (TAA jitter, the other eye
-// of a stereo pair, an animated field of view) needs only a new parameter block. False when either
-// camera is invalid. Allocates nothing.
-bool cameraKeepsPlan(const Settings& settings, const Camera& planned, const Camera& next);
-
 // Bytes an implementation without a plan would allocate up front: every image the effect declares
 // (the second layer's chain and the blur intermediate included, whatever the inputs and settings),
 // each csz chain down to 1x1; only a user-supplied output is not counted. For comparison in reports.

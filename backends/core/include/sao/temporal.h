@@ -34,9 +34,10 @@ inline std::uint32_t imageCopy(std::uint32_t parity, gen::ResourceId id, bool pr
 
 // Fills the block's previous-frame members for the frame about to run with `current` and
 // `settings`: from `previous` (the caller's) or else the history's own camera, or none (history_valid
-// = 0) after a reset, a settings change or with `reset`. Refuses (InvalidCamera, naming
-// `previousCamera`) a previous camera that is invalid, lacks Camera::view, or plans differently
-// from `current` (another size, guard band or projection kind). Allocates nothing.
+// = 0) after a reset, a settings change, a history camera of another projection kind or with
+// `reset`. Refuses (InvalidCamera, naming `previousCamera`) a previous camera that is invalid, lacks
+// Camera::view, or differs from `current` in size, guard band or projection kind (the history's
+// reprojection takes both as the current one's kind). Allocates nothing.
 Status prepareTemporalFrame(const TemporalHistory& h, const Settings& settings, const Camera& current,
                             const Camera* previous, bool reset, ParamBlock& block);
 

@@ -1,0 +1,66 @@
+#include "sao/frame.h"
+
+#include <string>
+
+#include "sao/output.h"
+
+namespace sao {
+namespace {
+
+// Where a camera meets the plan: its extents and its csz levels (plan() reads nothing else of it).
+struct CameraPlanKey {
+  std::uint32_t width = 0, height = 0, guardBand = 0, cszLevels = 0;
+};
+
+Status planKey(const Settings& settings, const Camera& camera, CameraPlanKey& out) {
+  DepthModel model;
+  if (Status st = analyze(camera, model); !st) return st;
+  out = {camera.width, camera.height, camera.guardBand, mipLevelsNeeded(settings, camera, model)};
+  return Status::success();
+}
+
+}  // namespace
+
+void completeFrame(ParamBlock& block, const PlanInputs& inputs, const FrameValues& frame) {
+  block.input_offset = {static_cast<std::int32_t>(frame.inputOffset.x), static_cast<std::int32_t>(frame.inputOffset.y)};
+  block.output_mask = outputMaskParam(inputs.outputChannels);
+  block.output_blend = static_cast<std::int32_t>(inputs.outputBlend);
+  block.depth_samples = static_cast<std::int32_t>(inputs.depthSamples);  // DEPTH_MULTISAMPLE's sample count
+  setFrameIndex(block, frame.frameIndex);
+}
+
+Status frameConstants(const Settings& settings, const Camera& camera, const PlanInputs& inputs,
+                      const FrameValues& frame, ParamBlock& out) {
+  if (Status st = computeConstants(settings, camera, inputs.depthEncoding, out); !st) return st;
+  completeFrame(out, inputs, frame);
+  return Status::success();
+}
+
+Status checkCameraKeepsPlan(const Settings& settings, const Camera& planned, const Camera& next) {
+  CameraPlanKey a, b;
+  if (Status st = planKey(settings, next, b); !st) return st;
+  if (Status st = planKey(settings, planned, a); !st)
+    return Status::error(StatusCode::InvalidInput, "the planned camera is invalid: " + st.message);
+  if (a.width != b.width || a.height != b.height || a.guardBand != b.guardBand) {
+    auto size = [](const CameraPlanKey& k) {
+      return std::to_string(k.width) + "x" + std::to_string(k.height) + " with guard band " + std::to_string(k.guardBand);
+    };
+    return Status::error(StatusCode::InvalidInput, "is " + size(b) + " but the plan's camera is " + size(a) +
+                                                       ": a new size or guard band changes every image");
+  }
+  if (a.cszLevels != b.cszLevels)
+    return Status::error(StatusCode::InvalidInput,
+                         "needs " + std::to_string(b.cszLevels) + " csz MIP levels but the plan has " +
+                             std::to_string(a.cszLevels) +
+                             " (the largest projected radius, from the projection scale, near distance, projection "
+                             "kind and metersToViewUnits, selects them): this camera changes the plan");
+  return Status::success();
+}
+
+bool cameraKeepsPlan(const Settings& settings, const Camera& planned, const Camera& next) {
+  CameraPlanKey a, b;
+  if (!planKey(settings, planned, a) || !planKey(settings, next, b)) return false;
+  return a.width == b.width && a.height == b.height && a.guardBand == b.guardBand && a.cszLevels == b.cszLevels;
+}
+
+}  // namespace sao
