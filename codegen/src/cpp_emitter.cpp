@@ -201,6 +201,29 @@ void emitSettingRules(std::ostringstream& h, const Effect& e) {
   h << "\n";
 }
 
+// The push constants of the passes that declare them (one block for all: main.cpp checks it), each
+// member a copy of the parameter block's member of the same name (checked there too).
+void emitPushConstants(std::ostringstream& h, const ParamBlock& b, const std::vector<CompiledPassVariant>& pvs) {
+  const SpirvFacts* facts = nullptr;
+  for (const auto& c : pvs)
+    if (c.facts.pushConstantBytes > 0) facts = &c.facts;
+  h << "// ---- Push constants";
+  if (facts) h << " (block '" << facts->pushConstantBlock << "', Vulkan only)";
+  h << ": the passes whose PassVariantInfo::pushConstantBytes is not 0 take them; each member is the\n"
+    << "// parameter block's member of the same name (pushConstantsOf).\n"
+    << "struct PushConstants {\n";
+  if (facts)
+    for (const auto& m : facts->pushConstants)
+      h << "  " << (m.glslType == "float" ? "float" : m.glslType == "uint" ? "std::uint32_t" : "std::int32_t") << " "
+        << m.name << ";  // offset " << m.offset << "\n";
+  h << "};\n"
+    << "inline constexpr std::uint32_t kPushConstantBytes = " << (facts ? facts->pushConstantBytes : 0) << ";\n"
+    << "inline PushConstants pushConstantsOf(const " << b.name << "& " << (facts ? "p" : "") << ") { return {";
+  if (facts)
+    for (std::size_t i = 0; i < facts->pushConstants.size(); ++i) h << (i ? ", " : "") << "p." << facts->pushConstants[i].name;
+  h << "}; }\n\n";
+}
+
 }  // namespace
 
 GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& pvs,
@@ -281,6 +304,7 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
   h << "static_assert(sizeof(" << b.name << ") == " << b.size << ");\n"
     << "using ParamBlock = " << b.name << ";\n\n";
   emitWidenedBlock(h, b);
+  emitPushConstants(h, b, pvs);
 
   // --- variants
   h << "// ---- Variants: compile-time switches; a key holds one value per variant.\n"
@@ -367,7 +391,9 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     << "  std::uint32_t slots;  // array elements: a levels= pass's write of a MIP chain has one per level, else 1\n};\n"
     << "struct PassVariantInfo {\n  VariantValues values;  // -1 where the pass does not depend on the variant\n"
     << "  std::span<const BindingInfo> bindings;\n  std::uint32_t glslBlob;\n  std::uint32_t spirvBlob;\n"
-    << "  std::string_view fileStem;\n};\n"
+    << "  std::string_view fileStem;\n"
+    << "  std::uint32_t sharedBytes;  // the work group's shared variables, tightly packed (from its SPIR-V)\n"
+    << "  std::uint32_t pushConstantBytes;  // its push constants (PushConstants; Vulkan only), 0: none\n};\n"
     << "enum class Compare : std::uint8_t { Eq, Ne, Lt, Le, Gt, Ge };\n"
     << "// `setting op value` on a setting (pass rules: int or bool); never holds when not active.\n"
     << "struct SettingCondition {\n  bool active;\n  SettingId setting;\n  Compare op;\n  double value;\n};\n"
@@ -376,7 +402,6 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     << "struct ResourceAlias {\n  ResourceId declared;\n  ResourceId serving;\n};\n"
     << "struct PassInfo {\n  std::string_view name;\n  std::string_view entry;\n  std::uint32_t localX, localY;\n"
     << "  std::uint32_t texelsX, texelsY;  // texels=WxH: an invocation covers WxH texels of the first written level\n"
-    << "  bool perMip;  // runs once per MIP level 1..L-1 of the written image\n"
     << "  // levels=A..B: one dispatch writes levels A..B of its chains (firstLevel A, levelSlots B - A + 1,\n"
     << "  // levels past the chain's last unwritten), reading level A - 1 of a chain it writes; 0 slots: not set\n"
     << "  std::uint32_t firstLevel;\n  std::uint32_t levelSlots;\n"
@@ -459,7 +484,7 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
       s << "}, "
         << (cpv.variant.bindings.empty() ? std::string("{}") : "kBindings_" + pass.name + "_" + std::to_string(index))
         << ", " << cpv.glslBlob << ", " << cpv.spirvBlob << ", "
-        << quoted(cpv.variant.stem) << "},\n";
+        << quoted(cpv.variant.stem) << ", " << cpv.facts.sharedBytes << ", " << cpv.facts.pushConstantBytes << "},\n";
     }
     s << "};\n";
     // Empty lists get no array (a zero-length array is an extension; kPasses names {} instead).
@@ -487,7 +512,7 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
     };
     s << "  {" << quoted(pass.name) << ", " << quoted(pass.entry) << ", " << pass.localX << ", " << pass.localY << ", "
       << pass.texelsX << ", " << pass.texelsY << ", "
-      << (pass.perMip ? "true" : "false") << ", " << pass.firstLevel << ", " << pass.levelSlots << ", "
+      << pass.firstLevel << ", " << pass.levelSlots << ", "
       << span("kReads_", pass.reads.size()) << ", "
       << span("kWrites_", pass.writes.size()) << ", " << span("kVariants_", pass.variants.size())
       << ", kCompiled_" << pass.name << ",\n   " << conditionValue(e, pass.skipWhen) << ", "

@@ -7,6 +7,7 @@
 
 #include "effect_model.h"
 #include "pass_builder.h"
+#include "spirv_facts.h"
 
 namespace sao::codegen {
 
@@ -14,6 +15,7 @@ struct CompiledPassVariant {
   PassVariant variant;
   int glslBlob = 0;   // index into glslBlobs
   int spirvBlob = 0;  // index into spirvBlobs
+  SpirvFacts facts;   // shared memory and push constants, read from its SPIR-V
 };
 
 struct GeneratedCode {

@@ -651,17 +651,13 @@ class Parser {
         p.texelsY = std::stoi(m[2]);
       }
     }
-    if (a.count("per")) {
-      if (a["per"] != "mip") diags_.error(d.loc, "per= of pass '" + p.name + "' must be 'mip', got '" + a["per"] + "'");
-      p.perMip = true;
-    }
+    if (a.count("per"))  // one dispatch per level is gone: a chain is written in one, levels=A..B
+      diags_.error(d.loc, "per= of pass '" + p.name + "' is no longer part of the format: write a chain's levels in one dispatch with levels=A..B");
     if (a.count("levels")) {
       static const std::regex levelsRe("^([0-9]{1,2})\\.\\.([0-9]{1,2})$");
       std::smatch m;
       if (!std::regex_match(a["levels"], m, levelsRe) || std::stoi(m[1]) > std::stoi(m[2]) || std::stoi(m[2]) > 15)
         diags_.error(d.loc, "levels= of pass '" + p.name + "' must be A..B with 0 <= A <= B <= 15, got '" + a["levels"] + "'");
-      else if (p.perMip)
-        diags_.error(d.loc, "pass '" + p.name + "' has both per=mip and levels=: per=mip writes one level per dispatch, levels= a range in one");
       else {
         p.firstLevel = std::stoi(m[1]);
         p.levelSlots = std::stoi(m[2]) - p.firstLevel + 1;
@@ -688,8 +684,6 @@ class Parser {
       const Resource& res = effect_.resources[r];
       if (res.kind == ResourceKind::Input)
         diags_.error(d.loc, "pass '" + p.name + "' writes input resource '" + res.name + "'");
-      if (p.perMip && !res.fullMipChain)
-        diags_.error(d.loc, "pass '" + p.name + "' runs per=mip but writes '" + res.name + "', which has no MIP chain");
       if (p.levelSlots > 0 && !res.fullMipChain)
         diags_.error(d.loc, "pass '" + p.name + "' writes levels= of '" + res.name + "', which has no MIP chain");
       // A levels= pass reads the level below its first (A - 1) of a chain it writes; from level 0 there is none.

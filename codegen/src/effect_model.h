@@ -152,7 +152,6 @@ struct Pass {
   std::vector<int> reads;    // resource indices
   std::vector<int> writes;   // resource indices
   std::vector<int> variants; // variant indices, effect order
-  bool perMip = false;
   // levels=A..B: the pass writes levels A..B of the MIP chains it writes, each as an image array
   // out_<res>[B - A + 1] (slot j = level A + j); reading one of them, it sees level A - 1 alone.
   int firstLevel = 0;

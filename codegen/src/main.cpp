@@ -1,4 +1,5 @@
 // sao-shaderc: compiles an annotated SAO effect into GLSL 4.30, SPIR-V and C++ glue.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -41,6 +42,43 @@ std::string rulesText(const Effect& e, const Pass& p) {
       out += (i ? "," : "") + e.resources[p.aliases[i].declared].name + "=" + e.resources[p.aliases[i].serving].name;
   }
   return out;
+}
+
+// One push-constant block for every pass that declares one, its members 32-bit scalars packed from
+// offset 0 (so that gen::PushConstants mirrors it) and each the parameter block's member of the
+// same name and type (so that gen::pushConstantsOf fills it).
+void checkPushConstants(const Effect& e, const std::vector<CompiledPassVariant>& compiled, Diagnostics& diags) {
+  const CompiledPassVariant* first = nullptr;
+  for (const auto& c : compiled) {
+    if (c.facts.pushConstantBytes == 0) continue;
+    const SourceLoc& loc = e.passes[c.variant.pass].loc;
+    if (!first) {
+      first = &c;
+      for (std::size_t i = 0; i < c.facts.pushConstants.size(); ++i) {
+        const PushConstantMember& m = c.facts.pushConstants[i];
+        if (m.offset != 4 * i)
+          diags.error(loc, "push constant '" + m.name + "' of " + c.facts.pushConstantBlock + " is at offset " +
+                               std::to_string(m.offset) + "; members must be packed from 0 (offset " +
+                               std::to_string(4 * i) + ")");
+        const auto match = std::find_if(e.block->members.begin(), e.block->members.end(), [&](const BlockMember& b) {
+          return b.name == m.name && b.glslType == m.glslType && b.arraySize == 0;
+        });
+        if (match == e.block->members.end())
+          diags.error(loc, "push constant '" + m.name + "' (" + m.glslType + ") of " + c.facts.pushConstantBlock +
+                               " has no member of the same name and type in the parameter block " + e.block->name);
+      }
+      continue;
+    }
+    bool same = c.facts.pushConstantBlock == first->facts.pushConstantBlock &&
+                c.facts.pushConstants.size() == first->facts.pushConstants.size();
+    for (std::size_t i = 0; same && i < c.facts.pushConstants.size(); ++i)
+      same = c.facts.pushConstants[i].name == first->facts.pushConstants[i].name &&
+             c.facts.pushConstants[i].glslType == first->facts.pushConstants[i].glslType;
+    if (!same)
+      diags.error(loc, "pass variant " + c.variant.stem + " declares push-constant block " + c.facts.pushConstantBlock +
+                           " unlike " + first->variant.stem + "'s " + first->facts.pushConstantBlock +
+                           ": every pass that takes push constants must declare the same block");
+  }
 }
 
 int fail(const Diagnostics& diags) {
@@ -95,13 +133,18 @@ int main(int argc, char** argv) {
     const std::string glsl = joinLines(glShader);
     outputs.add(pv.stem + ".glsl", glsl);
     outputs.add(pv.stem + ".spv", spirvBytes(spirv));
-    CompiledPassVariant c{pv, 0, 0};
+    CompiledPassVariant c{pv, 0, 0, {}};
+    if (std::string why; !readSpirvFacts(spirv, c.facts, why)) {
+      diags.error(passLoc, "pass variant " + pv.stem + ": its SPIR-V cannot be read for shared memory and push constants: " + why);
+      continue;
+    }
     c.glslBlob = glslIndex.emplace(glsl, static_cast<int>(glslBlobs.size())).first->second;
     if (c.glslBlob == static_cast<int>(glslBlobs.size())) glslBlobs.push_back(glsl);
     c.spirvBlob = spirvIndex.emplace(spirv, static_cast<int>(spirvBlobs.size())).first->second;
     if (c.spirvBlob == static_cast<int>(spirvBlobs.size())) spirvBlobs.push_back(spirv);
     compiled.push_back(c);
   }
+  checkPushConstants(effect, compiled, diags);
   if (diags.hasErrors()) return fail(diags);
 
   const GeneratedCode code = emitCpp(effect, compiled, glslBlobs, spirvBlobs);
@@ -117,11 +160,13 @@ int main(int argc, char** argv) {
                 (pass.texelsX * pass.texelsY > 1
                      ? " texels=" + std::to_string(pass.texelsX) + "x" + std::to_string(pass.texelsY)
                      : "") +
-                (pass.perMip ? " per=mip" : "") +
                 (pass.levelSlots ? " levels=" + std::to_string(pass.firstLevel) + ".." +
                                        std::to_string(pass.firstLevel + pass.levelSlots - 1)
                                  : "") +
-                rulesText(effect, pass) + " glsl=#" + std::to_string(c.glslBlob) + " spirv=#" +
+                rulesText(effect, pass) +
+                (c.facts.sharedBytes ? " shared=" + std::to_string(c.facts.sharedBytes) : "") +
+                (c.facts.pushConstantBytes ? " push=" + std::to_string(c.facts.pushConstantBytes) : "") +
+                " glsl=#" + std::to_string(c.glslBlob) + " spirv=#" +
                 std::to_string(c.spirvBlob) + " | 0 block " + effect.block->name;
     for (const auto& b : c.variant.bindings) {
       const Resource& r = effect.resources[b.resource];

@@ -46,7 +46,7 @@ class PassContext {
 
   Image& image(gen::ResourceId id, std::uint32_t level) { return levels(id)[level]; }
   const Image& image(gen::ResourceId id, std::uint32_t level) const { return levels(id)[level]; }
-  // The level a binding sees first: the one a write stores to, level m - 1 of a per=mip read; for a
+  // The level a binding sees first: the one a write stores to, level A - 1 of a levels=A..B read; for a
   // history's read (previousFrame), the previous frame's image.
   Image& image(const ScheduledBinding& b) {
     return b.previousFrame ? previousFrame(b.resource) : image(b.resource, b.baseLevel);

@@ -70,7 +70,7 @@ Json jsonErrors(const samples::ReferenceComparison& e) {
 
 }  // namespace
 
-double passMs(const Measurement& m, const char* name) {
+double passMs(const Measurement& m, std::string_view name) {
   for (const auto& p : m.passes)
     if (p.pass == name) return p.milliseconds;
   return 0;
@@ -79,30 +79,30 @@ double passMs(const Measurement& m, const char* name) {
 void writeCsv(const std::string& path, const std::vector<Row>& rows) {
   std::ofstream f(path);
   f << "section,scene,backend,preset,variant,inputs,shader_variant,width,height,radius_m,samples,use_z_hierarchy,"
-       "blur_radius,runs,timing_method,linear_z_ms,ao_sample_ms,blur_h_ms,blur_v_ms,total_ms,ns_per_pixel,"
-       "plan_bytes,csz_levels";
+       "blur_radius,runs,timing_method,";
+  // One column per pass the effect declares, in its order ("<pass>_ms"; 0 where the row's plan has
+  // no such pass), so that the columns follow the annotated source.
+  for (const gen::PassInfo& pass : gen::passes()) f << pass.name << "_ms,";
+  f << "total_ms,ns_per_pixel,plan_bytes,csz_levels";
   for (const char* prefix : {"ao_", "obscurance_", "converged_", "screen_"})
     for (const char* c : kErrorColumns) f << "," << prefix << c;
   f << ",converged_blotch_rmse,converged_highfreq_rmse,converged_silhouette_rmse,model_rmse_vs_ao,"
-       "model_rmse_vs_obscurance,error_map,resolution_divisor,blur_v_low_ms,upsample_ms,blur_ms,output_ms,started_unix_s,"
-       "ended_unix_s,screen_model_rmse_vs_ao,model_rmse_converged_vs_screen\n";
+       "model_rmse_vs_obscurance,error_map,resolution_divisor,started_unix_s,ended_unix_s,screen_model_rmse_vs_ao,model_rmse_converged_vs_screen\n";
   for (const auto& r : rows) {
     const auto& m = r.m;
     f << csv(r.section) << "," << csv(r.scene) << "," << csv(r.backend) << "," << csv(r.preset) << ","
       << csv(r.variant) << "," << csv(r.inputs) << "," << csv(m.shaderVariant) << "," << r.size.width << ","
       << r.size.height << "," << r.settings.radius << "," << r.settings.samples << "," << r.settings.use_z_hierarchy
-      << "," << r.settings.blur_radius << "," << m.runs << "," << csv(toString(m.method)) << ","
-      << passMs(m, "linear_z") << "," << passMs(m, "ao_sample") << ","
-      << passMs(m, "blur_h") << "," << passMs(m, "blur_v") << "," << m.totalMs << ","
+      << "," << r.settings.blur_radius << "," << m.runs << "," << csv(toString(m.method)) << ",";
+    for (const gen::PassInfo& pass : gen::passes()) f << passMs(m, pass.name) << ",";
+    f << m.totalMs << ","
       << m.totalMs * 1e6 / (double(r.size.width) * r.size.height) << "," << m.planBytes << "," << m.cszLevels;
     csvErrors(f, m.aoError);
     csvErrors(f, m.obscuranceError);
     csvErrors(f, m.convergedError);
     csvErrors(f, m.screenError);
     csvConverged(f, r);
-    // blur_h_ms, blur_v_ms and blur_v_low_ms: the passes before the blur ran in one (empty since).
-    f << "," << r.settings.resolution_divisor << "," << passMs(m, "blur_v_low") << "," << passMs(m, "upsample") << ","
-      << passMs(m, "blur") << "," << passMs(m, "output") << "," << std::fixed << std::setprecision(3)
+    f << "," << r.settings.resolution_divisor << "," << std::fixed << std::setprecision(3)
       << m.startedUnixSeconds << "," << m.endedUnixSeconds << std::defaultfloat << std::setprecision(6);
     auto optional = [](double v) { return samples::isDefined(v) ? csvMetric(v) : std::string(); };
     f << "," << optional(r.screenRmseVsAo) << "," << optional(r.convergedRmseVsScreen) << "\n";

@@ -3,6 +3,7 @@
 #pragma once
 #include <cmath>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -26,7 +27,7 @@ struct Row {
 };
 
 // Median time of one pass, 0 when the pass did not run.
-double passMs(const Measurement& m, const char* pass);
+double passMs(const Measurement& m, std::string_view pass);
 
 // Error columns come in four groups, named by their reference: ao_* against (a) the near-field AO,
 // obscurance_* against (b) the AlchemyAO obscurance, converged_* against (c) the converged

@@ -127,10 +127,7 @@ void timingSection(UiState& s, const FrameStats& stats) {
 void planSection(const FrameStats& stats, std::uint64_t fullBytes) {
   const Plan& p = stats.plan;
   std::ostringstream passes;
-  for (const auto& pass : p.passes) {
-    passes << (passes.tellp() > 0 ? " " : "") << gen::pass(pass.pass).name;
-    if (pass.dispatchCount != 1) passes << "x" << pass.dispatchCount;
-  }
+  for (const auto& pass : p.passes) passes << (passes.tellp() > 0 ? " " : "") << gen::pass(pass.pass).name;
   ImGui::TextWrapped("passes: %s", passes.str().c_str());
   ImGui::Text("input %ux%u, AO %ux%u, z MIP levels %u", p.inputExtent.width, p.inputExtent.height, p.aoExtent.width,
               p.aoExtent.height, p.cszLevels);

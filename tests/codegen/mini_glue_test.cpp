@@ -153,3 +153,20 @@ TEST(MiniGlue, InertRulesHoldOnTheirSetting) {
   EXPECT_TRUE(gen::holds(strength.when, s));
   EXPECT_TRUE(gen::holds(taps.when, s));
 }
+
+// Shared memory and push constants are read from each variant's SPIR-V: only `smoothing` declares
+// them (64 floats and a uint; the block's gain pushed on Vulkan), and the generated mirror of its
+// push block copies the parameter block's member of the same name.
+TEST(MiniGlue, SharedMemoryAndPushConstantsComeFromTheSpirv) {
+  for (const gen::PassInfo& pass : gen::passes())
+    for (const gen::PassVariantInfo& v : pass.compiled) {
+      const bool smoothing = pass.name == "smoothing";
+      EXPECT_EQ(v.sharedBytes, smoothing ? 260u : 0u) << v.fileStem;
+      EXPECT_EQ(v.pushConstantBytes, smoothing ? 4u : 0u) << v.fileStem;
+    }
+  EXPECT_EQ(gen::kPushConstantBytes, 4u);
+  static_assert(sizeof(gen::PushConstants) == 4);
+  gen::MiniParams block{};
+  block.gain = 2.5f;
+  EXPECT_EQ(gen::pushConstantsOf(block).gain, 2.5f);
+}

@@ -143,9 +143,9 @@ class RawAoSample {
     VkDescriptorSetLayoutCreateInfo dl{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, nullptr, 0,
                                        std::uint32_t(b.size()), b.data()};
     vkCreateDescriptorSetLayout(d, &dl, nullptr, &setLayout_);
-    // The tap count as ao_sample's SPIR-V reads it: a push constant, as the backend's LoopCounts.
-    const VkPushConstantRange loopCounts{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(std::int32_t)};
-    VkPipelineLayoutCreateInfo pl{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, nullptr, 0, 1, &setLayout_, 1, &loopCounts};
+    // The loop counts as ao_sample's SPIR-V reads them: the generated push constants.
+    const VkPushConstantRange pushRange{VK_SHADER_STAGE_COMPUTE_BIT, 0, variant_->pushConstantBytes};
+    VkPipelineLayoutCreateInfo pl{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, nullptr, 0, 1, &setLayout_, 1, &pushRange};
     vkCreatePipelineLayout(d, &pl, nullptr, &layout_);
     makePipeline();
     EXPECT_TRUE(context().createStorageImage(VK_FORMAT_R32G32_SFLOAT, ao_, aoRaw_).ok());
@@ -219,8 +219,9 @@ class RawAoSample {
                                            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr, 1, &bar);
                       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
                       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-                      const std::int32_t samples = params_.samples;
-                      vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof samples, &samples);
+                      const gen::PushConstants constants = gen::pushConstantsOf(params_);
+                      vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, variant_->pushConstantBytes,
+                                         &constants);
                       vkCmdDispatch(cmd, (ao_.width + 7) / 8, (ao_.height + 7) / 8, 1);
                     })
                     .ok());

@@ -8,6 +8,7 @@
 
 #include "image_compare.h"
 #include "vk_support.h"
+#include "sao/schedule.h"
 #include "z_chain_cases.h"
 
 namespace sao::vktest {
@@ -38,8 +39,8 @@ TEST_P(ZChain, EveryLevelEqualsTheCpuChainBitForBit) {
     ASSERT_EQ(r.csz2.size(), twoLayer ? levels : 0u);
 
     std::uint32_t zDispatches = 0;
-    for (const PlannedPass& p : r.plan.passes)
-      if (p.pass == gen::PassId::linear_z || p.pass == gen::PassId::linear_z2) zDispatches += p.dispatchCount;
+    for (const ScheduledDispatch& d : makeSchedule(r.plan).dispatches)
+      if (d.pass == gen::PassId::linear_z || d.pass == gen::PassId::linear_z2) ++zDispatches;
     EXPECT_EQ(zDispatches, twoLayer ? 2u : 1u) << levels << " levels";
 
     for (std::uint32_t m = 0; m < levels; ++m) {

@@ -93,10 +93,7 @@ std::string Plan::describe() const {
   s << "variants:";
   for (std::size_t v = 0; v < gen::kVariantCount; ++v) s << " " << gen::kVariants[v].name << "=" << variants[v];
   s << "\npasses:";
-  for (const auto& p : passes) {
-    s << " " << gen::pass(p.pass).name;
-    if (p.dispatchCount != 1) s << "x" << p.dispatchCount;
-  }
+  for (const auto& p : passes) s << " " << gen::pass(p.pass).name;
   s << "\nimages:";
   for (const auto& i : images)
     s << " " << gen::kResources[static_cast<std::size_t>(i.resource)].name << "(" << i.extent.width << "x"
@@ -177,13 +174,9 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
 
   for (const auto& info : gen::passes()) {
     const auto id = static_cast<gen::PassId>(&info - gen::passes().data());
-    PlannedPass p{id, gen::findPassVariant(id, out.variants), 1, {}};
+    PlannedPass p{id, gen::findPassVariant(id, out.variants), {}};
     if (!p.variant)
       return Status::error(StatusCode::InvalidInput, "no compiled variant of pass '" + std::string(info.name) + "'");
-    if (info.perMip) {
-      if (out.cszLevels <= 1) continue;  // the hierarchy is not used: no MIP pass
-      p.dispatchCount = out.cszLevels - 1;
-    }
     if (info.levelSlots > 0 && out.cszLevels <= info.firstLevel) continue;  // the chain ends below its levels
     // A pass whose writes all belong to absent variants' resources (linear_z2 without a second
     // layer) has nothing to do.

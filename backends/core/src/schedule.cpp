@@ -82,65 +82,61 @@ Schedule makeSchedule(const Plan& plan) {
   for (std::uint32_t i = 0; i < plan.passes.size(); ++i) {
     const PlannedPass& p = plan.passes[i];
     const gen::PassInfo& info = gen::pass(p.pass);
-    for (std::uint32_t k = 0; k < p.dispatchCount; ++k) {
-      ScheduledDispatch d;
-      d.passIndex = i;
-      d.pass = p.pass;
-      d.variant = p.variant;
-      // per=mip: level m from level m-1, m = 1 .. L-1; levels=A..B: levels A.. from A - 1.
-      d.level = info.perMip ? k + 1 : info.firstLevel;
-      d.firstBinding = static_cast<std::uint32_t>(s.bindings.size());
-      bool sized = false;
-      for (const gen::BindingInfo& b : p.variant->bindings) {
-        ScheduledBinding sb;
-        sb.binding = b.binding;
-        sb.resource = plan.resolve(p, b.resource);
-        sb.write = b.write;
-        sb.previousFrame = !b.write && gen::kResources[static_cast<std::size_t>(sb.resource)].history;
-        const std::uint32_t levels = levelsOf(plan, sb.resource);
-        if (b.write) {
-          sb.baseLevel = d.level;
-          // levels=A..B: slot j is level A + j; the chain's levels from A on, at most B - A + 1.
-          if (info.levelSlots > 0) sb.levelCount = std::min(info.levelSlots, levels - info.firstLevel);
-          if (!sized) {  // the dispatch covers the (level of the) first written image
-            const Extent e = levelExtent(resourceExtent(plan, sb.resource), sb.baseLevel);
-            const std::uint32_t coverX = info.localX * info.texelsX, coverY = info.localY * info.texelsY;
-            d.groupsX = (e.width + coverX - 1) / coverX;
-            d.groupsY = (e.height + coverY - 1) / coverY;
-            sized = true;
-          }
-        } else if (info.perMip) {
-          sb.baseLevel = d.level - 1;  // level m-1 alone, read at lod 0
-        } else if (info.levelSlots > 0 && writes(info, b.resource)) {
-          sb.baseLevel = info.firstLevel - 1;  // levels=A..B reads level A - 1 of a chain it writes, at lod 0
-        } else {
-          sb.levelCount = levels;
-          sb.wholeChain = levels > 1;
+    ScheduledDispatch d;
+    d.passIndex = i;
+    d.pass = p.pass;
+    d.variant = p.variant;
+    // levels=A..B: levels A.. from A - 1; else level 0.
+    d.level = info.firstLevel;
+    d.firstBinding = static_cast<std::uint32_t>(s.bindings.size());
+    bool sized = false;
+    for (const gen::BindingInfo& b : p.variant->bindings) {
+      ScheduledBinding sb;
+      sb.binding = b.binding;
+      sb.resource = plan.resolve(p, b.resource);
+      sb.write = b.write;
+      sb.previousFrame = !b.write && gen::kResources[static_cast<std::size_t>(sb.resource)].history;
+      const std::uint32_t levels = levelsOf(plan, sb.resource);
+      if (b.write) {
+        sb.baseLevel = d.level;
+        // levels=A..B: slot j is level A + j; the chain's levels from A on, at most B - A + 1.
+        if (info.levelSlots > 0) sb.levelCount = std::min(info.levelSlots, levels - info.firstLevel);
+        if (!sized) {  // the dispatch covers the (level of the) first written image
+          const Extent e = levelExtent(resourceExtent(plan, sb.resource), sb.baseLevel);
+          const std::uint32_t coverX = info.localX * info.texelsX, coverY = info.localY * info.texelsY;
+          d.groupsX = (e.width + coverX - 1) / coverX;
+          d.groupsY = (e.height + coverY - 1) / coverY;
+          sized = true;
         }
-        s.bindings.push_back(sb);
+      } else if (info.levelSlots > 0 && writes(info, b.resource)) {
+        sb.baseLevel = info.firstLevel - 1;  // levels=A..B reads level A - 1 of a chain it writes, at lod 0
+      } else {
+        sb.levelCount = levels;
+        sb.wholeChain = levels > 1;
       }
-      d.bindingCount = static_cast<std::uint32_t>(s.bindings.size()) - d.firstBinding;
-      if (!sized) {
-        d.groupsX = (plan.aoExtent.width + info.localX - 1) / info.localX;
-        d.groupsY = (plan.aoExtent.height + info.localY - 1) / info.localY;
-      }
-
-      d.firstHazard = static_cast<std::uint32_t>(s.hazards.size());
-      tracker.beginDispatch();
-      for (const ScheduledBinding& b : s.bindingsOf(d))
-        if (!b.write) {
-          // The previous frame's copy of a history: written before the frame (its entry hazard).
-          if (!b.previousFrame) tracker.read(b.resource, b.baseLevel, b.levelCount);
-          read[static_cast<std::size_t>(b.resource)] = true;
-        }
-      for (const ScheduledBinding& b : s.bindingsOf(d))
-        if (b.write) {
-          for (std::uint32_t m = b.baseLevel; m < b.baseLevel + b.levelCount; ++m) tracker.write(b.resource, m);
-          written[static_cast<std::size_t>(b.resource)] = true;
-        }
-      d.hazardCount = static_cast<std::uint32_t>(s.hazards.size()) - d.firstHazard;
-      s.dispatches.push_back(d);
+      s.bindings.push_back(sb);
     }
+    d.bindingCount = static_cast<std::uint32_t>(s.bindings.size()) - d.firstBinding;
+    if (!sized) {
+      d.groupsX = (plan.aoExtent.width + info.localX - 1) / info.localX;
+      d.groupsY = (plan.aoExtent.height + info.localY - 1) / info.localY;
+    }
+
+    d.firstHazard = static_cast<std::uint32_t>(s.hazards.size());
+    tracker.beginDispatch();
+    for (const ScheduledBinding& b : s.bindingsOf(d))
+      if (!b.write) {
+        // The previous frame's copy of a history: written before the frame (its entry hazard).
+        if (!b.previousFrame) tracker.read(b.resource, b.baseLevel, b.levelCount);
+        read[static_cast<std::size_t>(b.resource)] = true;
+      }
+    for (const ScheduledBinding& b : s.bindingsOf(d))
+      if (b.write) {
+        for (std::uint32_t m = b.baseLevel; m < b.baseLevel + b.levelCount; ++m) tracker.write(b.resource, m);
+        written[static_cast<std::size_t>(b.resource)] = true;
+      }
+    d.hazardCount = static_cast<std::uint32_t>(s.hazards.size()) - d.firstHazard;
+    s.dispatches.push_back(d);
   }
 
   s.firstEntryHazard = static_cast<std::uint32_t>(s.hazards.size());

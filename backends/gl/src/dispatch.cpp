@@ -59,9 +59,10 @@ void bind(const GlFunctions& gl, const PassResources& r, const ScheduledBinding&
                           GL_FALSE, 0, declared.readWrite ? GL_READ_WRITE : GL_WRITE_ONLY, glFormat(declared.format));
     return;
   }
-  GLuint tex = texture, sampler = r.nearestSampler;
-  if (b.wholeChain) sampler = r.mipSampler;
-  else if (const GLuint view = r.owned->levelView(b.resource, b.baseLevel)) tex = view;  // one level of a chain
+  // A read sees the whole chain (lod chosen by the shader) or level 0 (create() refuses an effect
+  // with a read of one level above 0 alone, which would need a view).
+  const GLuint tex = texture;
+  const GLuint sampler = b.wholeChain ? r.mipSampler : r.nearestSampler;
   gl.ActiveTexture(GL_TEXTURE0 + declared.glUnit);
   // The caller's depth may be multisampled (sampler2DMS in linear_z's DEPTH_MULTISAMPLE variant).
   const bool depth = b.resource == gen::ResourceId::depth;

@@ -85,12 +85,20 @@ Status limitError(const char* name, GLint have, GLint need) {
 
 Status Effect::Impl::checkLimits() {
   std::set<GLuint> tex, img;
-  GLint maxLocalX = 0, maxLocalY = 0, maxInvocations = 0, maxSamplersPerPass = 0, maxImagesPerPass = 0;
+  GLint maxLocalX = 0, maxLocalY = 0, maxInvocations = 0, maxSamplersPerPass = 0, maxImagesPerPass = 0, maxShared = 0;
   for (const gen::PassInfo& p : gen::passes()) {
+    // levels=A..B with A > 0 reads level A - 1 of a chain it writes alone: no pass of the effect
+    // does, and this backend binds whole textures (no single-level views).
+    for (gen::ResourceId w : p.writes)
+      if (p.levelSlots > 0 && p.firstLevel > 0 && std::find(p.reads.begin(), p.reads.end(), w) != p.reads.end())
+        return Status::error(StatusCode::DriverError, "sao::gl: pass '" + std::string(p.name) +
+                                                          "' reads one level of a chain above level 0, which this "
+                                                          "backend does not bind");
     maxLocalX = std::max(maxLocalX, GLint(p.localX));
     maxLocalY = std::max(maxLocalY, GLint(p.localY));
     maxInvocations = std::max(maxInvocations, GLint(p.localX * p.localY));
     for (const gen::PassVariantInfo& v : p.compiled) {
+      maxShared = std::max(maxShared, GLint(v.sharedBytes));
       GLint samplers = 0, images = 0;
       for (const gen::BindingInfo& b : v.bindings)
         for (std::uint32_t slot = 0; slot < b.slots; ++slot) {
@@ -115,7 +123,6 @@ Status Effect::Impl::checkLimits() {
     const char* name;
     GLint have, need;
   };
-  // The ao_sample pass keeps three floats per invocation in shared memory.
   const Check checks[] = {
       {"GL_MAX_COMPUTE_WORK_GROUP_SIZE.x", getIntIndexed(gl, GL_MAX_COMPUTE_WORK_GROUP_SIZE, 0), maxLocalX},
       {"GL_MAX_COMPUTE_WORK_GROUP_SIZE.y", getIntIndexed(gl, GL_MAX_COMPUTE_WORK_GROUP_SIZE, 1), maxLocalY},
@@ -124,7 +131,7 @@ Status Effect::Impl::checkLimits() {
        GLint(kMaxImageSide / std::max(1, maxLocalX))},
       {"GL_MAX_COMPUTE_WORK_GROUP_COUNT.y", getIntIndexed(gl, GL_MAX_COMPUTE_WORK_GROUP_COUNT, 1),
        GLint(kMaxImageSide / std::max(1, maxLocalY))},
-      {"GL_MAX_COMPUTE_SHARED_MEMORY_SIZE", getInt(gl, GL_MAX_COMPUTE_SHARED_MEMORY_SIZE), 3 * 4 * maxInvocations},
+      {"GL_MAX_COMPUTE_SHARED_MEMORY_SIZE", getInt(gl, GL_MAX_COMPUTE_SHARED_MEMORY_SIZE), maxShared},
       {"GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS", getInt(gl, GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS), highestTexture + 1},
       {"GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS", getInt(gl, GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS), highestTexture + 1},
       {"GL_MAX_COMPUTE_IMAGE_UNIFORMS", getInt(gl, GL_MAX_COMPUTE_IMAGE_UNIFORMS), maxImagesPerPass},

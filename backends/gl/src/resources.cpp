@@ -21,13 +21,7 @@ GLenum glFormat(gen::Format format) {
   return 0;
 }
 
-GLuint Resources::levelView(gen::ResourceId id, std::uint32_t level) const {
-  const Slot& s = slot(id);
-  return level < s.views.size() ? s.views[level] : 0;
-}
-
 void Resources::release(Slot& s) {
-  if (!s.views.empty()) gl_.DeleteTextures(GLsizei(s.views.size()), s.views.data());
   if (s.texture) gl_.DeleteTextures(1, &s.texture);
   if (s.second) gl_.DeleteTextures(1, &s.second);
   s = Slot{};
@@ -82,19 +76,6 @@ Status Resources::update(const Plan& plan, GLuint scratchUnit, GLint maxTextureS
     if (isOutput) ++outputGeneration_;  // a new texture object serves aoTexture()
     bool immutable = create(*img, format, scratchUnit, "sao " + name, s.texture);
     if (img->copies > 1) immutable = create(*img, format, scratchUnit, "sao " + name + " (2)", s.second) && immutable;
-    // Views of single levels of a chain: a binding that sees one level (the per=mip pass reads
-    // level m-1) reads it as "lod 0" of a view.
-    for (std::uint32_t m = 0; img->mipLevels > 1 && m < img->mipLevels; ++m) {
-      GLuint view = 0;
-      gl_.GenTextures(1, &view);
-      gl_.TextureView(view, GL_TEXTURE_2D, s.texture, format, m, 1, 0, 1);
-      s.views.push_back(view);
-      GLint viewOk = 0;
-      gl_.BindTexture(GL_TEXTURE_2D, view);
-      gl_.GetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_FORMAT, &viewOk);
-      gl_.BindTexture(GL_TEXTURE_2D, 0);
-      immutable = immutable && viewOk;
-    }
     ++allocations;
     if (!immutable) {
       release(s);
@@ -102,7 +83,7 @@ Status Resources::update(const Plan& plan, GLuint scratchUnit, GLint maxTextureS
                                                         std::to_string(img->extent.width) + "x" +
                                                         std::to_string(img->extent.height) + ", " +
                                                         std::to_string(img->mipLevels) +
-                                                        " levels) or its level views failed (out of memory?)");
+                                                        " levels) failed (out of memory?)");
     }
     s.planned = *img;
   }

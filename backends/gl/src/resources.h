@@ -1,5 +1,5 @@
 // The effect-owned textures, allocated from the plan: one immutable GL_TEXTURE_2D per planned
-// image (csz with its MIP levels) plus single-level views of the MIP chains (bindings that see one level).
+// image (csz with its MIP levels; a history two).
 #pragma once
 #include <array>
 #include <cstdint>
@@ -31,7 +31,6 @@ class Resources {
   }
   // Goes up each time an effect-owned output texture is created or deleted.
   std::uint64_t outputGeneration() const { return outputGeneration_; }
-  GLuint levelView(gen::ResourceId id, std::uint32_t level) const;  // single-level view, 0 if none
   void releaseAll();
 
  private:
@@ -39,7 +38,6 @@ class Resources {
     GLuint texture = 0;
     GLuint second = 0;          // a history's second copy
     PlannedImage planned;       // what the texture was allocated for
-    std::vector<GLuint> views;  // views[m]: level m alone (chains only)
   };
   const Slot& slot(gen::ResourceId id) const { return slots_[static_cast<std::size_t>(id)]; }
   void release(Slot& s);

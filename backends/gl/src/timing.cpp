@@ -84,7 +84,7 @@ bool PassTimer::endFrame(Timings& out) {
     for (std::size_t i = 0; i < entries_.size(); ++i)
       entries_[i].ms = std::chrono::duration<double, std::milli>(entries_[i].end - entries_[i].start).count();
   }
-  // One entry per pass name ("mips" sums its levels).
+  // One entry per pass (a pass of several dispatches sums them).
   for (std::size_t i = 0; i < entries_.size(); ++i) {
     if (!out.passes.empty() && out.passes.back().pass == entries_[i].pass)
       out.passes.back().milliseconds += entries_[i].ms;

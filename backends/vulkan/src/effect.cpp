@@ -237,6 +237,14 @@ Status checkConfig(const EffectState& e, const Config& c, PlanInputs& pi, Plan& 
       return Status::error(StatusCode::DriverError, "pass '" + pass + "' binds " + std::to_string(storage) +
                                                         " storage images, above this device's maxPerStageDescriptorStorageImages " +
                                                         std::to_string(e.props.limits.maxPerStageDescriptorStorageImages));
+    if (p.variant->sharedBytes > e.props.limits.maxComputeSharedMemorySize)
+      return Status::error(StatusCode::DriverError, "pass '" + pass + "' declares " + std::to_string(p.variant->sharedBytes) +
+                                                        " bytes of shared memory, above this device's maxComputeSharedMemorySize " +
+                                                        std::to_string(e.props.limits.maxComputeSharedMemorySize));
+    if (p.variant->pushConstantBytes > e.props.limits.maxPushConstantsSize)
+      return Status::error(StatusCode::DriverError, "pass '" + pass + "' takes " + std::to_string(p.variant->pushConstantBytes) +
+                                                        " bytes of push constants, above this device's maxPushConstantsSize " +
+                                                        std::to_string(e.props.limits.maxPushConstantsSize));
     if (sampled > e.props.limits.maxPerStageDescriptorSamplers ||
         sampled > e.props.limits.maxPerStageDescriptorSampledImages)
       return Status::error(StatusCode::DriverError, "pass '" + pass + "' binds " + std::to_string(sampled) +

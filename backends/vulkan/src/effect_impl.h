@@ -21,8 +21,9 @@
 
 namespace sao::vk {
 
-// An effect-owned image with a view of every level (storage writes, per-level reads of the mips
-// pass) and one of the whole chain (the sampled reads of later passes). The views are declared after
+// An effect-owned image with a view of every level (storage writes: a levels= write binds one per
+// slot; a levels=A..B read of level A - 1) and one of the whole chain (the sampled reads of later
+// passes). The views are declared after
 // the image, so they go first.
 struct OwnedImage {
   gen::ResourceId id{};
@@ -56,14 +57,6 @@ struct ParamBuffer {
   VkDeviceSize stride = 0;
   std::vector<ParamBlock> written;  // per slot, what its region holds
   std::vector<bool> valid;
-};
-
-// The push constants of every pipeline layout: loop trip counts, also in the parameter block.
-// Mesa lavapipe 22.3 keeps host memory per dispatch of a loop whose trip count it reads from the
-// uniform block the loop body reads (docs/ROBUSTNESS.md); ao_sample takes its counts from here.
-struct LoopCounts {
-  std::int32_t samples;
-  std::int32_t slices;  // the visibility estimator's outer loop
 };
 
 struct PipelineEntry {
@@ -109,8 +102,8 @@ struct __attribute__((visibility("hidden"))) EffectState {
   VkQueueFamilyProperties family{};
 
   Config config;
-  Plan plan;
   PlanInputs planInputs;  // of `config`: what completeFrame (sao/frame.h) reads per record
+  Plan plan;
   Schedule schedule;  // of `plan`: what record() translates
   ParamBlock params{};
 

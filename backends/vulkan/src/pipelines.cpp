@@ -58,9 +58,10 @@ Status buildPipeline(EffectState& e, const gen::PassInfo& pass, const gen::PassV
   VkPipelineLayoutCreateInfo pl{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   pl.setLayoutCount = 1;
   pl.pSetLayouts = &setLayout;
-  const VkPushConstantRange loopCounts{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(LoopCounts)};  // every pass, one range
-  pl.pushConstantRangeCount = 1;
-  pl.pPushConstantRanges = &loopCounts;
+  // The generated push constants, for the variants whose SPIR-V declares them.
+  const VkPushConstantRange pushRange{VK_SHADER_STAGE_COMPUTE_BIT, 0, variant->pushConstantBytes};
+  pl.pushConstantRangeCount = variant->pushConstantBytes > 0 ? 1 : 0;
+  pl.pPushConstantRanges = &pushRange;
   if (VkResult r = make(e.owner, e.d.vkCreatePipelineLayout, e.d.vkDestroyPipelineLayout, pl, entry.layout);
       r != VK_SUCCESS)
     return fail("vkCreatePipelineLayout", r);

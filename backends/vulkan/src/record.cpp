@@ -27,6 +27,9 @@
 namespace sao::vk {
 namespace {
 
+// vkCmdPushConstants reads pushConstantBytes from the generated mirror of the shaders' block.
+static_assert(sizeof(gen::PushConstants) >= gen::kPushConstantBytes);
+
 // `layer`: the array layer; the caller's output may be one layer of an array (OutputImage::layer),
 // the effect's own images have one.
 VkImageMemoryBarrier imageBarrier(VkImage image, std::uint32_t layer, VkImageLayout from, VkImageLayout to,
@@ -266,8 +269,11 @@ void recordDispatches(const EffectState& e, VkCommandBuffer cmd, std::uint32_t s
       }
       pipe = findPipeline(e, d.variant);
       e.d.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipe->pipeline.get());
-      const LoopCounts counts{e.params.samples, e.params.slices};
-      e.d.vkCmdPushConstants(cmd, pipe->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof counts, &counts);
+      if (d.variant->pushConstantBytes > 0) {
+        const gen::PushConstants constants = gen::pushConstantsOf(e.params);
+        e.d.vkCmdPushConstants(cmd, pipe->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, d.variant->pushConstantBytes,
+                               &constants);
+      }
     }
     {
       BarrierBatch hazards(e, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);

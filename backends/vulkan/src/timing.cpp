@@ -1,6 +1,6 @@
 // Per-pass timing: vkCmdWriteTimestamp after each pass where the queue family has timestamps
 // (GpuTimestamps), otherwise one fenced submission per pass around a steady clock (FinishAndClock),
-// reported in sao::Timings like the GL backend ("mips" covers all its levels).
+// reported in sao::Timings like the GL backend (one entry per planned pass).
 #include <chrono>
 #include <string>
 

@@ -129,6 +129,14 @@ struct MiniParamsAs {
 template <typename T>
 using ParamBlockAs = MiniParamsAs<T>;
 
+// ---- Push constants (block 'MiniPush', Vulkan only): the passes whose PassVariantInfo::pushConstantBytes is not 0 take them; each member is the
+// parameter block's member of the same name (pushConstantsOf).
+struct PushConstants {
+  float gain;  // offset 0
+};
+inline constexpr std::uint32_t kPushConstantBytes = 4;
+inline PushConstants pushConstantsOf(const MiniParams& p) { return {p.gain}; }
+
 // ---- Variants: compile-time switches; a key holds one value per variant.
 inline constexpr std::size_t kVariantCount = 2;
 using VariantValues = std::array<std::int32_t, kVariantCount>;  // -1 in tables: any value
@@ -222,6 +230,8 @@ struct PassVariantInfo {
   std::uint32_t glslBlob;
   std::uint32_t spirvBlob;
   std::string_view fileStem;
+  std::uint32_t sharedBytes;  // the work group's shared variables, tightly packed (from its SPIR-V)
+  std::uint32_t pushConstantBytes;  // its push constants (PushConstants; Vulkan only), 0: none
 };
 enum class Compare : std::uint8_t { Eq, Ne, Lt, Le, Gt, Ge };
 // `setting op value` on a setting (pass rules: int or bool); never holds when not active.
@@ -242,7 +252,6 @@ struct PassInfo {
   std::string_view entry;
   std::uint32_t localX, localY;
   std::uint32_t texelsX, texelsY;  // texels=WxH: an invocation covers WxH texels of the first written level
-  bool perMip;  // runs once per MIP level 1..L-1 of the written image
   // levels=A..B: one dispatch writes levels A..B of its chains (firstLevel A, levelSlots B - A + 1,
   // levels past the chain's last unwritten), reading level A - 1 of a chain it writes; 0 slots: not set
   std::uint32_t firstLevel;

@@ -7,7 +7,7 @@
 layout(std140, binding = 0) uniform P {
   vec4 a;
 };
-#pragma sao pass first entry=run1 local=8x8 reads=src writes=chain per=mip levels=0..3 "p"
+#pragma sao pass first entry=run1 local=8x8 reads=src writes=chain per=mip "p"
 void run1() { imageStore(out_chain[0], ivec2(0), texelFetch(in_src, ivec2(0), 0) * a); }
 #pragma sao end
 #pragma sao pass last entry=run2 local=8x8 reads=chain writes=dst "p"

@@ -46,9 +46,24 @@ void mini_first() {
 #pragma sao end
 
 #pragma sao pass smoothing entry=mini_smooth local=8x8 reads=mid writes=smooth skip_when=taps==1 "Smooth (nothing to smooth with one tap)"
+// Facts the codegen reads from the SPIR-V: a push constant (the block's gain, on Vulkan) and shared
+// memory (64 floats and a uint: PassVariantInfo::sharedBytes 260).
+#if SAO_TARGET_VULKAN
+layout(push_constant) uniform MiniPush { float gain; } mini_push;
+#define MINI_GAIN mini_push.gain
+#else
+#define MINI_GAIN gain
+#endif
+shared float mini_row[64];
+shared uint mini_count;
 void mini_smooth() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  imageStore(out_smooth, p, vec4(0.5 * (texelFetch(in_mid, p, 0).r + texelFetch(in_mid, p + ivec2(1, 0), 0).r)));
+  const uint i = gl_LocalInvocationIndex;
+  mini_row[i] = texelFetch(in_mid, p, 0).r;
+  if (i == 0u) mini_count = uint(counts.x);
+  barrier();
+  const float v = 0.5 * (mini_row[i] + mini_row[min(i + 1u, 63u)]) * float(mini_count);
+  imageStore(out_smooth, p, vec4(v * MINI_GAIN));
 }
 #pragma sao end
 

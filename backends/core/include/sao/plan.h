@@ -70,7 +70,6 @@ struct PlannedImage {
 struct PlannedPass {
   gen::PassId pass;
   const gen::PassVariantInfo* variant = nullptr;  // bindings and blobs
-  std::uint32_t dispatchCount = 1;  // per=mip passes: one dispatch per level 1..L-1
   // Bindings whose declared resource is served by another image (a dropped pass's output).
   std::vector<std::pair<gen::ResourceId, gen::ResourceId>> aliases;
 };

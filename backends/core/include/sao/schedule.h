@@ -54,7 +54,7 @@ struct ScheduledDispatch {
   std::uint32_t passIndex = 0;  // into Plan::passes
   gen::PassId pass{};
   const gen::PassVariantInfo* variant = nullptr;
-  std::uint32_t level = 0;      // the level a per=mip pass writes, the first a levels= pass writes; else 0
+  std::uint32_t level = 0;      // the first level a levels= pass writes; else 0
   std::uint32_t groupsX = 1, groupsY = 1;
   std::uint32_t firstBinding = 0, bindingCount = 0;  // into Schedule::bindings
   std::uint32_t firstHazard = 0, hazardCount = 0;    // into Schedule::hazards, resolved before it runs

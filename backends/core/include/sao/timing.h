@@ -17,7 +17,7 @@ enum class TimingMethod {
 const char* toString(TimingMethod method);
 
 struct PassTiming {
-  std::string pass;       // the pass name from the effect ("mips" covers all its levels)
+  std::string pass;       // the pass name from the effect (all its dispatches together)
   double milliseconds = 0;
 };
 

@@ -18,6 +18,6 @@ layout(std140, binding = 0) uniform P {
 #pragma sao pass main entry=run local=8x8 reads=src writes=dst variants=V "p"
 void run() { imageStore(out_dst, ivec2(0), texelFetch(in_src, ivec2(0), 0) * a); }
 #pragma sao end
-#pragma sao pass mips entry=down local=4x4 reads=src writes=mid variants=W per=mip "q"
+#pragma sao pass mips entry=down local=4x4 reads=src writes=mid variants=W "q"
 void down() {}
 #pragma sao end

@@ -123,7 +123,7 @@ struct Result {
   // pass added to the effect writes (the walkthrough's ao_half). Empty for the images above, for
   // inputs and for images the plan does not allocate.
   std::array<std::vector<FloatImage>, gen::kResources.size()> images;
-  Timings timings;     // method None unless Options::measureTime ("mips" covers all its levels)
+  Timings timings;     // method None unless Options::measureTime; one entry per planned pass
 };
 
 // Validates the inputs against the settings and camera, fills the block with computeConstants,

@@ -165,7 +165,7 @@ struct RenderOptions {
 // Counters for tests and tools.
 struct Stats {
   std::uint64_t renders = 0;
-  std::uint64_t textureAllocations = 0;  // effect-owned textures created so far (views excluded)
+  std::uint64_t textureAllocations = 0;  // effect-owned textures created so far
   std::uint64_t programsCompiled = 0;
   // Configurations planned: render() plans again only when the settings, the kinds of input or a
   // plan-changing camera change (sao::cameraKeepsPlan), never for TAA jitter or the other eye.

@@ -303,7 +303,7 @@ class SAO_VK_API Effect {
   Status record(VkCommandBuffer cmd, const Inputs& inputs, const OutputImage* userOutput = nullptr);
 
   // Per-pass times of the last record() with Config::timestamps, once its submission completed
-  // (DriverError with "not ready" before). "mips" covers all its levels.
+  // (DriverError with "not ready" before), one entry per planned pass.
   Status timings(Timings& out) const;
 
   // Runs the effect once on `queue` (of the context's family) on its own command buffers and
