@@ -19,7 +19,10 @@ if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
 rm -rf "$prefix" "$consumer"
 cmake --install "$build" --prefix "$prefix" >/dev/null
 echo "installed into $prefix:"
-(cd "$prefix" && find . \( -type f -o -type l \) | sort | sed 's/^\.\//  /')
+(cd "$prefix" && find . \( -type f -o -type l \) -not -path './share/sao/shaders/*' | sort | sed 's/^\.\//  /')
+echo "  share/sao/shaders/: $(find "$prefix/share/sao/shaders" -name '*.spv' | wc -l) SPIR-V and" \
+     "$(find "$prefix/share/sao/shaders" -name '*.glsl' | wc -l) GLSL files, sao_passes.json"
+test -s "$prefix/share/sao/shaders/sao_passes.json" || { echo "ci/package.sh: no sao_passes.json installed" >&2; exit 1; }
 
 # The package must not point back into the source or build tree.
 if grep -rn -e "$root/backends" -e "$root/$build" "$prefix/lib/cmake/sao"; then

@@ -6,6 +6,8 @@
 #   <prefix>/include/sao/*.h, sao/gl/effect.h, sao/vulkan/effect.h, sao_effect.h (generated)
 #   <prefix>/lib/libsao_core.a, libsao_effect.a, libsao_io.a, libsao_gl.so*, libsao_vulkan.so*
 #   <prefix>/lib/cmake/sao/saoConfig.cmake, saoConfigVersion.cmake, sao_<component>_targets*.cmake
+#   <prefix>/share/sao/shaders/: every compiled pass variant as GLSL 4.30 and SPIR-V, and
+#   sao_passes.json describing them (sao_SHADER_DIR), for an engine that runs the passes itself
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -54,6 +56,9 @@ sao_export_component(core sao_core sao_effect)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/backends/core/include/sao DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
         FILES_MATCHING PATTERN "*.h")
 install(FILES ${PROJECT_BINARY_DIR}/effect/sao_effect/sao_effect.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+set(sao_install_shaderdir ${CMAKE_INSTALL_DATADIR}/sao/shaders)
+install(DIRECTORY ${PROJECT_BINARY_DIR}/effect/sao_effect/ DESTINATION ${sao_install_shaderdir}
+        FILES_MATCHING PATTERN "*.glsl" PATTERN "*.spv" PATTERN "sao_passes.json")
 
 if(TARGET sao_io)
   list(APPEND sao_package_components io)
@@ -81,7 +86,8 @@ endif()
 
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/saoConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/saoConfig.cmake
-                              INSTALL_DESTINATION ${sao_install_cmakedir})
+                              INSTALL_DESTINATION ${sao_install_cmakedir}
+                              PATH_VARS sao_install_shaderdir)
 # 0.x: a minor version may break the API (and the header/library check in create() says so).
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/saoConfigVersion.cmake
                                  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)

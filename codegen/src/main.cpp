@@ -10,6 +10,7 @@
 #include "diagnostics.h"
 #include "directive_parser.h"
 #include "output_writer.h"
+#include "pass_manifest.h"
 #include "pass_builder.h"
 #include "shader_compiler.h"
 #include "source_loader.h"
@@ -177,6 +178,7 @@ int main(int argc, char** argv) {
     manifest += "\n";
   }
   outputs.add(effect.name + "_passes.txt", manifest);
+  outputs.add(effect.name + "_passes.json", passesJson(effect, compiled));
   for (const auto& d : diags.all()) std::fprintf(stderr, "%s\n", d.format().c_str());  // warnings
   rules.inputs = source.files;
   if (const std::string err = outputs.commit(outDir, rules); !err.empty()) {
