@@ -203,8 +203,6 @@ int main() {
   config.depthFormat = VK_FORMAT_D32_SFLOAT;
   config.userOutput = true;  // your lit colour target, RGB multiplied by A, alpha kept
   config.outputFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-  config.outputChannels = sao::kChannelR | sao::kChannelG | sao::kChannelB;
-  config.outputBlend = sao::OutputBlend::Multiply;
   config.outputLayout = VK_IMAGE_LAYOUT_GENERAL;
   config.outputDstStages = VK_PIPELINE_STAGE_TRANSFER_BIT;
   config.outputDstAccess = VK_ACCESS_TRANSFER_READ_BIT;
@@ -212,6 +210,8 @@ int main() {
   sao::Status status = sao::vk::Effect::create(deviceContext, config, ao);
   sao::vk::Inputs inputs;
   inputs.depth = {depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, {kWidth, kHeight}};
+  inputs.outputChannels = sao::kChannelR | sao::kChannelG | sao::kChannelB;
+  inputs.outputBlend = sao::OutputBlend::Multiply;
   const sao::vk::OutputImage litTarget{color.image, color.view, VK_FORMAT_R16G16B16A16_SFLOAT, {kWidth, kHeight},
                                        VK_IMAGE_LAYOUT_GENERAL};
   if (status) status = ao->record(cmd, inputs, &litTarget);

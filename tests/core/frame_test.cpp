@@ -32,16 +32,15 @@ TEST(Frame, CompleteFrameFillsEveryPerFrameMember) {
   const sao::Settings s = sao::test::untunedDefaults();
   sao::PlanInputs in;
   in.outputFormat = sao::gen::Format::RGBA8;
-  in.outputChannels = sao::kChannelG | sao::kChannelA;
-  in.outputBlend = sao::OutputBlend::Multiply;
   in.depthSamples = 4;
+  const sao::FrameValues frame{{7, 11}, 5, sao::kChannelG | sao::kChannelA, sao::OutputBlend::Multiply};
   sao::ParamBlock constants{};
   ASSERT_TRUE(sao::computeConstants(s, perspective(), in.depthEncoding, constants).ok());
   sao::ParamBlock block{};
-  ASSERT_TRUE(sao::frameConstants(s, perspective(), in, {{7, 11}, 5}, block).ok());
+  ASSERT_TRUE(sao::frameConstants(s, perspective(), in, frame, block).ok());
   EXPECT_EQ(block.input_offset.x, 7);
   EXPECT_EQ(block.input_offset.y, 11);
-  EXPECT_EQ(block.output_mask, sao::outputMaskParam(in.outputChannels));
+  EXPECT_EQ(block.output_mask, sao::outputMaskParam(frame.outputChannels));
   EXPECT_EQ(block.output_blend, int(sao::OutputBlend::Multiply));
   EXPECT_EQ(block.depth_samples, 4);
   sao::ParamBlock frame5 = constants;
@@ -49,8 +48,44 @@ TEST(Frame, CompleteFrameFillsEveryPerFrameMember) {
   EXPECT_EQ(block.frame_phase, frame5.frame_phase);
   EXPECT_EQ(block.frame_alpha_offset, frame5.frame_alpha_offset);
   // Nothing else moves: completing computeConstants' block by hand gives the same bytes.
-  sao::completeFrame(constants, in, {{7, 11}, 5});
+  sao::completeFrame(constants, in, frame);
   EXPECT_EQ(std::memcmp(&constants, &block, sizeof block), 0);
+}
+
+// The output's mask and blend are the frame's: one check for every backend, named by `who`.
+TEST(Frame, OutputUseIsCheckedPerFrame) {
+  sao::Settings s = sao::test::untunedDefaults();
+  sao::PlanInputs rgba;
+  rgba.outputFormat = sao::gen::Format::RGBA16F;
+  rgba.userOutput = true;
+  sao::Plan plan;
+  ASSERT_TRUE(sao::plan(s, perspective(), rgba, plan).ok());
+  auto check = [&](const sao::PlanInputs& in, std::uint32_t mask, sao::OutputBlend blend) {
+    return sao::checkFrameOutput(plan, in, {{}, 0, mask, blend}, "who");
+  };
+  EXPECT_TRUE(check(rgba, sao::kChannelA, sao::OutputBlend::Replace).ok());
+  EXPECT_TRUE(check(rgba, sao::kAllChannels, sao::OutputBlend::Multiply).ok());
+  const sao::Status empty = check(rgba, 0, sao::OutputBlend::Replace);
+  EXPECT_EQ(empty.code, sao::StatusCode::InvalidInput);
+  EXPECT_EQ(empty.message.rfind("who: the output channel mask 0 does not fit", 0), 0u) << empty.message;
+  sao::PlanInputs owned = rgba;
+  owned.userOutput = false;
+  EXPECT_NE(check(owned, sao::kChannelA, sao::OutputBlend::Replace).message.find("which only your own image has"),
+            std::string::npos);
+  EXPECT_NE(check(owned, sao::kAllChannels, sao::OutputBlend::Multiply).message.find("needs your own output"),
+            std::string::npos);
+  // The bent normal output fills every channel: nothing kept, nothing multiplied.
+  s.estimator = 1;
+  s.bent_normals = true;
+  s.blur_radius = 0;  // the direct path (direct_output)
+  s.resolution_divisor = 1;
+  s.temporal = false;
+  sao::Plan bent;
+  ASSERT_TRUE(sao::plan(s, perspective(), rgba, bent).ok());
+  EXPECT_TRUE(sao::checkFrameOutput(bent, rgba, {}, "who").ok());
+  const sao::Status kept = sao::checkFrameOutput(bent, rgba, {{}, 0, sao::kChannelA, sao::OutputBlend::Replace}, "who");
+  EXPECT_NE(kept.message.find("bent_normals writes the bent normal"), std::string::npos) << kept.message;
+  EXPECT_FALSE(sao::checkFrameOutput(bent, rgba, {{}, 0, sao::kAllChannels, sao::OutputBlend::Multiply}, "who").ok());
 }
 
 // Jitter, a mirrored eye, and any camera whose extents and csz levels match keep the plan (plan()

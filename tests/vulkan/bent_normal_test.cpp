@@ -146,12 +146,12 @@ Status runVk(const Settings& s, const Camera& cam, const DepthImage& depth, cons
   if (normals) c.normalsFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
   c.userOutput = true;
   c.outputFormat = vf;
-  c.outputChannels = channels;
-  c.outputBlend = blend;
   std::unique_ptr<vk::Effect> effect;
   if (Status st = vk::Effect::create(context().deviceContext(), c, effect); !st) return cleanup(), st;
   vk::Inputs in;
   in.depth = {depthImage.view, ro, depth.extent, VK_FORMAT_D32_SFLOAT};
+  in.outputChannels = channels;
+  in.outputBlend = blend;
   if (depth2) in.depth2 = {depth2Image.view, ro, depth2->extent, VK_FORMAT_D32_SFLOAT};
   if (normals) in.normals = {normalsImage.view, ro, normals->extent, VK_FORMAT_R16G16B16A16_SFLOAT};
   const vk::OutputImage o{target.image, target.view, vf, {cam.width, cam.height}, ro};

@@ -46,9 +46,11 @@ struct Scene {
     EXPECT_TRUE(st.ok()) << st.message;
   }
   ~Scene() { context().destroy(image); }
-  vk::Inputs inputs() const {
+  vk::Inputs inputs(std::uint32_t channels = kAllChannels, OutputBlend blend = OutputBlend::Replace) const {
     vk::Inputs in;
     in.depth = {image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth.extent, VK_FORMAT_D32_SFLOAT};
+    in.outputChannels = channels;
+    in.outputBlend = blend;
     return in;
   }
   vk::Config config(int divisor, float albedo = 0) const {
@@ -68,10 +70,10 @@ std::unique_ptr<vk::Effect> makeEffect(const vk::Config& config) {
 }
 
 // Creates the effect for `c` (a user output), uploads `texels` into a new storage image in
-// SHADER_READ_ONLY_OPTIMAL (record() keeps or multiplies them from that layout), records once and
-// reads the output back into `actual` (and the plan's variants into `variants`). Returns false
-// (after failed expectations) on any error.
-bool recordIntoUserOutput(const Scene& scene, const vk::Config& c, const FloatImage& texels, FloatImage& actual,
+// SHADER_READ_ONLY_OPTIMAL (record() keeps or multiplies them from that layout), records once with
+// `in` and reads the output back into `actual` (and the plan's variants into `variants`). Returns
+// false (after failed expectations) on any error.
+bool recordIntoUserOutput(const vk::Inputs& in, const vk::Config& c, const FloatImage& texels, FloatImage& actual,
                           gen::VariantValues* variants = nullptr) {
   auto effect = makeEffect(c);
   if (!effect) return false;
@@ -83,7 +85,7 @@ bool recordIntoUserOutput(const Scene& scene, const vk::Config& c, const FloatIm
   if (!up.ok()) return false;
   const vk::OutputImage o{out.image, out.view, c.outputFormat, texels.extent, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   Status recorded;
-  const Status submitted = context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, scene.inputs(), &o); });
+  const Status submitted = context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, in, &o); });
   EXPECT_TRUE(submitted.ok() && recorded.ok()) << submitted.message << recorded.message;
   const Status read = context().readback(out.image, c.outputFormat, texels.extent, 0, c.outputLayout, c.outputDstStages,
                                          c.outputDstAccess, actual);
@@ -105,12 +107,10 @@ TEST_F(OutputFormat, EveryFormatAndMaskMatchesTheCpuReference) {
       vk::Config c = scene.config(divisor, albedo);
       c.userOutput = true;
       c.outputFormat = format;
-      c.outputChannels = oc.mask;
-      c.outputBlend = oc.blend;
       const FloatImage sentinel = test::sentinelOutput({scene.camera.width, scene.camera.height}, oc.format);
       FloatImage actual;
       gen::VariantValues variants{};
-      ASSERT_TRUE(recordIntoUserOutput(scene, c, sentinel, actual, &variants));
+      ASSERT_TRUE(recordIntoUserOutput(scene.inputs(oc.mask, oc.blend), c, sentinel, actual, &variants));
       cpu::Inputs ci;
       ci.depth = &scene.depth;
       ci.outputFormat = oc.format;
@@ -137,14 +137,13 @@ TEST_F(OutputFormat, MultiplyIntoAnHdrColourTarget) {
     vk::Config c = scene.config(divisor);
     c.userOutput = true;
     c.outputFormat = format;
-    c.outputChannels = kChannelR | kChannelG | kChannelB;
-    c.outputBlend = OutputBlend::Multiply;
+    const std::uint32_t rgb = kChannelR | kChannelG | kChannelB;
     FloatImage actual;
-    ASSERT_TRUE(recordIntoUserOutput(scene, c, colour, actual));
+    ASSERT_TRUE(recordIntoUserOutput(scene.inputs(rgb, OutputBlend::Multiply), c, colour, actual));
     cpu::Inputs ci;
     ci.depth = &scene.depth;
     ci.outputFormat = gen::Format::RGBA16F;
-    ci.outputChannels = c.outputChannels;
+    ci.outputChannels = rgb;
     ci.outputBlend = OutputBlend::Multiply;
     ci.output = &colour;
     cpu::Result ref;
@@ -194,41 +193,47 @@ TEST_F(OutputFormat, OtherFormatsAndMasksAreRefused) {
         << st.message;
     EXPECT_FALSE(e);
   }
-  struct BadMask {
+  // Masks and blends are per record (Inputs, as on GL): refused by record(), naming the mask or blend.
+  struct BadUse {
     VkFormat format;
-    std::uint32_t mask;
     bool userOutput;
+    std::uint32_t mask;
+    OutputBlend blend;
+    const char* says;
   };
-  for (const BadMask b : {BadMask{VK_FORMAT_R8_UNORM, kChannelG, true}, BadMask{VK_FORMAT_R16_SFLOAT, 0u, true},
-                          BadMask{VK_FORMAT_R8G8B8A8_UNORM, 16u, true},
-                          BadMask{VK_FORMAT_R8G8B8A8_UNORM, kChannelA, false}}) {
+  const BadUse bad[] = {
+      {VK_FORMAT_R8_UNORM, true, kChannelG, OutputBlend::Replace, "the output channel mask 2 does not fit a r8 output"},
+      {VK_FORMAT_R16_SFLOAT, true, 0u, OutputBlend::Replace, "the output channel mask 0 does not fit"},
+      {VK_FORMAT_R8G8B8A8_UNORM, true, 16u, OutputBlend::Replace, "the output channel mask 16 does not fit"},
+      {VK_FORMAT_R8G8B8A8_UNORM, false, kChannelA, OutputBlend::Replace, "keeps channels of the output, which only your own image has"},
+      {VK_FORMAT_R16_SFLOAT, false, kAllChannels, OutputBlend::Multiply, "output blend multiply needs your own output"},
+      {VK_FORMAT_R16_SFLOAT, true, kAllChannels, static_cast<OutputBlend>(7), "unknown output blend 7"},
+  };
+  for (const BadUse& b : bad) {
+    SCOPED_TRACE(b.says);
     vk::Config c = scene.config(1);
     c.outputFormat = b.format;
-    c.outputChannels = b.mask;
     c.userOutput = b.userOutput;
-    std::unique_ptr<vk::Effect> e;
-    const Status st = vk::Effect::create(context().deviceContext(), c, e);
+    auto effect = makeEffect(c);
+    ASSERT_TRUE(effect) << "mask and blend are not part of the configuration";
+    Image out;
+    ASSERT_TRUE(context().createStorageImage(b.format, {32, 18}, out).ok());
+    const vk::OutputImage o{out.image, out.view, b.format, {32, 18}, VK_IMAGE_LAYOUT_GENERAL};
+    Status st;
+    ASSERT_TRUE(context()
+                    .submit([&](VkCommandBuffer cmd) {
+                      st = effect->record(cmd, scene.inputs(b.mask, b.blend), b.userOutput ? &o : nullptr);
+                    })
+                    .ok());
     EXPECT_EQ(st.code, StatusCode::InvalidInput) << st.message;
-    EXPECT_NE(st.message.find("outputChannels"), std::string::npos) << st.message;
-  }
-  {  // A multiply needs the caller's image; an unknown blend is named.
-    vk::Config m = scene.config(1);
-    m.outputBlend = OutputBlend::Multiply;
-    std::unique_ptr<vk::Effect> e;
-    Status st = vk::Effect::create(context().deviceContext(), m, e);
-    EXPECT_EQ(st.code, StatusCode::InvalidInput) << st.message;
-    EXPECT_NE(st.message.find("output blend multiply needs your own output"), std::string::npos) << st.message;
-    m.outputBlend = static_cast<OutputBlend>(7);
-    m.userOutput = true;
-    st = vk::Effect::create(context().deviceContext(), m, e);
-    EXPECT_EQ(st.code, StatusCode::InvalidInput) << st.message;
-    EXPECT_NE(st.message.find("unknown output blend 7"), std::string::npos) << st.message;
+    EXPECT_NE(st.message.find("record() Inputs"), std::string::npos) << st.message;
+    EXPECT_NE(st.message.find(b.says), std::string::npos) << st.message;
+    context().destroy(out);
   }
   // record(): the image's format must be the configured one; kept channels need a real layout.
   vk::Config c = scene.config(1);
   c.userOutput = true;
   c.outputFormat = VK_FORMAT_R8G8B8A8_UNORM;
-  c.outputChannels = kChannelB;
   auto effect = makeEffect(c);
   ASSERT_TRUE(effect);
   Image out;
@@ -237,27 +242,27 @@ TEST_F(OutputFormat, OtherFormatsAndMasksAreRefused) {
   ASSERT_TRUE(context()
                   .submit([&](VkCommandBuffer cmd) {
                     const vk::OutputImage f16{out.image, out.view, VK_FORMAT_R16_SFLOAT, {32, 18}, VK_IMAGE_LAYOUT_GENERAL};
-                    wrongFormat = effect->record(cmd, scene.inputs(), &f16);
+                    wrongFormat = effect->record(cmd, scene.inputs(kChannelB), &f16);
                     const vk::OutputImage undef{out.image, out.view, VK_FORMAT_R8G8B8A8_UNORM, {32, 18}};
-                    undefinedLayout = effect->record(cmd, scene.inputs(), &undef);
+                    undefinedLayout = effect->record(cmd, scene.inputs(kChannelB), &undef);
                   })
                   .ok());
   EXPECT_EQ(wrongFormat.code, StatusCode::UnsupportedFormat) << wrongFormat.message;
   EXPECT_NE(wrongFormat.message.find("r16f"), std::string::npos) << wrongFormat.message;
   EXPECT_EQ(undefinedLayout.code, StatusCode::InvalidInput) << undefinedLayout.message;
-  // A multiply reads every texel: an undefined layout is refused, naming the blend.
-  c.outputChannels = kAllChannels;
-  c.outputBlend = OutputBlend::Multiply;
-  ASSERT_TRUE(effect->update(c).ok());
+  EXPECT_NE(undefinedLayout.message.find("Inputs::outputChannels keeps channels of the output"), std::string::npos)
+      << undefinedLayout.message;
+  // A multiply reads every texel: an undefined layout is refused, naming the blend (no update():
+  // the blend is the record's).
   Status multiplyUndefined;
   ASSERT_TRUE(context()
                   .submit([&](VkCommandBuffer cmd) {
                     const vk::OutputImage undef{out.image, out.view, VK_FORMAT_R8G8B8A8_UNORM, {32, 18}};
-                    multiplyUndefined = effect->record(cmd, scene.inputs(), &undef);
+                    multiplyUndefined = effect->record(cmd, scene.inputs(kAllChannels, OutputBlend::Multiply), &undef);
                   })
                   .ok());
   EXPECT_EQ(multiplyUndefined.code, StatusCode::InvalidInput) << multiplyUndefined.message;
-  EXPECT_NE(multiplyUndefined.message.find("Config::outputBlend is multiply"), std::string::npos)
+  EXPECT_NE(multiplyUndefined.message.find("Inputs::outputBlend is multiply"), std::string::npos)
       << multiplyUndefined.message;
   context().destroy(out);
 }

@@ -23,10 +23,30 @@ Status planKey(const Settings& settings, const Camera& camera, CameraPlanKey& ou
 
 void completeFrame(ParamBlock& block, const PlanInputs& inputs, const FrameValues& frame) {
   block.input_offset = {static_cast<std::int32_t>(frame.inputOffset.x), static_cast<std::int32_t>(frame.inputOffset.y)};
-  block.output_mask = outputMaskParam(inputs.outputChannels);
-  block.output_blend = static_cast<std::int32_t>(inputs.outputBlend);
+  block.output_mask = outputMaskParam(frame.outputChannels);
+  block.output_blend = static_cast<std::int32_t>(frame.outputBlend);
   block.depth_samples = static_cast<std::int32_t>(inputs.depthSamples);  // DEPTH_MULTISAMPLE's sample count
   setFrameIndex(block, frame.frameIndex);
+}
+
+Status checkFrameOutput(const Plan& plan, const PlanInputs& inputs, const FrameValues& frame, const char* who) {
+  if (Status st = checkOutputChannels(inputs.outputFormat, frame.outputChannels, who); !st) return st;
+  if (Status st = checkOutputBlend(frame.outputBlend, inputs.userOutput, who); !st) return st;
+  // BENT_NORMALS stores (bent normal, A) into all four channels: a mask that keeps some, or the
+  // multiply blend, would leave a texel half bent normal, half the caller's.
+  if (plan.variants[static_cast<std::size_t>(gen::VariantId::BENT_NORMALS)] != 0 &&
+      keepsChannels(inputs.outputFormat, frame.outputChannels, frame.outputBlend))
+    return Status::error(StatusCode::InvalidInput,
+                         std::string(who) + ": bent_normals writes the bent normal into R, G, B and A into A of every "
+                                            "output texel: it needs the output channel mask kAllChannels (15, got " +
+                             std::to_string(frame.outputChannels) + ") and output blend replace (got " +
+                             toString(frame.outputBlend) + ")");
+  if (!inputs.userOutput && keepsChannels(inputs.outputFormat, frame.outputChannels))
+    return Status::error(StatusCode::InvalidInput,
+                         std::string(who) + ": the output channel mask " + std::to_string(frame.outputChannels) +
+                             " keeps channels of the output, which only your own image has: give your own output "
+                             "or use kAllChannels");
+  return Status::success();
 }
 
 Status frameConstants(const Settings& settings, const Camera& camera, const PlanInputs& inputs,

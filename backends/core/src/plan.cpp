@@ -157,16 +157,6 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
                              "): " + std::string(why));
   }
 
-  // BENT_NORMALS stores (bent normal, A) into all four channels: a mask that keeps some, or the
-  // multiply blend, would leave a texel half bent normal, half the caller's.
-  if (out.variants[static_cast<std::size_t>(gen::VariantId::BENT_NORMALS)] != 0 &&
-      keepsChannels(inputs.outputFormat, inputs.outputChannels, inputs.outputBlend))
-    return Status::error(StatusCode::InvalidInput,
-                         "bent_normals writes the bent normal into R, G, B and A into A of every output texel: it "
-                         "needs the output channel mask kAllChannels (15, got " +
-                             std::to_string(inputs.outputChannels) + ") and output blend replace (got " +
-                             toString(inputs.outputBlend) + ")");
-
   out.cszLevels = mipLevelsNeeded(settings, camera, model);
   for (std::size_t r = 0; r < gen::kResources.size(); ++r)
     if (const std::int32_t s = gen::kResources[r].divideBy; s >= 0)

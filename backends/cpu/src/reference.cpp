@@ -261,10 +261,13 @@ Status validateAndPlan(const Settings& settings, const Camera& camera, const Inp
       in.depth->format == DepthFormat::LinearZ ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
   if (in.depth->samples == 0) return invalid("depth has 0 samples per texel (1: single-sample)");
   const PlanInputs planInputs{encoding,          in.normals != nullptr, in.depth2 != nullptr, false, in.outputFormat,
-                              in.depth->samples, in.motion != nullptr,  in.outputChannels,     in.outputBlend};
+                              in.depth->samples, in.motion != nullptr};
   if (Status st = plan(settings, camera, planInputs, r.plan); !st) return st;
-  if (Status st = checkOutputChannels(in.outputFormat, in.outputChannels, "sao::cpu"); !st) return st;
-  if (Status st = checkOutputBlend(in.outputBlend, in.output != nullptr, "sao::cpu"); !st) return st;
+  // The output's use, as the GPU backends check it: Inputs::output stands for the caller's image.
+  PlanInputs outputUse = planInputs;
+  outputUse.userOutput = in.output != nullptr;
+  const FrameValues frame{in.region.value_or(Offset{}), in.frameIndex, in.outputChannels, in.outputBlend};
+  if (Status st = checkFrameOutput(r.plan, outputUse, frame, "sao::cpu"); !st) return st;
   if (in.output != nullptr) {
     const std::uint32_t channels = channelCount(in.outputFormat);
     if (in.output->extent != r.plan.aoExtent || in.output->channels != channels ||
@@ -291,7 +294,7 @@ Status validateAndPlan(const Settings& settings, const Camera& camera, const Inp
   if (offset.x > std::uint32_t(INT32_MAX) || offset.y > std::uint32_t(INT32_MAX))
     return invalid("the offset (" + std::to_string(offset.x) + ", " + std::to_string(offset.y) +
                    ") does not fit the shaders' int (at most 2^31 - 1)");
-  if (Status st = frameConstants(settings, camera, planInputs, {offset, in.frameIndex}, r.params); !st) return st;
+  if (Status st = frameConstants(settings, camera, planInputs, frame, r.params); !st) return st;
   if (Status st = checkHistory(settings, camera, in, r); !st) return st;
   // The block and the plan come from the same core functions; check that they agree anyway.
   if (std::uint32_t(r.params.max_mip) + 1 != r.plan.cszLevels)

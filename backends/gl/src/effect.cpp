@@ -226,9 +226,11 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
   const Plan& p = replan ? newPlan : plan;
   const Schedule& s = replan ? newSchedule : schedule;
   if (Status st = checkSupplied(p, supplied(checked), checked.planInputs.userOutput, "sao::gl"); !st) return st;
-  ParamBlock block{};
   // checkSupplied put the region inside the textures, whose sides GL keeps far below 2^31.
-  const FrameValues frame{checked.region.value_or(Offset{}), inputs.frameIndex};
+  const FrameValues frame{checked.region.value_or(Offset{}), inputs.frameIndex, inputs.outputChannels,
+                          inputs.outputBlend};
+  if (Status st = checkFrameOutput(p, checked.planInputs, frame, "sao::gl"); !st) return st;
+  ParamBlock block{};
   if (Status st = frameConstants(settings, camera, checked.planInputs, frame, block); !st) return st;
   if (settings.temporal) {
     if (inputs.layer != 0)

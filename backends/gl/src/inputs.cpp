@@ -239,10 +239,6 @@ Status checkInputs(const GlFunctions& gl, GLuint unit, const Inputs& inputs, Nor
     out.planInputs.userOutput = true;
     out.planInputs.outputFormat = format;
   }
-  if (Status st = checkOutputChannels(out.planInputs.outputFormat, inputs.outputChannels, "sao::gl"); !st) return st;
-  out.planInputs.outputChannels = inputs.outputChannels;
-  if (Status st = checkOutputBlend(inputs.outputBlend, inputs.output != 0, "sao::gl"); !st) return st;
-  out.planInputs.outputBlend = inputs.outputBlend;
   return Status::success();
 }
 

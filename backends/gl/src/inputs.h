@@ -44,7 +44,7 @@ struct CheckedInputs {
   LayerViews views;                            // per-render views of array layers (Inputs::layer)
   TextureInfo depth, depth2, normals, motion, output;  // texture 0 where absent; a layer's view for an array
   std::optional<Offset> region;  // Inputs::region: where the region starts in depth, depth2 and normals
-  PlanInputs planInputs;  // with Inputs::outputChannels and outputBlend, checked against the output
+  PlanInputs planInputs;
 };
 
 // Inspects every texture in `inputs` (binding each on `scratchUnit`, whose binding the caller

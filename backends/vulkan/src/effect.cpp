@@ -212,20 +212,12 @@ Status checkConfig(const EffectState& e, const Config& c, PlanInputs& pi, Plan& 
   if (!(fp.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT))
     return Status::error(StatusCode::UnsupportedFormat, std::string("Config::outputFormat ") + sao::formatName(outputFormat) +
                                                             " cannot be an optimal-tiling storage image on this device");
-  if (Status st = checkOutputChannels(outputFormat, c.outputChannels, "sao::vk Config::outputChannels"); !st) return st;
-  if (Status st = checkOutputBlend(c.outputBlend, c.userOutput, "sao::vk Config::outputBlend"); !st) return st;
-  if (!c.userOutput && keepsChannels(outputFormat, c.outputChannels))
-    return Status::error(StatusCode::InvalidInput,
-                         "Config::outputChannels " + std::to_string(c.outputChannels) +
-                             " keeps channels of the output, which only your own image has: set Config::userOutput "
-                             "or use kAllChannels");
 
   const DepthEncoding encoding = depthEncodingOf(c.depthFormat);
   pi = {encoding,     c.normalsFormat != VK_FORMAT_UNDEFINED,
         c.secondLayer, c.userOutput,
         outputFormat, static_cast<std::uint32_t>(c.depthSamples),
-        c.motionFormat != VK_FORMAT_UNDEFINED,
-        c.outputChannels, c.outputBlend};
+        c.motionFormat != VK_FORMAT_UNDEFINED};
   if (Status st = sao::plan(c.settings, c.camera, pi, plan); !st) return st;
   if (Status st = frameConstants(c.settings, c.camera, pi, {}, params); !st) return st;
   // Per pass: its storage images (a levels= write counts one per slot) and sampled images.

@@ -82,7 +82,7 @@ struct OutputTarget {
   VkImage image = VK_NULL_HANDLE;
   VkImageView view = VK_NULL_HANDLE;
   // Where the prologue transitions it from: UNDEFINED (contents discarded), or the caller's layout
-  // when Config::outputChannels keeps channels.
+  // when Inputs::outputChannels keeps channels (or blends).
   VkImageLayout keepFrom = VK_IMAGE_LAYOUT_UNDEFINED;
   std::uint32_t layer = 0;  // the array layer `view` shows (OutputImage::layer); 0 for the effect's own
 };

@@ -4,7 +4,7 @@
 //  entry     each image the frame writes: UNDEFINED -> GENERAL (its contents are rewritten every
 //            frame) after the previous frame's compute reads and writes, and for the output after
 //            Config::outputDstStages (where the previous result was read); an output whose
-//            channels Config::outputChannels keeps goes from OutputImage::layout instead. Inputs the caller wrote
+//            channels Inputs::outputChannels keeps goes from OutputImage::layout instead. Inputs the caller wrote
 //            are the caller's to synchronise (their layouts and barriers come with Inputs).
 // The parameter block is not a device write: record() copies it into its ring slot's region of
 // mapped host-coherent memory, which vkQueueSubmit makes visible (no barrier).
@@ -130,6 +130,8 @@ Status checkInputs(const EffectState& e, const Inputs& in, const OutputImage* us
   if (Status st = checkInput(in.depth2, "depth2", c.depthFormat, maxSide); !st) return st;
   if (Status st = checkInput(in.normals, "normals", c.normalsFormat, maxSide); !st) return st;
   if (Status st = checkInput(in.motion, "motion", c.motionFormat, maxSide); !st) return st;
+  const FrameValues frame{{}, 0, in.outputChannels, in.outputBlend};
+  if (Status st = checkFrameOutput(e.plan, e.planInputs, frame, "sao::vk::Effect::record() Inputs"); !st) return st;
   if (!c.userOutput) {
     const OwnedImage* ao = e.res.find(gen::ResourceId::ao);
     out = {ao->image.get(), ao->levelViews[0].get()};
@@ -144,11 +146,11 @@ Status checkInputs(const EffectState& e, const Inputs& in, const OutputImage* us
                              "; the effect writes VK_FORMAT_R16_SFLOAT, R8_UNORM, R8G8B8A8_UNORM or "
                              "R16G16B16A16_SFLOAT, the one Config names (its pipelines are built for it)");
   }
-  const bool keep = keepsChannels(outputFormatOf(c.outputFormat), c.outputChannels, c.outputBlend);
+  const bool keep = keepsChannels(outputFormatOf(c.outputFormat), in.outputChannels, in.outputBlend);
   if (keep && (userOutput->layout == VK_IMAGE_LAYOUT_UNDEFINED || userOutput->layout == VK_IMAGE_LAYOUT_PREINITIALIZED))
     return Status::error(StatusCode::InvalidInput,
-                         std::string(c.outputBlend == OutputBlend::Multiply ? "Config::outputBlend is multiply"
-                                                                            : "Config::outputChannels keeps channels of the output") +
+                         std::string(in.outputBlend == OutputBlend::Multiply ? "Inputs::outputBlend is multiply"
+                                                                             : "Inputs::outputChannels keeps channels of the output") +
                              ", but OutputImage::layout is " +
                              std::to_string(userOutput->layout) +
                              "; give the layout your image is in when the commands run (its texels are kept)");
@@ -178,7 +180,7 @@ std::uint32_t acquireSlot(EffectState& e, const Inputs& in, const OutputTarget& 
   // The region's offset and the frame index are per record (checkInputs put the offset inside the
   // textures, whose sides are at most maxImageDimension2D, so it fits the shader's int). params()
   // shows the last record's; Inputs::camera's block goes into this slot only.
-  const FrameValues frame{in.region.value_or(Offset{}), in.frameIndex};
+  const FrameValues frame{in.region.value_or(Offset{}), in.frameIndex, in.outputChannels, in.outputBlend};
   completeFrame(e.params, e.planInputs, frame);
   ParamBlock* block = &e.params;
   if (cameraBlock) {

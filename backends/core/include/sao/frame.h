@@ -3,12 +3,14 @@
 // the plan.
 //
 // computeConstants fills what the settings and the camera give. A frame adds what its inputs give
-// (the region's offset, the output's channel mask and blend, the depth's samples: PlanInputs and
-// FrameValues) and its number (the frame's spiral). Backends build the block here and nowhere else.
+// (the region's offset, the output's channel mask and blend: FrameValues; the depth's samples:
+// PlanInputs) and its number (the frame's spiral). Backends check a frame's output use and build
+// the block here and nowhere else.
 #pragma once
 #include <cstdint>
 
 #include "sao/constants.h"
+#include "sao/output.h"
 #include "sao/plan.h"
 
 namespace sao {
@@ -20,10 +22,22 @@ struct FrameValues {
   // put it inside an image, whose sides are far below that.
   Offset inputOffset;
   std::uint32_t frameIndex = 0;  // Inputs::frameIndex: the frame's spiral (sao/spiral.h)
+  // Which channels of the output take A, and how (sao/output.h; Inputs::outputChannels and
+  // ::outputBlend on every backend): block values, so they change per frame without a new plan.
+  std::uint32_t outputChannels = kAllChannels;
+  OutputBlend outputBlend = OutputBlend::Replace;
 };
 
+// Whether a frame of `plan` may write its output with `frame`'s channel mask and blend: Ok, or
+// InvalidInput prefixed by `who` for a mask the output's format cannot take, an unknown blend,
+// multiply or a mask that keeps channels of an effect-owned output (it holds nothing to keep), and
+// the bent normal output (BENT_NORMALS: it fills every channel) with a mask or blend that keeps the
+// caller's texels. Allocates only for an error's message.
+Status checkFrameOutput(const Plan& plan, const PlanInputs& inputs, const FrameValues& frame, const char* who);
+
 // The frame's members of a block that computeConstants filled for the same inputs: input_offset,
-// output_mask, output_blend, depth_samples, frame_phase and frame_alpha_offset. Allocates nothing.
+// output_mask, output_blend, depth_samples, frame_phase and frame_alpha_offset (`frame` checked by
+// checkFrameOutput). Allocates nothing.
 void completeFrame(ParamBlock& block, const PlanInputs& inputs, const FrameValues& frame);
 
 // computeConstants(settings, camera, inputs.depthEncoding) and completeFrame: the whole block of a

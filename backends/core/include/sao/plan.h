@@ -49,10 +49,7 @@ struct PlanInputs {
   // Samples per texel of the depth input: more than 1 selects the multisampled read (DEPTH_MULTISAMPLE).
   std::uint32_t depthSamples = 1;
   bool motion = false;  // the user supplies motion vectors (temporal accumulation, MOTION_VECTORS)
-  // The output's channel mask and blend (sao/output.h): the bent normal output (BENT_NORMALS) fills
-  // every channel and replaces them, so plan() refuses it with another mask or the multiply blend.
-  std::uint32_t outputChannels = kAllChannels;
-  OutputBlend outputBlend = OutputBlend::Replace;
+  // (The output's channel mask and blend are per frame, not part of the plan: sao/frame.h.)
   bool operator==(const PlanInputs&) const = default;
 };
 

@@ -89,7 +89,9 @@ struct Inputs {
   std::uint32_t frameIndex = 0;
   // Optional: the output's contents before the run (the viewport's extent, the format's channel
   // count), kept in the channels outputChannels leaves out, as a GPU backend keeps the caller's
-  // texels (and multiplied in the others with OutputBlend::Multiply). Without it those channels hold 0.
+  // texels (and multiplied in the others with OutputBlend::Multiply). A mask that keeps channels
+  // and the multiply blend need it (refused without, as the GPU backends refuse them without the
+  // caller's output: sao::checkFrameOutput).
   const FloatImage* output = nullptr;
   // Temporal accumulation (the `temporal` setting): the history the previous run wrote
   // (Result::images[history][0]: 4 channels, the planned history extent) and the camera it ran

@@ -40,7 +40,7 @@
 //    layout you name in InputImage::layout before the recorded commands run. The effect never
 //    transitions or writes your inputs; before writing them again, wait for the compute stage.
 //  * Output: record() discards the output's previous contents (a transition from UNDEFINED after
-//    Config::outputDstStages of earlier commands) unless Config::outputChannels keeps some of its
+//    Config::outputDstStages of earlier commands) unless Inputs::outputChannels keeps some of its
 //    channels: then it transitions your image from OutputImage::layout (the layout it is in when
 //    the commands run) and you make your writes to it available and visible to
 //    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT / SHADER_READ_BIT, as for inputs. It writes the output in VK_IMAGE_LAYOUT_GENERAL and leaves
@@ -142,18 +142,6 @@ struct Config {
   // device (sao/output.h says how each rounds A). Another is refused with UnsupportedFormat naming
   // it and this list. It selects the final pass's pipelines: changing it needs update().
   VkFormat outputFormat = VK_FORMAT_R16_SFLOAT;
-  // Which channels of the output receive A (sao/output.h): kAllChannels (every channel the format
-  // has) or a non-empty set of kChannelR/G/B/A it has. With an RGBA format and a mask that leaves
-  // channels out, the effect keeps them: record() reads your image's texels and stores them back
-  // with only these channels replaced, so the contents must be defined and visible (see the
-  // synchronisation contract: OutputImage::layout). Only with userOutput.
-  std::uint32_t outputChannels = kAllChannels;
-  // How those channels take A (sao/output.h): Replace (the default), or Multiply: each texel's
-  // channel is multiplied by A, the apply step in the effect's final pass (e.g. your lit
-  // R16G16B16A16_SFLOAT colour target with outputChannels = kChannelR | kChannelG | kChannelB). Only
-  // with userOutput; like a mask that keeps channels, record() reads the texels, so the contents
-  // must be defined and visible (OutputImage::layout). A block value: changing it needs update().
-  OutputBlend outputBlend = OutputBlend::Replace;
   // Layout of the output after record(): VK_IMAGE_LAYOUT_GENERAL or SHADER_READ_ONLY_OPTIMAL.
   VkImageLayout outputLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   // Where you read the output afterwards (the final barrier's destination scope). On a queue family
@@ -229,11 +217,24 @@ struct Inputs {
   // record: no update(), no allocation, no wait.
   bool resetHistory = false;
   const Camera* previousCamera = nullptr;
+  // Which channels of the output receive A (sao/output.h), as sao::gl::Inputs::outputChannels:
+  // kAllChannels (every channel the format has) or a non-empty set of kChannelR/G/B/A it has. With
+  // an RGBA format and a mask that leaves channels out, the effect keeps them: record() reads your
+  // image's texels and stores them back with only these channels replaced, so the contents must be
+  // defined and visible (see the synchronisation contract: OutputImage::layout). Only with
+  // Config::userOutput. Per record: no update().
+  std::uint32_t outputChannels = kAllChannels;
+  // How those channels take A (sao/output.h): Replace (the default), or Multiply: each texel's
+  // channel is multiplied by A, the apply step in the effect's final pass (e.g. your lit
+  // R16G16B16A16_SFLOAT colour target with outputChannels = kChannelR | kChannelG | kChannelB). Only
+  // with Config::userOutput; like a mask that keeps channels, record() reads the texels, so the
+  // contents must be defined and visible (OutputImage::layout). Per record: no update().
+  OutputBlend outputBlend = OutputBlend::Replace;
 };
 
 // The output: Config::outputFormat, the viewport's extent (plan().aoExtent), one level, usage
 // STORAGE (plus whatever you read it with). As returned by Effect::output(), `layout` is where
-// record() leaves it. Passed to record() with a Config::outputChannels that keeps channels,
+// record() leaves it. Passed to record() with an Inputs::outputChannels that keeps channels (or the multiply blend),
 // `layout` is the layout your image is in when the recorded commands run (not UNDEFINED or
 // PREINITIALIZED: its texels are kept); otherwise it is not read.
 struct OutputImage {
