@@ -28,7 +28,7 @@
 // barriers order it after the first. Each record takes a ring slot: see framesInFlight below.
 //
 // Requirements on your device: Vulkan 1.1 or later, the feature shaderStorageImageExtendedFormats
-// enabled (the intermediates are rg32f and the output r16f storage images; tell create() through
+// enabled (the (A, key) intermediates are rg16f or rg32f storage images, the output r16f by default; tell create() through
 // DeviceContext::enabledFeatures), and a queue family with compute. create() checks each and names
 // the one missing. Command buffers recorded by record() must be submitted to a queue of the family named
 // in DeviceContext::queueFamilyIndex (one queue: the effect's own images are reused every frame
