@@ -204,9 +204,7 @@ void emitSettingRules(std::ostringstream& h, const Effect& e) {
 // The push constants of the passes that declare them (one block for all: main.cpp checks it), each
 // member a copy of the parameter block's member of the same name (checked there too).
 void emitPushConstants(std::ostringstream& h, const ParamBlock& b, const std::vector<CompiledPassVariant>& pvs) {
-  const SpirvFacts* facts = nullptr;
-  for (const auto& c : pvs)
-    if (c.facts.pushConstantBytes > 0) facts = &c.facts;
+  const SpirvFacts* facts = pushConstantFacts(pvs);
   h << "// ---- Push constants";
   if (facts) h << " (block '" << facts->pushConstantBlock << "', Vulkan only)";
   h << ": the passes whose PassVariantInfo::pushConstantBytes is not 0 take them; each member is the\n"
@@ -225,6 +223,12 @@ void emitPushConstants(std::ostringstream& h, const ParamBlock& b, const std::ve
 }
 
 }  // namespace
+
+const SpirvFacts* pushConstantFacts(const std::vector<CompiledPassVariant>& passVariants) {
+  for (const auto& c : passVariants)
+    if (c.facts.pushConstantBytes > 0) return &c.facts;
+  return nullptr;
+}
 
 GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& pvs,
                       const std::vector<std::string>& glslBlobs, const std::vector<std::vector<uint32_t>>& spirvBlobs) {

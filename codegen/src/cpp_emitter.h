@@ -18,6 +18,10 @@ struct CompiledPassVariant {
   SpirvFacts facts;   // shared memory and push constants, read from its SPIR-V
 };
 
+// The push-constant block of the variants that declare one (main.cpp checks that they all declare
+// the same), or nullptr when none does.
+const SpirvFacts* pushConstantFacts(const std::vector<CompiledPassVariant>& passVariants);
+
 struct GeneratedCode {
   std::string header;
   std::string source;

@@ -54,9 +54,7 @@ std::string passesJson(const Effect& e, const std::vector<CompiledPassVariant>& 
   }
   j << "]},\n";
 
-  const SpirvFacts* push = nullptr;
-  for (const auto& c : compiled)
-    if (c.facts.pushConstantBytes > 0) push = &c.facts;
+  const SpirvFacts* push = pushConstantFacts(compiled);
   j << "  \"push_constants\": ";
   if (!push) {
     j << "null,\n";

@@ -10,6 +10,7 @@ namespace {
 // Where a camera meets the plan: its extents and its csz levels (plan() reads nothing else of it).
 struct CameraPlanKey {
   std::uint32_t width = 0, height = 0, guardBand = 0, cszLevels = 0;
+  bool operator==(const CameraPlanKey&) const = default;
 };
 
 Status planKey(const Settings& settings, const Camera& camera, CameraPlanKey& out) {
@@ -79,8 +80,7 @@ Status checkCameraKeepsPlan(const Settings& settings, const Camera& planned, con
 
 bool cameraKeepsPlan(const Settings& settings, const Camera& planned, const Camera& next) {
   CameraPlanKey a, b;
-  if (!planKey(settings, planned, a) || !planKey(settings, next, b)) return false;
-  return a.width == b.width && a.height == b.height && a.guardBand == b.guardBand && a.cszLevels == b.cszLevels;
+  return planKey(settings, planned, a) && planKey(settings, next, b) && a == b;
 }
 
 }  // namespace sao

@@ -290,7 +290,7 @@ Status validateAndPlan(const Settings& settings, const Camera& camera, const Inp
   if (in.motion != nullptr)
     if (Status st = checkMotion(*in.motion, camera, expected, in.region); !st) return st;
   // Inside the images (checked above); images that wide cannot be in memory, but the block holds int.
-  const Offset offset = in.region.value_or(Offset{});
+  const Offset& offset = frame.inputOffset;
   if (offset.x > std::uint32_t(INT32_MAX) || offset.y > std::uint32_t(INT32_MAX))
     return invalid("the offset (" + std::to_string(offset.x) + ", " + std::to_string(offset.y) +
                    ") does not fit the shaders' int (at most 2^31 - 1)");
