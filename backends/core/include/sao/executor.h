@@ -1,0 +1,129 @@
+// The effect's frame as core runs it, and the small interface whatever runs the passes implements
+// (an engine's own renderer, the CPU reference, a graphics API backend): FrameState decides, per
+// effect instance, the plan, the schedule, which images a new configuration keeps, the complete
+// parameter block of every frame and the temporal history; an Executor only creates what it is
+// asked for and records what the schedule says, in order.
+//
+//   FrameState frame("my-engine");
+//   frame.configure(settings, camera, planInputs, executor);   // at start, on a resize, a new setting
+//   each frame: frame.run(FrameInputs{...}, executor);         // block, barriers, dispatches
+//   at the end: frame.release(executor);
+//
+// What an executor needs of each pass it finds in the generated tables (sao_effect.h) or, for an
+// engine outside C++, in sao_passes.json beside the shader files (sao_SHADER_DIR): the bindings
+// (gen::BindingInfo: set-0 binding, GL unit, read or write, format, array slots), the local size
+// (gen::PassInfo::localX/Y), the push constants (PassVariantInfo::pushConstantBytes, filled with
+// gen::pushConstantsOf(block)), the shared memory (PassVariantInfo::sharedBytes, to check against
+// the device's limit), and one sampler for every read: nearest, clamp to edge, every level (the
+// shaders only texelFetch). The parameter block (gen::SaoParams) is a uniform buffer at
+// gen::kParamBlockBinding.
+#pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "sao/frame.h"
+#include "sao/plan.h"
+#include "sao/schedule.h"
+#include "sao/temporal.h"
+
+namespace sao {
+
+// What one frame hands the executor before its first dispatch.
+struct FrameWork {
+  const Plan* plan = nullptr;
+  const Schedule* schedule = nullptr;
+  const ParamBlock* block = nullptr;  // the whole block of this frame: upload it, push its constants
+  // The copy of a history image a binding or hazard names: imageCopy(historyParity, resource,
+  // previousFrame) (sao/temporal.h); 0 for every other image.
+  std::uint32_t historyParity = 0;
+  // Whether the previous frame's history copy holds a frame this one reads (its contents must be
+  // kept); false: the shaders ignore it (history_valid = 0), so its contents may be discarded.
+  bool historyValid = false;
+};
+
+class Executor {
+ public:
+  virtual ~Executor() = default;
+
+  // An effect-owned image of the plan: its format, level-0 extent, levels and copies (a history
+  // has two). The output is one only when the plan inputs say the effect owns it (not
+  // PlanInputs::userOutput); inputs never are: the executor binds the caller's own. Called for
+  // each image a new plan adds or changes; an image the plan keeps is not created again.
+  virtual Status createImage(const PlannedImage& image) = 0;
+  // An image created before that a new plan drops or changes, or every image at release().
+  virtual void destroyImage(const PlannedImage& image) noexcept = 0;
+  // A compiled pass variant the plan runs (its bindings, push constants, shared memory; the
+  // SPIR-V module variant.spirvBlob or the file <fileStem>.spv, the GLSL glslBlob or
+  // <fileStem>.glsl). Called once per variant for the life of the FrameState.
+  virtual Status createPipeline(const gen::PassInfo& pass, const gen::PassVariantInfo& variant) = 0;
+
+  // One frame: beginFrame, then barrier() for the entry hazards, barrier() and dispatch() for each
+  // of the schedule's dispatches in order, barrier() for the exit hazards, endFrame(). A barrier
+  // with no hazards is not called. Hazards and bindings name resources; a binding of an input or
+  // the caller's output is the executor's own image of that resource.
+  virtual Status beginFrame(const FrameWork& frame) = 0;
+  virtual void barrier(std::span<const Hazard> hazards) = 0;
+  virtual void dispatch(const ScheduledDispatch& dispatch, std::span<const ScheduledBinding> bindings) = 0;
+  virtual Status endFrame() = 0;
+};
+
+// One frame's inputs to FrameState::run.
+struct FrameInputs {
+  // This frame's camera, which must keep the plan (checkCameraKeepsPlan: TAA jitter, the other eye
+  // of a stereo pair); null: the configured camera.
+  const Camera* camera = nullptr;
+  // Temporal accumulation: the camera the previous frame ran with, when not the one FrameState
+  // kept (sao/temporal.h); `resetHistory` starts the history again (a camera cut).
+  const Camera* previousCamera = nullptr;
+  bool resetHistory = false;
+  FrameValues values;  // region offset, frame index, output channels and blend
+  // The caller's images this frame (extents and region), checked against the plan when given
+  // (checkSupplied); null: the executor checks its own.
+  const SuppliedImages* images = nullptr;
+};
+
+class FrameState {
+ public:
+  // `who` prefixes every message ("sao::gl", "my-engine"); it must outlive the FrameState.
+  explicit FrameState(const char* who) : who_(who) {}
+
+  // Plans for the configuration (one validation: plan()). The images the current plan holds with
+  // the same format, extent, levels and copies are kept, the others destroyed and the new ones
+  // created through `executor`; pipelines are created for the variants not created before. The
+  // temporal history starts again unless the plan and settings are unchanged. On error the state
+  // is released (every image destroyed; configure again), and the Status says why.
+  Status configure(const Settings& settings, const Camera& camera, const PlanInputs& inputs, Executor& executor);
+
+  // One frame through `executor` (see Executor); allocates nothing. InvalidInput without a
+  // configuration, for a camera that does not keep the plan, a refused output use
+  // (checkFrameOutput) or supplied images the plan cannot take (checkSupplied); the executor's
+  // own error from beginFrame or endFrame. The history counts the frame only when it ran.
+  Status run(const FrameInputs& frame, Executor& executor);
+
+  // Destroys every image through `executor` (pipelines are the executor's to destroy).
+  void release(Executor& executor) noexcept;
+
+  bool configured() const { return configured_; }
+  const Plan& plan() const { return plan_; }
+  const Schedule& schedule() const { return schedule_; }
+  const Settings& settings() const { return settings_; }
+  const Camera& camera() const { return camera_; }
+  const PlanInputs& planInputs() const { return inputs_; }
+  const ParamBlock& block() const { return block_; }  // the last frame's (run's) block
+  const TemporalHistory& history() const { return history_; }
+
+ private:
+  const char* who_;
+  bool configured_ = false;
+  Settings settings_;
+  Camera camera_;
+  PlanInputs inputs_;
+  Plan plan_;
+  Schedule schedule_;
+  ParamBlock block_{};
+  TemporalHistory history_;
+  std::vector<const gen::PassVariantInfo*> pipelines_;  // created through an executor
+};
+
+}  // namespace sao

@@ -1,0 +1,110 @@
+#include "sao/executor.h"
+
+#include <algorithm>
+#include <string>
+
+namespace sao {
+namespace {
+
+bool holdsImage(const Plan& plan, const PlannedImage& image) {
+  const PlannedImage* same = plan.image(image.resource);
+  return same != nullptr && sameImage(*same, image);
+}
+
+Status withWho(const char* who, const Status& st) {
+  return Status::error(st.code, std::string(who) + ": " + st.message);
+}
+
+}  // namespace
+
+Status FrameState::configure(const Settings& settings, const Camera& camera, const PlanInputs& inputs,
+                             Executor& executor) {
+  Plan next;
+  if (Status st = sao::plan(settings, camera, inputs, next); !st) return withWho(who_, st);
+  Schedule schedule = makeSchedule(next);
+  // The images the new plan drops or changes go first, so that memory is not held twice.
+  if (configured_)
+    for (const PlannedImage& image : plan_.images)
+      if (!holdsImage(next, image)) executor.destroyImage(image);
+  const bool hadImages = configured_;
+  const Plan before = hadImages ? std::move(plan_) : Plan{};
+  configured_ = false;
+  plan_ = std::move(next);
+  schedule_ = std::move(schedule);
+  for (const PlannedImage& image : plan_.images) {
+    if (hadImages && holdsImage(before, image)) continue;
+    if (Status st = executor.createImage(image); !st) {
+      // Undo: what exists now is what `before` kept plus what was created here.
+      for (const PlannedImage& made : plan_.images) {
+        if (&made == &image) break;
+        if (!(hadImages && holdsImage(before, made))) executor.destroyImage(made);
+      }
+      for (const PlannedImage& kept : before.images)
+        if (holdsImage(plan_, kept)) executor.destroyImage(kept);
+      plan_ = Plan{};
+      schedule_ = Schedule{};
+      history_ = TemporalHistory{};
+      return st;
+    }
+  }
+  // The history holds a frame of this plan only when nothing it depends on changed.
+  const bool keepHistory = hadImages && settings == settings_ && sameImages(before, plan_) && inputs == inputs_;
+  if (!keepHistory) history_ = TemporalHistory{};
+  settings_ = settings;
+  camera_ = camera;
+  inputs_ = inputs;
+  configured_ = true;
+  for (const PlannedPass& p : plan_.passes) {
+    if (std::find(pipelines_.begin(), pipelines_.end(), p.variant) != pipelines_.end()) continue;
+    if (Status st = executor.createPipeline(gen::pass(p.pass), *p.variant); !st) {
+      release(executor);
+      return st;
+    }
+    pipelines_.push_back(p.variant);
+  }
+  return Status::success();
+}
+
+Status FrameState::run(const FrameInputs& frame, Executor& executor) {
+  if (!configured_)
+    return Status::error(StatusCode::InvalidInput, std::string(who_) + ": no configuration: configure() first");
+  const Camera& camera = frame.camera ? *frame.camera : camera_;
+  if (frame.camera)
+    if (Status st = checkCameraKeepsPlan(settings_, camera_, camera); !st)
+      return Status::error(st.code, std::string(who_) + ": this frame's camera " + st.message);
+  if (Status st = checkFrameOutput(plan_, inputs_, frame.values, who_); !st) return st;
+  if (frame.images)
+    if (Status st = checkSupplied(plan_, *frame.images, inputs_.userOutput, who_); !st) return st;
+  if (Status st = frameConstants(settings_, camera, inputs_, frame.values, block_); !st) return withWho(who_, st);
+  if (Status st = prepareTemporalFrame(history_, settings_, camera, frame.previousCamera, frame.resetHistory, block_);
+      !st)
+    return withWho(who_, st);
+
+  FrameWork work;
+  work.plan = &plan_;
+  work.schedule = &schedule_;
+  work.block = &block_;
+  work.historyParity = history_.parity;
+  work.historyValid = block_.history_valid != 0;
+  if (Status st = executor.beginFrame(work); !st) return st;
+  if (!schedule_.entryHazards().empty()) executor.barrier(schedule_.entryHazards());
+  for (const ScheduledDispatch& d : schedule_.dispatches) {
+    if (!schedule_.hazardsBefore(d).empty()) executor.barrier(schedule_.hazardsBefore(d));
+    executor.dispatch(d, schedule_.bindingsOf(d));
+  }
+  if (!schedule_.exitHazards().empty()) executor.barrier(schedule_.exitHazards());
+  if (Status st = executor.endFrame(); !st) return st;
+  if (settings_.temporal) finishTemporalFrame(history_, settings_, camera);
+  return Status::success();
+}
+
+void FrameState::release(Executor& executor) noexcept {
+  if (configured_)
+    for (const PlannedImage& image : plan_.images) executor.destroyImage(image);
+  configured_ = false;
+  plan_ = Plan{};
+  schedule_ = Schedule{};
+  history_ = TemporalHistory{};
+}
+
+}  // namespace sao
