@@ -47,7 +47,7 @@ done
 
 # What each component needs found, beyond sao (the package for the library, the consumer program
 # for its own use: EGL for gl, the loader for vulkan); every other component's list is disabled.
-declare -A needs=([core]="" [io]="OpenEXR Imath PkgConfig" [gl]="OpenGL" [vulkan]="Vulkan")
+declare -A needs=([core]="" [io]="OpenEXR Imath PkgConfig" [cpu]="" [gl]="OpenGL" [vulkan]="Vulkan")
 components=$(sed -n 's/^set(sao_AVAILABLE_COMPONENTS \(.*\))$/\1/p' "$prefix/lib/cmake/sao/saoConfig.cmake" |
   tr ';' ' ')
 echo "components: $components"

@@ -1,10 +1,11 @@
 # `cmake --install` gives a config package: find_package(sao CONFIG COMPONENTS ...) defines sao::core
-# (static, with the generated effect sao::effect), sao::io (static, EXR/PNG files), sao::gl and
-# sao::vulkan (shared, when built) — the same names as the in-tree aliases, so a project builds
+# (static, with the generated effect sao::effect), sao::io (static, EXR/PNG files), sao::cpu (static,
+# the CPU reference, to test an engine's own port against), sao::gl and sao::vulkan (shared, when
+# built) — the same names as the in-tree aliases, so a project builds
 # unchanged against the source tree or the package.
 #
-#   <prefix>/include/sao/*.h, sao/gl/effect.h, sao/vulkan/effect.h, sao_effect.h (generated)
-#   <prefix>/lib/libsao_core.a, libsao_effect.a, libsao_io.a, libsao_gl.so*, libsao_vulkan.so*
+#   <prefix>/include/sao/*.h, sao/cpu/*.h, sao/gl/effect.h, sao/vulkan/effect.h, sao_effect.h (generated)
+#   <prefix>/lib/libsao_core.a, libsao_effect.a, libsao_io.a, libsao_cpu.a, libsao_gl.so*, libsao_vulkan.so*
 #   <prefix>/lib/cmake/sao/saoConfig.cmake, saoConfigVersion.cmake, sao_<component>_targets*.cmake
 #   <prefix>/share/sao/shaders/: every compiled pass variant as GLSL 4.30 and SPIR-V, and
 #   sao_passes.json describing them (sao_SHADER_DIR), for an engine that runs the passes itself
@@ -30,6 +31,7 @@ set(sao_install_cmakedir ${CMAKE_INSTALL_LIBDIR}/cmake/sao)
 #   component  targets                exported name   dependencies the consumer must have
 #   core       sao_core, sao_effect   sao::core       none
 #   io         sao_io                 sao::io         OpenEXR (CONFIG), stb (pkg-config)
+#   cpu        sao_cpu                sao::cpu        Threads
 #   gl         sao_gl                 sao::gl         none (GL comes from the caller's loader)
 #   vulkan     sao_vulkan             sao::vulkan     Vulkan (Vulkan::Headers)
 set(sao_package_components core)
@@ -65,6 +67,16 @@ if(TARGET sao_io)
   set_target_properties(sao_io PROPERTIES EXPORT_NAME io)
   sao_export_component(io sao_io)
   install(FILES ${PROJECT_SOURCE_DIR}/backends/io/include/sao/io.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/sao)
+endif()
+
+# The CPU reference, the oracle an engine tests its own executor against (the effect's C++ passes are
+# compiled into it: nothing of effect/cpu/ is installed).
+if(TARGET sao_cpu)
+  list(APPEND sao_package_components cpu)
+  set_target_properties(sao_cpu PROPERTIES EXPORT_NAME cpu)
+  sao_export_component(cpu sao_cpu)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/backends/cpu/include/sao/cpu DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/sao
+          FILES_MATCHING PATTERN "*.h")
 endif()
 
 if(TARGET sao_gl)
