@@ -215,4 +215,66 @@ TEST(Executor, TheHistoryFollowsTheTemporalContract) {
   EXPECT_TRUE(ex.live.empty());
 }
 
+// render(): the per-frame call plans only when keeps() says so, and refuses a frame its new plan
+// cannot take before touching an image.
+TEST(Executor, RenderPlansOnlyWhenTheFrameNeedsIt) {
+  sao::Settings s = sao::test::untunedDefaults();
+  sao::FrameState frame("engine");
+  RecordingExecutor ex;
+  ASSERT_TRUE(frame.render(s, camera(), {}, {}, ex).ok());
+  EXPECT_EQ(frame.plans(), 1u);
+  // A jittered camera keeps the plan: no new configuration, nothing created.
+  sao::Camera jittered = camera();
+  jittered.projection[8] += 0.001;
+  EXPECT_TRUE(frame.keeps(s, jittered, {}));
+  ex.calls.clear();
+  ASSERT_TRUE(frame.render(s, jittered, {}, {}, ex).ok());
+  EXPECT_EQ(frame.plans(), 1u);
+  EXPECT_EQ(ex.count("create"), 0u);
+  // A resize with a depth image of the old size: refused before any image changes.
+  sao::SuppliedImages images{};
+  images[std::size_t(sao::gen::ResourceId::depth)] = {true, {320, 180}, {}};
+  sao::FrameInputs fi;
+  fi.images = &images;
+  ex.calls.clear();
+  EXPECT_FALSE(frame.render(s, camera(640, 360), {}, fi, ex).ok());
+  EXPECT_TRUE(ex.calls.empty());
+  EXPECT_EQ(frame.plans(), 1u);
+  // An executor's own limit refuses the plan likewise.
+  struct Limited : RecordingExecutor {
+    sao::Status checkPlan(const sao::Plan& plan) override {
+      return plan.aoExtent.width > 400 ? sao::Status::error(sao::StatusCode::InvalidExtent, "too wide")
+                                       : sao::Status::success();
+    }
+  } limited;
+  sao::FrameState other("engine");
+  EXPECT_EQ(other.render(s, camera(640, 360), {}, {}, limited).code, sao::StatusCode::InvalidExtent);
+  EXPECT_TRUE(limited.calls.empty());
+  frame.release(ex);
+}
+
+// repeat(): the same work again, the history not advanced twice.
+TEST(Executor, RepeatRunsTheLastFrameAgain) {
+  sao::Settings s = sao::test::untunedDefaults();
+  s.temporal = true;
+  sao::FrameState frame("engine");
+  RecordingExecutor ex;
+  EXPECT_FALSE(frame.repeat(ex).ok()) << "nothing ran yet";
+  ASSERT_TRUE(frame.render(s, camera(), {}, {}, ex).ok());
+  ASSERT_TRUE(frame.render(s, camera(), {}, {}, ex).ok());
+  const std::vector<std::string> once = ex.calls;
+  const std::uint32_t parity = ex.lastWork.historyParity;
+  const sao::ParamBlock block = ex.lastBlock;
+  const std::uint32_t next = frame.history().parity;
+  ex.calls.clear();
+  ASSERT_TRUE(frame.repeat(ex).ok());
+  EXPECT_EQ(ex.lastWork.historyParity, parity);
+  EXPECT_TRUE(ex.lastWork.historyValid);
+  EXPECT_EQ(std::memcmp(&block, &ex.lastBlock, sizeof block), 0);
+  EXPECT_EQ(frame.history().parity, next);
+  EXPECT_EQ(ex.count("dispatch"), frame.schedule().dispatches.size());
+  frame.release(ex);
+  EXPECT_FALSE(frame.repeat(ex).ok());
+}
+
 }  // namespace

@@ -21,6 +21,37 @@ Status FrameState::configure(const Settings& settings, const Camera& camera, con
                              Executor& executor) {
   Plan next;
   if (Status st = sao::plan(settings, camera, inputs, next); !st) return withWho(who_, st);
+  return adopt(settings, camera, inputs, std::move(next), executor);
+}
+
+bool FrameState::keeps(const Settings& settings, const Camera& camera, const PlanInputs& inputs) const {
+  return configured_ && settings == settings_ && inputs == inputs_ &&
+         (camera == camera_ || cameraKeepsPlan(settings, camera_, camera));
+}
+
+Status FrameState::render(const Settings& settings, const Camera& camera, const PlanInputs& inputs,
+                          const FrameInputs& frame, Executor& executor) {
+  if (!keeps(settings, camera, inputs)) {
+    Plan next;
+    if (Status st = sao::plan(settings, camera, inputs, next); !st) return withWho(who_, st);
+    if (Status st = checkFrame(next, inputs, frame); !st) return st;
+    if (Status st = adopt(settings, camera, inputs, std::move(next), executor); !st) return st;
+  }
+  FrameInputs f = frame;
+  f.camera = &camera;
+  return run(f, executor);
+}
+
+Status FrameState::checkFrame(const Plan& plan, const PlanInputs& inputs, const FrameInputs& frame) const {
+  if (Status st = checkFrameOutput(plan, inputs, frame.values, who_); !st) return st;
+  if (frame.images)
+    if (Status st = checkSupplied(plan, *frame.images, inputs.userOutput, who_); !st) return st;
+  return Status::success();
+}
+
+Status FrameState::adopt(const Settings& settings, const Camera& camera, const PlanInputs& inputs, Plan next,
+                         Executor& executor) {
+  if (Status st = executor.checkPlan(next); !st) return st;
   Schedule schedule = makeSchedule(next);
   // The images the new plan drops or changes go first, so that memory is not held twice.
   if (configured_)
@@ -29,6 +60,7 @@ Status FrameState::configure(const Settings& settings, const Camera& camera, con
   const bool hadImages = configured_;
   const Plan before = hadImages ? std::move(plan_) : Plan{};
   configured_ = false;
+  ranOnPlan_ = false;
   plan_ = std::move(next);
   schedule_ = std::move(schedule);
   for (const PlannedImage& image : plan_.images) {
@@ -54,6 +86,7 @@ Status FrameState::configure(const Settings& settings, const Camera& camera, con
   camera_ = camera;
   inputs_ = inputs;
   configured_ = true;
+  ++plans_;
   for (const PlannedPass& p : plan_.passes) {
     if (std::find(pipelines_.begin(), pipelines_.end(), p.variant) != pipelines_.end()) continue;
     if (Status st = executor.createPipeline(gen::pass(p.pass), *p.variant); !st) {
@@ -69,39 +102,50 @@ Status FrameState::run(const FrameInputs& frame, Executor& executor) {
   if (!configured_)
     return Status::error(StatusCode::InvalidInput, std::string(who_) + ": no configuration: configure() first");
   const Camera& camera = frame.camera ? *frame.camera : camera_;
-  if (frame.camera)
+  if (frame.camera && !(camera == camera_))
     if (Status st = checkCameraKeepsPlan(settings_, camera_, camera); !st)
       return Status::error(st.code, std::string(who_) + ": this frame's camera " + st.message);
-  if (Status st = checkFrameOutput(plan_, inputs_, frame.values, who_); !st) return st;
-  if (frame.images)
-    if (Status st = checkSupplied(plan_, *frame.images, inputs_.userOutput, who_); !st) return st;
+  if (Status st = checkFrame(plan_, inputs_, frame); !st) return st;
   if (Status st = frameConstants(settings_, camera, inputs_, frame.values, block_); !st) return withWho(who_, st);
   if (Status st = prepareTemporalFrame(history_, settings_, camera, frame.previousCamera, frame.resetHistory, block_);
       !st)
     return withWho(who_, st);
 
-  FrameWork work;
-  work.plan = &plan_;
-  work.schedule = &schedule_;
-  work.block = &block_;
-  work.historyParity = history_.parity;
-  work.historyValid = block_.history_valid != 0;
-  if (Status st = executor.beginFrame(work); !st) return st;
+  lastWork_.plan = &plan_;
+  lastWork_.schedule = &schedule_;
+  lastWork_.block = &block_;
+  lastWork_.historyParity = history_.parity;
+  lastWork_.historyValid = block_.history_valid != 0;
+  if (Status st = executor.beginFrame(lastWork_); !st) return st;
+  walk(executor);
+  if (Status st = executor.endFrame(); !st) return st;
+  ranOnPlan_ = true;
+  if (settings_.temporal) finishTemporalFrame(history_, settings_, camera);
+  return Status::success();
+}
+
+Status FrameState::repeat(Executor& executor) {
+  if (!configured_ || !ranOnPlan_)
+    return Status::error(StatusCode::InvalidInput, std::string(who_) + ": no frame ran on this configuration");
+  if (Status st = executor.beginFrame(lastWork_); !st) return st;
+  walk(executor);
+  return executor.endFrame();
+}
+
+void FrameState::walk(Executor& executor) {
   if (!schedule_.entryHazards().empty()) executor.barrier(schedule_.entryHazards());
   for (const ScheduledDispatch& d : schedule_.dispatches) {
     if (!schedule_.hazardsBefore(d).empty()) executor.barrier(schedule_.hazardsBefore(d));
     executor.dispatch(d, schedule_.bindingsOf(d));
   }
   if (!schedule_.exitHazards().empty()) executor.barrier(schedule_.exitHazards());
-  if (Status st = executor.endFrame(); !st) return st;
-  if (settings_.temporal) finishTemporalFrame(history_, settings_, camera);
-  return Status::success();
 }
 
 void FrameState::release(Executor& executor) noexcept {
   if (configured_)
     for (const PlannedImage& image : plan_.images) executor.destroyImage(image);
   configured_ = false;
+  ranOnPlan_ = false;
   plan_ = Plan{};
   schedule_ = Schedule{};
   history_ = TemporalHistory{};

@@ -5,9 +5,11 @@
 // asked for and records what the schedule says, in order.
 //
 //   FrameState frame("my-engine");
-//   frame.configure(settings, camera, planInputs, executor);   // at start, on a resize, a new setting
-//   each frame: frame.run(FrameInputs{...}, executor);         // block, barriers, dispatches
+//   each frame: frame.render(settings, camera, planInputs, FrameInputs{...}, executor);
 //   at the end: frame.release(executor);
+//
+// render() plans again only when the settings, the plan inputs or a plan-changing camera change;
+// configure() and run() are its two halves, for a caller that configures apart from its frames.
 //
 // What an executor needs of each pass it finds in the generated tables (sao_effect.h) or, for an
 // engine outside C++, in sao_passes.json beside the shader files (sao_SHADER_DIR): the bindings
@@ -46,6 +48,9 @@ class Executor {
  public:
   virtual ~Executor() = default;
 
+  // The executor's own limits (texture size, shared memory, work-group counts) against a plan,
+  // before any of its images is created: a refusal leaves the current configuration as it was.
+  virtual Status checkPlan(const Plan& /*plan*/) { return Status::success(); }
   // An effect-owned image of the plan: its format, level-0 extent, levels and copies (a history
   // has two). The output is one only when the plan inputs say the effect owns it (not
   // PlanInputs::userOutput); inputs never are: the executor binds the caller's own. Called for
@@ -95,11 +100,27 @@ class FrameState {
   // is released (every image destroyed; configure again), and the Status says why.
   Status configure(const Settings& settings, const Camera& camera, const PlanInputs& inputs, Executor& executor);
 
+  // Whether a frame with these settings, camera and plan inputs runs on the current configuration
+  // (the same settings and plan inputs, a camera that keeps the plan). Allocates nothing.
+  bool keeps(const Settings& settings, const Camera& camera, const PlanInputs& inputs) const;
+
+  // The per-frame call: configures when keeps() says so, checking `frame` (output use, supplied
+  // images) against the new plan before any image is created or destroyed, then run() with
+  // `camera` as the frame's camera (frame.camera is ignored). A frame on an unchanged
+  // configuration allocates nothing.
+  Status render(const Settings& settings, const Camera& camera, const PlanInputs& inputs, const FrameInputs& frame,
+                Executor& executor);
+
   // One frame through `executor` (see Executor); allocates nothing. InvalidInput without a
   // configuration, for a camera that does not keep the plan, a refused output use
   // (checkFrameOutput) or supplied images the plan cannot take (checkSupplied); the executor's
   // own error from beginFrame or endFrame. The history counts the frame only when it ran.
   Status run(const FrameInputs& frame, Executor& executor);
+
+  // The last frame run() made, again: the same block and history copies (the history is not
+  // advanced twice), for an executor that measures a frame a second time. InvalidInput when no
+  // frame ran on this configuration.
+  Status repeat(Executor& executor);
 
   // Destroys every image through `executor` (pipelines are the executor's to destroy).
   void release(Executor& executor) noexcept;
@@ -112,8 +133,14 @@ class FrameState {
   const PlanInputs& planInputs() const { return inputs_; }
   const ParamBlock& block() const { return block_; }  // the last frame's (run's) block
   const TemporalHistory& history() const { return history_; }
+  std::uint64_t plans() const { return plans_; }  // configurations made so far
 
  private:
+  Status checkFrame(const Plan& plan, const PlanInputs& inputs, const FrameInputs& frame) const;
+  Status adopt(const Settings& settings, const Camera& camera, const PlanInputs& inputs, Plan next,
+               Executor& executor);
+  void walk(Executor& executor);
+
   const char* who_;
   bool configured_ = false;
   Settings settings_;
@@ -124,6 +151,9 @@ class FrameState {
   ParamBlock block_{};
   TemporalHistory history_;
   std::vector<const gen::PassVariantInfo*> pipelines_;  // created through an executor
+  std::uint64_t plans_ = 0;
+  FrameWork lastWork_;  // what the last run() handed beginFrame (its plan and block: the members)
+  bool ranOnPlan_ = false;
 };
 
 }  // namespace sao
