@@ -22,7 +22,7 @@ sao::Camera camera(std::uint32_t width = 320, std::uint32_t height = 180) {
 // Records each call as a line; images and pipelines are counted so that a leak shows.
 struct RecordingExecutor : sao::Executor {
   std::vector<std::string> calls;
-  std::vector<sao::gen::ResourceId> live;  // images created and not destroyed
+  std::vector<sao::PlannedImage> live;  // images created and not destroyed
   int pipelines = 0;
   int failCreateAt = -1;  // the index of the createImage call that fails
   int creates = 0;
@@ -31,12 +31,16 @@ struct RecordingExecutor : sao::Executor {
 
   sao::Status createImage(const sao::PlannedImage& image) override {
     if (creates++ == failCreateAt) return sao::Status::error(sao::StatusCode::DriverError, "out of memory");
-    live.push_back(image.resource);
+    for (const sao::PlannedImage& other : live)
+      EXPECT_FALSE(other.resource == image.resource && sao::sameImage(other, image)) << "created twice";
+    live.push_back(image);
     calls.push_back("create " + std::string(sao::gen::kResources[std::size_t(image.resource)].name));
     return sao::Status::success();
   }
   void destroyImage(const sao::PlannedImage& image) noexcept override {
-    auto it = std::find(live.begin(), live.end(), image.resource);
+    auto it = std::find_if(live.begin(), live.end(), [&](const sao::PlannedImage& p) {
+      return p.resource == image.resource && sao::sameImage(p, image);
+    });
     EXPECT_NE(it, live.end()) << "destroyed an image never created";
     if (it != live.end()) live.erase(it);
     calls.push_back("destroy " + std::string(sao::gen::kResources[std::size_t(image.resource)].name));
@@ -136,7 +140,7 @@ TEST(Executor, ANewConfigurationRecreatesOnlyTheImagesItChanges) {
   EXPECT_TRUE(ex.live.empty());
 }
 
-TEST(Executor, AFailedImageLeavesNothingBehind) {
+TEST(Executor, AFailedConfigurationChangesNothing) {
   const sao::Settings s = sao::test::untunedDefaults();
   sao::FrameState frame("engine");
   RecordingExecutor ex;
@@ -146,14 +150,28 @@ TEST(Executor, AFailedImageLeavesNothingBehind) {
   EXPECT_TRUE(ex.live.empty());
   EXPECT_FALSE(frame.configured());
   EXPECT_EQ(frame.run({}, ex).code, sao::StatusCode::InvalidInput);
-  // After a configuration that ran, a failure on a resize releases the kept images too.
+  // After a configuration that ran, a failure on a resize keeps it: its images, its plan, its frames.
   ex.failCreateAt = -1;
   ASSERT_TRUE(frame.configure(s, camera(), {}, ex).ok());
+  const std::size_t images = ex.live.size();
+  const std::string plan = frame.plan().describe();
   ex.creates = 0;
-  ex.failCreateAt = 0;
-  sao::Settings other = s;
-  other.resolution_divisor = s.resolution_divisor == 1 ? 2 : 1;
-  EXPECT_FALSE(frame.configure(other, camera(), {}, ex).ok());
+  ex.failCreateAt = 1;
+  ex.calls.clear();
+  EXPECT_FALSE(frame.configure(s, camera(640, 360), {}, ex).ok());
+  EXPECT_EQ(ex.live.size(), images);
+  EXPECT_EQ(frame.plan().describe(), plan);
+  EXPECT_TRUE(frame.configured());
+  EXPECT_TRUE(frame.run({}, ex).ok());
+  // A resize that works creates the new images before the old ones go.
+  ex.failCreateAt = -1;
+  ex.calls.clear();
+  ASSERT_TRUE(frame.configure(s, camera(640, 360), {}, ex).ok());
+  const auto firstDestroy = std::find_if(ex.calls.begin(), ex.calls.end(),
+                                         [](const std::string& c) { return c.rfind("destroy", 0) == 0; });
+  EXPECT_EQ(std::count_if(firstDestroy, ex.calls.end(), [](const std::string& c) { return c.rfind("create", 0) == 0; }),
+            0);
+  frame.release(ex);
   EXPECT_TRUE(ex.live.empty());
 }
 

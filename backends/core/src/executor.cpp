@@ -53,48 +53,46 @@ Status FrameState::adopt(const Settings& settings, const Camera& camera, const P
                          Executor& executor) {
   if (Status st = executor.checkPlan(next); !st) return st;
   Schedule schedule = makeSchedule(next);
-  // The images the new plan drops or changes go first, so that memory is not held twice.
-  if (configured_)
-    for (const PlannedImage& image : plan_.images)
-      if (!holdsImage(next, image)) executor.destroyImage(image);
-  const bool hadImages = configured_;
-  const Plan before = hadImages ? std::move(plan_) : Plan{};
-  configured_ = false;
-  ranOnPlan_ = false;
-  plan_ = std::move(next);
-  schedule_ = std::move(schedule);
-  for (const PlannedImage& image : plan_.images) {
-    if (hadImages && holdsImage(before, image)) continue;
+  auto isNew = [&](const PlannedImage& image) { return !(configured_ && holdsImage(plan_, image)); };
+  // What the new plan adds or changes is created beside the current images, so that a failure
+  // destroys only what it made and the configuration stays as it was.
+  auto undo = [&](const PlannedImage* upTo) {
+    for (const PlannedImage& made : next.images) {
+      if (&made == upTo) break;
+      if (isNew(made)) executor.destroyImage(made);
+    }
+  };
+  for (const PlannedImage& image : next.images) {
+    if (!isNew(image)) continue;
     if (Status st = executor.createImage(image); !st) {
-      // Undo: what exists now is what `before` kept plus what was created here.
-      for (const PlannedImage& made : plan_.images) {
-        if (&made == &image) break;
-        if (!(hadImages && holdsImage(before, made))) executor.destroyImage(made);
-      }
-      for (const PlannedImage& kept : before.images)
-        if (holdsImage(plan_, kept)) executor.destroyImage(kept);
-      plan_ = Plan{};
-      schedule_ = Schedule{};
-      history_ = TemporalHistory{};
+      undo(&image);
       return st;
     }
   }
-  // The history holds a frame of this plan only when nothing it depends on changed.
-  const bool keepHistory = hadImages && settings == settings_ && sameImages(before, plan_) && inputs == inputs_;
-  if (!keepHistory) history_ = TemporalHistory{};
-  settings_ = settings;
-  camera_ = camera;
-  inputs_ = inputs;
-  configured_ = true;
-  ++plans_;
-  for (const PlannedPass& p : plan_.passes) {
+  // Pipelines are a cache: those made stay made, whatever happens next.
+  for (const PlannedPass& p : next.passes) {
     if (std::find(pipelines_.begin(), pipelines_.end(), p.variant) != pipelines_.end()) continue;
     if (Status st = executor.createPipeline(gen::pass(p.pass), *p.variant); !st) {
-      release(executor);
+      undo(nullptr);
       return st;
     }
     pipelines_.push_back(p.variant);
   }
+  // Commit: the images the new plan drops or changes go; nothing below fails.
+  if (configured_)
+    for (const PlannedImage& image : plan_.images)
+      if (!holdsImage(next, image)) executor.destroyImage(image);
+  // The history holds a frame of this plan only when nothing it depends on changed.
+  const bool keepHistory = configured_ && settings == settings_ && sameImages(plan_, next) && inputs == inputs_;
+  if (!keepHistory) history_ = TemporalHistory{};
+  plan_ = std::move(next);
+  schedule_ = std::move(schedule);
+  settings_ = settings;
+  camera_ = camera;
+  inputs_ = inputs;
+  configured_ = true;
+  ranOnPlan_ = false;
+  ++plans_;
   return Status::success();
 }
 
@@ -106,10 +104,12 @@ Status FrameState::run(const FrameInputs& frame, Executor& executor) {
     if (Status st = checkCameraKeepsPlan(settings_, camera_, camera); !st)
       return Status::error(st.code, std::string(who_) + ": this frame's camera " + st.message);
   if (Status st = checkFrame(plan_, inputs_, frame); !st) return st;
-  if (Status st = frameConstants(settings_, camera, inputs_, frame.values, block_); !st) return withWho(who_, st);
-  if (Status st = prepareTemporalFrame(history_, settings_, camera, frame.previousCamera, frame.resetHistory, block_);
+  ParamBlock block{};  // block_ changes only for a frame that runs
+  if (Status st = frameConstants(settings_, camera, inputs_, frame.values, block); !st) return withWho(who_, st);
+  if (Status st = prepareTemporalFrame(history_, settings_, camera, frame.previousCamera, frame.resetHistory, block);
       !st)
     return withWho(who_, st);
+  block_ = block;
 
   lastWork_.plan = &plan_;
   lastWork_.schedule = &schedule_;

@@ -1,5 +1,6 @@
-// sao::gl::Effect: create() checks the context, render() ties the pieces together under a
-// StateGuard: inputs -> plan -> resources -> programs -> parameter block -> passes.
+// sao::gl::Effect: create() checks the context, render() checks the caller's textures and hands
+// the frame to core's FrameState (sao/executor.h), which drives the GL executor (executor.h),
+// all under a StateGuard.
 #include "sao/gl/effect.h"
 
 #include <algorithm>
@@ -8,13 +9,12 @@
 #include <set>
 #include <string>
 
-#include "dispatch.h"
+#include "executor.h"
 #include "gl_functions.h"
 #include "inputs.h"
 #include "programs.h"
 #include "resources.h"
-#include "sao/frame.h"
-#include "sao/temporal.h"
+#include "sao/executor.h"
 #include "state.h"
 #include "timing.h"
 
@@ -27,35 +27,24 @@ struct __attribute__((visibility("hidden"))) Effect::Impl {
   std::unique_ptr<Programs> programs;
   std::unique_ptr<Resources> resources;
   std::unique_ptr<PassTimer> timer;
-  GLuint ubo = 0, nearestSampler = 0, mipSampler = 0;
-  GLint maxTextureSize = 0;
+  std::unique_ptr<GlExecutor> executor;
+  GlObjects objects;
   std::vector<GLuint> textureUnits, imageUnits;  // every unit any pass variant binds
-  GLuint scratchUnit = 1;
-  bool haveParams = false;
-  ParamBlock uploaded{};
-  // The configuration last rendered, and what was derived from it: render() plans, schedules and
-  // prepares programs and images only when settings, camera or inputs change.
-  bool planned = false;
-  Settings plannedSettings;
-  Camera plannedCamera;
-  PlanInputs plannedInputs;
-  Plan plan;
-  Schedule schedule;
-  std::vector<GLuint> passPrograms;  // per planned pass
-  ParamBlock params{};
+  // The plan, the schedule, the images kept, the block and the history: core's (sao/executor.h).
+  FrameState frame{"sao::gl"};
   Timings timings;
   Stats stats;
-  TemporalHistory temporal;  // the history textures' state (sao/temporal.h)
   GLuint aoTexture = 0;
   std::array<GLuint, gen::kResources.size()> served{};
 
   ~Impl() {
+    executor.reset();
     timer.reset();
     programs.reset();
     resources.reset();
-    if (ubo) gl.DeleteBuffers(1, &ubo);
-    if (nearestSampler) gl.DeleteSamplers(1, &nearestSampler);
-    if (mipSampler) gl.DeleteSamplers(1, &mipSampler);
+    if (objects.ubo) gl.DeleteBuffers(1, &objects.ubo);
+    if (objects.nearestSampler) gl.DeleteSamplers(1, &objects.nearestSampler);
+    if (objects.mipSampler) gl.DeleteSamplers(1, &objects.mipSampler);
   }
 
   Status checkLimits();
@@ -115,7 +104,7 @@ Status Effect::Impl::checkLimits() {
     return Status::error(StatusCode::DriverError, "sao::gl: the effect binds more units than the state guard saves (" +
                                                       std::to_string(StateGuard::kMaxUnits) + ")");
   if (textureUnits.empty()) textureUnits.push_back(1);
-  scratchUnit = textureUnits.front();
+  objects.scratchUnit = textureUnits.front();
   const GLint highestTexture = GLint(*std::max_element(textureUnits.begin(), textureUnits.end()));
   const GLint highestImage = imageUnits.empty() ? 0 : GLint(*std::max_element(imageUnits.begin(), imageUnits.end()));
 
@@ -142,7 +131,7 @@ Status Effect::Impl::checkLimits() {
   };
   for (const Check& c : checks)
     if (c.have < c.need) return limitError(c.name, c.have, c.need);
-  maxTextureSize = getInt(gl, GL_MAX_TEXTURE_SIZE);
+  objects.maxTextureSize = getInt(gl, GL_MAX_TEXTURE_SIZE);
   return Status::success();
 }
 
@@ -176,128 +165,77 @@ Status Effect::createImpl(GetProcAddressFn getProcAddress, std::unique_ptr<Effec
   // Parameter block: one std140 buffer at binding 0 (the generated struct is copied as is).
   GLint previousUbo = 0;
   gl.GetIntegerv(GL_UNIFORM_BUFFER_BINDING, &previousUbo);
-  gl.GenBuffers(1, &impl->ubo);
-  gl.BindBuffer(GL_UNIFORM_BUFFER, impl->ubo);
+  GlObjects& objects = impl->objects;
+  gl.GenBuffers(1, &objects.ubo);
+  gl.BindBuffer(GL_UNIFORM_BUFFER, objects.ubo);
   gl.BufferData(GL_UNIFORM_BUFFER, sizeof(ParamBlock), nullptr, GL_DYNAMIC_DRAW);
   gl.BindBuffer(GL_UNIFORM_BUFFER, GLuint(previousUbo));
-  gl.ObjectLabel(GL_BUFFER, impl->ubo, -1, "sao SaoParams");
+  gl.ObjectLabel(GL_BUFFER, objects.ubo, -1, "sao SaoParams");
 
   GLuint samplers[2] = {};
   gl.GenSamplers(2, samplers);
-  impl->nearestSampler = samplers[0];
-  impl->mipSampler = samplers[1];
+  objects.nearestSampler = samplers[0];
+  objects.mipSampler = samplers[1];
   for (GLuint s : samplers) {
-    gl.SamplerParameteri(s, GL_TEXTURE_MIN_FILTER, s == impl->mipSampler ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST);
+    gl.SamplerParameteri(s, GL_TEXTURE_MIN_FILTER, s == objects.mipSampler ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST);
     gl.SamplerParameteri(s, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     gl.SamplerParameteri(s, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     gl.SamplerParameteri(s, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     gl.SamplerParameteri(s, GL_TEXTURE_COMPARE_MODE, GL_NONE);
   }
-  gl.ObjectLabel(GL_SAMPLER, impl->nearestSampler, -1, "sao nearest");
-  gl.ObjectLabel(GL_SAMPLER, impl->mipSampler, -1, "sao nearest mip");
-  if (!impl->ubo || !impl->nearestSampler || !impl->mipSampler)
+  gl.ObjectLabel(GL_SAMPLER, objects.nearestSampler, -1, "sao nearest");
+  gl.ObjectLabel(GL_SAMPLER, objects.mipSampler, -1, "sao nearest mip");
+  if (!objects.ubo || !objects.nearestSampler || !objects.mipSampler)
     return Status::error(StatusCode::DriverError, "sao::gl: could not create the parameter buffer or samplers");
 
   impl->programs = std::make_unique<Programs>(gl);
   impl->resources = std::make_unique<Resources>(gl);
   impl->timer = std::make_unique<PassTimer>(gl);
+  impl->executor = std::make_unique<GlExecutor>(gl, impl->objects, *impl->resources, *impl->programs, *impl->timer,
+                                                impl->stats, impl->timings);
   out.reset(new Effect(std::move(impl)));
   return Status::success();
 }
 
 Status Effect::Impl::render(const Camera& camera, const Settings& settings, const Inputs& inputs,
                             const RenderOptions& options) {
-  StateGuard guard(gl, textureUnits, imageUnits, scratchUnit);
+  StateGuard guard(gl, textureUnits, imageUnits, objects.scratchUnit);
 
   CheckedInputs checked(gl);
-  if (Status st = checkInputs(gl, scratchUnit, inputs, camera.normalsEncoding, checked); !st) return st;
-  // A new configuration is planned into these (and committed at the end); an unchanged one
-  // reuses what the last render derived, so a steady frame allocates nothing.
-  const bool replan = !planned || !(settings == plannedSettings) || !(checked.planInputs == plannedInputs) ||
-                      (!(camera == plannedCamera) && !cameraKeepsPlan(settings, plannedCamera, camera));
-  Plan newPlan;
-  Schedule newSchedule;
-  std::vector<GLuint> newPrograms;
-  if (replan) {
-    planned = false;  // until the new configuration is committed: images may change on the way
-    if (Status st = sao::plan(settings, camera, checked.planInputs, newPlan); !st) return st;
-    newSchedule = makeSchedule(newPlan);
-  }
-  const Plan& p = replan ? newPlan : plan;
-  const Schedule& s = replan ? newSchedule : schedule;
-  if (Status st = checkSupplied(p, supplied(checked), checked.planInputs.userOutput, "sao::gl"); !st) return st;
-  // checkSupplied put the region inside the textures, whose sides GL keeps far below 2^31.
-  const FrameValues frame{checked.region.value_or(Offset{}), inputs.frameIndex, inputs.outputChannels,
-                          inputs.outputBlend};
-  if (Status st = checkFrameOutput(p, checked.planInputs, frame, "sao::gl"); !st) return st;
-  ParamBlock block{};
-  if (Status st = frameConstants(settings, camera, checked.planInputs, frame, block); !st) return st;
-  if (settings.temporal) {
-    if (inputs.layer != 0)
-      return Status::error(StatusCode::InvalidInput, "sao::gl: temporal accumulation keeps one view's history: render "
-                                                     "each layer (eye) with its own effect (Inputs::layer must be 0)");
-    // A new plan (a resize, new settings, other inputs) has new history textures: start again.
-    if (Status st = prepareTemporalFrame(temporal, settings, camera, inputs.previousCamera,
-                                         inputs.resetHistory || replan, block);
-        !st)
-      return st;
-  }
-  if (replan) {
-    if (p.inputExtent.width > std::uint32_t(maxTextureSize) || p.inputExtent.height > std::uint32_t(maxTextureSize))
-      return Status::error(StatusCode::InvalidExtent, "sao::gl: the depth input " + std::to_string(p.inputExtent.width) +
-                                                          "x" + std::to_string(p.inputExtent.height) +
-                                                          " exceeds GL_MAX_TEXTURE_SIZE " + std::to_string(maxTextureSize));
-    if (Status st = preparePrograms(*programs, p, newPrograms, stats.programsCompiled); !st) return st;
-    if (Status st = resources->update(p, scratchUnit, maxTextureSize, stats.textureAllocations); !st) return st;
-  }
-  const std::vector<GLuint>& programsOfPlan = replan ? newPrograms : passPrograms;
+  if (Status st = checkInputs(gl, objects.scratchUnit, inputs, camera.normalsEncoding, checked); !st) return st;
+  if (settings.temporal && inputs.layer != 0)
+    return Status::error(StatusCode::InvalidInput, "sao::gl: temporal accumulation keeps one view's history: render "
+                                                   "each layer (eye) with its own effect (Inputs::layer must be 0)");
+  const SuppliedImages images = supplied(checked);
+  FrameInputs frameInputs;
+  frameInputs.previousCamera = inputs.previousCamera;
+  frameInputs.resetHistory = inputs.resetHistory;
+  // checkSupplied (in FrameState) puts the region inside the textures, whose sides GL keeps far below 2^31.
+  frameInputs.values = {checked.region.value_or(Offset{}), inputs.frameIndex, inputs.outputChannels, inputs.outputBlend};
+  frameInputs.images = &images;
 
   // Texture parameters of the caller's textures that would change what texelFetch returns or
   // whether an image store lands (restored before the StateGuard restores the bindings).
   TextureParamGuard depthParams, depth2Params, normalParams, motionParams, outputParams;
-  depthParams.apply(gl, scratchUnit, checked.depth.texture, checked.depth.target, true, checked.depth.hasStencil);
-  if (checked.depth2.texture)
-    depth2Params.apply(gl, scratchUnit, checked.depth2.texture, GL_TEXTURE_2D, true, checked.depth2.hasStencil);
-  if (checked.normals.texture) normalParams.apply(gl, scratchUnit, checked.normals.texture, GL_TEXTURE_2D, false, false);
-  if (checked.motion.texture) motionParams.apply(gl, scratchUnit, checked.motion.texture, GL_TEXTURE_2D, false, false);
-  if (checked.output.texture) outputParams.apply(gl, scratchUnit, checked.output.texture, GL_TEXTURE_2D, false, false);
+  const GLuint unit = objects.scratchUnit;
+  depthParams.apply(gl, unit, checked.depth.texture, checked.depth.target, true, checked.depth.hasStencil);
+  if (checked.depth2.texture) depth2Params.apply(gl, unit, checked.depth2.texture, GL_TEXTURE_2D, true, checked.depth2.hasStencil);
+  if (checked.normals.texture) normalParams.apply(gl, unit, checked.normals.texture, GL_TEXTURE_2D, false, false);
+  if (checked.motion.texture) motionParams.apply(gl, unit, checked.motion.texture, GL_TEXTURE_2D, false, false);
+  if (checked.output.texture) outputParams.apply(gl, unit, checked.output.texture, GL_TEXTURE_2D, false, false);
 
-  gl.BindBuffer(GL_UNIFORM_BUFFER, ubo);
-  if (!haveParams || std::memcmp(&uploaded, &block, sizeof block) != 0) {
-    gl.BufferSubData(GL_UNIFORM_BUFFER, 0, sizeof block, &block);
-    uploaded = block;
-    haveParams = true;
-  }
-  gl.BindBufferBase(GL_UNIFORM_BUFFER, gen::kParamBlockBinding, ubo);
-
-  PassResources r{resources.get(), &checked, nearestSampler, mipSampler, temporal.parity};
-  timer->beginFrame(options.measureTime);
-  runSchedule(gl, p, s, programsOfPlan, r, *timer);
-  if (!timer->endFrame(timings)) {  // GPU timers saw nothing: measure the same work again by clock
-    timer->beginFrame(true);
-    runSchedule(gl, p, s, programsOfPlan, r, *timer);
-    timer->endFrame(timings);
-  }
+  executor->setFrame(&checked, options.measureTime);
+  if (Status st = frame.render(settings, camera, checked.planInputs, frameInputs, *executor); !st) return st;
+  if (executor->measureAgain())  // GPU timers saw nothing: measure the same work again by clock
+    if (Status st = frame.repeat(*executor); !st) return st;
 
   for (std::size_t i = 0; i < served.size(); ++i) {
     const auto id = static_cast<gen::ResourceId>(i);
-    const auto kind = gen::kResources[i].kind;
-    served[i] = kind == gen::ResourceKind::Input ? 0 : textureFor(r, id);
+    served[i] = gen::kResources[i].kind == gen::ResourceKind::Input ? 0 : executor->textureFor(id);
   }
-  aoTexture = textureFor(r, gen::ResourceId::ao);
-  if (settings.temporal) finishTemporalFrame(temporal, settings, camera);
-  else temporal.holdsFrame = false;
-  if (replan) {
-    plan = std::move(newPlan);
-    schedule = std::move(newSchedule);
-    passPrograms = std::move(newPrograms);
-    plannedSettings = settings;
-    plannedCamera = camera;
-    plannedInputs = checked.planInputs;
-    planned = true;
-    ++stats.plans;
-  }
-  params = block;
+  aoTexture = executor->textureFor(gen::ResourceId::ao);
+  executor->setFrame(nullptr, false);  // the caller's textures are this render's only
+  stats.plans = frame.plans();
   ++stats.renders;
   return Status::success();
 }
@@ -317,8 +255,8 @@ std::uint32_t Effect::texture(gen::ResourceId resource) const {
   const auto i = static_cast<std::size_t>(resource);
   return i < impl_->served.size() ? impl_->served[i] : 0;
 }
-const Plan& Effect::plan() const { return impl_->plan; }
-const ParamBlock& Effect::params() const { return impl_->params; }
+const Plan& Effect::plan() const { return impl_->frame.plan(); }
+const ParamBlock& Effect::params() const { return impl_->frame.block(); }
 const Timings& Effect::timings() const { return impl_->timings; }
 const Stats& Effect::stats() const { return impl_->stats; }
 

@@ -19,6 +19,10 @@ class Programs {
   // The program of a pass variant; DriverError with the driver's log if it does not compile/link.
   Status get(const gen::PassInfo& pass, const gen::PassVariantInfo& variant, GLuint& program,
              std::uint64_t& compiled);
+  // The program get() made for a variant; 0 if none.
+  GLuint find(const gen::PassVariantInfo& variant) const {
+    return variant.glslBlob < programs_.size() ? programs_[variant.glslBlob] : 0;
+  }
 
  private:
   const GlFunctions& gl_;

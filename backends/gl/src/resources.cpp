@@ -29,6 +29,7 @@ void Resources::release(Slot& s) {
 
 void Resources::releaseAll() {
   for (Slot& s : slots_) release(s);
+  slots_.clear();
 }
 
 bool Resources::create(const PlannedImage& img, GLenum format, GLuint scratchUnit, const std::string& label, GLuint& out) {
@@ -49,45 +50,42 @@ bool Resources::create(const PlannedImage& img, GLenum format, GLuint scratchUni
   return immutable != 0;
 }
 
-Status Resources::update(const Plan& plan, GLuint scratchUnit, GLint maxTextureSize, std::uint64_t& allocations) {
-  std::array<const PlannedImage*, gen::kResources.size()> wanted{};
-  for (const PlannedImage& img : plan.images) wanted[static_cast<std::size_t>(img.resource)] = &img;
-
-  for (std::size_t r = 0; r < slots_.size(); ++r) {
-    Slot& s = slots_[r];
-    const PlannedImage* img = wanted[r];
-    const bool isOutput = gen::kResources[r].kind == gen::ResourceKind::Output;
-    if (!img) {
-      if (s.texture && isOutput) ++outputGeneration_;  // the owned output goes away
-      release(s);
-      continue;
-    }
-    const GLenum format = glFormat(img->format);
-    if (s.texture && sameImage(s.planned, *img)) continue;
+Status Resources::create(const PlannedImage& img, GLuint scratchUnit, GLint maxTextureSize, std::uint64_t& allocations) {
+  Slot s;
+  const auto& info = gen::kResources[static_cast<std::size_t>(img.resource)];
+  const std::string name = std::string(info.name);
+  const GLenum format = glFormat(img.format);
+  if (format == 0) return Status::error(StatusCode::UnsupportedFormat, "sao::gl: image '" + name + "' has no GL format");
+  if (img.extent.width > std::uint32_t(maxTextureSize) || img.extent.height > std::uint32_t(maxTextureSize))
+    return Status::error(StatusCode::InvalidExtent,
+                         "sao::gl: image '" + name + "' is " + std::to_string(img.extent.width) + "x" +
+                             std::to_string(img.extent.height) + ", above GL_MAX_TEXTURE_SIZE " +
+                             std::to_string(maxTextureSize));
+  if (info.kind == gen::ResourceKind::Output) ++outputGeneration_;  // a new texture object serves aoTexture()
+  bool immutable = create(img, format, scratchUnit, "sao " + name, s.texture);
+  if (img.copies > 1) immutable = create(img, format, scratchUnit, "sao " + name + " (2)", s.second) && immutable;
+  ++allocations;
+  if (!immutable) {
     release(s);
-    const std::string name = std::string(gen::kResources[r].name);
-    if (format == 0)
-      return Status::error(StatusCode::UnsupportedFormat, "sao::gl: image '" + name + "' has no GL format");
-    if (img->extent.width > std::uint32_t(maxTextureSize) || img->extent.height > std::uint32_t(maxTextureSize))
-      return Status::error(StatusCode::InvalidExtent,
-                           "sao::gl: image '" + name + "' is " + std::to_string(img->extent.width) + "x" +
-                               std::to_string(img->extent.height) + ", above GL_MAX_TEXTURE_SIZE " +
-                               std::to_string(maxTextureSize));
-    if (isOutput) ++outputGeneration_;  // a new texture object serves aoTexture()
-    bool immutable = create(*img, format, scratchUnit, "sao " + name, s.texture);
-    if (img->copies > 1) immutable = create(*img, format, scratchUnit, "sao " + name + " (2)", s.second) && immutable;
-    ++allocations;
-    if (!immutable) {
-      release(s);
-      return Status::error(StatusCode::DriverError, "sao::gl: allocating image '" + name + "' (" +
-                                                        std::to_string(img->extent.width) + "x" +
-                                                        std::to_string(img->extent.height) + ", " +
-                                                        std::to_string(img->mipLevels) +
-                                                        " levels) failed (out of memory?)");
-    }
-    s.planned = *img;
+    return Status::error(StatusCode::DriverError, "sao::gl: allocating image '" + name + "' (" +
+                                                      std::to_string(img.extent.width) + "x" +
+                                                      std::to_string(img.extent.height) + ", " +
+                                                      std::to_string(img.mipLevels) + " levels) failed (out of memory?)");
   }
+  s.planned = img;
+  slots_.push_back(s);
   return Status::success();
+}
+
+void Resources::destroy(const PlannedImage& image) {
+  for (auto it = slots_.begin(); it != slots_.end(); ++it) {
+    if (it->planned.resource != image.resource || !sameImage(it->planned, image)) continue;
+    if (gen::kResources[static_cast<std::size_t>(image.resource)].kind == gen::ResourceKind::Output)
+      ++outputGeneration_;  // the owned output goes away
+    release(*it);
+    slots_.erase(it);
+    return;
+  }
 }
 
 }  // namespace sao::gl::detail

@@ -54,9 +54,13 @@ class Executor {
   // An effect-owned image of the plan: its format, level-0 extent, levels and copies (a history
   // has two). The output is one only when the plan inputs say the effect owns it (not
   // PlanInputs::userOutput); inputs never are: the executor binds the caller's own. Called for
-  // each image a new plan adds or changes; an image the plan keeps is not created again.
+  // each image a new plan adds or changes, while the current plan's images still exist: for a
+  // while the executor may hold two images of one resource, which then differ in format, extent,
+  // levels or copies (sameImage). An image the plan keeps is not created again.
   virtual Status createImage(const PlannedImage& image) = 0;
-  // An image created before that a new plan drops or changes, or every image at release().
+  // An image created before, named by the PlannedImage it was created for: one the new plan drops
+  // or changes (once the new plan's images exist), one of a new plan that failed, or every image
+  // at release().
   virtual void destroyImage(const PlannedImage& image) noexcept = 0;
   // A compiled pass variant the plan runs (its bindings, push constants, shared memory; the
   // SPIR-V module variant.spirvBlob or the file <fileStem>.spv, the GLSL glslBlob or
@@ -94,10 +98,11 @@ class FrameState {
   explicit FrameState(const char* who) : who_(who) {}
 
   // Plans for the configuration (one validation: plan()). The images the current plan holds with
-  // the same format, extent, levels and copies are kept, the others destroyed and the new ones
-  // created through `executor`; pipelines are created for the variants not created before. The
-  // temporal history starts again unless the plan and settings are unchanged. On error the state
-  // is released (every image destroyed; configure again), and the Status says why.
+  // the same format, extent, levels and copies are kept; the new plan's other images are created,
+  // pipelines for the variants not created before, and only then the current plan's other images
+  // destroyed (both exist for that while). The temporal history starts again unless the plan and
+  // settings are unchanged. On error nothing changed but the pipelines made (a cache): the
+  // current configuration, if any, still runs, and the Status says why.
   Status configure(const Settings& settings, const Camera& camera, const PlanInputs& inputs, Executor& executor);
 
   // Whether a frame with these settings, camera and plan inputs runs on the current configuration
