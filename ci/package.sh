@@ -72,6 +72,24 @@ for c in $components; do
   ctest --test-dir "$dir" --output-on-failure
 done
 
+# An engine's own renderer: the engine-side executor example against the installed sao::core,
+# sao::io and sao::cpu and the Vulkan loader (no sao::vulkan, OpenGL unfindable), on the built-in
+# scenes' depth files the build tree's fixture wrote (the release stage runs it).
+depth="$root/$build/tests/apps/scene_depth"
+if [ "$(ls "$depth"/*.exr 2>/dev/null | wc -l)" -lt 5 ]; then
+  echo "ci/package.sh: no scene depth files in $depth: run ctest --test-dir $build -R apps_scene_depth_files" >&2
+  exit 1
+fi
+dir="$consumer/engine"
+mkdir -p "$dir"
+echo "== consumer 'engine' (io cpu + the Vulkan loader; -DCMAKE_DISABLE_FIND_PACKAGE_OpenGL=ON)"
+cmake -S tests/package -B "$dir" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_PREFIX_PATH="$prefix" "-DSAO_CONSUMER_COMPONENTS=io;cpu" -DSAO_CONSUMER_SCENE_DEPTH="$depth" \
+  -DCMAKE_DISABLE_FIND_PACKAGE_OpenGL=ON >"$dir/configure-output.log" 2>&1 || { cat "$dir/configure-output.log"; exit 1; }
+cmake --build "$dir" --parallel "$(nproc)"
+ctest --test-dir "$dir" --output-on-failure
+ctest --test-dir "$dir" -R example_vulkan_engine -V | grep -E "p99.9|validation:"
+
 # A component whose own dependency is unfindable is refused with a message naming what is missing
 # (stb is found through pkg-config), and so is a component the package does not have.
 # component:package made unfindable:what the message must say

@@ -64,13 +64,28 @@ class Executor {
   virtual void destroyImage(const PlannedImage& image) noexcept = 0;
   // A compiled pass variant the plan runs (its bindings, push constants, shared memory; the
   // SPIR-V module variant.spirvBlob or the file <fileStem>.spv, the GLSL glslBlob or
-  // <fileStem>.glsl). Called once per variant for the life of the FrameState.
+  // <fileStem>.glsl). Called once per variant for the life of the FrameState, release() included:
+  // a FrameState talks to one executor, which destroys its pipelines itself.
   virtual Status createPipeline(const gen::PassInfo& pass, const gen::PassVariantInfo& variant) = 0;
 
   // One frame: beginFrame, then barrier() for the entry hazards, barrier() and dispatch() for each
   // of the schedule's dispatches in order, barrier() for the exit hazards, endFrame(). A barrier
   // with no hazards is not called. Hazards and bindings name resources; a binding of an input or
-  // the caller's output is the executor's own image of that resource.
+  // the caller's output is the executor's own image of that resource (the caller's images never
+  // pass through FrameState: an executor knows them from its engine).
+  //  - The entry hazards come first (the span is FrameWork::schedule->entryHazards()): their
+  //    earlier access is the previous frame's, the caller's own use of its images included (its
+  //    readback of the output, its writes of the inputs), so their source stages are the engine's.
+  //    CallerReads (the exit) is followed by whatever the caller does with the output.
+  //  - Every effect image but a history's previous-frame copy is rewritten whole by the frame: its
+  //    contents may be discarded at frame entry. The previous-frame copy is read, and must be kept
+  //    only when FrameWork::historyValid. A new image's contents and layout are the executor's.
+  //  - `dispatch` is an element of FrameWork::schedule->dispatches (its index: &dispatch - its
+  //    data()), `bindings` are one to one, in order, with dispatch.variant->bindings, and the block
+  //    stays valid until endFrame(). barrier() and dispatch() return nothing: an executor keeps
+  //    their first error and returns it from endFrame().
+  //  - FrameState does not know about frames in flight: an executor whose frames are still running
+  //    waits for them (or defers) in destroyImage().
   virtual Status beginFrame(const FrameWork& frame) = 0;
   virtual void barrier(std::span<const Hazard> hazards) = 0;
   virtual void dispatch(const ScheduledDispatch& dispatch, std::span<const ScheduledBinding> bindings) = 0;
@@ -88,7 +103,7 @@ struct FrameInputs {
   bool resetHistory = false;
   FrameValues values;  // region offset, frame index, output channels and blend
   // The caller's images this frame (extents and region), checked against the plan when given
-  // (checkSupplied); null: the executor checks its own.
+  // (checkSupplied); null: not checked here (the executor should check its own).
   const SuppliedImages* images = nullptr;
 };
 
