@@ -11,16 +11,12 @@ bool holdsImage(const Plan& plan, const PlannedImage& image) {
   return same != nullptr && sameImage(*same, image);
 }
 
-Status withWho(const char* who, const Status& st) {
-  return Status::error(st.code, std::string(who) + ": " + st.message);
-}
-
 }  // namespace
 
 Status FrameState::configure(const Settings& settings, const Camera& camera, const PlanInputs& inputs,
                              Executor& executor) {
   Plan next;
-  if (Status st = sao::plan(settings, camera, inputs, next); !st) return withWho(who_, st);
+  if (Status st = sao::plan(settings, camera, inputs, next); !st) return st;
   return adopt(settings, camera, inputs, std::move(next), executor);
 }
 
@@ -33,7 +29,7 @@ Status FrameState::render(const Settings& settings, const Camera& camera, const 
                           const FrameInputs& frame, Executor& executor) {
   if (!keeps(settings, camera, inputs)) {
     Plan next;
-    if (Status st = sao::plan(settings, camera, inputs, next); !st) return withWho(who_, st);
+    if (Status st = sao::plan(settings, camera, inputs, next); !st) return st;
     if (Status st = checkFrame(next, inputs, frame); !st) return st;
     if (Status st = adopt(settings, camera, inputs, std::move(next), executor); !st) return st;
   }
@@ -105,10 +101,10 @@ Status FrameState::run(const FrameInputs& frame, Executor& executor) {
       return Status::error(st.code, std::string(who_) + ": this frame's camera " + st.message);
   if (Status st = checkFrame(plan_, inputs_, frame); !st) return st;
   ParamBlock block{};  // block_ changes only for a frame that runs
-  if (Status st = frameConstants(settings_, camera, inputs_, frame.values, block); !st) return withWho(who_, st);
+  if (Status st = frameConstants(settings_, camera, inputs_, frame.values, block); !st) return st;
   if (Status st = prepareTemporalFrame(history_, settings_, camera, frame.previousCamera, frame.resetHistory, block);
       !st)
-    return withWho(who_, st);
+    return st;
   block_ = block;
 
   lastWork_.plan = &plan_;
@@ -122,6 +118,13 @@ Status FrameState::run(const FrameInputs& frame, Executor& executor) {
   ranOnPlan_ = true;
   if (settings_.temporal) finishTemporalFrame(history_, settings_, camera);
   return Status::success();
+}
+
+void FrameState::continueHistory(const Camera& camera) {
+  if (!configured_) return;
+  history_.holdsFrame = true;
+  history_.camera = camera;
+  history_.settings = settings_;
 }
 
 Status FrameState::repeat(Executor& executor) {

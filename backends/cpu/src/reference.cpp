@@ -1,20 +1,21 @@
-// sao::cpu::run — validation, then the schedule's dispatches in order, each run by the effect's
-// CPU pass (its C++ oracle, beside its GLSL in effect/cpu/), on images allocated from the plan.
-// Nothing here names a pass or an effect-owned image except to fill Result's named fields.
+// sao::cpu::run — the CPU reference as an executor of core's frame (sao/executor.h): FrameState
+// plans, checks the frame and fills the block; the executor runs the schedule's dispatches in
+// order, each by the effect's CPU pass (its C++ oracle, beside its GLSL in effect/cpu/), on arrays
+// allocated from the plan. Nothing here names a pass or an effect-owned image except to fill
+// Result's named fields.
 #include "sao/cpu/reference.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <new>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "sao/cpu/parallel.h"
-#include "sao/frame.h"
-#include "sao/schedule.h"
-#include "sao/temporal.h"
+#include "sao/executor.h"
 
 // The effect's CPU passes: the header that sao_generate_effect(... CPU_PASSES <header>) names, as
 // the effect target's compile definition. It defines sao::cpu::runEffectPass and PassContext.
@@ -140,37 +141,44 @@ int channelsOf(gen::Format format) {
 }
 
 // ------------------------------------------------------------------------------------------------
-// The executor: every image of the plan (the output included), then the schedule's dispatches in
-// order (sao/schedule.h), each run by the effect's CPU pass. Images are plain arrays, so the
-// schedule's hazards need nothing here.
+// The CPU executor of core's frame (sao/executor.h): FrameState plans and fills the block; the
+// images are plain arrays allocated when the frame begins (the reference runs one frame per call),
+// so hazards need nothing; each dispatch runs the effect's CPU pass.
 
+// Every image of the plan, and the caller's output (Inputs::output, the executor's own image of
+// the output resource when the plan does not own it).
 template <typename T>
-Status allocateImages(PassContext<T>& ctx) {
-  for (const PlannedImage& img : ctx.plan.images) {
-    const int channels = channelsOf(img.format);
+Status allocateImages(PassContext<T>& ctx, const PlanInputs& planInputs) {
+  auto allocate = [&](gen::ResourceId id, gen::Format format, Extent extent, std::uint32_t levelCount) {
+    const int channels = channelsOf(format);
     if (channels == 0)
       return Status::error(StatusCode::UnsupportedFormat,
-                           "the plan's image '" + resourceName(img.resource) +
+                           "the plan's image '" + resourceName(id) +
                                "' has a format the CPU reference cannot hold (r32f, r16f, r8, rg32f, rg16f, rgba16f, rgba32f, rgba8)");
-    auto& levels = ctx.levels(img.resource);
+    auto& levels = ctx.levels(id);
     levels.clear();
-    for (std::uint32_t m = 0; m < img.mipLevels; ++m) {
-      const Extent e = levelExtent(img.extent, m);
+    for (std::uint32_t m = 0; m < levelCount; ++m) {
+      const Extent e = levelExtent(extent, m);
       levels.emplace_back(int(e.width), int(e.height), channels);
     }
     // The caller's output contents (checked against the extent and channels): what the final pass
     // keeps in the channels it does not write.
     const FloatImage* initial = ctx.in.output;
-    if (gen::kResources[static_cast<std::size_t>(img.resource)].kind == gen::ResourceKind::Output && initial)
+    if (gen::kResources[static_cast<std::size_t>(id)].kind == gen::ResourceKind::Output && initial)
       for (std::size_t i = 0; i < initial->data.size(); ++i) levels[0].v[i] = static_cast<T>(initial->data[i]);
     // A history's previous-frame copy: the previous run's (checked against the plan), else empty.
-    if (gen::kResources[static_cast<std::size_t>(img.resource)].history) {
-      auto& previous = ctx.previousFrame(img.resource);
+    if (gen::kResources[static_cast<std::size_t>(id)].history) {
+      auto& previous = ctx.previousFrame(id);
       previous = levels[0];
       if (const FloatImage* h = ctx.in.history)
         for (std::size_t i = 0; i < h->data.size(); ++i) previous.v[i] = static_cast<T>(h->data[i]);
     }
-  }
+    return Status::success();
+  };
+  for (const PlannedImage& img : ctx.plan.images)
+    if (Status st = allocate(img.resource, img.format, img.extent, img.mipLevels); !st) return st;
+  if (planInputs.userOutput)
+    if (Status st = allocate(gen::ResourceId::ao, planInputs.outputFormat, ctx.plan.aoExtent, 1); !st) return st;
   return Status::success();
 }
 
@@ -204,80 +212,101 @@ void collectImages(const PassContext<T>& ctx, Result& out) {
 }
 
 template <typename T>
-Status execute(const Inputs& in, const Plan& plan, const gen::SaoParams& params, unsigned threads, bool measureTime,
-               Result& out) {
-  PassContext<T> ctx(in, plan, params, threads);
-  if (Status st = allocateImages(ctx); !st) return st;
-  if (measureTime) out.timings.method = TimingMethod::CpuClock;
-  const Schedule schedule = makeSchedule(plan);
-  auto start = std::chrono::steady_clock::now();
-  for (std::size_t i = 0; i < schedule.dispatches.size(); ++i) {
-    const ScheduledDispatch& d = schedule.dispatches[i];
-    const std::span<const ScheduledBinding> bindings = schedule.bindingsOf(d);
-    if (Status st = checkBindings(ctx, d, bindings); !st) return st;
-    if (Status st = runEffectPass(ctx, d, bindings); !st) return st;
-    const bool lastOfPass = i + 1 == schedule.dispatches.size() || schedule.dispatches[i + 1].passIndex != d.passIndex;
-    if (measureTime && lastOfPass) {
-      const auto now = std::chrono::steady_clock::now();
-      const std::chrono::duration<double, std::milli> ms = now - start;
-      out.timings.passes.push_back({std::string(gen::pass(d.pass).name), ms.count()});
-      start = now;
-    }
+class CpuExecutor final : public Executor {
+ public:
+  CpuExecutor(const Inputs& in, const PlanInputs& planInputs, unsigned threads, bool measureTime, Result& out)
+      : in_(in), planInputs_(planInputs), threads_(threads), measureTime_(measureTime), out_(out) {}
+
+  Status createImage(const PlannedImage& image) override {
+    if (channelsOf(image.format) == 0)
+      return Status::error(StatusCode::UnsupportedFormat,
+                           "the plan's image '" + resourceName(image.resource) +
+                               "' has a format the CPU reference cannot hold (r32f, r16f, r8, rg32f, rg16f, rgba16f, rgba32f, rgba8)");
+    return Status::success();  // allocated when the frame begins
   }
-  collectImages(ctx, out);
-  return Status::success();
-}
+  void destroyImage(const PlannedImage&) noexcept override {}
+  Status createPipeline(const gen::PassInfo&, const gen::PassVariantInfo&) override { return Status::success(); }
 
-// The previous run's history and camera (Inputs::history, previousCamera) into the block, as a GPU
-// backend's temporal state would give them (sao/temporal.h).
-Status checkHistory(const Settings& settings, const Camera& camera, const Inputs& in, Result& r) {
-  if ((in.history == nullptr) != (in.previousCamera == nullptr))
-    return invalid(std::string("Inputs::") + (in.history ? "history is given without Inputs::previousCamera" :
-                                                           "previousCamera is given without Inputs::history") +
-                   ": the history is reused with the camera that made it");
-  if (in.history == nullptr) return Status::success();
-  if (!settings.temporal)
-    return invalid("Inputs::history is given but the temporal setting is off: nothing would read it");
-  const PlannedImage* planned = r.plan.image(gen::ResourceId::history);
-  if (planned == nullptr) return invalid("the plan has no history image");
-  if (in.history->extent != planned->extent || in.history->channels != 4 ||
-      in.history->data.size() != std::size_t(planned->extent.width) * planned->extent.height * 4)
-    return invalid("Inputs::history is " + extentText(in.history->extent) + " with " +
-                   std::to_string(in.history->channels) + " channels; this run's history is " +
-                   extentText(planned->extent) + " with 4 (a previous run with another size or resolution_divisor)");
-  TemporalHistory h;
-  h.holdsFrame = true;
-  h.settings = settings;
-  h.camera = *in.previousCamera;
-  return prepareTemporalFrame(h, settings, camera, in.previousCamera, false, r.params);
-}
+  Status beginFrame(const FrameWork& work) override {
+    const Plan& plan = *work.plan;
+    const ParamBlock& block = *work.block;
+    // The block and the plan come from the same core functions; check that they agree anyway.
+    if (std::uint32_t(block.max_mip) + 1 != plan.cszLevels)
+      return invalid("max_mip " + std::to_string(block.max_mip) + " disagrees with the plan's " +
+                     std::to_string(plan.cszLevels) + " csz levels");
+    if (std::uint32_t(block.ao_size.x) != plan.aoExtent.width || std::uint32_t(block.ao_size.y) != plan.aoExtent.height)
+      return invalid("the block's ao_size disagrees with the plan's AO extent " + extentText(plan.aoExtent));
+    ctx_.emplace(in_, plan, block, threads_);
+    if (Status st = allocateImages(*ctx_, planInputs_); !st) return st;
+    if (measureTime_) out_.timings.method = TimingMethod::CpuClock;
+    start_ = std::chrono::steady_clock::now();
+    return Status::success();
+  }
+  void barrier(std::span<const Hazard>) override {}  // arrays: every write is visible to the next pass
 
-Status validateAndPlan(const Settings& settings, const Camera& camera, const Inputs& in, Result& r) {
+  void dispatch(const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) override {
+    if (!error_.ok()) return;
+    if (pass_ && *pass_ != d.pass) lap();
+    pass_ = d.pass;
+    if (Status st = checkBindings(*ctx_, d, bindings); !st) error_ = st;
+    else if (Status st2 = runEffectPass(*ctx_, d, bindings); !st2) error_ = st2;
+  }
+
+  Status endFrame() override {
+    if (!error_.ok()) return error_;
+    if (pass_) lap();
+    collectImages(*ctx_, out_);
+    return Status::success();
+  }
+
+ private:
+  // The time since the last lap, as the pass that just ended (Options::measureTime).
+  void lap() {
+    if (!measureTime_) return;
+    const auto now = std::chrono::steady_clock::now();
+    const std::chrono::duration<double, std::milli> ms = now - start_;
+    out_.timings.passes.push_back({std::string(gen::pass(*pass_).name), ms.count()});
+    start_ = now;
+  }
+
+  const Inputs& in_;
+  const PlanInputs& planInputs_;
+  const unsigned threads_;
+  const bool measureTime_;
+  Result& out_;
+  std::optional<PassContext<T>> ctx_;
+  std::optional<gen::PassId> pass_;
+  std::chrono::steady_clock::time_point start_;
+  Status error_;
+};
+
+// The depth input as far as it is checked before a plan exists, and the plan inputs it gives.
+Status planInputsOf(const Inputs& in, PlanInputs& out) {
   if (in.depth == nullptr) return invalid("no depth input: Inputs::depth is null");
   if (!knownFormat(in.depth->format))
     return Status::error(StatusCode::UnsupportedFormat,
                          "depth has an unknown format (" + std::to_string(int(in.depth->format)) + ")");
+  if (in.depth->samples == 0) return invalid("depth has 0 samples per texel (1: single-sample)");
   const DepthEncoding encoding =
       in.depth->format == DepthFormat::LinearZ ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
-  if (in.depth->samples == 0) return invalid("depth has 0 samples per texel (1: single-sample)");
-  const PlanInputs planInputs{encoding,          in.normals != nullptr, in.depth2 != nullptr, false, in.outputFormat,
-                              in.depth->samples, in.motion != nullptr};
-  if (Status st = plan(settings, camera, planInputs, r.plan); !st) return st;
-  // The output's use, as the GPU backends check it: Inputs::output stands for the caller's image.
-  PlanInputs outputUse = planInputs;
-  outputUse.userOutput = in.output != nullptr;
-  const FrameValues frame{in.region.value_or(Offset{}), in.frameIndex, in.outputChannels, in.outputBlend};
-  if (Status st = checkFrameOutput(r.plan, outputUse, frame, "sao::cpu"); !st) return st;
+  // Inputs::output stands for the caller's image (userOutput), as on the GPU backends.
+  out = {encoding,          in.normals != nullptr, in.depth2 != nullptr, in.output != nullptr, in.outputFormat,
+         in.depth->samples, in.motion != nullptr};
+  return Status::success();
+}
+
+// The caller's images against the plan, with the CPU reference's own messages.
+Status checkAgainstPlan(const Settings& settings, const Camera& camera, const Inputs& in, const Plan& plan) {
   if (in.output != nullptr) {
     const std::uint32_t channels = channelCount(in.outputFormat);
-    if (in.output->extent != r.plan.aoExtent || in.output->channels != channels ||
-        in.output->data.size() != std::size_t(r.plan.aoExtent.width) * r.plan.aoExtent.height * channels)
+    if (in.output->extent != plan.aoExtent || in.output->channels != channels ||
+        in.output->data.size() != std::size_t(plan.aoExtent.width) * plan.aoExtent.height * channels)
       return invalid("the initial output is " + extentText(in.output->extent) + " with " +
                      std::to_string(in.output->channels) + " channels (" + std::to_string(in.output->data.size()) +
                      " floats); a " + formatName(in.outputFormat) + " output of the viewport needs " +
-                     extentText(r.plan.aoExtent) + " with " + std::to_string(channels));
+                     extentText(plan.aoExtent) + " with " + std::to_string(channels));
   }
-  const Extent expected = r.plan.inputExtent;
+  const Extent expected = plan.inputExtent;
   if (Status st = checkDepth("depth", *in.depth, camera, expected, in.region); !st) return st;
   if (in.depth2 != nullptr) {
     if (in.depth2->format != in.depth->format)
@@ -290,19 +319,44 @@ Status validateAndPlan(const Settings& settings, const Camera& camera, const Inp
   if (in.motion != nullptr)
     if (Status st = checkMotion(*in.motion, camera, expected, in.region); !st) return st;
   // Inside the images (checked above); images that wide cannot be in memory, but the block holds int.
-  const Offset& offset = frame.inputOffset;
+  const Offset offset = in.region.value_or(Offset{});
   if (offset.x > std::uint32_t(INT32_MAX) || offset.y > std::uint32_t(INT32_MAX))
     return invalid("the offset (" + std::to_string(offset.x) + ", " + std::to_string(offset.y) +
                    ") does not fit the shaders' int (at most 2^31 - 1)");
-  if (Status st = frameConstants(settings, camera, planInputs, frame, r.params); !st) return st;
-  if (Status st = checkHistory(settings, camera, in, r); !st) return st;
-  // The block and the plan come from the same core functions; check that they agree anyway.
-  if (std::uint32_t(r.params.max_mip) + 1 != r.plan.cszLevels)
-    return invalid("max_mip " + std::to_string(r.params.max_mip) + " disagrees with the plan's " +
-                   std::to_string(r.plan.cszLevels) + " csz levels");
-  if (std::uint32_t(r.params.ao_size.x) != r.plan.aoExtent.width ||
-      std::uint32_t(r.params.ao_size.y) != r.plan.aoExtent.height)
-    return invalid("the block's ao_size disagrees with the plan's AO extent " + extentText(r.plan.aoExtent));
+  // The previous run's history and camera (Inputs::history, previousCamera), as a GPU backend's
+  // temporal state would give them (sao/temporal.h).
+  if ((in.history == nullptr) != (in.previousCamera == nullptr))
+    return invalid(std::string("Inputs::") + (in.history ? "history is given without Inputs::previousCamera" :
+                                                           "previousCamera is given without Inputs::history") +
+                   ": the history is reused with the camera that made it");
+  if (in.history == nullptr) return Status::success();
+  if (!settings.temporal)
+    return invalid("Inputs::history is given but the temporal setting is off: nothing would read it");
+  const PlannedImage* planned = plan.image(gen::ResourceId::history);
+  if (planned == nullptr) return invalid("the plan has no history image");
+  if (in.history->extent != planned->extent || in.history->channels != 4 ||
+      in.history->data.size() != std::size_t(planned->extent.width) * planned->extent.height * 4)
+    return invalid("Inputs::history is " + extentText(in.history->extent) + " with " +
+                   std::to_string(in.history->channels) + " channels; this run's history is " +
+                   extentText(planned->extent) + " with 4 (a previous run with another size or resolution_divisor)");
+  return Status::success();
+}
+
+// One frame of FrameState through the CPU executor: validation, plan, block, the passes.
+template <typename T>
+Status runFrame(const Settings& settings, const Camera& camera, const Inputs& in, const PlanInputs& planInputs,
+                const Options& options, Result& r) {
+  CpuExecutor<T> executor(in, planInputs, threadCount(options.threads), options.measureTime, r);
+  FrameState frame("sao::cpu");
+  if (Status st = frame.configure(settings, camera, planInputs, executor); !st) return st;
+  if (Status st = checkAgainstPlan(settings, camera, in, frame.plan()); !st) return st;
+  if (in.history) frame.continueHistory(*in.previousCamera);
+  FrameInputs frameInputs;
+  frameInputs.previousCamera = in.previousCamera;
+  frameInputs.values = {in.region.value_or(Offset{}), in.frameIndex, in.outputChannels, in.outputBlend};
+  if (Status st = frame.run(frameInputs, executor); !st) return st;
+  r.plan = frame.plan();
+  r.params = frame.block();
   return Status::success();
 }
 
@@ -320,14 +374,13 @@ Status run(const Settings& settings, const Camera& camera, const Inputs& inputs,
            Result& out) {
   out = Result{};
   Result r;
-  if (Status st = validateAndPlan(settings, camera, inputs, r); !st) return st;
-  const unsigned threads = threadCount(options.threads);
+  PlanInputs planInputs;
+  if (Status st = planInputsOf(inputs, planInputs); !st) return st;
   try {
     Status st;
-    const bool timed = options.measureTime;
     switch (options.precision) {
-      case Precision::Float: st = execute<float>(inputs, r.plan, r.params, threads, timed, r); break;
-      case Precision::Double: st = execute<double>(inputs, r.plan, r.params, threads, timed, r); break;
+      case Precision::Float: st = runFrame<float>(settings, camera, inputs, planInputs, options, r); break;
+      case Precision::Double: st = runFrame<double>(settings, camera, inputs, planInputs, options, r); break;
       default: return invalid("unknown precision " + std::to_string(int(options.precision)));
     }
     if (!st) return st;

@@ -109,7 +109,8 @@ struct FrameInputs {
 
 class FrameState {
  public:
-  // `who` prefixes every message ("sao::gl", "my-engine"); it must outlive the FrameState.
+  // `who` prefixes the messages of the frame's own checks ("sao::gl", "my-engine"; plan() and the
+  // camera's errors come as core gives them); it must outlive the FrameState.
   explicit FrameState(const char* who) : who_(who) {}
 
   // Plans for the configuration (one validation: plan()). The images the current plan holds with
@@ -136,6 +137,11 @@ class FrameState {
   // (checkFrameOutput) or supplied images the plan cannot take (checkSupplied); the executor's
   // own error from beginFrame or endFrame. The history counts the frame only when it ran.
   Status run(const FrameInputs& frame, Executor& executor);
+
+  // For a caller that carries the history itself from run to run (a stateless executor, the CPU
+  // reference): the previous-frame copy holds a frame of this configuration, made with `camera`
+  // (checked by the next run() as Inputs::previousCamera is). No effect without a configuration.
+  void continueHistory(const Camera& camera);
 
   // The last frame run() made, again: the same block and history copies (the history is not
   // advanced twice), for an executor that measures a frame a second time. InvalidInput when no
