@@ -45,6 +45,17 @@ struct RecordingExecutor : sao::Executor {
     if (it != live.end()) live.erase(it);
     calls.push_back("destroy " + std::string(sao::gen::kResources[std::size_t(image.resource)].name));
   }
+  bool failPrepare = false;
+  int adopted = 0;
+  sao::Status preparePlan(const sao::Plan&, const sao::Schedule&) override {
+    calls.push_back("prepare");
+    return failPrepare ? sao::Status::error(sao::StatusCode::DriverError, "no descriptor pool")
+                       : sao::Status::success();
+  }
+  void planAdopted() noexcept override {
+    ++adopted;
+    calls.push_back("adopted");
+  }
   sao::Status createPipeline(const sao::gen::PassInfo& pass, const sao::gen::PassVariantInfo&) override {
     ++pipelines;
     calls.push_back("pipeline " + std::string(pass.name));
@@ -163,6 +174,15 @@ TEST(Executor, AFailedConfigurationChangesNothing) {
   EXPECT_EQ(frame.plan().describe(), plan);
   EXPECT_TRUE(frame.configured());
   EXPECT_TRUE(frame.run({}, ex).ok());
+  // Likewise when the executor cannot prepare the rest of the plan.
+  ex.failCreateAt = -1;
+  ex.failPrepare = true;
+  const int adopted = ex.adopted;
+  EXPECT_FALSE(frame.configure(s, camera(640, 360), {}, ex).ok());
+  EXPECT_EQ(ex.live.size(), images);
+  EXPECT_EQ(frame.plan().describe(), plan);
+  EXPECT_EQ(ex.adopted, adopted);
+  ex.failPrepare = false;
   // A resize that works creates the new images before the old ones go.
   ex.failCreateAt = -1;
   ex.calls.clear();
@@ -171,6 +191,8 @@ TEST(Executor, AFailedConfigurationChangesNothing) {
                                          [](const std::string& c) { return c.rfind("destroy", 0) == 0; });
   EXPECT_EQ(std::count_if(firstDestroy, ex.calls.end(), [](const std::string& c) { return c.rfind("create", 0) == 0; }),
             0);
+  EXPECT_LT(std::find(ex.calls.begin(), ex.calls.end(), "prepare"), firstDestroy);
+  EXPECT_EQ(ex.calls.back(), "adopted");
   frame.release(ex);
   EXPECT_TRUE(ex.live.empty());
 }
@@ -221,11 +243,17 @@ TEST(Executor, TheHistoryFollowsTheTemporalContract) {
   cut.resetHistory = true;
   ASSERT_TRUE(frame.run(cut, ex).ok());
   EXPECT_FALSE(ex.lastWork.historyValid);
-  // A new camera with the same plan keeps the history; another setting starts it again.
-  ASSERT_TRUE(frame.configure(s, camera(), {}, ex).ok());
+  // A jittered camera keeps the plan and the history; another setting, or any configure(), starts
+  // it again.
+  sao::Camera jittered = camera();
+  jittered.projection[8] += 0.001;
   ASSERT_TRUE(frame.run({}, ex).ok());
+  ASSERT_TRUE(frame.render(s, jittered, {}, {}, ex).ok());
   EXPECT_TRUE(ex.lastWork.historyValid);
   s.radius = 3.0f;
+  ASSERT_TRUE(frame.render(s, jittered, {}, {}, ex).ok());
+  EXPECT_FALSE(ex.lastWork.historyValid);
+  ASSERT_TRUE(frame.run({}, ex).ok());
   ASSERT_TRUE(frame.configure(s, camera(), {}, ex).ok());
   ASSERT_TRUE(frame.run({}, ex).ok());
   EXPECT_FALSE(ex.lastWork.historyValid);

@@ -50,37 +50,46 @@ Status FrameState::adopt(const Settings& settings, const Camera& camera, const P
   if (Status st = executor.checkPlan(next); !st) return st;
   Schedule schedule = makeSchedule(next);
   auto isNew = [&](const PlannedImage& image) { return !(configured_ && holdsImage(plan_, image)); };
-  // What the new plan adds or changes is created beside the current images, so that a failure
-  // destroys only what it made and the configuration stays as it was.
-  auto undo = [&](const PlannedImage* upTo) {
-    for (const PlannedImage& made : next.images) {
-      if (&made == upTo) break;
-      if (isNew(made)) executor.destroyImage(made);
-    }
+  // What the new plan adds or changes is created beside the current images, so that a failure (an
+  // error or an exception) destroys only what it made and the configuration stays as it was.
+  std::size_t made = 0;  // next.images[0, made) that are new exist
+  auto undo = [&]() noexcept {
+    for (std::size_t i = 0; i < made; ++i)
+      if (isNew(next.images[i])) executor.destroyImage(next.images[i]);
   };
-  for (const PlannedImage& image : next.images) {
-    if (!isNew(image)) continue;
-    if (Status st = executor.createImage(image); !st) {
-      undo(&image);
+  try {
+    for (; made < next.images.size(); ++made) {
+      const PlannedImage& image = next.images[made];
+      if (!isNew(image)) continue;
+      if (Status st = executor.createImage(image); !st) {
+        undo();
+        return st;
+      }
+    }
+    // Pipelines are a cache: those made stay made, whatever happens next.
+    for (const PlannedPass& p : next.passes) {
+      if (std::find(pipelines_.begin(), pipelines_.end(), p.variant) != pipelines_.end()) continue;
+      if (Status st = executor.createPipeline(gen::pass(p.pass), *p.variant); !st) {
+        undo();
+        return st;
+      }
+      pipelines_.push_back(p.variant);
+    }
+    if (Status st = executor.preparePlan(next, schedule); !st) {
+      undo();
       return st;
     }
-  }
-  // Pipelines are a cache: those made stay made, whatever happens next.
-  for (const PlannedPass& p : next.passes) {
-    if (std::find(pipelines_.begin(), pipelines_.end(), p.variant) != pipelines_.end()) continue;
-    if (Status st = executor.createPipeline(gen::pass(p.pass), *p.variant); !st) {
-      undo(nullptr);
-      return st;
-    }
-    pipelines_.push_back(p.variant);
+  } catch (...) {
+    undo();
+    throw;
   }
   // Commit: the images the new plan drops or changes go; nothing below fails.
   if (configured_)
     for (const PlannedImage& image : plan_.images)
       if (!holdsImage(next, image)) executor.destroyImage(image);
-  // The history holds a frame of this plan only when nothing it depends on changed.
-  const bool keepHistory = configured_ && settings == settings_ && sameImages(plan_, next) && inputs == inputs_;
-  if (!keepHistory) history_ = TemporalHistory{};
+  // A new configuration starts the history again (sao/temporal.h): render() makes one only when
+  // the settings, the plan inputs or the camera's plan change.
+  history_ = TemporalHistory{};
   plan_ = std::move(next);
   schedule_ = std::move(schedule);
   settings_ = settings;
@@ -89,6 +98,7 @@ Status FrameState::adopt(const Settings& settings, const Camera& camera, const P
   configured_ = true;
   ranOnPlan_ = false;
   ++plans_;
+  executor.planAdopted();
   return Status::success();
 }
 

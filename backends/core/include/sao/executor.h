@@ -62,6 +62,15 @@ class Executor {
   // or changes (once the new plan's images exist), one of a new plan that failed, or every image
   // at release().
   virtual void destroyImage(const PlannedImage& image) noexcept = 0;
+  // After a new plan's images and pipelines exist and before any of the current plan's images is
+  // destroyed: what else the executor needs for the plan (memory for the new images, descriptor
+  // sets for the schedule), built beside what the current plan uses. A failure destroys the new
+  // images and leaves the current configuration as it was.
+  virtual Status preparePlan(const Plan& /*plan*/, const Schedule& /*schedule*/) { return Status::success(); }
+  // The new plan is FrameState's now (the images it dropped are destroyed): swap in what
+  // preparePlan() built. Cannot fail.
+  virtual void planAdopted() noexcept {}
+
   // A compiled pass variant the plan runs (its bindings, push constants, shared memory; the
   // SPIR-V module variant.spirvBlob or the file <fileStem>.spv, the GLSL glslBlob or
   // <fileStem>.glsl). Called once per variant for the life of the FrameState, release() included:
@@ -116,8 +125,7 @@ class FrameState {
   // Plans for the configuration (one validation: plan()). The images the current plan holds with
   // the same format, extent, levels and copies are kept; the new plan's other images are created,
   // pipelines for the variants not created before, and only then the current plan's other images
-  // destroyed (both exist for that while). The temporal history starts again unless the plan and
-  // settings are unchanged. On error nothing changed but the pipelines made (a cache): the
+  // destroyed (both exist for that while). The temporal history starts again. On error nothing changed but the pipelines made (a cache): the
   // current configuration, if any, still runs, and the Status says why.
   Status configure(const Settings& settings, const Camera& camera, const PlanInputs& inputs, Executor& executor);
 
