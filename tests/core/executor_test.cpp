@@ -112,7 +112,6 @@ TEST(Executor, AFrameIsTheScheduleInOrderWithTheWholeBlock) {
   // The block is frameConstants' for the same inputs, byte for byte (no history: temporal is off).
   sao::ParamBlock block{};
   ASSERT_TRUE(sao::frameConstants(s, camera(), in, fi.values, block).ok());
-  sao::setPreviousFrame(block, camera(), nullptr);
   EXPECT_EQ(std::memcmp(&block, &ex.lastBlock, sizeof block), 0);
   EXPECT_FALSE(ex.lastWork.historyValid);
 

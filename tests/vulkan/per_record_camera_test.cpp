@@ -159,11 +159,15 @@ TEST_F(PerRecordCamera, MatchesAnEffectCreatedWithThatCamera) {
     const FloatImage actual = run(*effect, &c.b);
     EXPECT_EQ(differences(actual, expectedB), 0u) << "texels unlike the effect created with camera B";
     EXPECT_GT(differences(actual, expectedA), 0u) << "camera B changed nothing: the test would prove nothing";
-    // Config::camera and its block stay; the slots go back to it: slot 1 then slot 0 again (the
-    // slot that held B's block) without a camera.
+    // params() is the last record's block: camera B's, as an effect created with B has it.
+    auto effectB = create(config(c.b));
+    ASSERT_TRUE(effectB);
+    EXPECT_EQ(std::memcmp(&effect->params(), &effectB->params(), sizeof(ParamBlock)), 0);
+    // Config::camera stays; the slots go back to it: slot 1 then slot 0 again (the slot that held
+    // B's block) without a camera, and so does params().
     EXPECT_EQ(effect->config().camera, c.a);
-    EXPECT_EQ(std::memcmp(&effect->params(), &paramsA, sizeof(ParamBlock)), 0);
     EXPECT_EQ(differences(run(*effect, nullptr), expectedA), 0u) << "slot 1 without a camera";
+    EXPECT_EQ(std::memcmp(&effect->params(), &paramsA, sizeof(ParamBlock)), 0);
     EXPECT_EQ(differences(run(*effect, nullptr), expectedA), 0u) << "slot 0 again without a camera";
     expectNoMessages(c.name);
   }
@@ -260,7 +264,7 @@ TEST_F(PerRecordCamera, NoAllocationPerRecord) {
   Image out;
   ASSERT_TRUE(context().createStorageImage(VK_FORMAT_R16_SFLOAT, {kW, kH}, out).ok());
   const vk::OutputImage o = outputOf(out);
-  const ParamBlock params = effect->params();
+  Camera last;
   long counted = 0;
   constexpr int kWarmUp = 4, kFrames = 64;
   for (int f = 0; f < kWarmUp + kFrames; ++f) {
@@ -284,9 +288,16 @@ TEST_F(PerRecordCamera, NoAllocationPerRecord) {
                     })
                     .ok());
     ASSERT_TRUE(recorded.ok()) << "frame " << f << ": " << recorded.message;
+    last = camera;
   }
   EXPECT_EQ(counted, 0) << "library allocations in " << kFrames << " record() calls with Inputs::camera";
-  EXPECT_EQ(std::memcmp(&effect->params(), &params, sizeof(ParamBlock)), 0) << "Config's block is untouched";
+  EXPECT_EQ(effect->config().camera, cfg.camera) << "Config's camera is untouched";
+  // params() is the last record's block: its camera's, as an effect created with it has it.
+  vk::Config lastConfig = cfg;
+  lastConfig.camera = last;
+  auto withLast = create(lastConfig);
+  ASSERT_TRUE(withLast);
+  EXPECT_EQ(std::memcmp(&effect->params(), &withLast->params(), sizeof(ParamBlock)), 0);
   // The counter sees the library: a refused camera builds its message.
   const Camera other = cameraWith(60, 0.1, kW + 2);
   Status refused;

@@ -47,6 +47,8 @@ Status FrameState::checkFrame(const Plan& plan, const PlanInputs& inputs, const 
 
 Status FrameState::adopt(const Settings& settings, const Camera& camera, const PlanInputs& inputs, Plan next,
                          Executor& executor) {
+  ParamBlock configured{};  // the configuration's block, block() until its first frame
+  if (Status st = frameConstants(settings, camera, inputs, FrameValues{}, configured); !st) return st;
   if (Status st = executor.checkPlan(next); !st) return st;
   Schedule schedule = makeSchedule(next);
   auto isNew = [&](const PlannedImage& image) { return !(configured_ && holdsImage(plan_, image)); };
@@ -90,6 +92,7 @@ Status FrameState::adopt(const Settings& settings, const Camera& camera, const P
   // A new configuration starts the history again (sao/temporal.h): render() makes one only when
   // the settings, the plan inputs or the camera's plan change.
   history_ = TemporalHistory{};
+  block_ = configured;
   plan_ = std::move(next);
   schedule_ = std::move(schedule);
   settings_ = settings;
@@ -112,9 +115,11 @@ Status FrameState::run(const FrameInputs& frame, Executor& executor) {
   if (Status st = checkFrame(plan_, inputs_, frame); !st) return st;
   ParamBlock block{};  // block_ changes only for a frame that runs
   if (Status st = frameConstants(settings_, camera, inputs_, frame.values, block); !st) return st;
-  if (Status st = prepareTemporalFrame(history_, settings_, camera, frame.previousCamera, frame.resetHistory, block);
-      !st)
-    return st;
+  // Without the temporal setting the history's inputs are ignored (sao/temporal.h).
+  if (settings_.temporal)
+    if (Status st = prepareTemporalFrame(history_, settings_, camera, frame.previousCamera, frame.resetHistory, block);
+        !st)
+      return st;
   block_ = block;
 
   lastWork_.plan = &plan_;

@@ -147,9 +147,9 @@ Status checkDepthSamples(const EffectState& e, const Config& c) {
   return Status::success();
 }
 
-// Everything a configuration needs that does not allocate: format and layout checks, the plan, the
-// parameter block, device limits.
-Status checkConfig(const EffectState& e, const Config& c, PlanInputs& pi, Plan& plan, ParamBlock& params) {
+// The configuration's formats, layouts and stages against the device, and the plan inputs they
+// give (the plan, the block and the plan's device limits: FrameState and the executor's checkPlan).
+Status checkConfig(const EffectState& e, const Config& c, PlanInputs& pi) {
   if (c.framesInFlight < 1 || c.framesInFlight > kMaxFramesInFlight)
     return Status::error(StatusCode::InvalidInput, "Config::framesInFlight is " + std::to_string(c.framesInFlight) +
                                                        "; allowed 1.." + std::to_string(kMaxFramesInFlight));
@@ -218,43 +218,7 @@ Status checkConfig(const EffectState& e, const Config& c, PlanInputs& pi, Plan& 
         c.secondLayer, c.userOutput,
         outputFormat, static_cast<std::uint32_t>(c.depthSamples),
         c.motionFormat != VK_FORMAT_UNDEFINED};
-  if (Status st = sao::plan(c.settings, c.camera, pi, plan); !st) return st;
-  if (Status st = frameConstants(c.settings, c.camera, pi, {}, params); !st) return st;
-  // Per pass: its storage images (a levels= write counts one per slot) and sampled images.
-  for (const PlannedPass& p : plan.passes) {
-    std::uint32_t storage = 0, sampled = 0;
-    for (const gen::BindingInfo& b : p.variant->bindings) (b.write ? storage : sampled) += b.slots;
-    const std::string pass(gen::pass(p.pass).name);
-    if (storage > e.props.limits.maxPerStageDescriptorStorageImages)
-      return Status::error(StatusCode::DriverError, "pass '" + pass + "' binds " + std::to_string(storage) +
-                                                        " storage images, above this device's maxPerStageDescriptorStorageImages " +
-                                                        std::to_string(e.props.limits.maxPerStageDescriptorStorageImages));
-    if (p.variant->sharedBytes > e.props.limits.maxComputeSharedMemorySize)
-      return Status::error(StatusCode::DriverError, "pass '" + pass + "' declares " + std::to_string(p.variant->sharedBytes) +
-                                                        " bytes of shared memory, above this device's maxComputeSharedMemorySize " +
-                                                        std::to_string(e.props.limits.maxComputeSharedMemorySize));
-    if (p.variant->pushConstantBytes > e.props.limits.maxPushConstantsSize)
-      return Status::error(StatusCode::DriverError, "pass '" + pass + "' takes " + std::to_string(p.variant->pushConstantBytes) +
-                                                        " bytes of push constants, above this device's maxPushConstantsSize " +
-                                                        std::to_string(e.props.limits.maxPushConstantsSize));
-    if (sampled > e.props.limits.maxPerStageDescriptorSamplers ||
-        sampled > e.props.limits.maxPerStageDescriptorSampledImages)
-      return Status::error(StatusCode::DriverError, "pass '" + pass + "' binds " + std::to_string(sampled) +
-                                                        " sampled images, above this device's maxPerStageDescriptorSamplers or SampledImages");
-  }
-  const std::uint32_t maxSide = e.props.limits.maxImageDimension2D;
-  const Extent ie = plan.inputExtent;
-  if (ie.width > maxSide || ie.height > maxSide)
-    return Status::error(StatusCode::InvalidExtent,
-                         "the input extent " + std::to_string(ie.width) + "x" + std::to_string(ie.height) +
-                             " exceeds this device's maxImageDimension2D " + std::to_string(maxSide));
   return Status::success();
-}
-
-// Descriptor sets follow the dispatches and their pass variants (set layouts).
-bool sameDispatches(const Schedule& a, const Schedule& b) {
-  return std::equal(a.dispatches.begin(), a.dispatches.end(), b.dispatches.begin(), b.dispatches.end(),
-                    [](const ScheduledDispatch& x, const ScheduledDispatch& y) { return x.variant == y.variant; });
 }
 
 }  // namespace
@@ -328,17 +292,16 @@ Status createEffect(const DeviceContext& context, const Config& config, EffectSt
                          "r16f storage images): enable it in VkDeviceCreateInfo");
   e.ctx.enabledFeatures = nullptr;  // the caller's pointer is read here only
 
-  if (Status st = checkConfig(e, config, e.planInputs, e.plan, e.params); !st) return st;
-  e.schedule = makeSchedule(e.plan);
+  PlanInputs planInputs;
+  if (Status st = checkConfig(e, config, planInputs); !st) return st;
   e.config = config;
   e.allocator.init(&e.d, context.device, e.memoryProps, e.props.limits.bufferImageGranularity, context.allocator);
   if (Status st = createSampler(e); !st) return st;
-  if (Status st = ensurePipelines(e, e.plan); !st) return st;
-  if (Status st = createResources(e, e.plan, e.res); !st) return st;
-  if (e.res.find(gen::ResourceId::ao)) e.outputGeneration = 1;
   if (Status st = createParamBuffer(e, config.framesInFlight, e.ubo); !st) return st;
-  if (Status st = createDescriptors(e, e.schedule, config.framesInFlight, e.desc); !st) return st;
   if (Status st = createQueryPool(e, config.framesInFlight, e.queryPool); !st) return st;
+  // The plan, its images, pipelines and descriptor sets: core's FrameState through the executor.
+  e.executor.setFramesInFlight(config.framesInFlight);
+  if (Status st = e.frame.configure(config.settings, config.camera, planInputs, e.executor); !st) return st;
   return Status::success();
 }
 
@@ -360,64 +323,41 @@ Status Effect::create(const DeviceContext& context, const Config& config, std::u
 }
 
 // Everything that can fail (or throw) happens before the commit; the commit only moves and swaps.
+// FrameState's configure() is itself transactional (sao/executor.h): what it makes for the new plan
+// goes on a failure, and the current configuration stays.
 Status Effect::update(const Config& config) {
   return guarded("sao::vk::Effect::update()", [&] {
     EffectState& e = *impl_;
     PlanInputs planInputs;
-    Plan plan;
-    ParamBlock params{};
-    if (Status st = checkConfig(e, config, planInputs, plan, params); !st) return st;
-    Schedule schedule = makeSchedule(plan);
-    if (Status st = ensurePipelines(e, plan); !st) return st;  // a cache: kept even if a later step fails
-    const bool newImages = !sameImages(e.plan, plan);
+    if (Status st = checkConfig(e, config, planInputs); !st) return st;
     const bool newFrames = config.framesInFlight != e.config.framesInFlight;
-    const bool newSets = newImages || newFrames || !sameDispatches(e.schedule, schedule);
-
     // Built aside; dropped (destroyed) on any early return.
     Config next = config;
-    Resources res;
     ParamBuffer ubo;
-    Descriptors desc;
     Handle<VkQueryPool> queries;
-    if (newImages)
-      if (Status st = createResources(e, plan, res); !st) return st;
     if (newFrames) {
       if (Status st = createParamBuffer(e, config.framesInFlight, ubo); !st) return st;
       if (Status st = createQueryPool(e, config.framesInFlight, queries); !st) return st;
     }
-    if (newSets)
-      if (Status st = createDescriptors(e, schedule, config.framesInFlight, desc); !st) return st;
-
-    // Commit: nothing below allocates or fails. The replaced objects end up in the locals above and
-    // are destroyed on return, the descriptor sets before the images they name.
-    if (newSets) {
-      std::swap(e.desc, desc);
-      e.nextSlot = 0;
-      e.lastTimedRegion = -1;
+    e.executor.setFramesInFlight(config.framesInFlight);
+    if (Status st = e.frame.configure(config.settings, config.camera, planInputs, e.executor); !st) {
+      e.executor.setFramesInFlight(e.config.framesInFlight);
+      return st;
     }
-    if (newImages) {
-      // Every image is new (createResources makes them all): a new owned output, or none now.
-      if (e.res.find(gen::ResourceId::ao) || res.find(gen::ResourceId::ao)) ++e.outputGeneration;
-      std::swap(e.res, res);
-    }
+    // Commit: nothing below allocates or fails.
     if (newFrames) {
       std::swap(e.ubo, ubo);
       std::swap(e.queryPool, queries);
     }
     e.config = std::move(next);
-    e.planInputs = planInputs;
-    e.plan = std::move(plan);
-    e.temporal.holdsFrame = false;  // new settings or images: the history starts again
-    e.schedule = std::move(schedule);
-    e.params = params;
     return Status::success();
   });
 }
 
 // These allocate nothing and cannot fail.
 const Config& Effect::config() const { return impl_->config; }
-const Plan& Effect::plan() const { return impl_->plan; }
-const ParamBlock& Effect::params() const { return impl_->params; }
+const Plan& Effect::plan() const { return impl_->frame.plan(); }
+const ParamBlock& Effect::params() const { return impl_->frame.block(); }
 MemoryStats Effect::memoryStats() const { return impl_->allocator.stats(); }
 std::uint64_t Effect::outputGeneration() const { return impl_->outputGeneration; }
 std::uint32_t Effect::pipelineCount() const { return static_cast<std::uint32_t>(impl_->pipelines.size()); }
@@ -425,14 +365,14 @@ std::uint32_t Effect::pipelineCount() const { return static_cast<std::uint32_t>(
 OutputImage Effect::output() const {
   const OwnedImage* ao = impl_->res.find(gen::ResourceId::ao);
   if (!ao) return {};
-  return {ao->image.get(), ao->levelViews[0].get(), ao->format, ao->extent, impl_->config.outputLayout, 0};
+  return {ao->image.get(), ao->levelViews[0].get(), ao->format, ao->planned.extent, impl_->config.outputLayout, 0};
 }
 
 OwnedImageInfo Effect::ownedImage(gen::ResourceId id) const {
   const OwnedImage* img = impl_->res.find(id);
   if (!img) return {};
   const bool isOutput = id == gen::ResourceId::ao;
-  return {img->image.get(), img->format, img->extent, img->levels,
+  return {img->image.get(), img->format, img->planned.extent, img->planned.mipLevels,
           isOutput ? impl_->config.outputLayout : VK_IMAGE_LAYOUT_GENERAL};
 }
 

@@ -1,19 +1,23 @@
 // The state behind sao::vk::Effect, shared by the source files that each own one responsibility:
-// resources.cpp (images and the parameter buffer from the plan), pipelines.cpp (pipelines,
-// layouts, descriptor sets), record.cpp (commands and barriers), timing.cpp (timestamps and the
-// fence fallback), effect.cpp (creation, validation, update). Every Vulkan object is held by a
-// Handle (handle.h) or an Allocator::Block, so whatever is dropped is destroyed.
+// executor.cpp (the Vulkan executor of core's frame, sao/executor.h: what FrameState asks for),
+// resources.cpp (images and the parameter buffer), pipelines.cpp (pipelines, layouts, descriptor
+// sets), record.cpp (record(): the caller's images checked, the frame run into its command
+// buffer), timing.cpp (timestamps and the fence fallback), effect.cpp (creation, validation,
+// update). The plan, the schedule, the block and the history are core's FrameState. Every Vulkan
+// object is held by a Handle (handle.h) or an Allocator::Block, so whatever is dropped is destroyed.
 #pragma once
 #include <vulkan/vulkan_core.h>
 
 #include <array>
 #include <exception>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "allocator.h"
 #include "dispatch.h"
 #include "handle.h"
+#include "sao/executor.h"
 #include "sao/frame.h"
 #include "sao/schedule.h"
 #include "sao/temporal.h"
@@ -21,28 +25,30 @@
 
 namespace sao::vk {
 
-// An effect-owned image with a view of every level (storage writes: a levels= write binds one per
-// slot; a levels=A..B read of level A - 1) and one of the whole chain (the sampled reads of later
-// passes). The views are declared after
-// the image, so they go first.
+// An effect-owned image (one copy of a PlannedImage) with a view of every level (storage writes: a
+// levels= write binds one per slot; a levels=A..B read of level A - 1) and one of the whole chain
+// (the sampled reads of later passes). FrameState creates it (createImage: the VkImage), then
+// preparePlan binds the memory of every new image of a plan at once (one block per memory type,
+// shared by those images) and makes the views. Members go in reverse order: views, image, memory.
 struct OwnedImage {
-  gen::ResourceId id{};
-  Handle<VkImage> image;
-  VkFormat format = VK_FORMAT_UNDEFINED;
-  Extent extent;
-  std::uint32_t levels = 1;
+  PlannedImage planned;
   std::uint32_t copy = 0;  // a history's copy 0 or 1 (PlannedImage::copies, sao/temporal.h)
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  bool bound = false;  // memory and views made (preparePlan)
+  // The blocks of the plan that made it (one per memory type), shared by that plan's new images.
+  std::vector<std::shared_ptr<Allocator::Block>> memoryBlocks;
+  Handle<VkImage> image;
   Handle<VkImageView> fullView;
   std::vector<Handle<VkImageView>> levelViews;
+  gen::ResourceId id() const { return planned.resource; }
 };
 
-// The images go before the memory they are bound to.
 struct Resources {
-  std::vector<Allocator::Block> memory;
   std::vector<OwnedImage> images;
+  // This frame's copy of resource `id` (there is one image per resource outside a configuration).
   const OwnedImage* find(gen::ResourceId id, std::uint32_t copy = 0) const {
     for (const auto& i : images)
-      if (i.id == id && i.copy == copy) return &i;
+      if (i.id() == id && i.copy == copy) return &i;
     return nullptr;
   }
 };
@@ -70,6 +76,7 @@ struct PipelineEntry {
 // write structures of one slot are sized here once, so record() fills them without allocating.
 struct Descriptors {
   Handle<VkDescriptorPool> pool;
+  std::uint32_t slots = 0;  // ring slots (Config::framesInFlight) the sets are made for
   std::uint32_t setsPerSlot = 0;
   std::vector<VkDescriptorSet> sets;  // [slot * setsPerSlot + k], k = the dispatch's index
   std::vector<VkWriteDescriptorSet> writes;    // one slot's: a buffer write per set, then one per binding
@@ -89,9 +96,80 @@ struct OutputTarget {
 
 inline constexpr std::uint32_t kMaxFramesInFlight = 16;
 
-// Everything Effect holds. Members are destroyed in reverse order: the descriptor sets, the images,
-// the parameter buffer, the pipelines, the query pool, the sampler (the set layouts' immutable
-// sampler), and last the allocator that counts the memory blocks.
+struct EffectState;
+
+// measure()'s command pool (its command buffers go with it) and fence (timing.cpp).
+struct Submitter {
+  const EffectState& e;
+  Handle<VkCommandPool> pool;
+  Handle<VkFence> fence;
+  explicit Submitter(const EffectState& state) : e(state) {}
+  Status init();
+  Status begin(VkCommandBuffer& cmd);
+  // Ends, submits and waits; `ms` gets the wall time from submission to the fence.
+  Status submitAndWait(VkQueue queue, VkCommandBuffer cmd, double* ms);
+};
+
+// What record() or measure() hands the executor for the frame FrameState runs next.
+struct Recording {
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  const Inputs* inputs = nullptr;
+  OutputTarget output;
+  int timingRegion = -1;  // -1: no timestamps
+  // measure()'s fallback: each pass on its own submission, timed by a steady clock into `times`.
+  Submitter* perPass = nullptr;
+  VkQueue queue = VK_NULL_HANDLE;
+  Timings* times = nullptr;
+};
+
+// The Vulkan executor of core's frame (sao/executor.h). Configuration: images (memory bound per
+// plan in preparePlan), pipelines, descriptor sets sized for the schedule (built aside, swapped in
+// by planAdopted). Frames: the ring slot's descriptors and block (beginFrame), the entry and exit
+// barriers of the synchronisation contract (executor.cpp's header), one image barrier per hazard,
+// each dispatch with its pipeline, push constants, set, timestamps and debug label.
+class __attribute__((visibility("hidden"))) VkFrameExecutor final : public Executor {
+ public:
+  explicit VkFrameExecutor(EffectState& e) : e_(e) {}
+  void setRecording(const Recording& r) { rec_ = r; }
+  // The ring size the next configuration's descriptor sets are made for (update() sets it first).
+  void setFramesInFlight(std::uint32_t frames) { framesInFlight_ = frames; }
+  std::uint32_t slot() const { return slot_; }  // the ring slot of the last frame
+
+  Status checkPlan(const Plan& plan) override;
+  Status createImage(const PlannedImage& image) override;
+  void destroyImage(const PlannedImage& image) noexcept override;
+  Status createPipeline(const gen::PassInfo& pass, const gen::PassVariantInfo& variant) override;
+  Status preparePlan(const Plan& plan, const Schedule& schedule) override;
+  void planAdopted() noexcept override;
+  Status beginFrame(const FrameWork& frame) override;
+  void barrier(std::span<const Hazard> hazards) override;
+  void dispatch(const ScheduledDispatch& dispatch, std::span<const ScheduledBinding> bindings) override;
+  Status endFrame() override;
+
+ private:
+  void prologue(std::span<const Hazard> entry) noexcept;
+  void epilogue(std::span<const Hazard> exit) noexcept;
+  // The frame's first timestamp (once, before its first dispatch).
+  void stampBegin() noexcept;
+  // measure()'s fallback: the command buffer so far submitted and waited for (its time into
+  // `times` under `pass` unless null), and with `beginNext` a new one begun.
+  void submitPerPass(const gen::PassId* pass, bool beginNext) noexcept;
+
+  EffectState& e_;
+  Recording rec_;
+  std::uint32_t framesInFlight_ = 1;
+  Descriptors preparedSets_;  // preparePlan's, for planAdopted
+  bool newSets_ = false;
+  FrameWork work_;
+  std::uint32_t slot_ = 0;
+  bool stamped_ = false;
+  Status error_;  // of dispatch() or barrier(): endFrame() returns it
+};
+
+// Everything Effect holds. Members are destroyed in reverse order: the executor (its prepared
+// descriptor sets), the descriptor sets, the images, the parameter buffer, the pipelines, the
+// query pool, the sampler (the set layouts' immutable sampler), and last the allocator that counts
+// the memory blocks.
 struct __attribute__((visibility("hidden"))) EffectState {
   DeviceContext ctx;
   Owner owner;  // ctx.device and ctx.allocator, for Handle
@@ -102,10 +180,8 @@ struct __attribute__((visibility("hidden"))) EffectState {
   VkQueueFamilyProperties family{};
 
   Config config;
-  PlanInputs planInputs;  // of `config`: what completeFrame (sao/frame.h) reads per record
-  Plan plan;
-  Schedule schedule;  // of `plan`: what record() translates
-  ParamBlock params{};
+  // The plan, the schedule, the images kept, the parameter block and the temporal history: core's.
+  FrameState frame{"sao::vk::Effect::record() Inputs"};
 
   Allocator allocator;
   Handle<VkSampler> sampler;  // nearest, clamp to edge, every level
@@ -118,11 +194,12 @@ struct __attribute__((visibility("hidden"))) EffectState {
 
   std::uint32_t nextSlot = 0;
   std::uint64_t outputGeneration = 0;  // Effect::outputGeneration()
-  int lastTimedRegion = -1;  // region of the last timestamped record(); its passes are plan.passes
-  // The history images' state (sao/temporal.h), and whether the record being made reads them
-  // (its prologue keeps the previous frame's copy instead of discarding it).
-  TemporalHistory temporal;
-  bool historyValid = false;
+  VkImage adoptedOutput = VK_NULL_HANDLE;  // the owned output of the plan adopted last
+  int lastTimedRegion = -1;  // region of the last timestamped record(); its passes are the plan's
+  VkFrameExecutor executor{*this};
+
+  const Plan& plan() const { return frame.plan(); }
+  const Schedule& schedule() const { return frame.schedule(); }
 
   EffectState() = default;
   EffectState(const EffectState&) = delete;
@@ -136,42 +213,28 @@ struct __attribute__((visibility("hidden"))) Effect::Impl : EffectState {};
 VkFormat vkFormat(gen::Format format);
 // The effect's format of a VkFormat the output may have; Depth (never an output format) otherwise.
 gen::Format outputFormatOf(VkFormat format);
-Status createResources(EffectState& e, const Plan& plan, Resources& out);  // on error: `out` unchanged
+// The VkImage of each copy of `planned` (no memory yet), appended to e.res.images; on error none.
+Status createImages(EffectState& e, const PlannedImage& planned);
+// Memory for every image not bound yet (one block per memory type, shared), then their views.
+Status bindImages(EffectState& e);
 Status createParamBuffer(EffectState& e, std::uint32_t slots, ParamBuffer& out);  // on error: `out` unchanged
 
 // ---- pipelines.cpp
 Status createSampler(EffectState& e);
-Status ensurePipelines(EffectState& e, const Plan& plan);  // every pass variant of the plan
+Status ensurePipeline(EffectState& e, const gen::PassInfo& pass, const gen::PassVariantInfo& variant);
 const PipelineEntry* findPipeline(const EffectState& e, const gen::PassVariantInfo* variant);
 // Pool and sets for the schedule, `slots` ring slots (pipelines must exist). On error: `out` unchanged.
 Status createDescriptors(EffectState& e, const Schedule& schedule, std::uint32_t slots, Descriptors& out);
-void writeDescriptors(EffectState& e, std::uint32_t slot, const Inputs& inputs, const OutputTarget& output);
+void writeDescriptors(EffectState& e, std::uint32_t slot, std::uint32_t historyParity, const Inputs& inputs,
+                      const OutputTarget& output);
 
 // ---- record.cpp
-// timingRegion < 0: no timestamps. These three record commands only: they allocate nothing and
-// cannot fail, so a record() that fails has recorded nothing.
-void recordPrologue(const EffectState& e, VkCommandBuffer cmd, const OutputTarget& output, int timingRegion) noexcept;
-// Every dispatch of the schedule, or those of plan pass `onlyPass` (>= 0), with the barriers their
-// hazards need.
-void recordDispatches(const EffectState& e, VkCommandBuffer cmd, std::uint32_t slot, const OutputTarget& output,
-                      int timingRegion, int onlyPass = -1) noexcept;
-void recordEpilogue(const EffectState& e, VkCommandBuffer cmd, const OutputTarget& output) noexcept;
 Status checkInputs(const EffectState& e, const Inputs& inputs, const OutputImage* userOutput, OutputTarget& out);
-// The next ring slot, its descriptor sets and its copy of the parameter block: `cameraBlock` (from
-// cameraParams, Inputs::camera) when given, else the Config camera's e.params; this record's
-// region offset goes into either.
-std::uint32_t acquireSlot(EffectState& e, const Inputs& inputs, const OutputTarget& output, ParamBlock* cameraBlock);
-
-// ---- frame_camera.cpp
-// The parameter block of a record with Inputs::camera: Ok only for a valid camera (create()'s
-// checks and messages) that plans exactly as Config::camera does. Allocates nothing on success.
-Status cameraParams(const EffectState& e, const Camera& camera, ParamBlock& out);
-// The block of one record() or measure() that differs from e.params (Inputs::camera's, or any
-// with temporal accumulation, whose previous-frame members are per frame): `own` then says to
-// pass `out` to acquireSlot. Sets e.historyValid. Allocates nothing.
-Status recordParams(EffectState& e, const Inputs& inputs, ParamBlock& out, bool& own);
-// After a record() or measure() was made: its frame wrote the history (when temporal is on).
-void recordDone(EffectState& e, const Inputs& inputs);
+// Inputs::camera against Config's (create()'s checks and messages, and core's rule for a camera
+// that keeps the plan, named as record()'s). Allocates nothing on success.
+Status checkRecordCamera(const EffectState& e, const Camera& camera);
+// The frame's inputs for FrameState::run: the camera, the history's, the region, index and output use.
+FrameInputs frameInputsOf(const Inputs& inputs);
 
 // ---- timing.cpp
 // The timestamp pool for `framesInFlight` ring slots; none (and success) where the queue family

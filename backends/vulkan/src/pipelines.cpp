@@ -1,4 +1,4 @@
-// Compute pipelines from the embedded SPIR-V (one per pass variant the plan needs, kept across
+// Compute pipelines from the embedded SPIR-V (one per pass variant FrameState asks for, kept across
 // update()), their set layouts, and the descriptor sets: one per dispatch, per ring slot.
 #include <string>
 
@@ -89,12 +89,9 @@ Status buildPipeline(EffectState& e, const gen::PassInfo& pass, const gen::PassV
 
 }  // namespace
 
-Status ensurePipelines(EffectState& e, const Plan& plan) {
-  for (const auto& p : plan.passes) {
-    if (findPipeline(e, p.variant)) continue;
-    if (Status st = buildPipeline(e, gen::pass(p.pass), p.variant); !st) return st;
-  }
-  return Status::success();
+Status ensurePipeline(EffectState& e, const gen::PassInfo& pass, const gen::PassVariantInfo& variant) {
+  if (findPipeline(e, &variant)) return Status::success();  // a cache: FrameState may ask again
+  return buildPipeline(e, pass, &variant);
 }
 
 Status createDescriptors(EffectState& e, const Schedule& schedule, std::uint32_t slots, Descriptors& out) {
@@ -104,6 +101,7 @@ Status createDescriptors(EffectState& e, const Schedule& schedule, std::uint32_t
   for (const ScheduledDispatch& d : schedule.dispatches)
     for (const gen::BindingInfo& b : d.variant->bindings) (b.write ? storage : samplers) += b.slots, elements += b.slots;
   ds.setsPerSlot = sets;
+  ds.slots = slots;
   std::vector<VkDescriptorPoolSize> sizes;
   sizes.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, sets * slots});
   if (samplers) sizes.push_back({VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, samplers * slots});
@@ -138,8 +136,8 @@ namespace {
 
 // The view and layout that serve a resolved binding.
 // `slot`: the element of a levels= write's array, level baseLevel + slot (the last level past the chain).
-VkDescriptorImageInfo imageInfo(const EffectState& e, const ScheduledBinding& b, const Inputs& inputs,
-                                const OutputTarget& output, std::uint32_t slot) {
+VkDescriptorImageInfo imageInfo(const EffectState& e, std::uint32_t historyParity, const ScheduledBinding& b,
+                                const Inputs& inputs, const OutputTarget& output, std::uint32_t slot) {
   switch (b.resource) {
     case gen::ResourceId::depth: return {VK_NULL_HANDLE, inputs.depth.view, inputs.depth.layout};
     case gen::ResourceId::depth2: return {VK_NULL_HANDLE, inputs.depth2.view, inputs.depth2.layout};
@@ -148,27 +146,29 @@ VkDescriptorImageInfo imageInfo(const EffectState& e, const ScheduledBinding& b,
     default: break;
   }
   VkDescriptorImageInfo info{VK_NULL_HANDLE, output.view, VK_IMAGE_LAYOUT_GENERAL};  // the user's output
-  if (const OwnedImage* img = e.res.find(b.resource, imageCopy(e.temporal.parity, b.resource, b.previousFrame)))
+  if (const OwnedImage* img = e.res.find(b.resource, imageCopy(historyParity, b.resource, b.previousFrame)))
     info.imageView = b.wholeChain ? img->fullView.get() : img->levelViews[b.slotLevel(slot)].get();
   return info;
 }
 
 }  // namespace
 
-void writeDescriptors(EffectState& e, std::uint32_t slot, const Inputs& inputs, const OutputTarget& output) {
+void writeDescriptors(EffectState& e, std::uint32_t slot, std::uint32_t historyParity, const Inputs& inputs,
+                      const OutputTarget& output) {
   Descriptors& ds = e.desc;
+  const Schedule& schedule = e.schedule();
   std::size_t w = 0, image = 0;
-  for (std::uint32_t k = 0; k < e.schedule.dispatches.size(); ++k) {
-    const ScheduledDispatch& d = e.schedule.dispatches[k];
+  for (std::uint32_t k = 0; k < schedule.dispatches.size(); ++k) {
+    const ScheduledDispatch& d = schedule.dispatches[k];
     const VkDescriptorSet set = ds.sets[slot * ds.setsPerSlot + k];
     ds.buffers[k] = {e.ubo.buffer.get(), slot * e.ubo.stride, sizeof(ParamBlock)};
     ds.writes[w++] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, set, gen::kParamBlockBinding, 0, 1,
                       VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, nullptr, &ds.buffers[k], nullptr};
-    const std::span<const ScheduledBinding> bindings = e.schedule.bindingsOf(d);  // one to one with the variant's
+    const std::span<const ScheduledBinding> bindings = schedule.bindingsOf(d);  // one to one with the variant's
     for (std::size_t i = 0; i < bindings.size(); ++i) {
       const ScheduledBinding& b = bindings[i];
       const std::uint32_t slots = d.variant->bindings[i].slots;
-      for (std::uint32_t j = 0; j < slots; ++j) ds.images[image + j] = imageInfo(e, b, inputs, output, j);
+      for (std::uint32_t j = 0; j < slots; ++j) ds.images[image + j] = imageInfo(e, historyParity, b, inputs, output, j);
       ds.writes[w++] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, set, b.binding, 0, slots,
                         b.write ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                         &ds.images[image], nullptr, nullptr};

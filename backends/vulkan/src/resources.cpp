@@ -1,4 +1,5 @@
-// Effect-owned images, their views and the parameter buffer, exactly as plan() lists them.
+// Effect-owned images as FrameState asks for them (sao/executor.h), their memory and views, and the
+// parameter buffer.
 #include <algorithm>
 #include <string>
 #include <utility>
@@ -44,57 +45,68 @@ Status createView(const EffectState& e, VkImage image, VkFormat format, std::uin
 
 }  // namespace
 
-Status createResources(EffectState& e, const Plan& plan, Resources& out) {
-  Resources res;
-  std::size_t count = 0;
-  for (const auto& planned : plan.images) count += planned.copies;
-  res.images.reserve(count);
-  std::vector<Allocator::Request> requests;
-  for (const auto& planned : plan.images) {
-    for (std::uint32_t copy = 0; copy < planned.copies; ++copy) {
-      const auto& info = gen::kResources[static_cast<std::size_t>(planned.resource)];
-      OwnedImage img;
-      img.id = planned.resource;
-      img.copy = copy;
-      img.format = vkFormat(planned.format);
-      img.extent = planned.extent;
-      img.levels = planned.mipLevels;
-
-      VkFormatProperties fp{};
-      e.d.vkGetPhysicalDeviceFormatProperties(e.ctx.physicalDevice, img.format, &fp);
-      constexpr VkFormatFeatureFlags need = VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
-      if ((fp.optimalTilingFeatures & need) != need)
-        return Status::error(StatusCode::UnsupportedFormat,
-                             "the device cannot use format " + std::to_string(img.format) + " of image '" +
-                                 std::string(info.name) + "' as an optimal-tiling storage and sampled image");
-
-      VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-      ci.imageType = VK_IMAGE_TYPE_2D;
-      ci.format = img.format;
-      ci.extent = {img.extent.width, img.extent.height, 1};
-      ci.mipLevels = img.levels;
-      ci.arrayLayers = 1;
-      ci.samples = VK_SAMPLE_COUNT_1_BIT;
-      ci.tiling = VK_IMAGE_TILING_OPTIMAL;
-      ci.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-      ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-      ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-      if (VkResult r = make(e.owner, e.d.vkCreateImage, e.d.vkDestroyImage, ci, img.image); r != VK_SUCCESS)
-        return vkError(("vkCreateImage('" + std::string(info.name) + "')").c_str(), r);
-      res.images.push_back(std::move(img));
-      requests.push_back({res.images.back().image.get(), VK_NULL_HANDLE});
-    }
+Status createImages(EffectState& e, const PlannedImage& planned) {
+  const auto& info = gen::kResources[static_cast<std::size_t>(planned.resource)];
+  const VkFormat format = vkFormat(planned.format);
+  VkFormatProperties fp{};
+  e.d.vkGetPhysicalDeviceFormatProperties(e.ctx.physicalDevice, format, &fp);
+  constexpr VkFormatFeatureFlags need = VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
+  if ((fp.optimalTilingFeatures & need) != need)
+    return Status::error(StatusCode::UnsupportedFormat,
+                         "the device cannot use format " + std::to_string(format) + " of image '" +
+                             std::string(info.name) + "' as an optimal-tiling storage and sampled image");
+  std::vector<OwnedImage> made;
+  made.reserve(planned.copies);
+  for (std::uint32_t copy = 0; copy < planned.copies; ++copy) {
+    OwnedImage img;
+    img.planned = planned;
+    img.copy = copy;
+    img.format = format;
+    VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    ci.imageType = VK_IMAGE_TYPE_2D;
+    ci.format = format;
+    ci.extent = {planned.extent.width, planned.extent.height, 1};
+    ci.mipLevels = planned.mipLevels;
+    ci.arrayLayers = 1;
+    ci.samples = VK_SAMPLE_COUNT_1_BIT;
+    ci.tiling = VK_IMAGE_TILING_OPTIMAL;
+    ci.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    if (VkResult r = make(e.owner, e.d.vkCreateImage, e.d.vkDestroyImage, ci, img.image); r != VK_SUCCESS)
+      return vkError(("vkCreateImage('" + std::string(info.name) + "')").c_str(), r);
+    made.push_back(std::move(img));
   }
+  e.res.images.reserve(e.res.images.size() + made.size());
+  for (OwnedImage& img : made) e.res.images.push_back(std::move(img));  // cannot throw: reserved
+  return Status::success();
+}
 
-  if (Status st = e.allocator.allocateAndBind(requests, res.memory); !st) return st;
-
-  for (auto& img : res.images) {
-    if (Status st = createView(e, img.image.get(), img.format, 0, img.levels, img.fullView); !st) return st;
-    img.levelViews.resize(img.levels);
-    for (std::uint32_t m = 0; m < img.levels; ++m)
+Status bindImages(EffectState& e) {
+  std::vector<Allocator::Request> requests;
+  for (const OwnedImage& img : e.res.images)
+    if (!img.bound) requests.push_back({img.image.get(), VK_NULL_HANDLE});
+  if (requests.empty()) return Status::success();
+  std::vector<Allocator::Block> blocks;
+  if (Status st = e.allocator.allocateAndBind(requests, blocks); !st) return st;
+  // Each new image keeps every block of its plan (a block serves the images of its memory type):
+  // a block goes with the last image that shares it.
+  std::vector<std::shared_ptr<Allocator::Block>> shared;
+  for (Allocator::Block& b : blocks) shared.push_back(std::make_shared<Allocator::Block>(std::move(b)));
+  for (OwnedImage& img : e.res.images) {
+    if (img.bound) continue;
+    const std::uint32_t levels = img.planned.mipLevels;
+    if (Status st = createView(e, img.image.get(), img.format, 0, levels, img.fullView); !st) return st;
+    img.levelViews.resize(levels);
+    for (std::uint32_t m = 0; m < levels; ++m)
       if (Status st = createView(e, img.image.get(), img.format, m, 1, img.levelViews[m]); !st) return st;
   }
-  std::swap(out, res);  // not `out = std::move(res)`: that would free out's memory before its images
+  // Only now that nothing can fail: the memory goes with the images.
+  for (OwnedImage& img : e.res.images) {
+    if (img.bound) continue;
+    img.memoryBlocks = shared;
+    img.bound = true;
+  }
   return Status::success();
 }
 

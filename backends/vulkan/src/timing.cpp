@@ -32,7 +32,7 @@ namespace {
 // The times of the plan's passes (for timings(): update() keeps lastTimedRegion only while the
 // passes stay the same).
 Status readTimestamps(const EffectState& e, std::uint32_t region, bool wait, Timings& out) {
-  const std::vector<PlannedPass>& passes = e.plan.passes;
+  const std::vector<PlannedPass>& passes = e.plan().passes;
   std::vector<std::uint64_t> t(passes.size() + 1);
   const VkResult r = e.d.vkGetQueryPoolResults(
       e.owner.device, e.queryPool.get(), region * queriesPerRegion(), static_cast<std::uint32_t>(t.size()),
@@ -55,54 +55,48 @@ Status readTimestamps(const EffectState& e, std::uint32_t region, bool wait, Tim
   return Status::success();
 }
 
-// A command pool (its command buffers go with it) and a fence, destroyed with the Submitter.
-struct Submitter {
-  const EffectState& e;
-  Handle<VkCommandPool> pool;
-  Handle<VkFence> fence;
-  explicit Submitter(const EffectState& state) : e(state) {}
-  Status init() {
-    VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    pi.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-    pi.queueFamilyIndex = e.ctx.queueFamilyIndex;
-    if (VkResult r = make(e.owner, e.d.vkCreateCommandPool, e.d.vkDestroyCommandPool, pi, pool); r != VK_SUCCESS)
-      return vkError("vkCreateCommandPool", r);
-    VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    if (VkResult r = make(e.owner, e.d.vkCreateFence, e.d.vkDestroyFence, fi, fence); r != VK_SUCCESS)
-      return vkError("vkCreateFence", r);
-    return Status::success();
-  }
-  Status begin(VkCommandBuffer& cmd) {
-    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ai.commandPool = pool.get();
-    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    ai.commandBufferCount = 1;
-    if (VkResult r = e.d.vkAllocateCommandBuffers(e.ctx.device, &ai, &cmd); r != VK_SUCCESS)
-      return vkError("vkAllocateCommandBuffers", r);
-    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    if (VkResult r = e.d.vkBeginCommandBuffer(cmd, &bi); r != VK_SUCCESS) return vkError("vkBeginCommandBuffer", r);
-    return Status::success();
-  }
-  // Ends, submits and waits; `ms` gets the wall time from submission to the fence.
-  Status submitAndWait(VkQueue queue, VkCommandBuffer cmd, double* ms) {
-    if (VkResult r = e.d.vkEndCommandBuffer(cmd); r != VK_SUCCESS) return vkError("vkEndCommandBuffer", r);
-    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    si.commandBufferCount = 1;
-    si.pCommandBuffers = &cmd;
-    const auto t0 = std::chrono::steady_clock::now();
-    const VkFence f = fence.get();
-    if (VkResult r = e.d.vkQueueSubmit(queue, 1, &si, f); r != VK_SUCCESS) return vkError("vkQueueSubmit", r);
-    const VkResult w = e.d.vkWaitForFences(e.ctx.device, 1, &f, VK_TRUE, 120'000'000'000ull);
-    const auto t1 = std::chrono::steady_clock::now();
-    if (w != VK_SUCCESS) return vkError("vkWaitForFences", w);
-    if (ms) *ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
-    if (VkResult r = e.d.vkResetFences(e.ctx.device, 1, &f); r != VK_SUCCESS) return vkError("vkResetFences", r);
-    return Status::success();
-  }
-};
-
 }  // namespace
+
+Status Submitter::init() {
+  VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  pi.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+  pi.queueFamilyIndex = e.ctx.queueFamilyIndex;
+  if (VkResult r = make(e.owner, e.d.vkCreateCommandPool, e.d.vkDestroyCommandPool, pi, pool); r != VK_SUCCESS)
+    return vkError("vkCreateCommandPool", r);
+  VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  if (VkResult r = make(e.owner, e.d.vkCreateFence, e.d.vkDestroyFence, fi, fence); r != VK_SUCCESS)
+    return vkError("vkCreateFence", r);
+  return Status::success();
+}
+
+Status Submitter::begin(VkCommandBuffer& cmd) {
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  ai.commandPool = pool.get();
+  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  ai.commandBufferCount = 1;
+  if (VkResult r = e.d.vkAllocateCommandBuffers(e.ctx.device, &ai, &cmd); r != VK_SUCCESS)
+    return vkError("vkAllocateCommandBuffers", r);
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  if (VkResult r = e.d.vkBeginCommandBuffer(cmd, &bi); r != VK_SUCCESS) return vkError("vkBeginCommandBuffer", r);
+  return Status::success();
+}
+
+Status Submitter::submitAndWait(VkQueue queue, VkCommandBuffer cmd, double* ms) {
+  if (VkResult r = e.d.vkEndCommandBuffer(cmd); r != VK_SUCCESS) return vkError("vkEndCommandBuffer", r);
+  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cmd;
+  const auto t0 = std::chrono::steady_clock::now();
+  const VkFence f = fence.get();
+  if (VkResult r = e.d.vkQueueSubmit(queue, 1, &si, f); r != VK_SUCCESS) return vkError("vkQueueSubmit", r);
+  const VkResult w = e.d.vkWaitForFences(e.ctx.device, 1, &f, VK_TRUE, 120'000'000'000ull);
+  const auto t1 = std::chrono::steady_clock::now();
+  if (w != VK_SUCCESS) return vkError("vkWaitForFences", w);
+  if (ms) *ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
+  if (VkResult r = e.d.vkResetFences(e.ctx.device, 1, &f); r != VK_SUCCESS) return vkError("vkResetFences", r);
+  return Status::success();
+}
 
 Status Effect::timings(Timings& out) const {
   return guarded("sao::vk::Effect::timings()", [&] {
@@ -125,43 +119,30 @@ Status Effect::measure(VkQueue queue, const Inputs& inputs, const OutputImage* u
       return Status::error(StatusCode::InvalidInput, "measure(): the queue is VK_NULL_HANDLE");
     OutputTarget output;
     if (Status st = checkInputs(e, inputs, userOutput, output); !st) return st;
-    ParamBlock recordBlock{};
-    bool ownBlock = false;
-    if (Status st = recordParams(e, inputs, recordBlock, ownBlock); !st) return st;
+    if (inputs.camera)
+      if (Status st = checkRecordCamera(e, *inputs.camera); !st) return st;
     Submitter sub(e);
     if (Status st = sub.init(); !st) return st;
-    Timings t;
-    t.passes.reserve(e.plan.passes.size());
-    const std::uint32_t slot = acquireSlot(e, inputs, output, ownBlock ? &recordBlock : nullptr);
-
-    if (method == MeasureMethod::Auto && familyHasTimestamps(e) && e.queryPool) {
-      const int region = static_cast<int>(e.config.framesInFlight);  // measure()'s own region
-      VkCommandBuffer cmd = VK_NULL_HANDLE;
-      if (Status st = sub.begin(cmd); !st) return st;
-      recordPrologue(e, cmd, output, region);
-      recordDispatches(e, cmd, slot, output, region);
-      recordEpilogue(e, cmd, output);
-      recordDone(e, inputs);
-      if (Status st = sub.submitAndWait(queue, cmd, nullptr); !st) return st;
-      return readTimestamps(e, static_cast<std::uint32_t>(region), true, out);
-    }
-
-    // Fallback: the prologue untimed, then each pass on its own submission (the last one with the
-    // epilogue's barrier), timed from vkQueueSubmit to the fence.
     VkCommandBuffer cmd = VK_NULL_HANDLE;
     if (Status st = sub.begin(cmd); !st) return st;
-    recordPrologue(e, cmd, output, -1);
-    if (Status st = sub.submitAndWait(queue, cmd, nullptr); !st) return st;
-    t.method = TimingMethod::FinishAndClock;
-    for (std::size_t i = 0; i < e.plan.passes.size(); ++i) {
-      if (Status st = sub.begin(cmd); !st) return st;
-      recordDispatches(e, cmd, slot, output, -1, static_cast<int>(i));
-      if (i + 1 == e.plan.passes.size()) recordEpilogue(e, cmd, output);
-      double ms = 0;
-      if (Status st = sub.submitAndWait(queue, cmd, &ms); !st) return st;
-      t.passes.push_back({std::string(gen::pass(e.plan.passes[i].pass).name), ms});
+    Recording rec{cmd, &inputs, output};
+    if (method == MeasureMethod::Auto && familyHasTimestamps(e) && e.queryPool) {
+      rec.timingRegion = static_cast<int>(e.config.framesInFlight);  // measure()'s own region
+      e.executor.setRecording(rec);
+      if (Status st = e.frame.run(frameInputsOf(inputs), e.executor); !st) return st;
+      if (Status st = sub.submitAndWait(queue, cmd, nullptr); !st) return st;
+      return readTimestamps(e, static_cast<std::uint32_t>(rec.timingRegion), true, out);
     }
-    recordDone(e, inputs);
+    // Fallback: the prologue untimed, then each pass on its own submission (the last one with the
+    // exit barrier), timed from vkQueueSubmit to the fence.
+    Timings t;
+    t.method = TimingMethod::FinishAndClock;
+    t.passes.reserve(e.plan().passes.size());
+    rec.perPass = &sub;
+    rec.queue = queue;
+    rec.times = &t;
+    e.executor.setRecording(rec);
+    if (Status st = e.frame.run(frameInputsOf(inputs), e.executor); !st) return st;
     out = std::move(t);
     return Status::success();
   });

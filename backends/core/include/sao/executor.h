@@ -165,7 +165,8 @@ class FrameState {
   const Settings& settings() const { return settings_; }
   const Camera& camera() const { return camera_; }
   const PlanInputs& planInputs() const { return inputs_; }
-  const ParamBlock& block() const { return block_; }  // the last frame's (run's) block
+  // The last frame's block; before a configuration's first frame, its own (FrameValues{}, no history).
+  const ParamBlock& block() const { return block_; }
   const TemporalHistory& history() const { return history_; }
   std::uint64_t plans() const { return plans_; }  // configurations made so far
 

@@ -197,8 +197,8 @@ struct Inputs {
   // message after "record(): Inputs::camera: "), and so is a normals encoding that
   // Config::normalsFormat cannot hold (UnsupportedFormat). measure() takes it the same way.
   // Its parameter block (Config's settings and depth encoding) goes into this record's ring slot
-  // only: Config::camera and params() stay what update() set. Per record: no update(), no
-  // allocation, no wait. Null: Config::camera.
+  // only: Config::camera stays what update() set (params() shows the last record's block, this
+  // camera's). Per record: no update(), no allocation, no wait. Null: Config::camera.
   const Camera* camera = nullptr;
   // The frame's number, for an engine that accumulates frames (TAA or its own temporal filter):
   // frame k turns and shifts every pixel's spiral (sao::frameSpiral, sao/spiral.h), so N
@@ -291,9 +291,10 @@ class SAO_VK_API Effect {
   Effect(const Effect&) = delete;
   Effect& operator=(const Effect&) = delete;
 
-  // New settings, camera (a resize) or inputs. Images are rebuilt only when the plan's images
-  // change, pipelines only for variants not built yet. On error the effect keeps its previous
-  // configuration. Not while a recorded command buffer is pending.
+  // New settings, camera (a resize) or inputs. Only the images whose format, extent or levels the
+  // new plan changes are made again (sao::FrameState, sao/executor.h: one rule with the GL
+  // backend), pipelines only for variants not built yet. On error the effect keeps its previous
+  // configuration. Starts the temporal history again. Not while a recorded command buffer is pending.
   Status update(const Config& config);
 
   // Records every planned pass (with its barriers) into `cmd`, which must be in the recording
@@ -319,6 +320,8 @@ class SAO_VK_API Effect {
 
   const Config& config() const;
   const Plan& plan() const;
+  // The parameter block of the last record() (as sao::gl::Effect::params()), or of Config before
+  // the first record after create() or update().
   const ParamBlock& params() const;
   // The effect-owned output (VK_NULL_HANDLE with userOutput); `layout` is where record() leaves it
   // (undefined contents before the first submitted record()).
