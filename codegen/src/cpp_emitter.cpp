@@ -59,15 +59,26 @@ const char* kindName(ResourceKind k) {
 }
 
 std::string formatName(const std::string& f) {
-  if (f == "r32f") return "Format::R32F";
-  if (f == "rg32f") return "Format::RG32F";
-  if (f == "rgba32f") return "Format::RGBA32F";
-  if (f == "r16f") return "Format::R16F";
-  if (f == "rg16f") return "Format::RG16F";
-  if (f == "rgba16f") return "Format::RGBA16F";
-  if (f == "r8") return "Format::R8";
-  if (f == "rgba8") return "Format::RGBA8";
-  return "Format::Depth";
+  const auto facts = findFormat(f);
+  return "Format::" + std::string(facts ? facts->enumName : "Depth");
+}
+
+// gen::Format and gen::kFormatInfo, from formats.h's table.
+void emitFormats(std::ostream& h) {
+  h << "enum class Format : std::uint8_t {";
+  for (const FormatFacts& f : formats()) h << (&f == formats().data() ? " " : ", ") << f.enumName;
+  h << " };\n"
+    << "// What each format is (codegen/src/formats.cpp, the one table): channels, bytes per texel, the GL\n"
+    << "// internal format and the VkFormat it is (the API's enumerant values), whether a pass may store to\n"
+    << "// it, whether it is 8-bit unsigned normalised. Indexed by Format.\n"
+    << "struct FormatInfo {\n  std::string_view name;\n  std::uint32_t channels;\n  std::uint32_t bytesPerTexel;\n"
+    << "  std::uint32_t glInternalFormat;\n  std::uint32_t vkFormat;\n  bool colour;\n  bool unorm;\n};\n"
+    << "inline constexpr std::array<FormatInfo, " << formats().size() << "> kFormatInfo = {{\n";
+  for (const FormatFacts& f : formats())
+    h << "  {\"" << f.name << "\", " << f.channels << ", " << f.bytesPerTexel << ", " << f.glInternalFormat << ", "
+      << f.vkFormat << ", " << (f.colour ? "true" : "false") << ", " << (f.unorm ? "true" : "false") << "},\n";
+  h << "}};\n"
+    << "inline constexpr const FormatInfo& formatInfo(Format f) { return kFormatInfo[static_cast<std::size_t>(f)]; }\n";
 }
 
 // Shader text as a raw string split in chunks (compilers limit one literal's length).
@@ -352,9 +363,9 @@ GeneratedCode emitCpp(const Effect& e, const std::vector<CompiledPassVariant>& p
 
   // --- resources
   h << "// ---- Resources: inputs, effect-owned images, and the output.\n"
-    << "enum class ResourceKind : std::uint8_t { Input, Image, Output };\n"
-    << "enum class Format : std::uint8_t { R32F, RG32F, R16F, RG16F, RGBA16F, R8, RGBA8, Depth, RGBA32F };\n"
-    << "enum class ResourceId : std::uint32_t {\n";
+    << "enum class ResourceKind : std::uint8_t { Input, Image, Output };\n";
+  emitFormats(h);
+  h << "enum class ResourceId : std::uint32_t {\n";
   for (const auto& r : e.resources) h << "  " << r.name << ",\n";
   h << "};\nstruct ResourceInfo {\n  std::string_view name;\n  ResourceKind kind;\n  Format format;\n"
     << "  bool fullMipChain;          // mips=auto: as many levels as the plan needs\n"

@@ -6,13 +6,18 @@
 #include <set>
 
 #include "effect_rules.h"
+#include "formats.h"
 #include "std140.h"
 #include "text_values.h"
 
 namespace sao::codegen {
 namespace {
 
-const std::set<std::string> kFormats = {"r32f", "rg32f", "rgba32f", "r16f", "rg16f", "rgba16f", "r8", "rgba8", "depth"};
+// A colour format: one a pass may store to (formats.h: every format but depth).
+bool isColourFormat(const std::string& name) {
+  const auto f = findFormat(name);
+  return f && f->colour;
+}
 
 // One `#pragma sao` line: words, key=value attributes and an optional trailing doc string.
 struct Directive {
@@ -444,9 +449,11 @@ class Parser {
       return;
     }
     r.format = a.count("format") ? a["format"] : "";
-    if (!kFormats.count(r.format)) {
+    if (!findFormat(r.format)) {
+      std::set<std::string> names;  // listed sorted
+      for (const FormatFacts& f : formats()) names.insert(std::string(f.name));
       std::string list;
-      for (const auto& f : kFormats) list += (list.empty() ? "" : " ") + f;
+      for (const auto& f : names) list += (list.empty() ? "" : " ") + f;
       diags_.error(d.loc, "unknown format '" + r.format + "' for resource '" + r.name + "' (expected one of: " + list + ")");
       return;
     }
@@ -515,7 +522,7 @@ class Parser {
     else if (list.size() < 2 || list.front() != '[' || list.back() != ']') why = "must be a list [F,...]";
     else
       for (const auto& f : splitList(list.substr(1, list.size() - 2))) {
-        if (!kFormats.count(f) || f == "depth") why = "names '" + f + "', which is not a colour format";
+        if (!isColourFormat(f)) why = "names '" + f + "', which is not a colour format";
         else if (std::find(r.formats.begin(), r.formats.end(), f) != r.formats.end()) why = "lists '" + f + "' twice";
         r.formats.push_back(f);
       }
@@ -538,7 +545,7 @@ class Parser {
     if (r.kind != ResourceKind::Image) why = "is only for kind=image resources";
     else if (colon == std::string::npos || variant.empty() || f.empty()) why = "must be VARIANT:FORMAT";
     else if (findVariant(variant) < 0) why = "names unknown variant '" + variant + "'";
-    else if (!kFormats.count(f) || f == "depth") why = "names '" + f + "', which is not a colour format";
+    else if (!isColourFormat(f)) why = "names '" + f + "', which is not a colour format";
     else if (f == r.format) why = "names the resource's own format '" + f + "'";
     else if (formatChannels(f) != formatChannels(r.format))
       why = "names '" + f + "', which holds another number of channels than '" + r.format + "'";

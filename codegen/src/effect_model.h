@@ -1,5 +1,6 @@
 // The effect as declared by `#pragma sao` directives: the one source of truth.
 #pragma once
+#include "formats.h"
 #include <optional>
 #include <string>
 #include <vector>
@@ -60,7 +61,8 @@ enum class ResourceKind { Input, Image, Output };
 
 // Channels of a colour format name (r*: 1, rg*: 2, rgba*: 4).
 inline int formatChannels(const std::string& format) {
-  return format.rfind("rgba", 0) == 0 ? 4 : format.rfind("rg", 0) == 0 ? 2 : 1;
+  const auto f = findFormat(format);
+  return f ? int(f->channels) : 0;
 }
 
 struct Resource {

@@ -244,5 +244,16 @@ TEST_F(OutputFormat, OutputGenerationFollowsTheOwnedTexture) {
   deleteTexture(t2);
 }
 
+// The generated format table (codegen/src/formats.cpp) names the GL enums GL's own header has.
+TEST(Formats, GeneratedTableNamesTheGlInternalFormats) {
+  using F = gen::Format;
+  const std::pair<F, GLenum> expected[] = {
+      {F::R32F, GL_R32F},   {F::RG32F, GL_RG32F},     {F::R16F, GL_R16F},
+      {F::RG16F, GL_RG16F}, {F::RGBA16F, GL_RGBA16F}, {F::R8, GL_R8},
+      {F::RGBA8, GL_RGBA8}, {F::RGBA32F, GL_RGBA32F}, {F::Depth, GL_DEPTH_COMPONENT32F}};
+  ASSERT_EQ(std::size(expected), gen::kFormatInfo.size());
+  for (const auto& [format, gl] : expected) EXPECT_EQ(gen::formatInfo(format).glInternalFormat, gl) << formatName(format);
+}
+
 }  // namespace
 }  // namespace sao::gltest

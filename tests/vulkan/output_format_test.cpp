@@ -306,5 +306,23 @@ TEST_F(OutputFormat, OutputGenerationFollowsTheOwnedImage) {
   EXPECT_EQ(userOnly->outputGeneration(), 0u) << "created without an owned output";
 }
 
+// The generated format table (codegen/src/formats.cpp) names the VkFormats Vulkan's own header has.
+TEST(Formats, GeneratedTableNamesTheVkFormats) {
+  using F = gen::Format;
+  const std::pair<F, VkFormat> expected[] = {
+      {F::R32F, VK_FORMAT_R32_SFLOAT},
+      {F::RG32F, VK_FORMAT_R32G32_SFLOAT},
+      {F::R16F, VK_FORMAT_R16_SFLOAT},
+      {F::RG16F, VK_FORMAT_R16G16_SFLOAT},
+      {F::RGBA16F, VK_FORMAT_R16G16B16A16_SFLOAT},
+      {F::R8, VK_FORMAT_R8_UNORM},
+      {F::RGBA8, VK_FORMAT_R8G8B8A8_UNORM},
+      {F::RGBA32F, VK_FORMAT_R32G32B32A32_SFLOAT},
+      {F::Depth, VK_FORMAT_D32_SFLOAT}};
+  ASSERT_EQ(std::size(expected), gen::kFormatInfo.size());
+  for (const auto& [format, vk] : expected)
+    EXPECT_EQ(gen::formatInfo(format).vkFormat, std::uint32_t(vk)) << formatName(format);
+}
+
 }  // namespace
 }  // namespace sao::vktest

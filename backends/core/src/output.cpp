@@ -14,31 +14,9 @@ bool isOutputFormat(gen::Format format) {
   return std::find(list.begin(), list.end(), format) != list.end();
 }
 
-std::uint32_t channelCount(gen::Format format) {
-  switch (format) {
-    case gen::Format::RG32F:
-    case gen::Format::RG16F: return 2;
-    case gen::Format::RGBA16F:
-    case gen::Format::RGBA32F:
-    case gen::Format::RGBA8: return 4;
-    default: return 1;
-  }
-}
+std::uint32_t channelCount(gen::Format format) { return gen::formatInfo(format).channels; }
 
-const char* formatName(gen::Format format) {
-  switch (format) {
-    case gen::Format::R32F: return "r32f";
-    case gen::Format::RG32F: return "rg32f";
-    case gen::Format::R16F: return "r16f";
-    case gen::Format::RG16F: return "rg16f";
-    case gen::Format::RGBA16F: return "rgba16f";
-    case gen::Format::RGBA32F: return "rgba32f";
-    case gen::Format::R8: return "r8";
-    case gen::Format::RGBA8: return "rgba8";
-    case gen::Format::Depth: return "depth";
-  }
-  return "?";
-}
+const char* formatName(gen::Format format) { return gen::formatInfo(format).name.data(); }  // a literal
 
 Status checkOutputChannels(gen::Format format, std::uint32_t mask, const char* who) {
   if (mask == kAllChannels) return Status::success();

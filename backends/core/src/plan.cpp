@@ -59,20 +59,7 @@ bool holdsInput(Extent have, const std::optional<Offset>& region, Extent needed)
   return std::uint64_t(region->x) + needed.width <= have.width && std::uint64_t(region->y) + needed.height <= have.height;
 }
 
-std::uint32_t bytesPerTexel(gen::Format format) {
-  switch (format) {
-    case gen::Format::R32F: return 4;
-    case gen::Format::RG32F: return 8;
-    case gen::Format::R16F: return 2;
-    case gen::Format::RG16F: return 4;
-    case gen::Format::RGBA16F: return 8;
-    case gen::Format::RGBA32F: return 16;
-    case gen::Format::R8: return 1;
-    case gen::Format::RGBA8: return 4;
-    case gen::Format::Depth: return 4;
-  }
-  return 4;
-}
+std::uint32_t bytesPerTexel(gen::Format format) { return gen::formatInfo(format).bytesPerTexel; }
 
 const PlannedImage* Plan::image(gen::ResourceId id) const {
   for (const auto& i : images)

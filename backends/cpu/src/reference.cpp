@@ -125,19 +125,10 @@ std::string resourceName(gen::ResourceId id) {
   return std::string(gen::kResources[static_cast<std::size_t>(id)].name);
 }
 
-// Channels of an image in `format` as the CPU reference holds it; 0 when it cannot.
+// Channels of an image in `format` as the CPU reference holds it; 0 when it cannot (depth).
 int channelsOf(gen::Format format) {
-  switch (format) {
-    case gen::Format::R32F:
-    case gen::Format::R16F:
-    case gen::Format::R8: return 1;
-    case gen::Format::RG32F:
-    case gen::Format::RG16F: return 2;
-    case gen::Format::RGBA16F:
-    case gen::Format::RGBA32F:
-    case gen::Format::RGBA8: return 4;
-    default: return 0;
-  }
+  const gen::FormatInfo& f = gen::formatInfo(format);
+  return f.colour ? int(f.channels) : 0;
 }
 
 // ------------------------------------------------------------------------------------------------

@@ -7,18 +7,8 @@
 namespace sao::gl::detail {
 
 GLenum glFormat(gen::Format format) {
-  switch (format) {
-    case gen::Format::R32F: return GL_R32F;
-    case gen::Format::RG32F: return GL_RG32F;
-    case gen::Format::R16F: return GL_R16F;
-    case gen::Format::RG16F: return GL_RG16F;
-    case gen::Format::RGBA16F: return GL_RGBA16F;
-    case gen::Format::RGBA32F: return GL_RGBA32F;
-    case gen::Format::R8: return GL_R8;
-    case gen::Format::RGBA8: return GL_RGBA8;
-    case gen::Format::Depth: return 0;
-  }
-  return 0;
+  const gen::FormatInfo& f = gen::formatInfo(format);
+  return f.colour ? GLenum(f.glInternalFormat) : 0;  // depth is never an effect image
 }
 
 void Resources::release(Slot& s) {

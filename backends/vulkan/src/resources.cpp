@@ -8,20 +8,7 @@
 
 namespace sao::vk {
 
-VkFormat vkFormat(gen::Format format) {
-  switch (format) {
-    case gen::Format::R32F: return VK_FORMAT_R32_SFLOAT;
-    case gen::Format::RG32F: return VK_FORMAT_R32G32_SFLOAT;
-    case gen::Format::R16F: return VK_FORMAT_R16_SFLOAT;
-    case gen::Format::RG16F: return VK_FORMAT_R16G16_SFLOAT;
-    case gen::Format::RGBA16F: return VK_FORMAT_R16G16B16A16_SFLOAT;
-    case gen::Format::RGBA32F: return VK_FORMAT_R32G32B32A32_SFLOAT;
-    case gen::Format::R8: return VK_FORMAT_R8_UNORM;
-    case gen::Format::RGBA8: return VK_FORMAT_R8G8B8A8_UNORM;
-    case gen::Format::Depth: return VK_FORMAT_D32_SFLOAT;
-  }
-  return VK_FORMAT_UNDEFINED;
-}
+VkFormat vkFormat(gen::Format format) { return static_cast<VkFormat>(gen::formatInfo(format).vkFormat); }
 
 gen::Format outputFormatOf(VkFormat format) {
   for (gen::Format f : outputFormats())

@@ -179,6 +179,30 @@ std::string_view exclusionReason(const VariantValues& values);
 // ---- Resources: inputs, effect-owned images, and the output.
 enum class ResourceKind : std::uint8_t { Input, Image, Output };
 enum class Format : std::uint8_t { R32F, RG32F, R16F, RG16F, RGBA16F, R8, RGBA8, Depth, RGBA32F };
+// What each format is (codegen/src/formats.cpp, the one table): channels, bytes per texel, the GL
+// internal format and the VkFormat it is (the API's enumerant values), whether a pass may store to
+// it, whether it is 8-bit unsigned normalised. Indexed by Format.
+struct FormatInfo {
+  std::string_view name;
+  std::uint32_t channels;
+  std::uint32_t bytesPerTexel;
+  std::uint32_t glInternalFormat;
+  std::uint32_t vkFormat;
+  bool colour;
+  bool unorm;
+};
+inline constexpr std::array<FormatInfo, 9> kFormatInfo = {{
+  {"r32f", 1, 4, 33326, 100, true, false},
+  {"rg32f", 2, 8, 33328, 103, true, false},
+  {"r16f", 1, 2, 33325, 76, true, false},
+  {"rg16f", 2, 4, 33327, 83, true, false},
+  {"rgba16f", 4, 8, 34842, 97, true, false},
+  {"r8", 1, 1, 33321, 9, true, true},
+  {"rgba8", 4, 4, 32856, 37, true, true},
+  {"depth", 1, 4, 36012, 126, false, false},
+  {"rgba32f", 4, 16, 34836, 109, true, false},
+}};
+inline constexpr const FormatInfo& formatInfo(Format f) { return kFormatInfo[static_cast<std::size_t>(f)]; }
 enum class ResourceId : std::uint32_t {
   src,
   extra,
