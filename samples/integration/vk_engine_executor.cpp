@@ -278,15 +278,10 @@ void cmdBarriers(VkCommandBuffer cmd, VkPipelineStageFlags src, VkPipelineStageF
     vkCmdPipelineBarrier(cmd, src, dst, 0, 0, nullptr, 0, nullptr, std::uint32_t(barriers.size()), barriers.data());
 }
 
-// The VkFormat of an effect image, as backends/vulkan/src/resources.cpp maps them.
+// The VkFormat of an effect image: the generated table says which it is (depth is only an input).
 VkFormat vkFormat(gen::Format format) {
-  using F = gen::Format;
-  for (auto [f, vk] : {std::pair{F::R32F, VK_FORMAT_R32_SFLOAT}, {F::RG32F, VK_FORMAT_R32G32_SFLOAT},
-                       {F::R16F, VK_FORMAT_R16_SFLOAT}, {F::RG16F, VK_FORMAT_R16G16_SFLOAT},
-                       {F::RGBA16F, VK_FORMAT_R16G16B16A16_SFLOAT}, {F::RGBA32F, VK_FORMAT_R32G32B32A32_SFLOAT},
-                       {F::R8, VK_FORMAT_R8_UNORM}, {F::RGBA8, VK_FORMAT_R8G8B8A8_UNORM}})
-    if (f == format) return vk;
-  return VK_FORMAT_UNDEFINED;  // Depth: only ever an input
+  const gen::FormatInfo& f = gen::formatInfo(format);
+  return f.colour ? static_cast<VkFormat>(f.vkFormat) : VK_FORMAT_UNDEFINED;
 }
 
 bool hasFeatures(const Gpu& gpu, VkFormat format, VkFormatFeatureFlags need) {
@@ -338,22 +333,19 @@ class VkExecutor final : public sao::Executor {
   // The engine's images of this configuration: its depth and the output.
   void setEngineImages(const Target& depth, const Target& output) { depth_ = depth, output_ = output; }
 
-  // The device's limits against a plan, before FrameState creates anything for it.
+  // The device's limits against a plan, before FrameState creates anything for it (core checks
+  // each pass's shared memory, push constants and descriptors, and the largest image).
   Status checkPlan(const sao::Plan& plan) override {
-    const VkPhysicalDeviceLimits& limits = gpu_.props.limits;
-    for (const sao::PlannedImage& image : plan.images)
-      if (std::max(image.extent.width, image.extent.height) > limits.maxImageDimension2D)
-        return Status::error(StatusCode::InvalidExtent, std::string(nameOf(image.resource)) +
-                                                            " exceeds maxImageDimension2D " +
-                                                            std::to_string(limits.maxImageDimension2D));
-    for (const sao::PlannedPass& p : plan.passes)
-      if (p.variant->sharedBytes > limits.maxComputeSharedMemorySize)
-        return Status::error(StatusCode::DriverError, "pass '" + std::string(gen::pass(p.pass).name) + "' needs " +
-                                                          std::to_string(p.variant->sharedBytes) +
-                                                          " bytes of shared memory; the device has " +
-                                                          std::to_string(limits.maxComputeSharedMemorySize));
+    const VkPhysicalDeviceLimits& l = gpu_.props.limits;
+    sao::DeviceLimits limits;
+    limits.imageSide = {l.maxImageDimension2D, "maxImageDimension2D"};
+    limits.sharedBytes = {l.maxComputeSharedMemorySize, "maxComputeSharedMemorySize"};
+    limits.pushConstantBytes = {l.maxPushConstantsSize, "maxPushConstantsSize"};
+    limits.storageImagesPerPass = {l.maxPerStageDescriptorStorageImages, "maxPerStageDescriptorStorageImages"};
+    limits.sampledImagesPerPass = {l.maxPerStageDescriptorSampledImages, "maxPerStageDescriptorSampledImages"};
+    if (Status st = sao::checkDeviceLimits(plan, limits); !st) return st;
     for (const sao::ScheduledDispatch& d : sao::makeSchedule(plan).dispatches)
-      if (d.groupsX > limits.maxComputeWorkGroupCount[0] || d.groupsY > limits.maxComputeWorkGroupCount[1])
+      if (d.groupsX > l.maxComputeWorkGroupCount[0] || d.groupsY > l.maxComputeWorkGroupCount[1])
         return Status::error(StatusCode::InvalidExtent, "pass '" + std::string(gen::pass(d.pass).name) +
                                                             "' needs more work groups than the device dispatches");
     return Status::success();

@@ -298,6 +298,36 @@ TEST(Executor, RenderPlansOnlyWhenTheFrameNeedsIt) {
   frame.release(ex);
 }
 
+// A device's limits against a plan, named as the API names them.
+TEST(Executor, DeviceLimitsNameThePassAndTheLimit) {
+  const sao::Settings s = sao::test::untunedDefaults();
+  sao::Plan plan;
+  ASSERT_TRUE(sao::plan(s, camera(), {}, plan).ok());
+  sao::DeviceLimits limits;  // all 0: nothing checked
+  EXPECT_TRUE(sao::checkDeviceLimits(plan, limits).ok());
+  std::uint32_t shared = 0;
+  for (const sao::PlannedPass& p : plan.passes) shared = std::max(shared, p.variant->sharedBytes);
+  ASSERT_GT(shared, 0u) << "the default plan has a pass with shared memory";
+  limits.sharedBytes = {shared, "maxComputeSharedMemorySize"};
+  EXPECT_TRUE(sao::checkDeviceLimits(plan, limits).ok()) << "exactly the limit fits";
+  limits.sharedBytes.value = shared - 1;
+  const sao::Status st = sao::checkDeviceLimits(plan, limits);
+  EXPECT_EQ(st.code, sao::StatusCode::DriverError);
+  EXPECT_NE(st.message.find("bytes of shared memory, above this device's maxComputeSharedMemorySize " +
+                            std::to_string(shared - 1)),
+            std::string::npos)
+      << st.message;
+  EXPECT_NE(st.message.find("pass '"), std::string::npos) << st.message;
+  limits.sharedBytes = {};
+  limits.imageSide = {plan.inputExtent.width - 1, "GL_MAX_TEXTURE_SIZE"};
+  const sao::Status side = sao::checkDeviceLimits(plan, limits);
+  EXPECT_EQ(side.code, sao::StatusCode::InvalidExtent);
+  EXPECT_NE(side.message.find("exceeds this device's GL_MAX_TEXTURE_SIZE"), std::string::npos) << side.message;
+  limits.imageSide = {};
+  limits.storageImagesPerPass = {1, "maxPerStageDescriptorStorageImages"};  // a levels= chain binds several
+  EXPECT_NE(sao::checkDeviceLimits(plan, limits).message.find("storage images"), std::string::npos);
+}
+
 // repeat(): the same work again, the history not advanced twice.
 TEST(Executor, RepeatRunsTheLastFrameAgain) {
   sao::Settings s = sao::test::untunedDefaults();

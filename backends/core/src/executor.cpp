@@ -11,7 +11,41 @@ bool holdsImage(const Plan& plan, const PlannedImage& image) {
   return same != nullptr && sameImage(*same, image);
 }
 
+std::string passText(const PlannedPass& p) { return "pass '" + std::string(gen::pass(p.pass).name) + "'"; }
+
+Status overLimit(const PlannedPass& p, const std::string& needs, const DeviceLimits::Limit& limit) {
+  return Status::error(StatusCode::DriverError, passText(p) + " " + needs + ", above this device's " + limit.name + " " +
+                                                    std::to_string(limit.value));
+}
+
+bool exceeds(std::uint32_t need, const DeviceLimits::Limit& limit) { return limit.value != 0 && need > limit.value; }
+
 }  // namespace
+
+Status checkDeviceLimits(const Plan& plan, const DeviceLimits& limits) {
+  for (const PlannedPass& p : plan.passes) {
+    std::uint32_t storage = 0, sampled = 0;
+    for (const gen::BindingInfo& b : p.variant->bindings) (b.write ? storage : sampled) += b.slots;
+    if (exceeds(storage, limits.storageImagesPerPass))
+      return overLimit(p, "binds " + std::to_string(storage) + " storage images", limits.storageImagesPerPass);
+    if (exceeds(sampled, limits.sampledImagesPerPass))
+      return overLimit(p, "binds " + std::to_string(sampled) + " sampled images", limits.sampledImagesPerPass);
+    if (exceeds(p.variant->sharedBytes, limits.sharedBytes))
+      return overLimit(p, "declares " + std::to_string(p.variant->sharedBytes) + " bytes of shared memory",
+                       limits.sharedBytes);
+    if (exceeds(p.variant->pushConstantBytes, limits.pushConstantBytes))
+      return overLimit(p, "takes " + std::to_string(p.variant->pushConstantBytes) + " bytes of push constants",
+                       limits.pushConstantBytes);
+  }
+  // The input extent is the largest any image of the plan has (csz, the caller's depth).
+  const Extent ie = plan.inputExtent;
+  if (exceeds(std::max(ie.width, ie.height), limits.imageSide))
+    return Status::error(StatusCode::InvalidExtent, "the input extent " + std::to_string(ie.width) + "x" +
+                                                        std::to_string(ie.height) + " exceeds this device's " +
+                                                        limits.imageSide.name + " " +
+                                                        std::to_string(limits.imageSide.value));
+  return Status::success();
+}
 
 Status FrameState::configure(const Settings& settings, const Camera& camera, const PlanInputs& inputs,
                              Executor& executor) {

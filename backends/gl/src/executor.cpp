@@ -38,13 +38,12 @@ GLuint GlExecutor::textureFor(gen::ResourceId id, bool previousFrame) const {
   return resources_.texture(id, imageCopy(historyParity_, id, previousFrame));
 }
 
+// Shared memory, units and work groups are checked for every pass variant at create().
 Status GlExecutor::checkPlan(const Plan& plan) {
-  const Extent e = plan.inputExtent;
-  if (e.width > std::uint32_t(objects_.maxTextureSize) || e.height > std::uint32_t(objects_.maxTextureSize))
-    return Status::error(StatusCode::InvalidExtent, "sao::gl: the depth input " + std::to_string(e.width) + "x" +
-                                                        std::to_string(e.height) + " exceeds GL_MAX_TEXTURE_SIZE " +
-                                                        std::to_string(objects_.maxTextureSize));
-  return Status::success();
+  DeviceLimits limits;
+  limits.imageSide = {std::uint32_t(objects_.maxTextureSize), "GL_MAX_TEXTURE_SIZE"};
+  const Status st = checkDeviceLimits(plan, limits);
+  return st ? st : Status::error(st.code, "sao::gl: " + st.message);
 }
 
 Status GlExecutor::createImage(const PlannedImage& image) {

@@ -99,41 +99,20 @@ bool sameDispatches(const Schedule& a, const Schedule& b) {
                     [](const ScheduledDispatch& x, const ScheduledDispatch& y) { return x.variant == y.variant; });
 }
 
-std::string passText(const PlannedPass& p) { return "pass '" + std::string(gen::pass(p.pass).name) + "'"; }
-
 }  // namespace
 
 // ---- configuration
 
 Status VkFrameExecutor::checkPlan(const Plan& plan) {
-  const VkPhysicalDeviceLimits& limits = e_.props.limits;
-  // Per pass: its storage images (a levels= write counts one per slot) and sampled images.
-  for (const PlannedPass& p : plan.passes) {
-    std::uint32_t storage = 0, sampled = 0;
-    for (const gen::BindingInfo& b : p.variant->bindings) (b.write ? storage : sampled) += b.slots;
-    if (storage > limits.maxPerStageDescriptorStorageImages)
-      return Status::error(StatusCode::DriverError, passText(p) + " binds " + std::to_string(storage) +
-                                                        " storage images, above this device's maxPerStageDescriptorStorageImages " +
-                                                        std::to_string(limits.maxPerStageDescriptorStorageImages));
-    if (p.variant->sharedBytes > limits.maxComputeSharedMemorySize)
-      return Status::error(StatusCode::DriverError, passText(p) + " declares " + std::to_string(p.variant->sharedBytes) +
-                                                        " bytes of shared memory, above this device's maxComputeSharedMemorySize " +
-                                                        std::to_string(limits.maxComputeSharedMemorySize));
-    if (p.variant->pushConstantBytes > limits.maxPushConstantsSize)
-      return Status::error(StatusCode::DriverError, passText(p) + " takes " + std::to_string(p.variant->pushConstantBytes) +
-                                                        " bytes of push constants, above this device's maxPushConstantsSize " +
-                                                        std::to_string(limits.maxPushConstantsSize));
-    if (sampled > limits.maxPerStageDescriptorSamplers || sampled > limits.maxPerStageDescriptorSampledImages)
-      return Status::error(StatusCode::DriverError, passText(p) + " binds " + std::to_string(sampled) +
-                                                        " sampled images, above this device's maxPerStageDescriptorSamplers or SampledImages");
-  }
-  const std::uint32_t maxSide = limits.maxImageDimension2D;
-  const Extent ie = plan.inputExtent;
-  if (ie.width > maxSide || ie.height > maxSide)
-    return Status::error(StatusCode::InvalidExtent,
-                         "the input extent " + std::to_string(ie.width) + "x" + std::to_string(ie.height) +
-                             " exceeds this device's maxImageDimension2D " + std::to_string(maxSide));
-  return Status::success();
+  const VkPhysicalDeviceLimits& l = e_.props.limits;
+  DeviceLimits limits;
+  limits.imageSide = {l.maxImageDimension2D, "maxImageDimension2D"};
+  limits.sharedBytes = {l.maxComputeSharedMemorySize, "maxComputeSharedMemorySize"};
+  limits.pushConstantBytes = {l.maxPushConstantsSize, "maxPushConstantsSize"};
+  limits.storageImagesPerPass = {l.maxPerStageDescriptorStorageImages, "maxPerStageDescriptorStorageImages"};
+  limits.sampledImagesPerPass = {std::min(l.maxPerStageDescriptorSamplers, l.maxPerStageDescriptorSampledImages),
+                                 "maxPerStageDescriptorSamplers or SampledImages"};
+  return checkDeviceLimits(plan, limits);
 }
 
 Status VkFrameExecutor::createImage(const PlannedImage& image) { return createImages(e_, image); }

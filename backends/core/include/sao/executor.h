@@ -44,6 +44,24 @@ struct FrameWork {
   bool historyValid = false;
 };
 
+// A device's limits a plan must fit (0: not checked), named as its API names them for the messages
+// ("maxImageDimension2D", "GL_MAX_TEXTURE_SIZE"). An executor's checkPlan fills it from its device.
+struct DeviceLimits {
+  struct Limit {
+    std::uint32_t value = 0;
+    const char* name = "";
+  };
+  Limit imageSide;             // the largest side of an image the plan allocates or reads
+  Limit sharedBytes;           // a work group's shared memory (PassVariantInfo::sharedBytes)
+  Limit pushConstantBytes;     // PassVariantInfo::pushConstantBytes
+  Limit storageImagesPerPass;  // a pass variant's storage-image elements (a levels= write: its slots)
+  Limit sampledImagesPerPass;  // its sampled reads
+};
+
+// The plan against `limits`: Ok, or DriverError naming the pass, what it needs and the limit
+// (InvalidExtent "... exceeds this device's <name> ..." for an image side). Allocates only for an error.
+Status checkDeviceLimits(const Plan& plan, const DeviceLimits& limits);
+
 class Executor {
  public:
   virtual ~Executor() = default;
