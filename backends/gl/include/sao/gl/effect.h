@@ -135,7 +135,7 @@ struct Inputs {
   // GL_TEXTURE_2D_ARRAYs (the depth also GL_TEXTURE_2D_MULTISAMPLE_ARRAY) with immutable storage
   // (glTexStorage3D). Render each eye with its own camera and layer on ONE effect: programs and
   // intermediate textures are shared, and a camera that plans like the previous one (the other eye
-  // of a symmetric pair: the same viewport, guard band, kind and csz levels) does not plan again.
+  // of a symmetric pair: the same viewport, guard band and csz levels) does not plan again.
   // Every texture given must then be an array with more than `layer` layers; with GL_TEXTURE_2D
   // textures it must be 0. Needs GL 4.5 (DSA). The effect reads a layer through a texture view it
   // creates and deletes within render() (a name, no storage); the layers' texture parameters are
@@ -184,8 +184,10 @@ class SAO_GL_API Effect {
   Effect(const Effect&) = delete;
   Effect& operator=(const Effect&) = delete;
 
-  // Runs the planned passes. Resources follow plan(settings, camera, inputs); when the size or the
-  // plan changes only the images that changed are reallocated. Errors (bad settings or camera,
+  // Runs the planned passes: core's sao::FrameState (sao/executor.h) plans, keeps and fills the
+  // block, the effect executes. Resources follow plan(settings, camera, inputs); when the size or
+  // the plan changes only the images that changed are reallocated, and a failure keeps the
+  // previous configuration. Errors (bad settings or camera,
   // texture 0, an unsupported or mismatched internal format, an input not the viewport plus twice
   // the guard band or, with Inputs::region, too small to hold it there, an input also passed as output, shader or
   // driver failures) return a Status naming the problem and leave the GL state unchanged.
