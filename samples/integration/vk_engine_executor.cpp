@@ -343,8 +343,14 @@ class VkExecutor final : public sao::Executor {
     limits.pushConstantBytes = {l.maxPushConstantsSize, "maxPushConstantsSize"};
     limits.storageImagesPerPass = {l.maxPerStageDescriptorStorageImages, "maxPerStageDescriptorStorageImages"};
     limits.sampledImagesPerPass = {l.maxPerStageDescriptorSampledImages, "maxPerStageDescriptorSampledImages"};
-    if (Status st = sao::checkDeviceLimits(plan, limits); !st) return st;
-    for (const sao::ScheduledDispatch& d : sao::makeSchedule(plan).dispatches)
+    return sao::checkDeviceLimits(plan, limits);
+  }
+
+  // The schedule's work groups against the device (FrameState hands over the schedule it made; a
+  // refusal here destroys the plan's new images and keeps the current configuration).
+  Status preparePlan(const sao::Plan&, const sao::Schedule& schedule) override {
+    const VkPhysicalDeviceLimits& l = gpu_.props.limits;
+    for (const sao::ScheduledDispatch& d : schedule.dispatches)
       if (d.groupsX > l.maxComputeWorkGroupCount[0] || d.groupsY > l.maxComputeWorkGroupCount[1])
         return Status::error(StatusCode::InvalidExtent, "pass '" + std::string(gen::pass(d.pass).name) +
                                                             "' needs more work groups than the device dispatches");
