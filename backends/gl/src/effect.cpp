@@ -225,6 +225,11 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
   if (checked.output.texture) outputParams.apply(gl, unit, checked.output.texture, GL_TEXTURE_2D, false, false);
 
   executor->setFrame(&checked, options.measureTime);
+  // The caller's textures are this render's only: the executor forgets them on every way out.
+  struct Forget {
+    GlExecutor& e;
+    ~Forget() { e.setFrame(nullptr, false); }
+  } forget{*executor};
   if (Status st = frame.render(settings, camera, checked.planInputs, frameInputs, *executor); !st) return st;
   if (executor->measureAgain())  // GPU timers saw nothing: measure the same work again by clock
     if (Status st = frame.repeat(*executor); !st) return st;
@@ -234,7 +239,6 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
     served[i] = gen::kResources[i].kind == gen::ResourceKind::Input ? 0 : executor->textureFor(id);
   }
   aoTexture = executor->textureFor(gen::ResourceId::ao);
-  executor->setFrame(nullptr, false);  // the caller's textures are this render's only
   stats.plans = frame.plans();
   ++stats.renders;
   return Status::success();
