@@ -1,0 +1,153 @@
+// The harness's OpenGL half: sao::gl::Effect::render() on the headless context of tests/gl.
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "gl_support.h"
+#include "harness_apis.h"
+#include "sao/cpu/reference.h"
+
+namespace sao::exectest {
+namespace {
+
+gl::GlDepth glDepth(Depth d) {
+  switch (d) {
+    case Depth::D16: return gl::GlDepth::D16;
+    case Depth::D24: return gl::GlDepth::D24;
+    case Depth::D24S8: return gl::GlDepth::D24S8;
+    case Depth::D32F: return gl::GlDepth::D32F;
+    case Depth::D32FS8: return gl::GlDepth::D32FS8;
+    case Depth::R32F: return gl::GlDepth::R32F;
+  }
+  return gl::GlDepth::D32F;
+}
+
+GLenum texelsFormat(Texels t) {
+  switch (t) {
+    case Texels::RGBA16F: return GL_RGBA16F;
+    case Texels::RGBA32F: return GL_RGBA32F;
+    case Texels::RG16F: return GL_RG16F;
+    case Texels::RG32F: return GL_RG32F;
+  }
+  return GL_RGBA16F;
+}
+
+// A texture of `internal` holding `image` (its channels): 16-bit floats rounded to nearest-even and
+// 8-bit unorm to the nearest byte on the host, as the Vulkan half uploads them.
+GLuint uploadColor(const FloatImage& image, GLenum internal) {
+  const GLuint t = gl::makeTexture(internal, image.extent);
+  const GLenum layout = image.channels == 1 ? GL_RED : image.channels == 2 ? GL_RG : GL_RGBA;
+  const bool half = internal == GL_R16F || internal == GL_RG16F || internal == GL_RGBA16F;
+  const bool byte = internal == GL_R8 || internal == GL_RGBA8;
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  const auto w = GLsizei(image.extent.width), h = GLsizei(image.extent.height);
+  if (half) {
+    std::vector<std::uint16_t> bits(image.data.size());
+    std::transform(image.data.begin(), image.data.end(), bits.begin(), [](float v) { return cpu::halfBits(v); });
+    glTextureSubImage2D(t, 0, 0, 0, w, h, layout, GL_HALF_FLOAT, bits.data());
+  } else if (byte) {
+    std::vector<std::uint8_t> bytes(image.data.size());
+    std::transform(image.data.begin(), image.data.end(), bytes.begin(),
+                   [](float v) { return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); });
+    glTextureSubImage2D(t, 0, 0, 0, w, h, layout, GL_UNSIGNED_BYTE, bytes.data());
+  } else {
+    glTextureSubImage2D(t, 0, 0, 0, w, h, layout, GL_FLOAT, image.data.data());
+  }
+  return t;
+}
+
+class GlExecutor final : public Executor {
+ public:
+  ~GlExecutor() override {
+    effect_.reset();
+    releaseInputs();
+  }
+  Api api() const override { return Api::Gl; }
+
+  Status upload(const Frame& f) override {
+    releaseInputs();
+    if (f.depth == nullptr) return Status::error(StatusCode::InvalidInput, "harness: the frame has no depth");
+    format_ = gl::internalFormat(glDepth(f.format));
+    if (Status st = gl::uploadDepth(*f.depth, glDepth(f.format), depth_); !st) return st;
+    if (f.depth2)
+      if (Status st = gl::uploadDepth(*f.depth2, glDepth(f.format), depth2_); !st) return st;
+    if (f.normals)
+      normals_ = uploadColor(withChannels(*f.normals, channelsOf(f.normalsTexels)), texelsFormat(f.normalsTexels));
+    if (f.motion)
+      motion_ = uploadColor(withChannels(*f.motion, channelsOf(f.motionTexels)), texelsFormat(f.motionTexels));
+    if (f.output.callerOwned) {
+      const GLenum internal = gen::formatInfo(f.output.format).glInternalFormat;
+      const Extent e{f.camera.width, f.camera.height};
+      output_ = f.output.initial ? uploadColor(*f.output.initial, internal) : gl::makeTexture(internal, e);
+    }
+    outputChannels_ = channelsOf(f.output.callerOwned ? f.output.format : gen::Format::R16F);
+    return Status::success();
+  }
+
+  Status run(const Frame& f) override {
+    if (!effect_)
+      if (Status st = gl::Effect::create(gl::HeadlessContext::getProcAddress(), effect_); !st) return st;
+    gl::Inputs in;
+    in.depth = {depth_, format_};
+    in.depth2 = {depth2_, depth2_ ? format_ : 0};
+    in.normals = normals_;
+    in.motion = motion_;
+    in.region = f.region;
+    in.output = output_;
+    in.outputChannels = f.output.channels;
+    in.outputBlend = f.output.blend;
+    in.frameIndex = f.frameIndex;
+    in.resetHistory = f.resetHistory;
+    in.previousCamera = f.previousCamera;
+    const Status st = effect_->render(f.camera, f.settings, in);
+    glFinish();
+    return st;
+  }
+
+  FloatImage output() override { return gl::readTexture(effect_->aoTexture(), outputChannels_); }
+
+  FloatImage image(gen::ResourceId resource, std::uint32_t level) override {
+    const PlannedImage* planned = effect_->plan().image(resource);
+    if (planned == nullptr) return {};
+    return gl::readTextureLevel(effect_->texture(resource), level, channelsOf(planned->format));
+  }
+
+  const Plan& plan() const override { return effect_->plan(); }
+  const ParamBlock& params() const override { return effect_->params(); }
+  std::uint64_t plans() const override { return effect_ ? effect_->stats().plans : 0; }
+  std::uint64_t imageAllocations() const override { return effect_ ? effect_->stats().textureAllocations : 0; }
+  std::uint64_t pipelines() const override { return effect_ ? effect_->stats().programsCompiled : 0; }
+  std::uint64_t outputGeneration() const override { return effect_ ? effect_->outputGeneration() : 0; }
+  void releaseEffect() override { effect_.reset(); }
+
+ private:
+  void releaseInputs() {
+    for (GLuint* t : {&depth_, &depth2_, &normals_, &motion_, &output_}) {
+      gl::deleteTexture(*t);
+      *t = 0;
+    }
+  }
+  std::unique_ptr<gl::Effect> effect_;
+  GLuint depth_ = 0, depth2_ = 0, normals_ = 0, motion_ = 0, output_ = 0;
+  std::uint32_t format_ = 0, outputChannels_ = 1;
+};
+
+}  // namespace
+
+std::unique_ptr<Executor> makeGlExecutor() {
+  gltest::context();
+  return std::make_unique<GlExecutor>();
+}
+
+void glMessagesBefore() {
+  ASSERT_TRUE(gltest::context().makeCurrent().ok());
+  gltest::context().clearMessages();
+}
+
+void glMessagesAfter() {
+  for (const auto& m : gltest::context().errors()) ADD_FAILURE() << "GL debug message: " << gl::HeadlessContext::format(m);
+  gltest::context().clearMessages();
+}
+
+}  // namespace sao::exectest

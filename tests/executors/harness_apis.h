@@ -1,0 +1,27 @@
+// What each API's half of the harness gives harness.cpp (not for the tests themselves).
+#pragma once
+#include <memory>
+
+#include "harness.h"
+
+namespace sao::exectest {
+
+std::unique_ptr<Executor> makeGlExecutor();
+void glMessagesBefore();  // context current, pending debug messages cleared
+void glMessagesAfter();   // every GL debug error since fails the test
+
+std::unique_ptr<Executor> makeVkExecutor();
+void vkMessagesBefore();
+void vkMessagesAfter();
+
+}  // namespace sao::exectest
+
+namespace sao::exectest {
+
+// `image` with `channels` channels: the first ones kept, missing ones 0 (normals' .xy for an RG
+// texture, motion's .xy padded for an RGBA one).
+FloatImage withChannels(const FloatImage& image, std::uint32_t channels);
+std::uint32_t channelsOf(Texels texels);
+std::uint32_t channelsOf(gen::Format format);  // the generated format table's
+
+}  // namespace sao::exectest

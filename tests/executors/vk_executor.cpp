@@ -1,0 +1,173 @@
+// The harness's Vulkan half: sao::vk::Effect on the validated headless context of tests/vulkan.
+// One call per frame as GL has it: create() the first time, update() when the configuration or a
+// camera that plans differently (sao::cameraKeepsPlan) asks for it, then record() with
+// Inputs::camera, submit and wait.
+#include "harness_apis.h"
+#include "sao/frame.h"
+#include "vk_support.h"
+
+namespace sao::exectest {
+namespace {
+
+using vk::headless::Image;
+
+VkFormat vkDepth(Depth d) {
+  switch (d) {
+    case Depth::D16: return VK_FORMAT_D16_UNORM;
+    case Depth::D24: return VK_FORMAT_X8_D24_UNORM_PACK32;
+    case Depth::D24S8: return VK_FORMAT_D24_UNORM_S8_UINT;
+    case Depth::D32F: return VK_FORMAT_D32_SFLOAT;
+    case Depth::D32FS8: return VK_FORMAT_D32_SFLOAT_S8_UINT;
+    case Depth::R32F: return VK_FORMAT_R32_SFLOAT;
+  }
+  return VK_FORMAT_D32_SFLOAT;
+}
+
+VkFormat vkTexels(Texels t) {
+  switch (t) {
+    case Texels::RGBA16F: return VK_FORMAT_R16G16B16A16_SFLOAT;
+    case Texels::RGBA32F: return VK_FORMAT_R32G32B32A32_SFLOAT;
+    case Texels::RG16F: return VK_FORMAT_R16G16_SFLOAT;
+    case Texels::RG32F: return VK_FORMAT_R32G32_SFLOAT;
+  }
+  return VK_FORMAT_R16G16B16A16_SFLOAT;
+}
+
+VkFormat vkFormat(gen::Format f) { return VkFormat(gen::formatInfo(f).vkFormat); }
+
+constexpr VkImageLayout kRead = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+
+class VkExecutor final : public Executor {
+ public:
+  ~VkExecutor() override {
+    effect_.reset();
+    releaseInputs();
+  }
+  Api api() const override { return Api::Vulkan; }
+
+  Status upload(const Frame& f) override {
+    releaseInputs();
+    auto& ctx = vktest::context();
+    if (f.depth == nullptr) return Status::error(StatusCode::InvalidInput, "harness: the frame has no depth");
+    if (Status st = ctx.uploadDepth(*f.depth, vkDepth(f.format), kRead, depth_); !st) return st;
+    if (f.depth2)
+      if (Status st = ctx.uploadDepth(*f.depth2, vkDepth(f.format), kRead, depth2_); !st) return st;
+    if (f.normals)
+      if (Status st = ctx.uploadColor(withChannels(*f.normals, channelsOf(f.normalsTexels)), vkTexels(f.normalsTexels),
+                                      kRead, normals_);
+          !st)
+        return st;
+    if (f.motion)
+      if (Status st = ctx.uploadColor(withChannels(*f.motion, channelsOf(f.motionTexels)), vkTexels(f.motionTexels),
+                                      kRead, motion_);
+          !st)
+        return st;
+    if (f.output.callerOwned) {
+      const VkFormat format = vkFormat(f.output.format);
+      const Status st = f.output.initial
+                            ? ctx.uploadColor(*f.output.initial, format, VK_IMAGE_LAYOUT_GENERAL, output_,
+                                              VK_IMAGE_USAGE_STORAGE_BIT)
+                            : ctx.createStorageImage(format, {f.camera.width, f.camera.height}, output_);
+      if (!st) return st;
+    }
+    return Status::success();
+  }
+
+  Status run(const Frame& f) override {
+    vk::Config c;
+    c.settings = f.settings;
+    c.camera = f.camera;
+    c.depthFormat = vkDepth(f.format);
+    c.secondLayer = f.depth2 != nullptr;
+    c.normalsFormat = f.normals ? vkTexels(f.normalsTexels) : VK_FORMAT_UNDEFINED;
+    c.motionFormat = f.motion ? vkTexels(f.motionTexels) : VK_FORMAT_UNDEFINED;
+    c.userOutput = f.output.callerOwned;
+    c.outputFormat = vkFormat(f.output.format);
+    if (!effect_) {
+      ++plans_;
+      if (Status st = vk::Effect::create(vktest::context().deviceContext(), c, effect_); !st) return st;
+    } else if (!sameConfiguration(effect_->config(), c)) {
+      ++plans_;
+      if (Status st = effect_->update(c); !st) return st;
+    }
+    vk::Inputs in;
+    in.depth = {depth_.view, kRead, f.depth->extent};
+    if (f.depth2) in.depth2 = {depth2_.view, kRead, f.depth2->extent};
+    if (f.normals) in.normals = {normals_.view, kRead, f.normals->extent};
+    if (f.motion) in.motion = {motion_.view, kRead, f.motion->extent};
+    in.region = f.region;
+    in.camera = &f.camera;
+    in.frameIndex = f.frameIndex;
+    in.resetHistory = f.resetHistory;
+    in.previousCamera = f.previousCamera;
+    in.outputChannels = f.output.channels;
+    in.outputBlend = f.output.blend;
+    const vk::OutputImage user{output_.image, output_.view, output_.format, output_.extent, output_.layout};
+    Status recorded;
+    const Status submitted = vktest::context().submit(
+        [&](VkCommandBuffer cmd) { recorded = effect_->record(cmd, in, f.output.callerOwned ? &user : nullptr); });
+    if (!submitted) return submitted;
+    if (recorded && f.output.callerOwned) output_.layout = effect_->config().outputLayout;
+    return recorded;
+  }
+
+  FloatImage output() override {
+    const vk::OutputImage o = effect_->config().userOutput
+                                  ? vk::OutputImage{output_.image, output_.view, output_.format, output_.extent, output_.layout}
+                                  : effect_->output();
+    FloatImage out;
+    const Status st = vktest::context().readback(o.image, o.format, o.extent, 0, o.layout, effect_->config().outputDstStages,
+                                                 effect_->config().outputDstAccess, out);
+    EXPECT_TRUE(st.ok()) << st.message;
+    return out;
+  }
+
+  FloatImage image(gen::ResourceId resource, std::uint32_t level) override {
+    const vk::OwnedImageInfo i = effect_->ownedImage(resource);
+    FloatImage out;
+    if (i.image == VK_NULL_HANDLE) return out;
+    const Status st = vktest::context().readback(i.image, i.format, i.extent, level, i.layout,
+                                                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, out);
+    EXPECT_TRUE(st.ok()) << st.message;
+    return out;
+  }
+
+  const Plan& plan() const override { return effect_->plan(); }
+  const ParamBlock& params() const override { return effect_->params(); }
+  std::uint64_t plans() const override { return plans_; }
+  std::uint64_t imageAllocations() const override { return effect_ ? effect_->memoryStats().totalAllocations : 0; }
+  std::uint64_t pipelines() const override { return effect_ ? effect_->pipelineCount() : 0; }
+  std::uint64_t outputGeneration() const override { return effect_ ? effect_->outputGeneration() : 0; }
+  void releaseEffect() override { effect_.reset(); }
+
+ private:
+  // Whether record() can take the frame as it is: everything but a camera that keeps the plan
+  // (Inputs::camera) needs update().
+  static bool sameConfiguration(const vk::Config& a, const vk::Config& b) {
+    return a.settings == b.settings && a.depthFormat == b.depthFormat && a.secondLayer == b.secondLayer &&
+           a.normalsFormat == b.normalsFormat && a.motionFormat == b.motionFormat && a.userOutput == b.userOutput &&
+           a.outputFormat == b.outputFormat && cameraKeepsPlan(a.settings, a.camera, b.camera);
+  }
+  void releaseInputs() {
+    for (Image* i : {&depth_, &depth2_, &normals_, &motion_, &output_}) vktest::context().destroy(*i);
+  }
+  std::unique_ptr<vk::Effect> effect_;
+  Image depth_, depth2_, normals_, motion_, output_;
+  std::uint64_t plans_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Executor> makeVkExecutor() {
+  vktest::context();
+  return std::make_unique<VkExecutor>();
+}
+
+void vkMessagesBefore() {
+  vktest::context();
+  vktest::expectNoMessages("before the test (context creation or an earlier test)");
+}
+
+void vkMessagesAfter() { vktest::expectNoMessages("during the test"); }
+
+}  // namespace sao::exectest
