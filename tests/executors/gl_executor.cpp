@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gl_msaa_depth_writer.h"
 #include "gl_support.h"
 #include "harness_apis.h"
+#include "msaa_depth.h"
 #include "sao/cpu/reference.h"
 
 namespace sao::exectest {
@@ -69,7 +71,13 @@ class GlExecutor final : public Executor {
     releaseInputs();
     if (f.depth == nullptr) return Status::error(StatusCode::InvalidInput, "harness: the frame has no depth");
     format_ = gl::internalFormat(glDepth(f.format));
-    if (Status st = gl::uploadDepth(*f.depth, glDepth(f.format), depth_); !st) return st;
+    if (f.depth->samples > 1) {
+      if (f.format != Depth::D32F || f.depth->samples != std::uint32_t(gltest::kWriterSamples))
+        return Status::error(StatusCode::InvalidInput, "harness: multisampled depth is 4-sample D32F");
+      depth_ = gltest::writeSamples(f.depth->extent, test::sampleValues(*f.depth));
+    } else if (Status st = gl::uploadDepth(*f.depth, glDepth(f.format), depth_); !st) {
+      return st;
+    }
     if (f.depth2)
       if (Status st = gl::uploadDepth(*f.depth2, glDepth(f.format), depth2_); !st) return st;
     if (f.normals)

@@ -4,6 +4,7 @@
 // Inputs::camera, submit and wait.
 #include "harness_apis.h"
 #include "sao/frame.h"
+#include "vk_msaa_depth_writer.h"
 #include "vk_support.h"
 
 namespace sao::exectest {
@@ -36,6 +37,9 @@ VkFormat vkTexels(Texels t) {
 VkFormat vkFormat(gen::Format f) { return VkFormat(gen::formatInfo(f).vkFormat); }
 
 constexpr VkImageLayout kRead = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+VkImageLayout depthLayout(const Frame& f) {
+  return f.depthReadOnlyLayout ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL : kRead;
+}
 
 class VkExecutor final : public Executor {
  public:
@@ -49,9 +53,13 @@ class VkExecutor final : public Executor {
     releaseInputs();
     auto& ctx = vktest::context();
     if (f.depth == nullptr) return Status::error(StatusCode::InvalidInput, "harness: the frame has no depth");
-    if (Status st = ctx.uploadDepth(*f.depth, vkDepth(f.format), kRead, depth_); !st) return st;
+    const VkImageLayout layout = depthLayout(f);
+    if (Status st = f.depth->samples > 1 ? vktest::writeMultisampledDepth(ctx, *f.depth, layout, depth_)
+                                         : ctx.uploadDepth(*f.depth, vkDepth(f.format), layout, depth_);
+        !st)
+      return st;
     if (f.depth2)
-      if (Status st = ctx.uploadDepth(*f.depth2, vkDepth(f.format), kRead, depth2_); !st) return st;
+      if (Status st = ctx.uploadDepth(*f.depth2, vkDepth(f.format), layout, depth2_); !st) return st;
     if (f.normals)
       if (Status st = ctx.uploadColor(withChannels(*f.normals, channelsOf(f.normalsTexels)), vkTexels(f.normalsTexels),
                                       kRead, normals_);
@@ -79,6 +87,7 @@ class VkExecutor final : public Executor {
     c.camera = f.camera;
     c.depthFormat = vkDepth(f.format);
     c.secondLayer = f.depth2 != nullptr;
+    c.depthSamples = VkSampleCountFlagBits(f.depth->samples);
     c.normalsFormat = f.normals ? vkTexels(f.normalsTexels) : VK_FORMAT_UNDEFINED;
     c.motionFormat = f.motion ? vkTexels(f.motionTexels) : VK_FORMAT_UNDEFINED;
     c.userOutput = f.output.callerOwned;
@@ -91,8 +100,8 @@ class VkExecutor final : public Executor {
       if (Status st = effect_->update(c); !st) return st;
     }
     vk::Inputs in;
-    in.depth = {depth_.view, kRead, f.depth->extent};
-    if (f.depth2) in.depth2 = {depth2_.view, kRead, f.depth2->extent};
+    in.depth = {depth_.view, depthLayout(f), f.depth->extent};
+    if (f.depth2) in.depth2 = {depth2_.view, depthLayout(f), f.depth2->extent};
     if (f.normals) in.normals = {normals_.view, kRead, f.normals->extent};
     if (f.motion) in.motion = {motion_.view, kRead, f.motion->extent};
     in.region = f.region;
@@ -144,7 +153,8 @@ class VkExecutor final : public Executor {
   // Whether record() can take the frame as it is: everything but a camera that keeps the plan
   // (Inputs::camera) needs update().
   static bool sameConfiguration(const vk::Config& a, const vk::Config& b) {
-    return a.settings == b.settings && a.depthFormat == b.depthFormat && a.secondLayer == b.secondLayer &&
+    return a.settings == b.settings && a.depthFormat == b.depthFormat && a.depthSamples == b.depthSamples &&
+           a.secondLayer == b.secondLayer &&
            a.normalsFormat == b.normalsFormat && a.motionFormat == b.motionFormat && a.userOutput == b.userOutput &&
            a.outputFormat == b.outputFormat && cameraKeepsPlan(a.settings, a.camera, b.camera);
   }

@@ -1,32 +1,19 @@
-// sao::gl::Effect: create(), bad inputs, sky, resize, reallocation, user output, timing.
+// sao::gl::Effect, what only GL has: create() and its loader, GL texture names, targets and
+// internal formats, an input also passed as the output, aoTexture(), the texture names a
+// reallocation keeps, timing. What every API shares (bad settings, cameras and sizes, sky, every
+// depth format, resize, reallocation counts, the caller's output) is tests/executors/effect_test.cpp.
 #include <epoxy/gl.h>
 
-#include <bit>
-#include <cmath>
-#include <limits>
-
+#include "analytic_scenes.h"
+#include "gl_support.h"
 #include "image_compare.h"
 #include "untuned_settings.h"
-#include "analytic_scenes.h"
-#include <ostream>
-
-#include "gl_support.h"
-#include "sao/presets.h"
 
 namespace sao::gltest {
 namespace {
 
 using test::renderDepth;
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
 using test::sameBits;
-
-std::size_t countNonFinite(const FloatImage& img) {
-  std::size_t n = 0;
-  for (float v : img.data) n += !std::isfinite(v);
-  return n;
-}
 
 // ---- create()
 
@@ -79,9 +66,8 @@ struct Frame {
   Camera camera;
   DepthImage depth;
   GLuint texture = 0;
-  Frame(std::uint32_t w, std::uint32_t h, GlDepth format, const test::Scene& scene, double farDistance = 1000.0,
-        bool reversed = false)
-      : camera(gltest::camera(w, h, 8, farDistance, reversed)),
+  Frame(std::uint32_t w, std::uint32_t h, GlDepth format, const test::Scene& scene)
+      : camera(gltest::camera(w, h, 8)),
         depth(renderDepth(scene, camera, cpuFormat(format))),
         texture(uploadDepth(depth, format)) {}
   ~Frame() { deleteTexture(texture); }
@@ -168,20 +154,6 @@ TEST_F(Inputs, DeclaredFormatIsChecked) {
   EXPECT_TRUE(ok.ok()) << ok.message;
 }
 
-TEST_F(Inputs, DepthSizeMustBeViewportPlusGuard) {
-  Camera c = frame->camera;
-  c.guardBand = 0;  // the texture holds a guard band the camera does not declare
-  Status st = effect->render(c, Settings{}, good());
-  EXPECT_EQ(st.code, StatusCode::InvalidInput);
-  EXPECT_NE(st.message.find("80x52"), std::string::npos) << st.message;
-  EXPECT_NE(st.message.find("64x36"), std::string::npos) << st.message;
-  EXPECT_NE(st.message.find("set Inputs::region"), std::string::npos) << st.message;
-  c.guardBand = 9;  // needs 82x54: too large for the texture, with or without a region
-  st = effect->render(c, Settings{}, good());
-  EXPECT_EQ(st.code, StatusCode::InvalidInput);
-  EXPECT_NE(st.message.find("82x54"), std::string::npos) << st.message;
-}
-
 TEST_F(Inputs, DepthAlsoPassedAsOutput) {
   gl::Inputs in = good();
   in.output = frame->texture;
@@ -206,29 +178,13 @@ TEST_F(Inputs, OutputFormatAndSize) {
   deleteTexture(small);
 }
 
-TEST_F(Inputs, NormalsFormatAndSize) {
+TEST_F(Inputs, UnsupportedNormalsFormat) {
   gl::Inputs in = good();
   const GLuint rgba8 = makeTexture(GL_RGBA8, frame->depth.extent);
   in.normals = rgba8;
-  Status st = render(in);
+  const Status st = render(in);
   EXPECT_EQ(st.code, StatusCode::UnsupportedFormat) << st.message;
-  const GLuint wrongSize = makeTexture(GL_RGBA16F, {64, 36});
-  in.normals = wrongSize;
-  st = render(in);
-  EXPECT_EQ(st.code, StatusCode::InvalidInput) << st.message;
   deleteTexture(rgba8);
-  deleteTexture(wrongSize);
-}
-
-TEST_F(Inputs, BadSettingsAndCamera) {
-  Settings s;
-  s.samples = 0;
-  Status st = render(good(), s);
-  EXPECT_EQ(st.code, StatusCode::InvalidSetting) << st.message;
-  Camera c = frame->camera;
-  c.projection[11] = 0.0;  // not a perspective projection any more
-  st = effect->render(c, Settings{}, good());
-  EXPECT_EQ(st.code, StatusCode::InvalidCamera) << st.message;
 }
 
 TEST_F(Inputs, MixedDepthLayers) {
@@ -240,163 +196,53 @@ TEST_F(Inputs, MixedDepthLayers) {
   deleteTexture(linear);
 }
 
-// ---- Sky: depth = far everywhere gives A = 1 and no NaN / Inf in any image.
+// ---- Texture names: aoTexture() is the owned texture, then the caller's; a reallocation keeps the
+// textures of the images it does not change (the counts: Reallocation.OnlyWhatChanged in
+// tests/executors/effect_test.cpp).
 
-struct SkyCase {
-  GlDepth format;
-  bool infinite, reversed;
-};
-void PrintTo(const SkyCase& c, std::ostream* os) { *os << std::string(toString(c.format)) + (c.infinite ? " infinite" : " finite") + (c.reversed ? " reversed" : ""); }
+class Textures : public GlTest {};
 
-
-class Sky : public GlTest, public ::testing::WithParamInterface<SkyCase> {};
-
-TEST_P(Sky, IsUnoccludedAndFinite) {
-  const SkyCase c = GetParam();
-  auto effect = makeEffect();
-  Frame f(160, 90, c.format, test::skyScene(), c.infinite ? kInf : 100.0, c.reversed);
-  for (const auto& preset : presets()) {
-    SCOPED_TRACE(std::string(preset.name));
-    gl::Inputs in;
-    in.depth = {f.texture, internalFormat(c.format)};
-    const Status st = effect->render(f.camera, presetSettings(preset.preset), in);
-    ASSERT_TRUE(st.ok()) << st.message;
-    const FloatImage ao = readTexture(effect->aoTexture(), 1);
-    const FloatImage raw = readTexture(effect->texture(gen::ResourceId::ao_raw), 2);
-    EXPECT_EQ(countNonFinite(ao), 0u);
-    EXPECT_EQ(countNonFinite(raw), 0u);
-    for (float a : ao.data) ASSERT_EQ(a, 1.0f);
-    for (std::size_t i = 0; i < raw.data.size(); i += 2) {
-      ASSERT_EQ(raw.data[i], 1.0f);
-      ASSERT_EQ(std::bit_cast<std::uint32_t>(raw.data[i + 1]), 0u) << "the key of sky is +0.0";
-    }
-    if (const GLuint low = effect->texture(gen::ResourceId::ao_low)) {
-      EXPECT_EQ(countNonFinite(readTexture(low, 2)), 0u);
-    }
-    const GLuint csz = effect->texture(gen::ResourceId::csz);
-    for (std::uint32_t m = 0; m < effect->plan().cszLevels; ++m) {
-      const FloatImage z = readTextureLevel(csz, m);
-      for (float v : z.data) ASSERT_EQ(std::bit_cast<std::uint32_t>(v), 0u) << "csz level " << m << " is +0.0 (sky)";
-    }
-  }
-}
-
-INSTANTIATE_TEST_SUITE_P(Formats, Sky,
-                         ::testing::Values(SkyCase{GlDepth::D24, true, false}, SkyCase{GlDepth::D32F, true, false},
-                                           SkyCase{GlDepth::D16, true, false}, SkyCase{GlDepth::D32F, true, true},
-                                           SkyCase{GlDepth::D24S8, false, false}, SkyCase{GlDepth::R32F, true, false}),
-                         [](const auto& info) {
-                           return std::string(toString(info.param.format)) +
-                                  (info.param.infinite ? "_infinite" : "_finite") +
-                                  (info.param.reversed ? "_reversed" : "");
-                         });
-
-// ---- Resize: 640x360 -> 1281x721 -> 640x360 equals a fresh effect at each size.
-
-class Resize : public GlTest {};
-
-TEST_F(Resize, MatchesAFreshEffectAtEachSize) {
-  auto reused = makeEffect();
-  const std::pair<std::uint32_t, std::uint32_t> sizes[] = {{640, 360}, {1281, 721}, {640, 360}};
-  const Settings settings = presetSettings(Preset::Medium);
-  for (const auto& [w, h] : sizes) {
-    SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
-    Frame f(w, h, GlDepth::D24, test::sphereOnPlaneScene());
-    gl::Inputs in;
-    in.depth = {f.texture, gl::kDepthComponent24};
-    ASSERT_TRUE(reused->render(f.camera, settings, in).ok());
-    auto fresh = makeEffect();
-    ASSERT_TRUE(fresh->render(f.camera, settings, in).ok());
-    EXPECT_EQ(reused->plan().aoExtent, (Extent{w, h}));
-    EXPECT_EQ(reused->plan().cszLevels, fresh->plan().cszLevels);
-    const FloatImage a = readTexture(reused->aoTexture(), 1), b = readTexture(fresh->aoTexture(), 1);
-    EXPECT_EQ(a.extent, (Extent{w, h}));
-    EXPECT_TRUE(sameBits(a, b)) << "final AO differs from a fresh effect's";
-    EXPECT_TRUE(sameBits(readTexture(reused->texture(gen::ResourceId::ao_raw), 2),
-                         readTexture(fresh->texture(gen::ResourceId::ao_raw), 2)))
-        << "raw AO differs from a fresh effect's";
-    double mean = 0;
-    for (float v : a.data) mean += v;
-    mean /= double(a.data.size());
-    EXPECT_LT(mean, 0.999) << "the scene should show some obscurance";
-    EXPECT_GT(mean, 0.5);
-  }
-}
-
-// ---- Reallocation follows the plan: only what changed.
-
-class Reallocation : public GlTest {};
-
-TEST_F(Reallocation, OnlyWhatChanged) {
-  auto e = makeEffect();
-  Frame f(160, 90, GlDepth::D32F, test::sphereOnPlaneScene());
-  gl::Inputs in;
-  in.depth = {f.texture, gl::kDepthComponent32F};
-  Settings s = test::untunedDefaults();  // full resolution with a blur: the four images below
-  ASSERT_TRUE(e->render(f.camera, s, in).ok());
-  const auto allocs0 = e->stats().textureAllocations;
-  EXPECT_EQ(allocs0, 4u);  // csz, ao_raw, ao_low, ao
-  const GLuint csz = e->texture(gen::ResourceId::csz), raw = e->texture(gen::ResourceId::ao_raw);
-  const GLuint low = e->texture(gen::ResourceId::ao_low), ao = e->texture(gen::ResourceId::ao);
-  const std::uint32_t levels = e->plan().cszLevels;
-
-  s.samples = 20;  // parameters only: nothing reallocated
-  s.blur_radius = 6;
-  ASSERT_TRUE(e->render(f.camera, s, in).ok());
-  EXPECT_EQ(e->stats().textureAllocations, allocs0);
-  EXPECT_EQ(e->texture(gen::ResourceId::csz), csz);
-
-  s.blur_radius = 0;  // nothing follows the AO: ao_sample_output, so ao_low and ao_raw are freed
-  ASSERT_TRUE(e->render(f.camera, s, in).ok());
-  EXPECT_EQ(e->texture(gen::ResourceId::ao_low), 0u);
-  EXPECT_EQ(e->texture(gen::ResourceId::ao_raw), 0u);
-  EXPECT_EQ(e->stats().textureAllocations, allocs0);
-  EXPECT_EQ(e->texture(gen::ResourceId::ao), ao);
-  (void)raw;
-
-  s.blur_radius = 4;  // back: ao_raw and ao_low allocated again
-  ASSERT_TRUE(e->render(f.camera, s, in).ok());
-  EXPECT_EQ(e->stats().textureAllocations, allocs0 + 2);
-  EXPECT_NE(e->texture(gen::ResourceId::ao_low), 0u);
-  const GLuint raw2 = e->texture(gen::ResourceId::ao_raw);
-  EXPECT_NE(raw2, 0u);
-  (void)low;
-
-  s.radius = 0.05f;  // fewer csz levels: only csz is reallocated
-  ASSERT_TRUE(e->render(f.camera, s, in).ok());
-  EXPECT_LT(e->plan().cszLevels, levels);
-  EXPECT_EQ(e->stats().textureAllocations, allocs0 + 3);
-  EXPECT_EQ(e->texture(gen::ResourceId::ao_raw), raw2);
-  EXPECT_EQ(e->texture(gen::ResourceId::ao), ao);
-
-  s.use_z_hierarchy = false;  // one level
-  ASSERT_TRUE(e->render(f.camera, s, in).ok());
-  EXPECT_EQ(e->plan().cszLevels, 1u);
-  EXPECT_EQ(e->stats().textureAllocations, allocs0 + 4);
-}
-
-// ---- The caller's output texture.
-
-class Output : public GlTest {};
-
-TEST_F(Output, UserTextureReceivesTheSameImage) {
+TEST_F(Textures, AoTextureIsTheOwnedOutputThenTheCallers) {
   auto e = makeEffect();
   Frame f(160, 90, GlDepth::D24, test::stairsScene());
   gl::Inputs in;
   in.depth = {f.texture, gl::kDepthComponent24};
   ASSERT_TRUE(e->render(f.camera, Settings{}, in).ok());
-  const FloatImage owned = readTexture(e->aoTexture(), 1);
-  const GLuint owndTex = e->aoTexture();
-  EXPECT_EQ(e->texture(gen::ResourceId::ao), owndTex);
-
+  EXPECT_EQ(e->texture(gen::ResourceId::ao), e->aoTexture());
   const GLuint mine = makeTexture(GL_R16F, {160, 90});
   in.output = mine;
   ASSERT_TRUE(e->render(f.camera, Settings{}, in).ok());
   EXPECT_EQ(e->aoTexture(), mine);
   EXPECT_EQ(e->texture(gen::ResourceId::ao), mine);
-  EXPECT_TRUE(sameBits(readTexture(mine, 1), owned));
-  EXPECT_FALSE(e->plan().image(gen::ResourceId::ao)) << "no owned output when the caller gives one";
   deleteTexture(mine);
+}
+
+TEST_F(Textures, ReallocationKeepsTheTexturesOfUnchangedImages) {
+  auto e = makeEffect();
+  Frame f(160, 90, GlDepth::D32F, test::sphereOnPlaneScene());
+  gl::Inputs in;
+  in.depth = {f.texture, gl::kDepthComponent32F};
+  Settings s = test::untunedDefaults();  // full resolution with a blur: csz, ao_raw, ao_low, ao
+  ASSERT_TRUE(e->render(f.camera, s, in).ok());
+  const GLuint csz = e->texture(gen::ResourceId::csz), ao = e->texture(gen::ResourceId::ao);
+  s.samples = 20;  // parameters only
+  s.blur_radius = 6;
+  ASSERT_TRUE(e->render(f.camera, s, in).ok());
+  EXPECT_EQ(e->texture(gen::ResourceId::csz), csz);
+  s.blur_radius = 0;  // nothing follows the AO: ao_sample_output, so ao_low and ao_raw are deleted
+  ASSERT_TRUE(e->render(f.camera, s, in).ok());
+  EXPECT_EQ(e->texture(gen::ResourceId::ao_low), 0u);
+  EXPECT_EQ(e->texture(gen::ResourceId::ao_raw), 0u);
+  EXPECT_EQ(e->texture(gen::ResourceId::ao), ao);
+  s.blur_radius = 4;  // back: ao_raw and ao_low made again
+  ASSERT_TRUE(e->render(f.camera, s, in).ok());
+  EXPECT_NE(e->texture(gen::ResourceId::ao_low), 0u);
+  const GLuint raw = e->texture(gen::ResourceId::ao_raw);
+  EXPECT_NE(raw, 0u);
+  s.radius = 0.05f;  // fewer csz levels: only csz made again
+  ASSERT_TRUE(e->render(f.camera, s, in).ok());
+  EXPECT_EQ(e->texture(gen::ResourceId::ao_raw), raw);
+  EXPECT_EQ(e->texture(gen::ResourceId::ao), ao);
 }
 
 // ---- Timing.

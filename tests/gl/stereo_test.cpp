@@ -12,7 +12,7 @@
 
 #include "gl_support.h"
 #include "msaa_depth.h"
-#include "msaa_depth_writer.h"
+#include "gl_msaa_depth_writer.h"
 #include "sao/frame.h"
 #include "sao/cpu/reference.h"
 #include "sao/presets.h"

@@ -1,14 +1,11 @@
-// sao::vk::Effect: creation, version and device checks, bad inputs, every depth format and layout,
-// user output, repeated recording, input changes through the descriptor ring, update(), timing.
-// Runs under the validation layer with synchronization validation; any message fails the test.
-#include <bit>
-#include <cmath>
-#include <map>
-
-#include "image_compare.h"
-#include "untuned_settings.h"
+// sao::vk::Effect, what only Vulkan has: version and device checks, configurations and record()
+// inputs only Vulkan takes, every input layout, the output layout, records sharing a command
+// buffer and frames in flight, device memory, timestamps and measure(). What every API shares
+// (bad settings, cameras and sizes, sky, every depth format, update() as a change of settings or
+// size, the caller's output, the variants) is tests/executors/effect_test.cpp. Runs under the
+// validation layer with synchronization validation; any message fails the test.
 #include "analytic_scenes.h"
-#include "sao/presets.h"
+#include "image_compare.h"
 #include "vk_support.h"
 
 namespace sao::vktest {
@@ -67,27 +64,15 @@ using test::sameBits;
 
 class VkEffect : public VkTest {};
 
-TEST_F(VkEffect, CreatesRecordsAndProducesPlausibleObscurance) {
+// Device memory holds at least the plan's images.
+TEST_F(VkEffect, DeviceMemoryHoldsThePlan) {
   Frame f(64, 36, VkDepth::D32F, test::sphereOnPlaneScene());
   auto effect = makeEffect(f.config);
   ASSERT_TRUE(effect);
-  EXPECT_EQ(effect->pipelineCount(), effect->plan().passes.size()) << "one pipeline per planned pass variant";
-  const FloatImage ao = runOnce(*effect, f.inputs());
-  ASSERT_EQ(ao.extent, (Extent{64, 36}));
-  double lo = 1, hi = 0;
-  for (float v : ao.data) {
-    ASSERT_TRUE(std::isfinite(v));
-    lo = std::min(lo, double(v));
-    hi = std::max(hi, double(v));
-  }
-  EXPECT_GE(lo, 0.0);
-  EXPECT_LE(hi, 1.0);
-  EXPECT_LT(lo, 0.9) << "the sphere on the floor occludes something";
-  EXPECT_GT(hi, 0.99) << "the open floor and the sky stay unoccluded";
+  runOnce(*effect, f.inputs());
   const auto stats = effect->memoryStats();
   EXPECT_GE(stats.liveAllocations, 1u);
   EXPECT_GE(stats.liveBytes, effect->plan().totalBytes);
-  std::printf("plan: %s", effect->plan().describe().c_str());
   std::printf("device memory: %llu bytes in %llu allocation(s)\n", (unsigned long long)stats.liveBytes,
               (unsigned long long)stats.liveAllocations);
 }
@@ -117,6 +102,7 @@ TEST_F(VkEffect, BadDeviceContextIsReported) {
   EXPECT_FALSE(e);
 }
 
+// Bad settings, cameras and sizes: Inputs.BadSettingsAndCamera in tests/executors/effect_test.cpp.
 TEST_F(VkEffect, BadConfigurationsAreReported) {
   Frame f(32, 18, VkDepth::D32F, test::planeScene(2.0));
   std::unique_ptr<vk::Effect> e;
@@ -140,22 +126,10 @@ TEST_F(VkEffect, BadConfigurationsAreReported) {
   c = f.config;
   c.framesInFlight = 0;
   EXPECT_EQ(code(c), StatusCode::InvalidInput);
-  c = f.config;
-  c.settings.radius = -1.0f;
-  EXPECT_EQ(code(c), StatusCode::InvalidSetting);
-  c = f.config;
-  c.camera.projection[11] = 0.5;  // not a projection of the declared kind
-  EXPECT_EQ(code(c), StatusCode::InvalidCamera);
-  c = f.config;
-  c.camera.width = 0;  // the core's camera analysis rejects an empty viewport first
-  EXPECT_EQ(code(c), StatusCode::InvalidCamera);
-  c = f.config;
-  c.camera = vulkanCamera(20000, 100, 0);  // beyond maxImageDimension2D / kMaxImageSide
-  const Status st = vk::Effect::create(context().deviceContext(), c, e);
-  EXPECT_EQ(st.code, StatusCode::InvalidExtent) << st.message;
   EXPECT_FALSE(e);
 }
 
+// Inputs of the wrong size: Inputs.DepthSizeMustBeViewportPlusGuard in tests/executors/effect_test.cpp.
 TEST_F(VkEffect, BadInputsAreReportedAndNothingIsRecorded) {
   Frame f(32, 18, VkDepth::D32F, test::planeScene(2.0));
   auto effect = makeEffect(f.config);
@@ -169,9 +143,6 @@ TEST_F(VkEffect, BadInputsAreReportedAndNothingIsRecorded) {
     results.push_back({"null command buffer", effect->record(VK_NULL_HANDLE, in)});
     in.depth.view = VK_NULL_HANDLE;
     results.push_back({"null depth view", effect->record(cmd, in)});
-    in = f.inputs();
-    in.depth.extent = {32, 18};  // the viewport, not viewport + guard band
-    results.push_back({"wrong extent", effect->record(cmd, in)});
     in = f.inputs();
     in.depth.layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     results.push_back({"layout", effect->record(cmd, in)});
@@ -214,34 +185,22 @@ TEST_F(VkEffect, BadInputsAreReportedAndNothingIsRecorded) {
   context().destroy(other);
 }
 
-// Every accepted depth format and input layout; formats holding the same texels agree bit for bit.
-TEST_F(VkEffect, EveryDepthFormatAndLayout) {
-  struct Case {
-    VkDepth format;
-    VkImageLayout layout;
-  };
-  const Case cases[] = {
-      {VkDepth::D16, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-      {VkDepth::X8D24, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL},
-      {VkDepth::D24S8, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL},
-      {VkDepth::D24S8, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-      {VkDepth::D32F, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL},
-      {VkDepth::D32FS8, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL},
-      {VkDepth::D32FS8, VK_IMAGE_LAYOUT_GENERAL},
-      {VkDepth::R32F, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-  };
-  std::map<DepthFormat, FloatImage> first;
-  for (const auto& c : cases) {
-    SCOPED_TRACE(std::string(toString(c.format)) + " layout " + std::to_string(c.layout));
-    Frame f(48, 27, c.format, test::stairsScene(), c.layout);
+// Every input layout a sampled depth may be in gives what SHADER_READ_ONLY_OPTIMAL gives, bit for
+// bit (every format in that layout: Effect.EveryDepthFormat in tests/executors/effect_test.cpp).
+TEST_F(VkEffect, EveryDepthLayout) {
+  const auto run = [](VkDepth format, VkImageLayout layout) {
+    Frame f(48, 27, format, test::stairsScene(), layout);
     auto effect = makeEffect(f.config);
-    ASSERT_TRUE(effect);
-    const FloatImage ao = runOnce(*effect, f.inputs());
-    const auto [it, inserted] = first.emplace(cpuFormat(c.format), ao);
-    if (!inserted) {
-      EXPECT_TRUE(sameBits(ao, it->second)) << "same texels, different format or layout";
-    }
-    expectNoMessages(toString(c.format));
+    return effect ? runOnce(*effect, f.inputs()) : FloatImage{};
+  };
+  for (const auto& [format, layout] : {std::pair{VkDepth::X8D24, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL},
+                                       std::pair{VkDepth::D24S8, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL},
+                                       std::pair{VkDepth::D32F, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL},
+                                       std::pair{VkDepth::D32FS8, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL},
+                                       std::pair{VkDepth::D32FS8, VK_IMAGE_LAYOUT_GENERAL}}) {
+    SCOPED_TRACE(std::string(toString(format)) + " layout " + std::to_string(layout));
+    EXPECT_TRUE(sameBits(run(format, layout), run(format, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)));
+    expectNoMessages(toString(format));
   }
 }
 
@@ -287,16 +246,16 @@ TEST_F(VkEffect, RepeatedRecordsAreHazardFree) {
   EXPECT_TRUE(sameBits(runOnce(*effect, f.inputs()), once));
 }
 
-// Alternating inputs go through the descriptor-set ring; each frame reads its own depth.
-TEST_F(VkEffect, AlternatingInputsReadTheirOwnDepth) {
+// Two records of alternating inputs pending at once in one command buffer (framesInFlight = 2)
+// take their own descriptor-set ring slots: each reads its own depth (alternating frames one at a
+// time: Effect.AlternatingInputsReadTheirOwnDepth in tests/executors/effect_test.cpp).
+TEST_F(VkEffect, TwoPendingRecordsReadTheirOwnDepth) {
   Frame f1(48, 27, VkDepth::D32F, test::sphereOnPlaneScene());
   Frame f2(48, 27, VkDepth::D32F, test::stairsScene());
   auto effect = makeEffect(f1.config);
   ASSERT_TRUE(effect);
   const FloatImage e1 = runOnce(*effect, f1.inputs());
   const FloatImage e2 = runOnce(*effect, f2.inputs());
-  EXPECT_FALSE(sameBits(e1, e2));
-  // Two recorded command buffers pending at once (framesInFlight = 2), then read both results.
   Image out1, out2;
   vk::Config c = f1.config;
   c.userOutput = true;
@@ -325,74 +284,6 @@ TEST_F(VkEffect, AlternatingInputsReadTheirOwnDepth) {
   }
   context().destroy(out1);
   context().destroy(out2);
-}
-
-// update(): settings, variants and sizes give what a fresh effect gives; pipelines are built once
-// per variant and images only when the plan's images change.
-TEST_F(VkEffect, UpdateMatchesAFreshEffect) {
-  Frame small(40, 24, VkDepth::D32F, test::stairsScene());
-  Frame large(72, 40, VkDepth::D32F, test::stairsScene());
-  small.config.settings = large.config.settings = test::untunedDefaults();  // the pass counts below are full resolution's
-  auto effect = makeEffect(small.config);
-  ASSERT_TRUE(effect);
-  const std::uint32_t pipelines = effect->pipelineCount();
-
-  vk::Config c = small.config;
-  c.settings.intensity = 2.0f;  // parameters only
-  const VkImage before = effect->ownedImage(gen::ResourceId::csz).image;
-  ASSERT_TRUE(effect->update(c).ok());
-  EXPECT_EQ(effect->ownedImage(gen::ResourceId::csz).image, before) << "no new images for a parameter change";
-  auto fresh = makeEffect(c);
-  EXPECT_TRUE(sameBits(runOnce(*effect, small.inputs()), runOnce(*fresh, small.inputs())));
-
-  c.settings.blur_radius = 0;  // nothing follows the AO: ao_sample_output writes the output
-  ASSERT_TRUE(effect->update(c).ok());
-  EXPECT_EQ(effect->plan().passes.size(), 2u) << "linear_z, ao_sample_output";
-  fresh = makeEffect(c);
-  EXPECT_TRUE(sameBits(runOnce(*effect, small.inputs()), runOnce(*fresh, small.inputs())));
-  EXPECT_EQ(effect->pipelineCount(), pipelines + 1) << "one new pipeline: ao_sample_output's";
-
-  c.settings = test::untunedDefaults();
-  c.settings.use_z_hierarchy = false;  // Z_HIERARCHY=0: another ao_sample variant
-  ASSERT_TRUE(effect->update(c).ok());
-  EXPECT_EQ(effect->pipelineCount(), pipelines + 2);
-  fresh = makeEffect(c);
-  EXPECT_TRUE(sameBits(runOnce(*effect, small.inputs()), runOnce(*fresh, small.inputs())));
-
-  c.camera = large.camera;  // a resize
-  ASSERT_TRUE(effect->update(c).ok());
-  EXPECT_EQ(effect->output().extent, (Extent{72, 40}));
-  fresh = makeEffect(c);
-  EXPECT_TRUE(sameBits(runOnce(*effect, large.inputs()), runOnce(*fresh, large.inputs())));
-
-  vk::Config bad = c;
-  bad.settings.samples = 0;
-  EXPECT_EQ(effect->update(bad).code, StatusCode::InvalidSetting);
-  EXPECT_EQ(effect->output().extent, (Extent{72, 40})) << "a failed update keeps the configuration";
-  EXPECT_TRUE(sameBits(runOnce(*effect, large.inputs()), runOnce(*fresh, large.inputs())));
-}
-
-TEST_F(VkEffect, NormalsAndSecondLayerVariantsRun) {
-  const Camera cam = vulkanCamera(48, 27, 8);
-  const test::Scene scene = test::sphereOnPlaneScene();
-  const DepthImage depth = test::renderDepth(scene, cam, DepthFormat::D32F);
-  const DepthImage depth2 = test::renderDepth(scene, cam, DepthFormat::D32F, 1);
-  const FloatImage normals = test::renderNormals(scene, cam);
-  RunResult withNormals, twoLayers, plain;
-  RunOptions o;
-  ASSERT_TRUE(runEffect(Settings{}, cam, depth, VkDepth::D32F, plain, o).ok());
-  o.normals = &normals;
-  Status st = runEffect(Settings{}, cam, depth, VkDepth::D32F, withNormals, o);
-  ASSERT_TRUE(st.ok()) << st.message;
-  o.normals = nullptr;
-  o.depth2 = &depth2;
-  st = runEffect(Settings{}, cam, depth, VkDepth::D32F, twoLayers, o);
-  ASSERT_TRUE(st.ok()) << st.message;
-  EXPECT_EQ(withNormals.plan.variants[std::size_t(gen::VariantId::NORMALS_SUPPLIED)], 1);
-  EXPECT_EQ(twoLayers.plan.variants[std::size_t(gen::VariantId::TWO_LAYER)], 1);
-  // Analytic normals and rebuilt ones give nearly the same obscurance on this smooth scene.
-  const Agreement a = compare(withNormals.ao, plain.ao, 0, 0.05, 1.0, "normals_vs_rebuilt");
-  EXPECT_GT(a.fractionWithin, 0.9);
 }
 
 TEST_F(VkEffect, TimestampsAndFenceFallback) {
@@ -435,18 +326,6 @@ TEST_F(VkEffect, TimestampsAndFenceFallback) {
     return ao;
   }();
   EXPECT_TRUE(sameBits(fromMeasure, runOnce(*effect, f.inputs())));
-}
-
-TEST_F(VkEffect, SkyStaysUnoccluded) {
-  for (bool reversed : {false, true}) {
-    const Camera cam = vulkanCamera(40, 24, 4, reversed ? INFINITY : 100.0, reversed);
-    const DepthImage depth = test::renderDepth(test::skyScene(), cam, DepthFormat::D32F);
-    RunResult r;
-    const Status st = runEffect(Settings{}, cam, depth, VkDepth::D32F, r);
-    ASSERT_TRUE(st.ok()) << st.message;
-    for (float v : r.ao.data) ASSERT_EQ(v, 1.0f);
-    for (float v : r.csz0.data) ASSERT_EQ(std::bit_cast<std::uint32_t>(v), 0u) << "sky is +0.0 in csz";
-  }
 }
 
 }  // namespace

@@ -11,7 +11,7 @@
 
 #include "analytic_scenes.h"
 #include "msaa_depth.h"
-#include "msaa_depth_writer.h"
+#include "vk_msaa_depth_writer.h"
 #include "vk_support.h"
 
 namespace sao::vktest {

@@ -1,16 +1,11 @@
-// Temporal accumulation on Vulkan (Config::settings.temporal), under validation and
-// synchronization validation: a camera strafing past a sphere on a plane, given per record
-// (Inputs::camera, no update()), six frames against the CPU reference (Float, the history carried
-// from run to run) to the reference tests' bounds; record() allocates nothing in the library once
-// warm; two frames recorded into two command buffers and submitted together (two frames in
-// flight) give what one after the other gives; Inputs::resetHistory and update() start again.
+// Temporal accumulation on Vulkan, what only Vulkan has (the shared cases, strafing frames against
+// the CPU reference, reset and motion vectors, are tests/executors/temporal_test.cpp): two frames
+// recorded into two command buffers and submitted together (two frames in flight) give what one
+// after the other gives, under synchronization validation; update() starts the history again.
 #include <cstring>
 #include <string>
 
-#include "cpu_frames.h"
-#include "library_allocations.h"
 #include "moving_camera.h"
-#include "sao/cpu/reference.h"
 #include "sao/presets.h"
 #include "vk_support.h"
 
@@ -22,10 +17,10 @@ using vk::headless::Image;
 constexpr std::uint32_t kW = 160, kH = 90, kGuard = 8;
 
 class Temporal : public VkTest {
- public:  // expectStrafeMatchesCpu uses the fixture
+ public:
   void SetUp() override {
     VkTest::SetUp();
-    base = vulkanCamera(kW, kH, kGuard);
+    const Camera base = vulkanCamera(kW, kH, kGuard);
     settings = presetSettings(Preset::Medium);
     settings.temporal = true;
     for (std::uint32_t f = 0; f < kFrames; ++f) {
@@ -42,13 +37,13 @@ class Temporal : public VkTest {
   }
   static test::Vec3 eye(std::uint32_t frame) { return {0.03 * frame, 0.0, 0.0}; }
 
-  std::unique_ptr<vk::Effect> create(std::uint32_t framesInFlight = 2) const {
+  std::unique_ptr<vk::Effect> create() const {
     vk::Config c;
     c.settings = settings;
     c.camera = cameras[0];
     c.depthFormat = VK_FORMAT_D32_SFLOAT;
     c.userOutput = true;
-    c.framesInFlight = framesInFlight;
+    c.framesInFlight = 2;
     std::unique_ptr<vk::Effect> e;
     const Status st = vk::Effect::create(context().deviceContext(), c, e);
     EXPECT_TRUE(st.ok()) << st.message;
@@ -73,21 +68,8 @@ class Temporal : public VkTest {
                     .ok());
     return ao;
   }
-  // The CPU reference's frames 0 .. n-1, the history carried along.
-  std::vector<FloatImage> cpuFrames(std::uint32_t n) const {
-    std::vector<FloatImage> out;
-    test::CpuFrames reference(settings);
-    for (std::uint32_t f = 0; f < n; ++f) {
-      cpu::Inputs ci;
-      ci.depth = &depths[f];
-      ci.frameIndex = f;
-      out.push_back(reference.run(cameras[f], ci).ao);
-    }
-    return out;
-  }
 
-  static constexpr std::uint32_t kFrames = 6;
-  Camera base;
+  static constexpr std::uint32_t kFrames = 3;
   Settings settings;
   Camera cameras[kFrames];
   DepthImage depths[kFrames];
@@ -99,51 +81,6 @@ std::size_t differences(const FloatImage& a, const FloatImage& b) {
   for (std::size_t i = 0; i < std::min(a.data.size(), b.data.size()); ++i)
     n += std::memcmp(&a.data[i], &b.data[i], sizeof(float)) != 0;
   return n + (a.data.size() != b.data.size());
-}
-
-// The strafe's frames through one effect, each within the agreement bounds of the CPU reference,
-// with no library or device allocation in record() after the first frames. The test's `settings`.
-void expectStrafeMatchesCpu(Temporal& t, const std::string& prefix) {
-  ASSERT_TRUE(test::watchLibraryOf(reinterpret_cast<const void*>(&vk::processMemoryStats)));
-  auto effect = t.create();
-  ASSERT_TRUE(effect);
-  const std::vector<FloatImage> expected = t.cpuFrames(Temporal::kFrames);
-  Image out;
-  ASSERT_TRUE(context().createStorageImage(VK_FORMAT_R16_SFLOAT, {kW, kH}, out).ok());
-  const vk::OutputImage o = t.outputOf(out);
-  const std::uint64_t allocationsBefore = effect->memoryStats().totalAllocations;
-  long counted = 0;
-  for (std::uint32_t f = 0; f < Temporal::kFrames; ++f) {
-    const std::string name = prefix + std::to_string(f);
-    Status recorded;
-    ASSERT_TRUE(context()
-                    .submit([&](VkCommandBuffer cmd) {
-                      const vk::Inputs in = t.inputs(f);
-                      test::startCountingAllocations();
-                      recorded = effect->record(cmd, in, &o);
-                      test::stopCountingAllocations();
-                      if (f >= 2) counted += test::countedAllocations();
-                    })
-                    .ok());
-    ASSERT_TRUE(recorded.ok()) << recorded.message;
-    const FloatImage actual = t.read(*effect, out);
-    const Agreement a = compare(actual, expected[f], 0, 2.0 / 255.0, 4.0 / 255.0, name);
-    EXPECT_TRUE(acceptable(a)) << name << ": max " << a.maxAbs * 255 << "/255, p99.9 " << a.p999 * 255 << "/255";
-    std::printf("TEMPORAL %-14s vs CPU: max %.3f/255, p99.9 %.3f/255\n", name.c_str(), a.maxAbs * 255, a.p999 * 255);
-    expectNoMessages(name.c_str());
-  }
-  EXPECT_EQ(counted, 0) << "library allocations in record() with a moving camera";
-  EXPECT_EQ(effect->memoryStats().totalAllocations, allocationsBefore) << "device memory allocated per frame";
-  context().destroy(out);
-}
-
-TEST_F(Temporal, StrafeFramesMatchTheCpuReferenceWithoutAllocating) { expectStrafeMatchesCpu(*this, "vk_temporal"); }
-
-// The visibility estimator (with thickness from width) accumulates its occlusion the same way.
-TEST_F(Temporal, VisibilityEstimatorStrafeFramesMatchTheCpuReference) {
-  settings.estimator = 1;
-  settings.thickness_model = 1;
-  expectStrafeMatchesCpu(*this, "vk_temporal_visibility");
 }
 
 TEST_F(Temporal, TwoFramesInFlightGiveWhatOneAfterTheOtherGives) {
@@ -197,91 +134,30 @@ TEST_F(Temporal, TwoFramesInFlightGiveWhatOneAfterTheOtherGives) {
   for (Image& i : outs) ctx.destroy(i);
 }
 
-TEST_F(Temporal, ResetHistoryAndUpdateStartAgain) {
+TEST_F(Temporal, UpdateStartsTheHistoryAgain) {
   auto accumulating = create();
   auto fresh = create();
   ASSERT_TRUE(accumulating && fresh);
   Image out;
   ASSERT_TRUE(context().createStorageImage(VK_FORMAT_R16_SFLOAT, {kW, kH}, out).ok());
   const vk::OutputImage o = outputOf(out);
-  auto run = [&](vk::Effect& e, std::uint32_t frame, bool reset) {
-    vk::Inputs in = inputs(frame);
-    in.resetHistory = reset;
+  auto run = [&](vk::Effect& e, std::uint32_t frame) {
     Status recorded;
-    EXPECT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = e.record(cmd, in, &o); }).ok());
+    EXPECT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = e.record(cmd, inputs(frame), &o); }).ok());
     EXPECT_TRUE(recorded.ok()) << recorded.message;
     return read(e, out);
   };
-  run(*accumulating, 0, false);
-  const FloatImage reset = run(*accumulating, 1, true);
-  const FloatImage alone = run(*fresh, 1, false);
-  EXPECT_EQ(differences(reset, alone), 0u) << "a reset record must not read the history";
-  const FloatImage continued = run(*accumulating, 2, false);
+  run(*accumulating, 0);
+  run(*accumulating, 1);
+  const FloatImage continued = run(*accumulating, 2);
   vk::Config c = accumulating->config();
   ASSERT_TRUE(accumulating->update(c).ok());
-  const FloatImage afterUpdate = run(*accumulating, 2, false);
-  auto alone2 = create();
-  const FloatImage fresh2 = run(*alone2, 2, false);
-  EXPECT_EQ(differences(afterUpdate, fresh2), 0u) << "update() must start the history again";
-  EXPECT_GT(differences(continued, fresh2), 0u) << "frame 2 with history looks like frame 2 without";
-  expectNoMessages("reset");
+  const FloatImage afterUpdate = run(*accumulating, 2);
+  const FloatImage alone = run(*fresh, 2);
+  EXPECT_EQ(differences(afterUpdate, alone), 0u) << "update() must start the history again";
+  EXPECT_GT(differences(continued, alone), 0u) << "frame 2 with history looks like frame 2 without";
+  expectNoMessages("update");
   context().destroy(out);
-}
-
-// Motion vectors (Config::motionFormat, Inputs::motion): frames 1..3 of the strafe recorded with a
-// field of (1.5, -0.75) pixels everywhere (R16G16B16A16_SFLOAT), against the CPU reference given
-// the same field, under validation.
-TEST_F(Temporal, MotionVectorsMatchTheCpuReference) {
-  FloatImage motion(depths[0].extent, 4);
-  for (std::size_t i = 0; i < motion.data.size(); i += 4) {
-    motion.data[i] = 1.5f;
-    motion.data[i + 1] = -0.75f;
-  }
-  Image motionImage;
-  ASSERT_TRUE(context()
-                  .uploadColor(motion, VK_FORMAT_R16G16B16A16_SFLOAT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                               motionImage)
-                  .ok());
-  vk::Config c;
-  c.settings = settings;
-  c.camera = cameras[0];
-  c.depthFormat = VK_FORMAT_D32_SFLOAT;
-  c.motionFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-  std::unique_ptr<vk::Effect> effect;
-  Status st = vk::Effect::create(context().deviceContext(), c, effect);
-  ASSERT_TRUE(st.ok()) << st.message;
-  test::CpuFrames reference(settings);
-  for (std::uint32_t f = 0; f < 4; ++f) {
-    const std::string name = "vk_temporal_motion" + std::to_string(f);
-    vk::Inputs in = inputs(f);
-    in.motion = {motionImage.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, motion.extent,
-                 VK_FORMAT_R16G16B16A16_SFLOAT};
-    Status recorded;
-    ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, in); }).ok());
-    ASSERT_TRUE(recorded.ok()) << recorded.message;
-    const vk::OutputImage o = effect->output();
-    FloatImage actual;
-    ASSERT_TRUE(context()
-                    .readback(o.image, o.format, o.extent, 0, o.layout, c.outputDstStages, c.outputDstAccess, actual)
-                    .ok());
-    cpu::Inputs ci;
-    ci.depth = &depths[f];
-    ci.motion = &motion;
-    ci.frameIndex = f;
-    const cpu::Result ref = reference.run(cameras[f], ci);
-    const Agreement a = compare(actual, ref.ao, 0, 2.0 / 255.0, 4.0 / 255.0, name);
-    EXPECT_TRUE(acceptable(a)) << name << ": max " << a.maxAbs * 255 << "/255, p99.9 " << a.p999 * 255 << "/255";
-    std::printf("TEMPORAL %-20s vs CPU: max %.3f/255, p99.9 %.3f/255\n", name.c_str(), a.maxAbs * 255, a.p999 * 255);
-    expectNoMessages(name.c_str());
-  }
-  // A motion format without the temporal setting: refused by name.
-  vk::Config off = c;
-  off.settings.temporal = false;
-  std::unique_ptr<vk::Effect> refused;
-  st = vk::Effect::create(context().deviceContext(), off, refused);
-  EXPECT_EQ(st.code, StatusCode::InvalidInput);
-  EXPECT_NE(st.message.find("motion vectors serve temporal accumulation only"), std::string::npos) << st.message;
-  context().destroy(motionImage);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-#include "msaa_depth_writer.h"
+#include "gl_msaa_depth_writer.h"
 
 #include <gtest/gtest.h>
 

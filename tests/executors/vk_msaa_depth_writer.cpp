@@ -1,4 +1,4 @@
-#include "msaa_depth_writer.h"
+#include "vk_msaa_depth_writer.h"
 
 #include <stdint.h>  // uint32_t for glslangValidator's --vn headers
 
