@@ -83,17 +83,16 @@ int main() {
   SAO_VK_CHECK(vkCreateImageView(device, &viewInfo, nullptr, &depthView));
 
   // [readme-vulkan]
-  sao::vk::Config config;
-  config.camera = sao::perspectiveCamera(std::numbers::pi / 3, width, height, 0.1, INFINITY,
-                                         sao::ClipDepth::ZeroToOne, /*reversedZ=*/true);
-  config.settings = sao::presetSettings(sao::Preset::Medium);
-  config.depthFormat = VK_FORMAT_D32_SFLOAT;
   std::unique_ptr<sao::vk::Effect> ao;
-  sao::Status status = sao::vk::Effect::create(deviceContext, config, ao);
+  sao::Status status = sao::vk::Effect::create(deviceContext, {}, ao);  // Config: ring, output layout
+  sao::Camera camera = sao::perspectiveCamera(std::numbers::pi / 3, width, height, 0.1, INFINITY,
+                                              sao::ClipDepth::ZeroToOne, /*reversedZ=*/true);
+  sao::Settings settings = sao::presetSettings(sao::Preset::Medium);
+  settings.radius = 0.5f;  // metres
   sao::vk::Inputs inputs;
-  inputs.depth = {depthView, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, {width, height}};
-  auto recordInto = [&](VkCommandBuffer cmd) { if (status) status = ao->record(cmd, inputs); };
-  // ... recordInto(yourCommandBuffer), submit; the output is left in config.outputLayout:
+  inputs.depth = {depthView, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, {width, height}, VK_FORMAT_D32_SFLOAT};
+  auto recordInto = [&](VkCommandBuffer cmd) { if (status) status = ao->record(cmd, camera, settings, inputs); };
+  // ... recordInto(yourCommandBuffer) each frame, submit; the output is in SHADER_READ_ONLY_OPTIMAL:
   // sao::vk::OutputImage result = ao->output();
   // [/readme-vulkan]
 

@@ -79,9 +79,9 @@ class Executor {
   // The frame's images onto the device (the previous upload's are released).
   virtual Status upload(const Frame& frame) = 0;
   // The per-frame call on what upload() made (images are taken from there, everything else from
-  // `frame`), then waits for the device. GL: render(); Vulkan: create() or update() when the
-  // configuration changes (sao::cameraKeepsPlan decides for the camera), then record() with
-  // Inputs::camera, submit and wait.
+  // `frame`), then waits for the device. GL: render(); Vulkan: record(cmd, camera, settings,
+  // inputs), submitted (a new effect only for what Config alone says: the depth's sample count, the
+  // effect-owned output's format).
   virtual Status run(const Frame& frame) = 0;
   // The output after the last successful run, in its format's channels.
   virtual FloatImage output() = 0;
@@ -89,8 +89,9 @@ class Executor {
   virtual FloatImage image(gen::ResourceId resource, std::uint32_t level = 0) = 0;
   virtual const Plan& plan() const = 0;
   virtual const ParamBlock& params() const = 0;
-  // Counters: configurations planned (GL: Stats::plans; Vulkan: create + update calls), image
-  // storage made so far (GL: textures; Vulkan: device memory blocks), programs or pipelines built.
+  // Counters: configurations planned (GL: Stats::plans; Vulkan: plans()), image
+  // storage made so far (GL: textures; Vulkan: device memory blocks, the parameter buffer's not
+  // counted), programs or pipelines built.
   virtual std::uint64_t plans() const = 0;
   virtual std::uint64_t imageAllocations() const = 0;
   virtual std::uint64_t pipelines() const = 0;

@@ -1,7 +1,6 @@
-// The harness's Vulkan half: sao::vk::Effect on the validated headless context of tests/vulkan.
-// One call per frame as GL has it: create() the first time, update() when the configuration or a
-// camera that plans differently (sao::cameraKeepsPlan) asks for it, then record() with
-// Inputs::camera, submit and wait.
+// The harness's Vulkan half: sao::vk::Effect on the validated headless context of tests/vulkan,
+// driven by its per-frame record(cmd, camera, settings, inputs[, output]) (GL's shape: it plans
+// again within the call when it must), submitted and waited for.
 #include "harness_apis.h"
 #include "sao/frame.h"
 #include "vk_msaa_depth_writer.h"
@@ -82,30 +81,25 @@ class VkExecutor final : public Executor {
   }
 
   Status run(const Frame& f) override {
-    vk::Config c;
-    c.settings = f.settings;
-    c.camera = f.camera;
-    c.depthFormat = vkDepth(f.format);
-    c.secondLayer = f.depth2 != nullptr;
-    c.depthSamples = VkSampleCountFlagBits(f.depth->samples);
-    c.normalsFormat = f.normals ? vkTexels(f.normalsTexels) : VK_FORMAT_UNDEFINED;
-    c.motionFormat = f.motion ? vkTexels(f.motionTexels) : VK_FORMAT_UNDEFINED;
-    c.userOutput = f.output.callerOwned;
-    c.outputFormat = vkFormat(f.output.format);
+    // The per-frame call, GL's shape: what only Config can say (the depth's sample count, the
+    // effect-owned output's format) makes a new effect when it changes.
+    const auto samples = VkSampleCountFlagBits(f.depth->samples);
+    const bool otherOwnedFormat = !f.output.callerOwned && vkFormat(f.output.format) != ownedFormat_;
+    if (effect_ && (effect_->config().depthSamples != samples || otherOwnedFormat)) effect_.reset();
     if (!effect_) {
-      ++plans_;
+      if (!f.output.callerOwned) ownedFormat_ = vkFormat(f.output.format);
+      vk::Config c;
+      c.depthSamples = samples;
+      c.outputFormat = ownedFormat_;
       if (Status st = vk::Effect::create(vktest::context().deviceContext(), c, effect_); !st) return st;
-    } else if (!sameConfiguration(effect_->config(), c)) {
-      ++plans_;
-      if (Status st = effect_->update(c); !st) return st;
+      createdBlocks_ = effect_->memoryStats().totalAllocations;  // the parameter buffer's, no image yet
     }
     vk::Inputs in;
-    in.depth = {depth_.view, depthLayout(f), f.depth->extent};
-    if (f.depth2) in.depth2 = {depth2_.view, depthLayout(f), f.depth2->extent};
-    if (f.normals) in.normals = {normals_.view, kRead, f.normals->extent};
-    if (f.motion) in.motion = {motion_.view, kRead, f.motion->extent};
+    in.depth = {depth_.view, depthLayout(f), f.depth->extent, vkDepth(f.format)};
+    if (f.depth2) in.depth2 = {depth2_.view, depthLayout(f), f.depth2->extent, vkDepth(f.format)};
+    if (f.normals) in.normals = {normals_.view, kRead, f.normals->extent, vkTexels(f.normalsTexels)};
+    if (f.motion) in.motion = {motion_.view, kRead, f.motion->extent, vkTexels(f.motionTexels)};
     in.region = f.region;
-    in.camera = &f.camera;
     in.frameIndex = f.frameIndex;
     in.resetHistory = f.resetHistory;
     in.previousCamera = f.previousCamera;
@@ -113,8 +107,9 @@ class VkExecutor final : public Executor {
     in.outputBlend = f.output.blend;
     const vk::OutputImage user{output_.image, output_.view, output_.format, output_.extent, output_.layout};
     Status recorded;
-    const Status submitted = vktest::context().submit(
-        [&](VkCommandBuffer cmd) { recorded = effect_->record(cmd, in, f.output.callerOwned ? &user : nullptr); });
+    const Status submitted = vktest::context().submit([&](VkCommandBuffer cmd) {
+      recorded = effect_->record(cmd, f.camera, f.settings, in, f.output.callerOwned ? &user : nullptr);
+    });
     if (!submitted) return submitted;
     if (recorded && f.output.callerOwned) output_.layout = effect_->config().outputLayout;
     return recorded;
@@ -143,27 +138,22 @@ class VkExecutor final : public Executor {
 
   const Plan& plan() const override { return effect_->plan(); }
   const ParamBlock& params() const override { return effect_->params(); }
-  std::uint64_t plans() const override { return plans_; }
-  std::uint64_t imageAllocations() const override { return effect_ ? effect_->memoryStats().totalAllocations : 0; }
+  std::uint64_t plans() const override { return effect_ ? effect_->plans() : 0; }
+  std::uint64_t imageAllocations() const override {
+    return effect_ ? effect_->memoryStats().totalAllocations - createdBlocks_ : 0;
+  }
   std::uint64_t pipelines() const override { return effect_ ? effect_->pipelineCount() : 0; }
   std::uint64_t outputGeneration() const override { return effect_ ? effect_->outputGeneration() : 0; }
   void releaseEffect() override { effect_.reset(); }
 
  private:
-  // Whether record() can take the frame as it is: everything but a camera that keeps the plan
-  // (Inputs::camera) needs update().
-  static bool sameConfiguration(const vk::Config& a, const vk::Config& b) {
-    return a.settings == b.settings && a.depthFormat == b.depthFormat && a.depthSamples == b.depthSamples &&
-           a.secondLayer == b.secondLayer &&
-           a.normalsFormat == b.normalsFormat && a.motionFormat == b.motionFormat && a.userOutput == b.userOutput &&
-           a.outputFormat == b.outputFormat && cameraKeepsPlan(a.settings, a.camera, b.camera);
-  }
   void releaseInputs() {
     for (Image* i : {&depth_, &depth2_, &normals_, &motion_, &output_}) vktest::context().destroy(*i);
   }
   std::unique_ptr<vk::Effect> effect_;
+  VkFormat ownedFormat_ = VK_FORMAT_R16_SFLOAT;  // Config::outputFormat of effect_
+  std::uint64_t createdBlocks_ = 0;
   Image depth_, depth2_, normals_, motion_, output_;
-  std::uint64_t plans_ = 0;
 };
 
 }  // namespace

@@ -12,107 +12,55 @@ std::string versionText(int v) {
   return std::to_string((v >> 16) & 0xff) + "." + std::to_string((v >> 8) & 0xff) + "." + std::to_string(v & 0xff);
 }
 
-const char* formatName(VkFormat f) {
-  switch (f) {
-    case VK_FORMAT_D16_UNORM: return "VK_FORMAT_D16_UNORM";
-    case VK_FORMAT_X8_D24_UNORM_PACK32: return "VK_FORMAT_X8_D24_UNORM_PACK32";
-    case VK_FORMAT_D24_UNORM_S8_UINT: return "VK_FORMAT_D24_UNORM_S8_UINT";
-    case VK_FORMAT_D32_SFLOAT: return "VK_FORMAT_D32_SFLOAT";
-    case VK_FORMAT_D32_SFLOAT_S8_UINT: return "VK_FORMAT_D32_SFLOAT_S8_UINT";
-    case VK_FORMAT_R32_SFLOAT: return "VK_FORMAT_R32_SFLOAT";
-    case VK_FORMAT_S8_UINT: return "VK_FORMAT_S8_UINT";
-    case VK_FORMAT_D16_UNORM_S8_UINT: return "VK_FORMAT_D16_UNORM_S8_UINT";
-    case VK_FORMAT_R8_UNORM: return "VK_FORMAT_R8_UNORM";
-    case VK_FORMAT_R8_SNORM: return "VK_FORMAT_R8_SNORM";
-    case VK_FORMAT_R16_SNORM: return "VK_FORMAT_R16_SNORM";
-    case VK_FORMAT_R16_SFLOAT: return "VK_FORMAT_R16_SFLOAT";
-    case VK_FORMAT_R8G8_SNORM: return "VK_FORMAT_R8G8_SNORM";
-    case VK_FORMAT_R16G16_SNORM: return "VK_FORMAT_R16G16_SNORM";
-    case VK_FORMAT_R16G16_SFLOAT: return "VK_FORMAT_R16G16_SFLOAT";
-    case VK_FORMAT_R32G32_SFLOAT: return "VK_FORMAT_R32G32_SFLOAT";
-    default: return nullptr;
-  }
-}
+#define SAO_VK_NAMED(f) std::pair{f, #f}
+// Formats named in messages by their Vulkan names (the others by number).
+constexpr std::pair<VkFormat, const char*> kNamedFormats[] = {
+    SAO_VK_NAMED(VK_FORMAT_D16_UNORM), SAO_VK_NAMED(VK_FORMAT_X8_D24_UNORM_PACK32),
+    SAO_VK_NAMED(VK_FORMAT_D24_UNORM_S8_UINT), SAO_VK_NAMED(VK_FORMAT_D32_SFLOAT),
+    SAO_VK_NAMED(VK_FORMAT_D32_SFLOAT_S8_UINT), SAO_VK_NAMED(VK_FORMAT_R32_SFLOAT),
+    SAO_VK_NAMED(VK_FORMAT_S8_UINT), SAO_VK_NAMED(VK_FORMAT_D16_UNORM_S8_UINT),
+    SAO_VK_NAMED(VK_FORMAT_R8_UNORM), SAO_VK_NAMED(VK_FORMAT_R8_SNORM), SAO_VK_NAMED(VK_FORMAT_R16_SNORM),
+    SAO_VK_NAMED(VK_FORMAT_R16_SFLOAT), SAO_VK_NAMED(VK_FORMAT_R8G8_SNORM),
+    SAO_VK_NAMED(VK_FORMAT_R16G16_SNORM), SAO_VK_NAMED(VK_FORMAT_R16G16_SFLOAT),
+    SAO_VK_NAMED(VK_FORMAT_R32G32_SFLOAT)};
+#undef SAO_VK_NAMED
 
 std::string formatText(VkFormat f) {
-  const char* n = formatName(f);
-  return n ? std::string(n) : "VkFormat " + std::to_string(static_cast<int>(f));
+  for (const auto& [format, name] : kNamedFormats)
+    if (format == f) return name;
+  return "VkFormat " + std::to_string(static_cast<int>(f));
 }
 
-bool isDepthStencilFormat(VkFormat f) {
-  switch (f) {
-    case VK_FORMAT_D16_UNORM:
-    case VK_FORMAT_X8_D24_UNORM_PACK32:
-    case VK_FORMAT_D32_SFLOAT:
-    case VK_FORMAT_S8_UINT:
-    case VK_FORMAT_D16_UNORM_S8_UINT:
-    case VK_FORMAT_D24_UNORM_S8_UINT:
-    case VK_FORMAT_D32_SFLOAT_S8_UINT: return true;
-    default: return false;
-  }
+template <std::size_t N>
+bool listed(const VkFormat (&list)[N], VkFormat f) {
+  return std::find(list, list + N, f) != list + N;
 }
+
+constexpr VkFormat kDepthStencilFormats[] = {
+    VK_FORMAT_D16_UNORM, VK_FORMAT_X8_D24_UNORM_PACK32, VK_FORMAT_D32_SFLOAT, VK_FORMAT_S8_UINT,
+    VK_FORMAT_D16_UNORM_S8_UINT, VK_FORMAT_D24_UNORM_S8_UINT, VK_FORMAT_D32_SFLOAT_S8_UINT};
+bool isDepthStencilFormat(VkFormat f) { return listed(kDepthStencilFormats, f); }
 
 // The colour channels a sampled read of `f` returns when it has fewer than three (1 or 2), else 3
 // (three, four, or a format not listed here). Only the count below three matters: it decides
 // whether .xy or .xyz of a normal would read a missing channel as 0.
-std::uint32_t channelsUpToThree(VkFormat f) {
-  switch (f) {
-    case VK_FORMAT_R8_UNORM:
-    case VK_FORMAT_R8_SNORM:
-    case VK_FORMAT_R8_USCALED:
-    case VK_FORMAT_R8_SSCALED:
-    case VK_FORMAT_R8_UINT:
-    case VK_FORMAT_R8_SINT:
-    case VK_FORMAT_R8_SRGB:
-    case VK_FORMAT_R16_UNORM:
-    case VK_FORMAT_R16_SNORM:
-    case VK_FORMAT_R16_USCALED:
-    case VK_FORMAT_R16_SSCALED:
-    case VK_FORMAT_R16_UINT:
-    case VK_FORMAT_R16_SINT:
-    case VK_FORMAT_R16_SFLOAT:
-    case VK_FORMAT_R32_UINT:
-    case VK_FORMAT_R32_SINT:
-    case VK_FORMAT_R32_SFLOAT:
-    case VK_FORMAT_R64_UINT:
-    case VK_FORMAT_R64_SINT:
-    case VK_FORMAT_R64_SFLOAT:
-    case VK_FORMAT_BC4_UNORM_BLOCK:
-    case VK_FORMAT_BC4_SNORM_BLOCK:
-    case VK_FORMAT_EAC_R11_UNORM_BLOCK:
-    case VK_FORMAT_EAC_R11_SNORM_BLOCK:
-    case VK_FORMAT_R10X6_UNORM_PACK16:
-    case VK_FORMAT_R12X4_UNORM_PACK16: return 1;
-    case VK_FORMAT_R4G4_UNORM_PACK8:
-    case VK_FORMAT_R8G8_UNORM:
-    case VK_FORMAT_R8G8_SNORM:
-    case VK_FORMAT_R8G8_USCALED:
-    case VK_FORMAT_R8G8_SSCALED:
-    case VK_FORMAT_R8G8_UINT:
-    case VK_FORMAT_R8G8_SINT:
-    case VK_FORMAT_R8G8_SRGB:
-    case VK_FORMAT_R16G16_UNORM:
-    case VK_FORMAT_R16G16_SNORM:
-    case VK_FORMAT_R16G16_USCALED:
-    case VK_FORMAT_R16G16_SSCALED:
-    case VK_FORMAT_R16G16_UINT:
-    case VK_FORMAT_R16G16_SINT:
-    case VK_FORMAT_R16G16_SFLOAT:
-    case VK_FORMAT_R32G32_UINT:
-    case VK_FORMAT_R32G32_SINT:
-    case VK_FORMAT_R32G32_SFLOAT:
-    case VK_FORMAT_R64G64_UINT:
-    case VK_FORMAT_R64G64_SINT:
-    case VK_FORMAT_R64G64_SFLOAT:
-    case VK_FORMAT_BC5_UNORM_BLOCK:
-    case VK_FORMAT_BC5_SNORM_BLOCK:
-    case VK_FORMAT_EAC_R11G11_UNORM_BLOCK:
-    case VK_FORMAT_EAC_R11G11_SNORM_BLOCK:
-    case VK_FORMAT_R10X6G10X6_UNORM_2PACK16:
-    case VK_FORMAT_R12X4G12X4_UNORM_2PACK16: return 2;
-    default: return 3;
-  }
-}
+constexpr VkFormat kOneChannel[] = {
+    VK_FORMAT_R8_UNORM, VK_FORMAT_R8_SNORM, VK_FORMAT_R8_USCALED, VK_FORMAT_R8_SSCALED, VK_FORMAT_R8_UINT,
+    VK_FORMAT_R8_SINT, VK_FORMAT_R8_SRGB, VK_FORMAT_R16_UNORM, VK_FORMAT_R16_SNORM, VK_FORMAT_R16_USCALED,
+    VK_FORMAT_R16_SSCALED, VK_FORMAT_R16_UINT, VK_FORMAT_R16_SINT, VK_FORMAT_R16_SFLOAT, VK_FORMAT_R32_UINT,
+    VK_FORMAT_R32_SINT, VK_FORMAT_R32_SFLOAT, VK_FORMAT_R64_UINT, VK_FORMAT_R64_SINT, VK_FORMAT_R64_SFLOAT,
+    VK_FORMAT_BC4_UNORM_BLOCK, VK_FORMAT_BC4_SNORM_BLOCK, VK_FORMAT_EAC_R11_UNORM_BLOCK,
+    VK_FORMAT_EAC_R11_SNORM_BLOCK, VK_FORMAT_R10X6_UNORM_PACK16, VK_FORMAT_R12X4_UNORM_PACK16};
+constexpr VkFormat kTwoChannels[] = {
+    VK_FORMAT_R4G4_UNORM_PACK8, VK_FORMAT_R8G8_UNORM, VK_FORMAT_R8G8_SNORM, VK_FORMAT_R8G8_USCALED,
+    VK_FORMAT_R8G8_SSCALED, VK_FORMAT_R8G8_UINT, VK_FORMAT_R8G8_SINT, VK_FORMAT_R8G8_SRGB,
+    VK_FORMAT_R16G16_UNORM, VK_FORMAT_R16G16_SNORM, VK_FORMAT_R16G16_USCALED, VK_FORMAT_R16G16_SSCALED,
+    VK_FORMAT_R16G16_UINT, VK_FORMAT_R16G16_SINT, VK_FORMAT_R16G16_SFLOAT, VK_FORMAT_R32G32_UINT,
+    VK_FORMAT_R32G32_SINT, VK_FORMAT_R32G32_SFLOAT, VK_FORMAT_R64G64_UINT, VK_FORMAT_R64G64_SINT,
+    VK_FORMAT_R64G64_SFLOAT, VK_FORMAT_BC5_UNORM_BLOCK, VK_FORMAT_BC5_SNORM_BLOCK,
+    VK_FORMAT_EAC_R11G11_UNORM_BLOCK, VK_FORMAT_EAC_R11G11_SNORM_BLOCK, VK_FORMAT_R10X6G10X6_UNORM_2PACK16,
+    VK_FORMAT_R12X4G12X4_UNORM_2PACK16};
+std::uint32_t channelsUpToThree(VkFormat f) { return listed(kOneChannel, f) ? 1 : listed(kTwoChannels, f) ? 2 : 3; }
 
 Status checkSampled(const EffectState& e, VkFormat format, const char* what) {
   VkFormatProperties fp{};
@@ -295,14 +243,50 @@ Status createEffect(const DeviceContext& context, const Config& config, EffectSt
   PlanInputs planInputs;
   if (Status st = checkConfig(e, config, planInputs); !st) return st;
   e.config = config;
+  e.ownedOutputFormat = config.outputFormat;
   e.allocator.init(&e.d, context.device, e.memoryProps, e.props.limits.bufferImageGranularity, context.allocator);
   if (Status st = createSampler(e); !st) return st;
   if (Status st = createParamBuffer(e, config.framesInFlight, e.ubo); !st) return st;
   if (Status st = createQueryPool(e, config.framesInFlight, e.queryPool); !st) return st;
   // The plan, its images, pipelines and descriptor sets: core's FrameState through the executor.
+  // Without a camera the first per-frame record() plans.
   e.executor.setFramesInFlight(config.framesInFlight);
-  if (Status st = e.frame.configure(config.settings, config.camera, planInputs, e.executor); !st) return st;
+  if (config.camera == Camera{}) return Status::success();
+  return e.frame.configure(config.settings, config.camera, planInputs, e.executor);
+}
+
+// The configuration a per-frame record() asks for: Config's device-level members, the frame's
+// settings and camera, and the inputs its images give (a format left UNDEFINED is Config's).
+Status frameConfig(const EffectState& e, const Camera& camera, const Settings& settings, const Inputs& in,
+                   const OutputImage* userOutput, Config& next) {
+  const Config& c = e.config;
+  next = c;
+  next.settings = settings;
+  next.camera = camera;
+  const auto formatOf = [](const InputImage& i, VkFormat configured) {
+    return i.view == VK_NULL_HANDLE ? VK_FORMAT_UNDEFINED : i.format != VK_FORMAT_UNDEFINED ? i.format : configured;
+  };
+  if (in.depth.format != VK_FORMAT_UNDEFINED) next.depthFormat = in.depth.format;
+  next.secondLayer = in.depth2.view != VK_NULL_HANDLE;
+  next.normalsFormat = formatOf(in.normals, c.normalsFormat);
+  next.motionFormat = formatOf(in.motion, c.motionFormat);
+  next.userOutput = userOutput != nullptr;
+  next.outputFormat = userOutput ? userOutput->format : e.ownedOutputFormat;
+  for (const auto& [image, format, name] : {std::tuple{&in.normals, next.normalsFormat, "normals"},
+                                            std::tuple{&in.motion, next.motionFormat, "motion"}})
+    if (image->view != VK_NULL_HANDLE && format == VK_FORMAT_UNDEFINED)
+      return Status::error(StatusCode::InvalidInput, std::string("record(): Inputs::") + name +
+                                                         ".format is VK_FORMAT_UNDEFINED and so is Config's: name "
+                                                         "the view's format");
   return Status::success();
+}
+
+// Whether record() can take the frame on the current configuration: the same settings, input
+// kinds and formats, and a camera that keeps the plan (sao::cameraKeepsPlan).
+bool keepsConfiguration(const Config& a, const Config& b) {
+  return a.settings == b.settings && a.depthFormat == b.depthFormat && a.secondLayer == b.secondLayer &&
+         a.normalsFormat == b.normalsFormat && a.motionFormat == b.motionFormat && a.userOutput == b.userOutput &&
+         a.outputFormat == b.outputFormat && cameraKeepsPlan(a.settings, a.camera, b.camera);
 }
 
 }  // namespace
@@ -325,32 +309,53 @@ Status Effect::create(const DeviceContext& context, const Config& config, std::u
 // Everything that can fail (or throw) happens before the commit; the commit only moves and swaps.
 // FrameState's configure() is itself transactional (sao/executor.h): what it makes for the new plan
 // goes on a failure, and the current configuration stays.
+Status reconfigure(EffectState& e, const Config& config) {
+  PlanInputs planInputs;
+  if (Status st = checkConfig(e, config, planInputs); !st) return st;
+  const bool newFrames = config.framesInFlight != e.config.framesInFlight;
+  // Built aside; dropped (destroyed) on any early return.
+  Config next = config;
+  ParamBuffer ubo;
+  Handle<VkQueryPool> queries;
+  if (newFrames) {
+    if (Status st = createParamBuffer(e, config.framesInFlight, ubo); !st) return st;
+    if (Status st = createQueryPool(e, config.framesInFlight, queries); !st) return st;
+  }
+  e.executor.setFramesInFlight(config.framesInFlight);
+  if (Status st = e.frame.configure(config.settings, config.camera, planInputs, e.executor); !st) {
+    e.executor.setFramesInFlight(e.config.framesInFlight);
+    return st;
+  }
+  // Commit: nothing below allocates or fails.
+  if (newFrames) {
+    std::swap(e.ubo, ubo);
+    std::swap(e.queryPool, queries);
+  }
+  if (!config.userOutput) e.ownedOutputFormat = config.outputFormat;
+  e.config = std::move(next);
+  return Status::success();
+}
+
 Status Effect::update(const Config& config) {
-  return guarded("sao::vk::Effect::update()", [&] {
+  return guarded("sao::vk::Effect::update()", [&] { return reconfigure(*impl_, config); });
+}
+
+Status Effect::record(VkCommandBuffer cmd, const Camera& camera, const Settings& settings, const Inputs& inputs,
+                      const OutputImage* userOutput) {
+  return guarded("sao::vk::Effect::record()", [&] {
     EffectState& e = *impl_;
-    PlanInputs planInputs;
-    if (Status st = checkConfig(e, config, planInputs); !st) return st;
-    const bool newFrames = config.framesInFlight != e.config.framesInFlight;
-    // Built aside; dropped (destroyed) on any early return.
-    Config next = config;
-    ParamBuffer ubo;
-    Handle<VkQueryPool> queries;
-    if (newFrames) {
-      if (Status st = createParamBuffer(e, config.framesInFlight, ubo); !st) return st;
-      if (Status st = createQueryPool(e, config.framesInFlight, queries); !st) return st;
+    Config next;
+    if (Status st = frameConfig(e, camera, settings, inputs, userOutput, next); !st) return st;
+    if (!e.frame.configured() || !keepsConfiguration(e.config, next)) {
+      // Records up to this one's predecessor may be pending: what the new plan drops waits for them.
+      e.executor.retireUntil(e.records + e.config.framesInFlight - 1);
+      const Status st = reconfigure(e, next);
+      e.executor.retireUntil(std::nullopt);
+      if (!st) return st;
     }
-    e.executor.setFramesInFlight(config.framesInFlight);
-    if (Status st = e.frame.configure(config.settings, config.camera, planInputs, e.executor); !st) {
-      e.executor.setFramesInFlight(e.config.framesInFlight);
-      return st;
-    }
-    // Commit: nothing below allocates or fails.
-    if (newFrames) {
-      std::swap(e.ubo, ubo);
-      std::swap(e.queryPool, queries);
-    }
-    e.config = std::move(next);
-    return Status::success();
+    Inputs in = inputs;
+    in.camera = &camera;
+    return recordFrame(e, cmd, in, userOutput);
   });
 }
 
@@ -361,6 +366,7 @@ const ParamBlock& Effect::params() const { return impl_->frame.block(); }
 MemoryStats Effect::memoryStats() const { return impl_->allocator.stats(); }
 std::uint64_t Effect::outputGeneration() const { return impl_->outputGeneration; }
 std::uint32_t Effect::pipelineCount() const { return static_cast<std::uint32_t>(impl_->pipelines.size()); }
+std::uint64_t Effect::plans() const { return impl_->frame.plans(); }
 
 OutputImage Effect::output() const {
   const OwnedImage* ao = impl_->res.find(gen::ResourceId::ao);

@@ -11,6 +11,7 @@
 #include <array>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,8 @@ struct OutputTarget {
 };
 
 inline constexpr std::uint32_t kMaxFramesInFlight = 16;
+// How FrameState names record()'s inputs in its messages (and checkInputs where it checks first).
+inline constexpr const char* kRecordInputs = "sao::vk::Effect::record() Inputs";
 
 struct EffectState;
 
@@ -133,6 +136,10 @@ class __attribute__((visibility("hidden"))) VkFrameExecutor final : public Execu
   void setRecording(const Recording& r) { rec_ = r; }
   // The ring size the next configuration's descriptor sets are made for (update() sets it first).
   void setFramesInFlight(std::uint32_t frames) { framesInFlight_ = frames; }
+  // A per-frame record() that plans again while records may be pending: what the new plan drops
+  // (images, descriptor sets) is kept until the record numbered `until` is made, when the ring
+  // contract says every record that could read it has completed. Off: dropped at once (update()).
+  void retireUntil(std::optional<std::uint64_t> until) { retireUntil_ = until; }
   std::uint32_t slot() const { return slot_; }  // the ring slot of the last frame
 
   Status checkPlan(const Plan& plan) override;
@@ -147,6 +154,8 @@ class __attribute__((visibility("hidden"))) VkFrameExecutor final : public Execu
   Status endFrame() override;
 
  private:
+  // Whether what the commit drops goes to preparePlan's retired entry (else it is destroyed).
+  bool retiring() const noexcept;
   void prologue(std::span<const Hazard> entry) noexcept;
   void epilogue(std::span<const Hazard> exit) noexcept;
   // The frame's first timestamp (once, before its first dispatch).
@@ -158,6 +167,7 @@ class __attribute__((visibility("hidden"))) VkFrameExecutor final : public Execu
   EffectState& e_;
   Recording rec_;
   std::uint32_t framesInFlight_ = 1;
+  std::optional<std::uint64_t> retireUntil_;
   Descriptors preparedSets_;  // preparePlan's, for planAdopted
   bool newSets_ = false;
   FrameWork work_;
@@ -180,8 +190,11 @@ struct __attribute__((visibility("hidden"))) EffectState {
   VkQueueFamilyProperties family{};
 
   Config config;
+  // The effect-owned output's format: Config::outputFormat of create() or of an update() without
+  // userOutput (a per-frame record() into the caller's output names that output's format instead).
+  VkFormat ownedOutputFormat = VK_FORMAT_R16_SFLOAT;
   // The plan, the schedule, the images kept, the parameter block and the temporal history: core's.
-  FrameState frame{"sao::vk::Effect::record() Inputs"};
+  FrameState frame{kRecordInputs};
 
   Allocator allocator;
   Handle<VkSampler> sampler;  // nearest, clamp to edge, every level
@@ -191,6 +204,14 @@ struct __attribute__((visibility("hidden"))) EffectState {
   ParamBuffer ubo;
   Resources res;
   Descriptors desc;
+  // What a per-frame record() re-plan dropped while records were pending (retireUntil above).
+  struct Retired {
+    std::uint64_t until = 0;
+    std::vector<OwnedImage> images;
+    Descriptors sets;
+  };
+  std::vector<Retired> retired;
+  std::uint64_t records = 0;  // frames recorded (record() and measure()): the ring's count
 
   std::uint32_t nextSlot = 0;
   std::uint64_t outputGeneration = 0;  // Effect::outputGeneration()
@@ -229,6 +250,10 @@ void writeDescriptors(EffectState& e, std::uint32_t slot, std::uint32_t historyP
                       const OutputTarget& output);
 
 // ---- record.cpp
+// record()'s body (Inputs::camera, or Config's); the per-frame call re-plans first when it must.
+Status recordFrame(EffectState& e, VkCommandBuffer cmd, const Inputs& inputs, const OutputImage* userOutput);
+// InvalidInput: `call` before anything was planned (create() without a camera).
+Status notPlanned(const char* call);
 Status checkInputs(const EffectState& e, const Inputs& inputs, const OutputImage* userOutput, OutputTarget& out);
 // Inputs::camera against Config's (create()'s checks and messages, and core's rule for a camera
 // that keeps the plan, named as record()'s). Allocates nothing on success.
@@ -244,6 +269,8 @@ std::uint32_t queriesPerRegion();
 bool familyHasTimestamps(const EffectState& e);
 
 // ---- effect.cpp
+// update()'s body: the new configuration checked, planned and adopted, or nothing changes.
+Status reconfigure(EffectState& e, const Config& config);
 // What the depth input holds: R32_SFLOAT is linear z, every other depth format hardware depth.
 inline DepthEncoding depthEncodingOf(VkFormat depthFormat) {
   return depthFormat == VK_FORMAT_R32_SFLOAT ? DepthEncoding::LinearZ : DepthEncoding::Hardware;

@@ -117,11 +117,18 @@ Status VkFrameExecutor::checkPlan(const Plan& plan) {
 
 Status VkFrameExecutor::createImage(const PlannedImage& image) { return createImages(e_, image); }
 
+bool VkFrameExecutor::retiring() const noexcept {
+  return retireUntil_ && !e_.retired.empty() && e_.retired.back().until == *retireUntil_;
+}
+
 void VkFrameExecutor::destroyImage(const PlannedImage& image) noexcept {
   auto& images = e_.res.images;
-  images.erase(std::remove_if(images.begin(), images.end(),
-                              [&](const OwnedImage& i) { return i.id() == image.resource && sameImage(i.planned, image); }),
-               images.end());
+  const auto dropped = std::stable_partition(images.begin(), images.end(), [&](const OwnedImage& i) {
+    return !(i.id() == image.resource && sameImage(i.planned, image));
+  });
+  // Kept for the records that may still read it (room reserved by preparePlan: no allocation here).
+  if (retiring()) std::move(dropped, images.end(), std::back_inserter(e_.retired.back().images));
+  images.erase(dropped, images.end());
 }
 
 Status VkFrameExecutor::createPipeline(const gen::PassInfo& pass, const gen::PassVariantInfo& variant) {
@@ -132,6 +139,10 @@ Status VkFrameExecutor::createPipeline(const gen::PassInfo& pass, const gen::Pas
 // built beside the current ones.
 Status VkFrameExecutor::preparePlan(const Plan&, const Schedule& schedule) {
   if (Status st = bindImages(e_); !st) return st;
+  if (retireUntil_) {  // where the commit puts what it drops (it cannot fail, so room is made now)
+    e_.retired.push_back({*retireUntil_, {}, {}});
+    e_.retired.back().images.reserve(e_.res.images.size());
+  }
   newSets_ = !e_.frame.configured() || framesInFlight_ != e_.desc.slots ||
              !sameDispatches(e_.schedule(), schedule);
   if (!newSets_) return Status::success();
@@ -141,8 +152,11 @@ Status VkFrameExecutor::preparePlan(const Plan&, const Schedule& schedule) {
 void VkFrameExecutor::planAdopted() noexcept {
   if (newSets_) {
     std::swap(e_.desc, preparedSets_);
-    preparedSets_ = Descriptors{};  // the replaced sets go (no record of them is pending: update()'s rule)
-    e_.nextSlot = 0;
+    if (retiring())
+      std::swap(e_.retired.back().sets, preparedSets_);  // pending records may still bind them
+    else
+      e_.nextSlot = 0;  // nothing is pending (update()'s rule): the ring starts again
+    preparedSets_ = Descriptors{};
     e_.lastTimedRegion = -1;
     newSets_ = false;
   }
@@ -156,6 +170,9 @@ void VkFrameExecutor::planAdopted() noexcept {
 // ---- a frame
 
 Status VkFrameExecutor::beginFrame(const FrameWork& frame) {
+  // What a re-plan kept for pending records goes once they have completed (the ring contract).
+  std::erase_if(e_.retired, [&](const EffectState::Retired& r) { return r.until <= e_.records; });
+  ++e_.records;
   work_ = frame;
   error_ = Status::success();
   stamped_ = false;

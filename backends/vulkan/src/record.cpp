@@ -88,13 +88,17 @@ Status checkInputs(const EffectState& e, const Inputs& in, const OutputImage* us
                              "R16G16B16A16_SFLOAT, the one Config names (its pipelines are built for it)");
   }
   const bool keep = keepsChannels(outputFormatOf(c.outputFormat), in.outputChannels, in.outputBlend);
-  if (keep && (userOutput->layout == VK_IMAGE_LAYOUT_UNDEFINED || userOutput->layout == VK_IMAGE_LAYOUT_PREINITIALIZED))
+  if (keep && (userOutput->layout == VK_IMAGE_LAYOUT_UNDEFINED || userOutput->layout == VK_IMAGE_LAYOUT_PREINITIALIZED)) {
+    // A mask or blend the output cannot take is named as such (FrameState's check), not as a layout.
+    if (Status st = checkFrameOutput(e.plan(), e.frame.planInputs(), frameInputsOf(in).values, kRecordInputs); !st)
+      return st;
     return Status::error(StatusCode::InvalidInput,
                          std::string(in.outputBlend == OutputBlend::Multiply ? "Inputs::outputBlend is multiply"
                                                                              : "Inputs::outputChannels keeps channels of the output") +
                              ", but OutputImage::layout is " +
                              std::to_string(userOutput->layout) +
                              "; give the layout your image is in when the commands run (its texels are kept)");
+  }
   for (const auto& [input, name] : {std::pair{in.depth.view, "depth"}, std::pair{in.depth2.view, "depth2"},
                                      std::pair{in.normals.view, "normals"}, std::pair{in.motion.view, "motion"}})
     if (input != VK_NULL_HANDLE && input == userOutput->view)
@@ -134,22 +138,31 @@ FrameInputs frameInputsOf(const Inputs& in) {
   return f;
 }
 
+Status recordFrame(EffectState& e, VkCommandBuffer cmd, const Inputs& inputs, const OutputImage* userOutput) {
+  if (cmd == VK_NULL_HANDLE)
+    return Status::error(StatusCode::InvalidInput, "record(): the command buffer is VK_NULL_HANDLE");
+  if (!e.frame.configured()) return notPlanned("record()");
+  OutputTarget output;
+  if (Status st = checkInputs(e, inputs, userOutput, output); !st) return st;
+  if (inputs.camera)
+    if (Status st = checkRecordCamera(e, *inputs.camera); !st) return st;
+  const int region = e.config.timestamps && e.queryPool ? static_cast<int>(e.nextSlot) : -1;
+  // FrameState checks the frame before the executor records its first command: a failure records nothing.
+  e.executor.setRecording({cmd, &inputs, output, region});
+  if (Status st = e.frame.run(frameInputsOf(inputs), e.executor); !st) return st;
+  if (region >= 0) e.lastTimedRegion = region;
+  return Status::success();
+}
+
+Status notPlanned(const char* call) {
+  return Status::error(StatusCode::InvalidInput,
+                       std::string(call) + ": nothing is planned yet (create() had no Config::camera): record with "
+                                           "the frame's camera and settings, record(cmd, camera, settings, inputs), "
+                                           "or call update() first");
+}
+
 Status Effect::record(VkCommandBuffer cmd, const Inputs& inputs, const OutputImage* userOutput) {
-  return guarded("sao::vk::Effect::record()", [&] {
-    EffectState& e = *impl_;
-    if (cmd == VK_NULL_HANDLE)
-      return Status::error(StatusCode::InvalidInput, "record(): the command buffer is VK_NULL_HANDLE");
-    OutputTarget output;
-    if (Status st = checkInputs(e, inputs, userOutput, output); !st) return st;
-    if (inputs.camera)
-      if (Status st = checkRecordCamera(e, *inputs.camera); !st) return st;
-    const int region = e.config.timestamps && e.queryPool ? static_cast<int>(e.nextSlot) : -1;
-    // FrameState checks the frame before the executor records its first command: a failure records nothing.
-    e.executor.setRecording({cmd, &inputs, output, region});
-    if (Status st = e.frame.run(frameInputsOf(inputs), e.executor); !st) return st;
-    if (region >= 0) e.lastTimedRegion = region;
-    return Status::success();
-  });
+  return guarded("sao::vk::Effect::record()", [&] { return recordFrame(*impl_, cmd, inputs, userOutput); });
 }
 
 }  // namespace sao::vk

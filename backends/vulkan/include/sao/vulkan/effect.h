@@ -8,16 +8,18 @@
 //   sao::vk::DeviceContext ctx{instance, physicalDevice, device, vkGetInstanceProcAddr,
 //                              vkGetDeviceProcAddr, queueFamily};
 //   ctx.enabledFeatures = &enabledFeatures;  // what you passed to vkCreateDevice
-//   sao::vk::Config config;            // settings, camera, depth format, output layout, ...
-//   config.camera = camera;
-//   config.depthFormat = VK_FORMAT_D32_SFLOAT;
 //   std::unique_ptr<sao::vk::Effect> effect;
-//   sao::Status st = sao::vk::Effect::create(ctx, config, effect);
+//   sao::Status st = sao::vk::Effect::create(ctx, {}, effect);  // Config: ring size, output layout, ...
 //   ...
 //   sao::vk::Inputs in;
-//   in.depth = {depthView, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, effect->plan().inputExtent};
-//   st = effect->record(cmd, in);      // every pass and barrier, into your command buffer
+//   in.depth = {depthView, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, {w, h}, VK_FORMAT_D32_SFLOAT};
+//   st = effect->record(cmd, camera, settings, in);  // each frame, as sao::gl::Effect::render()
 //   sao::vk::OutputImage ao = effect->output();  // Config::outputFormat (R16_SFLOAT), in config.outputLayout
+//
+// The per-frame record(cmd, camera, settings, inputs[, output]) is the GL backend's shape: any of
+// them may change from one frame to the next, and a change that needs a new plan is made within
+// the call (no update(), no wait). The older shape stays: Config's settings and camera planned by
+// create() / update(), and record(cmd, inputs) with a per-record Inputs::camera that keeps the plan.
 //
 // Stereo (VR: two eyes in array layers of one depth image): one effect, recorded once per eye into
 // the same command buffer. Make a VK_IMAGE_VIEW_TYPE_2D view per layer of your depth (and normals)
@@ -111,7 +113,9 @@ struct DeviceContext {
 // What the images, pipelines and the parameter block depend on.
 struct Config {
   Settings settings;
-  Camera camera;  // what the plan is made for; Inputs::camera may replace it per record
+  // What the plan is made for; Inputs::camera may replace it per record. Left default (Camera{}),
+  // create() plans nothing and the first per-frame record(cmd, camera, settings, inputs) plans.
+  Camera camera;
   // The depth input: VK_FORMAT_D16_UNORM, X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT, D32_SFLOAT,
   // D32_SFLOAT_S8_UINT (hardware depth per the camera's conventions; views of the combined
   // formats must select VK_IMAGE_ASPECT_DEPTH_BIT only) or VK_FORMAT_R32_SFLOAT (linear
@@ -172,7 +176,9 @@ struct InputImage {
   VkImageView view = VK_NULL_HANDLE;
   VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   Extent extent;  // the whole level the view shows
-  VkFormat format = VK_FORMAT_UNDEFINED;  // optional, checked against Config
+  // Optional, checked against Config; the per-frame record() takes the input's format from here
+  // (UNDEFINED: Config's).
+  VkFormat format = VK_FORMAT_UNDEFINED;
 };
 
 struct Inputs {
@@ -297,6 +303,19 @@ class SAO_VK_API Effect {
   // configuration. Starts the temporal history again. Not while a recorded command buffer is pending.
   Status update(const Config& config);
 
+  // The per-frame call, sao::gl::Effect::render()'s shape: this frame's camera, settings and inputs
+  // (with `userOutput` the caller's output, its format the output's; null: the effect's own, in
+  // Config::outputFormat). Each input's kind comes from its view (depth2, normals, motion present
+  // or not) and its format from InputImage::format (UNDEFINED: Config's). The same settings and
+  // inputs with a camera that keeps the plan (sao::cameraKeepsPlan) record at once, allocating
+  // nothing; anything else plans again here, as update() would, and what the old plan alone used
+  // (images, descriptor sets) is destroyed only once the Config::framesInFlight records after it
+  // have been made (the ring contract says they are complete), so pending records are undisturbed
+  // and nothing waits. Planning again starts the temporal history again, as on GL. On error
+  // nothing is recorded and the previous configuration stays.
+  Status record(VkCommandBuffer cmd, const Camera& camera, const Settings& settings, const Inputs& inputs,
+                const OutputImage* userOutput = nullptr);
+
   // Records every planned pass (with its barriers) into `cmd`, which must be in the recording
   // state, outside a render pass, on a queue of DeviceContext::queueFamilyIndex's family.
   // `userOutput` is required with Config::userOutput and must be null otherwise. Nothing is
@@ -335,6 +354,9 @@ class SAO_VK_API Effect {
   OwnedImageInfo ownedImage(gen::ResourceId id) const;
   MemoryStats memoryStats() const;  // this effect's device memory
   std::uint32_t pipelineCount() const;  // pipelines built so far (one per pass variant used)
+  // Configurations planned so far: by create() with a camera, update() and each per-frame record()
+  // that had to plan again (GL: Stats::plans).
+  std::uint64_t plans() const;
 
  private:
   struct Impl;  // the library's own
