@@ -8,7 +8,8 @@
 #   install + consumer ci/package.sh: cmake --install into build-install/, the consumer project
 #                      tests/package configured against it (find_package(sao CONFIG)), built, run
 #   sanitizers         ci/sanitize.sh: AddressSanitizer + UndefinedBehaviorSanitizer build of
-#                      everything in build-asan/, every ctest test (leak checking on)
+#                      everything in build-asan/, every ctest test (leak checking on) but those
+#                      labelled release_only (run uninstrumented in the release stage)
 #   fuzz               ci/fuzz.sh: the libFuzzer targets (clang) in build-fuzz/, a fixed number of
 #                      inputs from a fixed seed each (deterministic: the verdict depends on the
 #                      commit alone); ci/fuzz.sh --explore SECONDS is the time-based run
@@ -56,7 +57,7 @@ bash ci/setup.sh
 current=""
 run_stage build "release build" release_build_and_test
 run_stage package "install + consumer" bash ci/package.sh build
-run_stage sanitizers "sanitizers" bash ci/sanitize.sh
+run_stage sanitizers "sanitizers" bash ci/sanitize.sh -LE release_only  # those run in the release stage
 run_stage fuzz "fuzz" bash ci/fuzz.sh
 
 echo

@@ -252,12 +252,10 @@ void writeDescriptors(EffectState& e, std::uint32_t slot, std::uint32_t historyP
 // ---- record.cpp
 // record()'s body (Inputs::camera, or Config's); the per-frame call re-plans first when it must.
 Status recordFrame(EffectState& e, VkCommandBuffer cmd, const Inputs& inputs, const OutputImage* userOutput);
-// InvalidInput: `call` before anything was planned (create() without a camera).
-Status notPlanned(const char* call);
-Status checkInputs(const EffectState& e, const Inputs& inputs, const OutputImage* userOutput, OutputTarget& out);
-// Inputs::camera against Config's (create()'s checks and messages, and core's rule for a camera
-// that keeps the plan, named as record()'s). Allocates nothing on success.
-Status checkRecordCamera(const EffectState& e, const Camera& camera);
+// What record() and measure() check first: a plan (create() without a camera makes none), the
+// caller's images (checkInputs), Inputs::camera (checkRecordCamera).
+Status checkFrame(const EffectState& e, const char* call, const Inputs& inputs, const OutputImage* userOutput,
+                  OutputTarget& output);
 // The frame's inputs for FrameState::run: the camera, the history's, the region, index and output use.
 FrameInputs frameInputsOf(const Inputs& inputs);
 

@@ -48,8 +48,6 @@ Status checkInput(const InputImage& in, const char* name, VkFormat format, std::
   return Status::success();
 }
 
-}  // namespace
-
 Status checkInputs(const EffectState& e, const Inputs& in, const OutputImage* userOutput, OutputTarget& out) {
   const Config& c = e.config;
   SuppliedImages supplied{};
@@ -114,6 +112,8 @@ Status checkInputs(const EffectState& e, const Inputs& in, const OutputImage* us
   return Status::success();
 }
 
+// Inputs::camera against Config's: create()'s checks and messages, and core's rule for a camera
+// that keeps the plan, named as record()'s. Allocates nothing on success.
 Status checkRecordCamera(const EffectState& e, const Camera& camera) {
   const Config& c = e.config;
   // Messages are built only on the error paths.
@@ -127,6 +127,8 @@ Status checkRecordCamera(const EffectState& e, const Camera& camera) {
   return Status::success();
 }
 
+}  // namespace
+
 FrameInputs frameInputsOf(const Inputs& in) {
   FrameInputs f;
   f.camera = in.camera;
@@ -138,27 +140,28 @@ FrameInputs frameInputsOf(const Inputs& in) {
   return f;
 }
 
+Status checkFrame(const EffectState& e, const char* call, const Inputs& inputs, const OutputImage* userOutput,
+                  OutputTarget& output) {
+  if (!e.frame.configured())
+    return Status::error(StatusCode::InvalidInput,
+                         std::string(call) + ": nothing is planned yet (create() had no Config::camera): record with "
+                                             "the frame's camera and settings, record(cmd, camera, settings, inputs), "
+                                             "or call update() first");
+  if (Status st = checkInputs(e, inputs, userOutput, output); !st) return st;
+  return inputs.camera ? checkRecordCamera(e, *inputs.camera) : Status::success();
+}
+
 Status recordFrame(EffectState& e, VkCommandBuffer cmd, const Inputs& inputs, const OutputImage* userOutput) {
   if (cmd == VK_NULL_HANDLE)
     return Status::error(StatusCode::InvalidInput, "record(): the command buffer is VK_NULL_HANDLE");
-  if (!e.frame.configured()) return notPlanned("record()");
   OutputTarget output;
-  if (Status st = checkInputs(e, inputs, userOutput, output); !st) return st;
-  if (inputs.camera)
-    if (Status st = checkRecordCamera(e, *inputs.camera); !st) return st;
+  if (Status st = checkFrame(e, "record()", inputs, userOutput, output); !st) return st;
   const int region = e.config.timestamps && e.queryPool ? static_cast<int>(e.nextSlot) : -1;
   // FrameState checks the frame before the executor records its first command: a failure records nothing.
   e.executor.setRecording({cmd, &inputs, output, region});
   if (Status st = e.frame.run(frameInputsOf(inputs), e.executor); !st) return st;
   if (region >= 0) e.lastTimedRegion = region;
   return Status::success();
-}
-
-Status notPlanned(const char* call) {
-  return Status::error(StatusCode::InvalidInput,
-                       std::string(call) + ": nothing is planned yet (create() had no Config::camera): record with "
-                                           "the frame's camera and settings, record(cmd, camera, settings, inputs), "
-                                           "or call update() first");
 }
 
 Status Effect::record(VkCommandBuffer cmd, const Inputs& inputs, const OutputImage* userOutput) {

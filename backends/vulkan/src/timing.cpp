@@ -117,11 +117,8 @@ Status Effect::measure(VkQueue queue, const Inputs& inputs, const OutputImage* u
     out = Timings{};
     if (queue == VK_NULL_HANDLE)
       return Status::error(StatusCode::InvalidInput, "measure(): the queue is VK_NULL_HANDLE");
-    if (!e.frame.configured()) return notPlanned("measure()");
     OutputTarget output;
-    if (Status st = checkInputs(e, inputs, userOutput, output); !st) return st;
-    if (inputs.camera)
-      if (Status st = checkRecordCamera(e, *inputs.camera); !st) return st;
+    if (Status st = checkFrame(e, "measure()", inputs, userOutput, output); !st) return st;
     Submitter sub(e);
     if (Status st = sub.init(); !st) return st;
     VkCommandBuffer cmd = VK_NULL_HANDLE;
