@@ -69,6 +69,16 @@ class GlExecutor final : public Executor {
 
   Status upload(const Frame& f) override {
     releaseInputs();
+    if (!f.depthLayers.empty()) {  // stereo: immutable GL_TEXTURE_2D_ARRAYs, Inputs::layer picks one
+      if (Status st = checkLayers(f); !st) return st;
+      format_ = gl::internalFormat(glDepth(f.format));
+      depth_ = gltest::uploadDepthArray(format_, f.depthLayers);
+      layers_ = std::uint32_t(f.depthLayers.size());
+      outputExtent_ = {f.camera.width, f.camera.height};
+      output_ = gltest::makeTextureArray(gen::formatInfo(f.output.format).glInternalFormat, outputExtent_, layers_);
+      outputChannels_ = channelsOf(f.output.format);
+      return Status::success();
+    }
     if (f.depth == nullptr) return Status::error(StatusCode::InvalidInput, "harness: the frame has no depth");
     format_ = gl::internalFormat(glDepth(f.format));
     if (f.depth->samples > 1) {
@@ -108,12 +118,23 @@ class GlExecutor final : public Executor {
     in.frameIndex = f.frameIndex;
     in.resetHistory = f.resetHistory;
     in.previousCamera = f.previousCamera;
+    in.layer = f.layer;
     const Status st = effect_->render(f.camera, f.settings, in);
     glFinish();
+    if (st) lastLayer_ = f.layer;
     return st;
   }
 
-  FloatImage output() override { return gl::readTexture(effect_->aoTexture(), outputChannels_); }
+  FloatImage output() override {
+    if (layers_ == 0) return gl::readTexture(effect_->aoTexture(), outputChannels_);
+    // One layer of the caller's array (readTexture reads level 0 of a 2D texture).
+    FloatImage img(outputExtent_, outputChannels_);
+    const GLenum layout = outputChannels_ == 1 ? GL_RED : outputChannels_ == 2 ? GL_RG : GL_RGBA;
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureSubImage(output_, 0, 0, 0, GLint(lastLayer_), GLsizei(outputExtent_.width), GLsizei(outputExtent_.height),
+                         1, layout, GL_FLOAT, GLsizei(img.data.size() * sizeof(float)), img.data.data());
+    return img;
+  }
 
   FloatImage image(gen::ResourceId resource, std::uint32_t level) override {
     const PlannedImage* planned = effect_->plan().image(resource);
@@ -135,10 +156,13 @@ class GlExecutor final : public Executor {
       gl::deleteTexture(*t);
       *t = 0;
     }
+    layers_ = 0;
   }
   std::unique_ptr<gl::Effect> effect_;
   GLuint depth_ = 0, depth2_ = 0, normals_ = 0, motion_ = 0, output_ = 0;
   std::uint32_t format_ = 0, outputChannels_ = 1;
+  std::uint32_t layers_ = 0, lastLayer_ = 0;  // stereo: the arrays' layers (0: plain textures), the last run's
+  Extent outputExtent_;
 };
 
 }  // namespace

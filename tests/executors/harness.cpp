@@ -164,4 +164,14 @@ std::uint32_t channelsOf(Texels texels) { return texels == Texels::RG16F || texe
 
 std::uint32_t channelsOf(gen::Format format) { return gen::formatInfo(format).channels; }
 
+Status checkLayers(const Frame& f) {
+  for (const DepthImage* d : f.depthLayers)
+    if (d == nullptr || d->samples > 1 || d->format != DepthFormat::D32F || f.format != Depth::D32F ||
+        d->extent != f.depthLayers[0]->extent)
+      return Status::error(StatusCode::InvalidInput, "harness: stereo depth layers are single-sample D32F of one extent");
+  if (f.depth2 || f.normals || f.motion || !f.output.callerOwned || f.output.initial)
+    return Status::error(StatusCode::InvalidInput, "harness: a stereo frame takes depth layers and the caller's output only");
+  return Status::success();
+}
+
 }  // namespace sao::exectest

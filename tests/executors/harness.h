@@ -67,6 +67,12 @@ struct Frame {
   std::uint32_t frameIndex = 0;
   bool resetHistory = false;
   const Camera* previousCamera = nullptr;
+  // Stereo: one host depth per array layer in place of `depth` (single-sample D32F, one extent): the
+  // depth and the caller's output (output.callerOwned, no initial contents; nothing else) become
+  // arrays of as many layers, made once by upload(); each run renders layer `layer` with `camera`
+  // (GL Inputs::layer; Vulkan a 2D view per layer, OutputImage::layer) and output() reads it.
+  std::vector<const DepthImage*> depthLayers;
+  std::uint32_t layer = 0;
 };
 
 // The effect on one API. Every call needs the API's test context (the fixture below makes it).

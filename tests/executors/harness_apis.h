@@ -23,5 +23,9 @@ namespace sao::exectest {
 FloatImage withChannels(const FloatImage& image, std::uint32_t channels);
 std::uint32_t channelsOf(Texels texels);
 std::uint32_t channelsOf(gen::Format format);  // the generated format table's
+// Refuses a stereo frame (Frame::depthLayers) beyond what the halves upload as arrays.
+Status checkLayers(const Frame& frame);
+// The depth a run reads: Frame::depth, or the layer's.
+inline const DepthImage& runDepth(const Frame& f) { return f.depthLayers.empty() ? *f.depth : *f.depthLayers.at(f.layer); }
 
 }  // namespace sao::exectest

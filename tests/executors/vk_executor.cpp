@@ -3,6 +3,7 @@
 // again within the call when it must), submitted and waited for.
 #include "harness_apis.h"
 #include "sao/frame.h"
+#include "vk_array_image.h"
 #include "vk_msaa_depth_writer.h"
 #include "vk_support.h"
 
@@ -51,6 +52,14 @@ class VkExecutor final : public Executor {
   Status upload(const Frame& f) override {
     releaseInputs();
     auto& ctx = vktest::context();
+    if (!f.depthLayers.empty()) {  // stereo: arrays with a 2D view per layer, OutputImage::layer
+      if (Status st = checkLayers(f); !st) return st;
+      outputLayouts_.assign(f.depthLayers.size(), VK_IMAGE_LAYOUT_UNDEFINED);
+      if (Status st = vktest::uploadDepthLayers(f.depthLayers, depthLayout(f), depthArray_); !st) return st;
+      return vktest::createArrayImage(vkFormat(f.output.format), {f.camera.width, f.camera.height},
+                                      std::uint32_t(f.depthLayers.size()), vktest::kOutputArrayUsage,
+                                      VK_IMAGE_ASPECT_COLOR_BIT, outputArray_);
+    }
     if (f.depth == nullptr) return Status::error(StatusCode::InvalidInput, "harness: the frame has no depth");
     const VkImageLayout layout = depthLayout(f);
     if (Status st = f.depth->samples > 1 ? vktest::writeMultisampledDepth(ctx, *f.depth, layout, depth_)
@@ -83,7 +92,9 @@ class VkExecutor final : public Executor {
   Status run(const Frame& f) override {
     // The per-frame call, GL's shape: what only Config can say (the depth's sample count, the
     // effect-owned output's format) makes a new effect when it changes.
-    const auto samples = VkSampleCountFlagBits(f.depth->samples);
+    const DepthImage& depth = runDepth(f);
+    const bool layered = !outputLayouts_.empty();
+    const auto samples = VkSampleCountFlagBits(depth.samples);
     const bool otherOwnedFormat = !f.output.callerOwned && vkFormat(f.output.format) != ownedFormat_;
     if (effect_ && (effect_->config().depthSamples != samples || otherOwnedFormat)) effect_.reset();
     if (!effect_) {
@@ -95,7 +106,7 @@ class VkExecutor final : public Executor {
       createdBlocks_ = effect_->memoryStats().totalAllocations;  // the parameter buffer's, no image yet
     }
     vk::Inputs in;
-    in.depth = {depth_.view, depthLayout(f), f.depth->extent, vkDepth(f.format)};
+    in.depth = {layered ? depthArray_.views.at(f.layer) : depth_.view, depthLayout(f), depth.extent, vkDepth(f.format)};
     if (f.depth2) in.depth2 = {depth2_.view, depthLayout(f), f.depth2->extent, vkDepth(f.format)};
     if (f.normals) in.normals = {normals_.view, kRead, f.normals->extent, vkTexels(f.normalsTexels)};
     if (f.motion) in.motion = {motion_.view, kRead, f.motion->extent, vkTexels(f.motionTexels)};
@@ -105,17 +116,30 @@ class VkExecutor final : public Executor {
     in.previousCamera = f.previousCamera;
     in.outputChannels = f.output.channels;
     in.outputBlend = f.output.blend;
-    const vk::OutputImage user{output_.image, output_.view, output_.format, output_.extent, output_.layout};
+    const vk::OutputImage user =
+        layered ? vk::OutputImage{outputArray_.image, outputArray_.views.at(f.layer), outputArray_.format,
+                                  outputArray_.extent, outputLayouts_[f.layer], f.layer}
+                : vk::OutputImage{output_.image, output_.view, output_.format, output_.extent, output_.layout};
     Status recorded;
     const Status submitted = vktest::context().submit([&](VkCommandBuffer cmd) {
       recorded = effect_->record(cmd, f.camera, f.settings, in, f.output.callerOwned ? &user : nullptr);
     });
     if (!submitted) return submitted;
-    if (recorded && f.output.callerOwned) output_.layout = effect_->config().outputLayout;
+    if (recorded && f.output.callerOwned)
+      (layered ? outputLayouts_[f.layer] : output_.layout) = effect_->config().outputLayout;
+    if (recorded) lastLayer_ = f.layer;
     return recorded;
   }
 
   FloatImage output() override {
+    if (!outputLayouts_.empty()) {  // the last run's layer
+      FloatImage out;
+      const vk::Config& c = effect_->config();
+      const Status st = vktest::readLayer(outputArray_, lastLayer_, outputLayouts_[lastLayer_], c.outputDstStages,
+                                          c.outputDstAccess, out);
+      EXPECT_TRUE(st.ok()) << st.message;
+      return out;
+    }
     const vk::OutputImage o = effect_->config().userOutput
                                   ? vk::OutputImage{output_.image, output_.view, output_.format, output_.extent, output_.layout}
                                   : effect_->output();
@@ -149,11 +173,17 @@ class VkExecutor final : public Executor {
  private:
   void releaseInputs() {
     for (Image* i : {&depth_, &depth2_, &normals_, &motion_, &output_}) vktest::context().destroy(*i);
+    vktest::destroy(depthArray_);
+    vktest::destroy(outputArray_);
+    outputLayouts_.clear();
   }
   std::unique_ptr<vk::Effect> effect_;
   VkFormat ownedFormat_ = VK_FORMAT_R16_SFLOAT;  // Config::outputFormat of effect_
   std::uint64_t createdBlocks_ = 0;
   Image depth_, depth2_, normals_, motion_, output_;
+  vktest::ArrayImage depthArray_, outputArray_;  // stereo (Frame::depthLayers)
+  std::vector<VkImageLayout> outputLayouts_;     // per layer of outputArray_; empty: not stereo
+  std::uint32_t lastLayer_ = 0;
 };
 
 }  // namespace
