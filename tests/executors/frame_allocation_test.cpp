@@ -6,28 +6,12 @@
 #include <cstdio>
 
 #include "harness.h"
-#include "library_allocations.h"
-#if __has_include(<sao/gl/effect.h>)
-#include "sao/gl/effect.h"
-#endif
-#if __has_include(<sao/vulkan/effect.h>)
-#include "sao/vulkan/effect.h"
-#endif
+#include "api_allocations.h"
 
 namespace sao::exectest {
 namespace {
 
 constexpr int kFrames = 100;
-
-bool watchApiLibrary(Api api) {
-#if __has_include(<sao/gl/effect.h>)
-  if (api == Api::Gl) return test::watchLibraryOf(reinterpret_cast<const void*>(&gl::Effect::create));
-#endif
-#if __has_include(<sao/vulkan/effect.h>)
-  if (api == Api::Vulkan) return test::watchLibraryOf(reinterpret_cast<const void*>(&vk::Effect::create));
-#endif
-  return false;
-}
 
 // Each API's old case: GL's camera and D24, Vulkan's camera and D32F.
 struct ViewCase {

@@ -12,31 +12,15 @@
 #include <cstdio>
 
 #include "harness.h"
-#include "library_allocations.h"
+#include "api_allocations.h"
 #include "sao/frame.h"
 #include "sao/presets.h"
-#if __has_include(<sao/gl/effect.h>)
-#include "sao/gl/effect.h"
-#endif
-#if __has_include(<sao/vulkan/effect.h>)
-#include "sao/vulkan/effect.h"
-#endif
 
 namespace sao::exectest {
 namespace {
 
 constexpr std::uint32_t kW = 160, kH = 90, kGuard = 8, kEyes = 2;
 constexpr int kFrames = 8;  // after the first stereo frame, which may allocate
-
-bool watchApiLibrary(Api api) {
-#if __has_include(<sao/gl/effect.h>)
-  if (api == Api::Gl) return test::watchLibraryOf(reinterpret_cast<const void*>(&gl::Effect::create));
-#endif
-#if __has_include(<sao/vulkan/effect.h>)
-  if (api == Api::Vulkan) return test::watchLibraryOf(reinterpret_cast<const void*>(&vk::Effect::create));
-#endif
-  return false;
-}
 
 // GL's old case (OpenGL depth, estimator 0) and Vulkan's (Vulkan depth, both estimators), on both.
 struct StereoCase {

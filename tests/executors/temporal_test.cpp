@@ -7,29 +7,12 @@
 #include <vector>
 
 #include "harness.h"
-#include "library_allocations.h"
+#include "api_allocations.h"
 #include "moving_camera.h"
 #include "sao/presets.h"
-#if __has_include(<sao/gl/effect.h>)
-#include "sao/gl/effect.h"
-#endif
-#if __has_include(<sao/vulkan/effect.h>)
-#include "sao/vulkan/effect.h"
-#endif
 
 namespace sao::exectest {
 namespace {
-
-// Counts the allocations of the API's own library, not the harness's.
-bool watchApiLibrary(Api api) {
-#if __has_include(<sao/gl/effect.h>)
-  if (api == Api::Gl) return test::watchLibraryOf(reinterpret_cast<const void*>(&gl::Effect::create));
-#endif
-#if __has_include(<sao/vulkan/effect.h>)
-  if (api == Api::Vulkan) return test::watchLibraryOf(reinterpret_cast<const void*>(&vk::Effect::create));
-#endif
-  return false;
-}
 
 Settings temporalMedium(bool visibility = false) {
   Settings s = presetSettings(Preset::Medium);
