@@ -281,12 +281,10 @@ Status frameConfig(const EffectState& e, const Camera& camera, const Settings& s
   return Status::success();
 }
 
-// Whether record() can take the frame on the current configuration: the same settings, input
-// kinds and formats, and a camera that keeps the plan (sao::cameraKeepsPlan).
-bool keepsConfiguration(const Config& a, const Config& b) {
-  return a.settings == b.settings && a.depthFormat == b.depthFormat && a.secondLayer == b.secondLayer &&
-         a.normalsFormat == b.normalsFormat && a.motionFormat == b.motionFormat && a.userOutput == b.userOutput &&
-         a.outputFormat == b.outputFormat && cameraKeepsPlan(a.settings, a.camera, b.camera);
+// Whether the frame names the formats Config has (then its plan inputs are the configuration's).
+bool sameFormats(const Config& a, const Config& b) {
+  return a.depthFormat == b.depthFormat && a.secondLayer == b.secondLayer && a.normalsFormat == b.normalsFormat &&
+         a.motionFormat == b.motionFormat && a.userOutput == b.userOutput && a.outputFormat == b.outputFormat;
 }
 
 }  // namespace
@@ -346,12 +344,21 @@ Status Effect::record(VkCommandBuffer cmd, const Camera& camera, const Settings&
     EffectState& e = *impl_;
     Config next;
     if (Status st = frameConfig(e, camera, settings, inputs, userOutput, next); !st) return st;
-    if (!e.frame.configured() || !keepsConfiguration(e.config, next)) {
+    // Core's one rule decides whether the frame keeps the plan (FrameState::keeps); other formats
+    // with the same plan inputs (e.g. normals in RG16F, then RGBA16F) only update Config's.
+    const bool formats = sameFormats(e.config, next);
+    PlanInputs planInputs = e.frame.planInputs();
+    if (!formats)
+      if (Status st = checkConfig(e, next, planInputs); !st) return st;
+    if (!e.frame.configured() || !e.frame.keeps(settings, camera, planInputs)) {
       // Records up to this one's predecessor may be pending: what the new plan drops waits for them.
       e.executor.retireUntil(e.records + e.config.framesInFlight - 1);
       const Status st = reconfigure(e, next);
       e.executor.retireUntil(std::nullopt);
       if (!st) return st;
+    } else if (!formats) {
+      next.camera = e.config.camera;  // the plan's camera; this frame's goes in Inputs::camera
+      e.config = next;
     }
     Inputs in = inputs;
     in.camera = &camera;
