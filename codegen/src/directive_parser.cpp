@@ -365,10 +365,11 @@ class Parser {
       diags_.error(d.loc, "variant '" + v.name + "' needs at least two values");
       return;
     }
-    // Every combination of the variants is enumerated (each pass compiles its projection, at most
-    // kMaxPassVariants): keep the product small, so that a long list of variants cannot make the
-    // tool run for ever.
-    constexpr std::size_t kMaxCombinations = 4096;
+    // Each pass compiles the combinations of the variants it lists (at most kMaxPassVariants); the
+    // effect's whole product only bounds a list of variants that nothing could ever build. The real
+    // effect has 4096 (ten two-valued variants and the output format's four): room for new inputs'
+    // select=input variants (docs/adding-a-pass.md, section 6).
+    constexpr std::size_t kMaxCombinations = 65536;
     std::size_t combinations = v.values.size();
     for (const Variant& other : effect_.variants) combinations *= other.values.size();
     if (v.values.size() > kMaxCombinations || combinations > kMaxCombinations) {
@@ -514,11 +515,13 @@ class Parser {
     effect_.resources.push_back(r);
   }
 
-  // formats=[F,...]: the formats a kind=output resource may have (its format= among them); a
-  // variant with select=output:NAME picks one per plan.
+  // formats=[F,...]: the formats a kind=output resource may have (its format= among them; a
+  // variant with select=output:NAME picks one per plan), or the texel formats a colour kind=input
+  // accepts (the backends refuse any other, naming these).
   bool parseFormats(const Directive& d, Resource& r, const std::string& list) {
     std::string why;
-    if (r.kind != ResourceKind::Output) why = "is only for kind=output resources";
+    if (r.kind == ResourceKind::Image) why = "is only for kind=input and kind=output resources";
+    else if (r.format == "depth") why = "is not for a depth input (the backends accept their depth formats)";
     else if (list.size() < 2 || list.front() != '[' || list.back() != ']') why = "must be a list [F,...]";
     else
       for (const auto& f : splitList(list.substr(1, list.size() - 2))) {

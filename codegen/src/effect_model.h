@@ -70,8 +70,9 @@ struct Resource {
   std::string name;
   ResourceKind kind = ResourceKind::Image;
   std::string format;      // r32f, rg32f, r16f, rg16f, rgba16f, r8, rgba8, depth
-  // formats=[...] (kind=output only): every format the output may have, `format` among them; the
-  // variant with select=output:NAME picks one, and each pass writing it lists that variant.
+  // formats=[...]: kind=output, every format the output may have, `format` among them (the
+  // variant with select=output:NAME picks one, and each pass writing it lists that variant); a
+  // colour kind=input, the formats it accepts (empty: any colour format with enough channels).
   std::vector<std::string> formats;
   // format_when=VARIANT:F (kind=image): the image has format F instead of `format` where that
   // variant is non-zero (rg16f intermediates); every pass writing it lists the variant.

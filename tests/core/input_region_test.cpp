@@ -23,7 +23,7 @@ std::size_t at(ResourceId id) { return static_cast<std::size_t>(id); }
 
 TEST(InputRegion, InputsMayBeLargerThanTheRegionAtTheirOffset) {
   sao::Plan p;  // 641x359, guard 3: the region is 647x365
-  ASSERT_TRUE(sao::plan(sao::Settings{}, camera(641, 359, 3), {sao::DepthEncoding::Hardware, true, true}, p).ok());
+  ASSERT_TRUE(sao::plan(sao::Settings{}, camera(641, 359, 3), {sao::DepthEncoding::Hardware, {.depth2 = true, .normals = true}}, p).ok());
   ASSERT_EQ(p.inputExtent, (sao::Extent{647, 365}));
   sao::SuppliedImages in{};
   for (ResourceId id : {ResourceId::depth, ResourceId::depth2, ResourceId::normals}) in[at(id)] = {true, {700, 400}, sao::Offset{3, 5}};
@@ -44,7 +44,7 @@ TEST(InputRegion, InputsMayBeLargerThanTheRegionAtTheirOffset) {
 
 TEST(InputRegion, ARegionOutsideAnyInputIsRefusedNamingOffsetExtentAndSize) {
   sao::Plan p;
-  ASSERT_TRUE(sao::plan(sao::Settings{}, camera(641, 359, 3), {sao::DepthEncoding::Hardware, true, true}, p).ok());
+  ASSERT_TRUE(sao::plan(sao::Settings{}, camera(641, 359, 3), {sao::DepthEncoding::Hardware, {.depth2 = true, .normals = true}}, p).ok());
   const sao::SuppliedImage good{true, {700, 400}, sao::Offset{53, 35}};
   struct Case {
     ResourceId input;

@@ -92,13 +92,13 @@ TEST(Plan, VariantsFollowTheInputs) {
   ASSERT_TRUE(sao::plan(sao::test::untunedDefaults(), camera720(), {}, p).ok());
   EXPECT_EQ(p.variants[static_cast<std::size_t>(sao::gen::VariantId::NORMALS_SUPPLIED)], 0);
   sao::PlanInputs in;
-  in.normals = true;
+  in.supplied.normals = true;
   ASSERT_TRUE(sao::plan(sao::test::untunedDefaults(), camera720(), in, p).ok());
   EXPECT_EQ(p.variants[static_cast<std::size_t>(sao::gen::VariantId::NORMALS_SUPPLIED)], 1)
       << "supplying normals removes the reconstruction variant";
   for (const auto& pass : p.passes) EXPECT_EQ(pass.variant, sao::gen::findPassVariant(pass.pass, p.variants));
 
-  in.secondLayer = true;
+  in.supplied.depth2 = true;
   ASSERT_TRUE(sao::plan(sao::test::untunedDefaults(), camera720(), in, p).ok());
   ASSERT_NE(p.image(ResourceId::csz2), nullptr);
   EXPECT_EQ(p.image(ResourceId::csz2)->mipLevels, p.cszLevels);

@@ -191,7 +191,7 @@ TEST(Schedule, WithoutTheHierarchyThereIsNoMipDispatch) {
 }
 
 TEST(Schedule, SecondLayerAndNormalsAreReadAndWrittenInTheSameDispatches) {
-  const sao::Schedule s = scheduleOf(sao::test::untunedDefaults(), camera(64, 32, 2), {sao::DepthEncoding::Hardware, true, true});
+  const sao::Schedule s = scheduleOf(sao::test::untunedDefaults(), camera(64, 32, 2), {sao::DepthEncoding::Hardware, {.depth2 = true, .normals = true}});
   int callerWrote = 0;
   for (const auto& h : s.entryHazards()) callerWrote += h.kind == HazardKind::CallerWrote;
   EXPECT_EQ(callerWrote, 3) << "depth, depth2, normals";

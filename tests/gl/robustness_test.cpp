@@ -107,7 +107,7 @@ TEST_F(Robustness, MultisampledSecondLayerIsRejected) {
   gl::Inputs in = good();
   in.depth2 = {ms, 0};
   expectRejected(render(in), StatusCode::UnsupportedFormat,
-                 "second-layer depth texture " + std::to_string(ms) + " is multisampled (GL_TEXTURE_2D_MULTISAMPLE); only "
+                 "depth2 texture " + std::to_string(ms) + " is multisampled (GL_TEXTURE_2D_MULTISAMPLE); only "
                  "the depth input may be",
                  0);
   glDeleteTextures(1, &ms);
@@ -158,6 +158,23 @@ TEST_F(Robustness, StencilOnlyAndIntegerTexturesAreUnsupported) {
   }
 }
 
+// Motion vectors only in the formats effect/sao.glsl lists for the input (formats=): another is
+// refused naming the list (core's one contract for a declared input, sao/inputs.h).
+TEST_F(Robustness, MotionTextureFormatsAreTheDeclaredOnes) {
+  Settings temporal;
+  temporal.temporal = true;
+  Camera cam = camera;
+  cam.view = std::array<double, 16>{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  for (GLenum format : {GLenum(GL_R16F), GLenum(GL_RGBA8), GLenum(GL_RG16_SNORM)}) {
+    const GLuint t = makeTexture(format, depth.extent);
+    gl::Inputs in = good();
+    in.motion = t;
+    expectRejected(effect->render(cam, temporal, in), StatusCode::UnsupportedFormat,
+                   "; motion must be GL_RG16F, GL_RG32F, GL_RGBA16F or GL_RGBA32F", 0);
+    deleteTexture(t);
+  }
+}
+
 // Normals texture formats against Camera::normalsEncoding: a two-channel texture with an xyz
 // encoding is refused naming the texture, its format and the encoding; one channel is never a
 // normals format. The SNORM two-channel formats are then accepted with an octahedral encoding, by
@@ -182,10 +199,15 @@ TEST_F(Robustness, NormalsTextureFormatsFollowTheEncoding) {
   in.normals = r16f;
   cam.normalsEncoding = NormalsEncoding::CameraOctahedral;
   expectRejected(effect->render(cam, Settings{}, in), StatusCode::UnsupportedFormat,
-                 "is GL_R16F; normals must be GL_RGBA16F, GL_RGBA32F, GL_RGB16F, GL_RGB32F, GL_RGBA8_SNORM, "
-                 "GL_RGBA16_SNORM or (octahedral encodings only) GL_RG16F, GL_RG32F, GL_RG8_SNORM, GL_RG16_SNORM",
+                 "is GL_R16F (one channel) but Camera::normalsEncoding is CameraOctahedral, which reads .xy: use a "
+                 "two-, three- or four-channel texture",
                  0);
   deleteTexture(r16f);
+  const GLuint rgba8 = makeTexture(GL_RGBA8, depth.extent);  // unsigned normalised: no signed components
+  in.normals = rgba8;
+  expectRejected(effect->render(cam, Settings{}, in), StatusCode::UnsupportedFormat,
+                 "is GL_RGBA8; the normals input cannot be read from that format", 0);
+  deleteTexture(rgba8);
   deleteTexture(rg16f);
   for (GLenum format : {GLenum(GL_RG8_SNORM), GLenum(GL_RG16_SNORM)}) {
     const GLuint t = makeTexture(format, depth.extent);
@@ -208,7 +230,7 @@ TEST_F(Robustness, EveryInputAlsoPassedAsTheOutput) {
   gl::Inputs in = good();
   in.normals = normals;
   in.depth2 = {second, 0};
-  for (const auto& [output, role] : {std::pair{texture, "depth"}, std::pair{second, "second-layer depth"},
+  for (const auto& [output, role] : {std::pair{texture, "depth"}, std::pair{second, "depth2"},
                                      std::pair{normals, "normals"}}) {
     gl::Inputs bad = in;
     bad.output = output;

@@ -445,7 +445,7 @@ TEST_F(PerRecordCamera, AcceptsExactlyTheCamerasThatPlanAlike) {
     SCOPED_TRACE("camera " + std::to_string(i));
     Plan p;
     const DepthEncoding encoding = DepthEncoding::Hardware;
-    const Status planned2 = sao::plan(cfg.settings, cameras[i], {encoding, false, false, true, gen::Format::R16F}, p);
+    const Status planned2 = sao::plan(cfg.settings, cameras[i], {encoding, {}, true, gen::Format::R16F}, p);
     ASSERT_TRUE(planned2.ok()) << planned2.message;
     const bool same = p.describe() == planned;
     Status st;

@@ -142,6 +142,13 @@ TEST_F(VkRobustness, BadConfigurationValues) {
   vk::Config c = config;
   c.depthFormat = VK_FORMAT_UNDEFINED;
   expectCreateFails(context().deviceContext(), c, StatusCode::UnsupportedFormat, "Config::depthFormat");
+  // Motion vectors only in the formats effect/sao.glsl lists (formats=), named in the refusal.
+  c = config;
+  c.settings.temporal = true;
+  c.motionFormat = VK_FORMAT_R16_SFLOAT;
+  expectCreateFails(context().deviceContext(), c, StatusCode::UnsupportedFormat,
+                    "Config::motionFormat is VK_FORMAT_R16_SFLOAT; motion must be VK_FORMAT_R16G16_SFLOAT, "
+                    "VK_FORMAT_R32G32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT or VK_FORMAT_R32G32B32A32_SFLOAT");
   c = config;
   c.framesInFlight = 17;
   expectCreateFails(context().deviceContext(), c, StatusCode::InvalidInput, "framesInFlight is 17");
@@ -223,14 +230,14 @@ TEST_F(VkRobustness, NormalsFormatChannelsFollowTheEncoding) {
        {std::pair{NormalsEncoding::CameraXyz, "CameraXyz"}, std::pair{NormalsEncoding::WorldXyz, "WorldXyz"}}) {
     c.camera.normalsEncoding = encoding;
     expectCreateFails(context().deviceContext(), c, StatusCode::UnsupportedFormat,
-                      std::string("Config::normalsFormat VK_FORMAT_R16G16_SFLOAT (two channels) but "
+                      std::string("Config::normalsFormat is VK_FORMAT_R16G16_SFLOAT (two channels) but "
                                   "Camera::normalsEncoding is ") +
                           name + ", which reads .xyz: use an octahedral encoding or a three- or four-channel format");
   }
   c.normalsFormat = VK_FORMAT_R16_SFLOAT;
   c.camera.normalsEncoding = NormalsEncoding::CameraOctahedral;
   expectCreateFails(context().deviceContext(), c, StatusCode::UnsupportedFormat,
-                    "Config::normalsFormat VK_FORMAT_R16_SFLOAT (one channel) but Camera::normalsEncoding is "
+                    "Config::normalsFormat is VK_FORMAT_R16_SFLOAT (one channel) but Camera::normalsEncoding is "
                     "CameraOctahedral, which reads .xy: use a two-, three- or four-channel format");
   c.camera.normalsEncoding = NormalsEncoding::CameraXyz;
   expectCreateFails(context().deviceContext(), c, StatusCode::UnsupportedFormat,

@@ -102,5 +102,68 @@ TEST_F(ExtendedEffectOnGl, NewPassMatchesTheCpuReferenceBitForBit) {
   }
 }
 
+// Section 6: a new input (ao_scale, declared in extra_pass.glsl) given by the engine by name, with
+// the backend and the CPU reference compiled unchanged: GL's ao_half equals the CPU's bit for bit
+// and GL's own ao * 0.5 * scale (powers of two: every product exact).
+TEST_F(ExtendedEffectOnGl, NewInputMatchesTheCpuReferenceBitForBit) {
+  ASSERT_TRUE(context_) << "no headless GL context: " << contextError_;
+  std::unique_ptr<gl::Effect> effect;
+  const Status created = gl::Effect::create(gl::HeadlessContext::getProcAddress(), effect);
+  ASSERT_TRUE(created.ok()) << created.message;
+  const Case c = cases()[0];
+  const DepthImage depth = caseDepth();
+  FloatImage scale;
+  scale.extent = depth.extent;
+  scale.channels = 1;
+  for (std::uint32_t y = 0; y < depth.extent.height; ++y)
+    for (std::uint32_t x = 0; x < depth.extent.width; ++x) scale.data.push_back(0.25f * float(1u << ((x / 3 + y) % 4)));
+
+  cpu::Inputs cpuInputs;
+  cpuInputs.depth = &depth;
+  cpuInputs.moreInputs[static_cast<std::size_t>(gen::ResourceId::ao_scale)] = &scale;
+  cpu::Result cpu;
+  const Status ran = cpu::run(c.settings, caseCamera(), cpuInputs, {cpu::Precision::Float, 2}, cpu);
+  ASSERT_TRUE(ran.ok()) << ran.message;
+  EXPECT_EQ(cpu.plan.variants[static_cast<std::size_t>(gen::VariantId::AO_SCALED)], 1);
+
+  // The factors as an R32F texture (uploadDepth's linear-z path holds every float exactly).
+  DepthImage scaleTexels{scale.extent, DepthFormat::LinearZ, {}, 1};
+  for (float v : scale.data) scaleTexels.texels.push_back(std::bit_cast<std::uint32_t>(v));
+  std::uint32_t depthTexture = 0, scaleTexture = 0;
+  ASSERT_TRUE(gl::uploadDepth(depth, gl::GlDepth::D32F, depthTexture).ok());
+  ASSERT_TRUE(gl::uploadDepth(scaleTexels, gl::GlDepth::R32F, scaleTexture).ok());
+  gl::Inputs inputs;
+  inputs.depth = {depthTexture, gl::kDepthComponent32F};
+  inputs.ao_scale = scaleTexture;  // the generated member: nothing in sao::gl names it
+  const Status st = effect->render(caseCamera(), c.settings, inputs);
+  ASSERT_TRUE(st.ok()) << st.message;
+  EXPECT_EQ(effect->plan().variants[static_cast<std::size_t>(gen::VariantId::AO_SCALED)], 1);
+  const FloatImage ao = gl::readTexture(effect->aoTexture(), 1);
+  const FloatImage half = gl::readTexture(effect->texture(gen::ResourceId::ao_half), 1);
+
+  // A wrong format is refused with the declaration's list, as any input's.
+  const std::uint32_t rgba16f = gl::makeTexture(gl::kRGBA16F, depth.extent);
+  inputs.ao_scale = rgba16f;
+  const Status refused = effect->render(caseCamera(), c.settings, inputs);
+  EXPECT_EQ(refused.code, StatusCode::UnsupportedFormat);
+  EXPECT_NE(refused.message.find("is GL_RGBA16F; ao_scale must be GL_R32F"), std::string::npos) << refused.message;
+  for (std::uint32_t t : {depthTexture, scaleTexture, rgba16f}) gl::deleteTexture(t);
+  for (const gl::DebugMessage& m : context_->errors()) ADD_FAILURE() << gl::HeadlessContext::format(m);
+  context_->clearMessages();
+
+  FloatImage expected = halved(ao);
+  const Plan& plan = effect->plan();
+  const std::uint32_t guard = caseCamera().guardBand;
+  for (std::uint32_t y = 0; y < plan.aoExtent.height; ++y)
+    for (std::uint32_t x = 0; x < plan.aoExtent.width; ++x)
+      expected.data[std::size_t(y) * plan.aoExtent.width + x] *=
+          scale.data[std::size_t(y + guard) * scale.extent.width + x + guard];
+  const auto& cpuHalf = cpu.images[static_cast<std::size_t>(gen::ResourceId::ao_half)];
+  ASSERT_EQ(cpuHalf.size(), 1u);
+  EXPECT_EQ(bitDifference(half, cpuHalf[0]), "") << "GL ao_half against the CPU reference's, with the new input";
+  EXPECT_EQ(bitDifference(half, expected), "") << "GL ao_half against GL's own ao * 0.5 * ao_scale";
+  EXPECT_NE(bitDifference(half, halved(ao)), "") << "the input changed the result";
+}
+
 }  // namespace
 }  // namespace sao::walkthrough

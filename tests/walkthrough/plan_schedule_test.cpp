@@ -33,12 +33,27 @@ TEST(ExtendedEffect, GeneratedTablesHoldTheNewImageAndPass) {
   const gen::PassInfo& info = gen::pass(gen::PassId::ao_halve);
   EXPECT_EQ(info.localX, 8u);
   EXPECT_EQ(info.localY, 8u);
-  ASSERT_EQ(info.reads.size(), 1u);
+  ASSERT_EQ(info.reads.size(), 2u);
   EXPECT_EQ(info.reads[0], gen::ResourceId::ao_low);
+  EXPECT_EQ(info.reads[1], gen::ResourceId::ao_scale);
   ASSERT_EQ(info.writes.size(), 1u);
   EXPECT_EQ(info.writes[0], gen::ResourceId::ao_half);
-  EXPECT_TRUE(info.variants.empty()) << "the pass lists no variant, so it is compiled once";
-  EXPECT_EQ(info.compiled.size(), 1u);
+  ASSERT_EQ(info.variants.size(), 1u) << "the pass lists the new input's variant only";
+  EXPECT_EQ(info.variants[0], gen::VariantId::AO_SCALED);
+  EXPECT_EQ(info.compiled.size(), 2u) << "without and with ao_scale";
+
+  // The new input (section 6): an input of the generated InputSet every API's Inputs derives from.
+  const gen::ResourceInfo& scale = gen::kResources[static_cast<std::size_t>(gen::ResourceId::ao_scale)];
+  EXPECT_EQ(scale.kind, gen::ResourceKind::Input);
+  ASSERT_EQ(scale.formats.size(), 1u);
+  EXPECT_EQ(scale.formats[0], gen::Format::R32F);
+  EXPECT_EQ(gen::kInputIds.back(), gen::ResourceId::ao_scale);
+  gen::InputSet<int> set;
+  set[gen::ResourceId::ao_scale] = 7;
+  EXPECT_EQ(set.ao_scale, 7);
+  const gen::VariantInfo& v = gen::kVariants[static_cast<std::size_t>(gen::VariantId::AO_SCALED)];
+  EXPECT_EQ(v.select, gen::VariantSelect::Input);
+  EXPECT_EQ(static_cast<gen::ResourceId>(v.selectIndex), gen::ResourceId::ao_scale);
 }
 
 TEST(ExtendedEffect, PlanRunsTheNewPassLastAndAllocatesItsImage) {

@@ -1,5 +1,6 @@
 #include "sao/plan.h"
 
+#include "sao/inputs.h"
 #include "sao/output.h"
 
 #include <algorithm>
@@ -100,13 +101,8 @@ Status plan(const Settings& settings, const Camera& camera, const PlanInputs& in
   if (inputs.depthSamples == 0)
     return Status::error(StatusCode::InvalidInput, "the depth input has 0 samples per texel (1: single-sample)");
   // Each variant as the effect's `select=` says: a bool setting, a supplied input, or its default.
-  // PlanInputs names the optional inputs; depth is always supplied.
-  const auto supplied = [&](gen::ResourceId input) {
-    if (input == gen::ResourceId::normals) return inputs.normals;
-    if (input == gen::ResourceId::depth2) return inputs.secondLayer;
-    if (input == gen::ResourceId::motion) return inputs.motion;
-    return input == gen::ResourceId::depth;
-  };
+  // PlanInputs names the optional inputs; a required one (the depth) is always supplied.
+  const auto supplied = [&](gen::ResourceId input) { return isRequiredInput(input) || inputs.supplied[input]; };
   for (std::size_t v = 0; v < gen::kVariantCount; ++v) {
     const gen::VariantInfo& info = gen::kVariants[v];
     switch (info.select) {

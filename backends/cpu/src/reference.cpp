@@ -5,6 +5,8 @@
 // Result's named fields.
 #include "sao/cpu/reference.h"
 
+#include "sao/inputs.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -104,6 +106,24 @@ Status checkMotion(const FloatImage& m, const Camera& camera, Extent expected, c
     return invalid("motion vectors hold " + std::to_string(m.data.size()) + " floats, but their extent " +
                    extentText(m.extent) + " with " + std::to_string(m.channels) + " channels needs " +
                    std::to_string(values));
+  return Status::success();
+}
+
+// Another colour input (Inputs::moreInputs): its format='s channels or more, the depth's region.
+Status checkMoreInput(const gen::ResourceInfo& r, const FloatImage& m, const Camera& camera, Extent expected,
+                      const std::optional<Offset>& region) {
+  const std::string name(r.name);
+  const std::uint32_t channels = gen::formatInfo(r.format).channels;
+  if (m.channels < channels)
+    return Status::error(StatusCode::UnsupportedFormat, name + " has " + std::to_string(m.channels) +
+                                                            " channel(s); its format " + std::string(gen::formatInfo(r.format).name) +
+                                                            " has " + std::to_string(channels));
+  if (!holdsInput(m.extent, region, expected))
+    return invalid(name + " is " + extentText(m.extent) + ", but the plan expects " + regionText(camera, expected, region));
+  if (m.data.size() != std::size_t(m.extent.width) * m.extent.height * m.channels)
+    return invalid(name + " holds " + std::to_string(m.data.size()) + " floats, but its extent " + extentText(m.extent) +
+                   " with " + std::to_string(m.channels) + " channels needs " +
+                   std::to_string(std::size_t(m.extent.width) * m.extent.height * m.channels));
   return Status::success();
 }
 
@@ -281,8 +301,23 @@ Status planInputsOf(const Inputs& in, PlanInputs& out) {
   const DepthEncoding encoding =
       in.depth->format == DepthFormat::LinearZ ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
   // Inputs::output stands for the caller's image (userOutput), as on the GPU backends.
-  out = {encoding,          in.normals != nullptr, in.depth2 != nullptr, in.output != nullptr, in.outputFormat,
-         in.depth->samples, in.motion != nullptr};
+  out = {};
+  out.depthEncoding = encoding;
+  for (const gen::ResourceId id : gen::kInputIds)
+    out.supplied[id] = isDepthInput(id) ? (id == gen::ResourceId::depth2 ? in.depth2 : in.depth) != nullptr
+                                        : colourInput(in, id) != nullptr;
+  for (std::size_t r = 0; r < in.moreInputs.size(); ++r) {
+    const auto id = static_cast<gen::ResourceId>(r);
+    const bool other = gen::kResources[r].kind == gen::ResourceKind::Input && !isDepthInput(id) &&
+                       id != gen::ResourceId::normals && id != gen::ResourceId::motion;
+    if (in.moreInputs[r] != nullptr && !other)
+      return invalid("Inputs::moreInputs[" + std::string(gen::kResources[r].name) + "] is given, but " +
+                     std::string(gen::kResources[r].name) +
+                     " is not a colour input of the effect beyond normals and motion (those have their own member)");
+  }
+  out.userOutput = in.output != nullptr;
+  out.outputFormat = in.outputFormat;
+  out.depthSamples = in.depth->samples;
   return Status::success();
 }
 
@@ -309,6 +344,9 @@ Status checkAgainstPlan(const Settings& settings, const Camera& camera, const In
     if (Status st = checkNormals(*in.normals, camera, expected, in.region); !st) return st;
   if (in.motion != nullptr)
     if (Status st = checkMotion(*in.motion, camera, expected, in.region); !st) return st;
+  for (std::size_t r = 0; r < in.moreInputs.size(); ++r)
+    if (const FloatImage* m = in.moreInputs[r])
+      if (Status st = checkMoreInput(gen::kResources[r], *m, camera, expected, in.region); !st) return st;
   // Inside the images (checked above); images that wide cannot be in memory, but the block holds int.
   const Offset offset = in.region.value_or(Offset{});
   if (offset.x > std::uint32_t(INT32_MAX) || offset.y > std::uint32_t(INT32_MAX))
@@ -386,5 +424,11 @@ Status run(const Settings& settings, const Camera& camera, const Inputs& inputs,
 float roundToHalfAsShader(float x) { return roundToHalf(x); }
 float roundToUnorm8AsShader(float x) { return roundToUnorm8(x); }
 float outputMultiplyAsShader(float c, float a, bool unorm8) { return outputMultiply(c, a, unorm8); }
+
+const FloatImage* colourInput(const Inputs& in, gen::ResourceId id) {
+  if (id == gen::ResourceId::normals) return in.normals;
+  if (id == gen::ResourceId::motion) return in.motion;
+  return in.moreInputs[static_cast<std::size_t>(id)];
+}
 
 }  // namespace sao::cpu

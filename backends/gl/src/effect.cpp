@@ -15,6 +15,7 @@
 #include "programs.h"
 #include "resources.h"
 #include "sao/executor.h"
+#include "sao/inputs.h"
 #include "state.h"
 #include "timing.h"
 
@@ -202,7 +203,7 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
   StateGuard guard(gl, textureUnits, imageUnits, objects.scratchUnit);
 
   CheckedInputs checked(gl);
-  if (Status st = checkInputs(gl, objects.scratchUnit, inputs, camera.normalsEncoding, checked); !st) return st;
+  if (Status st = checkInputs(gl, objects.scratchUnit, inputs, camera, checked); !st) return st;
   if (settings.temporal && inputs.layer != 0)
     return Status::error(StatusCode::InvalidInput, "sao::gl: temporal accumulation keeps one view's history: render "
                                                    "each layer (eye) with its own effect (Inputs::layer must be 0)");
@@ -216,13 +217,12 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
 
   // Texture parameters of the caller's textures that would change what texelFetch returns or
   // whether an image store lands (restored before the StateGuard restores the bindings).
-  TextureParamGuard depthParams, depth2Params, normalParams, motionParams, outputParams;
+  std::array<TextureParamGuard, gen::kInputIds.size() + 1> params;  // the inputs', then the output's
   const GLuint unit = objects.scratchUnit;
-  depthParams.apply(gl, unit, checked.depth.texture, checked.depth.target, true, checked.depth.hasStencil);
-  if (checked.depth2.texture) depth2Params.apply(gl, unit, checked.depth2.texture, GL_TEXTURE_2D, true, checked.depth2.hasStencil);
-  if (checked.normals.texture) normalParams.apply(gl, unit, checked.normals.texture, GL_TEXTURE_2D, false, false);
-  if (checked.motion.texture) motionParams.apply(gl, unit, checked.motion.texture, GL_TEXTURE_2D, false, false);
-  if (checked.output.texture) outputParams.apply(gl, unit, checked.output.texture, GL_TEXTURE_2D, false, false);
+  for (std::size_t i = 0; i < gen::kInputIds.size(); ++i)
+    if (const TextureInfo& t = checked.inputs[gen::kInputIds[i]]; t.texture)
+      params[i].apply(gl, unit, t.texture, t.target, isDepthInput(gen::kInputIds[i]), t.hasStencil);
+  if (checked.output.texture) params.back().apply(gl, unit, checked.output.texture, GL_TEXTURE_2D, false, false);
 
   executor->setFrame(&checked, options.measureTime);
   // The caller's textures are this render's only: the executor forgets them on every way out.

@@ -26,14 +26,8 @@ GLbitfield barrierBits(std::span<const Hazard> hazards) {
 
 GLuint GlExecutor::textureFor(gen::ResourceId id, bool previousFrame) const {
   if (inputs_ == nullptr) return 0;
-  switch (id) {
-    case gen::ResourceId::depth: return inputs_->depth.texture;
-    case gen::ResourceId::depth2: return inputs_->depth2.texture;
-    case gen::ResourceId::normals: return inputs_->normals.texture;
-    case gen::ResourceId::motion: return inputs_->motion.texture;
-    default: break;
-  }
   const auto& info = gen::kResources[static_cast<std::size_t>(id)];
+  if (info.kind == gen::ResourceKind::Input) return inputs_->inputs[id].texture;
   if (info.kind == gen::ResourceKind::Output && inputs_->output.texture != 0) return inputs_->output.texture;
   return resources_.texture(id, imageCopy(historyParity_, id, previousFrame));
 }
@@ -88,9 +82,9 @@ void GlExecutor::bind(const ScheduledBinding& b, const gen::BindingInfo& declare
   // A read sees the whole chain (lod chosen by the shader) or level 0 (create() refuses an effect
   // with a read of one level above 0 alone, which would need a view).
   gl_.ActiveTexture(GL_TEXTURE0 + declared.glUnit);
-  // The caller's depth may be multisampled (sampler2DMS in linear_z's DEPTH_MULTISAMPLE variant).
-  const bool depth = b.resource == gen::ResourceId::depth;
-  gl_.BindTexture(depth ? inputs_->depth.target : GLenum(GL_TEXTURE_2D), texture);
+  // An input may be multisampled (sampler2DMS: the depth in linear_z's DEPTH_MULTISAMPLE variant).
+  const bool input = gen::kResources[static_cast<std::size_t>(b.resource)].kind == gen::ResourceKind::Input;
+  gl_.BindTexture(input ? inputs_->inputs[b.resource].target : GLenum(GL_TEXTURE_2D), texture);
   gl_.BindSampler(declared.glUnit, b.wholeChain ? objects_.mipSampler : objects_.nearestSampler);
 }
 

@@ -3,14 +3,16 @@
 #include <algorithm>
 #include <string>
 
+#include "sao/inputs.h"
+
 namespace sao::gl::detail {
 namespace {
 
-// What a texture is inspected for: its role in messages, whether it may be multisampled (the depth
-// input, read as sampler2DMS by DEPTH_MULTISAMPLE; every other texture is single-sample), and the
+// What a texture is inspected for: its role in messages, whether it may be multisampled (an input
+// a select=multisampled: variant reads, the depth; every other texture is single-sample), and the
 // layer of an array texture to view (Inputs::layer).
 struct Request {
-  const char* role;
+  std::string_view role;
   bool multisampleAllowed;
   std::uint32_t layer;
   LayerViews& views;
@@ -20,9 +22,9 @@ bool isArray(GLenum target) { return target == GL_TEXTURE_2D_ARRAY || target == 
 
 Status inspect(const GlFunctions& gl, GLuint unit, GLuint texture, const Request& rq, TextureInfo& out) {
   // Built only for an error: render() allocates nothing per frame.
-  auto who = [&] { return std::string("sao::gl: the ") + rq.role + " texture " + std::to_string(texture); };
+  auto who = [&] { return "sao::gl: the " + std::string(rq.role) + " texture " + std::to_string(texture); };
   if (texture == 0)
-    return Status::error(StatusCode::InvalidInput, std::string("sao::gl: the ") + rq.role + " texture is 0");
+    return Status::error(StatusCode::InvalidInput, "sao::gl: the " + std::string(rq.role) + " texture is 0");
   if (!gl.IsTexture(texture))
     return Status::error(StatusCode::InvalidInput, who() + " is not a texture object (never bound, or deleted)");
   GLenum target = GL_TEXTURE_2D;
@@ -133,8 +135,9 @@ bool isHardwareDepth(GLenum f) {
   }
 }
 
-// The channels of a normals format the effect reads; 0 for any other format.
-std::uint32_t normalChannels(GLenum f) {
+// The channels of a colour texture the effect reads as float (texelFetch of a sampler2D); 0 for
+// any other format.
+std::uint32_t colourChannels(GLenum f) {
   switch (f) {
     case GL_RGBA16F:
     case GL_RGBA32F:
@@ -142,95 +145,78 @@ std::uint32_t normalChannels(GLenum f) {
     case GL_RGBA16_SNORM: return 4;
     case GL_RGB16F:
     case GL_RGB32F: return 3;
-    case GL_RG16F:  // octahedral encodings only (checkNormalsChannels)
+    case GL_RG16F:
     case GL_RG32F:
     case GL_RG8_SNORM:
     case GL_RG16_SNORM: return 2;
+    case GL_R16F:
+    case GL_R32F:
+    case GL_R8_SNORM:
+    case GL_R16_SNORM: return 1;
     default: return 0;
   }
 }
 
-Status depthInput(const GlFunctions& gl, GLuint unit, const DepthInput& in, const Request& rq, TextureInfo& out,
-                  DepthEncoding& encoding) {
-  const char* role = rq.role;
-  if (Status st = inspect(gl, unit, in.texture, rq, out); !st) return st;
-  auto who = [&] { return std::string("sao::gl: the ") + role + " texture " + std::to_string(in.texture); };
-  const GLenum f = out.internalFormat;
+std::string glFormatName(gen::Format f) { return glEnumName(gen::formatInfo(f).glInternalFormat); }
+
+// The texture of input `id` against the effect's contract (sao/inputs.h): a depth input's format
+// and encoding (every depth input holds the first one's), a colour input's format and channels.
+Status checkFormat(gen::ResourceId id, const TextureInfo& t, const Camera& camera, std::optional<DepthEncoding>& depth) {
+  const std::string_view name = gen::kResources[static_cast<std::size_t>(id)].name;
+  auto who = [&] { return "sao::gl: the " + std::string(name) + " texture " + std::to_string(t.texture); };
+  const GLenum f = t.internalFormat;
+  if (!isDepthInput(id)) {
+    const std::optional<gen::Format> format = formatOfGl(f);
+    if (!colourInputRefused(id, format, colourChannels(f), camera)) return Status::success();
+    return checkColourInput(id, format, colourChannels(f), camera, who(), glEnumName(f), glFormatName, "texture");
+  }
   if (!isHardwareDepth(f) && f != GL_R32F)
     return Status::error(StatusCode::UnsupportedFormat,
                          who() + " is " + glEnumName(f) +
                              "; depth must be GL_DEPTH_COMPONENT16/24/32F, GL_DEPTH24_STENCIL8, "
                              "GL_DEPTH32F_STENCIL8 or GL_R32F (linear camera-space z)");
-  if (in.internalFormat != 0 && in.internalFormat != f)
-    return Status::error(StatusCode::InvalidInput, who() + " was declared " + glEnumName(in.internalFormat) +
-                                                       " but its level 0 is " + glEnumName(f));
-  encoding = f == GL_R32F ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
+  const DepthEncoding encoding = f == GL_R32F ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
+  if (depth && *depth != encoding)
+    return Status::error(StatusCode::InvalidInput,
+                         who() + " is " + glEnumName(f) + " but the depth texture is " +
+                             (*depth == DepthEncoding::LinearZ ? "GL_R32F" : "hardware depth") +
+                             "; both must be hardware depth or both linear z");
+  depth = encoding;
   return Status::success();
 }
 
 }  // namespace
 
-Status checkInputs(const GlFunctions& gl, GLuint unit, const Inputs& inputs, NormalsEncoding normalsEncoding,
+Status checkInputs(const GlFunctions& gl, GLuint unit, const Inputs& inputs, const Camera& camera,
                    CheckedInputs& out) {
   out.region = inputs.region;
-  DepthEncoding encoding{};
-  const std::uint32_t layer = inputs.layer;
-  if (Status st = depthInput(gl, unit, inputs.depth, {"depth", true, layer, out.views}, out.depth, encoding); !st)
-    return st;
-  out.planInputs.depthEncoding = encoding;
-  out.planInputs.depthSamples = out.depth.samples;
-  if (inputs.depth2.texture != 0) {
-    DepthEncoding encoding2{};
-    if (Status st = depthInput(gl, unit, inputs.depth2, {"second-layer depth", false, layer, out.views}, out.depth2,
-                               encoding2);
-        !st)
+  std::optional<DepthEncoding> encoding;
+  for (const gen::ResourceId id : gen::kInputIds) {
+    const InputTexture& in = inputs[id];
+    if (in.texture == 0 && !isRequiredInput(id)) continue;
+    const std::string_view name = gen::kResources[static_cast<std::size_t>(id)].name;
+    TextureInfo& t = out.inputs[id];
+    if (Status st = inspect(gl, unit, in.texture, {name, mayBeMultisampled(id), inputs.layer, out.views}, t); !st)
       return st;
-    if (encoding2 != encoding)
-      return Status::error(StatusCode::InvalidInput,
-                           std::string("sao::gl: the second depth layer is ") + glEnumName(out.depth2.internalFormat) +
-                               " but the first is " + glEnumName(out.depth.internalFormat) +
-                               "; both must be hardware depth or both linear z");
-    out.planInputs.secondLayer = true;
+    if (in.internalFormat != 0 && in.internalFormat != t.internalFormat)
+      return Status::error(StatusCode::InvalidInput, "sao::gl: the " + std::string(name) + " texture " +
+                                                         std::to_string(in.texture) + " was declared " +
+                                                         glEnumName(in.internalFormat) + " but its level 0 is " +
+                                                         glEnumName(t.internalFormat));
+    if (Status st = checkFormat(id, t, camera, encoding); !st) return st;
+    out.planInputs.supplied[id] = true;
   }
-  if (inputs.normals != 0) {
-    if (Status st = inspect(gl, unit, inputs.normals, {"normals", false, layer, out.views}, out.normals); !st) return st;
-    const std::uint32_t channels = normalChannels(out.normals.internalFormat);
-    // Built only for an error, like inspect()'s: render() allocates nothing per frame.
-    auto what = [&] {
-      return "sao::gl: the normals texture " + std::to_string(inputs.normals) + " is " +
-             glEnumName(out.normals.internalFormat);
-    };
-    if (channels == 0)
-      return Status::error(StatusCode::UnsupportedFormat,
-                           what() + "; normals must be GL_RGBA16F, GL_RGBA32F, GL_RGB16F, GL_RGB32F, GL_RGBA8_SNORM, "
-                                    "GL_RGBA16_SNORM or (octahedral encodings only) GL_RG16F, GL_RG32F, GL_RG8_SNORM, "
-                                    "GL_RG16_SNORM");
-    if (channels < normalsChannelsRead(normalsEncoding))
-      return checkNormalsChannels(normalsEncoding, channels, what(), "texture");
-    out.planInputs.normals = true;
-  }
-  if (inputs.motion != 0) {
-    if (Status st = inspect(gl, unit, inputs.motion, {"motion", false, layer, out.views}, out.motion); !st) return st;
-    const GLenum f = out.motion.internalFormat;
-    if (f != GL_RG16F && f != GL_RG32F && f != GL_RGBA16F && f != GL_RGBA32F)
-      return Status::error(StatusCode::UnsupportedFormat, "sao::gl: the motion texture " + std::to_string(inputs.motion) +
-                                                              " is " + glEnumName(f) +
-                                                              "; motion vectors must be GL_RG16F, GL_RG32F, GL_RGBA16F "
-                                                              "or GL_RGBA32F (.xy in pixels)");
-    out.planInputs.motion = true;
-  }
+  out.planInputs.depthEncoding = encoding.value_or(DepthEncoding::Hardware);
+  out.planInputs.depthSamples = out.inputs.depth.samples;
   if (inputs.output != 0) {
     const GLuint o = inputs.output;
-    const char* clash = o == inputs.depth.texture    ? "depth"
-                        : o == inputs.depth2.texture ? "second-layer depth"
-                        : o == inputs.normals        ? "normals"
-                        : o == inputs.motion         ? "motion"
-                                                     : nullptr;
-    if (clash)
-      return Status::error(StatusCode::InvalidInput, "sao::gl: texture " + std::to_string(o) +
-                                                         " is passed both as the output and as the " + clash +
-                                                         " input; the output must be a separate texture");
-    if (Status st = inspect(gl, unit, o, {"output", false, layer, out.views}, out.output); !st) return st;
+    for (const gen::ResourceId id : gen::kInputIds)
+      if (inputs[id].texture == o)
+        return Status::error(StatusCode::InvalidInput,
+                             "sao::gl: texture " + std::to_string(o) + " is passed both as the output and as the " +
+                                 std::string(gen::kResources[static_cast<std::size_t>(id)].name) +
+                                 " input; the output must be a separate texture");
+    if (Status st = inspect(gl, unit, o, {"output", false, inputs.layer, out.views}, out.output); !st) return st;
     const gen::Format format = outputFormat(out.output.internalFormat);
     if (!isOutputFormat(format))
       return Status::error(StatusCode::UnsupportedFormat, "sao::gl: the output texture " + std::to_string(o) + " is " +
@@ -254,15 +240,9 @@ GLuint LayerViews::make(GLuint texture, GLenum viewTarget, GLenum internalFormat
 
 SuppliedImages supplied(const CheckedInputs& in) {
   SuppliedImages images{};
-  auto add = [&](gen::ResourceId id, const TextureInfo& t) {
-    const bool input = gen::kResources[static_cast<std::size_t>(id)].kind == gen::ResourceKind::Input;
-    images[static_cast<std::size_t>(id)] = {t.texture != 0, t.extent, input ? in.region : std::nullopt};
-  };
-  add(gen::ResourceId::depth, in.depth);
-  add(gen::ResourceId::depth2, in.depth2);
-  add(gen::ResourceId::normals, in.normals);
-  add(gen::ResourceId::motion, in.motion);
-  add(gen::ResourceId::ao, in.output);
+  for (const gen::ResourceId id : gen::kInputIds)
+    images[static_cast<std::size_t>(id)] = {in.inputs[id].texture != 0, in.inputs[id].extent, in.region};
+  images[static_cast<std::size_t>(gen::ResourceId::ao)] = {in.output.texture != 0, in.output.extent, std::nullopt};
   return images;
 }
 

@@ -35,23 +35,25 @@ class LayerViews {
 
  private:
   const GlFunctions& gl_;
-  std::array<GLuint, 5> views_{};  // at most one per input (depth, depth2, normals, motion, output)
+  std::array<GLuint, gen::kInputIds.size() + 1> views_{};  // at most one per input and the output
   std::size_t count_ = 0;
 };
 
 struct CheckedInputs {
   explicit CheckedInputs(const GlFunctions& gl) : views(gl) {}
   LayerViews views;                            // per-render views of array layers (Inputs::layer)
-  TextureInfo depth, depth2, normals, motion, output;  // texture 0 where absent; a layer's view for an array
-  std::optional<Offset> region;  // Inputs::region: where the region starts in depth, depth2 and normals
+  gen::InputSet<TextureInfo> inputs;  // texture 0 where absent; a layer's view for an array
+  TextureInfo output;
+  std::optional<Offset> region;  // Inputs::region: where the region starts in every input
   PlanInputs planInputs;
 };
 
 // Inspects every texture in `inputs` (binding each on `scratchUnit`, whose binding the caller
 // saves) and derives the plan inputs; an array texture is replaced by a view of Inputs::layer.
 // `out` must be freshly constructed. InvalidInput / UnsupportedFormat naming the texture's role;
-// the normals texture's channels are checked against the camera's `normalsEncoding`.
-Status checkInputs(const GlFunctions& gl, GLuint scratchUnit, const Inputs& inputs, NormalsEncoding normalsEncoding,
+// each input's format against the effect's contract (sao/inputs.h; the normals' channels against
+// the camera's encoding).
+Status checkInputs(const GlFunctions& gl, GLuint scratchUnit, const Inputs& inputs, const Camera& camera,
                    CheckedInputs& out);
 
 // The textures as sao::checkSupplied sees them (sizes against the plan are checked there).

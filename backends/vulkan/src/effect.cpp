@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "effect_impl.h"
+#include "sao/inputs.h"
 
 namespace sao::vk {
 namespace {
@@ -22,7 +23,8 @@ constexpr std::pair<VkFormat, const char*> kNamedFormats[] = {
     SAO_VK_NAMED(VK_FORMAT_R8_UNORM), SAO_VK_NAMED(VK_FORMAT_R8_SNORM), SAO_VK_NAMED(VK_FORMAT_R16_SNORM),
     SAO_VK_NAMED(VK_FORMAT_R16_SFLOAT), SAO_VK_NAMED(VK_FORMAT_R8G8_SNORM),
     SAO_VK_NAMED(VK_FORMAT_R16G16_SNORM), SAO_VK_NAMED(VK_FORMAT_R16G16_SFLOAT),
-    SAO_VK_NAMED(VK_FORMAT_R32G32_SFLOAT)};
+    SAO_VK_NAMED(VK_FORMAT_R32G32_SFLOAT), SAO_VK_NAMED(VK_FORMAT_R16G16B16A16_SFLOAT),
+    SAO_VK_NAMED(VK_FORMAT_R32G32B32A32_SFLOAT), SAO_VK_NAMED(VK_FORMAT_R8G8B8A8_UNORM)};
 #undef SAO_VK_NAMED
 
 std::string formatText(VkFormat f) {
@@ -30,6 +32,7 @@ std::string formatText(VkFormat f) {
     if (format == f) return name;
   return "VkFormat " + std::to_string(static_cast<int>(f));
 }
+std::string formatText(gen::Format f) { return formatText(static_cast<VkFormat>(gen::formatInfo(f).vkFormat)); }
 
 template <std::size_t N>
 bool listed(const VkFormat (&list)[N], VkFormat f) {
@@ -40,10 +43,15 @@ constexpr VkFormat kDepthStencilFormats[] = {
     VK_FORMAT_D16_UNORM, VK_FORMAT_X8_D24_UNORM_PACK32, VK_FORMAT_D32_SFLOAT, VK_FORMAT_S8_UINT,
     VK_FORMAT_D16_UNORM_S8_UINT, VK_FORMAT_D24_UNORM_S8_UINT, VK_FORMAT_D32_SFLOAT_S8_UINT};
 bool isDepthStencilFormat(VkFormat f) { return listed(kDepthStencilFormats, f); }
+// What a depth input may be: hardware depth (the depth aspect of the combined formats) or linear z.
+constexpr VkFormat kDepthReadFormats[] = {VK_FORMAT_D16_UNORM,         VK_FORMAT_X8_D24_UNORM_PACK32,
+                                          VK_FORMAT_D24_UNORM_S8_UINT, VK_FORMAT_D32_SFLOAT,
+                                          VK_FORMAT_D32_SFLOAT_S8_UINT, VK_FORMAT_R32_SFLOAT};
 
 // The colour channels a sampled read of `f` returns when it has fewer than three (1 or 2), else 3
 // (three, four, or a format not listed here). Only the count below three matters: it decides
-// whether .xy or .xyz of a normal would read a missing channel as 0.
+// whether .xy or .xyz of a normal would read a missing channel as 0 (no input reads .w without
+// formats= listing its formats).
 constexpr VkFormat kOneChannel[] = {
     VK_FORMAT_R8_UNORM, VK_FORMAT_R8_SNORM, VK_FORMAT_R8_USCALED, VK_FORMAT_R8_SSCALED, VK_FORMAT_R8_UINT,
     VK_FORMAT_R8_SINT, VK_FORMAT_R8_SRGB, VK_FORMAT_R16_UNORM, VK_FORMAT_R16_SNORM, VK_FORMAT_R16_USCALED,
@@ -62,12 +70,49 @@ constexpr VkFormat kTwoChannels[] = {
     VK_FORMAT_R12X4G12X4_UNORM_2PACK16};
 std::uint32_t channelsUpToThree(VkFormat f) { return listed(kOneChannel, f) ? 1 : listed(kTwoChannels, f) ? 2 : 3; }
 
-Status checkSampled(const EffectState& e, VkFormat format, const char* what) {
+Status checkSampled(const EffectState& e, VkFormat format, std::string_view what) {
   VkFormatProperties fp{};
   e.d.vkGetPhysicalDeviceFormatProperties(e.ctx.physicalDevice, format, &fp);
   if (!(fp.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT))
-    return Status::error(StatusCode::UnsupportedFormat, std::string(what) + " format " + formatText(format) +
+    return Status::error(StatusCode::UnsupportedFormat, "the " + std::string(what) + " format " + formatText(format) +
                                                             " cannot be sampled on this device (optimal tiling)");
+  return Status::success();
+}
+
+// What names an input's format in messages: the older shape's Config member (configuredFormats),
+// or InputImage::format for an input Config has no member for.
+std::string formatSource(gen::ResourceId input) {
+  switch (input) {
+    case gen::ResourceId::depth:
+    case gen::ResourceId::depth2: return "Config::depthFormat";
+    case gen::ResourceId::normals: return "Config::normalsFormat";
+    case gen::ResourceId::motion: return "Config::motionFormat";
+    default: return "Inputs::" + std::string(gen::kResources[static_cast<std::size_t>(input)].name) + ".format";
+  }
+}
+
+// Every input's format against the effect's contract (sao/inputs.h) and the device: a depth input
+// one of the depth formats (all of one frame the same), a colour input what its declaration
+// accepts with the channels `camera` reads, each sampled with optimal tiling.
+Status checkInputFormats(const EffectState& e, const InputFormats& formats, const Camera& camera) {
+  if (Status st = checkColourInputs(formats, camera); !st) return st;
+  for (const gen::ResourceId id : gen::kInputIds) {
+    const VkFormat f = formats[id];
+    if (f == VK_FORMAT_UNDEFINED && !isRequiredInput(id)) continue;
+    if (isDepthInput(id)) {
+      if (!listed(kDepthReadFormats, f))
+        return Status::error(StatusCode::UnsupportedFormat,
+                             formatSource(id) + " " + formatText(f) +
+                                 " is not a depth format the effect reads (D16_UNORM, X8_D24_UNORM_PACK32, "
+                                 "D24_UNORM_S8_UINT, D32_SFLOAT, D32_SFLOAT_S8_UINT, or R32_SFLOAT linear z)");
+      if (f != formats.depth)
+        return Status::error(StatusCode::InvalidInput, formatSource(id) + " " + formatText(f) + " but the depth is " +
+                                                           formatText(formats.depth) + ": every depth layer has one format");
+    } else if (isDepthStencilFormat(f)) {
+      return Status::error(StatusCode::UnsupportedFormat, formatSource(id) + " " + formatText(f) + " is a depth/stencil format");
+    }
+    if (Status st = checkSampled(e, f, gen::kResources[static_cast<std::size_t>(id)].name); !st) return st;
+  }
   return Status::success();
 }
 
@@ -97,41 +142,12 @@ Status checkDepthSamples(const EffectState& e, const Config& c) {
 
 // The configuration's formats, layouts and stages against the device, and the plan inputs they
 // give (the plan, the block and the plan's device limits: FrameState and the executor's checkPlan).
-Status checkConfig(const EffectState& e, const Config& c, PlanInputs& pi) {
+Status checkConfig(const EffectState& e, const Config& c, const InputFormats& formats, PlanInputs& pi) {
   if (c.framesInFlight < 1 || c.framesInFlight > kMaxFramesInFlight)
     return Status::error(StatusCode::InvalidInput, "Config::framesInFlight is " + std::to_string(c.framesInFlight) +
                                                        "; allowed 1.." + std::to_string(kMaxFramesInFlight));
-  switch (c.depthFormat) {
-    case VK_FORMAT_D16_UNORM:
-    case VK_FORMAT_X8_D24_UNORM_PACK32:
-    case VK_FORMAT_D24_UNORM_S8_UINT:
-    case VK_FORMAT_D32_SFLOAT:
-    case VK_FORMAT_D32_SFLOAT_S8_UINT:
-    case VK_FORMAT_R32_SFLOAT: break;
-    default:
-      return Status::error(StatusCode::UnsupportedFormat,
-                           "Config::depthFormat " + formatText(c.depthFormat) +
-                               " is not a depth format the effect reads (D16_UNORM, X8_D24_UNORM_PACK32, "
-                               "D24_UNORM_S8_UINT, D32_SFLOAT, D32_SFLOAT_S8_UINT, or R32_SFLOAT linear z)");
-  }
-  if (Status st = checkSampled(e, c.depthFormat, "the depth"); !st) return st;
+  if (Status st = checkInputFormats(e, formats, c.camera); !st) return st;
   if (Status st = checkDepthSamples(e, c); !st) return st;
-  if (c.normalsFormat != VK_FORMAT_UNDEFINED) {
-    if (isDepthStencilFormat(c.normalsFormat))
-      return Status::error(StatusCode::UnsupportedFormat,
-                           "Config::normalsFormat " + formatText(c.normalsFormat) + " is a depth/stencil format");
-    if (Status st = checkNormalsFormat(c.normalsFormat, c.camera.normalsEncoding); !st) return st;
-    if (Status st = checkSampled(e, c.normalsFormat, "the normals"); !st) return st;
-  }
-  if (c.motionFormat != VK_FORMAT_UNDEFINED) {
-    if (c.motionFormat != VK_FORMAT_R16G16_SFLOAT && c.motionFormat != VK_FORMAT_R32G32_SFLOAT &&
-        c.motionFormat != VK_FORMAT_R16G16B16A16_SFLOAT && c.motionFormat != VK_FORMAT_R32G32B32A32_SFLOAT)
-      return Status::error(StatusCode::UnsupportedFormat,
-                           "Config::motionFormat " + formatText(c.motionFormat) +
-                               " is not a motion-vector format the effect reads (R16G16_SFLOAT, R32G32_SFLOAT, "
-                               "R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT: .xy in pixels)");
-    if (Status st = checkSampled(e, c.motionFormat, "the motion vectors"); !st) return st;
-  }
   if (c.outputLayout != VK_IMAGE_LAYOUT_GENERAL && c.outputLayout != VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
     return Status::error(StatusCode::InvalidInput, "Config::outputLayout must be VK_IMAGE_LAYOUT_GENERAL or "
                                                    "VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, got " +
@@ -161,21 +177,36 @@ Status checkConfig(const EffectState& e, const Config& c, PlanInputs& pi) {
     return Status::error(StatusCode::UnsupportedFormat, std::string("Config::outputFormat ") + sao::formatName(outputFormat) +
                                                             " cannot be an optimal-tiling storage image on this device");
 
-  const DepthEncoding encoding = depthEncodingOf(c.depthFormat);
-  pi = {encoding,     c.normalsFormat != VK_FORMAT_UNDEFINED,
-        c.secondLayer, c.userOutput,
-        outputFormat, static_cast<std::uint32_t>(c.depthSamples),
-        c.motionFormat != VK_FORMAT_UNDEFINED};
+  pi = {};
+  pi.depthEncoding = depthEncodingOf(formats.depth);
+  for (const gen::ResourceId id : gen::kInputIds) pi.supplied[id] = formats[id] != VK_FORMAT_UNDEFINED;
+  pi.userOutput = c.userOutput;
+  pi.outputFormat = outputFormat;
+  pi.depthSamples = static_cast<std::uint32_t>(c.depthSamples);
   return Status::success();
 }
 
 }  // namespace
 
-Status checkNormalsFormat(VkFormat normalsFormat, NormalsEncoding encoding) {
-  if (normalsFormat == VK_FORMAT_UNDEFINED) return Status::success();
-  const std::uint32_t channels = channelsUpToThree(normalsFormat);
-  if (channels >= normalsChannelsRead(encoding)) return Status::success();  // no message to build
-  return checkNormalsChannels(encoding, channels, "Config::normalsFormat " + formatText(normalsFormat), "format");
+Status checkColourInputs(const InputFormats& formats, const Camera& camera) {
+  for (const gen::ResourceId id : gen::kInputIds) {
+    const VkFormat f = formats[id];
+    if (f == VK_FORMAT_UNDEFINED || isDepthInput(id)) continue;
+    const std::optional<gen::Format> format = formatOfVk(f);
+    if (colourInputRefused(id, format, channelsUpToThree(f), camera))  // messages only on failure
+      return checkColourInput(id, format, channelsUpToThree(f), camera, formatSource(id), formatText(f), formatText,
+                              "format");
+  }
+  return Status::success();
+}
+
+InputFormats configuredFormats(const Config& c) {
+  InputFormats f;
+  f.depth = c.depthFormat;
+  f.depth2 = c.secondLayer ? c.depthFormat : VK_FORMAT_UNDEFINED;
+  f.normals = c.normalsFormat;
+  f.motion = c.motionFormat;
+  return f;
 }
 
 VkFormat depthVkFormat(DepthFormat format) {
@@ -241,8 +272,10 @@ Status createEffect(const DeviceContext& context, const Config& config, EffectSt
   e.ctx.enabledFeatures = nullptr;  // the caller's pointer is read here only
 
   PlanInputs planInputs;
-  if (Status st = checkConfig(e, config, planInputs); !st) return st;
+  const InputFormats formats = configuredFormats(config);
+  if (Status st = checkConfig(e, config, formats, planInputs); !st) return st;
   e.config = config;
+  e.inputFormats = formats;
   e.ownedOutputFormat = config.outputFormat;
   e.allocator.init(&e.d, context.device, e.memoryProps, e.props.limits.bufferImageGranularity, context.allocator);
   if (Status st = createSampler(e); !st) return st;
@@ -256,35 +289,30 @@ Status createEffect(const DeviceContext& context, const Config& config, EffectSt
 }
 
 // The configuration a per-frame record() asks for: Config's device-level members, the frame's
-// settings and camera, and the inputs its images give (a format left UNDEFINED is Config's).
+// settings and camera, and each input's format (InputImage::format; UNDEFINED: Config's, where
+// the older shape's Config names one), the older Config members following them.
 Status frameConfig(const EffectState& e, const Camera& camera, const Settings& settings, const Inputs& in,
-                   const OutputImage* userOutput, Config& next) {
-  const Config& c = e.config;
-  next = c;
+                   const OutputImage* userOutput, Config& next, InputFormats& formats) {
+  next = e.config;
   next.settings = settings;
   next.camera = camera;
-  const auto formatOf = [](const InputImage& i, VkFormat configured) {
-    return i.view == VK_NULL_HANDLE ? VK_FORMAT_UNDEFINED : i.format != VK_FORMAT_UNDEFINED ? i.format : configured;
-  };
-  if (in.depth.format != VK_FORMAT_UNDEFINED) next.depthFormat = in.depth.format;
-  next.secondLayer = in.depth2.view != VK_NULL_HANDLE;
-  next.normalsFormat = formatOf(in.normals, c.normalsFormat);
-  next.motionFormat = formatOf(in.motion, c.motionFormat);
+  const InputFormats configured = configuredFormats(e.config);
+  for (const gen::ResourceId id : gen::kInputIds) {
+    const InputImage& image = in[id];
+    const bool given = image.view != VK_NULL_HANDLE || isRequiredInput(id);
+    formats[id] = !given ? VK_FORMAT_UNDEFINED : image.format != VK_FORMAT_UNDEFINED ? image.format : configured[id];
+    if (given && formats[id] == VK_FORMAT_UNDEFINED)
+      return Status::error(StatusCode::InvalidInput,
+                           "record(): Inputs::" + std::string(gen::kResources[static_cast<std::size_t>(id)].name) +
+                               ".format is VK_FORMAT_UNDEFINED and Config names none: name the view's format");
+  }
+  next.depthFormat = formats.depth;
+  next.secondLayer = formats.depth2 != VK_FORMAT_UNDEFINED;
+  next.normalsFormat = formats.normals;
+  next.motionFormat = formats.motion;
   next.userOutput = userOutput != nullptr;
   next.outputFormat = userOutput ? userOutput->format : e.ownedOutputFormat;
-  for (const auto& [image, format, name] : {std::tuple{&in.normals, next.normalsFormat, "normals"},
-                                            std::tuple{&in.motion, next.motionFormat, "motion"}})
-    if (image->view != VK_NULL_HANDLE && format == VK_FORMAT_UNDEFINED)
-      return Status::error(StatusCode::InvalidInput, std::string("record(): Inputs::") + name +
-                                                         ".format is VK_FORMAT_UNDEFINED and so is Config's: name "
-                                                         "the view's format");
   return Status::success();
-}
-
-// Whether the frame names the formats Config has (then its plan inputs are the configuration's).
-bool sameFormats(const Config& a, const Config& b) {
-  return a.depthFormat == b.depthFormat && a.secondLayer == b.secondLayer && a.normalsFormat == b.normalsFormat &&
-         a.motionFormat == b.motionFormat && a.userOutput == b.userOutput && a.outputFormat == b.outputFormat;
 }
 
 }  // namespace
@@ -307,9 +335,9 @@ Status Effect::create(const DeviceContext& context, const Config& config, std::u
 // Everything that can fail (or throw) happens before the commit; the commit only moves and swaps.
 // FrameState's configure() is itself transactional (sao/executor.h): what it makes for the new plan
 // goes on a failure, and the current configuration stays.
-Status reconfigure(EffectState& e, const Config& config) {
+Status reconfigure(EffectState& e, const Config& config, const InputFormats& formats) {
   PlanInputs planInputs;
-  if (Status st = checkConfig(e, config, planInputs); !st) return st;
+  if (Status st = checkConfig(e, config, formats, planInputs); !st) return st;
   const bool newFrames = config.framesInFlight != e.config.framesInFlight;
   // Built aside; dropped (destroyed) on any early return.
   Config next = config;
@@ -331,11 +359,12 @@ Status reconfigure(EffectState& e, const Config& config) {
   }
   if (!config.userOutput) e.ownedOutputFormat = config.outputFormat;
   e.config = std::move(next);
+  e.inputFormats = formats;
   return Status::success();
 }
 
 Status Effect::update(const Config& config) {
-  return guarded("sao::vk::Effect::update()", [&] { return reconfigure(*impl_, config); });
+  return guarded("sao::vk::Effect::update()", [&] { return reconfigure(*impl_, config, configuredFormats(config)); });
 }
 
 Status Effect::record(VkCommandBuffer cmd, const Camera& camera, const Settings& settings, const Inputs& inputs,
@@ -343,22 +372,25 @@ Status Effect::record(VkCommandBuffer cmd, const Camera& camera, const Settings&
   return guarded("sao::vk::Effect::record()", [&] {
     EffectState& e = *impl_;
     Config next;
-    if (Status st = frameConfig(e, camera, settings, inputs, userOutput, next); !st) return st;
+    InputFormats formats;
+    if (Status st = frameConfig(e, camera, settings, inputs, userOutput, next, formats); !st) return st;
     // Core's one rule decides whether the frame keeps the plan (FrameState::keeps); other formats
-    // with the same plan inputs (e.g. normals in RG16F, then RGBA16F) only update Config's.
-    const bool formats = sameFormats(e.config, next);
+    // with the same plan inputs (e.g. normals in RG16F, then RGBA16F) only update the configuration.
+    const bool same = formats == e.inputFormats && next.userOutput == e.config.userOutput &&
+                      next.outputFormat == e.config.outputFormat;
     PlanInputs planInputs = e.frame.planInputs();
-    if (!formats)
-      if (Status st = checkConfig(e, next, planInputs); !st) return st;
+    if (!same)
+      if (Status st = checkConfig(e, next, formats, planInputs); !st) return st;
     if (!e.frame.configured() || !e.frame.keeps(settings, camera, planInputs)) {
       // Records up to this one's predecessor may be pending: what the new plan drops waits for them.
       e.executor.retireUntil(e.records + e.config.framesInFlight - 1);
-      const Status st = reconfigure(e, next);
+      const Status st = reconfigure(e, next, formats);
       e.executor.retireUntil(std::nullopt);
       if (!st) return st;
-    } else if (!formats) {
+    } else if (!same) {
       next.camera = e.config.camera;  // the plan's camera; this frame's goes in Inputs::camera
       e.config = next;
+      e.inputFormats = formats;
     }
     Inputs in = inputs;
     in.camera = &camera;

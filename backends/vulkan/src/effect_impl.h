@@ -96,6 +96,8 @@ struct OutputTarget {
 };
 
 inline constexpr std::uint32_t kMaxFramesInFlight = 16;
+// Each input's VkFormat, VK_FORMAT_UNDEFINED where the configuration has none.
+using InputFormats = gen::InputSet<VkFormat>;
 // How FrameState names record()'s inputs in its messages (and checkInputs where it checks first).
 inline constexpr const char* kRecordInputs = "sao::vk::Effect::record() Inputs";
 
@@ -193,6 +195,7 @@ struct __attribute__((visibility("hidden"))) EffectState {
   // The effect-owned output's format: Config::outputFormat of create() or of an update() without
   // userOutput (a per-frame record() into the caller's output names that output's format instead).
   VkFormat ownedOutputFormat = VK_FORMAT_R16_SFLOAT;
+  InputFormats inputFormats;  // what the configuration is made for (InputImage::format, or Config's)
   // The plan, the schedule, the images kept, the parameter block and the temporal history: core's.
   FrameState frame{kRecordInputs};
 
@@ -267,15 +270,20 @@ std::uint32_t queriesPerRegion();
 bool familyHasTimestamps(const EffectState& e);
 
 // ---- effect.cpp
-// update()'s body: the new configuration checked, planned and adopted, or nothing changes.
-Status reconfigure(EffectState& e, const Config& config);
+// update()'s body: the new configuration (Config and each input's format) checked, planned and
+// adopted, or nothing changes.
+Status reconfigure(EffectState& e, const Config& config, const InputFormats& formats);
+// The inputs' formats the older shape's Config names (depth, depth2, normals, motion); a per-frame
+// record() takes InputImage::format first, and an input Config has no member for needs it.
+InputFormats configuredFormats(const Config& config);
 // What the depth input holds: R32_SFLOAT is linear z, every other depth format hardware depth.
 inline DepthEncoding depthEncodingOf(VkFormat depthFormat) {
   return depthFormat == VK_FORMAT_R32_SFLOAT ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
 }
-// The normals contract (sao::checkNormalsChannels) of Config::normalsFormat for `encoding`; Ok
-// without normals. Builds a message only on failure (record() with Inputs::camera calls it).
-Status checkNormalsFormat(VkFormat normalsFormat, NormalsEncoding encoding);
+// The colour inputs' formats against the channels `camera` reads (sao/inputs.h: the normals'
+// follow Camera::normalsEncoding). Builds a message only on failure (record() with
+// Inputs::camera calls it).
+Status checkColourInputs(const InputFormats& formats, const Camera& camera);
 // DriverError "<where>: <what>"; without memory for that, a message that needs none.
 Status exceptionStatus(const char* where, const char* what) noexcept;
 

@@ -138,13 +138,8 @@ namespace {
 // `slot`: the element of a levels= write's array, level baseLevel + slot (the last level past the chain).
 VkDescriptorImageInfo imageInfo(const EffectState& e, std::uint32_t historyParity, const ScheduledBinding& b,
                                 const Inputs& inputs, const OutputTarget& output, std::uint32_t slot) {
-  switch (b.resource) {
-    case gen::ResourceId::depth: return {VK_NULL_HANDLE, inputs.depth.view, inputs.depth.layout};
-    case gen::ResourceId::depth2: return {VK_NULL_HANDLE, inputs.depth2.view, inputs.depth2.layout};
-    case gen::ResourceId::normals: return {VK_NULL_HANDLE, inputs.normals.view, inputs.normals.layout};
-    case gen::ResourceId::motion: return {VK_NULL_HANDLE, inputs.motion.view, inputs.motion.layout};
-    default: break;
-  }
+  if (gen::kResources[static_cast<std::size_t>(b.resource)].kind == gen::ResourceKind::Input)
+    return {VK_NULL_HANDLE, inputs[b.resource].view, inputs[b.resource].layout};
   VkDescriptorImageInfo info{VK_NULL_HANDLE, output.view, VK_IMAGE_LAYOUT_GENERAL};  // the user's output
   if (const OwnedImage* img = e.res.find(b.resource, imageCopy(historyParity, b.resource, b.previousFrame)))
     info.imageView = b.wholeChain ? img->fullView.get() : img->levelViews[b.slotLevel(slot)].get();

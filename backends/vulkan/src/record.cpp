@@ -26,23 +26,23 @@ bool isLayoutAllowed(VkImageLayout l) {
 }
 
 // The Vulkan side of an input the plan reads (presence and extent: sao::checkSupplied).
-Status checkInput(const InputImage& in, const char* name, VkFormat format, std::uint32_t maxSide) {
+Status checkInput(const InputImage& in, std::string_view name, VkFormat format, std::uint32_t maxSide) {
   if (in.view == VK_NULL_HANDLE) return Status::success();
   // A view cannot tell its size: an extent beyond any image the device makes is a wrong
   // declaration (and would let the offset overflow the shader's int).
   if (in.extent.width > maxSide || in.extent.height > maxSide)
-    return Status::error(StatusCode::InvalidInput, std::string("Inputs::") + name + ".extent " +
+    return Status::error(StatusCode::InvalidInput, "Inputs::" + std::string(name) + ".extent " +
                                                        std::to_string(in.extent.width) + "x" +
                                                        std::to_string(in.extent.height) +
                                                        " exceeds this device's maxImageDimension2D " +
                                                        std::to_string(maxSide));
   if (in.format != VK_FORMAT_UNDEFINED && in.format != format)
-    return Status::error(StatusCode::InvalidInput, std::string("Inputs::") + name + ".format " +
+    return Status::error(StatusCode::InvalidInput, "Inputs::" + std::string(name) + ".format " +
                                                        std::to_string(in.format) + " is not the format Config names (" +
                                                        std::to_string(format) + ")");
   if (!isLayoutAllowed(in.layout))
     return Status::error(StatusCode::InvalidInput,
-                         std::string("Inputs::") + name + ".layout " + std::to_string(in.layout) +
+                         "Inputs::" + std::string(name) + ".layout " + std::to_string(in.layout) +
                              " is not a layout a sampled read may use (SHADER_READ_ONLY_OPTIMAL, "
                              "DEPTH_STENCIL_READ_ONLY_OPTIMAL, DEPTH_READ_ONLY_OPTIMAL, GENERAL, ...)");
   return Status::success();
@@ -51,14 +51,9 @@ Status checkInput(const InputImage& in, const char* name, VkFormat format, std::
 Status checkInputs(const EffectState& e, const Inputs& in, const OutputImage* userOutput, OutputTarget& out) {
   const Config& c = e.config;
   SuppliedImages supplied{};
-  auto add = [&](gen::ResourceId id, VkImageView view, Extent extent, std::optional<Offset> region) {
-    supplied[static_cast<std::size_t>(id)] = {view != VK_NULL_HANDLE, extent, region};
-  };
-  add(gen::ResourceId::depth, in.depth.view, in.depth.extent, in.region);
-  add(gen::ResourceId::depth2, in.depth2.view, in.depth2.extent, in.region);
-  add(gen::ResourceId::normals, in.normals.view, in.normals.extent, in.region);
-  add(gen::ResourceId::motion, in.motion.view, in.motion.extent, in.region);
-  if (userOutput) add(gen::ResourceId::ao, userOutput->view, userOutput->extent, {});
+  for (const gen::ResourceId id : gen::kInputIds)
+    supplied[static_cast<std::size_t>(id)] = {in[id].view != VK_NULL_HANDLE, in[id].extent, in.region};
+  if (userOutput) supplied[static_cast<std::size_t>(gen::ResourceId::ao)] = {userOutput->view != VK_NULL_HANDLE, userOutput->extent, {}};
   if (userOutput && (userOutput->image == VK_NULL_HANDLE || userOutput->view == VK_NULL_HANDLE))
     return Status::error(StatusCode::InvalidInput, "the output image or its view is VK_NULL_HANDLE");
   if (userOutput && !c.userOutput)
@@ -66,10 +61,10 @@ Status checkInputs(const EffectState& e, const Inputs& in, const OutputImage* us
                          "record() got an output image but Config::userOutput is false (the effect owns its output)");
   if (Status st = checkSupplied(e.plan(), supplied, c.userOutput, "sao::vk::Effect::record()"); !st) return st;
   const std::uint32_t maxSide = e.props.limits.maxImageDimension2D;
-  if (Status st = checkInput(in.depth, "depth", c.depthFormat, maxSide); !st) return st;
-  if (Status st = checkInput(in.depth2, "depth2", c.depthFormat, maxSide); !st) return st;
-  if (Status st = checkInput(in.normals, "normals", c.normalsFormat, maxSide); !st) return st;
-  if (Status st = checkInput(in.motion, "motion", c.motionFormat, maxSide); !st) return st;
+  for (const gen::ResourceId id : gen::kInputIds)
+    if (Status st = checkInput(in[id], gen::kResources[static_cast<std::size_t>(id)].name, e.inputFormats[id], maxSide);
+        !st)
+      return st;
   // The output's mask and blend: FrameState::run (checkFrameOutput), before anything is recorded.
   if (!c.userOutput) {
     const OwnedImage* ao = e.res.find(gen::ResourceId::ao);
@@ -97,11 +92,11 @@ Status checkInputs(const EffectState& e, const Inputs& in, const OutputImage* us
                              std::to_string(userOutput->layout) +
                              "; give the layout your image is in when the commands run (its texels are kept)");
   }
-  for (const auto& [input, name] : {std::pair{in.depth.view, "depth"}, std::pair{in.depth2.view, "depth2"},
-                                     std::pair{in.normals.view, "normals"}, std::pair{in.motion.view, "motion"}})
-    if (input != VK_NULL_HANDLE && input == userOutput->view)
-      return Status::error(StatusCode::InvalidInput, std::string("the output view is also Inputs::") + name +
-                                                         ".view; the output must be a separate image");
+  for (const gen::ResourceId id : gen::kInputIds)
+    if (in[id].view != VK_NULL_HANDLE && in[id].view == userOutput->view)
+      return Status::error(StatusCode::InvalidInput,
+                           "the output view is also Inputs::" + std::string(gen::kResources[static_cast<std::size_t>(id)].name) +
+                               ".view; the output must be a separate image");
   // The layer cannot be checked against the image (Vulkan cannot tell its layer count); beyond the
   // device's limit it cannot be one.
   if (userOutput->layer >= e.props.limits.maxImageArrayLayers)
@@ -121,7 +116,7 @@ Status checkRecordCamera(const EffectState& e, const Camera& camera) {
   ParamBlock block{};  // computeConstants' checks of the camera, create()'s messages
   if (Status st = computeConstants(c.settings, camera, e.frame.planInputs().depthEncoding, block); !st)
     return invalid(st);
-  if (Status st = checkNormalsFormat(c.normalsFormat, camera.normalsEncoding); !st) return invalid(st);
+  if (Status st = checkColourInputs(e.inputFormats, camera); !st) return invalid(st);
   if (Status st = checkCameraKeepsPlan(c.settings, c.camera, camera); !st)
     return Status::error(st.code, "record(): Inputs::camera " + st.message + "; the plan is Config::camera's: call update()");
   return Status::success();

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <span>
 #include <string_view>
+#include <utility>
 
 namespace sao::gen {
 
@@ -220,7 +221,9 @@ struct ResourceInfo {
   std::int32_t whenVariant;   // exists only when this variant is non-zero; -1: always
   std::string_view doc;
   std::int32_t divideBy;  // a SettingId: the AO extent over that int setting, rounded up; -1: none
-  std::span<const Format> formats;  // kind=output: every format it may have (formats=); empty: only `format`
+  // formats=: kind=output, every format it may have (empty: only `format`); a colour kind=input,
+  // the formats it accepts (empty: any colour format with the channels the effect reads)
+  std::span<const Format> formats;
   bool history;  // history=true: two images that trade places every frame; reads see the previous frame's
   std::int32_t formatWhenVariant;  // format_when=: where this variant is non-zero the image has formatWhen; -1: none
   Format formatWhen;
@@ -232,6 +235,26 @@ inline constexpr std::array<ResourceInfo, 5> kResources = {{
   {"smooth", ResourceKind::Image, Format::R32F, false, false, 1, -1, "Smoothed intermediate", -1, {}, false, -1, Format::R32F},
   {"dst", ResourceKind::Output, Format::R16F, false, false, 1, -1, "Result", -1, {}, false, -1, Format::R16F},
 }};
+
+// ---- Inputs: the kind=input resources, in declaration order.
+inline constexpr std::array<ResourceId, 2> kInputIds = {{ResourceId::src, ResourceId::extra}};
+// One T per input, by name (the resource's) and by id: an API's Inputs holds its images so.
+template <typename T>
+struct InputSet {
+  T src{};  // Input depth
+  T extra{};  // Extra input
+  // `id` must be one of kInputIds.
+  T& operator[](ResourceId id) { return const_cast<T&>(std::as_const(*this)[id]); }
+  const T& operator[](ResourceId id) const {
+    switch (id) {
+      case ResourceId::src: return src;
+      case ResourceId::extra: return extra;
+      default: break;
+    }
+    return src;
+  }
+  bool operator==(const InputSet&) const = default;
+};
 
 // ---- Passes, in execution order, and their compiled variants.
 enum class PassId : std::uint32_t {

@@ -5,7 +5,9 @@
 #pragma sao variant D values=[0,1,2,3] "doc"
 #pragma sao variant E values=[0,1,2,3] "doc"
 #pragma sao variant F values=[0,1,2,3] "doc"
-#pragma sao variant G values=[0,1] "every combination is enumerated: 8192 > 4096"
+#pragma sao variant H values=[0,1,2,3] "doc"
+#pragma sao variant I values=[0,1,2,3] "doc"
+#pragma sao variant G values=[0,1] "the effect's product: 131072 > 65536"
 #pragma sao resource src kind=input format=depth "in"
 #pragma sao resource dst kind=output format=r16f "out"
 #pragma sao block P

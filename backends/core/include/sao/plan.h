@@ -40,15 +40,15 @@ inline constexpr std::uint32_t kMaxImageSide = 16384;
 
 struct PlanInputs {
   DepthEncoding depthEncoding = DepthEncoding::Hardware;
-  bool normals = false;      // the user supplies camera-space normals
-  bool secondLayer = false;  // the user supplies a second depth layer (deep G-buffer)
+  // Which inputs the user supplies (a select=input: variant reads it); the required ones (no
+  // when=, the depth) count as supplied whatever this says.
+  gen::InputSet<bool> supplied;
   bool userOutput = false;   // the user supplies the output image (not counted in bytes)
   // The output image's format (sao/output.h: one of outputFormats()); it selects the final pass's
   // variant, and an effect-owned output is allocated in it.
   gen::Format outputFormat = gen::Format::R16F;
   // Samples per texel of the depth input: more than 1 selects the multisampled read (DEPTH_MULTISAMPLE).
   std::uint32_t depthSamples = 1;
-  bool motion = false;  // the user supplies motion vectors (temporal accumulation, MOTION_VECTORS)
   // (The output's channel mask and blend are per frame, not part of the plan: sao/frame.h.)
   bool operator==(const PlanInputs&) const = default;
 };

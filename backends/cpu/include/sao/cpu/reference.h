@@ -105,7 +105,15 @@ struct Inputs {
   // previous frame (previous = current + motion), read as the rg16f texture holds them (each
   // rounded to binary16). The history is then found there instead of through the cameras.
   const FloatImage* motion = nullptr;
+  // Any other colour input the effect declares (a kind=input resource that is not depth, depth2,
+  // normals or motion: the walkthrough's ao_scale), by resource id: at least as many channels as
+  // its format=, the depth's region. A pass's oracle reads it through colourInput() below, as the
+  // texture would hold it (its own rounding). Every other entry must stay null.
+  std::array<const FloatImage*, gen::kResources.size()> moreInputs{};
 };
+
+// The image of colour input `id`: Inputs::normals, Inputs::motion or Inputs::moreInputs[id].
+const FloatImage* colourInput(const Inputs& in, gen::ResourceId id);
 
 struct Options {
   Precision precision = Precision::Double;

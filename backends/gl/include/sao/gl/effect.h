@@ -80,30 +80,42 @@ inline constexpr std::uint32_t kR8 = 0x8229;                 // GL_R8 (an output
 inline constexpr std::uint32_t kRGBA8 = 0x8058;              // GL_RGBA8 (an output format)
 inline constexpr std::uint32_t kRGBA16F = 0x881A;            // GL_RGBA16F (an output format)
 
-struct DepthInput {
-  std::uint32_t texture = 0;  // GL_TEXTURE_2D name (the depth input: or GL_TEXTURE_2D_MULTISAMPLE)
-  // One of the k* depth formats above (hardware depth per the Camera's conventions) or kR32F
-  // (linear camera-space z, negative in front of the camera, view units). The effect queries the
-  // texture's real internal format and rejects a mismatch; 0 accepts whatever the texture holds.
-  // Depth values (sao/image.h): GL clamps depth textures to [0, 1] (and -0.0 to +0.0), so they
-  // always hold valid hardware depth; R32F linear z that is NaN, +-Inf, +-0 or positive is sky.
+// One of your input textures: level 0 of a GL_TEXTURE_2D (the depth also GL_TEXTURE_2D_MULTISAMPLE;
+// with Inputs::layer, one layer of a GL_TEXTURE_2D_ARRAY), 0 where you give none. The effect
+// queries the texture's real internal format and size; `internalFormat`, when not 0, is what you
+// say it holds, and a texture that holds another is refused.
+struct InputTexture {
+  std::uint32_t texture = 0;
   std::uint32_t internalFormat = 0;
+  constexpr InputTexture() = default;
+  constexpr InputTexture(std::uint32_t name, std::uint32_t format = 0) : texture(name), internalFormat(format) {}
 };
+using DepthInput = InputTexture;
 
-struct Inputs {
-  // Required. The effect reads the region of (camera.width + 2 guardBand) x (camera.height + 2
-  // guardBand) texels (plan().inputExtent) that starts at `offset` of level 0; the texture may be
-  // larger (dynamic resolution: the viewport inside a bigger depth buffer). No copy is made.
-  DepthInput depth;
-  // Optional second depth layer (deep G-buffer): same format as depth, the same region.
-  DepthInput depth2;
-  // Optional normals, encoded as Camera::normalsEncoding says (camera-space .xyz by default,
-  // components in [-1, 1]; world space and octahedral .xy too) (GL_RGBA16F recommended; also
-  // GL_RGBA32F, GL_RGB16F, GL_RGB32F, GL_RGBA8_SNORM, GL_RGBA16_SNORM; for the octahedral
-  // encodings, which read .xy, also GL_RG16F, GL_RG32F, GL_RG8_SNORM, GL_RG16_SNORM: render()
-  // refuses a two-channel texture with an xyz encoding, UnsupportedFormat naming both); the same
-  // region as depth.
-  std::uint32_t normals = 0;
+// The inputs are the effect's kind=input resources (effect/sao.glsl), one InputTexture each, by
+// name (inputs.depth, inputs.normals, ...) or by id (inputs[gen::ResourceId::normals]); every one
+// is read over the same region (below). What each accepts, one contract on every backend
+// (sao/inputs.h):
+//  * depth (required) and depth2 (a second layer, the deep G-buffer): GL_DEPTH_COMPONENT16/24/32F,
+//    GL_DEPTH24_STENCIL8, GL_DEPTH32F_STENCIL8 (hardware depth per the Camera's conventions) or
+//    GL_R32F (linear camera-space z, negative in front of the camera, view units); depth2 holds the
+//    same encoding as depth. Depth values (sao/image.h): GL clamps depth textures to [0, 1] (and
+//    -0.0 to +0.0), so they always hold valid hardware depth; R32F linear z that is NaN, +-Inf, +-0
+//    or positive is sky. Only depth may be multisampled (GL_TEXTURE_2D_MULTISAMPLE, read per
+//    Camera::depthSamplePolicy).
+//  * an input whose declaration lists formats= (motion: GL_RG16F recommended, GL_RG32F, GL_RGBA16F,
+//    GL_RGBA32F): one of those.
+//  * any other (normals): a float or snorm colour texture (GL_RGBA16F, GL_RGBA32F, GL_RGB16F,
+//    GL_RGB32F, GL_RGBA8_SNORM, GL_RGBA16_SNORM, GL_RG16F, GL_RG32F, GL_RG8_SNORM, GL_RG16_SNORM)
+//    with the channels the effect reads: normals, encoded as Camera::normalsEncoding says
+//    (camera-space .xyz by default, components in [-1, 1]), need three or four (GL_RGBA16F
+//    recommended), two for the octahedral encodings, which read .xy; fewer is refused
+//    (UnsupportedFormat naming both).
+// Motion vectors (with the temporal setting): .xy the offset in pixels from each texel to where its
+// surface was in the previous frame (previous = current + motion, in the depth's row order); the
+// history of a moving object is then found where it was. Refused without the temporal setting (an
+// input nothing would read).
+struct Inputs : gen::InputSet<InputTexture> {
   // Optional: the inputs hold the camera's image as a region of larger textures (dynamic
   // resolution). The texel (x along a row, y in rows from row 0, i.e. storage order) of depth,
   // depth2 and normals (they share it) that holds the guard band's first corner. Unset, every
@@ -150,12 +162,6 @@ struct Inputs {
   // render each eye of a stereo pair with its own effect (layer must be 0 with temporal).
   bool resetHistory = false;
   const Camera* previousCamera = nullptr;
-  // Optional, with temporal: motion vectors (GL_RG16F recommended; GL_RG32F, GL_RGBA16F, GL_RGBA32F),
-  // the same region as depth: .xy the offset in pixels from each texel to where its surface was in
-  // the previous frame (previous = current + motion, in the depth's row order). The history of a
-  // moving object is then found where it was. Refused without the temporal setting (a motion input
-  // nothing would read).
-  std::uint32_t motion = 0;
 };
 
 struct RenderOptions {

@@ -181,11 +181,11 @@ struct InputImage {
   VkFormat format = VK_FORMAT_UNDEFINED;
 };
 
-struct Inputs {
-  InputImage depth;    // required
-  InputImage depth2;   // when Config::secondLayer
-  InputImage normals;  // when Config::normalsFormat != VK_FORMAT_UNDEFINED
-  InputImage motion;   // when Config::motionFormat != VK_FORMAT_UNDEFINED (the depth's region)
+// The inputs are the effect's kind=input resources (effect/sao.glsl), one InputImage each, by name
+// (inputs.depth, inputs.normals, ...) or by id (inputs[gen::ResourceId::normals]): depth is
+// required; depth2 (Config::secondLayer), normals (Config::normalsFormat) and motion
+// (Config::motionFormat, the depth's region) where given.
+struct Inputs : gen::InputSet<InputImage> {
   // Optional: where the region of plan().inputExtent texels starts in depth, depth2 and normals
   // (they share it): the texel (x along a row, y in rows from row 0) holding the guard band's first
   // corner. With it the images may be larger (dynamic resolution: the viewport inside a bigger
