@@ -11,6 +11,7 @@
 #include <map>
 
 #include "harness.h"
+#include "msaa_depth.h"
 #include "sao/presets.h"
 #include "untuned_settings.h"
 
@@ -260,8 +261,8 @@ SAO_INSTANTIATE_APIS(Resize);
 // only the programs or pipelines of pass variants not built yet; every frame is what a fresh
 // effect makes, and a refused frame keeps the configuration.
 // Image storage made for `images` new images: a texture each on GL, one memory block for them all
-// on Vulkan (they share a memory type).
-std::uint64_t storageFor(Api api, std::uint64_t images) { return api == Api::Gl ? images : images > 0; }
+// on Vulkan (they share a memory type), a memory block each in the engine-side example.
+std::uint64_t storageFor(Api api, std::uint64_t images) { return api == Api::Vulkan ? images > 0 : images; }
 
 using Reallocation = ApiTest;
 TEST_P(Reallocation, OnlyWhatChanged) {
@@ -329,6 +330,51 @@ TEST_P(Output, CallersOutputReceivesTheSameImage) {
     }
 }
 SAO_INSTANTIATE_APIS(Output);
+
+// ---- What harness.h's Feature names: on an executor that lacks some (the engine-side example), a
+// frame needing one it lacks is refused by name (InvalidInput) and the effect renders afterwards;
+// one it has renders. GL and Vulkan have every feature, each run by its own program (output_format,
+// msaa_depth, stereo): the test runs on the others only. (Feature::LibraryAllocations is no frame's:
+// the tests counting allocations skip.)
+std::vector<Api> lackingAFeature() {
+  std::vector<Api> v;
+  for (Api a : apis())
+    for (Feature f : {Feature::OutputContents, Feature::MultisampledDepth, Feature::Stereo})
+      if (!supports(a, f)) {
+        v.push_back(a);
+        break;
+      }
+  return v;
+}
+
+using Features = ApiTest;
+TEST_P(Features, RenderWhereImplementedAndAreRefusedByNameElsewhere) {
+  SceneFrame s(test::sphereOnPlaneScene(), test::vulkanCamera(64, 36, 8));
+  const FloatImage half(Extent{64, 36}, 1, 0.5f);
+  const DepthImage fourSamples = test::interleaveSamples({&s.depth}, 4);
+  Frame multiply = s.frame, msaa = s.frame, stereo = s.frame;
+  multiply.output = {true, gen::Format::R16F, &half, kAllChannels, OutputBlend::Multiply};
+  msaa.depth = &fourSamples;
+  stereo.depth = nullptr;
+  stereo.depthLayers = {&s.depth, &s.depth};
+  stereo.output.callerOwned = true;
+  auto e = make();
+  for (const auto& [feature, frame] : {std::pair<Feature, const Frame&>{Feature::OutputContents, multiply},
+                                       std::pair<Feature, const Frame&>{Feature::MultisampledDepth, msaa},
+                                       std::pair<Feature, const Frame&>{Feature::Stereo, stereo}}) {
+    SCOPED_TRACE(describe(feature));
+    const Status st = e->render(frame);
+    if (supports(api(), feature)) {
+      EXPECT_TRUE(st.ok()) << st.message;
+      continue;
+    }
+    EXPECT_EQ(st.code, StatusCode::InvalidInput) << st.message;
+    EXPECT_NE(st.message.find(describe(feature)), std::string::npos) << st.message;
+  }
+  EXPECT_TRUE(e->render(s.frame).ok());
+}
+INSTANTIATE_TEST_SUITE_P(Apis, Features, ::testing::ValuesIn(lackingAFeature()), apiName);
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(Features);  // a build without the engine-side example
 
 }  // namespace
 }  // namespace sao::exectest

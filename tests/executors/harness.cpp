@@ -8,9 +8,16 @@
 
 namespace sao::exectest {
 
-const char* toString(Api api) { return api == Api::Gl ? "gl" : "vulkan"; }
+const char* toString(Api api) {
+  switch (api) {
+    case Api::Gl: return "gl";
+    case Api::Vulkan: return "vulkan";
+    case Api::Engine: return "engine";
+  }
+  return "?";
+}
 
-std::vector<Api> apis() {
+std::vector<Api> libraryApis() {
   std::vector<Api> v;
 #if SAO_HARNESS_GL
   v.push_back(Api::Gl);
@@ -20,6 +27,19 @@ std::vector<Api> apis() {
 #endif
   return v;
 }
+
+const char* describe(Feature feature) {
+  switch (feature) {
+    case Feature::OutputContents: return "an output whose texels the frame keeps (initial contents, a channel mask, a blend)";
+    case Feature::MultisampledDepth: return "a multisampled depth";
+    case Feature::Stereo: return "stereo layers (Frame::depthLayers)";
+    case Feature::LibraryAllocations: return "counting the per-frame call's allocations in a library of its own";
+  }
+  return "?";
+}
+
+// The engine-side example implements none of the features (tests/executors/engine_executor.cpp).
+bool supports(Api api, Feature) { return api != Api::Engine; }
 
 const char* toString(Depth format) {
   switch (format) {
@@ -57,6 +77,9 @@ std::unique_ptr<Executor> makeExecutor(Api api) {
 #if SAO_HARNESS_VULKAN
   if (api == Api::Vulkan) return makeVkExecutor();
 #endif
+#if SAO_HARNESS_ENGINE
+  if (api == Api::Engine) return makeEngineExecutor();
+#endif
   ADD_FAILURE() << toString(api) << " is not built into this test program";
   return nullptr;
 }
@@ -68,6 +91,9 @@ void checkMessagesBefore(Api api) {
 #if SAO_HARNESS_VULKAN
   if (api == Api::Vulkan) vkMessagesBefore();
 #endif
+#if SAO_HARNESS_ENGINE
+  if (api == Api::Engine) engineMessagesBefore();
+#endif
 }
 
 void checkMessagesAfter(Api api) {
@@ -76,6 +102,9 @@ void checkMessagesAfter(Api api) {
 #endif
 #if SAO_HARNESS_VULKAN
   if (api == Api::Vulkan) vkMessagesAfter();
+#endif
+#if SAO_HARNESS_ENGINE
+  if (api == Api::Engine) engineMessagesAfter();
 #endif
 }
 

@@ -25,10 +25,33 @@
 
 namespace sao::exectest {
 
-enum class Api { Gl, Vulkan };
-const char* toString(Api api);
+// Gl and Vulkan: the library's backends. Engine: the engine-side example (samples/integration/
+// vk_engine: sao::core's FrameState driving an engine's own executor on raw Vulkan, shaders from
+// the build's .spv files) on the Vulkan test context; a program runs it where it is declared ENGINE
+// (tests/executors/CMakeLists.txt).
+enum class Api { Gl, Vulkan, Engine };
+const char* toString(Api api);  // "gl", "vulkan", "engine"
 inline void PrintTo(Api api, std::ostream* os) { *os << toString(api); }
-std::vector<Api> apis();  // the APIs built into this test program
+std::vector<Api> apis();  // the APIs this test program runs (program_apis.cpp)
+
+// What a case may need that not every executor implements. GL and Vulkan implement all of them;
+// the engine-side example none, and its executor refuses a frame that needs one (InvalidInput,
+// naming it). A case that needs one starts with SAO_SKIP_UNLESS_SUPPORTED.
+enum class Feature {
+  OutputContents,     // an output whose texels the frame keeps: Output::initial, a channel mask, a blend
+  MultisampledDepth,  // a depth of DepthImage::samples > 1
+  Stereo,             // Frame::depthLayers
+  // The per-frame call's heap allocations counted in a shared library of the API's own
+  // (api_allocations.h): the engine is linked into the test program, and allocates per frame.
+  LibraryAllocations,
+};
+const char* describe(Feature feature);
+bool supports(Api api, Feature feature);
+// Skips the running test, naming the executor and what it lacks, where `api` does not support `feature`.
+#define SAO_SKIP_UNLESS_SUPPORTED(api, feature)                                                           \
+  if (::sao::exectest::supports(api, feature)) {                                                          \
+  } else /* the else binds here, whatever surrounds the macro */                                          \
+    GTEST_SKIP() << ::sao::exectest::toString(api) << " does not implement " << ::sao::exectest::describe(feature)
 
 // The depth representations both APIs take (GL D24 is Vulkan's X8_D24_UNORM_PACK32).
 enum class Depth { D16, D24, D24S8, D32F, D32FS8, R32F };
@@ -87,7 +110,8 @@ class Executor {
   // The per-frame call on what upload() made (images are taken from there, everything else from
   // `frame`), then waits for the device. GL: render(); Vulkan: record(cmd, camera, settings,
   // inputs), submitted (a new effect only for what Config alone says: the depth's sample count, the
-  // effect-owned output's format).
+  // effect-owned output's format); Engine: EngineEffect::run(settings, camera, frame) (the caller's
+  // output: the engine's own image, EngineFrame::engineOutput).
   virtual Status run(const Frame& frame) = 0;
   // The output after the last successful run, in its format's channels.
   virtual FloatImage output() = 0;
@@ -95,9 +119,9 @@ class Executor {
   virtual FloatImage image(gen::ResourceId resource, std::uint32_t level = 0) = 0;
   virtual const Plan& plan() const = 0;
   virtual const ParamBlock& params() const = 0;
-  // Counters: configurations planned (GL: Stats::plans; Vulkan: plans()), image
-  // storage made so far (GL: textures; Vulkan: device memory blocks, the parameter buffer's not
-  // counted), programs or pipelines built.
+  // Counters: configurations planned (GL: Stats::plans; Vulkan: plans(); Engine: FrameState's),
+  // image storage made so far (GL: textures; Vulkan: device memory blocks, the parameter buffer's
+  // not counted; Engine: images, one block each, its output's included), programs or pipelines built.
   virtual std::uint64_t plans() const = 0;
   virtual std::uint64_t imageAllocations() const = 0;
   virtual std::uint64_t pipelines() const = 0;
@@ -109,7 +133,8 @@ class Executor {
 // A fresh executor for `api` (its context made on first use).
 std::unique_ptr<Executor> makeExecutor(Api api);
 
-// Every test fails on a GL debug error or a Vulkan validation message raised while it ran.
+// Every test fails on a GL debug error or a Vulkan validation message raised while it ran (the
+// engine's included: it runs on the Vulkan context).
 class ApiTest : public ::testing::TestWithParam<Api> {
  protected:
   void SetUp() override;
@@ -135,7 +160,7 @@ void ApiCaseTest<Case>::SetUp() { checkMessagesBefore(api()); }
 template <typename Case>
 void ApiCaseTest<Case>::TearDown() { checkMessagesAfter(api()); }
 
-// Test names: "gl", "vulkan"; with a case, "<api>_<case name>" from caseName(const Case&).
+// Test names: "gl", "vulkan", "engine"; with a case, "<api>_<case name>" from caseName(const Case&).
 std::string apiName(const ::testing::TestParamInfo<Api>& info);
 #define SAO_INSTANTIATE_APIS(Suite) \
   INSTANTIATE_TEST_SUITE_P(Apis, Suite, ::testing::ValuesIn(::sao::exectest::apis()), ::sao::exectest::apiName)

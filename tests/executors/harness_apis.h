@@ -1,6 +1,7 @@
 // What each API's half of the harness gives harness.cpp (not for the tests themselves).
 #pragma once
 #include <memory>
+#include <vector>
 
 #include "harness.h"
 
@@ -13,6 +14,14 @@ void glMessagesAfter();   // every GL debug error since fails the test
 std::unique_ptr<Executor> makeVkExecutor();
 void vkMessagesBefore();
 void vkMessagesAfter();
+
+// The engine-side example on the Vulkan context (its messages are the context's).
+std::unique_ptr<Executor> makeEngineExecutor();
+void engineMessagesBefore();
+void engineMessagesAfter();
+
+// The library's APIs built into the harness (GL, Vulkan); apis() adds the engine per program.
+std::vector<Api> libraryApis();
 
 }  // namespace sao::exectest
 

@@ -145,7 +145,10 @@ SAO_INSTANTIATE_APIS(RegionPerFrame);
 // (Vulkan's declared extent beyond the device's limit: tests/vulkan/input_region_test.cpp.)
 using RegionRefused = ApiTest;
 TEST_P(RegionRefused, OutsideAnyImageIsRefused) {
-  const std::string who = api() == Api::Gl ? "sao::gl: " : "sao::vk::Effect::record(): ";
+  // Each executor's prefix (the engine-side example's FrameState is "vk-engine-example").
+  const std::string who = api() == Api::Gl       ? "sao::gl: "
+                          : api() == Api::Vulkan ? "sao::vk::Effect::record(): "
+                                                 : "vk-engine-example: ";
   for (const Convention& c : conventions(41, 23, 3)) {  // needs 47x29
     SCOPED_TRACE(c.name);
     const test::Scene scene = sceneByName("sphere");

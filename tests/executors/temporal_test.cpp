@@ -93,6 +93,7 @@ std::vector<StrafeCase> strafeCases() {
 
 using TemporalStrafe = ApiCaseTest<StrafeCase>;
 TEST_P(TemporalStrafe, EveryFrameMatchesTheCpuReferenceWithoutAllocating) {
+  SAO_SKIP_UNLESS_SUPPORTED(api(), Feature::LibraryAllocations);
   const StrafeCase& c = param();
   ASSERT_TRUE(watchApiLibrary(api()));
   const Path path = makePath(c.base, true, 6);
