@@ -1,6 +1,6 @@
 // The Vulkan apply step: SAO multiplied into the engine's own lit colour target in the effect's
-// final pass (Config::userOutput + OutputBlend::Multiply on RGB), no composite pass of the engine's
-// own. The engine's frame is a stand-in: a depth buffer uploaded from a procedural floor meeting a
+// final pass (the target passed to record() as its output + OutputBlend::Multiply on RGB), no
+// composite pass of the engine's own. The engine's frame is a stand-in: a depth buffer uploaded from a procedural floor meeting a
 // back wall, and a colour target cleared to one colour. The colour is read back and checked: alpha
 // untouched, R, G and B scaled alike by A in [0, 1], open floor and wall kept, the crease darkened.
 // Only the installed sao::vulkan and the system's Vulkan loader are used (tests/package builds it
@@ -196,25 +196,23 @@ int main() {
   // ... then the effect: AO from the depth, multiplied into the colour's RGB, left in GENERAL for
   // the copy below (an engine would name its tone-mapping pass's stage and access instead).
   // [sao-apply]
-  sao::vk::Config config;
-  config.camera = sao::perspectiveCamera(kFovy, kWidth, kHeight, kNear, INFINITY, sao::ClipDepth::ZeroToOne,
-                                         /*reversedZ=*/true);
-  config.settings = sao::presetSettings(sao::Preset::Medium);
-  config.depthFormat = VK_FORMAT_D32_SFLOAT;
-  config.userOutput = true;  // your lit colour target, RGB multiplied by A, alpha kept
-  config.outputFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+  sao::vk::Config config;  // where the output is read afterwards
   config.outputLayout = VK_IMAGE_LAYOUT_GENERAL;
   config.outputDstStages = VK_PIPELINE_STAGE_TRANSFER_BIT;
   config.outputDstAccess = VK_ACCESS_TRANSFER_READ_BIT;
   std::unique_ptr<sao::vk::Effect> ao;
   sao::Status status = sao::vk::Effect::create(deviceContext, config, ao);
+  const sao::Camera camera = sao::perspectiveCamera(kFovy, kWidth, kHeight, kNear, INFINITY, sao::ClipDepth::ZeroToOne,
+                                                    /*reversedZ=*/true);
+  const sao::Settings settings = sao::presetSettings(sao::Preset::Medium);
   sao::vk::Inputs inputs;
-  inputs.depth = {depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, {kWidth, kHeight}};
-  inputs.outputChannels = sao::kChannelR | sao::kChannelG | sao::kChannelB;
+  inputs.depth = {depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, {kWidth, kHeight}, VK_FORMAT_D32_SFLOAT};
+  inputs.outputChannels = sao::kChannelR | sao::kChannelG | sao::kChannelB;  // alpha kept
   inputs.outputBlend = sao::OutputBlend::Multiply;
+  // Your lit colour target, RGB multiplied by A: its format selects the effect's final pass.
   const sao::vk::OutputImage litTarget{color.image, color.view, VK_FORMAT_R16G16B16A16_SFLOAT, {kWidth, kHeight},
                                        VK_IMAGE_LAYOUT_GENERAL};
-  if (status) status = ao->record(cmd, inputs, &litTarget);
+  if (status) status = ao->record(cmd, camera, settings, inputs, &litTarget);
   // [/sao-apply]
 
   // The colour read back (a stand-in for the engine's next pass), made visible to the host.

@@ -23,36 +23,32 @@
 namespace sao::viewer {
 namespace {
 
-bool sameCamera(const Camera& a, const Camera& b) {
-  return a.projection == b.projection && a.kind == b.kind && a.clipDepth == b.clipDepth && a.reversedZ == b.reversedZ &&
-         a.infiniteFar == b.infiniteFar && a.flipY == b.flipY && a.metersToViewUnits == b.metersToViewUnits &&
-         a.width == b.width && a.height == b.height && a.guardBand == b.guardBand;
-}
-
-// The effect's configuration for a frame (the main effect with the panel's settings, the
-// split-resolution view's second one with compareSettings()).
-vk::Config effectConfig(const FrameDesc& frame, const Settings& settings) {
+// The device side of an effect for a frame: the owned output read by the composite's fragment
+// shader, one frame in flight, and the timing choice. The settings, the camera and the depth go to
+// each record(), which plans again only when they change the plan.
+vk::Config effectConfig(const FrameDesc& frame) {
   vk::Config c;
-  c.settings = settings;
-  c.camera = frame.camera;
-  c.depthFormat = VK_FORMAT_D32_SFLOAT;  // DepthFormat::D32F in renderFrame
   c.outputLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   c.framesInFlight = 1;
   c.timestamps = frame.measureTime;
   return c;
 }
 
-// What updateEffect compares (never the view matrix: it is not part of the effect's input).
-bool sameConfig(const vk::Config& a, const vk::Config& b) {
-  return a.settings == b.settings && sameCamera(a.camera, b.camera) && a.timestamps == b.timestamps;
+// A new effect where there is none or its Config is not the frame's (timestamps turned on or off:
+// the only Config member that changes). Called after the previous frame's fence: nothing recorded
+// by the old effect is pending when it is destroyed.
+Status keepEffect(vk::headless::Context& ctx, const FrameDesc& frame, std::unique_ptr<vk::Effect>& effect) {
+  const vk::Config c = effectConfig(frame);
+  if (effect && effect->config().timestamps == c.timestamps) return Status::success();
+  effect.reset();
+  return vk::Effect::create(ctx.deviceContext(), c, effect);
 }
 
 // The split-resolution view's second effect: the same depth and camera at the other divisor,
 // created when the mode comes on and destroyed when it goes (other modes pay nothing).
 struct CompareEffect {
   std::unique_ptr<vk::Effect> effect;
-  vk::Config config;
-  bool configured = false, pendingTimings = false;
+  bool pendingTimings = false;
   Status status;
   Timings timings;
   std::string timingNote;
@@ -105,8 +101,9 @@ class VkBackend final : public Backend {
 
  private:
   Status initImGui();
-  Status updateEffect(const FrameDesc& frame, FrameStats& stats);
+  void updateEffect(const FrameDesc& frame, FrameStats& stats);
   void updateCompare(const FrameDesc& frame);
+  Status refreshEffectViews();
   void readTimings(const FrameDesc& frame);
   Status createEffectViews();
   void destroyEffectViews();
@@ -124,10 +121,10 @@ class VkBackend final : public Backend {
   VkDescriptorPool imguiPool_ = VK_NULL_HANDLE;
   bool imgui_ = false, recreate_ = false, pendingTimings_ = false;
   std::unique_ptr<vk::Effect> effect_;
-  vk::Config config_;
-  bool effectConfigured_ = false;  // effect_ matches config_ (its last create/update succeeded)
+  bool rendered_ = false;  // effect_'s last record() succeeded: its output holds the last frame's AO
   VkImageView aoRawView_ = VK_NULL_HANDLE, cszView_ = VK_NULL_HANDLE;
   std::uint32_t cszLevels_ = 0;
+  std::uint64_t viewsPlan_ = 0;  // effect_->plans() when the views were made (0: none)
   vk::headless::Buffer shot_;
   Timings lastTimings_;
   std::string timingNote_;
@@ -222,6 +219,7 @@ void VkBackend::destroyEffectViews() {
       *v = VK_NULL_HANDLE;
     }
   cszLevels_ = 0;
+  viewsPlan_ = 0;
 }
 
 // The composite reads ao_raw and every csz level through views of the effect's own images.
@@ -240,18 +238,24 @@ Status VkBackend::createEffectViews() {
   return Status::success();
 }
 
-// Create or update the effect when the settings, the camera's projection or size, or the timing
-// choice changed (never per camera move: the view matrix is not part of the effect's input).
-Status VkBackend::updateEffect(const FrameDesc& frame, FrameStats& stats) {
-  const vk::Config c = effectConfig(frame, frame.settings);
-  if (effect_ && effectConfigured_ && sameConfig(c, config_)) return stats.effect;
+// A new effect when the timing choice changed (or the last create failed); the settings and the
+// camera need nothing here: each record() takes them.
+void VkBackend::updateEffect(const FrameDesc& frame, FrameStats& stats) {
+  if (effect_ && effect_->config().timestamps == frame.measureTime) return;
+  destroyEffectViews();  // views of the old effect's images, which the composite no longer reads
+  rendered_ = false;
+  stats.effect = keepEffect(*ctx_, frame, effect_);
+}
+
+// After a record() that planned again (a resize, a new projection, other settings), the views the
+// composite reads of ao_raw and csz are made again: the new plan may have new images. The old
+// plan's images live until the next record() (one frame in flight), after the previous frame's
+// composite has completed.
+Status VkBackend::refreshEffectViews() {
+  if (effect_->plans() == viewsPlan_) return Status::success();
   destroyEffectViews();
-  Status s = effect_ ? effect_->update(c) : vk::Effect::create(ctx_->deviceContext(), c, effect_);
-  effectConfigured_ = s.ok();
-  if (s) config_ = c;
-  if (effect_)
-    if (Status v = createEffectViews(); !v) return v;
-  stats.effect = s;
+  if (Status s = createEffectViews(); !s) return s;
+  viewsPlan_ = effect_->plans();
   return Status::success();
 }
 
@@ -261,12 +265,9 @@ void VkBackend::updateCompare(const FrameDesc& frame) {
     compare_ = {};
     return;
   }
-  const vk::Config c = effectConfig(frame, compareSettings(frame.settings));
-  if (compare_.effect && compare_.configured && sameConfig(c, compare_.config)) return;
-  compare_.status = compare_.effect ? compare_.effect->update(c)
-                                    : vk::Effect::create(ctx_->deviceContext(), c, compare_.effect);
-  compare_.configured = compare_.status.ok();
-  if (compare_.configured) compare_.config = c;
+  if (compare_.effect && compare_.effect->config().timestamps == frame.measureTime) return;
+  compare_.pendingTimings = false;
+  compare_.status = keepEffect(*ctx_, frame, compare_.effect);
 }
 
 // The previous frame has completed: its timestamps are readable.
@@ -320,7 +321,7 @@ Status VkBackend::renderFrame(const FrameDesc& frame, FrameStats& stats) {
     ImGui_ImplVulkan_SetMinImageCount(swapchain_.minImageCount);
     recreate_ = false;
   }
-  if (Status s = updateEffect(frame, stats); !s) return s;
+  updateEffect(frame, stats);
   updateCompare(frame);
   const bool screenshot = !frame.screenshotPath.empty() && swapchain_.transferSrc;
   const VkDeviceSize shotBytes = VkDeviceSize(swapchain_.extent.width) * swapchain_.extent.height * 4;
@@ -348,22 +349,20 @@ Status VkBackend::renderFrame(const FrameDesc& frame, FrameStats& stats) {
   depthCamera.metersToViewUnits = 1;  // the mesh and the view are in the scene's units already
   vk::headless::Image depth;
   if (Status s = prepass_->record(cmd_, frame.view, depthCamera, DepthFormat::D32F, depth); !s) return s;
+  // The effect's input: the prepass's depth, of the camera's extent (viewport + guard band).
+  vk::Inputs in;
+  in.depth = {depth.view, depth.layout, depth.extent, depth.format};
+  in.frameIndex = frame.frameIndex;
   bool recorded = false;
-  if (effect_ && effectConfigured_) {
-    vk::Inputs in;
-    in.depth = {depth.view, depth.layout, effect_->plan().inputExtent, depth.format};
-    in.camera = &frame.camera;  // plans as config_'s (sameCamera); carries this frame's pose
-    in.frameIndex = frame.frameIndex;
-    stats.effect = effect_->record(cmd_, in);
-    recorded = stats.effect.ok();
+  if (effect_) {  // this frame's camera (its pose too) and the panel's settings
+    stats.effect = effect_->record(cmd_, frame.camera, frame.settings, in);
+    recorded = rendered_ = stats.effect.ok();
+    if (recorded)
+      if (Status s = refreshEffectViews(); !s) return s;
   }
   bool compared = false;  // the second effect reads the same depth (read-read: no barrier)
-  if (compare_.effect && compare_.configured) {
-    vk::Inputs in;
-    in.depth = {depth.view, depth.layout, compare_.effect->plan().inputExtent, depth.format};
-    in.camera = &frame.camera;
-    in.frameIndex = frame.frameIndex;
-    compare_.status = compare_.effect->record(cmd_, in);
+  if (compare_.effect) {
+    compare_.status = compare_.effect->record(cmd_, frame.camera, compareSettings(frame.settings), in);
     compared = compare_.status.ok();
   }
   // ao_raw and csz are read by the composite too (the effect's final barrier covers its output).
@@ -423,12 +422,12 @@ Status VkBackend::renderFrame(const FrameDesc& frame, FrameStats& stats) {
   if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR) recreate_ = true;
   else SAO_VIEWER_VK(r);
 
-  pendingTimings_ = recorded && config_.timestamps;
-  compare_.pendingTimings = compared && compare_.config.timestamps;
+  pendingTimings_ = recorded && effect_->config().timestamps;
+  compare_.pendingTimings = compared && compare_.effect->config().timestamps;
   stats.compare = {};
   if (frame.mode == ViewMode::SplitResolution)
     stats.compare = {true, compare_.status, compare_.timings, compare_.timingNote};
-  if (effect_ && effectConfigured_) stats.plan = effect_->plan();
+  if (effect_ && effect_->plans() > 0) stats.plan = effect_->plan();
   stats.timings = lastTimings_;
   stats.timingNote = timingNote_;
   if (!frame.screenshotPath.empty()) {
@@ -442,7 +441,7 @@ Status VkBackend::renderFrame(const FrameDesc& frame, FrameStats& stats) {
 }
 
 Status VkBackend::readAo(FloatImage& out) {
-  if (!effect_ || !effectConfigured_) return Status::error(StatusCode::InvalidInput, "no AO rendered yet");
+  if (!effect_ || !rendered_) return Status::error(StatusCode::InvalidInput, "no AO rendered yet");
   SAO_VIEWER_VK(vkWaitForFences(ctx_->device(), 1, &fence_, VK_TRUE, UINT64_MAX));
   const vk::OutputImage ao = effect_->output();
   return ctx_->readback(ao.image, ao.format, ao.extent, 0, ao.layout,

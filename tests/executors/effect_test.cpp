@@ -136,8 +136,8 @@ TEST_P(Effect, NormalsAndSecondLayerVariantsRun) {
 }
 SAO_INSTANTIATE_APIS(Effect);
 
-// ---- Bad frames: the same code on each API (GL: render(); Vulkan: create(), update() or
-// record()), with a message; the effect then renders.
+// ---- Bad frames: the same code on each API (GL: render(); Vulkan: record()), with a message;
+// the effect then renders.
 using Inputs = ApiTest;
 TEST_P(Inputs, BadSettingsAndCamera) {
   SceneFrame s(test::sphereOnPlaneScene(), test::openglCamera(64, 36, 8), Depth::D24);

@@ -1,6 +1,6 @@
 // Inputs::frameIndex (sao::frameSpiral): frames 0, 7 and 1000 rendered one after another by one
 // effect, each against the CPU reference (float) at the agreement bounds; frames 7 and 1000 differ
-// from frame 0, and a new frame is no new plan, image or pipeline (Vulkan: no update(), each
+// from frame 0, and a new frame is no new plan, image or pipeline (Vulkan: each
 // frame's block in its ring slot). Under GL's and Vulkan's depth conventions.
 #include <cstdio>
 #include <string>

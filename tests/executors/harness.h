@@ -76,7 +76,7 @@ struct Frame {
   Settings settings;
   Camera camera;
   // May be multisampled (DepthImage::samples 4, D32F; tests/cpu/msaa_depth.h), each sample written
-  // by the API's writer: GL a GL_TEXTURE_2D_MULTISAMPLE, Vulkan an image of Config::depthSamples.
+  // by the API's writer: GL a GL_TEXTURE_2D_MULTISAMPLE, Vulkan an image of that many samples (InputImage::samples).
   const DepthImage* depth = nullptr;
   Depth format = Depth::D32F;
   bool depthReadOnlyLayout = false;  // Vulkan: depth in DEPTH_STENCIL_READ_ONLY_OPTIMAL, not SHADER_READ_ONLY

@@ -1,8 +1,8 @@
 // Bad input on each API (docs/ROBUSTNESS.md): every setting NaN / +-inf / out of range, non-finite
 // and degenerate cameras, sizes beyond the largest image side, empty viewports, a depth larger than
 // the camera needs, two-channel normals with an xyz encoding. Each is refused with the documented
-// code and a message naming the problem, by an effect that never rendered (Vulkan: create()) and by
-// one that did (Vulkan: update() or record()), allocating nothing; both then render what a new
+// code and a message naming the problem, by an effect that never rendered and by
+// one that did (Vulkan: record(), which plans), allocating nothing; both then render what a new
 // effect renders. Versions, feedback loops (an input also passed as the output), null handles and
 // GL texture kinds stay in tests/gl/robustness_test.cpp and tests/vulkan/robustness_test.cpp.
 #include <cmath>
@@ -156,7 +156,7 @@ TEST_P(Robustness, HugeAndEmptySizes) {
   expectRejected(*used, f, StatusCode::InvalidInput, "is 4096x4096, the camera needs 80x52");
 }
 
-// A refused frame keeps the previous configuration (Vulkan: a failed update()): the output, its
+// A refused frame keeps the previous configuration (Vulkan: a failed record()): the output, its
 // extent and the images stay, and the next frame renders as before.
 TEST_P(Robustness, RefusedFramesKeepThePreviousConfiguration) {
   const FloatImage before = used->output();

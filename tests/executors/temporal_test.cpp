@@ -1,7 +1,7 @@
 // Temporal accumulation (the `temporal` setting) on each API against the CPU reference carried
 // frame to frame (runCpu's history): a camera strafing past a sphere on a plane, the camera per
 // frame planning nothing and allocating nothing once warm; Inputs::resetHistory and a settings
-// change start again; motion vectors. Vulkan's frames in flight and update() stay in tests/vulkan.
+// change start again; motion vectors. Vulkan's frames in flight stay in tests/vulkan.
 #include <cstring>
 #include <string>
 #include <vector>

@@ -90,23 +90,23 @@ class VkExecutor final : public Executor {
   }
 
   Status run(const Frame& f) override {
-    // The per-frame call, GL's shape: what only Config can say (the depth's sample count, the
-    // effect-owned output's format) makes a new effect when it changes.
+    // The per-frame call, GL's shape: what only Config can say (the effect-owned output's format)
+    // makes a new effect when it changes; everything else goes to record().
     const DepthImage& depth = runDepth(f);
     const bool layered = !outputLayouts_.empty();
-    const auto samples = VkSampleCountFlagBits(depth.samples);
     const bool otherOwnedFormat = !f.output.callerOwned && vkFormat(f.output.format) != ownedFormat_;
-    if (effect_ && (effect_->config().depthSamples != samples || otherOwnedFormat)) effect_.reset();
+    if (effect_ && otherOwnedFormat) effect_.reset();
     if (!effect_) {
       if (!f.output.callerOwned) ownedFormat_ = vkFormat(f.output.format);
       vk::Config c;
-      c.depthSamples = samples;
       c.outputFormat = ownedFormat_;
       if (Status st = vk::Effect::create(vktest::context().deviceContext(), c, effect_); !st) return st;
       createdBlocks_ = effect_->memoryStats().totalAllocations;  // the parameter buffer's, no image yet
+      callerOutput_ = false;
     }
     vk::Inputs in;
-    in.depth = {layered ? depthArray_.views.at(f.layer) : depth_.view, depthLayout(f), depth.extent, vkDepth(f.format)};
+    in.depth = {layered ? depthArray_.views.at(f.layer) : depth_.view, depthLayout(f), depth.extent, vkDepth(f.format),
+                VkSampleCountFlagBits(depth.samples)};
     if (f.depth2) in.depth2 = {depth2_.view, depthLayout(f), f.depth2->extent, vkDepth(f.format)};
     if (f.normals) in.normals = {normals_.view, kRead, f.normals->extent, vkTexels(f.normalsTexels)};
     if (f.motion) in.motion = {motion_.view, kRead, f.motion->extent, vkTexels(f.motionTexels)};
@@ -127,7 +127,7 @@ class VkExecutor final : public Executor {
     if (!submitted) return submitted;
     if (recorded && f.output.callerOwned)
       (layered ? outputLayouts_[f.layer] : output_.layout) = effect_->config().outputLayout;
-    if (recorded) lastLayer_ = f.layer;
+    if (recorded) lastLayer_ = f.layer, callerOutput_ = f.output.callerOwned;
     return recorded;
   }
 
@@ -140,7 +140,7 @@ class VkExecutor final : public Executor {
       EXPECT_TRUE(st.ok()) << st.message;
       return out;
     }
-    const vk::OutputImage o = effect_->config().userOutput
+    const vk::OutputImage o = callerOutput_
                                   ? vk::OutputImage{output_.image, output_.view, output_.format, output_.extent, output_.layout}
                                   : effect_->output();
     FloatImage out;
@@ -184,6 +184,7 @@ class VkExecutor final : public Executor {
   vktest::ArrayImage depthArray_, outputArray_;  // stereo (Frame::depthLayers)
   std::vector<VkImageLayout> outputLayouts_;     // per layer of outputArray_; empty: not stereo
   std::uint32_t lastLayer_ = 0;
+  bool callerOutput_ = false;  // the last recorded run wrote the caller's output_, not the effect's
 };
 
 }  // namespace

@@ -1,8 +1,9 @@
 // sao::vulkan from a consumer's point of view: an instance and a device of our own (the first one
 // with compute; lavapipe here), a D32_SFLOAT depth image cleared to the far plane (sky), the effect
-// recorded into our command buffer, the R16_SFLOAT result copied back (1.0 everywhere), a bad input
-// rejected and a header version mismatch reported. The library gets every entry point from
-// vkGetInstanceProcAddr; this program links the loader.
+// recorded into our command buffer with the frame's camera and settings (the first record() plans),
+// the R16_SFLOAT result copied back (1.0 everywhere), bad inputs (no depth, a view without its
+// format) rejected without a plan and a header version mismatch reported. The library gets every
+// entry point from vkGetInstanceProcAddr; this program links the loader.
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
@@ -130,8 +131,6 @@ int main() {
   sao::vk::DeviceContext ctx{instance, pd, device, vkGetInstanceProcAddr, vkGetDeviceProcAddr, family};
   ctx.enabledFeatures = &features;  // what vkCreateDevice enabled (create() checks it)
   sao::vk::Config config;
-  config.camera = camera;
-  config.depthFormat = VK_FORMAT_D32_SFLOAT;
   config.outputLayout = VK_IMAGE_LAYOUT_GENERAL;
   config.outputDstStages = VK_PIPELINE_STAGE_TRANSFER_BIT;
   config.outputDstAccess = VK_ACCESS_TRANSFER_READ_BIT;
@@ -178,13 +177,20 @@ int main() {
   vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0,
                        nullptr, 1, &toRead);
 
+  const sao::Settings settings;  // the defaults
   sao::vk::Inputs bad;  // no depth view: rejected, nothing recorded
-  const sao::Status rejected = effect->record(cmd, bad);
+  const sao::Status rejected = effect->record(cmd, camera, settings, bad);
   CHECK(rejected.code == sao::StatusCode::InvalidInput && !rejected.message.empty());
+  sao::vk::Inputs noFormat;  // a view without its format: rejected, nothing recorded
+  noFormat.depth = {depthView, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, {72, 44}};
+  const sao::Status unformatted = effect->record(cmd, camera, settings, noFormat);
+  if (unformatted) std::fprintf(stderr, "record accepted a depth view without its format\n");
+  CHECK(!unformatted.ok() && !unformatted.message.empty());
+  CHECK(effect->plans() == 0);
 
   sao::vk::Inputs in;
   in.depth = {depthView, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, {72, 44}, VK_FORMAT_D32_SFLOAT};
-  const sao::Status recorded = effect->record(cmd, in);
+  const sao::Status recorded = effect->record(cmd, camera, settings, in);
   if (!recorded) std::fprintf(stderr, "record: %s\n", recorded.message.c_str());
   CHECK(recorded.ok());
   const sao::vk::OutputImage out = effect->output();

@@ -1,9 +1,9 @@
 // sao::vk::Effect, what only Vulkan has: version and device checks, configurations and record()
 // inputs only Vulkan takes, every input layout, the output layout, records sharing a command
 // buffer and frames in flight, device memory, timestamps and measure(). What every API shares
-// (bad settings, cameras and sizes, sky, every depth format, update() as a change of settings or
-// size, the caller's output, the variants) is tests/executors/effect_test.cpp. Runs under the
-// validation layer with synchronization validation; any message fails the test.
+// (bad settings, cameras and sizes, sky, every depth format, a change of settings or size from
+// one record to the next, the caller's output, the variants) is tests/executors/effect_test.cpp.
+// Runs under the validation layer with synchronization validation; any message fails the test.
 #include "analytic_scenes.h"
 #include "image_compare.h"
 #include "vk_support.h"
@@ -13,27 +13,28 @@ namespace {
 
 using vk::headless::Image;
 
-// A scene uploaded once, with the matching config and inputs.
+// A scene uploaded once, with the frame's camera and settings (what each record() gets), its
+// inputs and a device-level Config.
 struct Frame {
   Camera camera;
+  Settings settings;  // the defaults
   DepthImage depth;
   Image image;
+  VkFormat format;
   vk::Config config;
   VkImageLayout layout;
 
-  Frame(std::uint32_t w, std::uint32_t h, VkDepth format, const test::Scene& scene,
+  Frame(std::uint32_t w, std::uint32_t h, VkDepth format_, const test::Scene& scene,
         VkImageLayout layout_ = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, std::uint32_t guard = 8)
-      : camera(vulkanCamera(w, h, guard)), layout(layout_) {
-    depth = test::renderDepth(scene, camera, cpuFormat(format));
-    const Status st = context().uploadDepth(depth, vkFormat(format), layout, image);
+      : camera(vulkanCamera(w, h, guard)), format(vkFormat(format_)), layout(layout_) {
+    depth = test::renderDepth(scene, camera, cpuFormat(format_));
+    const Status st = context().uploadDepth(depth, format, layout, image);
     EXPECT_TRUE(st.ok()) << st.message;
-    config.camera = camera;
-    config.depthFormat = vkFormat(format);
   }
   ~Frame() { context().destroy(image); }
   vk::Inputs inputs() const {
     vk::Inputs in;
-    in.depth = {image.view, layout, depth.extent, config.depthFormat};
+    in.depth = {image.view, layout, depth.extent, format};
     return in;
   }
 };
@@ -45,10 +46,12 @@ std::unique_ptr<vk::Effect> makeEffect(const vk::Config& config) {
   return e;
 }
 
-// Records once, submits, reads the output back.
-FloatImage runOnce(vk::Effect& effect, const vk::Inputs& in, const vk::OutputImage* userOutput = nullptr) {
+// Records `f`'s camera and settings with `in` once, submits, reads the output back.
+FloatImage runOnce(vk::Effect& effect, const Frame& f, const vk::Inputs& in,
+                   const vk::OutputImage* userOutput = nullptr) {
   Status recorded;
-  const Status st = context().submit([&](VkCommandBuffer cmd) { recorded = effect.record(cmd, in, userOutput); });
+  const Status st =
+      context().submit([&](VkCommandBuffer cmd) { recorded = effect.record(cmd, f.camera, f.settings, in, userOutput); });
   EXPECT_TRUE(st.ok()) << st.message;
   EXPECT_TRUE(recorded.ok()) << recorded.message;
   const vk::OutputImage o = userOutput ? *userOutput : effect.output();
@@ -58,6 +61,9 @@ FloatImage runOnce(vk::Effect& effect, const vk::Inputs& in, const vk::OutputIma
                                        effect.config().outputDstAccess, ao);
   EXPECT_TRUE(rb.ok()) << rb.message;
   return ao;
+}
+FloatImage runOnce(vk::Effect& effect, const Frame& f, const vk::OutputImage* userOutput = nullptr) {
+  return runOnce(effect, f, f.inputs(), userOutput);
 }
 
 using test::sameBits;
@@ -69,7 +75,7 @@ TEST_F(VkEffect, DeviceMemoryHoldsThePlan) {
   Frame f(64, 36, VkDepth::D32F, test::sphereOnPlaneScene());
   auto effect = makeEffect(f.config);
   ASSERT_TRUE(effect);
-  runOnce(*effect, f.inputs());
+  runOnce(*effect, f);
   const auto stats = effect->memoryStats();
   EXPECT_GE(stats.liveAllocations, 1u);
   EXPECT_GE(stats.liveBytes, effect->plan().totalBytes);
@@ -102,7 +108,11 @@ TEST_F(VkEffect, BadDeviceContextIsReported) {
   EXPECT_FALSE(e);
 }
 
-// Bad settings, cameras and sizes: Inputs.BadSettingsAndCamera in tests/executors/effect_test.cpp.
+// Bad settings, cameras and sizes: Inputs.BadSettingsAndCamera in tests/executors/effect_test.cpp
+// (here one of each: a radius of -1, a 20000-wide camera). The device-level Config is refused by
+// create(); the settings, the camera and the input formats, which come with each record(), by the
+// first record() (which plans): nothing planned, nothing recorded (a good record after them in the
+// same command buffer renders as a fresh effect does).
 TEST_F(VkEffect, BadConfigurationsAreReported) {
   Frame f(32, 18, VkDepth::D32F, test::planeScene(2.0));
   std::unique_ptr<vk::Effect> e;
@@ -112,76 +122,116 @@ TEST_F(VkEffect, BadConfigurationsAreReported) {
     return st.code;
   };
   vk::Config c = f.config;
-  c.depthFormat = VK_FORMAT_R8G8B8A8_UNORM;
-  EXPECT_EQ(code(c), StatusCode::UnsupportedFormat);
-  c = f.config;
-  c.depthFormat = VK_FORMAT_S8_UINT;
-  EXPECT_EQ(code(c), StatusCode::UnsupportedFormat);
-  c = f.config;
-  c.normalsFormat = VK_FORMAT_D32_SFLOAT;
-  EXPECT_EQ(code(c), StatusCode::UnsupportedFormat);
-  c = f.config;
   c.outputLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   EXPECT_EQ(code(c), StatusCode::InvalidInput);
   c = f.config;
   c.framesInFlight = 0;
   EXPECT_EQ(code(c), StatusCode::InvalidInput);
   EXPECT_FALSE(e);
+
+  auto fresh = makeEffect(f.config);
+  ASSERT_TRUE(fresh);
+  const FloatImage expected = runOnce(*fresh, f);
+  auto effect = makeEffect(f.config);
+  ASSERT_TRUE(effect);
+  std::vector<std::pair<std::string, Status>> results;
+  Status badSetting, badSize, good;
+  ASSERT_TRUE(context()
+                  .submit([&](VkCommandBuffer cmd) {
+                    Settings s = f.settings;
+                    s.radius = -1;
+                    badSetting = effect->record(cmd, f.camera, s, f.inputs());
+                    Camera wide = f.camera;
+                    wide.width = 20000;
+                    badSize = effect->record(cmd, wide, f.settings, f.inputs());
+                    vk::Inputs in = f.inputs();
+                    in.depth.format = VK_FORMAT_R8G8B8A8_UNORM;
+                    results.push_back({"depth R8G8B8A8_UNORM", effect->record(cmd, f.camera, f.settings, in)});
+                    in.depth.format = VK_FORMAT_S8_UINT;
+                    results.push_back({"depth S8_UINT", effect->record(cmd, f.camera, f.settings, in)});
+                    in = f.inputs();
+                    in.normals = in.depth;  // a view of the right size; its declared format is a depth one
+                    results.push_back({"normals D32_SFLOAT", effect->record(cmd, f.camera, f.settings, in)});
+                    good = effect->record(cmd, f.camera, f.settings, f.inputs());
+                  })
+                  .ok());
+  EXPECT_EQ(badSetting.code, StatusCode::InvalidSetting) << badSetting.message;
+  EXPECT_NE(badSetting.message.find("radius"), std::string::npos) << badSetting.message;
+  EXPECT_EQ(badSize.code, StatusCode::InvalidExtent) << badSize.message;
+  for (const auto& [what, st] : results) {
+    EXPECT_EQ(st.code, StatusCode::UnsupportedFormat) << what << ": " << st.message;
+    EXPECT_FALSE(st.message.empty()) << what;
+  }
+  ASSERT_TRUE(good.ok()) << good.message;
+  EXPECT_EQ(effect->plans(), 1u) << "the refused records planned nothing";
+  const vk::OutputImage o = effect->output();
+  FloatImage ao;
+  ASSERT_TRUE(context().readback(o.image, o.format, o.extent, 0, o.layout, f.config.outputDstStages,
+                                 f.config.outputDstAccess, ao).ok());
+  EXPECT_TRUE(sameBits(ao, expected)) << "the refused records recorded nothing";
 }
 
 // Inputs of the wrong size: Inputs.DepthSizeMustBeViewportPlusGuard in tests/executors/effect_test.cpp.
+// Refused records, after a good one planned the effect: nothing recorded and the configuration
+// kept (the owned output stays; a good record after them renders as before).
 TEST_F(VkEffect, BadInputsAreReportedAndNothingIsRecorded) {
   Frame f(32, 18, VkDepth::D32F, test::planeScene(2.0));
   auto effect = makeEffect(f.config);
   ASSERT_TRUE(effect);
+  const FloatImage before = runOnce(*effect, f);
+  const vk::OutputImage owned = effect->output();
+  const std::uint64_t generation = effect->outputGeneration(), plans = effect->plans();
   Image other;
   ASSERT_TRUE(context().createStorageImage(VK_FORMAT_R16_SFLOAT, {32, 18}, other).ok());
   const vk::OutputImage userOut{other.image, other.view, VK_FORMAT_R16_SFLOAT, {32, 18}};
-  std::vector<std::pair<std::string, Status>> results;
+  std::vector<std::pair<std::string, Status>> invalid, unsupported;
+  Status good;
   const Status st = context().submit([&](VkCommandBuffer cmd) {
+    auto record = [&](const vk::Inputs& in, const vk::OutputImage* o = nullptr) {
+      return effect->record(cmd, f.camera, f.settings, in, o);
+    };
     vk::Inputs in = f.inputs();
-    results.push_back({"null command buffer", effect->record(VK_NULL_HANDLE, in)});
+    invalid.push_back({"null command buffer", effect->record(VK_NULL_HANDLE, f.camera, f.settings, in)});
     in.depth.view = VK_NULL_HANDLE;
-    results.push_back({"null depth view", effect->record(cmd, in)});
+    invalid.push_back({"null depth view", record(in)});
     in = f.inputs();
     in.depth.layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    results.push_back({"layout", effect->record(cmd, in)});
+    invalid.push_back({"layout", record(in)});
     in = f.inputs();
-    in.depth.format = VK_FORMAT_D16_UNORM;  // the config says D32_SFLOAT
-    results.push_back({"format", effect->record(cmd, in)});
+    in.depth.format = VK_FORMAT_UNDEFINED;  // required with a view: a view cannot tell its format
+    invalid.push_back({"depth format undefined", record(in)});
     in = f.inputs();
-    in.normals = in.depth;
-    results.push_back({"normals not configured", effect->record(cmd, in)});
+    in.normals = {f.image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, f.depth.extent};
+    invalid.push_back({"normals format undefined", record(in)});
     in = f.inputs();
     in.depth2 = in.depth;
-    results.push_back({"depth2 not configured", effect->record(cmd, in)});
-    results.push_back({"output not configured", effect->record(cmd, f.inputs(), &userOut)});
+    in.depth2.format = VK_FORMAT_D16_UNORM;  // every depth layer has the depth's format
+    invalid.push_back({"depth2 in another format", record(in)});
+    vk::OutputImage o = userOut;
+    o.extent = {16, 9};
+    invalid.push_back({"output size", record(f.inputs(), &o)});
+    o = userOut;
+    o.format = VK_FORMAT_R32_SFLOAT;
+    unsupported.push_back({"output format", record(f.inputs(), &o)});
+    good = record(f.inputs());
   });
   ASSERT_TRUE(st.ok()) << st.message;
-  for (const auto& [what, s] : results) {
+  for (const auto& [what, s] : invalid) {
     EXPECT_EQ(s.code, StatusCode::InvalidInput) << what << ": " << s.message;
     EXPECT_FALSE(s.message.empty()) << what;
   }
-
-  vk::Config c = f.config;
-  c.userOutput = true;
-  auto withOutput = makeEffect(c);
-  ASSERT_TRUE(withOutput);
-  Status missing, wrongFormat, wrongSize;
-  ASSERT_TRUE(context()
-                  .submit([&](VkCommandBuffer cmd) {
-                    missing = withOutput->record(cmd, f.inputs());
-                    vk::OutputImage o = userOut;
-                    o.format = VK_FORMAT_R32_SFLOAT;
-                    wrongFormat = withOutput->record(cmd, f.inputs(), &o);
-                    o = userOut;
-                    o.extent = {16, 9};
-                    wrongSize = withOutput->record(cmd, f.inputs(), &o);
-                  })
-                  .ok());
-  EXPECT_EQ(missing.code, StatusCode::InvalidInput) << missing.message;
-  EXPECT_EQ(wrongFormat.code, StatusCode::UnsupportedFormat) << wrongFormat.message;
-  EXPECT_EQ(wrongSize.code, StatusCode::InvalidInput) << wrongSize.message;
+  for (const auto& [what, s] : unsupported) {
+    EXPECT_EQ(s.code, StatusCode::UnsupportedFormat) << what << ": " << s.message;
+    EXPECT_FALSE(s.message.empty()) << what;
+  }
+  EXPECT_TRUE(good.ok()) << good.message;
+  EXPECT_EQ(effect->output().image, owned.image) << "the refused records kept the configuration";
+  EXPECT_EQ(effect->outputGeneration(), generation);
+  EXPECT_EQ(effect->plans(), plans) << "the good record kept the plan of the first";
+  FloatImage ao;
+  ASSERT_TRUE(context().readback(owned.image, owned.format, owned.extent, 0, owned.layout, f.config.outputDstStages,
+                                 f.config.outputDstAccess, ao).ok());
+  EXPECT_TRUE(sameBits(ao, before)) << "the refused records recorded nothing";
   context().destroy(other);
 }
 
@@ -191,7 +241,7 @@ TEST_F(VkEffect, EveryDepthLayout) {
   const auto run = [](VkDepth format, VkImageLayout layout) {
     Frame f(48, 27, format, test::stairsScene(), layout);
     auto effect = makeEffect(f.config);
-    return effect ? runOnce(*effect, f.inputs()) : FloatImage{};
+    return effect ? runOnce(*effect, f) : FloatImage{};
   };
   for (const auto& [format, layout] : {std::pair{VkDepth::X8D24, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL},
                                        std::pair{VkDepth::D24S8, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL},
@@ -208,20 +258,20 @@ TEST_F(VkEffect, UserOutputInEitherLayoutMatchesTheOwnedOne) {
   Frame f(40, 24, VkDepth::D24S8, test::sphereOnPlaneScene(), VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
   auto owned = makeEffect(f.config);
   ASSERT_TRUE(owned);
-  const FloatImage expected = runOnce(*owned, f.inputs());
+  const FloatImage expected = runOnce(*owned, f);
   for (VkImageLayout layout : {VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}) {
     vk::Config c = f.config;
-    c.userOutput = true;
     c.outputLayout = layout;
     auto effect = makeEffect(c);
     ASSERT_TRUE(effect);
-    EXPECT_EQ(effect->output().image, VK_NULL_HANDLE);
-    EXPECT_EQ(effect->plan().image(gen::ResourceId::ao), nullptr) << "the user's output is not allocated";
     Image out;
     ASSERT_TRUE(context().createStorageImage(VK_FORMAT_R16_SFLOAT, {40, 24}, out).ok());
     const vk::OutputImage o{out.image, out.view, VK_FORMAT_R16_SFLOAT, {40, 24}};
-    EXPECT_TRUE(sameBits(runOnce(*effect, f.inputs(), &o), expected));
-    EXPECT_TRUE(sameBits(runOnce(*effect, f.inputs(), &o), expected)) << "second frame";
+    EXPECT_TRUE(sameBits(runOnce(*effect, f, &o), expected));
+    EXPECT_EQ(effect->output().image, VK_NULL_HANDLE);
+    EXPECT_EQ(effect->plan().image(gen::ResourceId::ao), nullptr) << "the user's output is not allocated";
+    EXPECT_EQ(effect->outputGeneration(), 0u) << "never an owned output";
+    EXPECT_TRUE(sameBits(runOnce(*effect, f, &o), expected)) << "second frame";
     context().destroy(out);
   }
 }
@@ -233,17 +283,17 @@ TEST_F(VkEffect, RepeatedRecordsAreHazardFree) {
   f.config.framesInFlight = 3;  // three records in one command buffer use three ring slots
   auto effect = makeEffect(f.config);
   ASSERT_TRUE(effect);
-  const FloatImage once = runOnce(*effect, f.inputs());
+  const FloatImage once = runOnce(*effect, f);
   Status a, b, c;
   ASSERT_TRUE(context()
                   .submit([&](VkCommandBuffer cmd) {
-                    a = effect->record(cmd, f.inputs());
-                    b = effect->record(cmd, f.inputs());
-                    c = effect->record(cmd, f.inputs());
+                    a = effect->record(cmd, f.camera, f.settings, f.inputs());
+                    b = effect->record(cmd, f.camera, f.settings, f.inputs());
+                    c = effect->record(cmd, f.camera, f.settings, f.inputs());
                   })
                   .ok());
   EXPECT_TRUE(a.ok() && b.ok() && c.ok());
-  EXPECT_TRUE(sameBits(runOnce(*effect, f.inputs()), once));
+  EXPECT_TRUE(sameBits(runOnce(*effect, f), once));
 }
 
 // Two records of alternating inputs pending at once in one command buffer (framesInFlight = 2)
@@ -254,11 +304,10 @@ TEST_F(VkEffect, TwoPendingRecordsReadTheirOwnDepth) {
   Frame f2(48, 27, VkDepth::D32F, test::stairsScene());
   auto effect = makeEffect(f1.config);
   ASSERT_TRUE(effect);
-  const FloatImage e1 = runOnce(*effect, f1.inputs());
-  const FloatImage e2 = runOnce(*effect, f2.inputs());
+  const FloatImage e1 = runOnce(*effect, f1);
+  const FloatImage e2 = runOnce(*effect, f2);
   Image out1, out2;
-  vk::Config c = f1.config;
-  c.userOutput = true;
+  const vk::Config c = f1.config;
   auto ring = makeEffect(c);
   ASSERT_TRUE(ring);
   ASSERT_TRUE(context().createStorageImage(VK_FORMAT_R16_SFLOAT, {48, 27}, out1).ok());
@@ -269,8 +318,8 @@ TEST_F(VkEffect, TwoPendingRecordsReadTheirOwnDepth) {
     Status s1, s2;
     ASSERT_TRUE(context()
                     .submit([&](VkCommandBuffer cmd) {
-                      s1 = ring->record(cmd, f1.inputs(), &o1);
-                      s2 = ring->record(cmd, f2.inputs(), &o2);
+                      s1 = ring->record(cmd, f1.camera, f1.settings, f1.inputs(), &o1);
+                      s2 = ring->record(cmd, f2.camera, f2.settings, f2.inputs(), &o2);
                     })
                     .ok());
     ASSERT_TRUE(s1.ok() && s2.ok()) << s1.message << s2.message;
@@ -282,6 +331,7 @@ TEST_F(VkEffect, TwoPendingRecordsReadTheirOwnDepth) {
     EXPECT_TRUE(sameBits(r1, e1)) << "round " << round;
     EXPECT_TRUE(sameBits(r2, e2)) << "round " << round;
   }
+  EXPECT_EQ(ring->plans(), 1u) << "both records of every round keep the first plan";
   context().destroy(out1);
   context().destroy(out2);
 }
@@ -295,7 +345,7 @@ TEST_F(VkEffect, TimestampsAndFenceFallback) {
   Timings t;
   EXPECT_FALSE(effect->timings(t).ok()) << "nothing recorded yet";
   if (effect->timestampsSupported()) {
-    runOnce(*effect, f.inputs());
+    runOnce(*effect, f);
     const Status st = effect->timings(t);
     ASSERT_TRUE(st.ok()) << st.message;
     EXPECT_EQ(t.method, TimingMethod::GpuTimestamps);
@@ -307,7 +357,7 @@ TEST_F(VkEffect, TimestampsAndFenceFallback) {
   }
   for (auto method : {vk::MeasureMethod::Auto, vk::MeasureMethod::FenceClock}) {
     Timings m;
-    const Status st = effect->measure(context().queue(), f.inputs(), nullptr, m, method);
+    const Status st = effect->measure(context().queue(), f.camera, f.settings, f.inputs(), nullptr, m, method);
     ASSERT_TRUE(st.ok()) << st.message;
     EXPECT_EQ(m.method, method == vk::MeasureMethod::FenceClock || !effect->timestampsSupported()
                             ? TimingMethod::FinishAndClock
@@ -318,6 +368,7 @@ TEST_F(VkEffect, TimestampsAndFenceFallback) {
     for (const auto& p : m.passes) std::printf(" %s %.3f ms", p.pass.c_str(), p.milliseconds);
     std::printf("\n");
   }
+  EXPECT_EQ(effect->plans(), 1u) << "measure() plans as record() does: the same frame, one plan";
   // measure() leaves the same result as record().
   const FloatImage fromMeasure = [&] {
     FloatImage ao;
@@ -325,7 +376,31 @@ TEST_F(VkEffect, TimestampsAndFenceFallback) {
     EXPECT_TRUE(context().readback(o.image, o.format, o.extent, 0, o.layout, c.outputDstStages, c.outputDstAccess, ao).ok());
     return ao;
   }();
-  EXPECT_TRUE(sameBits(fromMeasure, runOnce(*effect, f.inputs())));
+  EXPECT_TRUE(sameBits(fromMeasure, runOnce(*effect, f)));
+}
+
+// measure() before any record() plans the frame itself, as record() would (the effect's first
+// plan), and leaves the output record() would write.
+TEST_F(VkEffect, MeasureBeforeAnyRecordPlans) {
+  Frame f(48, 27, VkDepth::D32F, test::sphereOnPlaneScene());
+  auto effect = makeEffect(f.config);
+  ASSERT_TRUE(effect);
+  EXPECT_TRUE(effect->plan().passes.empty()) << "create() plans nothing";
+  EXPECT_EQ(effect->plans(), 0u);
+  Timings m;
+  const Status st =
+      effect->measure(context().queue(), f.camera, f.settings, f.inputs(), nullptr, m, vk::MeasureMethod::FenceClock);
+  ASSERT_TRUE(st.ok()) << st.message;
+  EXPECT_EQ(effect->plans(), 1u);
+  ASSERT_EQ(m.passes.size(), effect->plan().passes.size());
+  EXPECT_FALSE(m.passes.empty());
+  const vk::OutputImage o = effect->output();
+  FloatImage measured;
+  ASSERT_TRUE(context().readback(o.image, o.format, o.extent, 0, o.layout, f.config.outputDstStages,
+                                 f.config.outputDstAccess, measured).ok());
+  auto recorded = makeEffect(f.config);
+  ASSERT_TRUE(recorded);
+  EXPECT_TRUE(sameBits(measured, runOnce(*recorded, f)));
 }
 
 }  // namespace

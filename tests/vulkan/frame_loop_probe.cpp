@@ -1,10 +1,11 @@
 // sao-vk-frame-loop-probe: host memory of a long Vulkan frame loop, for bisecting growth (issue 19).
 //
-// Records the effect once into 2 command buffers (or afresh every frame with --rerecord) and
-// resubmits them for --frames frames with 2 in flight, printing mallinfo2().uordblks and RSS
-// every 100 frames and the growth per frame after a 100-frame warm-up. --drop=CMD[,CMD...]
-// interposes vkGetDeviceProcAddr and replaces those commands with no-ops, so each command of the
-// stream can be switched off in turn: vkCmdWriteTimestamp, vkCmdResetQueryPool,
+// Records the effect once into 2 command buffers (or afresh every frame with --rerecord; the
+// first record, which plans, is made before the loop either way) and resubmits them for --frames
+// frames with 2 in flight, printing mallinfo2().uordblks and RSS every 100 frames and the growth
+// per frame after a 100-frame warm-up (and, with validation, the layer's messages at the end).
+// --drop=CMD[,CMD...] interposes vkGetDeviceProcAddr and replaces those commands with no-ops, so
+// each command of the stream can be switched off in turn: vkCmdWriteTimestamp, vkCmdResetQueryPool,
 // vkCmdPipelineBarrier, vkCmdBindDescriptorSets, vkCmdDispatch, or dispatch:N (only the N-th
 // dispatch of each record; the dispatch list is printed). Results with commands dropped are
 // meaningless as pixels; this is a memory probe, not a test.
@@ -185,9 +186,6 @@ int main(int argc, char** argv) {
       !st)
     return fail(st.message);
   sao::vk::Config config;
-  config.settings = settings;
-  config.camera = camera;
-  config.depthFormat = VK_FORMAT_D32_SFLOAT;
   config.framesInFlight = 2;
   config.timestamps = timestamps;
   std::unique_ptr<sao::vk::Effect> effect;
@@ -207,13 +205,16 @@ int main(int argc, char** argv) {
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     vkBeginCommandBuffer(cmd, &bi);
     gDispatchIndex = 0;
-    const sao::Status st = effect->record(cmd, in);
+    const sao::Status st = effect->record(cmd, camera, settings, in);
     vkEndCommandBuffer(cmd);
     return st;
   };
-  if (!rerecord)
-    for (VkCommandBuffer c : cmds)
-      if (sao::Status st = recordInto(c); !st) return fail(st.message);
+  // The first record plans (the dispatch list below is the plan's). With --rerecord only the first
+  // command buffer is recorded here, to plan; the loop records it again before submitting it.
+  for (VkCommandBuffer c : cmds) {
+    if (sao::Status st = recordInto(c); !st) return fail(st.message);
+    if (rerecord) break;
+  }
 
   std::printf("device: %s; %dx%d, %d frames, timestamps %s, labels %s, validation %s, %s, dropped:", 
               ctx->description().c_str(), width, height, frames, timestamps ? "on" : "off", labels ? "on" : "off",
@@ -257,5 +258,10 @@ int main(int argc, char** argv) {
   vkFreeCommandBuffers(device, ctx->commandPool(), 2, cmds);
   effect.reset();
   ctx->destroy(image);
+  // Reported, not failed on: a dropped barrier (--drop) makes hazards on purpose.
+  if (o.validation) {
+    const std::vector<sao::vk::headless::Message> messages = ctx->takeMessages();
+    std::printf("validation messages: %zu\n%s", messages.size(), sao::vk::headless::toString(messages).c_str());
+  }
   return 0;
 }

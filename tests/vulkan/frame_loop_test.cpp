@@ -33,9 +33,9 @@ bool sanitized() {
 
 class VkFrameLoop : public VkTest {};
 
-// Records `effect` once into 2 command buffers and resubmits them kFrames times, 2 in flight:
-// the heap bytes per frame after the warm-up.
-double resubmittedGrowth(vk::Effect& effect, const vk::Inputs& in) {
+// Records `effect` once into 2 command buffers (the first record plans) and resubmits them kFrames
+// times, 2 in flight: the heap bytes per frame after the warm-up.
+double resubmittedGrowth(vk::Effect& effect, const Camera& camera, const Settings& settings, const vk::Inputs& in) {
   vk::headless::Context& ctx = context();
   const VkDevice device = ctx.device();
   VkCommandBuffer cmds[2]{};
@@ -49,10 +49,11 @@ double resubmittedGrowth(vk::Effect& effect, const vk::Inputs& in) {
   for (VkCommandBuffer cmd : cmds) {
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     EXPECT_EQ(vkBeginCommandBuffer(cmd, &bi), VK_SUCCESS);
-    const Status st = effect.record(cmd, in);
+    const Status st = effect.record(cmd, camera, settings, in);
     EXPECT_EQ(vkEndCommandBuffer(cmd), VK_SUCCESS);
     EXPECT_TRUE(st.ok()) << st.message;
   }
+  EXPECT_EQ(effect.plans(), 1u) << "the second record kept the first one's plan";
   std::size_t warm = 0;
   for (int f = 0; f < kFrames; ++f) {
     VkFence fence = fences[f % 2];
@@ -79,8 +80,6 @@ TEST_F(VkFrameLoop, RecordedOnceResubmitted2000FramesHoldsHostMemory) {
   vk::headless::Image image;
   ASSERT_TRUE(ctx.uploadDepth(depth, VK_FORMAT_D32_SFLOAT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, image).ok());
   vk::Config config;
-  config.camera = camera;
-  config.depthFormat = VK_FORMAT_D32_SFLOAT;
   config.framesInFlight = 2;
   config.timestamps = true;  // every command of the stream, queries included
   std::unique_ptr<vk::Effect> effect;
@@ -88,7 +87,7 @@ TEST_F(VkFrameLoop, RecordedOnceResubmitted2000FramesHoldsHostMemory) {
   ASSERT_TRUE(st.ok()) << st.message;
   vk::Inputs in;
   in.depth = {image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth.extent, VK_FORMAT_D32_SFLOAT};
-  const double perFrame = resubmittedGrowth(*effect, in);
+  const double perFrame = resubmittedGrowth(*effect, camera, Settings{}, in);
   Timings timings;
   st = effect->timings(timings);
   EXPECT_TRUE(st.ok()) << st.message;
@@ -113,16 +112,14 @@ TEST_F(VkFrameLoop, MultisampledNearestDepthHoldsHostMemory) {
   vk::headless::Image image;
   ASSERT_TRUE(writeMultisampledDepth(ctx, msaa, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, image).ok());
   vk::Config config;
-  config.camera = camera;
-  config.depthFormat = VK_FORMAT_D32_SFLOAT;
-  config.depthSamples = VK_SAMPLE_COUNT_4_BIT;
   config.framesInFlight = 2;
   std::unique_ptr<vk::Effect> effect;
   const Status st = vk::Effect::create(ctx.deviceContext(), config, effect);
   ASSERT_TRUE(st.ok()) << st.message;
   vk::Inputs in;
-  in.depth = {image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, msaa.extent, VK_FORMAT_D32_SFLOAT};
-  const double perFrame = resubmittedGrowth(*effect, in);
+  in.depth = {image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, msaa.extent, VK_FORMAT_D32_SFLOAT,
+              VK_SAMPLE_COUNT_4_BIT};
+  const double perFrame = resubmittedGrowth(*effect, camera, Settings{}, in);
   effect.reset();
   ctx.destroy(image);
   std::printf("[frame loop] Vulkan, 4-sample depth, Nearest: %+.1f heap bytes/frame over %d frames after %d\n",
@@ -130,8 +127,8 @@ TEST_F(VkFrameLoop, MultisampledNearestDepthHoldsHostMemory) {
   EXPECT_LT(perFrame, kAllowedBytesPerFrame) << "host memory grows with resubmitted frames";
 }
 
-// Temporal accumulation in an engine's loop: every frame recorded anew with its own camera
-// (Inputs::camera, moving: Camera::view) and frame index, the history images trading places, each
+// Temporal accumulation in an engine's loop: every frame recorded anew with its own camera (moving:
+// Camera::view, which keeps the plan) and frame index, the history images trading places, each
 // submission waited for. Host memory stays flat.
 TEST_F(VkFrameLoop, TemporalRecordedEveryFrameHoldsHostMemory) {
   if (sanitized()) GTEST_SKIP() << "heap figures are meaningless under the sanitizers' allocator";
@@ -141,12 +138,10 @@ TEST_F(VkFrameLoop, TemporalRecordedEveryFrameHoldsHostMemory) {
   const DepthImage depth = test::renderDepth(test::sphereOnPlaneScene(), base, DepthFormat::D32F);
   vk::headless::Image image;
   ASSERT_TRUE(ctx.uploadDepth(depth, VK_FORMAT_D32_SFLOAT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, image).ok());
-  vk::Config config;
-  config.camera = base;
-  config.depthFormat = VK_FORMAT_D32_SFLOAT;
-  config.settings.temporal = true;
+  Settings settings;
+  settings.temporal = true;
   std::unique_ptr<vk::Effect> effect;
-  const Status st = vk::Effect::create(ctx.deviceContext(), config, effect);
+  const Status st = vk::Effect::create(ctx.deviceContext(), {}, effect);
   ASSERT_TRUE(st.ok()) << st.message;
   std::size_t warm = 0;
   for (int f = 0; f < kFrames; ++f) {
@@ -155,12 +150,12 @@ TEST_F(VkFrameLoop, TemporalRecordedEveryFrameHoldsHostMemory) {
     (*cam.view)[12] = -0.001 * (f % 100);
     vk::Inputs in;
     in.depth = {image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth.extent, VK_FORMAT_D32_SFLOAT};
-    in.camera = &cam;
     in.frameIndex = std::uint32_t(f);
     Status recorded;
-    ASSERT_TRUE(ctx.submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, in); }).ok());
+    ASSERT_TRUE(ctx.submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, cam, settings, in); }).ok());
     ASSERT_TRUE(recorded.ok()) << "frame " << f << ": " << recorded.message;
   }
+  EXPECT_EQ(effect->plans(), 1u) << "the moving camera kept the plan";
   const double perFrame = (double(mallinfo2().uordblks) - double(warm)) / (kFrames - kWarmUp);
   expectNoMessages("temporal frame loop");
   effect.reset();

@@ -19,16 +19,19 @@ TEST_F(Region, RefusedRecordsLeaveTheCommandBufferUsable) {
   const VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   vk::headless::Image big;
   ASSERT_TRUE(ctx.uploadDepth(test::embedDepth(depth, {50, 31}, {3, 2}), VK_FORMAT_D32_SFLOAT, layout, big).ok());
-  vk::Config config;
-  config.camera = cam;
-  config.depthFormat = VK_FORMAT_D32_SFLOAT;
   std::unique_ptr<vk::Effect> effect;
-  const Status sc = vk::Effect::create(ctx.deviceContext(), config, effect);
+  const Status sc = vk::Effect::create(ctx.deviceContext(), {}, effect);
   ASSERT_TRUE(sc.ok()) << sc.message;
+  const Settings settings;
 
   vk::Inputs good;
-  good.depth = {big.view, layout, {50, 31}};
+  good.depth = {big.view, layout, {50, 31}, VK_FORMAT_D32_SFLOAT};
   good.region = Offset{3, 2};
+  // The effect is planned first (by a good record), as a running effect is: the refusals below
+  // happen on the frame's checks, not on a first plan.
+  Status planned;
+  ASSERT_TRUE(ctx.submit([&](VkCommandBuffer cmd) { planned = effect->record(cmd, cam, settings, good); }).ok());
+  ASSERT_TRUE(planned.ok()) << planned.message;
   vk::Inputs outside = good, tooLarge = good;
   outside.region = Offset{4, 2};
   tooLarge.depth.extent = {ctx.properties().limits.maxImageDimension2D + 1, 31};  // no image of this device
@@ -39,8 +42,8 @@ TEST_F(Region, RefusedRecordsLeaveTheCommandBufferUsable) {
   std::vector<Status> results;
   Status after;
   ASSERT_TRUE(ctx.submit([&](VkCommandBuffer cmd) {
-                   for (const auto& c : cases) results.push_back(effect->record(cmd, c.first));
-                   after = effect->record(cmd, good);
+                   for (const auto& c : cases) results.push_back(effect->record(cmd, cam, settings, c.first));
+                   after = effect->record(cmd, cam, settings, good);
                  }).ok());
   for (std::size_t i = 0; i < std::size(cases); ++i) {
     SCOPED_TRACE(cases[i].second);
@@ -48,6 +51,7 @@ TEST_F(Region, RefusedRecordsLeaveTheCommandBufferUsable) {
     EXPECT_NE(results[i].message.find(cases[i].second), std::string::npos) << results[i].message;
   }
   EXPECT_TRUE(after.ok()) << after.message;
+  EXPECT_EQ(effect->plans(), 1u) << "the refused records planned nothing";
   effect.reset();
   ctx.destroy(big);
 }

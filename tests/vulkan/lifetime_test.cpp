@@ -1,5 +1,7 @@
 // 200 create -> record -> submit -> destroy cycles, 200 resizes and 1,000 create -> resize -> destroy
-// cycles (validation and synchronization validation on, as everywhere in this suite). Checked:
+// cycles (validation and synchronization validation on, as everywhere in this suite). A resize is
+// a record() with another camera: it plans again within the call and keeps what the old plan alone
+// used until Config::framesInFlight records after it have been made. Checked:
 //  * device memory: the library allocator's counters come back exactly (per effect and for the
 //    process) and each size always holds the same bytes;
 //  * host memory of every Vulkan object the effect creates: counted through the
@@ -312,8 +314,20 @@ Uploaded upload(std::uint32_t w, std::uint32_t h) {
 
 vk::Inputs inputsOf(const Uploaded& u) {
   vk::Inputs in;
-  in.depth = {u.image.view, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, u.depth.extent};
+  in.depth = {u.image.view, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, u.depth.extent,
+              VK_FORMAT_X8_D24_UNORM_PACK32};
   return in;
+}
+
+const Settings kSettings{};  // every record's: the defaults
+
+// Records `u`'s frame (its camera, kSettings) into a command buffer that is submitted and waited for.
+Status recordAndSubmit(vk::Effect& e, const Uploaded& u) {
+  Status recorded;
+  if (Status st = context().submit([&](VkCommandBuffer cmd) { recorded = e.record(cmd, u.camera, kSettings, inputsOf(u)); });
+      !st)
+    return st;
+  return recorded;
 }
 
 double mib(double bytes) { return bytes / 1048576.0; }
@@ -356,14 +370,12 @@ class VkLifetime : public VkTest {};
 TEST_F(VkLifetime, CreateRecordSubmitDestroy200Times) {
   Uploaded u = upload(48, 27);
   vk::Config config;
-  config.camera = u.camera;
-  config.depthFormat = VK_FORMAT_X8_D24_UNORM_PACK32;
   config.timestamps = true;
 
   // The driver alone: a new ao_sample pipeline and one dispatch per iteration.
   RssHalves rawRss(kWarmup, kCycles);
   {
-    RawAoSample raw(config.settings, config.camera);
+    RawAoSample raw(kSettings, u.camera);
     for (int i = 0; i < kCycles; ++i) {
       raw.recreatePipeline();
       raw.dispatch();
@@ -384,11 +396,10 @@ TEST_F(VkLifetime, CreateRecordSubmitDestroy200Times) {
         std::unique_ptr<vk::Effect> effect;
         const Status st = vk::Effect::create(countedContext(), config, effect);
         ASSERT_TRUE(st.ok()) << st.message;
+        const Status recorded = recordAndSubmit(*effect, u);  // the first record plans
+        ASSERT_TRUE(recorded.ok()) << recorded.message;
         peakBytes = std::max(peakBytes, vk::processMemoryStats().liveBytes);
         peakHost = std::max(peakHost, gHost.snapshot().first);
-        Status recorded;
-        ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, inputsOf(u)); }).ok());
-        ASSERT_TRUE(recorded.ok()) << recorded.message;
       }
       const vk::MemoryStats now = vk::processMemoryStats();
       ASSERT_EQ(now.liveAllocations, before.liveAllocations) << "cycle " << i;
@@ -422,7 +433,9 @@ TEST_F(VkLifetime, CreateRecordSubmitDestroy200Times) {
 }
 
 TEST_F(VkLifetime, Resize200Times) {
-  // Eight sizes visited in a scrambled order: every update() is a resize.
+  // Eight sizes visited in a scrambled order: every cycle's first record() is a resize. The old
+  // plan's images go once framesInFlight records follow it: each cycle records its size that many
+  // times more, after which the effect holds that size's memory alone.
   const Extent sizes[] = {{32, 18}, {48, 27}, {64, 36}, {40, 30}, {80, 45}, {56, 20}, {24, 40}, {72, 50}};
   std::vector<Uploaded> frames;
   for (const auto& s : sizes) frames.push_back(upload(s.width, s.height));
@@ -434,17 +447,16 @@ TEST_F(VkLifetime, Resize200Times) {
     order.push_back(current = next);
   }
 
-  vk::Config config;
-  config.camera = frames[0].camera;
-  config.depthFormat = VK_FORMAT_X8_D24_UNORM_PACK32;
+  const vk::Config config;  // framesInFlight 2
+  const std::uint32_t recordsPerCycle = 1 + config.framesInFlight;
 
-  // The driver alone: ao_sample dispatched at the same sizes in the same order.
+  // The driver alone: ao_sample dispatched at the same sizes in the same order, as often.
   RssHalves rawRss(kWarmup, kCycles);
   {
     std::vector<std::unique_ptr<RawAoSample>> raws;
-    for (const auto& f : frames) raws.push_back(std::make_unique<RawAoSample>(config.settings, f.camera));
+    for (const auto& f : frames) raws.push_back(std::make_unique<RawAoSample>(kSettings, f.camera));
     for (int i = 0; i < kCycles; ++i) {
-      raws[order[i]]->dispatch();
+      for (std::uint32_t r = 0; r < recordsPerCycle; ++r) raws[order[i]]->dispatch();
       rawRss.afterCycle(i);
     }
     rawRss.atEnd();
@@ -460,13 +472,13 @@ TEST_F(VkLifetime, Resize200Times) {
   const auto resizes = [&](RssHalves& rss) {
     for (int i = 0; i < kCycles; ++i) {
       const std::size_t k = order[i];
-      config.camera = frames[k].camera;
-      const Status st = effect->update(config);
-      ASSERT_TRUE(st.ok()) << st.message;
-      ASSERT_EQ(effect->output().extent, sizes[k]);
-      Status recorded;
-      ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, inputsOf(frames[k])); }).ok());
-      ASSERT_TRUE(recorded.ok()) << recorded.message;
+      const std::uint64_t plans = effect->plans();
+      for (std::uint32_t r = 0; r < recordsPerCycle; ++r) {
+        const Status recorded = recordAndSubmit(*effect, frames[k]);
+        ASSERT_TRUE(recorded.ok()) << recorded.message;
+        ASSERT_EQ(effect->output().extent, sizes[k]);
+        ASSERT_EQ(effect->plans(), plans + 1) << "one plan for the resize, none for the records after it";
+      }
       const vk::MemoryStats mine = effect->memoryStats();
       const vk::MemoryStats all = vk::processMemoryStats();
       const std::uint64_t host = gHost.snapshot().first;
@@ -485,11 +497,12 @@ TEST_F(VkLifetime, Resize200Times) {
   const RssGrowth rss = measureRssGrowth(kWarmup, kCycles, bound, resizes);
   if (HasFatalFailure()) return;
   const vk::MemoryStats mine = effect->memoryStats();
-  std::printf("%d resizes over %zu sizes: the effect holds %llu bytes of device memory in %llu allocations at the "
-              "end, the same bytes every time a size comes back, and the same host memory for its Vulkan objects; "
-              "RSS growth over resizes %d..%d %+.3f MiB (twice the smaller half; end minus warm-up %+.3f)%s, "
-              "plain-Vulkan baseline (ao_sample at the same sizes) %+.3f MiB\n",
-              kCycles, frames.size(), (unsigned long long)mine.liveBytes, (unsigned long long)mine.liveAllocations,
+  std::printf("%d resizes over %zu sizes (%u records each): the effect holds %llu bytes of device memory in %llu "
+              "allocations at the end, the same bytes every time a size comes back, and the same host memory for its "
+              "Vulkan objects; RSS growth over resizes %d..%d %+.3f MiB (twice the smaller half; end minus warm-up "
+              "%+.3f)%s, plain-Vulkan baseline (ao_sample at the same sizes, as often) %+.3f MiB\n",
+              kCycles, frames.size(), recordsPerCycle, (unsigned long long)mine.liveBytes,
+              (unsigned long long)mine.liveAllocations,
               kWarmup, kCycles, mib(rss.growth), mib(rss.endMinusWarm), rss.note.c_str(), mib(rawGrowth));
   if (!sanitized()) {
     EXPECT_LE(rss.growth, bound) << "host memory grows with resizes beyond what the driver itself retains" << rss.note;
@@ -501,12 +514,13 @@ TEST_F(VkLifetime, Resize200Times) {
   for (auto& f : frames) context().destroy(f.image);
 }
 
-// 1,000 cycles of create (one size) -> update (another size: a resize) -> destroy. Every cycle ends
-// with a queue submission, as an application's next frame would: lavapipe (22.3) defers the
-// destruction of pipelines to the next vkQueueSubmit, so without one the memory of every destroyed
-// pipeline (about 300 KB each, the same with plain Vulkan) piles up until the device goes. Every
-// kSubmitEvery cycles the effect is recorded and submitted at both sizes (JIT-compiling new
-// pipelines, whose code lavapipe keeps). The plain-Vulkan baseline creates and destroys the same
+// 1,000 cycles of create -> record (one size: the first plan) -> record (another size: a resize)
+// -> destroy. Every cycle ends with a queue submission, as an application's next frame would:
+// lavapipe (22.3) defers the destruction of pipelines to the next vkQueueSubmit, so without one the
+// memory of every destroyed pipeline (about 300 KB each, the same with plain Vulkan) piles up until
+// the device goes. Every kSubmitEvery cycles the two records are submitted (JIT-compiling new
+// pipelines, whose code lavapipe keeps); the other cycles record both into a command buffer that is
+// never submitted (begun again by the next such cycle), which plans and allocates as a frame does. The plain-Vulkan baseline creates and destroys the same
 // number of pipelines a cycle, dispatches as often and submits every cycle. Checked: device memory
 // and the host memory of the effect's Vulkan objects come back exactly after every destroy; RSS
 // grows at most kAllowedGrowth beyond the baseline.
@@ -516,24 +530,36 @@ TEST_F(VkLifetime, CreateResizeDestroy1000Times) {
   const int longCycles = sanitized() ? 250 : 1000;
   constexpr int kLongWarmup = 100, kSubmitEvery = 25;
   Uploaded small = upload(32, 18), large = upload(56, 30);
-  vk::Config a, b;
-  a.camera = small.camera;
-  b.camera = large.camera;
-  a.depthFormat = b.depthFormat = VK_FORMAT_X8_D24_UNORM_PACK32;
+  const vk::Config config;
   auto nextFrame = [] { ASSERT_TRUE(context().submit([](VkCommandBuffer) {}).ok()); };
+  // The command buffer of the cycles that are not submitted: recorded, ended, never submitted.
+  VkCommandBuffer unsubmitted = VK_NULL_HANDLE;
+  ASSERT_TRUE(context().allocateCommandBuffers(&unsubmitted, 1).ok());
+  struct FreeCommandBuffer {
+    VkCommandBuffer& cmd;
+    ~FreeCommandBuffer() { vkFreeCommandBuffers(context().device(), context().commandPool(), 1, &cmd); }
+  } freeCommandBuffer{unsubmitted};
+  const auto recordUnsubmitted = [&](vk::Effect& e, const Uploaded& u) {
+    const VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    EXPECT_EQ(vkBeginCommandBuffer(unsubmitted, &begin), VK_SUCCESS);
+    const Status st = e.record(unsubmitted, u.camera, kSettings, inputsOf(u));
+    EXPECT_EQ(vkEndCommandBuffer(unsubmitted), VK_SUCCESS);
+    return st;
+  };
 
   std::uint32_t pipelinesPerCycle = 0;
   {
     std::unique_ptr<vk::Effect> probe;
-    ASSERT_TRUE(vk::Effect::create(context().deviceContext(), a, probe).ok());
-    ASSERT_TRUE(probe->update(b).ok());
+    ASSERT_TRUE(vk::Effect::create(context().deviceContext(), config, probe).ok());
+    ASSERT_TRUE(recordUnsubmitted(*probe, small).ok());
+    ASSERT_TRUE(recordUnsubmitted(*probe, large).ok());
     pipelinesPerCycle = probe->pipelineCount();
   }
   nextFrame();
 
   RssHalves rawRss(kLongWarmup, longCycles);
   {
-    RawAoSample rawA(a.settings, a.camera), rawB(b.settings, b.camera);
+    RawAoSample rawA(kSettings, small.camera), rawB(kSettings, large.camera);
     for (int i = 0; i < longCycles; ++i) {
       for (std::uint32_t k = 0; k < pipelinesPerCycle; ++k) rawA.recreatePipeline();
       if (i % kSubmitEvery == 0) {
@@ -559,25 +585,22 @@ TEST_F(VkLifetime, CreateResizeDestroy1000Times) {
       const bool submit = i % kSubmitEvery == 0;
       {
         std::unique_ptr<vk::Effect> effect;
-        Status st = vk::Effect::create(countedContext(), a, effect);
+        const Status st = vk::Effect::create(countedContext(), config, effect);
         ASSERT_TRUE(st.ok()) << "cycle " << i << ": " << st.message;
+        Status recorded = submit ? recordAndSubmit(*effect, small) : recordUnsubmitted(*effect, small);
+        ASSERT_TRUE(recorded.ok()) << "cycle " << i << ": " << recorded.message;
+        ASSERT_EQ(effect->output().extent, (Extent{32, 18}));
         if (i == 0) bytesA = effect->memoryStats().liveBytes;
         ASSERT_EQ(effect->memoryStats().liveBytes, bytesA) << "cycle " << i;
-        Status recorded;
-        if (submit) {
-          ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, inputsOf(small)); }).ok());
-        }
-        ASSERT_TRUE(recorded.ok()) << recorded.message;
-        st = effect->update(b);
-        ASSERT_TRUE(st.ok()) << "cycle " << i << ": " << st.message;
+        // The resize: what the small plan alone used may stay until framesInFlight records follow
+        // it (one has), so the bytes are both plans' share; the same every cycle.
+        recorded = submit ? recordAndSubmit(*effect, large) : recordUnsubmitted(*effect, large);
+        ASSERT_TRUE(recorded.ok()) << "cycle " << i << ": " << recorded.message;
         ASSERT_EQ(effect->output().extent, (Extent{56, 30}));
+        ASSERT_EQ(effect->plans(), 2u) << "cycle " << i;
         if (i == 0) bytesB = effect->memoryStats().liveBytes;
         ASSERT_EQ(effect->memoryStats().liveBytes, bytesB) << "cycle " << i;
-        if (submit) {
-          ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, inputsOf(large)); }).ok());
-          ++submitted;
-        }
-        ASSERT_TRUE(recorded.ok()) << recorded.message;
+        if (submit) ++submitted;
       }
       nextFrame();
       const vk::MemoryStats now = vk::processMemoryStats();

@@ -1,7 +1,8 @@
 // The output (sao/output.h) on Vulkan, what only Vulkan has, under validation and synchronization
 // validation: the caller's image transitioned from SHADER_READ_ONLY_OPTIMAL keeping its texels,
 // the effect's own output in every output format, VkFormats and OutputImage formats and layouts
-// refused, and outputGeneration() following the owned output image through update(). Every
+// refused, and outputGeneration() following the owned output image through the records that plan
+// again. Every
 // format, mask and blend against the CPU reference, the HDR multiply, bad masks and blends and
 // outputGeneration() per frame on both APIs: tests/executors/output_format_test.cpp.
 #include <string>
@@ -51,13 +52,6 @@ struct Scene {
     in.outputBlend = blend;
     return in;
   }
-  vk::Config config(int divisor) const {
-    vk::Config c;
-    c.camera = camera;
-    c.settings = settingsFor(divisor);
-    c.depthFormat = VK_FORMAT_D32_SFLOAT;
-    return c;
-  }
 };
 
 std::unique_ptr<vk::Effect> makeEffect(const vk::Config& config) {
@@ -67,23 +61,26 @@ std::unique_ptr<vk::Effect> makeEffect(const vk::Config& config) {
   return e;
 }
 
-// Creates the effect for `c` (a user output), uploads `texels` into a new storage image in
-// SHADER_READ_ONLY_OPTIMAL (record() keeps or multiplies them from that layout), records once with
-// `in` and reads the output back into `actual`. Returns false (after failed expectations) on any
-// error.
-bool recordIntoUserOutput(const vk::Inputs& in, const vk::Config& c, const FloatImage& texels, FloatImage& actual) {
+// Creates an effect, uploads `texels` into a new storage image of `format` in
+// SHADER_READ_ONLY_OPTIMAL (record() keeps or multiplies them from that layout), records `scene`
+// once with `settings` and `in` into it (its OutputImage::format selecting the final pass) and
+// reads the output back into `actual`. Returns false (after failed expectations) on any error.
+bool recordIntoUserOutput(const Scene& scene, const Settings& settings, const vk::Inputs& in, VkFormat format,
+                          const FloatImage& texels, FloatImage& actual) {
+  const vk::Config c;
   auto effect = makeEffect(c);
   if (!effect) return false;
   Image out;
-  const Status up = context().uploadColor(texels, c.outputFormat, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, out,
+  const Status up = context().uploadColor(texels, format, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, out,
                                           VK_IMAGE_USAGE_STORAGE_BIT);
   EXPECT_TRUE(up.ok()) << up.message;
   if (!up.ok()) return false;
-  const vk::OutputImage o{out.image, out.view, c.outputFormat, texels.extent, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  const vk::OutputImage o{out.image, out.view, format, texels.extent, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   Status recorded;
-  const Status submitted = context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, in, &o); });
+  const Status submitted =
+      context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, scene.camera, settings, in, &o); });
   EXPECT_TRUE(submitted.ok() && recorded.ok()) << submitted.message << recorded.message;
-  const Status read = context().readback(out.image, c.outputFormat, texels.extent, 0, c.outputLayout, c.outputDstStages,
+  const Status read = context().readback(out.image, format, texels.extent, 0, c.outputLayout, c.outputDstStages,
                                          c.outputDstAccess, actual);
   EXPECT_TRUE(read.ok()) << read.message;
   context().destroy(out);
@@ -101,12 +98,11 @@ TEST_F(OutputFormat, KeptTexelsSurviveTheTransitionFromTheCallersLayout) {
       if (!keepsChannels(oc.format, oc.mask, oc.blend)) continue;
       const std::string name = "vk_read_only_" + test::caseName(oc) + "_d" + std::to_string(divisor);
       SCOPED_TRACE(name);
-      vk::Config c = scene.config(divisor);
-      c.userOutput = true;
-      c.outputFormat = vkOutput(oc.format);
+      const Settings settings = settingsFor(divisor);
       const FloatImage sentinel = test::sentinelOutput({scene.camera.width, scene.camera.height}, oc.format);
       FloatImage actual;
-      ASSERT_TRUE(recordIntoUserOutput(scene.inputs(oc.mask, oc.blend), c, sentinel, actual));
+      ASSERT_TRUE(recordIntoUserOutput(scene, settings, scene.inputs(oc.mask, oc.blend), vkOutput(oc.format), sentinel,
+                                       actual));
       cpu::Inputs ci;
       ci.depth = &scene.depth;
       ci.outputFormat = oc.format;
@@ -114,7 +110,7 @@ TEST_F(OutputFormat, KeptTexelsSurviveTheTransitionFromTheCallersLayout) {
       ci.outputBlend = oc.blend;
       ci.output = &sentinel;
       cpu::Result ref;
-      ASSERT_TRUE(cpu::run(c.settings, scene.camera, ci, {cpu::Precision::Float, 2}, ref).ok());
+      ASSERT_TRUE(cpu::run(settings, scene.camera, ci, {cpu::Precision::Float, 2}, ref).ok());
       test::checkOutput(actual, ref.ao, sentinel, oc.format, oc.mask, compare, name);
     }
 }
@@ -124,12 +120,15 @@ TEST_F(OutputFormat, OwnedOutputInEveryFormat) {
   const Scene scene(96, 54, 4);
   for (gen::Format f : outputFormats()) {
     SCOPED_TRACE(formatName(f));
-    vk::Config c = scene.config(1);
+    vk::Config c;
     c.outputFormat = vkOutput(f);
+    const Settings settings = settingsFor(1);
     auto effect = makeEffect(c);
     ASSERT_TRUE(effect);
     Status recorded;
-    ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, scene.inputs()); }).ok());
+    ASSERT_TRUE(context()
+                    .submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, scene.camera, settings, scene.inputs()); })
+                    .ok());
     ASSERT_TRUE(recorded.ok()) << recorded.message;
     const vk::OutputImage o = effect->output();
     EXPECT_EQ(o.format, c.outputFormat);
@@ -139,7 +138,7 @@ TEST_F(OutputFormat, OwnedOutputInEveryFormat) {
     ci.depth = &scene.depth;
     ci.outputFormat = f;
     cpu::Result ref;
-    ASSERT_TRUE(cpu::run(c.settings, scene.camera, ci, {cpu::Precision::Float, 2}, ref).ok());
+    ASSERT_TRUE(cpu::run(settings, scene.camera, ci, {cpu::Precision::Float, 2}, ref).ok());
     test::checkOutput(actual, ref.ao, FloatImage(actual.extent, actual.channels), f, kAllChannels, compare,
                       std::string("vk_owned_") + formatName(f));
   }
@@ -147,9 +146,10 @@ TEST_F(OutputFormat, OwnedOutputInEveryFormat) {
 
 TEST_F(OutputFormat, OtherFormatsAndLayoutsAreRefused) {
   const Scene scene(32, 18, 0);
+  const Settings settings = settingsFor(1);
   for (VkFormat f : {VK_FORMAT_R32_SFLOAT, VK_FORMAT_R16G16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_B8G8R8A8_UNORM,
                      VK_FORMAT_R8G8B8A8_SRGB}) {
-    vk::Config c = scene.config(1);
+    vk::Config c;
     c.outputFormat = f;
     std::unique_ptr<vk::Effect> e;
     const Status st = vk::Effect::create(context().deviceContext(), c, e);
@@ -162,92 +162,117 @@ TEST_F(OutputFormat, OtherFormatsAndLayoutsAreRefused) {
   // An owned output in RGBA8 (Vulkan only): a mask keeping channels is refused by record() (every
   // other bad mask and blend: tests/executors/output_format_test.cpp).
   {
-    vk::Config c = scene.config(1);
+    vk::Config c;
     c.outputFormat = VK_FORMAT_R8G8B8A8_UNORM;
     auto effect = makeEffect(c);
     ASSERT_TRUE(effect) << "the mask is not part of the configuration";
     Status st;
-    ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { st = effect->record(cmd, scene.inputs(kChannelA)); }).ok());
+    ASSERT_TRUE(context()
+                    .submit([&](VkCommandBuffer cmd) {
+                      st = effect->record(cmd, scene.camera, settings, scene.inputs(kChannelA));
+                    })
+                    .ok());
     EXPECT_EQ(st.code, StatusCode::InvalidInput) << st.message;
     EXPECT_NE(st.message.find("record() Inputs: the output channel mask 8 keeps channels of the output, which only your "
                               "own image has"),
               std::string::npos)
         << st.message;
   }
-  // record(): the image's format must be the configured one; kept channels need a real layout.
-  vk::Config c = scene.config(1);
-  c.userOutput = true;
-  c.outputFormat = VK_FORMAT_R8G8B8A8_UNORM;
-  auto effect = makeEffect(c);
+  // record(): your image's OutputImage::format must be one the effect writes (the same list as
+  // Config::outputFormat's, each named); kept channels need a real layout.
+  auto effect = makeEffect({});
   ASSERT_TRUE(effect);
   Image out;
   ASSERT_TRUE(context().createStorageImage(VK_FORMAT_R8G8B8A8_UNORM, {32, 18}, out).ok());
-  Status wrongFormat, undefinedLayout;
+  std::vector<std::pair<VkFormat, Status>> wrongFormats;
+  Status undefinedLayout;
   ASSERT_TRUE(context()
                   .submit([&](VkCommandBuffer cmd) {
-                    const vk::OutputImage f16{out.image, out.view, VK_FORMAT_R16_SFLOAT, {32, 18}, VK_IMAGE_LAYOUT_GENERAL};
-                    wrongFormat = effect->record(cmd, scene.inputs(kChannelB), &f16);
+                    for (VkFormat f : {VK_FORMAT_R32_SFLOAT, VK_FORMAT_B8G8R8A8_UNORM}) {
+                      const vk::OutputImage o{out.image, out.view, f, {32, 18}, VK_IMAGE_LAYOUT_GENERAL};
+                      wrongFormats.push_back({f, effect->record(cmd, scene.camera, settings, scene.inputs(), &o)});
+                    }
                     const vk::OutputImage undef{out.image, out.view, VK_FORMAT_R8G8B8A8_UNORM, {32, 18}};
-                    undefinedLayout = effect->record(cmd, scene.inputs(kChannelB), &undef);
+                    undefinedLayout = effect->record(cmd, scene.camera, settings, scene.inputs(kChannelB), &undef);
                   })
                   .ok());
-  EXPECT_EQ(wrongFormat.code, StatusCode::UnsupportedFormat) << wrongFormat.message;
-  EXPECT_NE(wrongFormat.message.find("r16f"), std::string::npos) << wrongFormat.message;
+  for (const auto& [f, st] : wrongFormats) {
+    EXPECT_EQ(st.code, StatusCode::UnsupportedFormat) << st.message;
+    EXPECT_NE(st.message.find("VkFormat " + std::to_string(static_cast<int>(f))), std::string::npos) << st.message;
+    EXPECT_NE(st.message.find("R16_SFLOAT, R8_UNORM, R8G8B8A8_UNORM or R16G16B16A16_SFLOAT"), std::string::npos)
+        << st.message;
+  }
   EXPECT_EQ(undefinedLayout.code, StatusCode::InvalidInput) << undefinedLayout.message;
   EXPECT_NE(undefinedLayout.message.find("Inputs::outputChannels keeps channels of the output"), std::string::npos)
       << undefinedLayout.message;
-  // A multiply reads every texel: an undefined layout is refused, naming the blend (no update():
-  // the blend is the record's).
+  // A multiply reads every texel: an undefined layout is refused, naming the blend (the blend is
+  // the record's).
   Status multiplyUndefined;
   ASSERT_TRUE(context()
                   .submit([&](VkCommandBuffer cmd) {
                     const vk::OutputImage undef{out.image, out.view, VK_FORMAT_R8G8B8A8_UNORM, {32, 18}};
-                    multiplyUndefined = effect->record(cmd, scene.inputs(kAllChannels, OutputBlend::Multiply), &undef);
+                    multiplyUndefined = effect->record(cmd, scene.camera, settings,
+                                                       scene.inputs(kAllChannels, OutputBlend::Multiply), &undef);
                   })
                   .ok());
   EXPECT_EQ(multiplyUndefined.code, StatusCode::InvalidInput) << multiplyUndefined.message;
   EXPECT_NE(multiplyUndefined.message.find("Inputs::outputBlend is multiply"), std::string::npos)
       << multiplyUndefined.message;
+  EXPECT_EQ(effect->plans(), 0u) << "no refused record planned";
   context().destroy(out);
 }
 
+// outputGeneration() through records: 0 before the first plan, up with the first owned output, the
+// same for new settings on the same images, up for a resize, the same after a refused record, up
+// when the caller's output drops the owned one, the same while there is none, up when the owned
+// one comes back; 0 for ever on an effect only ever given the caller's output.
 TEST_F(OutputFormat, OutputGenerationFollowsTheOwnedImage) {
-  const Scene small(32, 18, 0);
-  vk::Config c = small.config(1);
-  auto effect = makeEffect(c);
+  const Scene small(32, 18, 0), large(48, 27, 0);
+  Settings settings = settingsFor(1);
+  auto effect = makeEffect({});
   ASSERT_TRUE(effect);
+  EXPECT_EQ(effect->outputGeneration(), 0u) << "create() plans nothing";
+  Image out;
+  ASSERT_TRUE(context().createStorageImage(VK_FORMAT_R16_SFLOAT, {48, 27}, out).ok());
+  const vk::OutputImage user{out.image, out.view, VK_FORMAT_R16_SFLOAT, {48, 27}};
+  auto record = [&](vk::Effect& e, const Scene& scene, const vk::OutputImage* o = nullptr) {
+    Status st;
+    EXPECT_TRUE(context().submit([&](VkCommandBuffer cmd) { st = e.record(cmd, scene.camera, settings, scene.inputs(), o); }).ok());
+    return st;
+  };
+  ASSERT_TRUE(record(*effect, small).ok());
   const std::uint64_t g1 = effect->outputGeneration();
-  EXPECT_EQ(g1, 1u) << "create() made the owned output";
-  c.settings.intensity = 0.7f;  // changes no image
-  ASSERT_TRUE(effect->update(c).ok());
+  EXPECT_EQ(g1, 1u) << "the first plan made the owned output";
+  settings.intensity = 0.7f;  // a new plan that changes no image
+  const std::uint64_t plans = effect->plans();
+  ASSERT_TRUE(record(*effect, small).ok());
+  EXPECT_EQ(effect->plans(), plans + 1) << "new settings plan again";
   EXPECT_EQ(effect->outputGeneration(), g1) << "new settings, same images";
-  c.camera = vulkanCamera(48, 27, 0, INFINITY, true);
-  ASSERT_TRUE(effect->update(c).ok());
+  ASSERT_TRUE(record(*effect, large).ok());
   const std::uint64_t g2 = effect->outputGeneration();
   EXPECT_GT(g2, g1) << "a resize makes a new output image";
   EXPECT_EQ(effect->output().extent, (Extent{48, 27}));
-  c.outputFormat = VK_FORMAT_R8_UNORM;
-  ASSERT_TRUE(effect->update(c).ok());
+  const VkImage owned = effect->output().image;
+  vk::OutputImage bad = user;
+  bad.format = VK_FORMAT_R32_SFLOAT;
+  EXPECT_EQ(record(*effect, large, &bad).code, StatusCode::UnsupportedFormat);
+  EXPECT_EQ(effect->outputGeneration(), g2) << "a refused record changes nothing";
+  EXPECT_EQ(effect->output().image, owned);
+  ASSERT_TRUE(record(*effect, large, &user).ok());
   const std::uint64_t g3 = effect->outputGeneration();
-  EXPECT_GT(g3, g2) << "a new output format makes a new output image";
-  EXPECT_EQ(effect->output().format, VK_FORMAT_R8_UNORM);
-  vk::Config bad = c;
-  bad.outputFormat = VK_FORMAT_R32_SFLOAT;
-  EXPECT_FALSE(effect->update(bad).ok());
-  EXPECT_EQ(effect->outputGeneration(), g3) << "a failed update() changes nothing";
-  c.userOutput = true;
-  ASSERT_TRUE(effect->update(c).ok());
-  const std::uint64_t g4 = effect->outputGeneration();
-  EXPECT_GT(g4, g3) << "the owned output is dropped for the caller's";
+  EXPECT_GT(g3, g2) << "the owned output is dropped for the caller's";
   EXPECT_EQ(effect->output().image, VK_NULL_HANDLE);
-  c.settings.intensity = 0.9f;
-  ASSERT_TRUE(effect->update(c).ok());
-  EXPECT_EQ(effect->outputGeneration(), g4) << "no owned output, nothing changes";
-  vk::Config own = small.config(1);
-  own.userOutput = true;
-  auto userOnly = makeEffect(own);
+  settings.intensity = 0.9f;
+  ASSERT_TRUE(record(*effect, large, &user).ok());
+  EXPECT_EQ(effect->outputGeneration(), g3) << "no owned output, nothing changes";
+  ASSERT_TRUE(record(*effect, large).ok());
+  EXPECT_GT(effect->outputGeneration(), g3) << "an owned output again is a new image";
+  EXPECT_NE(effect->output().image, VK_NULL_HANDLE);
+  auto userOnly = makeEffect({});
   ASSERT_TRUE(userOnly);
-  EXPECT_EQ(userOnly->outputGeneration(), 0u) << "created without an owned output";
+  ASSERT_TRUE(record(*userOnly, large, &user).ok());
+  EXPECT_EQ(userOnly->outputGeneration(), 0u) << "never an owned output";
+  context().destroy(out);
 }
 
 // The generated format table (codegen/src/formats.cpp) names the VkFormats Vulkan's own header has.

@@ -40,19 +40,16 @@ FloatImage read(const vk::Effect& e, const vk::OutputImage& o) {
   return out;
 }
 
-// What an effect created for this frame (create() with its settings and camera, the older
-// record()) writes into an output of `format`.
+// What a fresh effect (its first record, the one that plans, with this frame's camera and
+// settings) writes into its own output of `format`.
 FloatImage freshOutput(const Depth& d, const Settings& settings, VkFormat format) {
   vk::Config c;
-  c.settings = settings;
-  c.camera = d.camera;
-  c.depthFormat = VK_FORMAT_D32_SFLOAT;
   c.outputFormat = format;
   std::unique_ptr<vk::Effect> e;
   EXPECT_TRUE(vk::Effect::create(context().deviceContext(), c, e).ok());
   if (!e) return {};
   Status recorded;
-  EXPECT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = e->record(cmd, d.inputs()); }).ok());
+  EXPECT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = e->record(cmd, d.camera, settings, d.inputs()); }).ok());
   EXPECT_TRUE(recorded.ok()) << recorded.message;
   return read(*e, e->output());
 }
@@ -124,21 +121,18 @@ TEST_F(PerFrameRecord, NewPlansWhileFramesArePendingWaitForTheRing) {
   vkFreeCommandBuffers(device, context().commandPool(), 2, cmds);
 }
 
-// create() without a camera plans nothing; before the first per-frame record() the older record()
-// and measure() say what to do.
-TEST_F(PerFrameRecord, TheOlderCallsBeforeAnyPlanAreRefused) {
+// create() plans nothing (plan() empty, the parameter buffer its only memory); the first record()
+// plans, and one whose normals view comes without InputImage::format (a view cannot tell it) is
+// refused, naming it, and plans nothing.
+TEST_F(PerFrameRecord, CreatePlansNothingAndAnInputWithoutItsFormatIsRefused) {
   const Depth d(vulkanCamera(kW, kH, kGuard));
   std::unique_ptr<vk::Effect> e;
   ASSERT_TRUE(vk::Effect::create(context().deviceContext(), {}, e).ok());
   EXPECT_EQ(e->plans(), 0u);
+  EXPECT_TRUE(e->plan().passes.empty());
+  EXPECT_TRUE(e->plan().images.empty());
   EXPECT_EQ(e->memoryStats().liveAllocations, 1u) << "the parameter buffer only";
   Status recorded;
-  ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = e->record(cmd, d.inputs()); }).ok());
-  EXPECT_EQ(recorded.code, StatusCode::InvalidInput);
-  EXPECT_NE(recorded.message.find("nothing is planned yet"), std::string::npos) << recorded.message;
-  Timings t;
-  const Status measured = e->measure(context().queue(), d.inputs(), nullptr, t);
-  EXPECT_NE(measured.message.find("nothing is planned yet"), std::string::npos) << measured.message;
   vk::Inputs normalsWithoutFormat = d.inputs();
   normalsWithoutFormat.normals = {d.image.view, kRead, d.depth.extent};
   ASSERT_TRUE(context()
@@ -147,7 +141,15 @@ TEST_F(PerFrameRecord, TheOlderCallsBeforeAnyPlanAreRefused) {
                   })
                   .ok());
   EXPECT_EQ(recorded.code, StatusCode::InvalidInput);
-  EXPECT_NE(recorded.message.find("Inputs::normals.format"), std::string::npos) << recorded.message;
+  EXPECT_NE(recorded.message.find("Inputs::normals.format is VK_FORMAT_UNDEFINED"), std::string::npos)
+      << recorded.message;
+  EXPECT_EQ(e->plans(), 0u) << "the refused record planned nothing";
+  EXPECT_EQ(e->memoryStats().liveAllocations, 1u);
+  ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = e->record(cmd, d.camera, Settings{}, d.inputs()); })
+                  .ok());
+  EXPECT_TRUE(recorded.ok()) << recorded.message;
+  EXPECT_EQ(e->plans(), 1u);
+  EXPECT_FALSE(e->plan().passes.empty());
 }
 
 }  // namespace

@@ -64,13 +64,13 @@ TEST_F(VkPipelineCacheTest, FillsAndGivesTheSameOutputWarmOrCold) {
   const DepthImage depth = test::renderDepth(test::sphereOnPlaneScene(), camera, DepthFormat::D32F);
   vk::headless::Image image;
   ASSERT_TRUE(ctx.uploadDepth(depth, VK_FORMAT_D32_SFLOAT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, image).ok());
-  vk::Config config;
-  config.camera = camera;
-  config.depthFormat = VK_FORMAT_D32_SFLOAT;
+  const vk::Config config;
+  const Settings settings;
   vk::Inputs in;
-  in.depth = {image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth.extent, config.depthFormat};
+  in.depth = {image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth.extent, VK_FORMAT_D32_SFLOAT};
 
-  // Creates an effect with `cache` (VK_NULL_HANDLE: none), records it once and reads the output.
+  // Creates an effect with `cache` (VK_NULL_HANDLE: none), records it once (the first record builds
+  // the pipelines) and reads the output.
   auto run = [&](VkPipelineCache cache, std::uint32_t* pipelines = nullptr) {
     vk::DeviceContext dc = ctx.deviceContext();
     dc.pipelineCache = cache;
@@ -81,12 +81,13 @@ TEST_F(VkPipelineCacheTest, FillsAndGivesTheSameOutputWarmOrCold) {
     EXPECT_TRUE(st.ok()) << st.message;
     FloatImage ao;
     if (!effect) return ao;
+    EXPECT_EQ(effect->pipelineCount(), 0u) << "create() plans nothing";
+    Status recorded;
+    EXPECT_TRUE(ctx.submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, camera, settings, in); }).ok());
+    EXPECT_TRUE(recorded.ok()) << recorded.message;
     if (pipelines) *pipelines = effect->pipelineCount();
     EXPECT_EQ(cachesSeen.size(), effect->pipelineCount()) << "one vkCreateComputePipelines per pipeline";
     for (VkPipelineCache seen : cachesSeen) EXPECT_EQ(seen, cache) << "every pipeline through the caller's cache";
-    Status recorded;
-    EXPECT_TRUE(ctx.submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, in); }).ok());
-    EXPECT_TRUE(recorded.ok()) << recorded.message;
     const vk::OutputImage o = effect->output();
     EXPECT_TRUE(ctx.readback(o.image, o.format, o.extent, 0, o.layout, config.outputDstStages, config.outputDstAccess, ao)
                     .ok());

@@ -1,12 +1,13 @@
 // sao::vk::Effect on bad input (docs/ROBUSTNESS.md), what only Vulkan has: other header versions, a
 // VkInstance or VkPhysicalDevice of VK_NULL_HANDLE, a feature not enabled, multisampled depth, a
 // depth format of VK_FORMAT_UNDEFINED, framesInFlight above the ring, empty destination stages,
-// update() with a bad Vulkan configuration (the effect keeps its previous one), normals formats
-// with too few channels at create() and update(), an input view also passed as the output view, a
-// null output view, measure() on a null queue, and that a refused create() leaves no device memory.
-// Every case must return the documented code with a message, raise no validation message (the
-// fixture fails on any), allocate no device memory, and leave the device and the effect usable.
-// Settings, cameras and sizes on both APIs: tests/executors/robustness_test.cpp.
+// records refused for a bad format, sample count, setting or camera (the effect keeps its previous
+// configuration), normals formats with too few channels at the first record and at a later one, an
+// input view also passed as the output view, a null output view, measure() on a null queue, and
+// that a refused create() or first record() leaves no device memory. Every case must return the
+// documented code with a message, raise no validation message (the fixture fails on any),
+// allocate no device memory, and leave the device and the effect usable. Settings, cameras and
+// sizes on both APIs: tests/executors/robustness_test.cpp.
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -34,8 +35,6 @@ class VkRobustness : public VkTest {
     camera = vulkanCamera(48, 27, 4);
     depth = test::renderDepth(test::sphereOnPlaneScene(), camera, DepthFormat::D32F);
     ASSERT_TRUE(context().uploadDepth(depth, VK_FORMAT_D32_SFLOAT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, image).ok());
-    config.camera = camera;
-    config.depthFormat = VK_FORMAT_D32_SFLOAT;
   }
   void TearDown() override {
     context().destroy(normalsImage);
@@ -59,9 +58,36 @@ class VkRobustness : public VkTest {
     EXPECT_FALSE(e);
     EXPECT_EQ(vk::processMemoryStats().liveAllocations, before.liveAllocations) << st.message;
   }
-  FloatImage run(vk::Effect& e, const vk::OutputImage* userOutput = nullptr) {
+  // The first record() of a new effect (the one that plans) with `in`, `cam` and `s` fails with
+  // `code` and names `needle`: nothing planned, no device memory beyond create()'s, nothing
+  // recorded (a good record after it in the same command buffer, of inputs() through `goodCamera`,
+  // works).
+  void expectFirstRecordFails(const vk::Inputs& in, const Camera& cam, const Settings& s, StatusCode code,
+                              const std::string& needle, const Camera* goodCamera = nullptr) {
+    std::unique_ptr<vk::Effect> e;
+    ASSERT_TRUE(vk::Effect::create(context().deviceContext(), config, e).ok());
+    const vk::MemoryStats created = vk::processMemoryStats();
+    Status st, good;
+    ASSERT_TRUE(context()
+                    .submit([&](VkCommandBuffer cmd) {
+                      st = e->record(cmd, cam, s, in);
+                      EXPECT_EQ(e->plans(), 0u) << st.message;
+                      EXPECT_TRUE(e->plan().passes.empty()) << st.message;
+                      EXPECT_EQ(vk::processMemoryStats().liveAllocations, created.liveAllocations) << st.message;
+                      EXPECT_EQ(vk::processMemoryStats().liveBytes, created.liveBytes) << st.message;
+                      good = e->record(cmd, goodCamera ? *goodCamera : camera, settings, inputs());
+                    })
+                    .ok());
+    EXPECT_EQ(st.code, code) << toString(st.code) << ": " << st.message;
+    EXPECT_NE(st.message.find(needle), std::string::npos) << "expected \"" << needle << "\" in: " << st.message;
+    EXPECT_TRUE(good.ok()) << good.message;
+  }
+  FloatImage run(vk::Effect& e, const vk::OutputImage* userOutput = nullptr) { return run(e, camera, userOutput); }
+  FloatImage run(vk::Effect& e, const Camera& cam, const vk::OutputImage* userOutput = nullptr) {
     Status recorded;
-    EXPECT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = e.record(cmd, inputs(), userOutput); }).ok());
+    EXPECT_TRUE(context()
+                    .submit([&](VkCommandBuffer cmd) { recorded = e.record(cmd, cam, settings, inputs(), userOutput); })
+                    .ok());
     EXPECT_TRUE(recorded.ok()) << recorded.message;
     const vk::OutputImage o = userOutput ? *userOutput : e.output();
     FloatImage ao;
@@ -73,11 +99,36 @@ class VkRobustness : public VkTest {
   }
 
   Camera camera;
+  Settings settings;  // the defaults
   DepthImage depth;
   Image image;
   Image normalsImage;  // passed by inputs() when set
   VkFormat normalsFormat = VK_FORMAT_UNDEFINED;
-  vk::Config config;
+  vk::Config config;  // the defaults
+};
+
+// What a planned effect is: refused records must leave all of it as it was.
+struct Snapshot {
+  explicit Snapshot(const vk::Effect& e)
+      : plans(e.plans()), aoExtent(e.plan().aoExtent), passes(e.plan().passes.size()), memory(e.memoryStats()),
+        output(e.output().image), generation(e.outputGeneration()), params(e.params()) {}
+  void expectSame(const vk::Effect& e, const std::string& what) const {
+    EXPECT_EQ(e.plans(), plans) << what;
+    EXPECT_EQ(e.plan().aoExtent, aoExtent) << what;
+    EXPECT_EQ(e.plan().passes.size(), passes) << what;
+    EXPECT_EQ(e.memoryStats().liveBytes, memory.liveBytes) << what;
+    EXPECT_EQ(e.memoryStats().liveAllocations, memory.liveAllocations) << what;
+    EXPECT_EQ(e.output().image, output) << what;
+    EXPECT_EQ(e.outputGeneration(), generation) << what;
+    EXPECT_EQ(std::memcmp(&e.params(), &params, sizeof params), 0) << what << ": params() is the last good record's";
+  }
+  std::uint64_t plans;
+  Extent aoExtent;
+  std::size_t passes;
+  vk::MemoryStats memory;
+  VkImage output;
+  std::uint64_t generation;
+  ParamBlock params;
 };
 
 TEST_F(VkRobustness, OtherHeaderVersionsAreRejected) {
@@ -119,37 +170,44 @@ TEST_F(VkRobustness, DeviceWithoutRequiredFeatureIsRefused) {
   EXPECT_TRUE(st.ok()) << st.message;
 }
 
-// Multisampled depth is read directly (msaa_depth_test.cpp); sample counts that are not one
-// VkSampleCountFlagBits, or that the device cannot sample for the depth format, are refused.
+// Multisampled depth is read directly (msaa_depth_test.cpp); sample counts (InputImage::samples)
+// that are not one VkSampleCountFlagBits, or that the device cannot sample for the depth format,
+// are refused by the record that would plan them.
 TEST_F(VkRobustness, BadDepthSampleCountsAreRefused) {
   for (int n : {0, 3, 5, 128}) {
-    vk::Config c = config;
-    c.depthSamples = static_cast<VkSampleCountFlagBits>(n);
-    expectCreateFails(context().deviceContext(), c, StatusCode::InvalidInput, "it must be one VkSampleCountFlagBits");
+    SCOPED_TRACE(n);
+    vk::Inputs in = inputs();
+    in.depth.samples = static_cast<VkSampleCountFlagBits>(n);
+    expectFirstRecordFails(in, camera, settings, StatusCode::InvalidInput,
+                           "Inputs::depth.samples is " + std::to_string(n) + "; it must be one VkSampleCountFlagBits");
   }
   VkPhysicalDeviceProperties props{};
   vkGetPhysicalDeviceProperties(context().deviceContext().physicalDevice, &props);
   for (VkSampleCountFlagBits samples : {VK_SAMPLE_COUNT_2_BIT, VK_SAMPLE_COUNT_4_BIT, VK_SAMPLE_COUNT_8_BIT,
                                         VK_SAMPLE_COUNT_16_BIT, VK_SAMPLE_COUNT_32_BIT, VK_SAMPLE_COUNT_64_BIT}) {
     if (props.limits.sampledImageDepthSampleCounts & samples) continue;  // supported: the MSAA tests run it
-    vk::Config c = config;
-    c.depthSamples = samples;
-    expectCreateFails(context().deviceContext(), c, StatusCode::UnsupportedFormat, "sampledImageDepthSampleCounts");
+    SCOPED_TRACE(int(samples));
+    vk::Inputs in = inputs();
+    in.depth.samples = samples;
+    expectFirstRecordFails(in, camera, settings, StatusCode::UnsupportedFormat, "sampledImageDepthSampleCounts");
   }
 }
 
 TEST_F(VkRobustness, BadConfigurationValues) {
-  vk::Config c = config;
-  c.depthFormat = VK_FORMAT_UNDEFINED;
-  expectCreateFails(context().deviceContext(), c, StatusCode::UnsupportedFormat, "Config::depthFormat");
+  // The depth's format is required with its view (a view cannot tell it).
+  vk::Inputs in = inputs();
+  in.depth.format = VK_FORMAT_UNDEFINED;
+  expectFirstRecordFails(in, camera, settings, StatusCode::InvalidInput,
+                         "Inputs::depth.format is VK_FORMAT_UNDEFINED: name the view's format");
   // Motion vectors only in the formats effect/sao.glsl lists (formats=), named in the refusal.
-  c = config;
-  c.settings.temporal = true;
-  c.motionFormat = VK_FORMAT_R16_SFLOAT;
-  expectCreateFails(context().deviceContext(), c, StatusCode::UnsupportedFormat,
-                    "Config::motionFormat is VK_FORMAT_R16_SFLOAT; motion must be VK_FORMAT_R16G16_SFLOAT, "
-                    "VK_FORMAT_R32G32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT or VK_FORMAT_R32G32B32A32_SFLOAT");
-  c = config;
+  Settings temporal = settings;
+  temporal.temporal = true;
+  in = inputs();
+  in.motion = {image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth.extent, VK_FORMAT_R16_SFLOAT};
+  expectFirstRecordFails(in, camera, temporal, StatusCode::UnsupportedFormat,
+                         "Inputs::motion.format is VK_FORMAT_R16_SFLOAT; motion must be VK_FORMAT_R16G16_SFLOAT, "
+                         "VK_FORMAT_R32G32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT or VK_FORMAT_R32G32B32A32_SFLOAT");
+  vk::Config c = config;
   c.framesInFlight = 17;
   expectCreateFails(context().deviceContext(), c, StatusCode::InvalidInput, "framesInFlight is 17");
   c = config;
@@ -160,92 +218,100 @@ TEST_F(VkRobustness, BadConfigurationValues) {
   expectCreateFails(context().deviceContext(), c, StatusCode::InvalidInput, "outputLayout");
 }
 
-// A create() refused for a setting, a camera or a size leaves no device memory behind (the codes
-// and messages, and the same through update() and GL: tests/executors/robustness_test.cpp, which
-// cannot see the process's device memory).
-TEST_F(VkRobustness, RefusedCreateLeavesNoMemory) {
-  std::vector<vk::Config> bad;
+// A first record() (the one that plans) refused for a setting, a camera or a size leaves no device
+// memory beyond what create() made, and plans nothing (the codes and messages, and the same on a
+// planned effect and on GL: tests/executors/robustness_test.cpp, which cannot see the process's
+// device memory). The refused records share one effect and one command buffer: each is a first.
+TEST_F(VkRobustness, RefusedFirstRecordLeavesNoMemory) {
+  std::vector<std::pair<Settings, Camera>> bad;
   for (std::size_t i = 0; i < gen::kSettings.size(); ++i) {
     const SettingInfo& info = gen::kSettings[i];
     std::vector<double> values;
     if (info.type == gen::SettingType::Float) values = {kNaN, kInf, -kInf};
     if (info.type != gen::SettingType::Bool) values.insert(values.end(), {info.minValue - 1, info.maxValue + 1});
-    for (double v : values) gen::setSettingValue(bad.emplace_back(config).settings, static_cast<SettingId>(i), v);
+    for (double v : values) gen::setSettingValue(bad.emplace_back(settings, camera).first, static_cast<SettingId>(i), v);
   }
-  for (int element : {0, 5, 10, 11, 14}) bad.emplace_back(config).camera.projection[std::size_t(element)] = kNaN;
-  bad.emplace_back(config).camera.metersToViewUnits = kInf;
+  for (int element : {0, 5, 10, 11, 14}) bad.emplace_back(settings, camera).second.projection[std::size_t(element)] = kNaN;
+  bad.emplace_back(settings, camera).second.metersToViewUnits = kInf;
   const std::uint32_t beyond = context().properties().limits.maxImageDimension2D + 1;
   for (const std::array<std::uint32_t, 3>& size : std::initializer_list<std::array<std::uint32_t, 3>>{
            {beyond, 27, 0}, {48, beyond, 0}, {beyond - 5, 27, 4}, {0xFFFFFFFFu, 0xFFFFFFFFu, 0xFFFFFFFFu},
            {48, 27, 0x80000000u}, {0, 27, 4}}) {
-    vk::Config& c = bad.emplace_back(config);
-    c.camera.width = size[0];
-    c.camera.height = size[1];
-    c.camera.guardBand = size[2];
+    Camera& c = bad.emplace_back(settings, camera).second;
+    c.width = size[0];
+    c.height = size[1];
+    c.guardBand = size[2];
   }
-  for (const vk::Config& c : bad) {
-    const vk::MemoryStats before = vk::processMemoryStats();
-    std::unique_ptr<vk::Effect> e;
-    const Status st = vk::Effect::create(context().deviceContext(), c, e);
-    EXPECT_FALSE(st.ok());
-    EXPECT_FALSE(e);
-    EXPECT_EQ(vk::processMemoryStats().liveAllocations, before.liveAllocations) << st.message;
-  }
+  std::unique_ptr<vk::Effect> e;
+  ASSERT_TRUE(vk::Effect::create(context().deviceContext(), config, e).ok());
+  const vk::MemoryStats created = vk::processMemoryStats();
+  Status good;
+  ASSERT_TRUE(context()
+                  .submit([&](VkCommandBuffer cmd) {
+                    for (const auto& [s, c] : bad) {
+                      const Status st = e->record(cmd, c, s, inputs());
+                      EXPECT_FALSE(st.ok());
+                      EXPECT_FALSE(st.message.empty());
+                      EXPECT_EQ(e->plans(), 0u) << st.message;
+                      EXPECT_EQ(vk::processMemoryStats().liveAllocations, created.liveAllocations) << st.message;
+                      EXPECT_EQ(vk::processMemoryStats().liveBytes, created.liveBytes) << st.message;
+                    }
+                    good = e->record(cmd, camera, settings, inputs());
+                  })
+                  .ok());
+  EXPECT_TRUE(good.ok()) << "the effect plans after the refused records: " << good.message;
   EXPECT_GE(bad.size(), 50u);
 }
 
-// update() with a bad Vulkan configuration returns the error and keeps the previous configuration:
-// the images, the memory and the result stay what they were (bad settings and cameras, on both
-// APIs: Robustness.RefusedFramesKeepThePreviousConfiguration in tests/executors/robustness_test.cpp).
-TEST_F(VkRobustness, FailedUpdateKeepsThePreviousConfiguration) {
+// A record() that would plan again, refused for a bad setting, camera, size, sample count or
+// depth format, returns the error and keeps the previous configuration: the plan, the images, the
+// memory, the parameter block and the result stay what they were (bad settings and cameras, on
+// both APIs: Robustness.RefusedFramesKeepThePreviousConfiguration in
+// tests/executors/robustness_test.cpp).
+TEST_F(VkRobustness, FailedRecordKeepsThePreviousConfiguration) {
   std::unique_ptr<vk::Effect> e;
   ASSERT_TRUE(vk::Effect::create(context().deviceContext(), config, e).ok());
   const FloatImage before = run(*e);
-  const vk::MemoryStats memory = e->memoryStats();
-  std::vector<vk::Config> bad(3, config);
-  bad[0].depthSamples = static_cast<VkSampleCountFlagBits>(3);
-  bad[1].framesInFlight = 0;
-  bad[2].depthFormat = VK_FORMAT_R8G8B8A8_UNORM;
-  for (const vk::Config& c : bad) {
-    const Status st = e->update(c);
-    EXPECT_FALSE(st.ok());
-    EXPECT_FALSE(st.message.empty());
-    EXPECT_EQ(e->config().camera.width, config.camera.width);
-    EXPECT_EQ(e->config().depthSamples, VK_SAMPLE_COUNT_1_BIT);
-    EXPECT_EQ(e->memoryStats().liveBytes, memory.liveBytes);
+  const Snapshot planned(*e);
+  struct Bad {
+    std::string what;
+    Settings settings;
+    Camera camera;
+    vk::Inputs inputs;
+  };
+  std::vector<Bad> bad(5, Bad{"", settings, camera, inputs()});
+  bad[0].what = "NaN radius";
+  bad[0].settings.radius = float(kNaN);
+  bad[1].what = "inf in the projection";
+  bad[1].camera.projection[5] = kInf;
+  bad[2].what = "width 2^32-1";
+  bad[2].camera.width = 0xFFFFFFFFu;
+  bad[3].what = "depth samples 3";
+  bad[3].inputs.depth.samples = static_cast<VkSampleCountFlagBits>(3);
+  bad[4].what = "depth R8G8B8A8_UNORM";
+  bad[4].inputs.depth.format = VK_FORMAT_R8G8B8A8_UNORM;
+  for (const Bad& b : bad) {
+    Status st;
+    ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { st = e->record(cmd, b.camera, b.settings, b.inputs); }).ok());
+    EXPECT_FALSE(st.ok()) << b.what;
+    EXPECT_FALSE(st.message.empty()) << b.what;
+    planned.expectSame(*e, b.what);
   }
-  EXPECT_TRUE(sameBits(run(*e), before)) << "the effect renders as before the failed updates";
+  EXPECT_TRUE(sameBits(run(*e), before)) << "the effect renders as before the failed records";
+  EXPECT_EQ(e->plans(), planned.plans) << "and keeps its plan";
 }
 
-// Config::normalsFormat channels against Camera::normalsEncoding, at create() and update(): a
-// two-channel format holds only the octahedral .xy, so an xyz encoding (which would read z = 0) is
-// refused naming the format and the encoding; one channel is refused for every encoding. A failed
-// update() keeps the octahedral configuration, which renders from R16G16_SFLOAT as before.
+// InputImage::format of the normals against Camera::normalsEncoding, at the first record() and at
+// a later one: a two-channel format holds only the octahedral .xy, so an xyz encoding (which would
+// read z = 0) is refused naming the format and the encoding; one channel is refused for every
+// encoding. A refused record with another encoding keeps the octahedral configuration, which
+// renders from R16G16_SFLOAT as before.
 TEST_F(VkRobustness, NormalsFormatChannelsFollowTheEncoding) {
   const std::array<double, 9> rotation = test::viewRotation(0.7, -0.4, 0.25);
-  vk::Config c = config;
-  c.camera.viewRotation = rotation;
-  c.normalsFormat = VK_FORMAT_R16G16_SFLOAT;
-  for (auto [encoding, name] :
-       {std::pair{NormalsEncoding::CameraXyz, "CameraXyz"}, std::pair{NormalsEncoding::WorldXyz, "WorldXyz"}}) {
-    c.camera.normalsEncoding = encoding;
-    expectCreateFails(context().deviceContext(), c, StatusCode::UnsupportedFormat,
-                      std::string("Config::normalsFormat is VK_FORMAT_R16G16_SFLOAT (two channels) but "
-                                  "Camera::normalsEncoding is ") +
-                          name + ", which reads .xyz: use an octahedral encoding or a three- or four-channel format");
-  }
-  c.normalsFormat = VK_FORMAT_R16_SFLOAT;
-  c.camera.normalsEncoding = NormalsEncoding::CameraOctahedral;
-  expectCreateFails(context().deviceContext(), c, StatusCode::UnsupportedFormat,
-                    "Config::normalsFormat is VK_FORMAT_R16_SFLOAT (one channel) but Camera::normalsEncoding is "
-                    "CameraOctahedral, which reads .xy: use a two-, three- or four-channel format");
-  c.camera.normalsEncoding = NormalsEncoding::CameraXyz;
-  expectCreateFails(context().deviceContext(), c, StatusCode::UnsupportedFormat,
-                    "(one channel) but Camera::normalsEncoding is CameraXyz, which reads .xyz");
-
-  // Octahedral normals of the scene in R16G16_SFLOAT: accepted, and kept through a refused update.
-  c.normalsFormat = normalsFormat = VK_FORMAT_R16G16_SFLOAT;
-  c.camera.normalsEncoding = NormalsEncoding::WorldOctahedral;
+  Camera cam = camera;
+  cam.viewRotation = rotation;
+  // Octahedral normals of the scene in R16G16_SFLOAT: the image the records below are given.
+  normalsFormat = VK_FORMAT_R16G16_SFLOAT;
   const FloatImage four = test::encodeNormals(test::renderNormals(test::sphereOnPlaneScene(), camera),
                                               NormalsEncoding::WorldOctahedral, rotation);
   FloatImage two(four.extent, 2);
@@ -254,30 +320,53 @@ TEST_F(VkRobustness, NormalsFormatChannelsFollowTheEncoding) {
     two.data[2 * i + 1] = four.data[4 * i + 1];
   }
   ASSERT_TRUE(context().uploadColor(two, normalsFormat, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, normalsImage).ok());
+
+  Camera octahedral = cam;  // what the R16G16_SFLOAT normals hold: the good record after each refusal
+  octahedral.normalsEncoding = NormalsEncoding::WorldOctahedral;
+  for (auto [encoding, name] :
+       {std::pair{NormalsEncoding::CameraXyz, "CameraXyz"}, std::pair{NormalsEncoding::WorldXyz, "WorldXyz"}}) {
+    cam.normalsEncoding = encoding;
+    expectFirstRecordFails(inputs(), cam, settings, StatusCode::UnsupportedFormat,
+                           std::string("Inputs::normals.format is VK_FORMAT_R16G16_SFLOAT (two channels) but "
+                                       "Camera::normalsEncoding is ") +
+                               name + ", which reads .xyz: use an octahedral encoding or a three- or four-channel format",
+                           &octahedral);
+  }
+  // The declared format is what is checked (a view cannot tell its own): R16_SFLOAT on the same view.
+  vk::Inputs oneChannel = inputs();
+  oneChannel.normals.format = VK_FORMAT_R16_SFLOAT;
+  cam.normalsEncoding = NormalsEncoding::CameraOctahedral;
+  expectFirstRecordFails(oneChannel, cam, settings, StatusCode::UnsupportedFormat,
+                         "Inputs::normals.format is VK_FORMAT_R16_SFLOAT (one channel) but Camera::normalsEncoding is "
+                         "CameraOctahedral, which reads .xy: use a two-, three- or four-channel format",
+                         &octahedral);
+  cam.normalsEncoding = NormalsEncoding::CameraXyz;
+  expectFirstRecordFails(oneChannel, cam, settings, StatusCode::UnsupportedFormat,
+                         "(one channel) but Camera::normalsEncoding is CameraXyz, which reads .xyz", &octahedral);
+
+  // WorldOctahedral from R16G16_SFLOAT: accepted, and kept through a refused record.
+  cam.normalsEncoding = NormalsEncoding::WorldOctahedral;
   std::unique_ptr<vk::Effect> e;
-  const Status created = vk::Effect::create(context().deviceContext(), c, e);
-  ASSERT_TRUE(created.ok()) << created.message;
-  const FloatImage before = run(*e);
-  const vk::MemoryStats memory = e->memoryStats();
-  vk::Config bad = c;
-  bad.camera.normalsEncoding = NormalsEncoding::WorldXyz;
-  const Status st = e->update(bad);
+  ASSERT_TRUE(vk::Effect::create(context().deviceContext(), config, e).ok());
+  const FloatImage before = run(*e, cam);
+  const Snapshot planned(*e);
+  Camera bad = cam;
+  bad.normalsEncoding = NormalsEncoding::WorldXyz;
+  Status st;
+  ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { st = e->record(cmd, bad, settings, inputs()); }).ok());
   EXPECT_EQ(st.code, StatusCode::UnsupportedFormat) << st.message;
   EXPECT_NE(st.message.find("VK_FORMAT_R16G16_SFLOAT (two channels) but Camera::normalsEncoding is WorldXyz"),
             std::string::npos)
       << st.message;
-  EXPECT_EQ(e->config().camera.normalsEncoding, NormalsEncoding::WorldOctahedral);
-  EXPECT_EQ(e->memoryStats().liveBytes, memory.liveBytes);
-  EXPECT_TRUE(sameBits(run(*e), before)) << "the effect renders as before the failed update";
+  planned.expectSame(*e, "the refused record");
+  EXPECT_TRUE(sameBits(run(*e, cam), before)) << "the effect renders as before the failed record";
 }
 
 // A feedback loop (an input's view passed as the output view) and null output handles are refused
 // and nothing is recorded; a good record in the same command buffer then works.
 TEST_F(VkRobustness, OutputAlsoAnInputAndNullOutputHandles) {
-  vk::Config c = config;
-  c.userOutput = true;
   std::unique_ptr<vk::Effect> e;
-  ASSERT_TRUE(vk::Effect::create(context().deviceContext(), c, e).ok());
+  ASSERT_TRUE(vk::Effect::create(context().deviceContext(), config, e).ok());
   Image out;
   ASSERT_TRUE(context().createStorageImage(VK_FORMAT_R16_SFLOAT, {48, 27}, out).ok());
   const vk::OutputImage good{out.image, out.view, VK_FORMAT_R16_SFLOAT, {48, 27}};
@@ -287,14 +376,14 @@ TEST_F(VkRobustness, OutputAlsoAnInputAndNullOutputHandles) {
                   .submit([&](VkCommandBuffer cmd) {
                     vk::OutputImage o = good;
                     o.view = image.view;  // the depth view
-                    results.push_back({"depth view as output", e->record(cmd, inputs(), &o)});
+                    results.push_back({"depth view as output", e->record(cmd, camera, settings, inputs(), &o)});
                     o = good;
                     o.view = VK_NULL_HANDLE;
-                    results.push_back({"null output view", e->record(cmd, inputs(), &o)});
+                    results.push_back({"null output view", e->record(cmd, camera, settings, inputs(), &o)});
                     o = good;
                     o.image = VK_NULL_HANDLE;
-                    results.push_back({"null output image", e->record(cmd, inputs(), &o)});
-                    fine = e->record(cmd, inputs(), &good);
+                    results.push_back({"null output image", e->record(cmd, camera, settings, inputs(), &o)});
+                    fine = e->record(cmd, camera, settings, inputs(), &good);
                   })
                   .ok());
   for (const auto& [what, st] : results) {
@@ -304,7 +393,7 @@ TEST_F(VkRobustness, OutputAlsoAnInputAndNullOutputHandles) {
   EXPECT_NE(results[0].second.message.find("also Inputs::depth.view"), std::string::npos) << results[0].second.message;
   EXPECT_TRUE(fine.ok()) << fine.message;
   Timings t;
-  const Status measured = e->measure(VK_NULL_HANDLE, inputs(), &good, t);
+  const Status measured = e->measure(VK_NULL_HANDLE, camera, settings, inputs(), &good, t);
   EXPECT_EQ(measured.code, StatusCode::InvalidInput) << measured.message;
   EXPECT_TRUE(context().submit([&](VkCommandBuffer) {}).ok()) << "the device is still usable";
   context().destroy(out);

@@ -1,8 +1,9 @@
 // Stereo, Vulkan only (the rest: tests/executors/stereo_test.cpp): ONE effect made for stereo
-// (Config::camera the left eye, 2 frames in flight x 2 eyes, the caller's 2-layer output) recorded
-// for both eyes into ONE command buffer with each eye's per-layer views, OutputImage::layer and
-// Inputs::camera: every frame's layers a single-eye effect's bits, no library allocation; the fixed
-// costs (device memory with the ring, pipelines) one effect's; a layer beyond maxImageArrayLayers refused.
+// (2 frames in flight x 2 eyes, the caller's 2-layer output) recorded for both eyes into ONE
+// command buffer with each eye's per-layer views, OutputImage::layer and camera (the right eye's
+// keeps the left eye's plan: one plan): every frame's layers a single-eye effect's bits, no library
+// allocation after the first frame's plan; the fixed costs (device memory with the ring, pipelines)
+// one effect's; a layer beyond maxImageArrayLayers refused.
 #include <cstdio>
 
 #include "analytic_scenes.h"
@@ -44,14 +45,10 @@ class Stereo : public VkTest {
     VkTest::TearDown();
   }
 
-  // The stereo effect is create(eyeCamera(0), 2 * kEyes): Config::camera the left eye.
-  static std::unique_ptr<vk::Effect> create(const Camera& camera, std::uint32_t framesInFlight,
-                                            const Settings& settings = presetSettings(Preset::Medium)) {
+  // The stereo effect is create(2 * kEyes): two records (eyes) per frame, two frames in flight. Its
+  // output is the caller's (one layer per eye).
+  static std::unique_ptr<vk::Effect> create(std::uint32_t framesInFlight) {
     vk::Config c;
-    c.settings = settings;
-    c.camera = camera;
-    c.depthFormat = VK_FORMAT_D32_SFLOAT;
-    c.userOutput = true;  // stereo needs the caller's output: one layer per eye
     c.framesInFlight = framesInFlight;
     std::unique_ptr<vk::Effect> e;
     const Status st = vk::Effect::create(context().deviceContext(), c, e);
@@ -64,19 +61,21 @@ class Stereo : public VkTest {
   vk::Inputs eyeInputs(std::uint32_t eye) const {
     vk::Inputs in;
     in.depth = {depthArray.views[eye], kRead, depth[eye].extent, VK_FORMAT_D32_SFLOAT};
-    in.camera = eye == 0 ? nullptr : &cameras[eye];  // the left eye is Config::camera
     return in;
+  }
+  // One eye's record of `e` into `cmd`: its camera, depth layer and output layer.
+  Status recordEye(vk::Effect& e, VkCommandBuffer cmd, std::uint32_t eye, const Settings& settings) const {
+    const vk::OutputImage o = eyeOutput(eye);
+    return e.record(cmd, cameras[eye], settings, eyeInputs(eye), &o);
   }
   // One stereo frame: both eyes recorded into one command buffer (left, then right), submitted and
   // waited for; library allocations within the records counted.
-  Status stereoFrame(vk::Effect& e, long* counted = nullptr) const {
+  Status stereoFrame(vk::Effect& e, long* counted = nullptr,
+                     const Settings& settings = presetSettings(Preset::Medium)) const {
     Status recorded;
     const Status submitted = context().submit([&](VkCommandBuffer cmd) {
       test::startCountingAllocations();
-      for (std::uint32_t eye = 0; eye < kEyes && recorded; ++eye) {
-        const vk::OutputImage o = eyeOutput(eye);
-        recorded = e.record(cmd, eyeInputs(eye), &o);
-      }
+      for (std::uint32_t eye = 0; eye < kEyes && recorded; ++eye) recorded = recordEye(e, cmd, eye, settings);
       test::stopCountingAllocations();
       if (counted) *counted += test::countedAllocations();
     });
@@ -120,28 +119,42 @@ TEST_F(Stereo, BothEyesInOneCommandBufferMatchSingleEyeEffects) {
       const Agreement a = compare(expected[eye], ref.ao, 0, 2.0 / 255.0, 4.0 / 255.0, "vk_stereo_eye" + std::to_string(eye));
       EXPECT_TRUE(acceptable(a)) << "eye " << eye << ": max " << a.maxAbs * 255 << "/255";
     }
-    auto effect = create(cameras[0], 2 * kEyes, settings);
+    auto effect = create(2 * kEyes);
     ASSERT_TRUE(effect);
     long counted = 0;
     for (int f = 0; f < 9; ++f) {
-      const Status st = stereoFrame(*effect, f > 0 ? &counted : nullptr);
+      const Status st = stereoFrame(*effect, f > 0 ? &counted : nullptr, settings);
       ASSERT_TRUE(st.ok()) << "frame " << f << ": " << st.message;
       for (std::uint32_t eye = 0; eye < kEyes; ++eye)
         EXPECT_EQ(test::differingValues(layer(*effect, eye), expected[eye]), 0u) << "frame " << f << " eye " << eye;
     }
     EXPECT_EQ(counted, 0) << "library allocations in 16 stereo record() calls";
+    EXPECT_EQ(effect->plans(), 1u) << "the right eye's camera keeps the left eye's plan";
   }
 }
 
-// The fixed costs of stereo are one eye's: the stereo effect holds exactly the device memory and
-// pipelines of a single-eye effect with the same ring, and less memory than two single-eye effects
-// (the VR renderer's alternative, one per eye with 2 frames in flight each).
+// The fixed costs of stereo are one eye's: once planned, the stereo effect (both eyes recorded)
+// holds exactly the device memory and pipelines of a single-eye effect with the same ring (one eye
+// recorded), and less memory than two single-eye effects (the VR renderer's alternative, one per eye
+// with 2 frames in flight each).
 TEST_F(Stereo, FixedCostsAreOneEffects) {
-  auto stereo = create(cameras[0], 2 * kEyes);
-  auto sameRing = create(cameras[1], 2 * kEyes);
-  auto left = create(cameras[0], 2);
-  auto right = create(cameras[1], 2);
+  auto stereo = create(2 * kEyes);
+  auto sameRing = create(2 * kEyes);
+  auto left = create(2);
+  auto right = create(2);
   ASSERT_TRUE(stereo && sameRing && left && right);
+  ASSERT_TRUE(stereoFrame(*stereo).ok());
+  // Each single-eye effect records its eye once (the record that plans), into its own command buffer.
+  const std::pair<vk::Effect*, std::uint32_t> singles[] = {{sameRing.get(), 1}, {left.get(), 0}, {right.get(), 1}};
+  for (const auto& [e, eye] : singles) {
+    Status recorded;
+    ASSERT_TRUE(context()
+                    .submit([&](VkCommandBuffer cmd) {
+                      recorded = recordEye(*e, cmd, eye, presetSettings(Preset::Medium));
+                    })
+                    .ok());
+    ASSERT_TRUE(recorded.ok()) << recorded.message;
+  }
   const vk::MemoryStats s = stereo->memoryStats(), m = sameRing->memoryStats();
   const std::uint64_t two = left->memoryStats().liveBytes + right->memoryStats().liveBytes;
   std::printf("device memory: stereo (framesInFlight 4) %llu bytes in %llu allocations, one eye's with the same ring %llu, "
@@ -152,25 +165,32 @@ TEST_F(Stereo, FixedCostsAreOneEffects) {
   EXPECT_LT(s.liveBytes, two);
   EXPECT_EQ(stereo->pipelineCount(), left->pipelineCount());
   EXPECT_EQ(left->pipelineCount(), right->pipelineCount());
-  // Recording both eyes builds nothing more and allocates no device memory.
+  // Recording both eyes again builds nothing more and allocates no device memory.
   const Status st = stereoFrame(*stereo);
   ASSERT_TRUE(st.ok()) << st.message;
   EXPECT_EQ(stereo->memoryStats().totalAllocations, s.totalAllocations);
   EXPECT_EQ(stereo->pipelineCount(), left->pipelineCount());
+  EXPECT_EQ(stereo->plans(), 1u);
 }
 
-// A layer beyond the device's maxImageArrayLayers cannot be one of the image's: refused, nothing
-// recorded; the next stereo frame is right.
+// A layer beyond the device's maxImageArrayLayers cannot be one of the image's: refused on a planned
+// effect, nothing recorded, no new plan; the next stereo frame is right.
 TEST_F(Stereo, RefusesALayerNoImageHas) {
-  auto effect = create(cameras[0], 2 * kEyes);
+  auto effect = create(2 * kEyes);
   ASSERT_TRUE(effect);
+  ASSERT_TRUE(stereoFrame(*effect).ok());
   vk::OutputImage o = eyeOutput(1);
   o.layer = context().properties().limits.maxImageArrayLayers;
   Status st;
-  ASSERT_TRUE(context().submit([&](VkCommandBuffer cmd) { st = effect->record(cmd, eyeInputs(1), &o); }).ok());
+  ASSERT_TRUE(context()
+                  .submit([&](VkCommandBuffer cmd) {
+                    st = effect->record(cmd, cameras[1], presetSettings(Preset::Medium), eyeInputs(1), &o);
+                  })
+                  .ok());
   EXPECT_EQ(st.code, StatusCode::InvalidInput) << st.message;
   EXPECT_NE(st.message.find("OutputImage::layer"), std::string::npos) << st.message;
   EXPECT_NE(st.message.find("maxImageArrayLayers"), std::string::npos) << st.message;
+  EXPECT_EQ(effect->plans(), 1u);
   ASSERT_TRUE(stereoFrame(*effect).ok());
   EXPECT_EQ(test::differingValues(layer(*effect, 1), mono(1, presetSettings(Preset::Medium))), 0u);
 }

@@ -1,7 +1,8 @@
 // Temporal accumulation on Vulkan, what only Vulkan has (the shared cases, strafing frames against
 // the CPU reference, reset and motion vectors, are tests/executors/temporal_test.cpp): two frames
 // recorded into two command buffers and submitted together (two frames in flight) give what one
-// after the other gives, under synchronization validation; update() starts the history again.
+// after the other gives, under synchronization validation; a record that plans again (other
+// settings) starts the history again.
 #include <cstring>
 #include <string>
 
@@ -39,10 +40,6 @@ class Temporal : public VkTest {
 
   std::unique_ptr<vk::Effect> create() const {
     vk::Config c;
-    c.settings = settings;
-    c.camera = cameras[0];
-    c.depthFormat = VK_FORMAT_D32_SFLOAT;
-    c.userOutput = true;
     c.framesInFlight = 2;
     std::unique_ptr<vk::Effect> e;
     const Status st = vk::Effect::create(context().deviceContext(), c, e);
@@ -52,9 +49,13 @@ class Temporal : public VkTest {
   vk::Inputs inputs(std::uint32_t frame) const {
     vk::Inputs in;
     in.depth = {images[frame].view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depths[frame].extent, VK_FORMAT_D32_SFLOAT};
-    in.camera = &cameras[frame];
     in.frameIndex = frame;
     return in;
+  }
+  // Frame `frame` of `e` (its camera, depth and index) with `s` into `o`.
+  Status record(vk::Effect& e, VkCommandBuffer cmd, std::uint32_t frame, const vk::OutputImage& o,
+                const Settings* s = nullptr) const {
+    return e.record(cmd, cameras[frame], s ? *s : settings, inputs(frame), &o);
   }
   static vk::OutputImage outputOf(const Image& out) {
     return {out.image, out.view, VK_FORMAT_R16_SFLOAT, {kW, kH}, VK_IMAGE_LAYOUT_UNDEFINED};
@@ -95,13 +96,13 @@ TEST_F(Temporal, TwoFramesInFlightGiveWhatOneAfterTheOtherGives) {
   FloatImage expected[3];
   for (std::uint32_t f = 0; f < 3; ++f) {
     Status recorded;
-    ASSERT_TRUE(ctx.submit([&](VkCommandBuffer cmd) { recorded = sequential->record(cmd, inputs(f), &o[0]); }).ok());
+    ASSERT_TRUE(ctx.submit([&](VkCommandBuffer cmd) { recorded = record(*sequential, cmd, f, o[0]); }).ok());
     ASSERT_TRUE(recorded.ok()) << recorded.message;
     expected[f] = read(*sequential, outs[0]);
   }
   // Frame 0 alone, then frames 1 and 2 in two command buffers submitted together.
   Status recorded;
-  ASSERT_TRUE(ctx.submit([&](VkCommandBuffer cmd) { recorded = inFlight->record(cmd, inputs(0), &o[0]); }).ok());
+  ASSERT_TRUE(ctx.submit([&](VkCommandBuffer cmd) { recorded = record(*inFlight, cmd, 0, o[0]); }).ok());
   ASSERT_TRUE(recorded.ok()) << recorded.message;
   const VkDevice device = ctx.device();
   VkCommandBuffer cmds[2]{};
@@ -110,7 +111,7 @@ TEST_F(Temporal, TwoFramesInFlightGiveWhatOneAfterTheOtherGives) {
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     ASSERT_EQ(vkBeginCommandBuffer(cmds[i], &bi), VK_SUCCESS);
-    const Status st = inFlight->record(cmds[i], inputs(i + 1), &o[i]);
+    const Status st = record(*inFlight, cmds[i], i + 1, o[i]);
     ASSERT_EQ(vkEndCommandBuffer(cmds[i]), VK_SUCCESS);
     ASSERT_TRUE(st.ok()) << st.message;
   }
@@ -134,29 +135,37 @@ TEST_F(Temporal, TwoFramesInFlightGiveWhatOneAfterTheOtherGives) {
   for (Image& i : outs) ctx.destroy(i);
 }
 
-TEST_F(Temporal, UpdateStartsTheHistoryAgain) {
+// A record with other settings (a hysteresis of 0.8: nothing else changes) plans again within the
+// call, and a new plan starts the history again: frame 2 after frames 0 and 1 with the old
+// settings is frame 2 of a fresh effect, while frames 0, 1, 2 all with the new settings differ.
+TEST_F(Temporal, ANewPlanStartsTheHistoryAgain) {
+  Settings other = settings;
+  other.temporal_hysteresis = 0.8f;
   auto accumulating = create();
   auto fresh = create();
-  ASSERT_TRUE(accumulating && fresh);
+  auto continuing = create();
+  ASSERT_TRUE(accumulating && fresh && continuing);
   Image out;
   ASSERT_TRUE(context().createStorageImage(VK_FORMAT_R16_SFLOAT, {kW, kH}, out).ok());
   const vk::OutputImage o = outputOf(out);
-  auto run = [&](vk::Effect& e, std::uint32_t frame) {
+  auto run = [&](vk::Effect& e, std::uint32_t frame, const Settings& s) {
     Status recorded;
-    EXPECT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = e.record(cmd, inputs(frame), &o); }).ok());
+    EXPECT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = record(e, cmd, frame, o, &s); }).ok());
     EXPECT_TRUE(recorded.ok()) << recorded.message;
     return read(e, out);
   };
-  run(*accumulating, 0);
-  run(*accumulating, 1);
-  const FloatImage continued = run(*accumulating, 2);
-  vk::Config c = accumulating->config();
-  ASSERT_TRUE(accumulating->update(c).ok());
-  const FloatImage afterUpdate = run(*accumulating, 2);
-  const FloatImage alone = run(*fresh, 2);
-  EXPECT_EQ(differences(afterUpdate, alone), 0u) << "update() must start the history again";
+  run(*accumulating, 0, settings);
+  run(*accumulating, 1, settings);
+  EXPECT_EQ(accumulating->plans(), 1u);
+  const FloatImage afterNewPlan = run(*accumulating, 2, other);
+  EXPECT_EQ(accumulating->plans(), 2u) << "other settings plan again";
+  const FloatImage alone = run(*fresh, 2, other);
+  run(*continuing, 0, other);
+  run(*continuing, 1, other);
+  const FloatImage continued = run(*continuing, 2, other);
+  EXPECT_EQ(differences(afterNewPlan, alone), 0u) << "a new plan must start the history again";
   EXPECT_GT(differences(continued, alone), 0u) << "frame 2 with history looks like frame 2 without";
-  expectNoMessages("update");
+  expectNoMessages("a new plan");
   context().destroy(out);
 }
 

@@ -51,11 +51,8 @@ class TimingAttribution : public VkTest, public ::testing::WithParamInterface<Wa
     VkTest::TearDown();
   }
 
-  std::unique_ptr<vk::Effect> makeEffect(const Settings& s) {
+  std::unique_ptr<vk::Effect> makeEffect() {
     vk::Config c;
-    c.settings = s;
-    c.camera = cam;
-    c.depthFormat = VK_FORMAT_D32_SFLOAT;
     c.timestamps = GetParam() == Way::RecordAndTimings;
     std::unique_ptr<vk::Effect> e;
     const Status st = vk::Effect::create(context().deviceContext(), c, e);
@@ -63,35 +60,42 @@ class TimingAttribution : public VkTest, public ::testing::WithParamInterface<Wa
     return e;
   }
 
-  Status frame(vk::Effect& e, Timings& out) {
+  // One frame of `e` with settings `s` (the first one plans: measurePair's warm-up).
+  Status frame(vk::Effect& e, const Settings& s, Timings& out) {
     vk::Inputs in;
     in.depth = {image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth.extent, VK_FORMAT_D32_SFLOAT};
     switch (GetParam()) {
       case Way::RecordAndTimings: {
         Status recorded;
-        const Status st = context().submit([&](VkCommandBuffer cmd) { recorded = e.record(cmd, in); });
+        const Status st = context().submit([&](VkCommandBuffer cmd) { recorded = e.record(cmd, cam, s, in); });
         if (!st) return st;
         if (!recorded) return recorded;
         return e.timings(out);
       }
-      case Way::MeasureAuto: return e.measure(context().queue(), in, nullptr, out, vk::MeasureMethod::Auto);
-      case Way::MeasureFence: return e.measure(context().queue(), in, nullptr, out, vk::MeasureMethod::FenceClock);
+      case Way::MeasureAuto: return e.measure(context().queue(), cam, s, in, nullptr, out, vk::MeasureMethod::Auto);
+      case Way::MeasureFence:
+        return e.measure(context().queue(), cam, s, in, nullptr, out, vk::MeasureMethod::FenceClock);
     }
     return Status::error(StatusCode::InvalidInput, "unknown way");
   }
 
   void measure(const Settings& light, const Settings& heavy, int runs, test::PassTimes& a, test::PassTimes& b) {
-    std::unique_ptr<vk::Effect> effects[] = {makeEffect(light), makeEffect(heavy)};
+    // One effect per configuration: each keeps its plan from frame to frame.
+    std::unique_ptr<vk::Effect> effects[] = {makeEffect(), makeEffect()};
+    const Settings* settings[] = {&light, &heavy};
     ASSERT_TRUE(effects[0] && effects[1]);
     if (GetParam() != Way::MeasureFence && !effects[0]->timestampsSupported())
       GTEST_SKIP() << "the queue family has no timestamps: " << context().description();
     test::measurePair(
         [&](int config, Timings& out) {
-          const Status st = frame(*effects[config], out);
+          const Status st = frame(*effects[config], *settings[config], out);
           EXPECT_TRUE(st.ok()) << st.message;
           return st.ok();
         },
         runs, a, b);
+    // Every timed frame ran on its effect's one plan (no planning inside a measured frame).
+    EXPECT_EQ(effects[0]->plans(), 1u);
+    EXPECT_EQ(effects[1]->plans(), 1u);
     const TimingMethod expected =
         GetParam() == Way::MeasureFence ? TimingMethod::FinishAndClock : TimingMethod::GpuTimestamps;
     EXPECT_EQ(a.method, expected);

@@ -18,20 +18,20 @@ TEST(VkViewReuse, ANewInputViewIsAlwaysBound) {
   std::unique_ptr<vk::headless::Context> ctx;
   ASSERT_TRUE(vk::headless::Context::create({}, ctx).ok());
   Camera camera = perspectiveCamera(std::numbers::pi / 3, 96, 64, 0.1, INFINITY, ClipDepth::ZeroToOne, true);
-  vk::Config config;
-  config.camera = camera;
-  config.depthFormat = VK_FORMAT_D32_SFLOAT;
+  const vk::Config config;
+  const Settings settings;
+  constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
   std::unique_ptr<vk::Effect> effect;
   ASSERT_TRUE(vk::Effect::create(ctx->deviceContext(), config, effect).ok());
   const VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 
   auto runOn = [&](const DepthImage& depth, FloatImage& ao) {
     vk::headless::Image image;
-    ASSERT_TRUE(ctx->uploadDepth(depth, config.depthFormat, layout, image).ok());
+    ASSERT_TRUE(ctx->uploadDepth(depth, kDepthFormat, layout, image).ok());
     vk::Inputs in;
-    in.depth = {image.view, layout, depth.extent};
+    in.depth = {image.view, layout, depth.extent, kDepthFormat};
     Status recorded;
-    ASSERT_TRUE(ctx->submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, in); }).ok());
+    ASSERT_TRUE(ctx->submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, camera, settings, in); }).ok());
     ASSERT_TRUE(recorded.ok()) << recorded.message;
     const auto out = effect->output();
     ASSERT_TRUE(ctx->readback(out.image, out.format, out.extent, 0, out.layout, config.outputDstStages,

@@ -97,36 +97,36 @@ Status runEffect(const Settings& settings, const Camera& camera, const DepthImag
     }
   } cleanup{ctx, {&depthImage, &depth2Image, &normalsImage}};
 
-  vk::Config config;
-  config.settings = settings;
-  config.camera = camera;
-  config.depthFormat = vkFormat(format);
-  config.depthSamples = options.depthSamples;
+  // The device-level Config (defaults); the frame's settings, camera and inputs (their formats and
+  // the depth's samples) go to the first record(), which plans.
+  const vk::Config config;
   vk::Inputs in;
   if (options.depthImage) {
     in.depth = *options.depthImage;
+    if (in.depth.format == VK_FORMAT_UNDEFINED) in.depth.format = vkFormat(format);
   } else {
     if (Status st = ctx.uploadDepth(depth, vkFormat(format), options.depthLayout, depthImage); !st) return st;
-    in.depth = {depthImage.view, options.depthLayout, depth.extent};
+    in.depth = {depthImage.view, options.depthLayout, depth.extent, vkFormat(format)};
   }
+  if (options.depthSamples != VK_SAMPLE_COUNT_1_BIT) in.depth.samples = options.depthSamples;
   in.region = options.region;
   if (options.depth2) {
     if (Status st = ctx.uploadDepth(*options.depth2, vkFormat(format), options.depthLayout, depth2Image); !st) return st;
-    config.secondLayer = true;
-    in.depth2 = {depth2Image.view, options.depthLayout, options.depth2->extent};
+    in.depth2 = {depth2Image.view, options.depthLayout, options.depth2->extent, vkFormat(format)};
   }
   if (options.normals) {
     if (Status st = ctx.uploadColor(*options.normals, options.normalsFormat, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                                     normalsImage);
         !st)
       return st;
-    config.normalsFormat = options.normalsFormat;
-    in.normals = {normalsImage.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, options.normals->extent};
+    in.normals = {normalsImage.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, options.normals->extent,
+                  options.normalsFormat};
   }
   std::unique_ptr<vk::Effect> effect;
   if (Status st = vk::Effect::create(ctx.deviceContext(), config, effect); !st) return st;
   Status recorded;
-  if (Status st = ctx.submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, in); }); !st) return st;
+  if (Status st = ctx.submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, camera, settings, in); }); !st)
+    return st;
   if (!recorded) return recorded;
   out.plan = effect->plan();
   out.params = effect->params();

@@ -46,9 +46,10 @@ struct RunOptions {
   const DepthImage* depth2 = nullptr;
   bool readIntermediates = true;        // ao_raw (and csz level 0)
   bool readChain = false;               // every level of csz (and csz2 with depth2, width_share with thickness_model 1)
-  std::optional<Offset> region;                              // vk::Inputs::offset: the region inside larger inputs
+  std::optional<Offset> region;                              // vk::Inputs::region: the region inside larger inputs
   // A depth image the test made itself (e.g. multisampled), bound instead of uploading `depth`
-  // (runEffect then does not read `depth`); depthSamples goes into Config::depthSamples.
+  // (runEffect then does not read `depth`; its InputImage::format, when UNDEFINED, is the run's
+  // format); depthSamples other than 1 goes into the depth's InputImage::samples.
   std::optional<vk::InputImage> depthImage;
   VkSampleCountFlagBits depthSamples = VK_SAMPLE_COUNT_1_BIT;
 };
@@ -65,7 +66,8 @@ struct RunResult {
   std::vector<FloatImage> widthShare;  // every level (2 channels), with readChain where the plan has it
 };
 
-// Uploads `depth` in `format`, creates an effect, records it once, submits, waits and reads back.
+// Uploads `depth` in `format`, creates an effect (the default Config), records it once with
+// `settings`, `camera` and the inputs (the first record plans), submits, waits and reads back.
 Status runEffect(const Settings& settings, const Camera& camera, const DepthImage& depth, VkDepth format,
                  RunResult& out, const RunOptions& options = {});
 

@@ -1,4 +1,4 @@
-// Effect: creation (version, functions, device checks), configuration checks, update, teardown.
+// Effect: creation (version, functions, device checks), configuration checks, teardown.
 #include <algorithm>
 #include <string>
 #include <utility>
@@ -79,18 +79,6 @@ Status checkSampled(const EffectState& e, VkFormat format, std::string_view what
   return Status::success();
 }
 
-// What names an input's format in messages: the older shape's Config member (configuredFormats),
-// or InputImage::format for an input Config has no member for.
-std::string formatSource(gen::ResourceId input) {
-  switch (input) {
-    case gen::ResourceId::depth:
-    case gen::ResourceId::depth2: return "Config::depthFormat";
-    case gen::ResourceId::normals: return "Config::normalsFormat";
-    case gen::ResourceId::motion: return "Config::motionFormat";
-    default: return "Inputs::" + std::string(gen::kResources[static_cast<std::size_t>(input)].name) + ".format";
-  }
-}
-
 // Every input's format against the effect's contract (sao/inputs.h) and the device: a depth input
 // one of the depth formats (all of one frame the same), a colour input what its declaration
 // accepts with the channels `camera` reads, each sampled with optimal tiling.
@@ -98,18 +86,18 @@ Status checkInputFormats(const EffectState& e, const InputFormats& formats, cons
   if (Status st = checkColourInputs(formats, camera); !st) return st;
   for (const gen::ResourceId id : gen::kInputIds) {
     const VkFormat f = formats[id];
-    if (f == VK_FORMAT_UNDEFINED && !isRequiredInput(id)) continue;
+    if (f == VK_FORMAT_UNDEFINED) continue;  // not given (frameConfigOf requires the depth)
     if (isDepthInput(id)) {
       if (!listed(kDepthReadFormats, f))
         return Status::error(StatusCode::UnsupportedFormat,
-                             formatSource(id) + " " + formatText(f) +
+                             inputName(id) + ".format" + " " + formatText(f) +
                                  " is not a depth format the effect reads (D16_UNORM, X8_D24_UNORM_PACK32, "
                                  "D24_UNORM_S8_UINT, D32_SFLOAT, D32_SFLOAT_S8_UINT, or R32_SFLOAT linear z)");
       if (f != formats.depth)
-        return Status::error(StatusCode::InvalidInput, formatSource(id) + " " + formatText(f) + " but the depth is " +
+        return Status::error(StatusCode::InvalidInput, inputName(id) + ".format" + " " + formatText(f) + " but the depth is " +
                                                            formatText(formats.depth) + ": every depth layer has one format");
     } else if (isDepthStencilFormat(f)) {
-      return Status::error(StatusCode::UnsupportedFormat, formatSource(id) + " " + formatText(f) + " is a depth/stencil format");
+      return Status::error(StatusCode::UnsupportedFormat, inputName(id) + ".format" + " " + formatText(f) + " is a depth/stencil format");
     }
     if (Status st = checkSampled(e, f, gen::kResources[static_cast<std::size_t>(id)].name); !st) return st;
   }
@@ -118,36 +106,49 @@ Status checkInputFormats(const EffectState& e, const InputFormats& formats, cons
 
 // A multisampled depth input is read directly (sampler2DMS, DEPTH_MULTISAMPLE): one sample count
 // bit, which the device can sample for the format (and never with a second layer).
-Status checkDepthSamples(const EffectState& e, const Config& c) {
-  const auto n = static_cast<std::uint32_t>(c.depthSamples);
+Status checkDepthSamples(const EffectState& e, const FrameConfig& f) {
+  const auto n = static_cast<std::uint32_t>(f.depthSamples);
   if (n == 0 || n > 64 || (n & (n - 1)) != 0)
-    return Status::error(StatusCode::InvalidInput, "Config::depthSamples is " + std::to_string(n) +
+    return Status::error(StatusCode::InvalidInput, "Inputs::depth.samples is " + std::to_string(n) +
                                                        "; it must be one VkSampleCountFlagBits (1, 2, 4, .. 64)");
   if (n == 1) return Status::success();
-  const bool colour = c.depthFormat == VK_FORMAT_R32_SFLOAT;
+  const bool colour = f.formats.depth == VK_FORMAT_R32_SFLOAT;
   const VkSampleCountFlags counts =
       colour ? e.props.limits.sampledImageColorSampleCounts : e.props.limits.sampledImageDepthSampleCounts;
-  if (!(counts & c.depthSamples))
+  if (!(counts & f.depthSamples))
     return Status::error(StatusCode::UnsupportedFormat,
-                         "Config::depthSamples is " + std::to_string(n) + " but this device samples " +
+                         "Inputs::depth.samples is " + std::to_string(n) + " but this device samples " +
                              (colour ? "colour" : "depth") + " images with " + std::to_string(counts) +
                              " (sampledImage" + (colour ? "Color" : "Depth") + "SampleCounts bits) only");
-  if (c.secondLayer)
+  if (f.formats.depth2 != VK_FORMAT_UNDEFINED)
     return Status::error(StatusCode::InvalidInput,
-                         "Config::depthSamples is " + std::to_string(n) +
-                             " with Config::secondLayer: a multisampled depth input has no second layer (give both "
+                         "Inputs::depth.samples is " + std::to_string(n) +
+                             " with Inputs::depth2: a multisampled depth input has no second layer (give both "
                              "layers single-sample)");
   return Status::success();
 }
 
-// The configuration's formats, layouts and stages against the device, and the plan inputs they
-// give (the plan, the block and the plan's device limits: FrameState and the executor's checkPlan).
-Status checkConfig(const EffectState& e, const Config& c, const InputFormats& formats, PlanInputs& pi) {
+// An output format the effect writes, storable on the device: the effect's own (create()) or the
+// caller's (each record()). `what` names it.
+Status checkOutputFormat(const EffectState& e, VkFormat format, const std::string& what) {
+  const gen::Format outputFormat = outputFormatOf(format);
+  if (!isOutputFormat(outputFormat))
+    return Status::error(StatusCode::UnsupportedFormat,
+                         what + " is VkFormat " + std::to_string(static_cast<int>(format)) +
+                             "; the effect writes VK_FORMAT_R16_SFLOAT, R8_UNORM, R8G8B8A8_UNORM or R16G16B16A16_SFLOAT");
+  VkFormatProperties fp{};
+  e.d.vkGetPhysicalDeviceFormatProperties(e.ctx.physicalDevice, format, &fp);
+  if (!(fp.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT))
+    return Status::error(StatusCode::UnsupportedFormat, what + " " + sao::formatName(outputFormat) +
+                                                            " cannot be an optimal-tiling storage image on this device");
+  return Status::success();
+}
+
+// What create() fixes for the effect's life: the ring, the output's layout, stages and format.
+Status checkConfig(const EffectState& e, const Config& c) {
   if (c.framesInFlight < 1 || c.framesInFlight > kMaxFramesInFlight)
     return Status::error(StatusCode::InvalidInput, "Config::framesInFlight is " + std::to_string(c.framesInFlight) +
                                                        "; allowed 1.." + std::to_string(kMaxFramesInFlight));
-  if (Status st = checkInputFormats(e, formats, c.camera); !st) return st;
-  if (Status st = checkDepthSamples(e, c); !st) return st;
   if (c.outputLayout != VK_IMAGE_LAYOUT_GENERAL && c.outputLayout != VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
     return Status::error(StatusCode::InvalidInput, "Config::outputLayout must be VK_IMAGE_LAYOUT_GENERAL or "
                                                    "VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, got " +
@@ -165,25 +166,7 @@ Status checkConfig(const EffectState& e, const Config& c, const InputFormats& fo
                          "Config::outputDstStages names graphics stages but queue family " +
                              std::to_string(e.ctx.queueFamilyIndex) +
                              " has no graphics (use VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT / TRANSFER_BIT)");
-
-  const gen::Format outputFormat = outputFormatOf(c.outputFormat);
-  if (!isOutputFormat(outputFormat))
-    return Status::error(StatusCode::UnsupportedFormat,
-                         "Config::outputFormat is VkFormat " + std::to_string(static_cast<int>(c.outputFormat)) +
-                             "; the effect writes VK_FORMAT_R16_SFLOAT, R8_UNORM, R8G8B8A8_UNORM or R16G16B16A16_SFLOAT");
-  VkFormatProperties fp{};
-  e.d.vkGetPhysicalDeviceFormatProperties(e.ctx.physicalDevice, c.outputFormat, &fp);
-  if (!(fp.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT))
-    return Status::error(StatusCode::UnsupportedFormat, std::string("Config::outputFormat ") + sao::formatName(outputFormat) +
-                                                            " cannot be an optimal-tiling storage image on this device");
-
-  pi = {};
-  pi.depthEncoding = depthEncodingOf(formats.depth);
-  for (const gen::ResourceId id : gen::kInputIds) pi.supplied[id] = formats[id] != VK_FORMAT_UNDEFINED;
-  pi.userOutput = c.userOutput;
-  pi.outputFormat = outputFormat;
-  pi.depthSamples = static_cast<std::uint32_t>(c.depthSamples);
-  return Status::success();
+  return checkOutputFormat(e, c.outputFormat, "Config::outputFormat");
 }
 
 }  // namespace
@@ -194,19 +177,24 @@ Status checkColourInputs(const InputFormats& formats, const Camera& camera) {
     if (f == VK_FORMAT_UNDEFINED || isDepthInput(id)) continue;
     const std::optional<gen::Format> format = formatOfVk(f);
     if (colourInputRefused(id, format, channelsUpToThree(f), camera))  // messages only on failure
-      return checkColourInput(id, format, channelsUpToThree(f), camera, formatSource(id), formatText(f), formatText,
+      return checkColourInput(id, format, channelsUpToThree(f), camera, inputName(id) + ".format", formatText(f), formatText,
                               "format");
   }
   return Status::success();
 }
 
-InputFormats configuredFormats(const Config& c) {
-  InputFormats f;
-  f.depth = c.depthFormat;
-  f.depth2 = c.secondLayer ? c.depthFormat : VK_FORMAT_UNDEFINED;
-  f.normals = c.normalsFormat;
-  f.motion = c.motionFormat;
-  return f;
+Status checkFrameConfig(const EffectState& e, const FrameConfig& frame, const Camera& camera, PlanInputs& out) {
+  if (Status st = checkInputFormats(e, frame.formats, camera); !st) return st;
+  if (Status st = checkDepthSamples(e, frame); !st) return st;
+  if (frame.userOutput)
+    if (Status st = checkOutputFormat(e, frame.outputFormat, "the output"); !st) return st;
+  out = {};
+  out.depthEncoding = depthEncodingOf(frame.formats.depth);
+  for (const gen::ResourceId id : gen::kInputIds) out.supplied[id] = frame.formats[id] != VK_FORMAT_UNDEFINED;
+  out.userOutput = frame.userOutput;
+  out.outputFormat = outputFormatOf(frame.outputFormat);
+  out.depthSamples = static_cast<std::uint32_t>(frame.depthSamples);
+  return Status::success();
 }
 
 VkFormat depthVkFormat(DepthFormat format) {
@@ -271,48 +259,13 @@ Status createEffect(const DeviceContext& context, const Config& config, EffectSt
                          "r16f storage images): enable it in VkDeviceCreateInfo");
   e.ctx.enabledFeatures = nullptr;  // the caller's pointer is read here only
 
-  PlanInputs planInputs;
-  const InputFormats formats = configuredFormats(config);
-  if (Status st = checkConfig(e, config, formats, planInputs); !st) return st;
+  if (Status st = checkConfig(e, config); !st) return st;
   e.config = config;
-  e.inputFormats = formats;
-  e.ownedOutputFormat = config.outputFormat;
   e.allocator.init(&e.d, context.device, e.memoryProps, e.props.limits.bufferImageGranularity, context.allocator);
   if (Status st = createSampler(e); !st) return st;
   if (Status st = createParamBuffer(e, config.framesInFlight, e.ubo); !st) return st;
   if (Status st = createQueryPool(e, config.framesInFlight, e.queryPool); !st) return st;
-  // The plan, its images, pipelines and descriptor sets: core's FrameState through the executor.
-  // Without a camera the first per-frame record() plans.
-  e.executor.setFramesInFlight(config.framesInFlight);
-  if (config.camera == Camera{}) return Status::success();
-  return e.frame.configure(config.settings, config.camera, planInputs, e.executor);
-}
-
-// The configuration a per-frame record() asks for: Config's device-level members, the frame's
-// settings and camera, and each input's format (InputImage::format; UNDEFINED: Config's, where
-// the older shape's Config names one), the older Config members following them.
-Status frameConfig(const EffectState& e, const Camera& camera, const Settings& settings, const Inputs& in,
-                   const OutputImage* userOutput, Config& next, InputFormats& formats) {
-  next = e.config;
-  next.settings = settings;
-  next.camera = camera;
-  const InputFormats configured = configuredFormats(e.config);
-  for (const gen::ResourceId id : gen::kInputIds) {
-    const InputImage& image = in[id];
-    const bool given = image.view != VK_NULL_HANDLE || isRequiredInput(id);
-    formats[id] = !given ? VK_FORMAT_UNDEFINED : image.format != VK_FORMAT_UNDEFINED ? image.format : configured[id];
-    if (given && formats[id] == VK_FORMAT_UNDEFINED)
-      return Status::error(StatusCode::InvalidInput,
-                           "record(): Inputs::" + std::string(gen::kResources[static_cast<std::size_t>(id)].name) +
-                               ".format is VK_FORMAT_UNDEFINED and Config names none: name the view's format");
-  }
-  next.depthFormat = formats.depth;
-  next.secondLayer = formats.depth2 != VK_FORMAT_UNDEFINED;
-  next.normalsFormat = formats.normals;
-  next.motionFormat = formats.motion;
-  next.userOutput = userOutput != nullptr;
-  next.outputFormat = userOutput ? userOutput->format : e.ownedOutputFormat;
-  return Status::success();
+  return Status::success();  // the first record() plans (core's FrameState through the executor)
 }
 
 }  // namespace
@@ -329,72 +282,6 @@ Status Effect::create(const DeviceContext& context, const Config& config, std::u
     if (Status st = createEffect(context, config, *impl); !st) return st;
     out.reset(new Effect(std::move(impl)));
     return Status::success();
-  });
-}
-
-// Everything that can fail (or throw) happens before the commit; the commit only moves and swaps.
-// FrameState's configure() is itself transactional (sao/executor.h): what it makes for the new plan
-// goes on a failure, and the current configuration stays.
-Status reconfigure(EffectState& e, const Config& config, const InputFormats& formats) {
-  PlanInputs planInputs;
-  if (Status st = checkConfig(e, config, formats, planInputs); !st) return st;
-  const bool newFrames = config.framesInFlight != e.config.framesInFlight;
-  // Built aside; dropped (destroyed) on any early return.
-  Config next = config;
-  ParamBuffer ubo;
-  Handle<VkQueryPool> queries;
-  if (newFrames) {
-    if (Status st = createParamBuffer(e, config.framesInFlight, ubo); !st) return st;
-    if (Status st = createQueryPool(e, config.framesInFlight, queries); !st) return st;
-  }
-  e.executor.setFramesInFlight(config.framesInFlight);
-  if (Status st = e.frame.configure(config.settings, config.camera, planInputs, e.executor); !st) {
-    e.executor.setFramesInFlight(e.config.framesInFlight);
-    return st;
-  }
-  // Commit: nothing below allocates or fails.
-  if (newFrames) {
-    std::swap(e.ubo, ubo);
-    std::swap(e.queryPool, queries);
-  }
-  if (!config.userOutput) e.ownedOutputFormat = config.outputFormat;
-  e.config = std::move(next);
-  e.inputFormats = formats;
-  return Status::success();
-}
-
-Status Effect::update(const Config& config) {
-  return guarded("sao::vk::Effect::update()", [&] { return reconfigure(*impl_, config, configuredFormats(config)); });
-}
-
-Status Effect::record(VkCommandBuffer cmd, const Camera& camera, const Settings& settings, const Inputs& inputs,
-                      const OutputImage* userOutput) {
-  return guarded("sao::vk::Effect::record()", [&] {
-    EffectState& e = *impl_;
-    Config next;
-    InputFormats formats;
-    if (Status st = frameConfig(e, camera, settings, inputs, userOutput, next, formats); !st) return st;
-    // Core's one rule decides whether the frame keeps the plan (FrameState::keeps); other formats
-    // with the same plan inputs (e.g. normals in RG16F, then RGBA16F) only update the configuration.
-    const bool same = formats == e.inputFormats && next.userOutput == e.config.userOutput &&
-                      next.outputFormat == e.config.outputFormat;
-    PlanInputs planInputs = e.frame.planInputs();
-    if (!same)
-      if (Status st = checkConfig(e, next, formats, planInputs); !st) return st;
-    if (!e.frame.configured() || !e.frame.keeps(settings, camera, planInputs)) {
-      // Records up to this one's predecessor may be pending: what the new plan drops waits for them.
-      e.executor.retireUntil(e.records + e.config.framesInFlight - 1);
-      const Status st = reconfigure(e, next, formats);
-      e.executor.retireUntil(std::nullopt);
-      if (!st) return st;
-    } else if (!same) {
-      next.camera = e.config.camera;  // the plan's camera; this frame's goes in Inputs::camera
-      e.config = next;
-      e.inputFormats = formats;
-    }
-    Inputs in = inputs;
-    in.camera = &camera;
-    return recordFrame(e, cmd, in, userOutput);
   });
 }
 

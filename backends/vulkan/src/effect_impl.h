@@ -2,8 +2,8 @@
 // executor.cpp (the Vulkan executor of core's frame, sao/executor.h: what FrameState asks for),
 // resources.cpp (images and the parameter buffer), pipelines.cpp (pipelines, layouts, descriptor
 // sets), record.cpp (record(): the caller's images checked, the frame run into its command
-// buffer), timing.cpp (timestamps and the fence fallback), effect.cpp (creation, validation,
-// update). The plan, the schedule, the block and the history are core's FrameState. Every Vulkan
+// buffer), timing.cpp (timestamps and the fence fallback), effect.cpp (creation, validation).
+// The plan, the schedule, the block and the history are core's FrameState. Every Vulkan
 // object is held by a Handle (handle.h) or an Allocator::Block, so whatever is dropped is destroyed.
 #pragma once
 #include <vulkan/vulkan_core.h>
@@ -98,6 +98,17 @@ struct OutputTarget {
 inline constexpr std::uint32_t kMaxFramesInFlight = 16;
 // Each input's VkFormat, VK_FORMAT_UNDEFINED where the configuration has none.
 using InputFormats = gen::InputSet<VkFormat>;
+
+// What a frame's images give the configuration beside its settings and camera: each input's format,
+// the depth's samples, whose output it is and its format. Another one is checked again (and may
+// plan again, when its plan inputs differ).
+struct FrameConfig {
+  InputFormats formats;
+  VkSampleCountFlagBits depthSamples = VK_SAMPLE_COUNT_1_BIT;
+  bool userOutput = false;
+  VkFormat outputFormat = VK_FORMAT_UNDEFINED;
+  bool operator==(const FrameConfig&) const = default;
+};
 // How FrameState names record()'s inputs in its messages (and checkInputs where it checks first).
 inline constexpr const char* kRecordInputs = "sao::vk::Effect::record() Inputs";
 
@@ -136,11 +147,9 @@ class __attribute__((visibility("hidden"))) VkFrameExecutor final : public Execu
  public:
   explicit VkFrameExecutor(EffectState& e) : e_(e) {}
   void setRecording(const Recording& r) { rec_ = r; }
-  // The ring size the next configuration's descriptor sets are made for (update() sets it first).
-  void setFramesInFlight(std::uint32_t frames) { framesInFlight_ = frames; }
-  // A per-frame record() that plans again while records may be pending: what the new plan drops
+  // A record() that plans again while records may be pending: what the new plan drops
   // (images, descriptor sets) is kept until the record numbered `until` is made, when the ring
-  // contract says every record that could read it has completed. Off: dropped at once (update()).
+  // contract says every record that could read it has completed. Off: dropped at once (the first plan).
   void retireUntil(std::optional<std::uint64_t> until) { retireUntil_ = until; }
   std::uint32_t slot() const { return slot_; }  // the ring slot of the last frame
 
@@ -168,7 +177,6 @@ class __attribute__((visibility("hidden"))) VkFrameExecutor final : public Execu
 
   EffectState& e_;
   Recording rec_;
-  std::uint32_t framesInFlight_ = 1;
   std::optional<std::uint64_t> retireUntil_;
   Descriptors preparedSets_;  // preparePlan's, for planAdopted
   bool newSets_ = false;
@@ -192,10 +200,8 @@ struct __attribute__((visibility("hidden"))) EffectState {
   VkQueueFamilyProperties family{};
 
   Config config;
-  // The effect-owned output's format: Config::outputFormat of create() or of an update() without
-  // userOutput (a per-frame record() into the caller's output names that output's format instead).
-  VkFormat ownedOutputFormat = VK_FORMAT_R16_SFLOAT;
-  InputFormats inputFormats;  // what the configuration is made for (InputImage::format, or Config's)
+  FrameConfig current;  // what the configuration (FrameState's plan) is made for
+
   // The plan, the schedule, the images kept, the parameter block and the temporal history: core's.
   FrameState frame{kRecordInputs};
 
@@ -207,7 +213,7 @@ struct __attribute__((visibility("hidden"))) EffectState {
   ParamBuffer ubo;
   Resources res;
   Descriptors desc;
-  // What a per-frame record() re-plan dropped while records were pending (retireUntil above).
+  // What a re-plan dropped while records were pending (retireUntil above).
   struct Retired {
     std::uint64_t until = 0;
     std::vector<OwnedImage> images;
@@ -253,14 +259,10 @@ void writeDescriptors(EffectState& e, std::uint32_t slot, std::uint32_t historyP
                       const OutputTarget& output);
 
 // ---- record.cpp
-// record()'s body (Inputs::camera, or Config's); the per-frame call re-plans first when it must.
-Status recordFrame(EffectState& e, VkCommandBuffer cmd, const Inputs& inputs, const OutputImage* userOutput);
-// What record() and measure() check first: a plan (create() without a camera makes none), the
-// caller's images (checkInputs), Inputs::camera (checkRecordCamera).
-Status checkFrame(const EffectState& e, const char* call, const Inputs& inputs, const OutputImage* userOutput,
-                  OutputTarget& output);
-// The frame's inputs for FrameState::run: the camera, the history's, the region, index and output use.
-FrameInputs frameInputsOf(const Inputs& inputs);
+// record()'s and measure()'s body: the frame's configuration from its images, checked, planned
+// when it must be (FrameState::render) and run into `rec` (its command buffer, timestamps, ...).
+Status runFrame(EffectState& e, const Camera& camera, const Settings& settings, const Inputs& inputs,
+                const OutputImage* userOutput, Recording rec);
 
 // ---- timing.cpp
 // The timestamp pool for `framesInFlight` ring slots; none (and success) where the queue family
@@ -270,19 +272,19 @@ std::uint32_t queriesPerRegion();
 bool familyHasTimestamps(const EffectState& e);
 
 // ---- effect.cpp
-// update()'s body: the new configuration (Config and each input's format) checked, planned and
-// adopted, or nothing changes.
-Status reconfigure(EffectState& e, const Config& config, const InputFormats& formats);
-// The inputs' formats the older shape's Config names (depth, depth2, normals, motion); a per-frame
-// record() takes InputImage::format first, and an input Config has no member for needs it.
-InputFormats configuredFormats(const Config& config);
+// "Inputs::<name>": how messages name an input.
+inline std::string inputName(gen::ResourceId id) {
+  return "Inputs::" + std::string(gen::kResources[static_cast<std::size_t>(id)].name);
+}
+// A frame configuration against the device and the effect's contract (sao/inputs.h): each input's
+// format, the depth's samples, the output's format; and the plan inputs it gives.
+Status checkFrameConfig(const EffectState& e, const FrameConfig& frame, const Camera& camera, PlanInputs& out);
 // What the depth input holds: R32_SFLOAT is linear z, every other depth format hardware depth.
 inline DepthEncoding depthEncodingOf(VkFormat depthFormat) {
   return depthFormat == VK_FORMAT_R32_SFLOAT ? DepthEncoding::LinearZ : DepthEncoding::Hardware;
 }
 // The colour inputs' formats against the channels `camera` reads (sao/inputs.h: the normals'
-// follow Camera::normalsEncoding). Builds a message only on failure (record() with
-// Inputs::camera calls it).
+// follow Camera::normalsEncoding). Builds a message only on failure (every record() calls it).
 Status checkColourInputs(const InputFormats& formats, const Camera& camera);
 // DriverError "<where>: <what>"; without memory for that, a message that needs none.
 Status exceptionStatus(const char* where, const char* what) noexcept;

@@ -135,18 +135,23 @@ Status VkFrameExecutor::createPipeline(const gen::PassInfo& pass, const gen::Pas
   return ensurePipeline(e_, pass, variant);
 }
 
-// Memory and views for the new images; descriptor sets when the dispatches or the ring changed,
+// Memory and views for the new images; descriptor sets when the dispatches changed,
 // built beside the current ones.
 Status VkFrameExecutor::preparePlan(const Plan&, const Schedule& schedule) {
   if (Status st = bindImages(e_); !st) return st;
-  if (retireUntil_) {  // where the commit puts what it drops (it cannot fail, so room is made now)
-    e_.retired.push_back({*retireUntil_, {}, {}});
-    e_.retired.back().images.reserve(e_.res.images.size());
+  // Where the commit puts what it drops: room made now (the commit cannot fail), the entry added
+  // last, so that a failed plan's own images are destroyed by its undo, not retired.
+  std::optional<EffectState::Retired> entry;
+  if (retireUntil_) {
+    entry.emplace(EffectState::Retired{*retireUntil_, {}, {}});
+    entry->images.reserve(e_.res.images.size());
+    e_.retired.reserve(e_.retired.size() + 1);
   }
-  newSets_ = !e_.frame.configured() || framesInFlight_ != e_.desc.slots ||
-             !sameDispatches(e_.schedule(), schedule);
-  if (!newSets_) return Status::success();
-  return createDescriptors(e_, schedule, framesInFlight_, preparedSets_);
+  newSets_ = !e_.frame.configured() || !sameDispatches(e_.schedule(), schedule);
+  if (newSets_)
+    if (Status st = createDescriptors(e_, schedule, e_.config.framesInFlight, preparedSets_); !st) return st;
+  if (entry) e_.retired.push_back(std::move(*entry));  // within the capacity reserved: no throw
+  return Status::success();
 }
 
 void VkFrameExecutor::planAdopted() noexcept {
@@ -155,7 +160,7 @@ void VkFrameExecutor::planAdopted() noexcept {
     if (retiring())
       std::swap(e_.retired.back().sets, preparedSets_);  // pending records may still bind them
     else
-      e_.nextSlot = 0;  // nothing is pending (update()'s rule): the ring starts again
+      e_.nextSlot = 0;  // the first plan: nothing is pending
     preparedSets_ = Descriptors{};
     e_.lastTimedRegion = -1;
     newSets_ = false;
@@ -175,6 +180,9 @@ Status VkFrameExecutor::beginFrame(const FrameWork& frame) {
   ++e_.records;
   work_ = frame;
   error_ = Status::success();
+  if (rec_.output.image == VK_NULL_HANDLE)  // the effect's own output, of the plan just run
+    if (const OwnedImage* ao = e_.res.find(gen::ResourceId::ao))
+      rec_.output = {ao->image.get(), ao->levelViews[0].get()};
   stamped_ = false;
   slot_ = e_.nextSlot;
   e_.nextSlot = (slot_ + 1) % e_.config.framesInFlight;

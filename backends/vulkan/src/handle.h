@@ -1,7 +1,7 @@
 // Handle<T>: one Vulkan object owned by value. It holds the device, the destroy function (from the
 // effect's dispatch table) and the allocation callbacks, and destroys the object when it goes out of
 // scope or is replaced, so an early return or an exception leaves nothing behind and a failed
-// update() only has to drop what it built.
+// plan only has to drop what it built.
 #pragma once
 #include <vulkan/vulkan_core.h>
 

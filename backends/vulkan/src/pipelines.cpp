@@ -1,5 +1,5 @@
 // Compute pipelines from the embedded SPIR-V (one per pass variant FrameState asks for, kept across
-// update()), their set layouts, and the descriptor sets: one per dispatch, per ring slot.
+// plans), their set layouts, and the descriptor sets: one per dispatch, per ring slot.
 #include <string>
 
 #include "effect_impl.h"

@@ -29,8 +29,7 @@ bool Effect::timestampsSupported() const { return familyHasTimestamps(*impl_); }
 
 namespace {
 
-// The times of the plan's passes (for timings(): update() keeps lastTimedRegion only while the
-// passes stay the same).
+// The times of the plan's passes (for timings(): a new plan's schedule drops lastTimedRegion).
 Status readTimestamps(const EffectState& e, std::uint32_t region, bool wait, Timings& out) {
   const std::vector<PlannedPass>& passes = e.plan().passes;
   std::vector<std::uint64_t> t(passes.size() + 1);
@@ -105,29 +104,26 @@ Status Effect::timings(Timings& out) const {
       return Status::error(StatusCode::DriverError, "queue family " + std::to_string(e.ctx.queueFamilyIndex) +
                                                         " has no timestamps (timestampValidBits = 0): use measure()");
     if (e.lastTimedRegion < 0)
-      return Status::error(StatusCode::InvalidInput, "no record() with Config::timestamps since create() or update()");
+      return Status::error(StatusCode::InvalidInput, "no record() with Config::timestamps since create() or the last new plan");
     return readTimestamps(e, static_cast<std::uint32_t>(e.lastTimedRegion), false, out);
   });
 }
 
-Status Effect::measure(VkQueue queue, const Inputs& inputs, const OutputImage* userOutput, Timings& out,
-                       MeasureMethod method) {
+Status Effect::measure(VkQueue queue, const Camera& camera, const Settings& settings, const Inputs& inputs,
+                       const OutputImage* userOutput, Timings& out, MeasureMethod method) {
   return guarded("sao::vk::Effect::measure()", [&] {
     EffectState& e = *impl_;
     out = Timings{};
     if (queue == VK_NULL_HANDLE)
       return Status::error(StatusCode::InvalidInput, "measure(): the queue is VK_NULL_HANDLE");
-    OutputTarget output;
-    if (Status st = checkFrame(e, "measure()", inputs, userOutput, output); !st) return st;
     Submitter sub(e);
     if (Status st = sub.init(); !st) return st;
     VkCommandBuffer cmd = VK_NULL_HANDLE;
     if (Status st = sub.begin(cmd); !st) return st;
-    Recording rec{cmd, &inputs, output};
+    Recording rec{cmd};
     if (method == MeasureMethod::Auto && familyHasTimestamps(e) && e.queryPool) {
       rec.timingRegion = static_cast<int>(e.config.framesInFlight);  // measure()'s own region
-      e.executor.setRecording(rec);
-      if (Status st = e.frame.run(frameInputsOf(inputs), e.executor); !st) return st;
+      if (Status st = runFrame(e, camera, settings, inputs, userOutput, rec); !st) return st;
       if (Status st = sub.submitAndWait(queue, cmd, nullptr); !st) return st;
       return readTimestamps(e, static_cast<std::uint32_t>(rec.timingRegion), true, out);
     }
@@ -135,12 +131,10 @@ Status Effect::measure(VkQueue queue, const Inputs& inputs, const OutputImage* u
     // exit barrier), timed from vkQueueSubmit to the fence.
     Timings t;
     t.method = TimingMethod::FinishAndClock;
-    t.passes.reserve(e.plan().passes.size());
     rec.perPass = &sub;
     rec.queue = queue;
     rec.times = &t;
-    e.executor.setRecording(rec);
-    if (Status st = e.frame.run(frameInputsOf(inputs), e.executor); !st) return st;
+    if (Status st = runFrame(e, camera, settings, inputs, userOutput, rec); !st) return st;
     out = std::move(t);
     return Status::success();
   });

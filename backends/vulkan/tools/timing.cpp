@@ -97,24 +97,21 @@ int main(int argc, char** argv) {
       return 1;
     }
     for (const auto preset : presets) {
-      sao::vk::Config config;
-      config.settings = sao::presetSettings(preset);
-      config.camera = cam;
-      config.depthFormat = sao::vk::depthVkFormat(format);
+      const sao::Settings settings = sao::presetSettings(preset);
       std::unique_ptr<sao::vk::Effect> effect;
-      if (auto st = sao::vk::Effect::create(ctx->deviceContext(), config, effect); !st) {
+      if (auto st = sao::vk::Effect::create(ctx->deviceContext(), {}, effect); !st) {
         std::fprintf(stderr, "create: %s\n", st.message.c_str());
         return 1;
       }
       sao::vk::Inputs in;
-      in.depth = {depthImage.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth.extent};
+      in.depth = {depthImage.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, depth.extent, sao::vk::depthVkFormat(format)};
       std::map<std::string, std::vector<double>> perPass;
       std::vector<std::string> order;
       std::vector<double> totals;
       sao::TimingMethod method = sao::TimingMethod::None;
       for (std::uint32_t r = 0; r <= runs; ++r) {
         sao::Timings t;
-        if (auto st = effect->measure(ctx->queue(), in, nullptr, t,
+        if (auto st = effect->measure(ctx->queue(), cam, settings, in, nullptr, t,
                                       fence ? sao::vk::MeasureMethod::FenceClock : sao::vk::MeasureMethod::Auto);
             !st) {
           std::fprintf(stderr, "measure: %s\n", st.message.c_str());

@@ -22,10 +22,10 @@ class VulkanRunner final : public BackendRunner {
              RunOutputs& out) override {
     auto& ctx = *context_;
     Prepared p{ctx};
-    if (Status s = prepare(settings, camera, in, measureTime, p); !s) return s;
+    if (Status s = prepare(in, measureTime, p); !s) return s;
     if (measureTime) {
-      if (Status s = effect_->measure(ctx.queue(), p.inputs, nullptr, out.timings); !s) return s;
-    } else if (Status s = recordOnce(p.inputs); !s) {
+      if (Status s = effect_->measure(ctx.queue(), camera, settings, p.inputs, nullptr, out.timings); !s) return s;
+    } else if (Status s = recordOnce(camera, settings, p.inputs); !s) {
       return s;
     }
     const vk::Config& config = effect_->config();
@@ -61,12 +61,12 @@ class VulkanRunner final : public BackendRunner {
 
   Status keepBusy(const Settings& settings, const Camera& camera, const RunInputs& in, double milliseconds) override {
     Prepared p{*context_};
-    // The configuration of the runs around it, timestamps included: no update() in between.
+    // The effect of the runs around it, timestamps included: no new effect in between.
     const bool timestamps = effect_ && effect_->config().timestamps;
-    if (Status s = prepare(settings, camera, in, timestamps, p); !s) return s;
+    if (Status s = prepare(in, timestamps, p); !s) return s;
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double, std::milli>(milliseconds);
     do {
-      if (Status s = recordOnce(p.inputs); !s) return s;
+      if (Status s = recordOnce(camera, settings, p.inputs); !s) return s;
     } while (std::chrono::steady_clock::now() < end);
     return validationMessages();
   }
@@ -74,6 +74,7 @@ class VulkanRunner final : public BackendRunner {
  private:
   // A run's uploaded inputs, destroyed with it.
   struct Prepared {
+    explicit Prepared(vk::headless::Context& context) : ctx(context) {}
     vk::headless::Context& ctx;
     vk::headless::Image depth, depth2, normals;
     vk::Inputs inputs;
@@ -82,51 +83,46 @@ class VulkanRunner final : public BackendRunner {
     }
   };
 
-  // Uploads the inputs and makes the effect's configuration match them.
-  Status prepare(const Settings& settings, const Camera& camera, const RunInputs& in, bool measureTime, Prepared& p) {
+  // Uploads the inputs (each with its format) and makes sure of an effect whose Config matches the
+  // run: one with timestamps to measure, one without otherwise. Settings and camera go to each
+  // record() (or measure()), which plans again only when they (or the inputs) change the plan: a
+  // camera path's frames that plan alike keep the effect's plan and its temporal history.
+  Status prepare(const RunInputs& in, bool measureTime, Prepared& p) {
     if (!in.depth) return Status::error(StatusCode::InvalidInput, "no depth image");
     auto& ctx = *context_;
     const VkImageLayout readLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-    vk::Config config;
-    config.settings = settings;
-    config.camera = camera;
-    config.depthFormat = vk::depthVkFormat(in.depth->format);
-    config.timestamps = measureTime;
     vk::Inputs& inputs = p.inputs;
-    if (Status s = ctx.uploadDepth(*in.depth, config.depthFormat, readLayout, p.depth); !s) return s;
-    inputs.depth = {p.depth.view, readLayout, in.depth->extent};
+    const VkFormat depthFormat = vk::depthVkFormat(in.depth->format);
+    if (Status s = ctx.uploadDepth(*in.depth, depthFormat, readLayout, p.depth); !s) return s;
+    inputs.depth = {p.depth.view, readLayout, in.depth->extent, depthFormat};
     if (in.depth2) {
-      if (Status s = ctx.uploadDepth(*in.depth2, vk::depthVkFormat(in.depth2->format), readLayout, p.depth2); !s) return s;
-      config.secondLayer = true;
-      inputs.depth2 = {p.depth2.view, readLayout, in.depth2->extent};
+      const VkFormat depth2Format = vk::depthVkFormat(in.depth2->format);
+      if (Status s = ctx.uploadDepth(*in.depth2, depth2Format, readLayout, p.depth2); !s) return s;
+      inputs.depth2 = {p.depth2.view, readLayout, in.depth2->extent, depth2Format};
     }
     if (in.normals) {
-      config.normalsFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-      if (Status s = ctx.uploadColor(*in.normals, config.normalsFormat, readLayout, p.normals); !s) return s;
-      inputs.normals = {p.normals.view, readLayout, in.normals->extent};
+      const VkFormat normalsFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+      if (Status s = ctx.uploadColor(*in.normals, normalsFormat, readLayout, p.normals); !s) return s;
+      inputs.normals = {p.normals.view, readLayout, in.normals->extent, normalsFormat};
     }
     inputs.frameIndex = in.frameIndex;
     inputs.resetHistory = in.resetHistory;
-    // A new camera that plans alike goes per record (no update(), which would also start a temporal
-    // history again): a camera path's frames.
-    const vk::Config* current = effect_ ? &effect_->config() : nullptr;
-    const bool perRecordCamera = current && current->settings == config.settings &&
-                                 current->depthFormat == config.depthFormat && current->timestamps == config.timestamps &&
-                                 current->secondLayer == config.secondLayer &&
-                                 current->normalsFormat == config.normalsFormat &&
-                                 cameraKeepsPlan(settings, current->camera, camera);
-    if (!effect_) return vk::Effect::create(ctx.deviceContext(), config, effect_);
-    if (perRecordCamera) {
-      inputs.camera = &camera;
-      return Status::success();
-    }
-    return effect_->update(config);
+    // Timestamps are the one thing of the Config a run changes (a new effect: its plan and
+    // history start again, as a change of timing choice did before).
+    if (effect_ && effect_->config().timestamps == measureTime) return Status::success();
+    effect_.reset();
+    vk::Config config;
+    config.timestamps = measureTime;
+    return vk::Effect::create(ctx.deviceContext(), config, effect_);
   }
 
   // One frame recorded, submitted and waited for.
-  Status recordOnce(const vk::Inputs& inputs) {
+  Status recordOnce(const Camera& camera, const Settings& settings, const vk::Inputs& inputs) {
     Status recorded;
-    if (Status s = context_->submit([&](VkCommandBuffer cmd) { recorded = effect_->record(cmd, inputs); }); !s) return s;
+    if (Status s = context_->submit(
+            [&](VkCommandBuffer cmd) { recorded = effect_->record(cmd, camera, settings, inputs); });
+        !s)
+      return s;
     return recorded;
   }
 

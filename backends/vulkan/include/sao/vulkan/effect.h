@@ -16,16 +16,15 @@
 //   st = effect->record(cmd, camera, settings, in);  // each frame, as sao::gl::Effect::render()
 //   sao::vk::OutputImage ao = effect->output();  // Config::outputFormat (R16_SFLOAT), in config.outputLayout
 //
-// The per-frame record(cmd, camera, settings, inputs[, output]) is the GL backend's shape: any of
-// them may change from one frame to the next, and a change that needs a new plan is made within
-// the call (no update(), no wait). The older shape stays: Config's settings and camera planned by
-// create() / update(), and record(cmd, inputs) with a per-record Inputs::camera that keeps the plan.
+// record(cmd, camera, settings, inputs[, output]) is the GL backend's shape: any of them may change
+// from one frame to the next, and a change that needs a new plan is made within the call (no
+// wait). Config holds only what the device side fixes for the effect's life (create()).
 //
 // Stereo (VR: two eyes in array layers of one depth image): one effect, recorded once per eye into
 // the same command buffer. Make a VK_IMAGE_VIEW_TYPE_2D view per layer of your depth (and normals)
-// array and of your output array (Config::userOutput: the effect's own output has one layer), give
-// each record its eye's views, OutputImage::layer = the eye and Inputs::camera = the eye's camera
-// (it must plan as Config::camera does: a mirrored off-axis eye projection does). The pipelines and
+// array and of your output array (your output: the effect's own has one layer), give each record
+// its eye's views, OutputImage::layer = the eye and the eye's camera (one that plans as the other
+// eye's does records without a new plan: a mirrored off-axis eye projection does). The pipelines and
 // the intermediate images are shared by the eyes (one set of memory, not two); the second record's
 // barriers order it after the first. Each record takes a ring slot: see framesInFlight below.
 //
@@ -59,12 +58,12 @@
 //    handle value can come back for a new view, so handles cannot tell a set is still valid). A
 //    stereo frame records twice: 2 frames in flight x 2 eyes needs framesInFlight = 4. The effect's
 //    images are shared by all slots; the barriers order them in submission order on the one queue.
-//  * Per-record camera: Inputs::camera (a jittered projection, another field of view, a new view
+//  * Per-record camera: record()'s camera (a jittered projection, another field of view, a new view
 //    rotation) is written into the record's own slot of the parameter block, so the frames in
-//    flight each keep their camera: no update(), no wait. A camera that would change the plan
-//    (size, guard band, csz levels) is refused and needs update().
-//  * create(), update() and the destructor must not run while a command buffer recorded by the
-//    effect is pending (wait for its fence, or vkDeviceWaitIdle).
+//    flight each keep their camera: no wait. A camera that changes the plan (size, guard band, csz
+//    levels) plans again within the call, what pending records use kept until they complete.
+//  * The destructor must not run while a command buffer recorded by the effect is pending (wait
+//    for its fence, or vkDeviceWaitIdle).
 #pragma once
 #include <vulkan/vulkan_core.h>
 
@@ -110,41 +109,13 @@ struct DeviceContext {
   const VkPhysicalDeviceFeatures* enabledFeatures = nullptr;
 };
 
-// What the images, pipelines and the parameter block depend on.
+// What the device side fixes for the effect's life: where the output goes, the ring, timestamps.
+// Everything else comes with each record() (settings, camera, inputs and their formats, output).
 struct Config {
-  Settings settings;
-  // What the plan is made for; Inputs::camera may replace it per record. Left default (Camera{}),
-  // create() plans nothing and the first per-frame record(cmd, camera, settings, inputs) plans.
-  Camera camera;
-  // The depth input: VK_FORMAT_D16_UNORM, X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT, D32_SFLOAT,
-  // D32_SFLOAT_S8_UINT (hardware depth per the camera's conventions; views of the combined
-  // formats must select VK_IMAGE_ASPECT_DEPTH_BIT only) or VK_FORMAT_R32_SFLOAT (linear
-  // camera-space z, DepthEncoding::LinearZ). depth2 (secondLayer) has the same format.
-  // Depth values (sao/image.h): hardware depth that is NaN, +-Inf, below 0 or above 1 (possible in
-  // D32_SFLOAT with VK_EXT_depth_range_unrestricted or a buffer copy) is read as sky, like the
-  // clear value, bit for bit as on the other backends; -0.0 is 0. The depth is not scanned.
-  VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;
-  // Normals as Camera::normalsEncoding says (camera-space .xyz by default, components in [-1,1];
-  // world space and octahedral .xy too), any sampled colour format, e.g.
-  // VK_FORMAT_R16G16B16A16_SFLOAT, with three or more channels for the xyz encodings and two or
-  // more for the octahedral ones, which read .xy (e.g. VK_FORMAT_R16G16_SFLOAT); create() and
-  // update() refuse fewer (UnsupportedFormat naming the format and the encoding): a missing
-  // channel would read 0. VK_FORMAT_UNDEFINED: no normals (rebuilt from depth).
-  VkFormat normalsFormat = VK_FORMAT_UNDEFINED;
-  bool secondLayer = false;  // a second depth layer (deep G-buffer)
-  // Motion vectors for temporal accumulation (settings.temporal): VK_FORMAT_R16G16_SFLOAT
-  // (recommended), R32G32_SFLOAT, R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT, .xy the offset in
-  // pixels from each texel to where its surface was in the previous frame (previous = current +
-  // motion, in the depth's row order); Inputs::motion then gives the image. VK_FORMAT_UNDEFINED:
-  // none (the history is found through the cameras). Refused without settings.temporal.
-  VkFormat motionFormat = VK_FORMAT_UNDEFINED;
-  // You pass the output image to record(); otherwise the effect owns one, which every record()
-  // writes: stereo (several records per frame) needs your output, one layer (or image) per eye.
-  bool userOutput = false;
-  // The output's format (yours or the effect's own): VK_FORMAT_R16_SFLOAT (the default),
-  // R8_UNORM, R8G8B8A8_UNORM or R16G16B16A16_SFLOAT, with optimal-tiling storage support on the
-  // device (sao/output.h says how each rounds A). Another is refused with UnsupportedFormat naming
-  // it and this list. It selects the final pass's pipelines: changing it needs update().
+  // The effect-owned output's format (when record() gets no output of yours): VK_FORMAT_R16_SFLOAT
+  // (the default), R8_UNORM, R8G8B8A8_UNORM or R16G16B16A16_SFLOAT, with optimal-tiling storage
+  // support on the device (sao/output.h says how each rounds A). Another is refused with
+  // UnsupportedFormat naming it and this list.
   VkFormat outputFormat = VK_FORMAT_R16_SFLOAT;
   // Layout of the output after record(): VK_IMAGE_LAYOUT_GENERAL or SHADER_READ_ONLY_OPTIMAL.
   VkImageLayout outputLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
@@ -155,90 +126,90 @@ struct Config {
   // Ring size, 1..16: record() calls that may be pending at once (the contract above; stereo: x 2).
   std::uint32_t framesInFlight = 2;
   bool timestamps = false;  // record() writes per-pass timestamps where the queue family has them
-  // Samples of the depth image. A multisampled depth buffer is read directly, no resolve pass:
-  // linear_z keeps one sample per texel as Camera::depthSamplePolicy says (sample 0, or the one
-  // nearest to the camera). create() and update() refuse a count that is not one
-  // VkSampleCountFlagBits, one the device cannot sample for depthFormat
-  // (sampledImageDepthSampleCounts, or sampledImageColorSampleCounts for R32_SFLOAT), and more than
-  // one with secondLayer (depth2 is single-sample only). A VkImageView does not tell its sample
-  // count, so a view whose count differs from this is not detected by the library (the validation
-  // layer reports it).
-  VkSampleCountFlagBits depthSamples = VK_SAMPLE_COUNT_1_BIT;
 };
 
 // One of your sampled inputs: a view of one mip level, in `layout` (SHADER_READ_ONLY_OPTIMAL,
 // DEPTH_STENCIL_READ_ONLY_OPTIMAL, DEPTH_READ_ONLY_OPTIMAL, DEPTH_READ_ONLY_STENCIL_ATTACHMENT_OPTIMAL,
 // READ_ONLY_OPTIMAL or GENERAL), created with VK_IMAGE_USAGE_SAMPLED_BIT. `extent` is the view's
 // size (a view cannot tell it): it must be plan().inputExtent (viewport + 2 * guard band) or, with
-// Inputs::region, hold it from there on, and not exceed maxImageDimension2D. `format`, when given, must be the one
-// Config names (Config::depthFormat for depth and depth2, Config::normalsFormat for normals, Config::motionFormat for motion).
+// Inputs::region, hold it from there on, and not exceed maxImageDimension2D.
 struct InputImage {
   VkImageView view = VK_NULL_HANDLE;
   VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   Extent extent;  // the whole level the view shows
-  // Optional, checked against Config; the per-frame record() takes the input's format from here
-  // (UNDEFINED: Config's).
+  // Required with a view: the view's format (a view cannot tell it either), one the input accepts
+  // (below), sampled with optimal tiling on the device.
   VkFormat format = VK_FORMAT_UNDEFINED;
+  // The image's samples. Only the depth may be multisampled: it is read directly, no resolve pass;
+  // linear_z keeps one sample per texel as Camera::depthSamplePolicy says (sample 0, or the one
+  // nearest to the camera). Refused: a count that is not one VkSampleCountFlagBits, one the device
+  // cannot sample for the format (sampledImageDepthSampleCounts, or sampledImageColorSampleCounts
+  // for R32_SFLOAT), and more than one with depth2. A view cannot tell its count either: one that
+  // differs from this is reported by the validation layer, not by the library.
+  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
 };
 
 // The inputs are the effect's kind=input resources (effect/sao.glsl), one InputImage each, by name
-// (inputs.depth, inputs.normals, ...) or by id (inputs[gen::ResourceId::normals]): depth is
-// required; depth2 (Config::secondLayer), normals (Config::normalsFormat) and motion
-// (Config::motionFormat, the depth's region) where given.
+// (inputs.depth, inputs.normals, ...) or by id (inputs[gen::ResourceId::normals]); the views given
+// select the plan's variants. What each accepts (sao/inputs.h, one contract on every backend):
+//  * depth (required) and depth2 (a second layer, the deep G-buffer, the same format):
+//    VK_FORMAT_D16_UNORM, X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT, D32_SFLOAT, D32_SFLOAT_S8_UINT
+//    (hardware depth per the camera's conventions; views of the combined formats select
+//    VK_IMAGE_ASPECT_DEPTH_BIT only) or VK_FORMAT_R32_SFLOAT (linear camera-space z). Depth values
+//    (sao/image.h): hardware depth that is NaN, +-Inf, below 0 or above 1 (possible in D32_SFLOAT
+//    with VK_EXT_depth_range_unrestricted or a buffer copy) is read as sky, like the clear value,
+//    bit for bit as on the other backends; -0.0 is 0. The depth is not scanned.
+//  * an input whose declaration lists formats= (motion, with the temporal setting:
+//    VK_FORMAT_R16G16_SFLOAT recommended, R32G32_SFLOAT, R16G16B16A16_SFLOAT or
+//    R32G32B32A32_SFLOAT; .xy the offset in pixels from each texel to where its surface was in the
+//    previous frame, previous = current + motion, in the depth's row order): one of those.
+//  * any other (normals, as Camera::normalsEncoding says: camera-space .xyz by default, components
+//    in [-1,1]; world space and octahedral .xy too): any sampled colour format with the channels
+//    read, three or more for the xyz encodings (e.g. R16G16B16A16_SFLOAT), two or more for the
+//    octahedral ones (e.g. R16G16_SFLOAT); fewer is refused (UnsupportedFormat naming the format and
+//    the encoding): a missing channel would read 0.
 struct Inputs : gen::InputSet<InputImage> {
   // Optional: where the region of plan().inputExtent texels starts in depth, depth2 and normals
   // (they share it): the texel (x along a row, y in rows from row 0) holding the guard band's first
   // corner. With it the images may be larger (dynamic resolution: the viewport inside a bigger
   // depth buffer); the region is read in place, no copy. Unset, every input must be exactly
-  // plan().inputExtent. Per record(): changing it needs no update(). A region that does not lie
+  // plan().inputExtent. Changing it does not plan again. A region that does not lie
   // inside every image given is refused (InvalidInput naming the offset, the extent and the
   // image's size), never clamped.
   std::optional<Offset> region;
-  // Optional: this record's camera (TAA jitter, an animated field of view, a new view rotation for
-  // world-space normals). It must plan exactly as Config::camera does — same width, height, guard
-  // band, and the same plan (the same images, levels and variants: e.g. the same csz MIP levels,
-  // which the projection scale, near distance, projection kind and metersToViewUnits select);
-  // anything that changes the plan is refused with InvalidInput naming what differs, and needs
-  // update(). An invalid camera is refused as create() refuses it (InvalidCamera, create()'s
-  // message after "record(): Inputs::camera: "), and so is a normals encoding that
-  // Config::normalsFormat cannot hold (UnsupportedFormat). measure() takes it the same way.
-  // Its parameter block (Config's settings and depth encoding) goes into this record's ring slot
-  // only: Config::camera stays what update() set (params() shows the last record's block, this
-  // camera's). Per record: no update(), no allocation, no wait. Null: Config::camera.
-  const Camera* camera = nullptr;
   // The frame's number, for an engine that accumulates frames (TAA or its own temporal filter):
   // frame k turns and shifts every pixel's spiral (sao::frameSpiral, sao/spiral.h), so N
   // consecutive frames sample the disk evenly; frame 0 (the default) is the paper's spiral. Count
-  // it up by one per frame. Per record, in the ring slot's block: no update().
+  // it up by one per frame. Per record, in the ring slot's block.
   std::uint32_t frameIndex = 0;
-  // Temporal accumulation (Config::settings.temporal; sao/temporal.h says when the history is
-  // reused): the effect keeps two history images and the camera of its last record (Inputs::camera
-  // or Config::camera), and blends each pixel's obscurance with that frame's, reprojected through
+  // Temporal accumulation (the temporal setting; sao/temporal.h says when the history is reused):
+  // the effect keeps two history images and the camera of its last record, and blends each pixel's obscurance with that frame's, reprojected through
   // Camera::view (required then). Records are frames in submission order: submit every record, in
   // the order you made them (a record that is never submitted leaves the next frame a history that
   // was never written; start again with resetHistory). resetHistory: start again from this frame
   // alone (a camera cut). previousCamera: the camera the history was made with, when not the last
-  // record's (null: that one). Without the temporal setting both are ignored. update() starts the
-  // history again. The history follows one view: give each eye of a stereo pair its own effect. Per
-  // record: no update(), no allocation, no wait.
+  // record's (null: that one). Without the temporal setting both are ignored. A new plan starts
+  // the history again. The history follows one view: give each eye of a stereo pair its own
+  // effect. Per record: no allocation, no wait.
   bool resetHistory = false;
   const Camera* previousCamera = nullptr;
   // Which channels of the output receive A (sao/output.h), as sao::gl::Inputs::outputChannels:
   // kAllChannels (every channel the format has) or a non-empty set of kChannelR/G/B/A it has. With
   // an RGBA format and a mask that leaves channels out, the effect keeps them: record() reads your
   // image's texels and stores them back with only these channels replaced, so the contents must be
-  // defined and visible (see the synchronisation contract: OutputImage::layout). Only with
-  // Config::userOutput. Per record: no update().
+  // defined and visible (see the synchronisation contract: OutputImage::layout). Only with your
+  // output. Per record: no new plan.
   std::uint32_t outputChannels = kAllChannels;
   // How those channels take A (sao/output.h): Replace (the default), or Multiply: each texel's
   // channel is multiplied by A, the apply step in the effect's final pass (e.g. your lit
   // R16G16B16A16_SFLOAT colour target with outputChannels = kChannelR | kChannelG | kChannelB). Only
-  // with Config::userOutput; like a mask that keeps channels, record() reads the texels, so the
-  // contents must be defined and visible (OutputImage::layout). Per record: no update().
+  // with your output; like a mask that keeps channels, record() reads the texels, so the contents
+  // must be defined and visible (OutputImage::layout). Per record: no new plan.
   OutputBlend outputBlend = OutputBlend::Replace;
 };
 
-// The output: Config::outputFormat, the viewport's extent (plan().aoExtent), one level, usage
+// The output: yours (its format one of Config::outputFormat's list) or the effect's (in
+// Config::outputFormat), the viewport's extent (plan().aoExtent), one level, usage
 // STORAGE (plus whatever you read it with). As returned by Effect::output(), `layout` is where
 // record() leaves it. Passed to record() with an Inputs::outputChannels that keeps channels (or the multiply blend),
 // `layout` is the layout your image is in when the recorded commands run (not UNDEFINED or
@@ -246,7 +217,7 @@ struct Inputs : gen::InputSet<InputImage> {
 struct OutputImage {
   VkImage image = VK_NULL_HANDLE;
   VkImageView view = VK_NULL_HANDLE;  // a single-level colour view (VK_IMAGE_VIEW_TYPE_2D)
-  VkFormat format = VK_FORMAT_R16_SFLOAT;  // must be Config::outputFormat
+  VkFormat format = VK_FORMAT_R16_SFLOAT;  // selects the final pass's pipelines
   Extent extent;
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
   // The array layer `view` shows, for an output array image (stereo / multiview: one layer per
@@ -288,74 +259,62 @@ enum class MeasureMethod {
 class SAO_VK_API Effect {
  public:
   // Checks the version (VersionMismatch when the header you compiled against differs from the
-  // library), loads the functions, validates config against the device (formats, limits,
-  // features), plans, allocates the images and builds the pipelines. On error `out` is reset and
-  // the Status says what is wrong; nothing is left allocated.
+  // library), loads the functions, validates config against the device (features, the output's
+  // format and stages) and makes the parameter buffer and sampler; the first record() plans. On
+  // error `out` is reset and the Status says what is wrong; nothing is left allocated.
   static Status create(const DeviceContext& context, const Config& config, std::unique_ptr<Effect>& out,
                        int headerVersion = SAO_VERSION);
   ~Effect();
   Effect(const Effect&) = delete;
   Effect& operator=(const Effect&) = delete;
 
-  // New settings, camera (a resize) or inputs. Only the images whose format, extent or levels the
-  // new plan changes are made again (sao::FrameState, sao/executor.h: one rule with the GL
-  // backend), pipelines only for variants not built yet. On error the effect keeps its previous
-  // configuration. Starts the temporal history again. Not while a recorded command buffer is pending.
-  Status update(const Config& config);
-
   // The per-frame call, sao::gl::Effect::render()'s shape: this frame's camera, settings and inputs
-  // (with `userOutput` the caller's output, its format the output's; null: the effect's own, in
-  // Config::outputFormat). Each input's kind comes from its view (depth2, normals, motion present
-  // or not) and its format from InputImage::format (UNDEFINED: Config's). The same settings and
-  // inputs with a camera that keeps the plan (sao::cameraKeepsPlan) record at once, allocating
-  // nothing; anything else plans again here, as update() would, and what the old plan alone used
-  // (images, descriptor sets) is destroyed only once the Config::framesInFlight records after it
-  // have been made (the ring contract says they are complete), so pending records are undisturbed
-  // and nothing waits. Planning again starts the temporal history again, as on GL. On error
-  // nothing is recorded and the previous configuration stays.
+  // (with `userOutput` the caller's output; null: the effect's own, in Config::outputFormat) into
+  // `cmd`, which must be in the recording state, outside a render pass, on a queue of
+  // DeviceContext::queueFamilyIndex's family. The inputs given (their views) and their formats and
+  // samples select the plan. The same settings and inputs with a camera that keeps the plan
+  // (sao::cameraKeepsPlan) record at once, allocating nothing; anything else plans again here:
+  // only the images whose format, extent or levels the new plan changes are made again
+  // (sao::FrameState, sao/executor.h: one rule with the GL backend), pipelines only for variants
+  // not built yet, and what the old plan alone used (images, descriptor sets) is destroyed only
+  // once the Config::framesInFlight records after it have been made (the ring contract says they
+  // are complete), so pending records are undisturbed and nothing waits. Planning again starts the
+  // temporal history again, as on GL. On error nothing is recorded and the previous configuration
+  // stays.
   Status record(VkCommandBuffer cmd, const Camera& camera, const Settings& settings, const Inputs& inputs,
                 const OutputImage* userOutput = nullptr);
-
-  // Records every planned pass (with its barriers) into `cmd`, which must be in the recording
-  // state, outside a render pass, on a queue of DeviceContext::queueFamilyIndex's family.
-  // `userOutput` is required with Config::userOutput and must be null otherwise. Nothing is
-  // recorded when the Status is not Ok. Allocates no host memory: the descriptor writes of every
-  // ring slot are sized by update().
-  Status record(VkCommandBuffer cmd, const Inputs& inputs, const OutputImage* userOutput = nullptr);
 
   // Per-pass times of the last record() with Config::timestamps, once its submission completed
   // (DriverError with "not ready" before), one entry per planned pass.
   Status timings(Timings& out) const;
 
-  // Runs the effect once on `queue` (of the context's family) on its own command buffers and
-  // waits: per-pass times by timestamps (GpuTimestamps) or, where the family has none or when
-  // asked, one fenced submission per pass timed by a steady clock (FinishAndClock). Uses the next
-  // ring slot like record().
-  Status measure(VkQueue queue, const Inputs& inputs, const OutputImage* userOutput, Timings& out,
-                 MeasureMethod method = MeasureMethod::Auto);
+  // Runs the frame record() would record once on `queue` (of the context's family), on its own
+  // command buffers, and waits: per-pass times by timestamps (GpuTimestamps) or, where the family
+  // has none or when asked, one fenced submission per pass timed by a steady clock
+  // (FinishAndClock). Plans as record() does and uses the next ring slot like it.
+  Status measure(VkQueue queue, const Camera& camera, const Settings& settings, const Inputs& inputs,
+                 const OutputImage* userOutput, Timings& out, MeasureMethod method = MeasureMethod::Auto);
 
   // Whether record() can write timestamps on the context's queue family.
   bool timestampsSupported() const;
 
   const Config& config() const;
   const Plan& plan() const;
-  // The parameter block of the last record() (as sao::gl::Effect::params()), or of Config before
-  // the first record after create() or update().
+  // The parameter block of the last record() (as sao::gl::Effect::params()).
   const ParamBlock& params() const;
   // The effect-owned output (VK_NULL_HANDLE with userOutput); `layout` is where record() leaves it
   // (undefined contents before the first submitted record()).
   OutputImage output() const;
-  // Counts the changes of the effect-owned output image: it goes up whenever create() or update()
-  // makes a new one (a resize, a new output format, any change of the plan's images) or drops it
-  // (userOutput). Descriptors you wrote with output().view must be rewritten when it differs from
-  // the value you saw last (handles can be reused, so comparing them cannot tell). Starts at 1
-  // after a create() with an owned output, 0 with userOutput; your own output never changes it.
+  // Counts the changes of the effect-owned output image: it goes up whenever a new plan makes a
+  // new one (a resize, any change of the plan's images) or drops it (a record with your output).
+  // Descriptors you wrote with output().view must be rewritten when it differs from the value you
+  // saw last (handles can be reused, so comparing them cannot tell). 0 until the first plan with
+  // the effect's own output; your own output never changes it.
   std::uint64_t outputGeneration() const;
   OwnedImageInfo ownedImage(gen::ResourceId id) const;
   MemoryStats memoryStats() const;  // this effect's device memory
   std::uint32_t pipelineCount() const;  // pipelines built so far (one per pass variant used)
-  // Configurations planned so far: by create() with a camera, update() and each per-frame record()
-  // that had to plan again (GL: Stats::plans).
+  // Configurations planned so far: each record() or measure() that had to plan (GL: Stats::plans).
   std::uint64_t plans() const;
 
  private:
