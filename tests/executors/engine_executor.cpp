@@ -8,36 +8,13 @@
 // is refused here, naming it.
 #include "harness_apis.h"
 #include "vk_engine/engine_effect.h"
+#include "vk_formats.h"
 #include "vk_support.h"
 
 namespace sao::exectest {
 namespace {
 
 using vk::headless::Image;
-
-VkFormat vkDepth(Depth d) {
-  switch (d) {
-    case Depth::D16: return VK_FORMAT_D16_UNORM;
-    case Depth::D24: return VK_FORMAT_X8_D24_UNORM_PACK32;
-    case Depth::D24S8: return VK_FORMAT_D24_UNORM_S8_UINT;
-    case Depth::D32F: return VK_FORMAT_D32_SFLOAT;
-    case Depth::D32FS8: return VK_FORMAT_D32_SFLOAT_S8_UINT;
-    case Depth::R32F: return VK_FORMAT_R32_SFLOAT;
-  }
-  return VK_FORMAT_D32_SFLOAT;
-}
-
-// A colour input's texels: the effect's format of the same name (the generated table's VkFormat).
-VkFormat vkTexels(Texels t) {
-  gen::Format f = gen::Format::RGBA16F;
-  switch (t) {
-    case Texels::RGBA16F: f = gen::Format::RGBA16F; break;
-    case Texels::RGBA32F: f = gen::Format::RGBA32F; break;
-    case Texels::RG16F: f = gen::Format::RG16F; break;
-    case Texels::RG32F: f = gen::Format::RG32F; break;
-  }
-  return VkFormat(gen::formatInfo(f).vkFormat);
-}
 
 constexpr VkImageLayout kRead = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 

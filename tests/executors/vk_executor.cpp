@@ -2,6 +2,7 @@
 // driven by its per-frame record(cmd, camera, settings, inputs[, output]) (GL's shape: it plans
 // again within the call when it must), submitted and waited for.
 #include "harness_apis.h"
+#include "vk_formats.h"
 #include "sao/frame.h"
 #include "vk_array_image.h"
 #include "vk_msaa_depth_writer.h"
@@ -11,28 +12,6 @@ namespace sao::exectest {
 namespace {
 
 using vk::headless::Image;
-
-VkFormat vkDepth(Depth d) {
-  switch (d) {
-    case Depth::D16: return VK_FORMAT_D16_UNORM;
-    case Depth::D24: return VK_FORMAT_X8_D24_UNORM_PACK32;
-    case Depth::D24S8: return VK_FORMAT_D24_UNORM_S8_UINT;
-    case Depth::D32F: return VK_FORMAT_D32_SFLOAT;
-    case Depth::D32FS8: return VK_FORMAT_D32_SFLOAT_S8_UINT;
-    case Depth::R32F: return VK_FORMAT_R32_SFLOAT;
-  }
-  return VK_FORMAT_D32_SFLOAT;
-}
-
-VkFormat vkTexels(Texels t) {
-  switch (t) {
-    case Texels::RGBA16F: return VK_FORMAT_R16G16B16A16_SFLOAT;
-    case Texels::RGBA32F: return VK_FORMAT_R32G32B32A32_SFLOAT;
-    case Texels::RG16F: return VK_FORMAT_R16G16_SFLOAT;
-    case Texels::RG32F: return VK_FORMAT_R32G32_SFLOAT;
-  }
-  return VK_FORMAT_R16G16B16A16_SFLOAT;
-}
 
 VkFormat vkFormat(gen::Format f) { return VkFormat(gen::formatInfo(f).vkFormat); }
 

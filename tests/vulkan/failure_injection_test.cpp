@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <new>
 #include <set>
 #include <string>
@@ -46,6 +47,32 @@ bool withBadAllocAt(long n, Call&& call) {
   const bool failed = test::allocationFailed();
   test::failLibraryAllocation(0);
   return failed;
+}
+
+void expectBadAlloc(const Status& st) { expectStatus(st, StatusCode::DriverError, "std::bad_alloc"); }
+
+// `call` (returning a Status) with each library allocation in turn throwing until one runs
+// through, which must succeed; every throw gives a bad_alloc Status. Returns how many threw.
+template <typename Call>
+long badAllocEach(Call&& call) {
+  long thrown = 0;
+  for (long n = 1; n < 10000; ++n) {
+    Status st;
+    if (!withBadAllocAt(n, [&] { st = call(); })) {
+      EXPECT_TRUE(st.ok()) << st.message;
+      return thrown;
+    }
+    ++thrown;
+    expectBadAlloc(st);
+  }
+  ADD_FAILURE() << "never got through";
+  return thrown;
+}
+
+void printFailed(const char* what, const std::set<std::string>& failed) {
+  std::string names;
+  for (const auto& f : failed) names += f + " ";
+  std::printf("%s: failed in turn at %zu kinds of call: %s\n", what, failed.size(), names.c_str());
 }
 
 // ---- The VkResult seam: an interposed vkGetDeviceProcAddr whose functions fail on the Nth call
@@ -191,26 +218,12 @@ class VkFailureInjection : public VkTest {
   Status recordOther(vk::Effect& e, VkCommandBuffer cmd) {
     return e.record(cmd, large.camera, otherSettings, large.inputs());
   }
-  FloatImage read(vk::Effect& e) {
-    const vk::OutputImage o = e.output();
-    FloatImage ao;
-    EXPECT_TRUE(context()
-                    .readback(o.image, o.format, o.extent, 0, o.layout, e.config().outputDstStages,
-                              e.config().outputDstAccess, ao)
-                    .ok());
-    return ao;
-  }
-  FloatImage runSmall(vk::Effect& e) {
-    Status recorded;
-    EXPECT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = recordSmall(e, cmd); }).ok());
-    EXPECT_TRUE(recorded.ok()) << recorded.message;
-    return read(e);
-  }
-  FloatImage runOther(vk::Effect& e) {
-    Status recorded;
-    EXPECT_TRUE(context().submit([&](VkCommandBuffer cmd) { recorded = recordOther(e, cmd); }).ok());
-    EXPECT_TRUE(recorded.ok()) << recorded.message;
-    return read(e);
+  FloatImage runSmall(vk::Effect& e) { return recordAndRead(e, small.camera, settings, small.inputs()); }
+  FloatImage runOther(vk::Effect& e) { return recordAndRead(e, large.camera, otherSettings, large.inputs()); }
+  // `st` failed at the call the injector failed.
+  static void expectInjected(const Status& st) {
+    expectStatus(st, StatusCode::DriverError, gInjector.failed);
+    EXPECT_NE(st.message.find("VK_ERROR_OUT_OF_DEVICE_MEMORY"), std::string::npos) << st.message;
   }
   // The effect still has its small plan (made by `plans` plans), holds `memory` and renders
   // `before` (a record of the small frame, which keeps that plan).
@@ -230,14 +243,121 @@ class VkFailureInjection : public VkTest {
     EXPECT_EQ(e.plans(), plans + 1);
   }
 
+  // What fails in turn: a Vulkan call through the injector (the calls failed collected in
+  // `failed`) or a heap allocation of the library (std::bad_alloc).
+  struct Injection {
+    bool vulkan;
+    std::set<std::string> failed;
+    // Runs `call` with the Nth call failing; true when it did.
+    bool at(long n, const std::function<void()>& call) {
+      if (!vulkan) return withBadAllocAt(n, call);
+      gInjector.arm(int(n));
+      call();
+      gInjector.failAt = 0;
+      if (gInjector.failed.empty()) return false;
+      failed.insert(gInjector.failed);
+      return true;
+    }
+    void expect(const Status& st) const { vulkan ? expectInjected(st) : expectBadAlloc(st); }
+    std::string what(long n) const {
+      return vulkan ? "call " + std::to_string(n) + ": " + gInjector.failed : "allocation " + std::to_string(n);
+    }
+  };
+
+  // create() with each call in turn failing: the Status, `out` empty, every object made so far
+  // destroyed and no device memory left. Returns how many failed.
+  long createFailingAtEach(Injection& inj) {
+    for (long n = 1; n < 10000; ++n) {
+      const vk::MemoryStats process = vk::processMemoryStats();
+      std::unique_ptr<vk::Effect> e;
+      Status st;
+      if (!inj.at(n, [&] { st = vk::Effect::create(injecting(), config, e); })) {
+        EXPECT_TRUE(st.ok()) << st.message;
+        return n - 1;
+      }
+      SCOPED_TRACE(inj.what(n));
+      inj.expect(st);
+      EXPECT_FALSE(e);
+      EXPECT_EQ(gInjector.live, 0) << "every object made before the failure is destroyed";
+      EXPECT_EQ(vk::processMemoryStats().liveAllocations, process.liveAllocations);
+    }
+    ADD_FAILURE() << "create() never got through";
+    return 0;
+  }
+
+  // The first record() (the first plan) of a new effect each time, with each call in turn failing:
+  // the Status, nothing planned or recorded (the next record in the same command buffer plans), only
+  // the pipelines built left (a cache: pipeline, layout and set layout each), no device memory
+  // beyond create()'s; nothing left once the effect goes. Returns how many failed.
+  long firstRecordFailingAtEach(Injection& inj) {
+    for (long n = 1; n < 10000; ++n) {
+      std::unique_ptr<vk::Effect> e;
+      EXPECT_TRUE(vk::Effect::create(injecting(), config, e).ok());
+      if (!e) return 0;
+      const long objects = gInjector.live;
+      const vk::MemoryStats created = e->memoryStats();
+      bool failed = false;
+      const Status good = submitRecord([&](VkCommandBuffer cmd) {
+        Status st;
+        failed = inj.at(n, [&] { st = recordSmall(*e, cmd); });
+        if (!failed) return st;
+        SCOPED_TRACE(inj.what(n));
+        inj.expect(st);
+        EXPECT_EQ(e->plans(), 0u) << "nothing planned";
+        EXPECT_EQ(gInjector.live, objects + 3 * long(e->pipelineCount()))
+            << "only the pipelines built (pipeline, layout, set layout) stay";
+        EXPECT_EQ(e->memoryStats().liveAllocations, created.liveAllocations) << "no device memory beyond create()'s";
+        EXPECT_EQ(e->memoryStats().liveBytes, created.liveBytes);
+        return recordSmall(*e, cmd);  // in the same command buffer: the failed one recorded nothing
+      });
+      EXPECT_TRUE(good.ok()) << "the next record plans: " << good.message;
+      EXPECT_EQ(e->plans(), 1u);
+      if (!failed) return n - 1;
+      e.reset();
+      EXPECT_EQ(gInjector.live, 0) << "every object is destroyed with the effect";
+    }
+    ADD_FAILURE() << "the first record() never got through";
+    return 0;
+  }
+
+  // A record() of `e` (which renders `before` from the small frame) that plans again (the other
+  // frame), with each call in turn failing: the Status, nothing recorded, the new pipelines alone
+  // left (a cache), and the configuration, memory and output kept bit for bit; the one that gets
+  // through is committed. Returns how many failed.
+  long replanFailingAtEach(Injection& inj, vk::Effect& e, const FloatImage& before) {
+    const std::uint64_t plans = e.plans();
+    const vk::MemoryStats memory = e.memoryStats();
+    const long objects = gInjector.live;
+    const std::uint32_t pipelines = e.pipelineCount();
+    for (long n = 1; n < 10000; ++n) {
+      Status st;
+      bool failed = false;
+      EXPECT_TRUE(submitRecord([&](VkCommandBuffer cmd) {
+                    failed = inj.at(n, [&] { st = recordOther(e, cmd); });
+                    return Status::success();
+                  }).ok());
+      if (!failed) {
+        EXPECT_TRUE(st.ok()) << st.message;
+        expectOtherCommitted(e, plans);
+        return n - 1;
+      }
+      SCOPED_TRACE(inj.what(n));
+      inj.expect(st);
+      EXPECT_EQ(gInjector.live, objects + 3 * long(e.pipelineCount() - pipelines))
+          << "only the new pipelines (pipeline, layout, set layout) stay";
+      expectUnchanged(e, plans, memory, before);
+    }
+    ADD_FAILURE() << "the re-planning record() never got through";
+    return 0;
+  }
+
   Scene small, large;
   vk::Config config;
   Settings settings, otherSettings;
 };
 
 // Every fallible Vulkan call of create() (what it makes before any plan: the parameter buffer, the
-// sampler, the query pool), failed in turn: the error names it, `out` stays empty, every object
-// made so far is destroyed and no device memory is left.
+// sampler, the query pool), failed in turn: the error names it.
 TEST_F(VkFailureInjection, CreateFailingAtEveryVulkanCallLeavesNothingBehind) {
   bool timestamps = false;
   {
@@ -245,219 +365,63 @@ TEST_F(VkFailureInjection, CreateFailingAtEveryVulkanCallLeavesNothingBehind) {
     ASSERT_TRUE(vk::Effect::create(injecting(), config, e).ok());
     timestamps = e->timestampsSupported();
   }
-  std::set<std::string> failed;
-  for (int n = 1;; ++n) {
-    ASSERT_LT(n, 1000) << "create() never got through";
-    const vk::MemoryStats process = vk::processMemoryStats();
-    std::unique_ptr<vk::Effect> e;
-    gInjector.arm(n);
-    const Status st = vk::Effect::create(injecting(), config, e);
-    gInjector.failAt = 0;
-    if (gInjector.failed.empty()) {
-      ASSERT_TRUE(st.ok()) << st.message;
-      break;
-    }
-    SCOPED_TRACE("call " + std::to_string(n) + ": " + gInjector.failed);
-    failed.insert(gInjector.failed);
-    EXPECT_EQ(st.code, StatusCode::DriverError) << st.message;
-    EXPECT_NE(st.message.find(gInjector.failed), std::string::npos) << st.message;
-    EXPECT_NE(st.message.find("VK_ERROR_OUT_OF_DEVICE_MEMORY"), std::string::npos) << st.message;
-    EXPECT_FALSE(e);
-    EXPECT_EQ(gInjector.live, 0) << "every object made before the failure is destroyed";
-    EXPECT_EQ(vk::processMemoryStats().liveAllocations, process.liveAllocations);
-  }
+  Injection calls{true};
+  createFailingAtEach(calls);
   EXPECT_EQ(gInjector.live, 0);
-  std::string names;
-  for (const auto& f : failed) names += f + " ";
-  std::printf("create(): failed in turn at %zu kinds of call: %s\n", failed.size(), names.c_str());
+  printFailed("create()", calls.failed);
   for (const char* call : {"vkCreateBuffer", "vkAllocateMemory", "vkBindBufferMemory", "vkMapMemory", "vkCreateSampler"})
-    EXPECT_TRUE(failed.count(call)) << call << " was never called";
-  if (timestamps) {
-    EXPECT_TRUE(failed.count("vkCreateQueryPool"));
-  }
+    EXPECT_TRUE(calls.failed.count(call)) << call << " was never called";
+  EXPECT_TRUE(!timestamps || calls.failed.count("vkCreateQueryPool")) << "vkCreateQueryPool was never called";
 }
 
-// Every fallible Vulkan call of the first record() (the first plan: images, memory, pipelines,
-// descriptor sets), failed in turn on a new effect each time: the error names it, nothing is
-// planned or recorded, every object the plan made is destroyed but the pipelines it built (a
-// cache: pipeline, layout and set layout each), no device memory beyond create()'s is left, and
-// the next record plans. Destroying the effect then leaves nothing.
+// Every fallible Vulkan call of the first record() (images, memory, pipelines, descriptor sets).
 TEST_F(VkFailureInjection, FirstRecordFailingAtEveryVulkanCallLeavesNothingBehind) {
-  std::set<std::string> failed;
-  for (int n = 1;; ++n) {
-    ASSERT_LT(n, 1000) << "the first record() never got through";
-    std::unique_ptr<vk::Effect> e;
-    ASSERT_TRUE(vk::Effect::create(injecting(), config, e).ok());
-    const long objects = gInjector.live;
-    const vk::MemoryStats created = e->memoryStats();
-    Status st, good;
-    long left = 0;
-    std::uint32_t pipelines = 0;
-    std::uint64_t plansAfterFailure = 0;
-    vk::MemoryStats afterFailure;
-    ASSERT_TRUE(context()
-                    .submit([&](VkCommandBuffer cmd) {
-                      gInjector.arm(n);
-                      st = recordSmall(*e, cmd);
-                      gInjector.failAt = 0;
-                      if (gInjector.failed.empty()) return;
-                      left = gInjector.live;
-                      pipelines = e->pipelineCount();
-                      plansAfterFailure = e->plans();
-                      afterFailure = e->memoryStats();
-                      good = recordSmall(*e, cmd);  // in the same command buffer: the failed one recorded nothing
-                    })
-                    .ok());
-    if (gInjector.failed.empty()) {
-      ASSERT_TRUE(st.ok()) << st.message;
-      EXPECT_EQ(e->plans(), 1u);
-      break;
-    }
-    SCOPED_TRACE("call " + std::to_string(n) + ": " + gInjector.failed);
-    failed.insert(gInjector.failed);
-    EXPECT_EQ(st.code, StatusCode::DriverError) << st.message;
-    EXPECT_NE(st.message.find(gInjector.failed), std::string::npos) << st.message;
-    EXPECT_NE(st.message.find("VK_ERROR_OUT_OF_DEVICE_MEMORY"), std::string::npos) << st.message;
-    EXPECT_EQ(plansAfterFailure, 0u) << "nothing planned";
-    EXPECT_EQ(left, objects + 3 * long(pipelines)) << "only the pipelines built (pipeline, layout, set layout) stay";
-    EXPECT_EQ(afterFailure.liveAllocations, created.liveAllocations) << "no device memory beyond create()'s";
-    EXPECT_EQ(afterFailure.liveBytes, created.liveBytes);
-    EXPECT_TRUE(good.ok()) << "the next record plans: " << good.message;
-    EXPECT_EQ(e->plans(), 1u);
-    e.reset();
-    EXPECT_EQ(gInjector.live, 0) << "every object is destroyed with the effect";
-  }
-  std::string names;
-  for (const auto& f : failed) names += f + " ";
-  std::printf("first record(): failed in turn at %zu kinds of call: %s\n", failed.size(), names.c_str());
+  Injection calls{true};
+  firstRecordFailingAtEach(calls);
+  printFailed("first record()", calls.failed);
   for (const char* call : {"vkCreateImage", "vkCreateImageView", "vkAllocateMemory", "vkBindImageMemory",
                            "vkCreateComputePipelines", "vkCreateDescriptorPool", "vkAllocateDescriptorSets"})
-    EXPECT_TRUE(failed.count(call)) << call << " was never called";
+    EXPECT_TRUE(calls.failed.count(call)) << call << " was never called";
 }
 
-// Every fallible Vulkan call of a record() that plans again (another size, pass list and variant),
-// failed in turn: the error, nothing recorded, and the effect keeps its configuration, memory and
-// output bit for bit. Pipelines built for the new variant stay (a cache); nothing else is left.
+// Every fallible Vulkan call of a record() that plans again (another size, pass list and variant).
 TEST_F(VkFailureInjection, ReplanningRecordFailingAtEveryVulkanCallKeepsThePreviousConfiguration) {
   std::unique_ptr<vk::Effect> e;
   ASSERT_TRUE(vk::Effect::create(injecting(), config, e).ok());
   const FloatImage before = runSmall(*e);
   ASSERT_FALSE(before.data.empty());
-  const std::uint64_t plans = e->plans();
-  const vk::MemoryStats memory = e->memoryStats();
-  const long objects = gInjector.live;
-  const std::uint32_t pipelines = e->pipelineCount();
-  std::set<std::string> failed;
-  for (int n = 1;; ++n) {
-    ASSERT_LT(n, 1000) << "the re-planning record() never got through";
-    Status st;
-    ASSERT_TRUE(context()
-                    .submit([&](VkCommandBuffer cmd) {
-                      gInjector.arm(n);
-                      st = recordOther(*e, cmd);
-                      gInjector.failAt = 0;
-                    })
-                    .ok());
-    if (gInjector.failed.empty()) {
-      ASSERT_TRUE(st.ok()) << st.message;
-      break;
-    }
-    SCOPED_TRACE("call " + std::to_string(n) + ": " + gInjector.failed);
-    failed.insert(gInjector.failed);
-    EXPECT_EQ(st.code, StatusCode::DriverError) << st.message;
-    EXPECT_NE(st.message.find(gInjector.failed), std::string::npos) << st.message;
-    EXPECT_EQ(gInjector.live, objects + 3 * long(e->pipelineCount() - pipelines))
-        << "only the new pipelines (pipeline, layout, set layout) stay";
-    expectUnchanged(*e, plans, memory, before);
-  }
-  std::string names;
-  for (const auto& f : failed) names += f + " ";
-  std::printf("re-planning record(): failed in turn at %zu kinds of call: %s\n", failed.size(), names.c_str());
+  Injection calls{true};
+  replanFailingAtEach(calls, *e, before);
+  printFailed("re-planning record()", calls.failed);
   // (vkBindImageMemory is called too but never failed here: the binds follow the first
   // vkAllocateMemory, and while the new pipelines were being built, those call numbers were theirs;
   // once the pipelines are cached, the binds take call numbers already tried.)
   for (const char* call : {"vkCreateImage", "vkCreateImageView", "vkAllocateMemory", "vkCreateComputePipelines",
                            "vkCreateDescriptorPool", "vkAllocateDescriptorSets"})
-    EXPECT_TRUE(failed.count(call)) << call << " was never called";
-  expectOtherCommitted(*e, plans);
+    EXPECT_TRUE(calls.failed.count(call)) << call << " was never called";
   e.reset();
   EXPECT_EQ(gInjector.live, 0);
 }
 
-// std::bad_alloc at every allocation the library makes in create(): a DriverError, no effect, no
-// device memory left.
 TEST_F(VkFailureInjection, BadAllocInCreateIsAStatus) {
   findLibrary();
-  long thrown = 0;
-  for (long n = 1;; ++n) {
-    ASSERT_LT(n, 10000);
-    const vk::MemoryStats process = vk::processMemoryStats();
-    std::unique_ptr<vk::Effect> e;
-    Status st;
-    if (!withBadAllocAt(n, [&] { st = vk::Effect::create(injecting(), config, e); })) {
-      ASSERT_TRUE(st.ok()) << st.message;
-      break;
-    }
-    ++thrown;
-    SCOPED_TRACE("allocation " + std::to_string(n));
-    EXPECT_EQ(st.code, StatusCode::DriverError) << st.message;
-    EXPECT_NE(st.message.find("std::bad_alloc"), std::string::npos) << st.message;
-    EXPECT_FALSE(e);
-    EXPECT_EQ(gInjector.live, 0) << "every object made before the exception is destroyed";
-    EXPECT_EQ(vk::processMemoryStats().liveAllocations, process.liveAllocations);
-  }
+  Injection allocations{false};
+  const long thrown = createFailingAtEach(allocations);
   std::printf("create(): std::bad_alloc at each of its %ld allocations\n", thrown);
   EXPECT_GT(thrown, 0);
 }
 
-// std::bad_alloc at every allocation of the first record() (the first plan), on a new effect each
-// time: a DriverError, nothing planned, no device memory beyond create()'s, only the pipelines
-// built left (a cache), and the next record plans; nothing is left once the effect goes.
 TEST_F(VkFailureInjection, BadAllocInTheFirstRecordIsAStatus) {
   findLibrary();
-  long thrown = 0;
-  for (long n = 1;; ++n) {
-    ASSERT_LT(n, 10000);
-    std::unique_ptr<vk::Effect> e;
-    ASSERT_TRUE(vk::Effect::create(injecting(), config, e).ok());
-    const long objects = gInjector.live;
-    const vk::MemoryStats created = e->memoryStats();
-    Status st, good;
-    bool threw = false;
-    ASSERT_TRUE(context()
-                    .submit([&](VkCommandBuffer cmd) {
-                      threw = withBadAllocAt(n, [&] { st = recordSmall(*e, cmd); });
-                      if (!threw) return;
-                      SCOPED_TRACE("allocation " + std::to_string(n));
-                      EXPECT_EQ(e->plans(), 0u) << "nothing planned";
-                      EXPECT_EQ(gInjector.live, objects + 3 * long(e->pipelineCount()))
-                          << "only the pipelines built (pipeline, layout, set layout) stay";
-                      EXPECT_EQ(e->memoryStats().liveAllocations, created.liveAllocations);
-                      EXPECT_EQ(e->memoryStats().liveBytes, created.liveBytes);
-                      good = recordSmall(*e, cmd);  // in the same command buffer: the failed one recorded nothing
-                    })
-                    .ok());
-    if (!threw) {
-      ASSERT_TRUE(st.ok()) << st.message;
-      break;
-    }
-    ++thrown;
-    SCOPED_TRACE("allocation " + std::to_string(n));
-    EXPECT_EQ(st.code, StatusCode::DriverError) << st.message;
-    EXPECT_NE(st.message.find("std::bad_alloc"), std::string::npos) << st.message;
-    EXPECT_TRUE(good.ok()) << "the next record plans: " << good.message;
-    EXPECT_EQ(e->plans(), 1u);
-    e.reset();
-    EXPECT_EQ(gInjector.live, 0) << "every object is destroyed with the effect";
-  }
+  Injection allocations{false};
+  const long thrown = firstRecordFailingAtEach(allocations);
   std::printf("first record(): std::bad_alloc at each of its %ld allocations\n", thrown);
   EXPECT_GT(thrown, 10);
 }
 
 // std::bad_alloc at every allocation of a record() that keeps the plan, timings(), measure() and a
-// record() that plans again: a Status each time; the re-planning record() keeps the configuration
-// and the output bit for bit; a failed record() records nothing (a good one after it in the same
-// command buffer gives the same bits).
+// record() that plans again: a Status each time; a failed record() records nothing (a good one
+// after it in the same command buffer gives the same bits).
 TEST_F(VkFailureInjection, BadAllocInRecordTimingAndReplanIsAStatus) {
   findLibrary();
   std::unique_ptr<vk::Effect> e;
@@ -465,24 +429,18 @@ TEST_F(VkFailureInjection, BadAllocInRecordTimingAndReplanIsAStatus) {
   const FloatImage before = runSmall(*e);
   const std::uint64_t plans = e->plans();
   const vk::MemoryStats memory = e->memoryStats();
-  auto expectBadAlloc = [](const Status& st) {
-    EXPECT_EQ(st.code, StatusCode::DriverError) << st.message;
-    EXPECT_NE(st.message.find("std::bad_alloc"), std::string::npos) << st.message;
-  };
 
   long thrown = 0;
-  for (long n = 1;; ++n) {
-    ASSERT_LT(n, 10000);
-    Status recorded, good;
-    Status submitted = context().submit([&](VkCommandBuffer cmd) {
-      if (withBadAllocAt(n, [&] { recorded = recordSmall(*e, cmd); })) good = recordSmall(*e, cmd);
+  for (long n = 1; n < 10000; ++n) {
+    Status recorded;
+    const Status good = submitRecord([&](VkCommandBuffer cmd) {
+      return withBadAllocAt(n, [&] { recorded = recordSmall(*e, cmd); }) ? recordSmall(*e, cmd) : Status::success();
     });
-    ASSERT_TRUE(submitted.ok()) << submitted.message;
     if (recorded.ok()) break;
     ++thrown;
     expectBadAlloc(recorded);
     EXPECT_TRUE(good.ok()) << good.message;
-    EXPECT_TRUE(sameBits(read(*e), before)) << "a failed record() left nothing in the command buffer";
+    EXPECT_TRUE(sameBits(readOutput(*e), before)) << "a failed record() left nothing in the command buffer";
   }
   // A record() that keeps the plan allocates nothing (tests/vulkan/frame_allocation_test.cpp counts
   // it over 100 frames).
@@ -490,67 +448,27 @@ TEST_F(VkFailureInjection, BadAllocInRecordTimingAndReplanIsAStatus) {
   EXPECT_EQ(thrown, 0);
 
   if (e->timestampsSupported()) {
-    thrown = 0;
-    for (long n = 1;; ++n) {
-      ASSERT_LT(n, 10000);
-      Timings t;
-      Status st;
-      if (!withBadAllocAt(n, [&] { st = e->timings(t); })) {
-        EXPECT_TRUE(st.ok()) << st.message;
-        EXPECT_EQ(t.passes.size(), e->plan().passes.size());
-        break;
-      }
-      ++thrown;
-      expectBadAlloc(st);
-    }
+    Timings t;
+    thrown = badAllocEach([&] { t = {}; return e->timings(t); });
+    EXPECT_EQ(t.passes.size(), e->plan().passes.size());
     std::printf("timings(): std::bad_alloc at each of its %ld allocations\n", thrown);
     EXPECT_GT(thrown, 0);
   }
 
   for (vk::MeasureMethod method : {vk::MeasureMethod::Auto, vk::MeasureMethod::FenceClock}) {
-    thrown = 0;
-    for (long n = 1;; ++n) {
-      ASSERT_LT(n, 10000);
-      Timings t;
-      Status st;
-      if (!withBadAllocAt(n, [&] {
-            st = e->measure(context().queue(), small.camera, settings, small.inputs(), nullptr, t, method);
-          })) {
-        EXPECT_TRUE(st.ok()) << st.message;
-        break;
-      }
-      ++thrown;
-      expectBadAlloc(st);
-    }
+    Timings t;
+    thrown = badAllocEach(
+        [&] { return e->measure(context().queue(), small.camera, settings, small.inputs(), nullptr, t, method); });
     std::printf("measure(%s): std::bad_alloc at each of its %ld allocations\n",
                 method == vk::MeasureMethod::Auto ? "Auto" : "FenceClock", thrown);
     EXPECT_GT(thrown, 0);
   }
   expectUnchanged(*e, plans, memory, before);
 
-  thrown = 0;
-  const long objects = gInjector.live;
-  const std::uint32_t pipelines = e->pipelineCount();
-  for (long n = 1;; ++n) {
-    ASSERT_LT(n, 10000);
-    Status st;
-    bool threw = false;
-    ASSERT_TRUE(
-        context().submit([&](VkCommandBuffer cmd) { threw = withBadAllocAt(n, [&] { st = recordOther(*e, cmd); }); }).ok());
-    if (!threw) {
-      ASSERT_TRUE(st.ok()) << st.message;
-      break;
-    }
-    ++thrown;
-    SCOPED_TRACE("allocation " + std::to_string(n));
-    expectBadAlloc(st);
-    EXPECT_EQ(gInjector.live, objects + 3 * long(e->pipelineCount() - pipelines))
-        << "only the new pipelines (pipeline, layout, set layout) stay";
-    expectUnchanged(*e, plans, memory, before);
-  }
+  Injection allocations{false};
+  thrown = replanFailingAtEach(allocations, *e, before);
   std::printf("re-planning record(): std::bad_alloc at each of its %ld allocations\n", thrown);
   EXPECT_GT(thrown, 10);
-  expectOtherCommitted(*e, plans);
   e.reset();
   EXPECT_EQ(gInjector.live, 0);
 }

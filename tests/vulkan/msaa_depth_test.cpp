@@ -18,10 +18,6 @@ constexpr VkImageLayout kRead = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 
 class MsaaDepth : public VkTest {};
 
-Status vkFailed(const char* call, VkResult r) {
-  return Status::error(StatusCode::DriverError, std::string(call) + " failed (VkResult " + std::to_string(r) + ")");
-}
-
 // A `format` image (D32_SFLOAT or R32_SFLOAT) of `samples` samples, every sample cleared to
 // `value` (the count and format are what this test is about, not the values), left in kRead and
 // visible to compute-shader reads; free it with ctx.destroy(out). Cleared because a multisampled
@@ -52,31 +48,27 @@ Status clearedImage(VkFormat format, Extent extent, VkSampleCountFlagBits sample
       r != VK_SUCCESS || !(ip.sampleCounts & samples))
     return Status::error(StatusCode::UnsupportedFormat, "this device makes no sampled, transfer-destination image of " +
                                                             std::to_string(int(samples)) + " samples in this format");
-  if (VkResult r = vkCreateImage(d, &ci, nullptr, &out.image); r != VK_SUCCESS) return vkFailed("vkCreateImage", r);
+  // A failed call: what was made so far destroyed, the call named.
+  auto failed = [&](const char* call, VkResult r) {
+    ctx.destroy(out);
+    return Status::error(StatusCode::DriverError, std::string(call) + " failed (VkResult " + std::to_string(r) + ")");
+  };
+  if (VkResult r = vkCreateImage(d, &ci, nullptr, &out.image); r != VK_SUCCESS) return failed("vkCreateImage", r);
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(d, out.image, &req);
   VkPhysicalDeviceMemoryProperties mem;
   vkGetPhysicalDeviceMemoryProperties(ctx.physicalDevice(), &mem);
   std::uint32_t type = 0;
   while (type < mem.memoryTypeCount && !(req.memoryTypeBits & (1u << type))) ++type;
-  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size, type};
-  if (VkResult r = vkAllocateMemory(d, &ai, nullptr, &out.memory); r != VK_SUCCESS) {
-    ctx.destroy(out);
-    return vkFailed("vkAllocateMemory", r);
-  }
-  if (VkResult r = vkBindImageMemory(d, out.image, out.memory, 0); r != VK_SUCCESS) {
-    ctx.destroy(out);
-    return vkFailed("vkBindImageMemory", r);
-  }
-  VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-  vi.image = out.image;
-  vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
-  vi.format = format;
-  vi.subresourceRange = {aspect, 0, 1, 0, 1};
-  if (VkResult r = vkCreateImageView(d, &vi, nullptr, &out.view); r != VK_SUCCESS) {
-    ctx.destroy(out);
-    return vkFailed("vkCreateImageView", r);
-  }
+  const VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size, type};
+  if (VkResult r = vkAllocateMemory(d, &ai, nullptr, &out.memory); r != VK_SUCCESS)
+    return failed("vkAllocateMemory", r);
+  if (VkResult r = vkBindImageMemory(d, out.image, out.memory, 0); r != VK_SUCCESS)
+    return failed("vkBindImageMemory", r);
+  const VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, nullptr, 0, out.image, VK_IMAGE_VIEW_TYPE_2D,
+                                 format, {}, {aspect, 0, 1, 0, 1}};
+  if (VkResult r = vkCreateImageView(d, &vi, nullptr, &out.view); r != VK_SUCCESS)
+    return failed("vkCreateImageView", r);
   const VkImage image = out.image;
   Status st = ctx.submit([&](VkCommandBuffer cmd) {
     VkImageMemoryBarrier toDst = vk::headless::imageBarrier(image, aspect, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -118,15 +110,11 @@ Recorded recordWithSamples(VkFormat format, VkSampleCountFlagBits samples, bool 
   r.status = clearedImage(format, extent, sampleable ? samples : VK_SAMPLE_COUNT_1_BIT, value, image);
   if (!r.status) return r;
   r.status = vk::Effect::create(context().deviceContext(), {}, r.effect);
-  if (r.status) {
-    vk::Inputs in;
-    in.depth = {image.view, kRead, extent, format, samples};
-    Status recorded;
-    r.status = context().submit([&](VkCommandBuffer cmd) {
-      recorded = r.effect->record(cmd, camera, presetSettings(Preset::Medium), in);
-    });
-    if (r.status) r.status = recorded;
-  }
+  vk::Inputs in;
+  in.depth = {image.view, kRead, extent, format, samples};
+  const Settings settings = presetSettings(Preset::Medium);
+  if (r.status)
+    r.status = submitRecord([&](VkCommandBuffer cmd) { return r.effect->record(cmd, camera, settings, in); });
   context().destroy(image);
   return r;
 }
@@ -134,8 +122,7 @@ Recorded recordWithSamples(VkFormat format, VkSampleCountFlagBits samples, bool 
 TEST_F(MsaaDepth, RecordRefusesBadSampleCounts) {
   {
     const Recorded r = recordWithSamples(VK_FORMAT_D32_SFLOAT, static_cast<VkSampleCountFlagBits>(3), false);
-    EXPECT_EQ(r.status.code, StatusCode::InvalidInput) << r.status.message;
-    EXPECT_NE(r.status.message.find("Inputs::depth.samples"), std::string::npos) << r.status.message;
+    expectStatus(r.status, StatusCode::InvalidInput, "Inputs::depth.samples");
     ASSERT_TRUE(r.effect);
     EXPECT_EQ(r.effect->plans(), 0u) << "a refused record plans nothing";
   }
@@ -155,8 +142,7 @@ TEST_F(MsaaDepth, RecordRefusesBadSampleCounts) {
         EXPECT_EQ(r.effect->plan().variants[kMultisample], 1);
         EXPECT_EQ(r.effect->params().depth_samples, int(n));
       } else {
-        EXPECT_EQ(r.status.code, StatusCode::UnsupportedFormat) << r.status.message;
-        EXPECT_NE(r.status.message.find("Inputs::depth.samples"), std::string::npos) << r.status.message;
+        expectStatus(r.status, StatusCode::UnsupportedFormat, "Inputs::depth.samples");
         EXPECT_EQ(r.effect->plans(), 0u) << "a refused record plans nothing";
       }
     }

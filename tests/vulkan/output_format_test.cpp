@@ -54,11 +54,12 @@ struct Scene {
   }
 };
 
-std::unique_ptr<vk::Effect> makeEffect(const vk::Config& config) {
-  std::unique_ptr<vk::Effect> e;
-  const Status st = vk::Effect::create(context().deviceContext(), config, e);
-  EXPECT_TRUE(st.ok()) << st.message;
-  return e;
+constexpr const char* kFormatList = "R16_SFLOAT, R8_UNORM, R8G8B8A8_UNORM or R16G16B16A16_SFLOAT";
+
+// An UnsupportedFormat naming VkFormat `f` and the formats the effect writes.
+void expectFormatRefused(const Status& st, VkFormat f) {
+  expectStatus(st, StatusCode::UnsupportedFormat, "VkFormat " + std::to_string(static_cast<int>(f)));
+  EXPECT_NE(st.message.find(kFormatList), std::string::npos) << st.message;
 }
 
 // Creates an effect, uploads `texels` into a new storage image of `format` in
@@ -67,8 +68,7 @@ std::unique_ptr<vk::Effect> makeEffect(const vk::Config& config) {
 // reads the output back into `actual`. Returns false (after failed expectations) on any error.
 bool recordIntoUserOutput(const Scene& scene, const Settings& settings, const vk::Inputs& in, VkFormat format,
                           const FloatImage& texels, FloatImage& actual) {
-  const vk::Config c;
-  auto effect = makeEffect(c);
+  auto effect = makeEffect();
   if (!effect) return false;
   Image out;
   const Status up = context().uploadColor(texels, format, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, out,
@@ -76,15 +76,9 @@ bool recordIntoUserOutput(const Scene& scene, const Settings& settings, const vk
   EXPECT_TRUE(up.ok()) << up.message;
   if (!up.ok()) return false;
   const vk::OutputImage o{out.image, out.view, format, texels.extent, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  Status recorded;
-  const Status submitted =
-      context().submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, scene.camera, settings, in, &o); });
-  EXPECT_TRUE(submitted.ok() && recorded.ok()) << submitted.message << recorded.message;
-  const Status read = context().readback(out.image, format, texels.extent, 0, c.outputLayout, c.outputDstStages,
-                                         c.outputDstAccess, actual);
-  EXPECT_TRUE(read.ok()) << read.message;
+  actual = recordAndRead(*effect, scene.camera, settings, in, &o);
   context().destroy(out);
-  return submitted.ok() && recorded.ok() && read.ok();
+  return !actual.data.empty();
 }
 
 class OutputFormat : public VkTest {};
@@ -125,15 +119,9 @@ TEST_F(OutputFormat, OwnedOutputInEveryFormat) {
     const Settings settings = settingsFor(1);
     auto effect = makeEffect(c);
     ASSERT_TRUE(effect);
-    Status recorded;
-    ASSERT_TRUE(context()
-                    .submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, scene.camera, settings, scene.inputs()); })
-                    .ok());
-    ASSERT_TRUE(recorded.ok()) << recorded.message;
-    const vk::OutputImage o = effect->output();
-    EXPECT_EQ(o.format, c.outputFormat);
-    FloatImage actual;
-    ASSERT_TRUE(context().readback(o.image, o.format, o.extent, 0, o.layout, c.outputDstStages, c.outputDstAccess, actual).ok());
+    const FloatImage actual = recordAndRead(*effect, scene.camera, settings, scene.inputs());
+    ASSERT_FALSE(actual.data.empty());
+    EXPECT_EQ(effect->output().format, c.outputFormat);
     cpu::Inputs ci;
     ci.depth = &scene.depth;
     ci.outputFormat = f;
@@ -152,11 +140,7 @@ TEST_F(OutputFormat, OtherFormatsAndLayoutsAreRefused) {
     vk::Config c;
     c.outputFormat = f;
     std::unique_ptr<vk::Effect> e;
-    const Status st = vk::Effect::create(context().deviceContext(), c, e);
-    EXPECT_EQ(st.code, StatusCode::UnsupportedFormat) << st.message;
-    EXPECT_NE(st.message.find("VkFormat " + std::to_string(static_cast<int>(f))), std::string::npos) << st.message;
-    EXPECT_NE(st.message.find("R16_SFLOAT, R8_UNORM, R8G8B8A8_UNORM or R16G16B16A16_SFLOAT"), std::string::npos)
-        << st.message;
+    expectFormatRefused(vk::Effect::create(context().deviceContext(), c, e), f);
     EXPECT_FALSE(e);
   }
   // An owned output in RGBA8 (Vulkan only): a mask keeping channels is refused by record() (every
@@ -166,60 +150,35 @@ TEST_F(OutputFormat, OtherFormatsAndLayoutsAreRefused) {
     c.outputFormat = VK_FORMAT_R8G8B8A8_UNORM;
     auto effect = makeEffect(c);
     ASSERT_TRUE(effect) << "the mask is not part of the configuration";
-    Status st;
-    ASSERT_TRUE(context()
-                    .submit([&](VkCommandBuffer cmd) {
-                      st = effect->record(cmd, scene.camera, settings, scene.inputs(kChannelA));
-                    })
-                    .ok());
-    EXPECT_EQ(st.code, StatusCode::InvalidInput) << st.message;
-    EXPECT_NE(st.message.find("record() Inputs: the output channel mask 8 keeps channels of the output, which only your "
-                              "own image has"),
-              std::string::npos)
-        << st.message;
+    expectStatus(
+        submitRecord([&](VkCommandBuffer cmd) { return effect->record(cmd, scene.camera, settings, scene.inputs(kChannelA)); }),
+        StatusCode::InvalidInput,
+        "record() Inputs: the output channel mask 8 keeps channels of the output, which only your own image has");
   }
   // record(): your image's OutputImage::format must be one the effect writes (the same list as
   // Config::outputFormat's, each named); kept channels need a real layout.
-  auto effect = makeEffect({});
+  auto effect = makeEffect();
   ASSERT_TRUE(effect);
-  Image out;
-  ASSERT_TRUE(context().createStorageImage(VK_FORMAT_R8G8B8A8_UNORM, {32, 18}, out).ok());
-  std::vector<std::pair<VkFormat, Status>> wrongFormats;
-  Status undefinedLayout;
-  ASSERT_TRUE(context()
-                  .submit([&](VkCommandBuffer cmd) {
-                    for (VkFormat f : {VK_FORMAT_R32_SFLOAT, VK_FORMAT_B8G8R8A8_UNORM}) {
-                      const vk::OutputImage o{out.image, out.view, f, {32, 18}, VK_IMAGE_LAYOUT_GENERAL};
-                      wrongFormats.push_back({f, effect->record(cmd, scene.camera, settings, scene.inputs(), &o)});
-                    }
-                    const vk::OutputImage undef{out.image, out.view, VK_FORMAT_R8G8B8A8_UNORM, {32, 18}};
-                    undefinedLayout = effect->record(cmd, scene.camera, settings, scene.inputs(kChannelB), &undef);
-                  })
-                  .ok());
-  for (const auto& [f, st] : wrongFormats) {
-    EXPECT_EQ(st.code, StatusCode::UnsupportedFormat) << st.message;
-    EXPECT_NE(st.message.find("VkFormat " + std::to_string(static_cast<int>(f))), std::string::npos) << st.message;
-    EXPECT_NE(st.message.find("R16_SFLOAT, R8_UNORM, R8G8B8A8_UNORM or R16G16B16A16_SFLOAT"), std::string::npos)
-        << st.message;
-  }
-  EXPECT_EQ(undefinedLayout.code, StatusCode::InvalidInput) << undefinedLayout.message;
-  EXPECT_NE(undefinedLayout.message.find("Inputs::outputChannels keeps channels of the output"), std::string::npos)
-      << undefinedLayout.message;
+  const StorageOutput storage(VK_FORMAT_R8G8B8A8_UNORM, {32, 18});
+  const Image& out = storage.image;
   // A multiply reads every texel: an undefined layout is refused, naming the blend (the blend is
   // the record's).
-  Status multiplyUndefined;
-  ASSERT_TRUE(context()
-                  .submit([&](VkCommandBuffer cmd) {
-                    const vk::OutputImage undef{out.image, out.view, VK_FORMAT_R8G8B8A8_UNORM, {32, 18}};
-                    multiplyUndefined = effect->record(cmd, scene.camera, settings,
-                                                       scene.inputs(kAllChannels, OutputBlend::Multiply), &undef);
-                  })
-                  .ok());
-  EXPECT_EQ(multiplyUndefined.code, StatusCode::InvalidInput) << multiplyUndefined.message;
-  EXPECT_NE(multiplyUndefined.message.find("Inputs::outputBlend is multiply"), std::string::npos)
-      << multiplyUndefined.message;
+  const vk::OutputImage undef{out.image, out.view, VK_FORMAT_R8G8B8A8_UNORM, {32, 18}};
+  EXPECT_TRUE(submitRecord([&](VkCommandBuffer cmd) {
+    for (VkFormat f : {VK_FORMAT_R32_SFLOAT, VK_FORMAT_B8G8R8A8_UNORM}) {
+      const vk::OutputImage o{out.image, out.view, f, {32, 18}, VK_IMAGE_LAYOUT_GENERAL};
+      expectFormatRefused(effect->record(cmd, scene.camera, settings, scene.inputs(), &o), f);
+    }
+    expectStatus(effect->record(cmd, scene.camera, settings, scene.inputs(kChannelB), &undef), StatusCode::InvalidInput,
+                 "Inputs::outputChannels keeps channels of the output");
+    return Status::success();
+  }).ok());
+  expectStatus(submitRecord([&](VkCommandBuffer cmd) {
+                 return effect->record(cmd, scene.camera, settings, scene.inputs(kAllChannels, OutputBlend::Multiply),
+                                       &undef);
+               }),
+               StatusCode::InvalidInput, "Inputs::outputBlend is multiply");
   EXPECT_EQ(effect->plans(), 0u) << "no refused record planned";
-  context().destroy(out);
 }
 
 // outputGeneration() through records: 0 before the first plan, up with the first owned output, the
@@ -229,16 +188,13 @@ TEST_F(OutputFormat, OtherFormatsAndLayoutsAreRefused) {
 TEST_F(OutputFormat, OutputGenerationFollowsTheOwnedImage) {
   const Scene small(32, 18, 0), large(48, 27, 0);
   Settings settings = settingsFor(1);
-  auto effect = makeEffect({});
+  auto effect = makeEffect();
   ASSERT_TRUE(effect);
   EXPECT_EQ(effect->outputGeneration(), 0u) << "create() plans nothing";
-  Image out;
-  ASSERT_TRUE(context().createStorageImage(VK_FORMAT_R16_SFLOAT, {48, 27}, out).ok());
-  const vk::OutputImage user{out.image, out.view, VK_FORMAT_R16_SFLOAT, {48, 27}};
+  const StorageOutput out(VK_FORMAT_R16_SFLOAT, {48, 27});
+  const vk::OutputImage& user = out.output;
   auto record = [&](vk::Effect& e, const Scene& scene, const vk::OutputImage* o = nullptr) {
-    Status st;
-    EXPECT_TRUE(context().submit([&](VkCommandBuffer cmd) { st = e.record(cmd, scene.camera, settings, scene.inputs(), o); }).ok());
-    return st;
+    return submitRecord([&](VkCommandBuffer cmd) { return e.record(cmd, scene.camera, settings, scene.inputs(), o); });
   };
   ASSERT_TRUE(record(*effect, small).ok());
   const std::uint64_t g1 = effect->outputGeneration();
@@ -268,11 +224,10 @@ TEST_F(OutputFormat, OutputGenerationFollowsTheOwnedImage) {
   ASSERT_TRUE(record(*effect, large).ok());
   EXPECT_GT(effect->outputGeneration(), g3) << "an owned output again is a new image";
   EXPECT_NE(effect->output().image, VK_NULL_HANDLE);
-  auto userOnly = makeEffect({});
+  auto userOnly = makeEffect();
   ASSERT_TRUE(userOnly);
   ASSERT_TRUE(record(*userOnly, large, &user).ok());
   EXPECT_EQ(userOnly->outputGeneration(), 0u) << "never an owned output";
-  context().destroy(out);
 }
 
 // The generated format table (codegen/src/formats.cpp) names the VkFormats Vulkan's own header has.

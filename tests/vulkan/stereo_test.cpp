@@ -8,7 +8,6 @@
 
 #include "analytic_scenes.h"
 #include "library_allocations.h"
-#include "sao/cpu/reference.h"
 #include "sao/presets.h"
 #include "vk_array_image.h"
 #include "vk_support.h"
@@ -45,16 +44,9 @@ class Stereo : public VkTest {
     VkTest::TearDown();
   }
 
-  // The stereo effect is create(2 * kEyes): two records (eyes) per frame, two frames in flight. Its
-  // output is the caller's (one layer per eye).
-  static std::unique_ptr<vk::Effect> create(std::uint32_t framesInFlight) {
-    vk::Config c;
-    c.framesInFlight = framesInFlight;
-    std::unique_ptr<vk::Effect> e;
-    const Status st = vk::Effect::create(context().deviceContext(), c, e);
-    EXPECT_TRUE(st.ok()) << st.message;
-    return e;
-  }
+  // The stereo effect has a ring of 2 * kEyes: two records (eyes) per frame, two frames in flight.
+  // Its output is the caller's (one layer per eye).
+  static std::unique_ptr<vk::Effect> create(std::uint32_t n) { return makeEffect({.framesInFlight = n}); }
   vk::OutputImage eyeOutput(std::uint32_t eye) const {
     return {outputArray.image, outputArray.views[eye], VK_FORMAT_R16_SFLOAT, {kW, kH}, VK_IMAGE_LAYOUT_UNDEFINED, eye};
   }
@@ -82,10 +74,9 @@ class Stereo : public VkTest {
     return submitted ? recorded : submitted;
   }
   FloatImage layer(const vk::Effect& e, std::uint32_t eye) const {
-    const vk::Config& c = e.config();
     FloatImage out;
-    const Status st = readLayer(outputArray, eye, c.outputLayout, c.outputDstStages, c.outputDstAccess, out);
-    EXPECT_TRUE(st.ok()) << st.message;
+    const vk::Config& c = e.config();
+    EXPECT_TRUE(readLayer(outputArray, eye, c.outputLayout, c.outputDstStages, c.outputDstAccess, out).ok());
     return out;
   }
   // A single-eye effect on a plain 2D depth with that eye's camera: the reference.
@@ -102,8 +93,9 @@ class Stereo : public VkTest {
 };
 
 // Nine stereo frames per estimator (1: the visibility estimator, thickness from width): each
-// layer the single-eye effect's bits every frame (and so in the CPU reference's bounds), no
-// library allocation after the first frame.
+// layer the single-eye effect's bits every frame, no library allocation after the first frame. (The
+// single-eye effect within the CPU reference's bounds on these cameras, both estimators:
+// exec.stereo's OneEffectRendersEachLayerAsASingleEyeEffect/vulkan_camera*.)
 TEST_F(Stereo, BothEyesInOneCommandBufferMatchSingleEyeEffects) {
   ASSERT_TRUE(test::watchLibraryOf(reinterpret_cast<const void*>(&vk::processMemoryStats)));
   for (int estimator : {0, 1}) {
@@ -111,14 +103,6 @@ TEST_F(Stereo, BothEyesInOneCommandBufferMatchSingleEyeEffects) {
     Settings settings = presetSettings(Preset::Medium);
     settings.estimator = settings.thickness_model = estimator;
     const FloatImage expected[kEyes] = {mono(0, settings), mono(1, settings)};
-    for (std::uint32_t eye = 0; eye < kEyes; ++eye) {
-      cpu::Inputs in;
-      in.depth = &depth[eye];
-      cpu::Result ref;
-      ASSERT_TRUE(cpu::run(settings, cameras[eye], in, {cpu::Precision::Float, 2}, ref).ok());
-      const Agreement a = compare(expected[eye], ref.ao, 0, 2.0 / 255.0, 4.0 / 255.0, "vk_stereo_eye" + std::to_string(eye));
-      EXPECT_TRUE(acceptable(a)) << "eye " << eye << ": max " << a.maxAbs * 255 << "/255";
-    }
     auto effect = create(2 * kEyes);
     ASSERT_TRUE(effect);
     long counted = 0;
@@ -147,12 +131,8 @@ TEST_F(Stereo, FixedCostsAreOneEffects) {
   // Each single-eye effect records its eye once (the record that plans), into its own command buffer.
   const std::pair<vk::Effect*, std::uint32_t> singles[] = {{sameRing.get(), 1}, {left.get(), 0}, {right.get(), 1}};
   for (const auto& [e, eye] : singles) {
-    Status recorded;
-    ASSERT_TRUE(context()
-                    .submit([&](VkCommandBuffer cmd) {
-                      recorded = recordEye(*e, cmd, eye, presetSettings(Preset::Medium));
-                    })
-                    .ok());
+    const Status recorded =
+        submitRecord([&](VkCommandBuffer cmd) { return recordEye(*e, cmd, eye, presetSettings(Preset::Medium)); });
     ASSERT_TRUE(recorded.ok()) << recorded.message;
   }
   const vk::MemoryStats s = stereo->memoryStats(), m = sameRing->memoryStats();
@@ -181,14 +161,10 @@ TEST_F(Stereo, RefusesALayerNoImageHas) {
   ASSERT_TRUE(stereoFrame(*effect).ok());
   vk::OutputImage o = eyeOutput(1);
   o.layer = context().properties().limits.maxImageArrayLayers;
-  Status st;
-  ASSERT_TRUE(context()
-                  .submit([&](VkCommandBuffer cmd) {
-                    st = effect->record(cmd, cameras[1], presetSettings(Preset::Medium), eyeInputs(1), &o);
-                  })
-                  .ok());
-  EXPECT_EQ(st.code, StatusCode::InvalidInput) << st.message;
-  EXPECT_NE(st.message.find("OutputImage::layer"), std::string::npos) << st.message;
+  const Settings settings = presetSettings(Preset::Medium);
+  const Status st =
+      submitRecord([&](VkCommandBuffer cmd) { return effect->record(cmd, cameras[1], settings, eyeInputs(1), &o); });
+  expectStatus(st, StatusCode::InvalidInput, "OutputImage::layer");
   EXPECT_NE(st.message.find("maxImageArrayLayers"), std::string::npos) << st.message;
   EXPECT_EQ(effect->plans(), 1u);
   ASSERT_TRUE(stereoFrame(*effect).ok());

@@ -90,12 +90,9 @@ Status runEffect(const Settings& settings, const Camera& camera, const DepthImag
   out = RunResult{};
   vk::headless::Image depthImage, depth2Image, normalsImage;
   struct Cleanup {
-    vk::headless::Context& c;
     vk::headless::Image* images[3];
-    ~Cleanup() {
-      for (auto* i : images) c.destroy(*i);
-    }
-  } cleanup{ctx, {&depthImage, &depth2Image, &normalsImage}};
+    ~Cleanup() { for (auto* i : images) context().destroy(*i); }
+  } cleanup{{&depthImage, &depth2Image, &normalsImage}};
 
   // The device-level Config (defaults); the frame's settings, camera and inputs (their formats and
   // the depth's samples) go to the first record(), which plans.
@@ -115,58 +112,76 @@ Status runEffect(const Settings& settings, const Camera& camera, const DepthImag
     in.depth2 = {depth2Image.view, options.depthLayout, options.depth2->extent, vkFormat(format)};
   }
   if (options.normals) {
-    if (Status st = ctx.uploadColor(*options.normals, options.normalsFormat, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                                    normalsImage);
-        !st)
-      return st;
-    in.normals = {normalsImage.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, options.normals->extent,
-                  options.normalsFormat};
+    const VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    if (Status st = ctx.uploadColor(*options.normals, options.normalsFormat, layout, normalsImage); !st) return st;
+    in.normals = {normalsImage.view, layout, options.normals->extent, options.normalsFormat};
   }
   std::unique_ptr<vk::Effect> effect;
   if (Status st = vk::Effect::create(ctx.deviceContext(), config, effect); !st) return st;
-  Status recorded;
-  if (Status st = ctx.submit([&](VkCommandBuffer cmd) { recorded = effect->record(cmd, camera, settings, in); }); !st)
+  if (Status st = submitRecord([&](VkCommandBuffer cmd) { return effect->record(cmd, camera, settings, in); }); !st)
     return st;
-  if (!recorded) return recorded;
   out.plan = effect->plan();
   out.params = effect->params();
   const vk::OutputImage o = effect->output();
-  if (Status st = ctx.readback(o.image, o.format, o.extent, 0, o.layout, effect->config().outputDstStages,
-                               effect->config().outputDstAccess, out.ao);
+  if (Status st = ctx.readback(o.image, o.format, o.extent, 0, o.layout, config.outputDstStages, config.outputDstAccess,
+                               out.ao);
       !st)
     return st;
-  if (options.readIntermediates) {
-    const auto raw = effect->ownedImage(gen::ResourceId::ao_raw);
-    out.aoRawFormat = raw.format;
-    if (Status st = ctx.readback(raw.image, raw.format, raw.extent, 0, raw.layout, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                                 VK_ACCESS_SHADER_WRITE_BIT, out.aoRaw);
-        !st)
-      return st;
-    const auto csz = effect->ownedImage(gen::ResourceId::csz);
-    if (Status st = ctx.readback(csz.image, csz.format, csz.extent, 0, csz.layout, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                                 VK_ACCESS_SHADER_WRITE_BIT, out.csz0);
-        !st)
-      return st;
-    for (const gen::ResourceId id : {gen::ResourceId::csz, gen::ResourceId::csz2, gen::ResourceId::width_share}) {
-      if (!options.readChain || out.plan.image(id) == nullptr) continue;
-      const auto chain = effect->ownedImage(id);
-      auto& levels = id == gen::ResourceId::csz ? out.csz : id == gen::ResourceId::csz2 ? out.csz2 : out.widthShare;
-      levels.resize(out.plan.cszLevels);
-      for (std::uint32_t m = 0; m < out.plan.cszLevels; ++m)
-        if (Status st = ctx.readback(chain.image, chain.format, chain.extent, m, chain.layout,
-                                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, levels[m]);
-            !st)
-          return st;
-    }
-    if (out.plan.image(gen::ResourceId::ao_low) != nullptr) {
-      const auto low = effect->ownedImage(gen::ResourceId::ao_low);
-      if (Status st = ctx.readback(low.image, low.format, low.extent, 0, low.layout, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                                   VK_ACCESS_SHADER_WRITE_BIT, out.aoLow);
-          !st)
-        return st;
-    }
+  if (!options.readIntermediates) return Status::success();
+  // Level `m` of one of the effect's images, last written by a compute shader.
+  const auto read = [&](gen::ResourceId id, std::uint32_t m, FloatImage& to) {
+    const auto i = effect->ownedImage(id);
+    return ctx.readback(i.image, i.format, i.extent, m, i.layout, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_SHADER_WRITE_BIT, to);
+  };
+  out.aoRawFormat = effect->ownedImage(gen::ResourceId::ao_raw).format;
+  if (Status st = read(gen::ResourceId::ao_raw, 0, out.aoRaw); !st) return st;
+  if (Status st = read(gen::ResourceId::csz, 0, out.csz0); !st) return st;
+  for (const gen::ResourceId id : {gen::ResourceId::csz, gen::ResourceId::csz2, gen::ResourceId::width_share}) {
+    if (!options.readChain || out.plan.image(id) == nullptr) continue;
+    auto& levels = id == gen::ResourceId::csz ? out.csz : id == gen::ResourceId::csz2 ? out.csz2 : out.widthShare;
+    levels.resize(out.plan.cszLevels);
+    for (std::uint32_t m = 0; m < out.plan.cszLevels; ++m)
+      if (Status st = read(id, m, levels[m]); !st) return st;
   }
+  if (out.plan.image(gen::ResourceId::ao_low) != nullptr) return read(gen::ResourceId::ao_low, 0, out.aoLow);
   return Status::success();
+}
+
+std::unique_ptr<vk::Effect> makeEffect(const vk::Config& config) {
+  std::unique_ptr<vk::Effect> e;
+  const Status st = vk::Effect::create(context().deviceContext(), config, e);
+  EXPECT_TRUE(st.ok()) << st.message;
+  return e;
+}
+
+Status submitRecord(const std::function<Status(VkCommandBuffer)>& record) {
+  Status recorded;
+  const Status submitted = context().submit([&](VkCommandBuffer cmd) { recorded = record(cmd); });
+  EXPECT_TRUE(submitted.ok()) << submitted.message;
+  return recorded;
+}
+
+FloatImage readOutput(const vk::Effect& e, const vk::OutputImage* userOutput) {
+  const vk::OutputImage o = userOutput ? *userOutput : e.output();
+  FloatImage ao;
+  const Status st = context().readback(o.image, o.format, o.extent, 0, userOutput ? e.config().outputLayout : o.layout,
+                                       e.config().outputDstStages, e.config().outputDstAccess, ao);
+  EXPECT_TRUE(st.ok()) << st.message;
+  return ao;
+}
+
+FloatImage recordAndRead(vk::Effect& e, const Camera& camera, const Settings& settings, const vk::Inputs& in,
+                         const vk::OutputImage* userOutput) {
+  const Status recorded = submitRecord([&](VkCommandBuffer cmd) { return e.record(cmd, camera, settings, in, userOutput); });
+  EXPECT_TRUE(recorded.ok()) << recorded.message;
+  return readOutput(e, userOutput);
+}
+
+void expectStatus(const Status& st, StatusCode code, const std::string& needle, const std::string& what) {
+  EXPECT_EQ(st.code, code) << what << ": " << toString(st.code) << ": " << st.message;
+  EXPECT_FALSE(st.message.empty()) << what;
+  EXPECT_NE(st.message.find(needle), std::string::npos) << what << ": expected \"" << needle << "\" in: " << st.message;
 }
 
 std::string failureDir() { return SAO_VK_TEST_FAILURE_DIR; }

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -70,6 +71,28 @@ struct RunResult {
 // `settings`, `camera` and the inputs (the first record plans), submits, waits and reads back.
 Status runEffect(const Settings& settings, const Camera& camera, const DepthImage& depth, VkDepth format,
                  RunResult& out, const RunOptions& options = {});
+
+// create() on context() with `config`; a failure fails the test and returns null.
+std::unique_ptr<vk::Effect> makeEffect(const vk::Config& config = {});
+// `record` into one command buffer, submitted and waited for; returns what `record` returned.
+Status submitRecord(const std::function<Status(VkCommandBuffer)>& record);
+// Reads back the owned output in its layout, or `userOutput` in Config::outputLayout.
+FloatImage readOutput(const vk::Effect& e, const vk::OutputImage* userOutput = nullptr);
+// One record() of these, submitted, expected to succeed, and the output read back.
+FloatImage recordAndRead(vk::Effect& e, const Camera& camera, const Settings& settings, const vk::Inputs& in,
+                         const vk::OutputImage* userOutput = nullptr);
+// A storage image for the caller's output (Context::createStorageImage), destroyed with it.
+struct StorageOutput {
+  StorageOutput(VkFormat format, Extent extent) {
+    EXPECT_TRUE(context().createStorageImage(format, extent, image).ok());
+    output = {image.image, image.view, format, extent};
+  }
+  ~StorageOutput() { context().destroy(image); }
+  vk::headless::Image image;
+  vk::OutputImage output;
+};
+// `st` has `code` and a message containing `needle` (and is not empty).
+void expectStatus(const Status& st, StatusCode code, const std::string& needle = "", const std::string& what = "");
 
 // Cameras: 60 degree vertical field of view, near 0.1 (test_cameras.h).
 using test::openglCamera;
