@@ -129,11 +129,4 @@ std::unique_ptr<Executor> makeEngineExecutor() {
   return std::make_unique<EngineExecutor>();
 }
 
-void engineMessagesBefore() {
-  vktest::context();
-  vktest::expectNoMessages("before the test (context creation or an earlier test)");
-}
-
-void engineMessagesAfter() { vktest::expectNoMessages("during the test"); }
-
 }  // namespace sao::exectest

@@ -89,10 +89,8 @@ void checkMessagesBefore(Api api) {
   if (api == Api::Gl) glMessagesBefore();
 #endif
 #if SAO_HARNESS_VULKAN
-  if (api == Api::Vulkan) vkMessagesBefore();
-#endif
-#if SAO_HARNESS_ENGINE
-  if (api == Api::Engine) engineMessagesBefore();
+  // The engine-side example runs on the Vulkan test context: its messages are that context's.
+  if (api == Api::Vulkan || api == Api::Engine) vkMessagesBefore();
 #endif
 }
 
@@ -101,10 +99,8 @@ void checkMessagesAfter(Api api) {
   if (api == Api::Gl) glMessagesAfter();
 #endif
 #if SAO_HARNESS_VULKAN
-  if (api == Api::Vulkan) vkMessagesAfter();
-#endif
-#if SAO_HARNESS_ENGINE
-  if (api == Api::Engine) engineMessagesAfter();
+  // The engine-side example runs on the Vulkan test context: its messages are that context's.
+  if (api == Api::Vulkan || api == Api::Engine) vkMessagesAfter();
 #endif
 }
 

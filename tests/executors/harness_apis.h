@@ -15,10 +15,8 @@ std::unique_ptr<Executor> makeVkExecutor();
 void vkMessagesBefore();
 void vkMessagesAfter();
 
-// The engine-side example on the Vulkan context (its messages are the context's).
+// The engine-side example on the Vulkan context (its messages are the context's: vkMessages*).
 std::unique_ptr<Executor> makeEngineExecutor();
-void engineMessagesBefore();
-void engineMessagesAfter();
 
 // The library's APIs built into the harness (GL, Vulkan); apis() adds the engine per program.
 std::vector<Api> libraryApis();
