@@ -46,8 +46,8 @@ for lib in "$prefix"/lib/libsao_core.a "$prefix"/lib/libsao_effect.a "$prefix"/l
 done
 
 # What each component needs found, beyond sao (the package for the library, the consumer program
-# for its own use: EGL for gl, the loader for vulkan); every other component's list is disabled.
-declare -A needs=([core]="" [io]="OpenEXR Imath PkgConfig" [cpu]="" [gl]="OpenGL" [vulkan]="Vulkan")
+# for its own use: EGL for gl and gles, the loader for vulkan); every other component's list is disabled.
+declare -A needs=([core]="" [io]="OpenEXR Imath PkgConfig" [cpu]="" [gl]="OpenGL" [gles]="OpenGL" [vulkan]="Vulkan")
 components=$(sed -n 's/^set(sao_AVAILABLE_COMPONENTS \(.*\))$/\1/p' "$prefix/lib/cmake/sao/saoConfig.cmake" |
   tr ';' ' ')
 echo "components: $components"

@@ -6,6 +6,8 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   glslang-dev glslang-tools spirv-tools
+  # codegen: SPIRV-Cross writes HLSL and GLSL ES 3.10 from the SPIR-V (its static C++ libraries)
+  spirv-cross libspirv-cross-c-shared-dev
   libgtest-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   libegl-dev libgl-dev libegl1-mesa-dev libgl1-mesa-dri libepoxy-dev

@@ -1,14 +1,16 @@
 # `cmake --install` gives a config package: find_package(sao CONFIG COMPONENTS ...) defines sao::core
 # (static, with the generated effect sao::effect), sao::io (static, EXR/PNG files), sao::cpu (static,
-# the CPU reference, to test an engine's own port against), sao::gl and sao::vulkan (shared, when
-# built) — the same names as the in-tree aliases, so a project builds
+# the CPU reference, to test an engine's own port against), sao::gl, sao::gles and sao::vulkan
+# (shared, when built) — the same names as the in-tree aliases, so a project builds
 # unchanged against the source tree or the package.
 #
 #   <prefix>/include/sao/*.h, sao/cpu/*.h, sao/gl/effect.h, sao/vulkan/effect.h, sao_effect.h (generated)
 #   <prefix>/lib/libsao_core.a, libsao_effect.a, libsao_io.a, libsao_cpu.a, libsao_gl.so*, libsao_vulkan.so*
 #   <prefix>/lib/cmake/sao/saoConfig.cmake, saoConfigVersion.cmake, sao_<component>_targets*.cmake
-#   <prefix>/share/sao/shaders/: every compiled pass variant as GLSL 4.30 and SPIR-V, and
-#   sao_passes.json describing them (sao_SHADER_DIR), for an engine that runs the passes itself
+#   <prefix>/share/sao/shaders/: every compiled pass variant as GLSL 4.30, SPIR-V, HLSL (SM 5.0 and
+#   6.0: .sm50.hlsl, .sm60.hlsl) and, where it exists there, GLSL ES 3.10 (.es310.glsl), and
+#   sao_passes.json describing them and each target's layout (sao_SHADER_DIR), for an engine that
+#   runs the passes itself
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -33,6 +35,7 @@ set(sao_install_cmakedir ${CMAKE_INSTALL_LIBDIR}/cmake/sao)
 #   io         sao_io                 sao::io         OpenEXR (CONFIG), stb (pkg-config)
 #   cpu        sao_cpu                sao::cpu        Threads
 #   gl         sao_gl                 sao::gl         none (GL comes from the caller's loader)
+#   gles       sao_gles               sao::gles       none (OpenGL ES 3.1, from the caller's loader)
 #   vulkan     sao_vulkan             sao::vulkan     Vulkan (Vulkan::Headers)
 set(sao_package_components core)
 # What `cmake --install` needs built, and nothing else: `cmake --build build --target
@@ -60,7 +63,7 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/backends/core/include/sao DESTINATION ${
 install(FILES ${PROJECT_BINARY_DIR}/effect/sao_effect/sao_effect.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 set(sao_install_shaderdir ${CMAKE_INSTALL_DATADIR}/sao/shaders)
 install(DIRECTORY ${PROJECT_BINARY_DIR}/effect/sao_effect/ DESTINATION ${sao_install_shaderdir}
-        FILES_MATCHING PATTERN "*.glsl" PATTERN "*.spv" PATTERN "sao_passes.json")
+        FILES_MATCHING PATTERN "*.glsl" PATTERN "*.spv" PATTERN "*.hlsl" PATTERN "sao_passes.json")
 
 if(TARGET sao_io)
   list(APPEND sao_package_components io)
@@ -84,7 +87,22 @@ if(TARGET sao_gl)
   set_target_properties(sao_gl PROPERTIES EXPORT_NAME gl)
   sao_export_component(gl sao_gl)
   install(FILES ${PROJECT_SOURCE_DIR}/backends/gl/include/sao/gl/effect.h
+                ${PROJECT_SOURCE_DIR}/backends/gl/include/sao/gl/effect_common.h
+                ${PROJECT_SOURCE_DIR}/backends/gl/include/sao/gl/effect_api.inl
           DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/sao/gl)
+endif()
+
+# The OpenGL ES 3.1 backend: the GL backend's API in namespace sao::gles (the same API header,
+# included under that name) and the GLSL ES 3.10 blobs; a consumer may take it alone.
+if(TARGET sao_gles)
+  list(APPEND sao_package_components gles)
+  set_target_properties(sao_gles PROPERTIES EXPORT_NAME gles)
+  sao_export_component(gles sao_gles)
+  install(FILES ${PROJECT_SOURCE_DIR}/backends/gl/include/sao/gl/effect_common.h
+                ${PROJECT_SOURCE_DIR}/backends/gl/include/sao/gl/effect_api.inl
+          DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/sao/gl)
+  install(FILES ${PROJECT_SOURCE_DIR}/backends/gl/include/sao/gles/effect.h
+          DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/sao/gles)
 endif()
 
 if(TARGET sao_vulkan)

@@ -154,6 +154,11 @@
 #pragma sao resource ao_low    kind=image  format=rg32f format_when=HALF_INTERMEDIATES:rg16f divide_by=resolution_divisor "(A, key) after the bilateral blur, the upsample's input (with blur_radius 0 the upsample reads ao_raw instead)"
 #pragma sao resource history  kind=image  format=rgba32f divide_by=resolution_divisor when=TEMPORAL history=true "Temporal: x the accumulated obscurance sum, y its key z (+0.0 = sky), z the frames it holds (0 = none), w its normal (octahedral, 12 bits a component, as the integer qx*4096 + qy); ao_raw's size, two images that trade places every frame"
 #pragma sao resource ao        kind=output format=r16f formats=[r16f,r8,rgba8,rgba16f] "Final ambient visibility A in [0,1] (1 = unoccluded), linear; r16f unless the caller's output image has another of formats= (OUTPUT_FORMAT); with output_blend multiply, the caller's texels times A"
+// OpenGL ES 3.1 stores r32f, rgba16f, rgba32f and rgba8 but not r16f, rg16f, rg32f or r8 (GLSL ES
+// 3.10, 4.4.7): on GLES each image of those formats takes the wider format below (the values do
+// not change: the passes round A, the keys and width_share to binary16 themselves, so an r16f output
+// stored as r32f holds the same values), and a caller's r8 output has no GLES form. Costs: docs/BENCHMARKS.md.
+#pragma sao target gles storage=[r16f:r32f,rg16f:rgba16f,rg32f:rgba32f] refuse=[r8] "OpenGL ES 3.1 has no r16f, rg16f, rg32f or r8 storage images"
 
 // ---------------------------------------------------------------------------------------------
 // Shared library (pure functions; see each file)

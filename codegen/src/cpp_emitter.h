@@ -16,6 +16,7 @@ struct CompiledPassVariant {
   int glslBlob = 0;   // index into glslBlobs
   int spirvBlob = 0;  // index into spirvBlobs
   SpirvFacts facts;   // shared memory and push constants, read from its SPIR-V
+  int esslBlob = -1;  // index into esslBlobs; -1: the variant does not exist on GLES
 };
 
 // The push-constant block of the variants that declare one (main.cpp checks that they all declare
@@ -25,9 +26,11 @@ const SpirvFacts* pushConstantFacts(const std::vector<CompiledPassVariant>& pass
 struct GeneratedCode {
   std::string header;
   std::string source;
+  std::string glesSource;  // esslSource(): <name>_effect_gles.cpp
 };
 
 GeneratedCode emitCpp(const Effect& effect, const std::vector<CompiledPassVariant>& passVariants,
-                      const std::vector<std::string>& glslBlobs, const std::vector<std::vector<uint32_t>>& spirvBlobs);
+                      const std::vector<std::string>& glslBlobs, const std::vector<std::vector<uint32_t>>& spirvBlobs,
+                      const std::vector<std::string>& esslBlobs);
 
 }  // namespace sao::codegen

@@ -8,6 +8,7 @@
 #include "effect_rules.h"
 #include "formats.h"
 #include "std140.h"
+#include "target_rules.h"
 #include "text_values.h"
 
 namespace sao::codegen {
@@ -107,6 +108,7 @@ class Parser {
       else if (d.kind == "block") parseBlock(d, i + 1);
       else if (d.kind == "pass") open = parsePass(d);
       else if (d.kind == "preset") pendingPresets_.push_back(d);
+      else if (d.kind == "target") parseTargetRule(effect_, d.loc, d.words, d.attrs, d.doc, d.hasDoc, diags_);
       else if (d.kind == "derived") {
         // Parsed once every setting is known (below); its name is claimed here, in source order.
         if (d.words.size() != 1 || nameIsNew(d, "derived setting", d.words[0])) pendingDerived_.push_back(d);
@@ -134,6 +136,7 @@ class Parser {
     if (sawEffect_ && !effect_.block) diags_.error(fileLoc, "no '#pragma sao block' parameter block declared");
     if (sawEffect_ && effect_.passes.empty()) diags_.error(fileLoc, "no '#pragma sao pass' declared");
     checkExplicitBindings();
+    checkTargetRules(effect_, diags_);
     return effect_;
   }
 

@@ -174,6 +174,21 @@ struct Preset {
   std::string doc;
 };
 
+// `#pragma sao target gles storage=[F:G,...] refuse=[F,...] "why"`: how the effect's storage images
+// map onto OpenGL ES 3.1, which stores fewer formats (formats.h, esStorage). An image of format F
+// takes G there (the images the effect owns, and an output the effect allocates); a refused F (a
+// caller's output format only) has no GLES form, and the GLES executor refuses that output.
+struct StorageSubstitute {
+  std::string from, to;
+};
+struct TargetRule {
+  SourceLoc loc;
+  std::string target;  // "gles"
+  std::vector<StorageSubstitute> storage;
+  std::vector<std::string> refused;
+  std::string doc;
+};
+
 struct Effect {
   SourceLoc loc;
   std::string name;
@@ -189,6 +204,7 @@ struct Effect {
   std::optional<ParamBlock> block;
   std::vector<Pass> passes;
   std::vector<Preset> presets;
+  std::optional<TargetRule> gles;  // no directive: formats GLES cannot store are refused there
   std::vector<SourceLine> commonCode;  // GLSL outside pass sections, directives removed
 };
 

@@ -19,6 +19,10 @@ struct FormatFacts {
   std::uint32_t vkFormat;          // VK_FORMAT_R32_SFLOAT ... (VK_FORMAT_D32_SFLOAT for depth)
   bool colour;                     // an image a pass may store to (every format but depth)
   bool unorm;                      // 8-bit unsigned normalised
+  // OpenGL ES 3.1 (GLSL ES 3.10, 4.4.7): a compute shader may store to it (esStorage); it may also
+  // load from it through the same image, not readonly or writeonly (esReadWrite: r32f only).
+  bool esStorage;
+  bool esReadWrite;
 };
 
 std::span<const FormatFacts> formats();

@@ -14,17 +14,23 @@
 #include "pass_builder.h"
 #include "shader_compiler.h"
 #include "source_loader.h"
+#include "target_sources.h"
 
 namespace {
 
 using namespace sao::codegen;
 
 constexpr const char* kUsage =
-    "usage: sao-shaderc <effect.glsl> -o <dir> [--depfile <file>] [--overwrite]\n"
-    "  Writes <name>_effect.h, <name>_effect.cpp (C++ glue with embedded shaders), and for every\n"
-    "  pass and variant <stem>.glsl (GLSL 4.30, OpenGL) and <stem>.spv (SPIR-V 1.3, Vulkan 1.1), and\n"
-    "  lists them in <dir>/sao-shaderc-outputs.txt. A file of the same name that sao-shaderc did not\n"
-    "  write (not listed there) is replaced only with --overwrite; an input never.\n";
+    "usage: sao-shaderc <effect.glsl> -o <dir> [--depfile <file>] [--overwrite] [--spirv-from-hlsl 50|60]\n"
+    "  Writes <name>_effect.h, <name>_effect.cpp (C++ glue with embedded shaders), <name>_passes.json\n"
+    "  (the pass description) and for every pass and variant <stem>.glsl (GLSL 4.30, OpenGL),\n"
+    "  <stem>.spv (SPIR-V 1.3, Vulkan 1.1), <stem>.sm50.hlsl and <stem>.sm60.hlsl (HLSL, shader models\n"
+    "  5.0 and 6.0) and, where the variant exists on OpenGL ES 3.1, <stem>.es310.glsl (GLSL ES 3.10),\n"
+    "  and lists them in <dir>/sao-shaderc-outputs.txt. A file of the same name that sao-shaderc did not\n"
+    "  write (not listed there) is replaced only with --overwrite; an input never.\n"
+    "  --spirv-from-hlsl: the .spv files and the C++ glue hold, instead of the SPIR-V compiled from GLSL,\n"
+    "  the SPIR-V that glslang's HLSL front end compiles from that shader model's HLSL (the HLSL round\n"
+    "  trip's test).\n";
 
 std::string spirvBytes(const std::vector<uint32_t>& words) {
   std::string out(words.size() * 4, '\0');
@@ -92,10 +98,13 @@ int fail(const Diagnostics& diags) {
 int main(int argc, char** argv) {
   std::string input, outDir, depfile;
   WriteRules rules;
+  int spirvFromHlsl = 0;  // 50 or 60: embed the HLSL round trip's SPIR-V
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if ((a == "-o" || a == "--depfile") && i + 1 < argc) (a == "-o" ? outDir : depfile) = argv[++i];
     else if (a == "--overwrite") rules.overwrite = true;
+    else if (a == "--spirv-from-hlsl" && i + 1 < argc && (std::string(argv[i + 1]) == "50" || std::string(argv[i + 1]) == "60"))
+      spirvFromHlsl = std::stoi(argv[++i]);
     else if (a == "-h" || a == "--help") {
       std::fputs(kUsage, stdout);
       return 0;
@@ -119,9 +128,9 @@ int main(int argc, char** argv) {
   GlslangProcess glslang;
   OutputSet outputs;
   std::vector<CompiledPassVariant> compiled;
-  std::vector<std::string> glslBlobs;
+  std::vector<std::string> glslBlobs, esslBlobs;
   std::vector<std::vector<uint32_t>> spirvBlobs;
-  std::map<std::string, int> glslIndex;
+  std::map<std::string, int> glslIndex, esslIndex;
   std::map<std::vector<uint32_t>, int> spirvIndex;
   for (const PassVariant& pv : buildPassVariants(effect)) {
     const SourceLoc& passLoc = effect.passes[pv.pass].loc;
@@ -133,12 +142,26 @@ int main(int argc, char** argv) {
     if (!glOk || !vkOk) continue;
     const std::string glsl = joinLines(glShader);
     outputs.add(pv.stem + ".glsl", glsl);
-    outputs.add(pv.stem + ".spv", spirvBytes(spirv));
-    CompiledPassVariant c{pv, 0, 0, {}};
+    CompiledPassVariant c{pv, 0, 0, {}, -1};
     if (std::string why; !readSpirvFacts(spirv, c.facts, why)) {
       diags.error(passLoc, "pass variant " + pv.stem + ": its SPIR-V cannot be read for shared memory and push constants: " + why);
       continue;
     }
+    std::string hlsl50, hlsl60, essl;
+    std::vector<uint32_t> roundTrip50, roundTrip60;
+    if (!hlslOf(effect, spirv, pv, 50, c.facts.pushConstantBlock, spirvFromHlsl == 50, passLoc, hlsl50, roundTrip50, diags) ||
+        !hlslOf(effect, spirv, pv, 60, c.facts.pushConstantBlock, spirvFromHlsl == 60, passLoc, hlsl60, roundTrip60, diags) ||
+        (pv.onGles && !esslOf(effect, pv, passLoc, essl, diags)))
+      continue;
+    outputs.add(pv.stem + ".sm50.hlsl", hlsl50);
+    outputs.add(pv.stem + ".sm60.hlsl", hlsl60);
+    if (pv.onGles) {
+      outputs.add(pv.stem + ".es310.glsl", essl);
+      c.esslBlob = esslIndex.emplace(essl, static_cast<int>(esslBlobs.size())).first->second;
+      if (c.esslBlob == static_cast<int>(esslBlobs.size())) esslBlobs.push_back(essl);
+    }
+    if (spirvFromHlsl) spirv = spirvFromHlsl == 50 ? roundTrip50 : roundTrip60;
+    outputs.add(pv.stem + ".spv", spirvBytes(spirv));
     c.glslBlob = glslIndex.emplace(glsl, static_cast<int>(glslBlobs.size())).first->second;
     if (c.glslBlob == static_cast<int>(glslBlobs.size())) glslBlobs.push_back(glsl);
     c.spirvBlob = spirvIndex.emplace(spirv, static_cast<int>(spirvBlobs.size())).first->second;
@@ -148,10 +171,11 @@ int main(int argc, char** argv) {
   checkPushConstants(effect, compiled, diags);
   if (diags.hasErrors()) return fail(diags);
 
-  const GeneratedCode code = emitCpp(effect, compiled, glslBlobs, spirvBlobs);
+  const GeneratedCode code = emitCpp(effect, compiled, glslBlobs, spirvBlobs, esslBlobs);
   const std::string headerName = effect.name + "_effect.h";
   outputs.add(headerName, code.header);
   outputs.add(effect.name + "_effect.cpp", code.source);
+  outputs.add(effect.name + "_effect_gles.cpp", code.glesSource);
   // The pass table in words (one line per compiled pass variant): what the generated tables say,
   // readable in a diff and kept as a golden file by the tests.
   std::string manifest;

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cctype>
 
+#include "formats.h"
+#include "target_rules.h"
+
 namespace sao::codegen {
 
 std::vector<std::vector<int>> allowedCombinations(const Effect& effect) {
@@ -59,12 +62,12 @@ std::vector<PassVariant> buildPassVariants(const Effect& effect) {
       int textureUnit = 0, imageUnit = 0;
       for (int r : pass.reads)
         if (present(r))
-          pv.bindings.push_back({next++, textureUnit++, 1, r, false, effect.resources[r].format, false, multisampled(r)});
+          pv.bindings.push_back({next++, textureUnit++, 1, r, false, effect.resources[r].format, false, multisampled(r), {}, -1});
       for (int r : pass.writes) {
         if (!present(r)) continue;
         const Resource& res = effect.resources[r];
         const int slots = pass.levelSlots > 0 ? pass.levelSlots : 1;
-        Binding b{next, imageUnit, slots, r, true, res.format, false};
+        Binding b{next, imageUnit, slots, r, true, res.format, false, false, {}, -1};
         if (res.formatWhenVariant >= 0 && values[res.formatWhenVariant] > 0) b.format = res.formatWhen;
         next += slots;
         imageUnit += slots;
@@ -79,6 +82,14 @@ std::vector<PassVariant> buildPassVariants(const Effect& effect) {
         }
         pv.bindings.push_back(b);
       }
+      // GLES: the storage formats there, and a texture unit (after the reads) for each write the
+      // pass loads from but ES cannot read back through its image.
+      for (Binding& b : pv.bindings) {
+        if (!b.write) continue;
+        b.esFormat = glesStorageFormat(effect, b.format).value_or("");
+        if (b.esFormat.empty()) pv.onGles = false;
+        else if (b.readWrite && !findFormat(b.esFormat)->esReadWrite) b.esKeptUnit = textureUnit++;
+      }
       out.push_back(pv);
     }
   }
@@ -87,7 +98,7 @@ std::vector<PassVariant> buildPassVariants(const Effect& effect) {
 
 std::vector<SourceLine> composeShader(const Effect& effect, const PassVariant& pv, Target target) {
   const Pass& pass = effect.passes[pv.pass];
-  const bool vk = target == Target::Vulkan;
+  const bool vk = target == Target::Vulkan, es = target == Target::OpenGLES;
   std::vector<SourceLine> out;
   auto gen = [&](std::string text) { out.push_back({std::move(text), pass.loc}); };
   gen(vk ? "#version 450" : "#version 430");
@@ -109,10 +120,23 @@ std::vector<SourceLine> composeShader(const Effect& effect, const PassVariant& p
   for (const auto& b : pv.bindings) {
     const Resource& r = effect.resources[b.resource];
     const std::string bind = "layout(" + setPrefix + "binding = " + std::to_string(vk ? b.binding : b.unit);
-    if (b.write)
-      gen(bind + ", " + b.format + ")" + (b.readWrite ? "" : " writeonly") + " uniform image2D out_" + r.name +
-          (b.slots > 1 ? "[" + std::to_string(b.slots) + "]" : "") + ";");
-    else gen(bind + ") uniform " + (b.multisampled ? "sampler2DMS" : "sampler2D") + " in_" + r.name + ";");
+    if (!b.write) {
+      gen(bind + ") uniform " + (b.multisampled ? "sampler2DMS" : "sampler2D") + " in_" + r.name + ";");
+      continue;
+    }
+    const bool kept = es && b.esKeptUnit >= 0;
+    gen(bind + ", " + (es ? b.esFormat : b.format) + ")" + (b.readWrite && !kept ? "" : " writeonly") +
+        " uniform image2D out_" + r.name + (b.slots > 1 ? "[" + std::to_string(b.slots) + "]" : "") + ";");
+    if (!b.readWrite) continue;
+    // SAO_LOAD_<NAME>(p): the texel a readWrite write holds before the pass stores to it.
+    std::string upper = r.name;
+    for (char& ch : upper) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    if (kept) {
+      gen("layout(binding = " + std::to_string(b.esKeptUnit) + ") uniform sampler2D kept_" + r.name + ";");
+      gen("#define SAO_LOAD_" + upper + "(p) texelFetch(kept_" + r.name + ", (p), 0)");
+    } else {
+      gen("#define SAO_LOAD_" + upper + "(p) imageLoad(out_" + r.name + ", (p))");
+    }
   }
   for (const auto& l : effect.commonCode) out.push_back(l);
   for (const auto& l : pass.code) out.push_back(l);

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "cross_targets.h"
+
 namespace sao::codegen {
 namespace {
 
@@ -69,6 +71,17 @@ std::string passesJson(const Effect& e, const std::vector<CompiledPassVariant>& 
     j << "]},\n";
   }
 
+  // Per target: HLSL's cbuffer registers; GLES's storage formats and refusals (the effect's rule).
+  j << "  \"targets\": {\"hlsl\": {\"shader_models\": [\"5.0\", \"6.0\"], \"parameter_block\": \"b" << kHlslParamsRegister
+    << "\", \"push_constants\": \"b" << kHlslPushRegister << "\", \"entry_point\": \"main\"}, \"gles\": {\"version\": \"3.10\", \"storage\": {";
+  if (e.gles)
+    for (std::size_t i = 0; i < e.gles->storage.size(); ++i)
+      j << (i ? ", " : "") << quoted(e.gles->storage[i].from) << ": " << quoted(e.gles->storage[i].to);
+  j << "}, \"refused\": [";
+  if (e.gles)
+    for (std::size_t i = 0; i < e.gles->refused.size(); ++i) j << (i ? ", " : "") << quoted(e.gles->refused[i]);
+  j << "]}},\n";
+
   j << "  \"variants\": [";
   for (std::size_t i = 0; i < e.variants.size(); ++i)
     j << (i ? ", " : "") << quoted(e.variants[i].name);
@@ -103,14 +116,23 @@ std::string passesJson(const Effect& e, const std::vector<CompiledPassVariant>& 
         firstValue = false;
       }
       j << "}, \"glsl\": " << quoted(c.variant.stem + ".glsl") << ", \"spirv\": " << quoted(c.variant.stem + ".spv")
+        << ", \"hlsl_sm50\": " << quoted(c.variant.stem + ".sm50.hlsl") << ", \"hlsl_sm60\": " << quoted(c.variant.stem + ".sm60.hlsl")
+        << ", \"essl\": " << (c.esslBlob >= 0 ? quoted(c.variant.stem + ".es310.glsl") : std::string("null"))
         << ", \"shared_bytes\": " << c.facts.sharedBytes << ", \"push_constant_bytes\": " << c.facts.pushConstantBytes
         << ", \"bindings\": [";
+      const auto registers = hlslRegisters(c.variant);
       for (std::size_t k = 0; k < c.variant.bindings.size(); ++k) {
         const Binding& bd = c.variant.bindings[k];
+        const std::string reg = std::to_string(registers[k].index);
         j << (k ? "," : "") << "\n        {\"vulkan_binding\": " << bd.binding << ", \"gl_unit\": " << bd.unit
           << ", \"resource\": " << quoted(e.resources[bd.resource].name) << ", \"access\": \""
           << (bd.write ? (bd.readWrite ? "read_write" : "write") : "read") << "\", \"format\": " << quoted(bd.format)
-          << ", \"slots\": " << bd.slots << ", \"multisampled\": " << (bd.multisampled ? "true" : "false") << "}";
+          << ", \"slots\": " << bd.slots << ", \"multisampled\": " << (bd.multisampled ? "true" : "false")
+          << ", \"hlsl\": " << (bd.write ? "{\"uav\": \"u" + reg + "\"}" : "{\"srv\": \"t" + reg + "\", \"sampler\": \"s" + reg + "\"}");
+        if (bd.write && c.esslBlob >= 0)
+          j << ", \"gles\": {\"format\": " << quoted(bd.esFormat) << ", \"kept_texture_unit\": "
+            << (bd.esKeptUnit >= 0 ? std::to_string(bd.esKeptUnit) : std::string("null")) << "}";
+        j << "}";
       }
       j << "]}";
       first = false;

@@ -77,6 +77,7 @@ float sao_multi_bounce(float x, bool on, float a, float b, float c)
 #define SAO_BOUNCED(a) sao_multi_bounce((a), multi_bounce != 0, bounce_a, bounce_b, bounce_c)
 
 // Stores A (through the multi-bounce fit when it is on) at pixel p of the pass's `out_ao` binding (a macro: each pass declares its own), loading
+// (SAO_LOAD_AO, which sao-shaderc defines per target: the image itself, or on GLES a texture of it)
 // the texel first only when it is needed: an RGBA output whose mask keeps channels, or a multiply.
 // Defined only in the passes that have the OUTPUT_FORMAT variant.
 #if defined(OUTPUT_FORMAT) && SAO_OUTPUT_IS_RGBA(OUTPUT_FORMAT)
@@ -85,11 +86,11 @@ float sao_multi_bounce(float x, bool on, float a, float b, float c)
 #define SAO_STORE_OUTPUT(p, a) \
     imageStore(out_ao, (p), sao_output_texel(SAO_BOUNCED(a), SAO_OUTPUT_IS_UNORM8(OUTPUT_FORMAT), \
         output_mask == SAO_OUTPUT_ALL_CHANNELS && output_blend == SAO_OUTPUT_BLEND_REPLACE ? vec4(0.0) \
-            : imageLoad(out_ao, (p)), output_mask, output_blend))
+            : SAO_LOAD_AO(p), output_mask, output_blend))
 #elif defined(OUTPUT_FORMAT)
 #define SAO_STORE_OUTPUT(p, a) \
     imageStore(out_ao, (p), sao_output_texel_r(SAO_BOUNCED(a), SAO_OUTPUT_IS_UNORM8(OUTPUT_FORMAT), \
-        output_blend == SAO_OUTPUT_BLEND_REPLACE ? 0.0 : imageLoad(out_ao, (p)).x, output_mask, output_blend))
+        output_blend == SAO_OUTPUT_BLEND_REPLACE ? 0.0 : SAO_LOAD_AO(p).x, output_mask, output_blend))
 #endif
 
 #endif // SAO_OUTPUT_GLSL

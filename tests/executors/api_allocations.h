@@ -7,6 +7,9 @@
 #if __has_include(<sao/gl/effect.h>)
 #include "sao/gl/effect.h"
 #endif
+#if __has_include(<sao/gles/effect.h>)
+#include "sao/gles/effect.h"
+#endif
 #if __has_include(<sao/vulkan/effect.h>)
 #include "sao/vulkan/effect.h"
 #endif
@@ -16,6 +19,9 @@ namespace sao::exectest {
 inline bool watchApiLibrary(Api api) {
 #if __has_include(<sao/gl/effect.h>)
   if (api == Api::Gl) return test::watchLibraryOf(reinterpret_cast<const void*>(&gl::Effect::create));
+#endif
+#if __has_include(<sao/gles/effect.h>)
+  if (api == Api::Gles) return test::watchLibraryOf(reinterpret_cast<const void*>(&gles::Effect::create));
 #endif
 #if __has_include(<sao/vulkan/effect.h>)
   if (api == Api::Vulkan) return test::watchLibraryOf(reinterpret_cast<const void*>(&vk::Effect::create));

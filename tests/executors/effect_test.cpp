@@ -331,11 +331,11 @@ TEST_P(Output, CallersOutputReceivesTheSameImage) {
 }
 SAO_INSTANTIATE_APIS(Output);
 
-// ---- What harness.h's Feature names: on an executor that lacks some (the engine-side example), a
-// frame needing one it lacks is refused by name (InvalidInput) and the effect renders afterwards;
-// one it has renders. GL and Vulkan have every feature, each run by its own program (output_format,
-// msaa_depth, stereo): the test runs on the others only. (Feature::LibraryAllocations is no frame's:
-// the tests counting allocations skip.)
+// ---- What harness.h's Feature names: on an executor that lacks some (the engine-side example; GLES
+// a multisampled depth and stereo), a frame needing one it lacks is refused by name (InvalidInput)
+// and the effect renders afterwards; one it has renders. GL and Vulkan have every feature, each run
+// by its own program (output_format, msaa_depth, stereo): the test runs on the others only.
+// (Feature::LibraryAllocations is no frame's: the tests counting allocations skip.)
 std::vector<Api> lackingAFeature() {
   std::vector<Api> v;
   for (Api a : apis())

@@ -6,6 +6,8 @@
 // layout after a transfer); the caller's output is the engine's own image (written whole), the
 // effect-owned one an image of the plan. What the example does not implement (harness.h Feature)
 // is refused here, naming it.
+#include <cstdlib>
+
 #include "harness_apis.h"
 #include "vk_engine/engine_effect.h"
 #include "vk_formats.h"
@@ -69,7 +71,11 @@ class EngineExecutor final : public Executor {
     if (!effect_) {
       const auto& ctx = vktest::context();
       const vkengine::DeviceHandles device{ctx.physicalDevice(), ctx.device(), ctx.queueFamily(), ctx.queue()};
-      if (Status st = vkengine::EngineEffect::create(device, SAO_ENGINE_SHADER_DIR, effect_); !st) return st;
+      // SAO_ENGINE_SHADER_DIR in the environment: another set of .spv files of the same effect (the
+      // HLSL round trip's, exec.reference.hlsl50 / hlsl60); by default the build's own.
+      const char* dir = std::getenv("SAO_ENGINE_SHADER_DIR");
+      if (Status st = vkengine::EngineEffect::create(device, dir && *dir ? dir : SAO_ENGINE_SHADER_DIR, effect_); !st)
+        return st;
     }
     vkengine::EngineFrame in;
     in.inputs[std::size_t(gen::ResourceId::depth)] = input(depth_, depthLayout_);

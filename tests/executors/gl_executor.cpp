@@ -59,15 +59,24 @@ GLuint uploadColor(const FloatImage& image, GLenum internal) {
   return t;
 }
 
+// Every call that touches GL makes the GL context current first: a program's GLES executor, or the
+// fixture of a GLES test, may have left its own context current.
+void makeCurrent() {
+  const Status st = gltest::context().makeCurrent();
+  if (!st) ADD_FAILURE() << st.message;
+}
+
 class GlExecutor final : public Executor {
  public:
   ~GlExecutor() override {
+    makeCurrent();
     effect_.reset();
     releaseInputs();
   }
   Api api() const override { return Api::Gl; }
 
   Status upload(const Frame& f) override {
+    makeCurrent();
     releaseInputs();
     if (!f.depthLayers.empty()) {  // stereo: immutable GL_TEXTURE_2D_ARRAYs, Inputs::layer picks one
       if (Status st = checkLayers(f); !st) return st;
@@ -104,6 +113,7 @@ class GlExecutor final : public Executor {
   }
 
   Status run(const Frame& f) override {
+    makeCurrent();
     if (!effect_)
       if (Status st = gl::Effect::create(gl::HeadlessContext::getProcAddress(), effect_); !st) return st;
     gl::Inputs in;
@@ -126,6 +136,7 @@ class GlExecutor final : public Executor {
   }
 
   FloatImage output() override {
+    makeCurrent();
     if (layers_ == 0) return gl::readTexture(effect_->aoTexture(), outputChannels_);
     // One layer of the caller's array (readTexture reads level 0 of a 2D texture).
     FloatImage img(outputExtent_, outputChannels_);
@@ -137,6 +148,7 @@ class GlExecutor final : public Executor {
   }
 
   FloatImage image(gen::ResourceId resource, std::uint32_t level) override {
+    makeCurrent();
     const PlannedImage* planned = effect_->plan().image(resource);
     if (planned == nullptr) return {};
     return gl::readTextureLevel(effect_->texture(resource), level, channelsOf(planned->format));
@@ -148,7 +160,10 @@ class GlExecutor final : public Executor {
   std::uint64_t imageAllocations() const override { return effect_ ? effect_->stats().textureAllocations : 0; }
   std::uint64_t pipelines() const override { return effect_ ? effect_->stats().programsCompiled : 0; }
   std::uint64_t outputGeneration() const override { return effect_ ? effect_->outputGeneration() : 0; }
-  void releaseEffect() override { effect_.reset(); }
+  void releaseEffect() override {
+    makeCurrent();
+    effect_.reset();
+  }
 
  private:
   void releaseInputs() {

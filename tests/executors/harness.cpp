@@ -13,6 +13,7 @@ const char* toString(Api api) {
     case Api::Gl: return "gl";
     case Api::Vulkan: return "vulkan";
     case Api::Engine: return "engine";
+    case Api::Gles: return "gles";
   }
   return "?";
 }
@@ -38,8 +39,15 @@ const char* describe(Feature feature) {
   return "?";
 }
 
-// The engine-side example implements none of the features (tests/executors/engine_executor.cpp).
-bool supports(Api api, Feature) { return api != Api::Engine; }
+// The engine-side example implements none of the features (tests/executors/engine_executor.cpp);
+// sao::gles reads no multisampled depth and no array layer (sao/gles/effect.h). Library allocations
+// are counted in libsao_gles as in libsao_gl (api_allocations.h).
+bool supports(Api api, Feature feature) {
+  if (api == Api::Engine) return false;
+  return api != Api::Gles || (feature != Feature::MultisampledDepth && feature != Feature::Stereo);
+}
+
+bool refusesOutput(Api api, gen::Format format) { return api == Api::Gles && gen::glesRefuses(format); }
 
 const char* toString(Depth format) {
   switch (format) {
@@ -80,6 +88,9 @@ std::unique_ptr<Executor> makeExecutor(Api api) {
 #if SAO_HARNESS_ENGINE
   if (api == Api::Engine) return makeEngineExecutor();
 #endif
+#if SAO_HARNESS_GLES
+  if (api == Api::Gles) return makeGlesExecutor();
+#endif
   ADD_FAILURE() << toString(api) << " is not built into this test program";
   return nullptr;
 }
@@ -92,6 +103,9 @@ void checkMessagesBefore(Api api) {
   // The engine-side example runs on the Vulkan test context: its messages are that context's.
   if (api == Api::Vulkan || api == Api::Engine) vkMessagesBefore();
 #endif
+#if SAO_HARNESS_GLES
+  if (api == Api::Gles) glesMessagesBefore();
+#endif
 }
 
 void checkMessagesAfter(Api api) {
@@ -101,6 +115,9 @@ void checkMessagesAfter(Api api) {
 #if SAO_HARNESS_VULKAN
   // The engine-side example runs on the Vulkan test context: its messages are that context's.
   if (api == Api::Vulkan || api == Api::Engine) vkMessagesAfter();
+#endif
+#if SAO_HARNESS_GLES
+  if (api == Api::Gles) glesMessagesAfter();
 #endif
 }
 

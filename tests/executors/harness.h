@@ -27,16 +27,18 @@ namespace sao::exectest {
 
 // Gl and Vulkan: the library's backends. Engine: the engine-side example (samples/integration/
 // vk_engine: sao::core's FrameState driving an engine's own executor on raw Vulkan, shaders from
-// the build's .spv files) on the Vulkan test context; a program runs it where it is declared ENGINE
-// (tests/executors/CMakeLists.txt).
-enum class Api { Gl, Vulkan, Engine };
-const char* toString(Api api);  // "gl", "vulkan", "engine"
+// the build's .spv files) on the Vulkan test context. Gles: sao::gles (the OpenGL backend's sources
+// built for OpenGL ES 3.1) on a headless ES context of its own. A program runs the engine and GLES
+// where it is declared ENGINE and GLES (tests/executors/CMakeLists.txt).
+enum class Api { Gl, Vulkan, Engine, Gles };
+const char* toString(Api api);  // "gl", "vulkan", "engine", "gles"
 inline void PrintTo(Api api, std::ostream* os) { *os << toString(api); }
 std::vector<Api> apis();  // the APIs this test program runs (program_apis.cpp)
 
 // What a case may need that not every executor implements. GL and Vulkan implement all of them;
-// the engine-side example none, and its executor refuses a frame that needs one (InvalidInput,
-// naming it). A case that needs one starts with SAO_SKIP_UNLESS_SUPPORTED.
+// the engine-side example none; GLES all but MultisampledDepth and Stereo (sao::gles refuses them).
+// An executor refuses a frame that needs one it lacks (InvalidInput, naming it). A case that needs
+// one starts with SAO_SKIP_UNLESS_SUPPORTED.
 enum class Feature {
   OutputContents,     // an output whose texels the frame keeps: Output::initial, a channel mask, a blend
   MultisampledDepth,  // a depth of DepthImage::samples > 1
@@ -47,6 +49,9 @@ enum class Feature {
 };
 const char* describe(Feature feature);
 bool supports(Api api, Feature feature);
+// Whether `api` refuses a caller's output of `format` (UnsupportedFormat): GLES those without an ES
+// form (gen::glesRefuses: R8); every other API none.
+bool refusesOutput(Api api, gen::Format format);
 // Skips the running test, naming the executor and what it lacks, where `api` does not support `feature`.
 #define SAO_SKIP_UNLESS_SUPPORTED(api, feature)                                                           \
   if (::sao::exectest::supports(api, feature)) {                                                          \
@@ -62,7 +67,8 @@ DepthFormat cpuFormat(Depth format);  // the DepthImage format holding the same 
 enum class Texels { RGBA16F, RGBA32F, RG16F, RG32F };
 
 // The output: the effect's own (R16F unless `format` says otherwise) or the caller's image,
-// holding `initial` (the format's channels) before the frame when given.
+// holding `initial` (the format's channels) before the frame when given. GLES stores it in the
+// format's ES form (gen::glesStorageFormat: R16F as R32F); sao::gles refuses R8 (refusesOutput).
 struct Output {
   bool callerOwned = false;
   gen::Format format = gen::Format::R16F;
@@ -133,8 +139,8 @@ class Executor {
 // A fresh executor for `api` (its context made on first use).
 std::unique_ptr<Executor> makeExecutor(Api api);
 
-// Every test fails on a GL debug error or a Vulkan validation message raised while it ran (the
-// engine's included: it runs on the Vulkan context).
+// Every test fails on a GL or GLES debug error or a Vulkan validation message raised while it ran
+// (the engine's included: it runs on the Vulkan context).
 class ApiTest : public ::testing::TestWithParam<Api> {
  protected:
   void SetUp() override;
@@ -160,7 +166,7 @@ void ApiCaseTest<Case>::SetUp() { checkMessagesBefore(api()); }
 template <typename Case>
 void ApiCaseTest<Case>::TearDown() { checkMessagesAfter(api()); }
 
-// Test names: "gl", "vulkan", "engine"; with a case, "<api>_<case name>" from caseName(const Case&).
+// Test names: "gl", "vulkan", "engine", "gles"; with a case, "<api>_<case name>" from caseName(const Case&).
 std::string apiName(const ::testing::TestParamInfo<Api>& info);
 #define SAO_INSTANTIATE_APIS(Suite) \
   INSTANTIATE_TEST_SUITE_P(Apis, Suite, ::testing::ValuesIn(::sao::exectest::apis()), ::sao::exectest::apiName)

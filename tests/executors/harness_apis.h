@@ -18,7 +18,12 @@ void vkMessagesAfter();
 // The engine-side example on the Vulkan context (its messages are the context's: vkMessages*).
 std::unique_ptr<Executor> makeEngineExecutor();
 
-// The library's APIs built into the harness (GL, Vulkan); apis() adds the engine per program.
+// sao::gles on its own headless ES 3.1 context (not the GL executor's).
+std::unique_ptr<Executor> makeGlesExecutor();
+void glesMessagesBefore();  // the ES context current, pending debug messages cleared
+void glesMessagesAfter();   // every ES debug error since fails the test
+
+// The library's APIs built into the harness (GL, Vulkan); apis() adds the engine and GLES per program.
 std::vector<Api> libraryApis();
 
 }  // namespace sao::exectest

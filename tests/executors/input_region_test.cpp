@@ -147,6 +147,7 @@ using RegionRefused = ApiTest;
 TEST_P(RegionRefused, OutsideAnyImageIsRefused) {
   // Each executor's prefix (the engine-side example's FrameState is "vk-engine-example").
   const std::string who = api() == Api::Gl       ? "sao::gl: "
+                          : api() == Api::Gles   ? "sao::gles: "
                           : api() == Api::Vulkan ? "sao::vk::Effect::record() Inputs: "
                                                  : "vk-engine-example: ";
   for (const Convention& c : conventions(41, 23, 3)) {  // needs 47x29

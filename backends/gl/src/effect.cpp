@@ -1,7 +1,7 @@
 // sao::gl::Effect: create() checks the context, render() checks the caller's textures and hands
 // the frame to core's FrameState (sao/executor.h), which drives the GL executor (executor.h),
 // all under a StateGuard.
-#include "sao/gl/effect.h"
+#include "api.h"
 
 #include <algorithm>
 #include <cstring>
@@ -19,7 +19,7 @@
 #include "state.h"
 #include "timing.h"
 
-namespace sao::gl {
+namespace sao::SAO_GL_NS {
 
 using namespace detail;
 
@@ -32,7 +32,7 @@ struct __attribute__((visibility("hidden"))) Effect::Impl {
   GlObjects objects;
   std::vector<GLuint> textureUnits, imageUnits;  // every unit any pass variant binds
   // The plan, the schedule, the images kept, the block and the history: core's (sao/executor.h).
-  FrameState frame{"sao::gl"};
+  FrameState frame{kApiName};
   Timings timings;
   Stats stats;
   GLuint aoTexture = 0;
@@ -67,7 +67,7 @@ GLint getIntIndexed(const GlFunctions& gl, GLenum pname, GLuint index) {
 }
 
 Status limitError(const char* name, GLint have, GLint need) {
-  return Status::error(StatusCode::DriverError, std::string("sao::gl: ") + name + " is " + std::to_string(have) +
+  return Status::error(StatusCode::DriverError, (std::string(kApiName) + ": ") + name + " is " + std::to_string(have) +
                                                     ", the effect needs " + std::to_string(need));
 }
 
@@ -81,20 +81,26 @@ Status Effect::Impl::checkLimits() {
     // does, and this backend binds whole textures (no single-level views).
     for (gen::ResourceId w : p.writes)
       if (p.levelSlots > 0 && p.firstLevel > 0 && std::find(p.reads.begin(), p.reads.end(), w) != p.reads.end())
-        return Status::error(StatusCode::DriverError, "sao::gl: pass '" + std::string(p.name) +
+        return Status::error(StatusCode::DriverError, std::string(kApiName) + ": pass '" + std::string(p.name) +
                                                           "' reads one level of a chain above level 0, which this "
                                                           "backend does not bind");
     maxLocalX = std::max(maxLocalX, GLint(p.localX));
     maxLocalY = std::max(maxLocalY, GLint(p.localY));
     maxInvocations = std::max(maxInvocations, GLint(p.localX * p.localY));
     for (const gen::PassVariantInfo& v : p.compiled) {
+      if (kEs && v.esslBlob < 0) continue;  // no GLES form (a refused format): never bound here
       maxShared = std::max(maxShared, GLint(v.sharedBytes));
       GLint samplers = 0, images = 0;
-      for (const gen::BindingInfo& b : v.bindings)
+      for (const gen::BindingInfo& b : v.bindings) {
         for (std::uint32_t slot = 0; slot < b.slots; ++slot) {
           (b.write ? img : tex).insert(b.glUnit + slot);
           ++(b.write ? images : samplers);
         }
+        if (kEs && b.esKeptUnit >= 0) {  // the texture an ES pass reads its output's kept texels through
+          tex.insert(GLuint(b.esKeptUnit));
+          ++samplers;
+        }
+      }
       maxSamplersPerPass = std::max(maxSamplersPerPass, samplers);
       maxImagesPerPass = std::max(maxImagesPerPass, images);
     }
@@ -102,7 +108,7 @@ Status Effect::Impl::checkLimits() {
   textureUnits.assign(tex.begin(), tex.end());
   imageUnits.assign(img.begin(), img.end());
   if (textureUnits.size() > StateGuard::kMaxUnits || imageUnits.size() > StateGuard::kMaxUnits)
-    return Status::error(StatusCode::DriverError, "sao::gl: the effect binds more units than the state guard saves (" +
+    return Status::error(StatusCode::DriverError, std::string(kApiName) + ": the effect binds more units than the state guard saves (" +
                                                       std::to_string(StateGuard::kMaxUnits) + ")");
   if (textureUnits.empty()) textureUnits.push_back(1);
   objects.scratchUnit = textureUnits.front();
@@ -145,7 +151,7 @@ Status Effect::create(GetProcAddressFn getProcAddress, std::unique_ptr<Effect>& 
     return createImpl(getProcAddress, out, headerVersion);
   } catch (const std::exception& e) {
     out.reset();
-    return Status::error(StatusCode::DriverError, std::string("sao::gl: create failed: ") + e.what());
+    return Status::error(StatusCode::DriverError, std::string(std::string(kApiName) + ": create failed: ") + e.what());
   }
 }
 
@@ -154,7 +160,7 @@ Status Effect::createImpl(GetProcAddressFn getProcAddress, std::unique_ptr<Effec
     auto v = [](int x) {
       return std::to_string((x >> 16) & 0xff) + "." + std::to_string((x >> 8) & 0xff) + "." + std::to_string(x & 0xff);
     };
-    return Status::error(StatusCode::VersionMismatch, "sao::gl: the headers are version " + v(headerVersion) +
+    return Status::error(StatusCode::VersionMismatch, std::string(kApiName) + ": the headers are version " + v(headerVersion) +
                                                           " but the library is " + v(SAO_VERSION) +
                                                           "; rebuild against the installed headers");
   }
@@ -171,7 +177,7 @@ Status Effect::createImpl(GetProcAddressFn getProcAddress, std::unique_ptr<Effec
   gl.BindBuffer(GL_UNIFORM_BUFFER, objects.ubo);
   gl.BufferData(GL_UNIFORM_BUFFER, sizeof(ParamBlock), nullptr, GL_DYNAMIC_DRAW);
   gl.BindBuffer(GL_UNIFORM_BUFFER, GLuint(previousUbo));
-  gl.ObjectLabel(GL_BUFFER, objects.ubo, -1, "sao SaoParams");
+  gl.label(GL_BUFFER, objects.ubo, "sao SaoParams");
 
   GLuint samplers[2] = {};
   gl.GenSamplers(2, samplers);
@@ -184,10 +190,10 @@ Status Effect::createImpl(GetProcAddressFn getProcAddress, std::unique_ptr<Effec
     gl.SamplerParameteri(s, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     gl.SamplerParameteri(s, GL_TEXTURE_COMPARE_MODE, GL_NONE);
   }
-  gl.ObjectLabel(GL_SAMPLER, objects.nearestSampler, -1, "sao nearest");
-  gl.ObjectLabel(GL_SAMPLER, objects.mipSampler, -1, "sao nearest mip");
+  gl.label(GL_SAMPLER, objects.nearestSampler, "sao nearest");
+  gl.label(GL_SAMPLER, objects.mipSampler, "sao nearest mip");
   if (!objects.ubo || !objects.nearestSampler || !objects.mipSampler)
-    return Status::error(StatusCode::DriverError, "sao::gl: could not create the parameter buffer or samplers");
+    return Status::error(StatusCode::DriverError, std::string(kApiName) + ": could not create the parameter buffer or samplers");
 
   impl->programs = std::make_unique<Programs>(gl);
   impl->resources = std::make_unique<Resources>(gl);
@@ -205,7 +211,7 @@ Status Effect::Impl::render(const Camera& camera, const Settings& settings, cons
   CheckedInputs checked(gl);
   if (Status st = checkInputs(gl, objects.scratchUnit, inputs, camera, checked); !st) return st;
   if (settings.temporal && inputs.layer != 0)
-    return Status::error(StatusCode::InvalidInput, "sao::gl: temporal accumulation keeps one view's history: render "
+    return Status::error(StatusCode::InvalidInput, std::string(kApiName) + ": temporal accumulation keeps one view's history: render "
                                                    "each layer (eye) with its own effect (Inputs::layer must be 0)");
   const SuppliedImages images = supplied(checked);
   FrameInputs frameInputs;
@@ -249,7 +255,7 @@ Status Effect::render(const Camera& camera, const Settings& settings, const Inpu
   try {
     return impl_->render(camera, settings, inputs, options);  // the StateGuard also restores on unwinding
   } catch (const std::exception& e) {
-    return Status::error(StatusCode::DriverError, std::string("sao::gl: render failed: ") + e.what());
+    return Status::error(StatusCode::DriverError, std::string(std::string(kApiName) + ": render failed: ") + e.what());
   }
 }
 
@@ -264,4 +270,4 @@ const ParamBlock& Effect::params() const { return impl_->frame.block(); }
 const Timings& Effect::timings() const { return impl_->timings; }
 const Stats& Effect::stats() const { return impl_->stats; }
 
-}  // namespace sao::gl
+}  // namespace sao::SAO_GL_NS

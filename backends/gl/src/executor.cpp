@@ -3,7 +3,7 @@
 #include <cstring>
 #include <string>
 
-namespace sao::gl::detail {
+namespace sao::SAO_GL_NS::detail {
 
 GLbitfield barrierBits(std::span<const Hazard> hazards) {
   GLbitfield bits = 0;
@@ -37,7 +37,7 @@ Status GlExecutor::checkPlan(const Plan& plan) {
   DeviceLimits limits;
   limits.imageSide = {std::uint32_t(objects_.maxTextureSize), "GL_MAX_TEXTURE_SIZE"};
   const Status st = checkDeviceLimits(plan, limits);
-  return st ? st : Status::error(st.code, "sao::gl: " + st.message);
+  return st ? st : Status::error(st.code, std::string(kApiName) + ": " + st.message);
 }
 
 Status GlExecutor::createImage(const PlannedImage& image) {
@@ -73,10 +73,18 @@ void GlExecutor::barrier(std::span<const Hazard> hazards) {
 void GlExecutor::bind(const ScheduledBinding& b, const gen::BindingInfo& declared) {
   const GLuint texture = textureFor(b.resource, b.previousFrame);
   if (b.write) {
+    // On ES a write whose texels the pass loads but ES cannot load through the image (every format
+    // but r32f) is write-only; the pass reads the texels through a texture of it (esKeptUnit).
+    const bool kept = kEs && declared.esKeptUnit >= 0;
     // A levels= write is an image array: unit + j holds level baseLevel + j, the last level past the chain.
     for (std::uint32_t slot = 0; slot < declared.slots; ++slot)
       gl_.BindImageTexture(declared.glUnit + slot, texture, GLint(b.slotLevel(slot)), GL_FALSE, 0,
-                           declared.readWrite ? GL_READ_WRITE : GL_WRITE_ONLY, glFormat(declared.format));
+                           declared.readWrite && !kept ? GL_READ_WRITE : GL_WRITE_ONLY, glFormat(declared.format));
+    if (kept) {
+      gl_.ActiveTexture(GL_TEXTURE0 + GLuint(declared.esKeptUnit));
+      gl_.BindTexture(GL_TEXTURE_2D, texture);
+      gl_.BindSampler(GLuint(declared.esKeptUnit), objects_.nearestSampler);
+    }
     return;
   }
   // A read sees the whole chain (lod chosen by the shader) or level 0 (create() refuses an effect
@@ -106,4 +114,4 @@ Status GlExecutor::endFrame() {
   return Status::success();
 }
 
-}  // namespace sao::gl::detail
+}  // namespace sao::SAO_GL_NS::detail

@@ -8,10 +8,10 @@
 #include "programs.h"
 #include "resources.h"
 #include "sao/executor.h"
-#include "sao/gl/effect.h"
+#include "api.h"
 #include "timing.h"
 
-namespace sao::gl::detail {
+namespace sao::SAO_GL_NS::detail {
 
 // The glMemoryBarrier bits that resolve `hazards` (0: none needed).
 GLbitfield barrierBits(std::span<const Hazard> hazards);
@@ -70,4 +70,4 @@ class GlExecutor final : public Executor {
   ParamBlock uploaded_{};
 };
 
-}  // namespace sao::gl::detail
+}  // namespace sao::SAO_GL_NS::detail

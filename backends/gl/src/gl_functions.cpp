@@ -2,18 +2,23 @@
 
 #include <cstdio>
 #include <string>
+#include <string_view>
+#include <type_traits>
 
-namespace sao::gl::detail {
+namespace sao::SAO_GL_NS::detail {
 
 Status GlFunctions::load(GetProcAddressFn getProcAddress) {
   if (!getProcAddress)
-    return Status::error(StatusCode::InvalidInput, "sao::gl: getProcAddress is null");
+    return Status::error(StatusCode::InvalidInput, std::string(kApiName) + ": getProcAddress is null");
 #define SAO_GL_LOAD(type, name)                                                                        \
   name = reinterpret_cast<type>(getProcAddress("gl" #name));                                           \
   if (!name)                                                                                           \
-    return Status::error(StatusCode::DriverError, "sao::gl: getProcAddress returned null for gl" #name \
+    return Status::error(StatusCode::DriverError, std::string(kApiName) + ": getProcAddress returned null for gl" #name \
                                                   " (an OpenGL 4.3 core entry point)");
   SAO_GL_REQUIRED_FUNCTIONS(SAO_GL_LOAD)
+  if constexpr (!kEs) {
+    SAO_GL_CORE_ES_OPTIONAL_FUNCTIONS(SAO_GL_LOAD)
+  }
 #undef SAO_GL_LOAD
 #define SAO_GL_LOAD_OPTIONAL(type, name) name = reinterpret_cast<type>(getProcAddress("gl" #name));
   SAO_GL_OPTIONAL_FUNCTIONS(SAO_GL_LOAD_OPTIONAL)
@@ -25,6 +30,42 @@ Status GlFunctions::load(GetProcAddressFn getProcAddress) {
   GetIntegerv(GL_MINOR_VERSION, &min);
   major = maj;
   minor = min;
+  const GLubyte* versionText = GetString(GL_VERSION);
+  const bool esContext = versionText && std::string(reinterpret_cast<const char*>(versionText)).rfind("OpenGL ES", 0) == 0;
+  if constexpr (kEs) {
+    if (!esContext || !atLeast(3, 1))
+      return Status::error(StatusCode::DriverError,
+                           "sao::gles needs an OpenGL ES 3.1 or newer context (compute shaders); the current context "
+                           "reports " +
+                               std::to_string(maj) + "." + std::to_string(min) +
+                               (versionText ? " (\"" + std::string(reinterpret_cast<const char*>(versionText)) + "\")"
+                                            : std::string(" (is a context current on this thread?)")) +
+                               (versionText && !esContext ? ": use sao::gl on desktop OpenGL" : ""));
+    hasDsa = false;  // ES has no direct state access
+    hasQueryBuffer = false;
+    // Each from the version or extension that has it (eglGetProcAddress answers any known name,
+    // so the extension string decides), under that extension's name. No texture views: ES reads
+    // no array inputs here (inputs.cpp cannot query a texture's target without DSA).
+    GLint count = 0;
+    GetIntegerv(GL_NUM_EXTENSIONS, &count);
+    auto has = [&](std::string_view name) {
+      for (GLint i = 0; i < count; ++i)
+        if (const GLubyte* e = GetStringi(GL_EXTENSIONS, GLuint(i)); e && name == reinterpret_cast<const char*>(e))
+          return true;
+      return false;
+    };
+    auto load = [&](auto& fn, const char* name) {
+      fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(getProcAddress(name));
+    };
+    if (has("GL_EXT_disjoint_timer_query")) load(GetQueryObjectui64v, "glGetQueryObjectui64vEXT");
+    if (atLeast(3, 2)) load(ObjectLabel, "glObjectLabel");
+    else if (has("GL_KHR_debug")) load(ObjectLabel, "glObjectLabelKHR");
+    return Status::success();
+  }
+  if (esContext)
+    return Status::error(StatusCode::DriverError, "sao::gl needs desktop OpenGL 4.3; the current context is \"" +
+                                                      std::string(reinterpret_cast<const char*>(versionText)) +
+                                                      "\": use sao::gles on OpenGL ES");
   if (!atLeast(4, 3)) {
     const GLubyte* version = GetString(GL_VERSION);
     return Status::error(StatusCode::DriverError,
@@ -81,4 +122,4 @@ const char* glEnumName(GLenum e) {
   return buf;
 }
 
-}  // namespace sao::gl::detail
+}  // namespace sao::SAO_GL_NS::detail

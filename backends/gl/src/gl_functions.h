@@ -3,14 +3,17 @@
 #pragma once
 #include <GL/glcorearb.h>  // typedefs only (GL_GLEXT_PROTOTYPES is never defined)
 
-#include "sao/gl/effect.h"
+#include <string_view>
+
+#include "api.h"
 #include "sao/status.h"
 
-namespace sao::gl::detail {
+namespace sao::SAO_GL_NS::detail {
 
-// X(type, name): required GL 4.3 core entry points; loaded as "gl" #name.
+// X(type, name): required GL 4.3 core (and ES 3.1) entry points; loaded as "gl" #name.
 #define SAO_GL_REQUIRED_FUNCTIONS(X)                                   \
   X(PFNGLGETSTRINGPROC, GetString)                                     \
+  X(PFNGLGETSTRINGIPROC, GetStringi)                                   \
   X(PFNGLGETINTEGERVPROC, GetIntegerv)                                 \
   X(PFNGLGETINTEGERI_VPROC, GetIntegeri_v)                             \
   X(PFNGLGETINTEGER64I_VPROC, GetInteger64i_v)                         \
@@ -23,7 +26,6 @@ namespace sao::gl::detail {
   X(PFNGLTEXPARAMETERIPROC, TexParameteri)                             \
   X(PFNGLGETTEXPARAMETERIVPROC, GetTexParameteriv)                     \
   X(PFNGLGETTEXLEVELPARAMETERIVPROC, GetTexLevelParameteriv)           \
-  X(PFNGLTEXTUREVIEWPROC, TextureView)                                 \
   X(PFNGLGENSAMPLERSPROC, GenSamplers)                                 \
   X(PFNGLDELETESAMPLERSPROC, DeleteSamplers)                           \
   X(PFNGLSAMPLERPARAMETERIPROC, SamplerParameteri)                     \
@@ -58,6 +60,12 @@ namespace sao::gl::detail {
   X(PFNGLBEGINQUERYPROC, BeginQuery)                                   \
   X(PFNGLENDQUERYPROC, EndQuery)                                       \
   X(PFNGLGETQUERYIVPROC, GetQueryiv)                                   \
+
+// Required on OpenGL 4.3; on ES optional, loaded under the extensions' names (labels: ES 3.2 or
+// KHR_debug; 64-bit query results: EXT_disjoint_timer_query; texture views never: ES reads no
+// array inputs). Null where an ES context has none: the call sites check.
+#define SAO_GL_CORE_ES_OPTIONAL_FUNCTIONS(X)                           \
+  X(PFNGLTEXTUREVIEWPROC, TextureView)                                 \
   X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)                 \
   X(PFNGLOBJECTLABELPROC, ObjectLabel)
 
@@ -68,6 +76,7 @@ namespace sao::gl::detail {
 struct GlFunctions {
 #define SAO_GL_DECLARE(type, name) type name = nullptr;
   SAO_GL_REQUIRED_FUNCTIONS(SAO_GL_DECLARE)
+  SAO_GL_CORE_ES_OPTIONAL_FUNCTIONS(SAO_GL_DECLARE)
   SAO_GL_OPTIONAL_FUNCTIONS(SAO_GL_DECLARE)
 #undef SAO_GL_DECLARE
 
@@ -76,11 +85,16 @@ struct GlFunctions {
   bool hasQueryBuffer = false;  // GL_QUERY_BUFFER exists (GL 4.4)
 
   bool atLeast(int maj, int min) const { return major > maj || (major == maj && minor >= min); }
+  // glObjectLabel where the context has it (every GL 4.3; ES 3.2 or KHR_debug).
+  void label(GLenum type, GLuint name, std::string_view text) const {
+    if (ObjectLabel) ObjectLabel(type, name, GLsizei(text.size()), text.data());
+  }
 
-  // Loads every entry point; DriverError naming the first missing one or a context below 4.3.
+  // Loads every entry point; DriverError naming the first missing one or a context below 4.3 (ES:
+  // below 3.1, or not an ES context).
   Status load(GetProcAddressFn getProcAddress);
 };
 
 const char* glEnumName(GLenum e);  // for messages: "GL_DEPTH_COMPONENT24", or hex
 
-}  // namespace sao::gl::detail
+}  // namespace sao::SAO_GL_NS::detail

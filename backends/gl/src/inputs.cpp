@@ -5,7 +5,7 @@
 
 #include "sao/inputs.h"
 
-namespace sao::gl::detail {
+namespace sao::SAO_GL_NS::detail {
 namespace {
 
 // What a texture is inspected for: its role in messages, whether it may be multisampled (an input
@@ -22,9 +22,9 @@ bool isArray(GLenum target) { return target == GL_TEXTURE_2D_ARRAY || target == 
 
 Status inspect(const GlFunctions& gl, GLuint unit, GLuint texture, const Request& rq, TextureInfo& out) {
   // Built only for an error: render() allocates nothing per frame.
-  auto who = [&] { return "sao::gl: the " + std::string(rq.role) + " texture " + std::to_string(texture); };
+  auto who = [&] { return std::string(kApiName) + ": the " + std::string(rq.role) + " texture " + std::to_string(texture); };
   if (texture == 0)
-    return Status::error(StatusCode::InvalidInput, "sao::gl: the " + std::string(rq.role) + " texture is 0");
+    return Status::error(StatusCode::InvalidInput, std::string(kApiName) + ": the " + std::string(rq.role) + " texture is 0");
   if (!gl.IsTexture(texture))
     return Status::error(StatusCode::InvalidInput, who() + " is not a texture object (never bound, or deleted)");
   GLenum target = GL_TEXTURE_2D;
@@ -48,8 +48,10 @@ Status inspect(const GlFunctions& gl, GLuint unit, GLuint texture, const Request
                                std::to_string(rq.layer) +
                                " (stereo: give every texture as a GL_TEXTURE_2D_ARRAY, or layer 0)");
   } else if (rq.layer != 0) {
-    return Status::error(StatusCode::InvalidInput, "sao::gl: Inputs::layer is " + std::to_string(rq.layer) +
-                                                       ", but array textures need GL 4.5 or ARB_direct_state_access");
+    return Status::error(StatusCode::InvalidInput, std::string(kApiName) + ": Inputs::layer is " + std::to_string(rq.layer) +
+                                                       (kEs ? ", but OpenGL ES reads no array textures here (no way to "
+                                                              "query a texture's target)"
+                                                            : ", but array textures need GL 4.5 or ARB_direct_state_access"));
   }
   // Without DSA (GL 4.3 / 4.4) the target cannot be queried without binding: a texture of another
   // target (multisampled, array, 3D, ...) fails to bind (a GL error the caller's debug output
@@ -70,8 +72,10 @@ Status inspect(const GlFunctions& gl, GLuint unit, GLuint texture, const Request
   if (GLuint(bound) != texture)
     return Status::error(StatusCode::InvalidInput,
                          who() + " cannot be bound as GL_TEXTURE_2D (multisampled, an array, 3D or a cube map?); the "
-                               "effect reads and writes GL_TEXTURE_2D level 0 (a multisampled depth input needs GL 4.5 "
-                               "or ARB_direct_state_access, to be recognised without a failing bind)");
+                               "effect reads and writes GL_TEXTURE_2D level 0" +
+                             (kEs ? std::string(" (on OpenGL ES every input is a single-sample GL_TEXTURE_2D)")
+                                  : std::string(" (a multisampled depth input needs GL 4.5 or ARB_direct_state_access, "
+                                                "to be recognised without a failing bind)")));
   GLint format = 0, w = 0, h = 0, layers = 1, stencil = 0, samples = 0, immutable = 0;
   gl.GetTexLevelParameteriv(target, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
   gl.GetTexLevelParameteriv(target, 0, GL_TEXTURE_WIDTH, &w);
@@ -113,6 +117,17 @@ Status inspect(const GlFunctions& gl, GLuint unit, GLuint texture, const Request
 
 // The effect's format of a GL output texture; Depth (never an output format) for any other.
 gen::Format outputFormat(GLenum f) {
+  if constexpr (kEs) {
+    // The output format whose GLES form the texture has (the effect's `target gles` rule: GL_R32F
+    // stands for r16f); none for a format the effect refuses on ES.
+    for (std::size_t i = 0; i < gen::kFormatInfo.size(); ++i) {
+      const auto format = gen::Format(i);
+      if (isOutputFormat(format) && !gen::glesRefuses(format) &&
+          gen::formatInfo(gen::glesStorageFormat(format)).glInternalFormat == f)
+        return format;
+    }
+    return gen::Format::Depth;
+  }
   switch (f) {
     case GL_R16F: return gen::Format::R16F;
     case GL_R8: return gen::Format::R8;
@@ -163,7 +178,7 @@ std::string glFormatName(gen::Format f) { return glEnumName(gen::formatInfo(f).g
 // and encoding (every depth input holds the first one's), a colour input's format and channels.
 Status checkFormat(gen::ResourceId id, const TextureInfo& t, const Camera& camera, std::optional<DepthEncoding>& depth) {
   const std::string_view name = gen::kResources[static_cast<std::size_t>(id)].name;
-  auto who = [&] { return "sao::gl: the " + std::string(name) + " texture " + std::to_string(t.texture); };
+  auto who = [&] { return std::string(kApiName) + ": the " + std::string(name) + " texture " + std::to_string(t.texture); };
   const GLenum f = t.internalFormat;
   if (!isDepthInput(id)) {
     const std::optional<gen::Format> format = formatOfGl(f);
@@ -199,7 +214,7 @@ Status checkInputs(const GlFunctions& gl, GLuint unit, const Inputs& inputs, con
     if (Status st = inspect(gl, unit, in.texture, {name, mayBeMultisampled(id), inputs.layer, out.views}, t); !st)
       return st;
     if (in.internalFormat != 0 && in.internalFormat != t.internalFormat)
-      return Status::error(StatusCode::InvalidInput, "sao::gl: the " + std::string(name) + " texture " +
+      return Status::error(StatusCode::InvalidInput, std::string(kApiName) + ": the " + std::string(name) + " texture " +
                                                          std::to_string(in.texture) + " was declared " +
                                                          glEnumName(in.internalFormat) + " but its level 0 is " +
                                                          glEnumName(t.internalFormat));
@@ -213,15 +228,18 @@ Status checkInputs(const GlFunctions& gl, GLuint unit, const Inputs& inputs, con
     for (const gen::ResourceId id : gen::kInputIds)
       if (inputs[id].texture == o)
         return Status::error(StatusCode::InvalidInput,
-                             "sao::gl: texture " + std::to_string(o) + " is passed both as the output and as the " +
+                             std::string(kApiName) + ": texture " + std::to_string(o) + " is passed both as the output and as the " +
                                  std::string(gen::kResources[static_cast<std::size_t>(id)].name) +
                                  " input; the output must be a separate texture");
     if (Status st = inspect(gl, unit, o, {"output", false, inputs.layer, out.views}, out.output); !st) return st;
     const gen::Format format = outputFormat(out.output.internalFormat);
     if (!isOutputFormat(format))
-      return Status::error(StatusCode::UnsupportedFormat, "sao::gl: the output texture " + std::to_string(o) + " is " +
-                                                              glEnumName(out.output.internalFormat) +
-                                                              "; the effect writes GL_R16F, GL_R8, GL_RGBA8 or GL_RGBA16F");
+      return Status::error(StatusCode::UnsupportedFormat,
+                           std::string(kApiName) + ": the output texture " + std::to_string(o) + " is " +
+                               glEnumName(out.output.internalFormat) +
+                               (kEs ? "; on OpenGL ES 3.1 the effect writes GL_R32F, GL_RGBA8 or GL_RGBA16F (ES stores no "
+                                      "r16f or r8 image: the effect's `target gles` rule)"
+                                    : "; the effect writes GL_R16F, GL_R8, GL_RGBA8 or GL_RGBA16F"));
     out.planInputs.userOutput = true;
     out.planInputs.outputFormat = format;
   }
@@ -246,4 +264,4 @@ SuppliedImages supplied(const CheckedInputs& in) {
   return images;
 }
 
-}  // namespace sao::gl::detail
+}  // namespace sao::SAO_GL_NS::detail

@@ -7,7 +7,7 @@
 #include "sao/output.h"
 #include "sao/schedule.h"
 
-namespace sao::gl::detail {
+namespace sao::SAO_GL_NS::detail {
 
 struct TextureInfo {
   GLuint texture = 0;
@@ -59,4 +59,4 @@ Status checkInputs(const GlFunctions& gl, GLuint scratchUnit, const Inputs& inpu
 // The textures as sao::checkSupplied sees them (sizes against the plan are checked there).
 SuppliedImages supplied(const CheckedInputs& in);
 
-}  // namespace sao::gl::detail
+}  // namespace sao::SAO_GL_NS::detail

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <string>
 
-namespace sao::gl::detail {
+namespace sao::SAO_GL_NS::detail {
 
 Programs::~Programs() {
   for (GLuint p : programs_)
@@ -12,19 +12,23 @@ Programs::~Programs() {
 
 Status Programs::get(const gen::PassInfo& pass, const gen::PassVariantInfo& variant, GLuint& program,
                      std::uint64_t& compiled) {
-  if (variant.glslBlob >= programs_.size())
-    return Status::error(StatusCode::DriverError, "sao::gl: pass '" + std::string(pass.name) + "' has no GLSL blob");
-  if (GLuint p = programs_[variant.glslBlob]) {
+  const std::uint32_t blob = sourceBlob(variant);
+  if (blob >= programs_.size())
+    return Status::error(kEs ? StatusCode::UnsupportedFormat : StatusCode::DriverError,
+                         std::string(kApiName) + ": pass '" + std::string(pass.name) + "' (" + std::string(variant.fileStem) +
+                             ") has no " + (kEs ? "GLSL ES: a format the effect refuses on OpenGL ES 3.1 (its `target gles` rule)"
+                                                : "GLSL blob"));
+  if (GLuint p = programs_[blob]) {
     program = p;
     return Status::success();
   }
-  const std::string_view source = gen::glslSource(variant.glslBlob);
+  const std::string_view source = kEs ? gen::esslSource(blob) : gen::glslSource(blob);
   const std::string what = "pass '" + std::string(pass.name) + "' (" + std::string(variant.fileStem) + ")";
   const GLchar* text = source.data();
   const GLint length = GLint(source.size());
 
   const GLuint shader = gl_.CreateShader(GL_COMPUTE_SHADER);
-  if (!shader) return Status::error(StatusCode::DriverError, "sao::gl: glCreateShader failed for " + what);
+  if (!shader) return Status::error(StatusCode::DriverError, std::string(kApiName) + ": glCreateShader failed for " + what);
   gl_.ShaderSource(shader, 1, &text, &length);
   gl_.CompileShader(shader);
   GLint ok = GL_FALSE, logLength = 0;
@@ -34,7 +38,7 @@ Status Programs::get(const gen::PassInfo& pass, const gen::PassVariantInfo& vari
     std::string log(std::size_t(std::max(logLength, 1)), '\0');
     gl_.GetShaderInfoLog(shader, GLsizei(log.size()), nullptr, log.data());
     gl_.DeleteShader(shader);
-    return Status::error(StatusCode::DriverError, "sao::gl: the driver rejected the GLSL of " + what + ": " +
+    return Status::error(StatusCode::DriverError, std::string(kApiName) + ": the driver rejected the GLSL of " + what + ": " +
                                                       std::string(log.c_str()));
   }
   const GLuint p = gl_.CreateProgram();
@@ -48,14 +52,14 @@ Status Programs::get(const gen::PassInfo& pass, const gen::PassVariantInfo& vari
     std::string log(std::size_t(std::max(logLength, 1)), '\0');
     gl_.GetProgramInfoLog(p, GLsizei(log.size()), nullptr, log.data());
     gl_.DeleteProgram(p);
-    return Status::error(StatusCode::DriverError, "sao::gl: linking " + what + " failed: " + std::string(log.c_str()));
+    return Status::error(StatusCode::DriverError, std::string(kApiName) + ": linking " + what + " failed: " + std::string(log.c_str()));
   }
   const std::string label = "sao " + std::string(variant.fileStem);
-  gl_.ObjectLabel(GL_PROGRAM, p, GLsizei(label.size()), label.c_str());
-  programs_[variant.glslBlob] = p;
+  gl_.label(GL_PROGRAM, p, label);
+  programs_[blob] = p;
   ++compiled;
   program = p;
   return Status::success();
 }
 
-}  // namespace sao::gl::detail
+}  // namespace sao::SAO_GL_NS::detail

@@ -4,10 +4,11 @@
 
 #include <string>
 
-namespace sao::gl::detail {
+namespace sao::SAO_GL_NS::detail {
 
 GLenum glFormat(gen::Format format) {
-  const gen::FormatInfo& f = gen::formatInfo(format);
+  // On ES an image takes the format the effect's `target gles` rule gives it.
+  const gen::FormatInfo& f = gen::formatInfo(kEs ? gen::glesStorageFormat(format) : format);
   return f.colour ? GLenum(f.glInternalFormat) : 0;  // depth is never an effect image
 }
 
@@ -36,7 +37,7 @@ bool Resources::create(const PlannedImage& img, GLenum format, GLuint scratchUni
   GLint immutable = 0;
   gl_.GetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_IMMUTABLE_FORMAT, &immutable);
   gl_.BindTexture(GL_TEXTURE_2D, 0);
-  gl_.ObjectLabel(GL_TEXTURE, out, GLsizei(label.size()), label.c_str());
+  gl_.label(GL_TEXTURE, out, label);
   return immutable != 0;
 }
 
@@ -45,10 +46,10 @@ Status Resources::create(const PlannedImage& img, GLuint scratchUnit, GLint maxT
   const auto& info = gen::kResources[static_cast<std::size_t>(img.resource)];
   const std::string name = std::string(info.name);
   const GLenum format = glFormat(img.format);
-  if (format == 0) return Status::error(StatusCode::UnsupportedFormat, "sao::gl: image '" + name + "' has no GL format");
+  if (format == 0) return Status::error(StatusCode::UnsupportedFormat, std::string(kApiName) + ": image '" + name + "' has no GL format");
   if (img.extent.width > std::uint32_t(maxTextureSize) || img.extent.height > std::uint32_t(maxTextureSize))
     return Status::error(StatusCode::InvalidExtent,
-                         "sao::gl: image '" + name + "' is " + std::to_string(img.extent.width) + "x" +
+                         std::string(kApiName) + ": image '" + name + "' is " + std::to_string(img.extent.width) + "x" +
                              std::to_string(img.extent.height) + ", above GL_MAX_TEXTURE_SIZE " +
                              std::to_string(maxTextureSize));
   if (info.kind == gen::ResourceKind::Output) ++outputGeneration_;  // a new texture object serves aoTexture()
@@ -57,7 +58,7 @@ Status Resources::create(const PlannedImage& img, GLuint scratchUnit, GLint maxT
   ++allocations;
   if (!immutable) {
     release(s);
-    return Status::error(StatusCode::DriverError, "sao::gl: allocating image '" + name + "' (" +
+    return Status::error(StatusCode::DriverError, std::string(kApiName) + ": allocating image '" + name + "' (" +
                                                       std::to_string(img.extent.width) + "x" +
                                                       std::to_string(img.extent.height) + ", " +
                                                       std::to_string(img.mipLevels) + " levels) failed (out of memory?)");
@@ -78,4 +79,4 @@ void Resources::destroy(const PlannedImage& image) {
   }
 }
 
-}  // namespace sao::gl::detail
+}  // namespace sao::SAO_GL_NS::detail

@@ -8,7 +8,7 @@
 #include "gl_functions.h"
 #include "sao/plan.h"
 
-namespace sao::gl::detail {
+namespace sao::SAO_GL_NS::detail {
 
 GLenum glFormat(gen::Format format);  // GL internal format of an effect image (0 for Depth)
 
@@ -52,4 +52,4 @@ class Resources {
   std::uint64_t outputGeneration_ = 0;
 };
 
-}  // namespace sao::gl::detail
+}  // namespace sao::SAO_GL_NS::detail

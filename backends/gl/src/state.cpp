@@ -1,6 +1,6 @@
 #include "state.h"
 
-namespace sao::gl::detail {
+namespace sao::SAO_GL_NS::detail {
 
 StateGuard::StateGuard(const GlFunctions& gl, const std::vector<GLuint>& textureUnits,
                        const std::vector<GLuint>& imageUnits, GLuint inspectUnit)
@@ -20,7 +20,8 @@ StateGuard::StateGuard(const GlFunctions& gl, const std::vector<GLuint>& texture
     gl.GetIntegerv(GL_SAMPLER_BINDING, &t.sampler);
     if (u == inspectUnit) {
       gl.GetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &inspectArray_);
-      gl.GetIntegerv(GL_TEXTURE_BINDING_2D_MULTISAMPLE_ARRAY, &inspectMultisampleArray_);
+      if (!kEs || gl.atLeast(3, 2))  // ES 3.1 has no multisample array textures
+        gl.GetIntegerv(GL_TEXTURE_BINDING_2D_MULTISAMPLE_ARRAY, &inspectMultisampleArray_);
     }
     textures_[textureCount_++] = t;
   }
@@ -55,7 +56,7 @@ StateGuard::~StateGuard() {
     gl.BindTexture(GL_TEXTURE_2D_MULTISAMPLE, alive(t.texture2DMultisample));
     if (t.unit == inspectUnit_) {
       gl.BindTexture(GL_TEXTURE_2D_ARRAY, alive(inspectArray_));
-      gl.BindTexture(GL_TEXTURE_2D_MULTISAMPLE_ARRAY, alive(inspectMultisampleArray_));
+      if (!kEs || gl_.atLeast(3, 2)) gl.BindTexture(GL_TEXTURE_2D_MULTISAMPLE_ARRAY, alive(inspectMultisampleArray_));
     }
     gl.BindSampler(t.unit, GLuint(t.sampler));
   }
@@ -108,4 +109,4 @@ void TextureParamGuard::restore() {
   }
 }
 
-}  // namespace sao::gl::detail
+}  // namespace sao::SAO_GL_NS::detail

@@ -6,7 +6,7 @@
 
 #include "gl_functions.h"
 
-namespace sao::gl::detail {
+namespace sao::SAO_GL_NS::detail {
 
 // Saves, on construction, the state render() may change and restores it on destruction:
 // the current program, the active texture unit, GL_TEXTURE_BINDING_2D, _2D_MULTISAMPLE (a
@@ -74,4 +74,4 @@ class TextureParamGuard {
   std::size_t changedCount_ = 0;
 };
 
-}  // namespace sao::gl::detail
+}  // namespace sao::SAO_GL_NS::detail

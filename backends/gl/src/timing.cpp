@@ -1,6 +1,6 @@
 #include "timing.h"
 
-namespace sao::gl::detail {
+namespace sao::SAO_GL_NS::detail {
 
 PassTimer::~PassTimer() {
   if (!queries_.empty()) gl_.DeleteQueries(GLsizei(queries_.size()), queries_.data());
@@ -13,6 +13,7 @@ void PassTimer::beginFrame(bool measure) {
     return;
   }
   method_ = TimingMethod::FinishAndClock;
+  if (!gl_.GetQueryObjectui64v) gpuUnusable_ = true;  // ES without EXT_disjoint_timer_query
   if (gpuUnusable_) return;
   GLint bits = 0, active = 0;
   gl_.GetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &bits);
@@ -94,4 +95,4 @@ bool PassTimer::endFrame(Timings& out) {
   return true;
 }
 
-}  // namespace sao::gl::detail
+}  // namespace sao::SAO_GL_NS::detail

@@ -11,7 +11,7 @@
 #include "gl_functions.h"
 #include "sao/timing.h"
 
-namespace sao::gl::detail {
+namespace sao::SAO_GL_NS::detail {
 
 class PassTimer {
  public:
@@ -44,4 +44,4 @@ class PassTimer {
   std::vector<Entry> entries_;
 };
 
-}  // namespace sao::gl::detail
+}  // namespace sao::SAO_GL_NS::detail

@@ -1,5 +1,6 @@
-// sao-gl-timing: per-pass time of the OpenGL backend at 1280x720 and 1920x1080 (or the sizes
-// given), median of N runs per preset, on a headless EGL context. A measurement tool, not a test.
+// sao-gl-timing: per-pass time of the OpenGL backend (or, with --api gles / both, the OpenGL ES 3.1
+// backend on an ES context) at 1280x720 and 1920x1080 (or the sizes given), median of N runs per
+// preset, and each plan's bytes, on a headless EGL context. A measurement tool, not a test.
 // `sao-gl-timing --help` lists the options.
 #include <epoxy/gl.h>
 
@@ -8,6 +9,7 @@
 #include <cstdio>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,7 @@
 #include "sao/cli/shared_options.h"
 #include "sao/gl/effect.h"
 #include "sao/gl/headless.h"
+#include "sao/gles/effect.h"
 #include "sao/presets.h"
 
 namespace {
@@ -44,49 +47,36 @@ double median(std::vector<double> v) {
   return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-}  // namespace
+// The plan's image bytes as the API allocates them: on ES each image in the format the effect's
+// `target gles` rule gives it (rg16f intermediates take rgba16f, ...).
+std::uint64_t allocatedBytes(const sao::Plan& plan, bool es) {
+  if (!es) return plan.totalBytes;
+  std::uint64_t total = 0;
+  for (const sao::PlannedImage& img : plan.images)
+    total += img.bytes / sao::bytesPerTexel(img.format) * sao::bytesPerTexel(sao::gen::glesStorageFormat(img.format));
+  return total;
+}
 
-int main(int argc, char** argv) {
+struct Options {
   std::uint32_t runs = 7, guard = 16;
   std::vector<sao::Preset> presets;
   std::vector<sao::Extent> sizes;
-  sao::cli::CommandLine cl("sao-gl-timing",
-                           "Per-pass time of the OpenGL backend on a headless EGL context: the median of N runs\n"
-                           "per preset and size (a measurement tool, not a test).");
-  sao::cli::addRuns(cl, runs, 5, "measured runs per configuration", "default 7; the median is reported");
-  sao::cli::addPresetList(cl, presets);
-  sao::cli::addImageSizes(cl, sizes, "an AO size to measure", "default: 1280x720 and 1920x1080");
-  sao::cli::addGuardBand(cl, guard, "guard band in pixels on each side", "default 16");
-  cl.parse(argc, argv);
-  if (sizes.empty()) sizes = {{1280, 720}, {1920, 1080}};
-  if (presets.empty())
-    for (const auto& p : sao::presets()) presets.push_back(p.preset);
+};
 
-  std::unique_ptr<sao::gl::HeadlessContext> ctx;
-  sao::gl::HeadlessOptions ho;
-  ho.debug = false;
-  if (sao::Status st = sao::gl::HeadlessContext::create(ctx, ho); !st) {
-    std::fprintf(stderr, "sao-gl-timing: %s\n", st.message.c_str());
-    return 1;
-  }
-  std::unique_ptr<sao::gl::Effect> effect;
-  if (sao::Status st = sao::gl::Effect::create(sao::gl::HeadlessContext::getProcAddress(), effect); !st) {
-    std::fprintf(stderr, "sao-gl-timing: %s\n", st.message.c_str());
-    return 1;
-  }
-  std::printf("context: %s\nruns per configuration: %u (median reported), depth GL_DEPTH_COMPONENT32F, guard band %u\n",
-              ctx->description().c_str(), runs, guard);
-
-  for (const auto [w, h] : sizes) {
+// Every size and preset on one API's effect, in the current context.
+template <typename Effect, typename Inputs>
+int measure(const char* api, Effect& effect, const Options& o) {
+  const bool es = std::string(api) == "gles";
+  for (const auto [w, h] : o.sizes) {
     sao::Camera cam = sao::perspectiveCamera(std::numbers::pi / 3.0, w, h, 0.1, 100.0,
                                              sao::ClipDepth::NegativeOneToOne, false);
-    cam.guardBand = guard;
+    cam.guardBand = o.guard;
     sao::DepthModel model;
     if (sao::Status st = sao::analyze(cam, model); !st) {
       std::fprintf(stderr, "sao-gl-timing: %s\n", st.message.c_str());
       return 1;
     }
-    const std::uint32_t dw = w + 2 * guard, dh = h + 2 * guard;
+    const std::uint32_t dw = w + 2 * o.guard, dh = h + 2 * o.guard;
     std::vector<float> depth(std::size_t(dw) * dh);
     for (std::uint32_t y = 0; y < dh; ++y)
       for (std::uint32_t x = 0; x < dw; ++x) depth[std::size_t(y) * dw + x] = sceneDepth(cam, model, x, y);
@@ -98,12 +88,12 @@ int main(int argc, char** argv) {
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, GLsizei(dw), GLsizei(dh), GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
     glBindTexture(GL_TEXTURE_2D, 0);
 
-    for (sao::Preset preset : presets) {
+    for (sao::Preset preset : o.presets) {
       const sao::Settings settings = sao::presetSettings(preset);
-      sao::gl::Inputs in;
+      Inputs in;
       in.depth = {tex, sao::gl::kDepthComponent32F};
       // Warm-up: compiles the programs and allocates the images.
-      if (sao::Status st = effect->render(cam, settings, in, {true}); !st) {
+      if (sao::Status st = effect.render(cam, settings, in, {true}); !st) {
         std::fprintf(stderr, "sao-gl-timing: %s\n", st.message.c_str());
         return 1;
       }
@@ -111,12 +101,12 @@ int main(int argc, char** argv) {
       std::vector<std::string> order;
       std::vector<double> totals;
       sao::TimingMethod method = sao::TimingMethod::None;
-      for (std::uint32_t r = 0; r < runs; ++r) {
-        if (sao::Status st = effect->render(cam, settings, in, {true}); !st) {
+      for (std::uint32_t r = 0; r < o.runs; ++r) {
+        if (sao::Status st = effect.render(cam, settings, in, {true}); !st) {
           std::fprintf(stderr, "sao-gl-timing: %s\n", st.message.c_str());
           return 1;
         }
-        const sao::Timings& t = effect->timings();
+        const sao::Timings& t = effect.timings();
         method = t.method;
         for (const auto& p : t.passes) {
           if (!perPass.count(p.pass)) order.push_back(p.pass);
@@ -127,8 +117,9 @@ int main(int argc, char** argv) {
       std::string name;
       for (const auto& p : sao::presets())
         if (p.preset == preset) name = std::string(p.name);
-      std::printf("\n%ux%u preset %-9s (%d taps, blur radius %d, csz levels %u) method: %s\n", w, h, name.c_str(),
-                  settings.samples, settings.blur_radius, effect->plan().cszLevels, sao::toString(method));
+      std::printf("\n%s %ux%u preset %-9s (%d taps, blur radius %d, csz levels %u) method: %s, plan %.2f MB\n", api, w, h,
+                  name.c_str(), settings.samples, settings.blur_radius, effect.plan().cszLevels, sao::toString(method),
+                  double(allocatedBytes(effect.plan(), es)) / 1e6);
       for (const auto& pass : order) {
         const auto& v = perPass[pass];
         std::printf("  %-10s median %9.3f ms   min %9.3f ms\n", pass.c_str(), median(v),
@@ -139,5 +130,55 @@ int main(int argc, char** argv) {
     }
     glDeleteTextures(1, &tex);
   }
+  return 0;
+}
+
+// One API: its context (GL 4.3 core or ES 3.1), its effect, every configuration.
+template <typename Effect, typename Inputs>
+int run(const char* api, bool es, const Options& o) {
+  std::unique_ptr<sao::gl::HeadlessContext> ctx;
+  sao::gl::HeadlessOptions ho;
+  ho.debug = false;
+  if (es) {
+    ho.es = true;
+    ho.major = 3;
+    ho.minor = 1;
+  }
+  if (sao::Status st = sao::gl::HeadlessContext::create(ctx, ho); !st) {
+    std::fprintf(stderr, "sao-gl-timing: %s\n", st.message.c_str());
+    return 1;
+  }
+  std::unique_ptr<Effect> effect;
+  if (sao::Status st = Effect::create(sao::gl::HeadlessContext::getProcAddress(), effect); !st) {
+    std::fprintf(stderr, "sao-gl-timing: %s\n", st.message.c_str());
+    return 1;
+  }
+  std::printf("%s context: %s\nruns per configuration: %u (median reported), depth GL_DEPTH_COMPONENT32F, guard band %u\n",
+              api, ctx->description().c_str(), o.runs, o.guard);
+  return measure<Effect, Inputs>(api, *effect, o);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  std::string api = "gl";
+  sao::cli::CommandLine cl("sao-gl-timing",
+                           "Per-pass time of the OpenGL (or OpenGL ES 3.1) backend on a headless EGL context: the\n"
+                           "median of N runs per preset and size, and each plan's bytes (a measurement tool, not a test).");
+  sao::cli::addRuns(cl, o.runs, 5, "measured runs per configuration", "default 7; the median is reported");
+  sao::cli::addPresetList(cl, o.presets);
+  sao::cli::addImageSizes(cl, o.sizes, "an AO size to measure", "default: 1280x720 and 1920x1080");
+  sao::cli::addGuardBand(cl, o.guard, "guard band in pixels on each side", "default 16");
+  cl.choice("--api", api,
+            [](const std::string& v) { return v == "gl" || v == "gles" || v == "both" ? std::optional(v) : std::nullopt; },
+            "gl, gles or both", "API", "gl (OpenGL 4.3, sao::gl; the default), gles (OpenGL ES 3.1, sao::gles) or both, in one run");
+  cl.parse(argc, argv);
+  if (o.sizes.empty()) o.sizes = {{1280, 720}, {1920, 1080}};
+  if (o.presets.empty())
+    for (const auto& p : sao::presets()) o.presets.push_back(p.preset);
+  if (api != "gles")
+    if (const int rc = run<sao::gl::Effect, sao::gl::Inputs>("gl", false, o); rc) return rc;
+  if (api != "gl") return run<sao::gles::Effect, sao::gles::Inputs>("gles", true, o);
   return 0;
 }

@@ -270,6 +270,8 @@ struct BindingInfo {
   bool readWrite;  // a write the pass may also load from (a formats= output: kept channels, a multiply)
   std::uint32_t glUnit;  // GL texture unit (a read) or image unit (a write), each counted from 0
   std::uint32_t slots;  // array elements: a levels= pass's write of a MIP chain has one per level, else 1
+  Format esFormat;  // a write's storage format on OpenGL ES 3.1 (the effect's `target gles` rule)
+  std::int32_t esKeptUnit;  // GLES: the texture unit a readWrite write is loaded through; -1: the image itself
 };
 struct PassVariantInfo {
   VariantValues values;  // -1 where the pass does not depend on the variant
@@ -279,6 +281,7 @@ struct PassVariantInfo {
   std::string_view fileStem;
   std::uint32_t sharedBytes;  // the work group's shared variables, tightly packed (from its SPIR-V)
   std::uint32_t pushConstantBytes;  // its push constants (PushConstants; Vulkan only), 0: none
+  std::int32_t esslBlob;  // its GLSL ES 3.10 (esslSource); -1: the variant has no GLES form
 };
 enum class Compare : std::uint8_t { Eq, Ne, Lt, Le, Gt, Ge };
 // `setting op value` on a setting (pass rules: int or bool); never holds when not active.
@@ -319,8 +322,11 @@ const PassInfo& pass(PassId id);
 const PassVariantInfo* findPassVariant(PassId id, const VariantValues& values);
 std::string_view glslSource(std::uint32_t blob);        // GLSL 4.30 for OpenGL
 std::span<const std::uint32_t> spirvModule(std::uint32_t blob);  // SPIR-V 1.3 for Vulkan 1.1+
+// GLSL ES 3.10 for OpenGL ES 3.1, defined in mini_effect_gles.cpp (linked by the GLES backend only)
+std::string_view esslSource(std::uint32_t blob);
 inline constexpr std::size_t kGlslBlobCount = 5;
 inline constexpr std::size_t kSpirvBlobCount = 5;
+inline constexpr std::size_t kEsslBlobCount = 3;
 
 // ---- Rules on a setting: `setting` has no effect (kInertRules: its value reaches no pass that runs), or
 // is refused at any value but its default (kRefusalRules: plan() fails), while `when` holds.
@@ -338,5 +344,24 @@ inline constexpr std::array<InertRule, 2> kInertRules = {{
 inline constexpr std::array<InertRule, 1> kRefusalRules = {{
   {SettingId::enabled, {true, SettingId::taps, Compare::Ge, 16.0}, "taps >= 16", "taps < 16", "the plain path takes at most 15 taps"},
 }};
+
+// OpenGL ES 3.1 (the effect's `target gles` rule): the format an image of format f is stored in
+// there (f itself where ES stores it), and whether the effect has no GLES form for f (a refused
+// output format: its variants have no GLSL ES).
+constexpr Format glesStorageFormat(Format f) {
+  switch (f) {
+    default: return f;
+  }
+}
+constexpr bool glesRefuses(Format f) {
+  switch (f) {
+    case Format::RG32F:
+    case Format::R16F:
+    case Format::RG16F:
+    case Format::R8:
+      return true;
+    default: return false;
+  }
+}
 
 }  // namespace sao::gen

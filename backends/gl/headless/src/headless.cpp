@@ -56,11 +56,13 @@ void GLAPIENTRY debugCallback(GLenum source, GLenum type, GLuint id, GLenum seve
 
 // Tries to create a core `major.minor`+ debug context on an initialised display.
 Status makeContext(EGLDisplay display, const HeadlessOptions& o, EGLContext& ctx, EGLSurface& surface) {
-  if (!eglBindAPI(EGL_OPENGL_API)) return Status::error(StatusCode::DriverError, eglError("eglBindAPI(EGL_OPENGL_API)"));
+  if (!eglBindAPI(o.es ? EGL_OPENGL_ES_API : EGL_OPENGL_API))
+    return Status::error(StatusCode::DriverError, eglError(o.es ? "eglBindAPI(EGL_OPENGL_ES_API)" : "eglBindAPI(EGL_OPENGL_API)"));
   const char* ext = eglQueryString(display, EGL_EXTENSIONS);
   const bool surfaceless = hasExtension(ext, "EGL_KHR_surfaceless_context");
-  const EGLint withPbuffer[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_NONE};
-  const EGLint anySurface[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+  const EGLint renderable = o.es ? EGL_OPENGL_ES3_BIT : EGL_OPENGL_BIT;
+  const EGLint withPbuffer[] = {EGL_RENDERABLE_TYPE, renderable, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_NONE};
+  const EGLint anySurface[] = {EGL_RENDERABLE_TYPE, renderable, EGL_NONE};
   EGLConfig config = nullptr;
   EGLint count = 0;
   if (!eglChooseConfig(display, withPbuffer, &config, 1, &count) || count == 0) {
@@ -69,22 +71,22 @@ Status makeContext(EGLDisplay display, const HeadlessOptions& o, EGLContext& ctx
   }
   if (count == 0) {
     if (!(surfaceless && hasExtension(ext, "EGL_KHR_no_config_context")))
-      return Status::error(StatusCode::DriverError, "no EGL config with EGL_OPENGL_BIT");
+      return Status::error(StatusCode::DriverError, o.es ? "no EGL config with EGL_OPENGL_ES3_BIT" : "no EGL config with EGL_OPENGL_BIT");
     config = nullptr;  // EGL_NO_CONFIG_KHR
   }
   const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION_KHR,
                             o.major,
                             EGL_CONTEXT_MINOR_VERSION_KHR,
                             o.minor,
-                            EGL_CONTEXT_OPENGL_PROFILE_MASK_KHR,
-                            EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT_KHR,
                             EGL_CONTEXT_FLAGS_KHR,
                             o.debug ? EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR : 0,
+                            o.es ? EGL_NONE : EGL_CONTEXT_OPENGL_PROFILE_MASK_KHR,  // ES has no profiles
+                            EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT_KHR,
                             EGL_NONE};
   ctx = eglCreateContext(display, config, EGL_NO_CONTEXT, attribs);
   if (ctx == EGL_NO_CONTEXT)
-    return Status::error(StatusCode::DriverError, eglError(("eglCreateContext(core " + std::to_string(o.major) + "." +
-                                                            std::to_string(o.minor) + ", debug)")
+    return Status::error(StatusCode::DriverError, eglError((std::string(o.es ? "eglCreateContext(ES " : "eglCreateContext(core ") +
+                                                            std::to_string(o.major) + "." + std::to_string(o.minor) + ", debug)")
                                                                .c_str()));
   surface = EGL_NO_SURFACE;
   if (!surfaceless) {

@@ -1,6 +1,6 @@
 // A headless OpenGL context for tests and tools: EGL on Mesa's surfaceless platform (llvmpipe
 // without a GPU), falling back to EGL_EXT_platform_device (e.g. NVIDIA without a display). The
-// context is a core 4.3+ debug context; a KHR_debug callback collects every message so that a
+// context is a core 4.3+ debug context (or, with HeadlessOptions::es, an ES 3.1+ one); a KHR_debug callback collects every message so that a
 // test can fail on GL_DEBUG_TYPE_ERROR.
 #pragma once
 #include <cstdint>
@@ -26,7 +26,8 @@ enum class EglPlatform {
 };
 
 struct HeadlessOptions {
-  int major = 4, minor = 3;  // the least version accepted (core profile)
+  int major = 4, minor = 3;  // the least version accepted (core profile; with es, the ES version)
+  bool es = false;           // an OpenGL ES context (EGL_OPENGL_ES_API) instead: for sao::gles, major.minor >= 3.1
   bool debug = true;         // debug context + KHR_debug callback
   // Auto can be overridden with the environment variable SAO_EGL_PLATFORM=surfaceless|device.
   EglPlatform platform = EglPlatform::Auto;
