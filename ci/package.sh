@@ -51,12 +51,14 @@ declare -A needs=([core]="" [io]="OpenEXR Imath PkgConfig" [cpu]="" [gl]="OpenGL
 components=$(sed -n 's/^set(sao_AVAILABLE_COMPONENTS \(.*\))$/\1/p' "$prefix/lib/cmake/sao/saoConfig.cmake" |
   tr ';' ' ')
 echo "components: $components"
-disabled_for() {  # the -DCMAKE_DISABLE_FIND_PACKAGE_<Pkg>=ON of every component but $1
+disabled_for() {  # the -DCMAKE_DISABLE_FIND_PACKAGE_<Pkg>=ON of every component but $1 (not $1's own: gl and gles share OpenGL)
   local c pkg
   for c in "${!needs[@]}"; do
     [ "$c" = "$1" ] && continue
-    for pkg in ${needs[$c]}; do echo "-DCMAKE_DISABLE_FIND_PACKAGE_$pkg=ON"; done
-  done
+    for pkg in ${needs[$c]}; do
+      [[ " ${needs[$1]} " == *" $pkg "* ]] || echo "-DCMAKE_DISABLE_FIND_PACKAGE_$pkg=ON"
+    done
+  done | sort -u
 }
 
 for c in $components; do
