@@ -23,6 +23,9 @@ class Diagnostics {
   void warning(const SourceLoc& loc, std::string message);
   bool hasErrors() const { return errorCount_ > 0; }
   const std::vector<Diagnostic>& all() const { return items_; }
+  void append(const Diagnostics& other) {  // other's diagnostics after these (repeats dropped)
+    for (const Diagnostic& d : other.items_) add(d);
+  }
 
  private:
   void add(Diagnostic d);

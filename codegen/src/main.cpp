@@ -1,9 +1,11 @@
 // sao-shaderc: compiles an annotated SAO effect into GLSL 4.30, SPIR-V and C++ glue.
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <map>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cpp_emitter.h"
@@ -88,6 +90,41 @@ void checkPushConstants(const Effect& e, const std::vector<CompiledPassVariant>&
   }
 }
 
+// One pass variant's outputs: its GLSL, its SPIR-V (the HLSL round trip's with --spirv-from-hlsl),
+// HLSL and GLSL ES, each checked; ok false (with diags) when any step failed.
+struct VariantResult {
+  bool ok = false;
+  Diagnostics diags;
+  CompiledPassVariant compiled;
+  std::string glsl, hlsl50, hlsl60, essl;
+  std::vector<uint32_t> spirv;
+};
+
+VariantResult compileVariant(const Effect& effect, const PassVariant& pv, int spirvFromHlsl) {
+  VariantResult r;
+  Diagnostics& diags = r.diags;
+  const SourceLoc& passLoc = effect.passes[pv.pass].loc;
+  const auto glShader = composeShader(effect, pv, Target::OpenGL);
+  const bool glOk = checkOpenGl(glShader, passLoc, &*effect.block, diags);
+  const bool vkOk = compileVulkan(composeShader(effect, pv, Target::Vulkan), passLoc, r.spirv, diags);
+  if (!glOk || !vkOk) return r;
+  r.glsl = joinLines(glShader);
+  r.compiled = CompiledPassVariant{pv, 0, 0, {}, -1};
+  if (std::string why; !readSpirvFacts(r.spirv, r.compiled.facts, why)) {
+    diags.error(passLoc, "pass variant " + pv.stem + ": its SPIR-V cannot be read for shared memory and push constants: " + why);
+    return r;
+  }
+  const std::string& push = r.compiled.facts.pushConstantBlock;
+  std::vector<uint32_t> roundTrip50, roundTrip60;
+  if (!hlslOf(effect, r.spirv, pv, 50, push, spirvFromHlsl == 50, passLoc, r.hlsl50, roundTrip50, diags) ||
+      !hlslOf(effect, r.spirv, pv, 60, push, spirvFromHlsl == 60, passLoc, r.hlsl60, roundTrip60, diags) ||
+      (pv.onGles && !esslOf(effect, pv, passLoc, r.essl, diags)))
+    return r;
+  if (spirvFromHlsl) r.spirv = spirvFromHlsl == 50 ? roundTrip50 : roundTrip60;
+  r.ok = true;
+  return r;
+}
+
 int fail(const Diagnostics& diags) {
   for (const auto& d : diags.all()) std::fprintf(stderr, "%s\n", d.format().c_str());
   return 1;
@@ -132,40 +169,37 @@ int main(int argc, char** argv) {
   std::vector<std::vector<uint32_t>> spirvBlobs;
   std::map<std::string, int> glslIndex, esslIndex;
   std::map<std::vector<uint32_t>, int> spirvIndex;
-  for (const PassVariant& pv : buildPassVariants(effect)) {
-    const SourceLoc& passLoc = effect.passes[pv.pass].loc;
-    const auto glShader = composeShader(effect, pv, Target::OpenGL);
-    const auto vkShader = composeShader(effect, pv, Target::Vulkan);
-    std::vector<uint32_t> spirv;
-    const bool glOk = checkOpenGl(glShader, passLoc, &*effect.block, diags);
-    const bool vkOk = compileVulkan(vkShader, passLoc, spirv, diags);
-    if (!glOk || !vkOk) continue;
-    const std::string glsl = joinLines(glShader);
-    outputs.add(pv.stem + ".glsl", glsl);
-    CompiledPassVariant c{pv, 0, 0, {}, -1};
-    if (std::string why; !readSpirvFacts(spirv, c.facts, why)) {
-      diags.error(passLoc, "pass variant " + pv.stem + ": its SPIR-V cannot be read for shared memory and push constants: " + why);
-      continue;
+  // The variants compiled by one thread per core (each variant its own glslang, SPIRV-Tools and
+  // SPIRV-Cross objects; the effect is read only), then merged in variant order: the outputs and
+  // their blob numbering do not depend on the threads.
+  const std::vector<PassVariant> variants = buildPassVariants(effect);
+  std::vector<VariantResult> results(variants.size());
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    for (std::size_t i; (i = next++) < variants.size();) results[i] = compileVariant(effect, variants[i], spirvFromHlsl);
+  };
+  std::vector<std::thread> threads(std::clamp(std::thread::hardware_concurrency(), 1u, 16u) - 1);
+  for (auto& t : threads) t = std::thread(work);
+  work();
+  for (auto& t : threads) t.join();
+  for (VariantResult& r : results) {
+    diags.append(r.diags);
+    if (!r.ok) continue;
+    CompiledPassVariant& c = r.compiled;
+    const std::string& stem = c.variant.stem;
+    outputs.add(stem + ".glsl", r.glsl);
+    outputs.add(stem + ".sm50.hlsl", r.hlsl50);
+    outputs.add(stem + ".sm60.hlsl", r.hlsl60);
+    if (c.variant.onGles) {
+      outputs.add(stem + ".es310.glsl", r.essl);
+      c.esslBlob = esslIndex.emplace(r.essl, static_cast<int>(esslBlobs.size())).first->second;
+      if (c.esslBlob == static_cast<int>(esslBlobs.size())) esslBlobs.push_back(r.essl);
     }
-    std::string hlsl50, hlsl60, essl;
-    std::vector<uint32_t> roundTrip50, roundTrip60;
-    if (!hlslOf(effect, spirv, pv, 50, c.facts.pushConstantBlock, spirvFromHlsl == 50, passLoc, hlsl50, roundTrip50, diags) ||
-        !hlslOf(effect, spirv, pv, 60, c.facts.pushConstantBlock, spirvFromHlsl == 60, passLoc, hlsl60, roundTrip60, diags) ||
-        (pv.onGles && !esslOf(effect, pv, passLoc, essl, diags)))
-      continue;
-    outputs.add(pv.stem + ".sm50.hlsl", hlsl50);
-    outputs.add(pv.stem + ".sm60.hlsl", hlsl60);
-    if (pv.onGles) {
-      outputs.add(pv.stem + ".es310.glsl", essl);
-      c.esslBlob = esslIndex.emplace(essl, static_cast<int>(esslBlobs.size())).first->second;
-      if (c.esslBlob == static_cast<int>(esslBlobs.size())) esslBlobs.push_back(essl);
-    }
-    if (spirvFromHlsl) spirv = spirvFromHlsl == 50 ? roundTrip50 : roundTrip60;
-    outputs.add(pv.stem + ".spv", spirvBytes(spirv));
-    c.glslBlob = glslIndex.emplace(glsl, static_cast<int>(glslBlobs.size())).first->second;
-    if (c.glslBlob == static_cast<int>(glslBlobs.size())) glslBlobs.push_back(glsl);
-    c.spirvBlob = spirvIndex.emplace(spirv, static_cast<int>(spirvBlobs.size())).first->second;
-    if (c.spirvBlob == static_cast<int>(spirvBlobs.size())) spirvBlobs.push_back(spirv);
+    outputs.add(stem + ".spv", spirvBytes(r.spirv));
+    c.glslBlob = glslIndex.emplace(r.glsl, static_cast<int>(glslBlobs.size())).first->second;
+    if (c.glslBlob == static_cast<int>(glslBlobs.size())) glslBlobs.push_back(r.glsl);
+    c.spirvBlob = spirvIndex.emplace(r.spirv, static_cast<int>(spirvBlobs.size())).first->second;
+    if (c.spirvBlob == static_cast<int>(spirvBlobs.size())) spirvBlobs.push_back(r.spirv);
     compiled.push_back(c);
   }
   checkPushConstants(effect, compiled, diags);
