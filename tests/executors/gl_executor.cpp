@@ -6,6 +6,7 @@
 
 #include "gl_msaa_depth_writer.h"
 #include "gl_support.h"
+#include "gl_family.h"
 #include "harness_apis.h"
 #include "msaa_depth.h"
 #include "sao/cpu/reference.h"
@@ -25,37 +26,14 @@ gl::GlDepth glDepth(Depth d) {
   return gl::GlDepth::D32F;
 }
 
-GLenum texelsFormat(Texels t) {
-  switch (t) {
-    case Texels::RGBA16F: return GL_RGBA16F;
-    case Texels::RGBA32F: return GL_RGBA32F;
-    case Texels::RG16F: return GL_RG16F;
-    case Texels::RG32F: return GL_RG32F;
-  }
-  return GL_RGBA16F;
-}
 
-// A texture of `internal` holding `image` (its channels): 16-bit floats rounded to nearest-even and
-// 8-bit unorm to the nearest byte on the host, as the Vulkan half uploads them.
+// A texture of `internal` holding `image` (its channels), uploaded as gl_family.h's hostTexels says.
 GLuint uploadColor(const FloatImage& image, GLenum internal) {
   const GLuint t = gl::makeTexture(internal, image.extent);
-  const GLenum layout = image.channels == 1 ? GL_RED : image.channels == 2 ? GL_RG : GL_RGBA;
-  const bool half = internal == GL_R16F || internal == GL_RG16F || internal == GL_RGBA16F;
-  const bool byte = internal == GL_R8 || internal == GL_RGBA8;
+  const HostTexels texels = hostTexels(image, internal);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  const auto w = GLsizei(image.extent.width), h = GLsizei(image.extent.height);
-  if (half) {
-    std::vector<std::uint16_t> bits(image.data.size());
-    std::transform(image.data.begin(), image.data.end(), bits.begin(), [](float v) { return cpu::halfBits(v); });
-    glTextureSubImage2D(t, 0, 0, 0, w, h, layout, GL_HALF_FLOAT, bits.data());
-  } else if (byte) {
-    std::vector<std::uint8_t> bytes(image.data.size());
-    std::transform(image.data.begin(), image.data.end(), bytes.begin(),
-                   [](float v) { return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); });
-    glTextureSubImage2D(t, 0, 0, 0, w, h, layout, GL_UNSIGNED_BYTE, bytes.data());
-  } else {
-    glTextureSubImage2D(t, 0, 0, 0, w, h, layout, GL_FLOAT, image.data.data());
-  }
+  glTextureSubImage2D(t, 0, 0, 0, GLsizei(image.extent.width), GLsizei(image.extent.height), texels.layout, texels.type,
+                      texels.data());
   return t;
 }
 
@@ -116,18 +94,7 @@ class GlExecutor final : public Executor {
     makeCurrent();
     if (!effect_)
       if (Status st = gl::Effect::create(gl::HeadlessContext::getProcAddress(), effect_); !st) return st;
-    gl::Inputs in;
-    in.depth = {depth_, format_};
-    in.depth2 = {depth2_, depth2_ ? format_ : 0};
-    in.normals = normals_;
-    in.motion = motion_;
-    in.region = f.region;
-    in.output = output_;
-    in.outputChannels = f.output.channels;
-    in.outputBlend = f.output.blend;
-    in.frameIndex = f.frameIndex;
-    in.resetHistory = f.resetHistory;
-    in.previousCamera = f.previousCamera;
+    gl::Inputs in = frameInputs<gl::Inputs>(f, format_, depth_, depth2_, normals_, motion_, output_);
     in.layer = f.layer;
     const Status st = effect_->render(f.camera, f.settings, in);
     glFinish();

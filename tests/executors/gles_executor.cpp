@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "gl_family.h"
 #include "harness_apis.h"
 #include "sao/cpu/reference.h"
 #include "sao/gl/headless.h"
@@ -77,15 +78,6 @@ DepthUpload depthUpload(Depth d) {
   return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT};
 }
 
-GLenum texelsFormat(Texels t) {
-  switch (t) {
-    case Texels::RGBA16F: return GL_RGBA16F;
-    case Texels::RGBA32F: return GL_RGBA32F;
-    case Texels::RG16F: return GL_RG16F;
-    case Texels::RG32F: return GL_RG32F;
-  }
-  return GL_RGBA16F;
-}
 
 // A new immutable single-level GL_TEXTURE_2D, left bound to unit 0's 2D target for the upload.
 GLuint makeTexture(GLenum internal, Extent e) {
@@ -135,23 +127,11 @@ void fillDepth(const DepthImage& d, Depth format) {
   }
 }
 
-// A texture of `internal` holding `image` (its channels): 16-bit floats rounded to nearest-even and
-// 8-bit unorm to the nearest byte on the host, as the GL and Vulkan halves upload them.
+// A texture of `internal` holding `image` (its channels), uploaded as gl_family.h's hostTexels says.
 GLuint uploadColor(const FloatImage& image, GLenum internal) {
   const GLuint t = makeTexture(internal, image.extent);
-  const GLenum layout = image.channels == 1 ? GL_RED : image.channels == 2 ? GL_RG : GL_RGBA;
-  if (internal == GL_RG16F || internal == GL_RGBA16F) {
-    std::vector<std::uint16_t> bits(image.data.size());
-    std::transform(image.data.begin(), image.data.end(), bits.begin(), [](float v) { return cpu::halfBits(v); });
-    fill(image.extent, layout, GL_HALF_FLOAT, bits.data());
-  } else if (internal == GL_R8 || internal == GL_RGBA8) {
-    std::vector<std::uint8_t> bytes(image.data.size());
-    std::transform(image.data.begin(), image.data.end(), bytes.begin(),
-                   [](float v) { return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); });
-    fill(image.extent, layout, GL_UNSIGNED_BYTE, bytes.data());
-  } else {
-    fill(image.extent, layout, GL_FLOAT, image.data.data());
-  }
+  const HostTexels texels = hostTexels(image, internal);
+  fill(image.extent, texels.layout, texels.type, texels.data());
   return t;
 }
 
@@ -279,18 +259,7 @@ class GlesExecutor final : public Executor {
     if (Status st = checkSupported(f); !st) return st;
     if (!effect_)
       if (Status st = gles::Effect::create(gl::HeadlessContext::getProcAddress(), effect_); !st) return st;
-    gles::Inputs in;
-    in.depth = {depth_, format_};
-    in.depth2 = {depth2_, depth2_ ? format_ : 0};
-    in.normals = normals_;
-    in.motion = motion_;
-    in.region = f.region;
-    in.output = output_;
-    in.outputChannels = f.output.channels;
-    in.outputBlend = f.output.blend;
-    in.frameIndex = f.frameIndex;
-    in.resetHistory = f.resetHistory;
-    in.previousCamera = f.previousCamera;
+    gles::Inputs in = frameInputs<gles::Inputs>(f, format_, depth_, depth2_, normals_, motion_, output_);
     const Status st = effect_->render(f.camera, f.settings, in);
     glFinish();
     return st;
