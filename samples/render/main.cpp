@@ -130,6 +130,7 @@ Status makeSceneDepth(const Options& o, const samples::BackendRunner& backend, c
 // Where each output is written: staged paths (see sao/samples/output_files.h).
 struct OutputPaths {
   std::string aoPng, aoExr, lit, litNoAo, reference, summaryTxt, summaryJson;
+  std::string bentExr, bentPng;  // with the setting bent_normals
   std::string saveDepth;   // staged inside an output folder; else g_staged.depth has it
   std::string dumpPrefix;  // the intermediates' names in their folder ("passes/", or "")
 };
@@ -161,6 +162,10 @@ OutputPaths stageOutputs(const Options& o) {
   reserve(out, "ao.png", p.aoPng);
   reserve(out, "ao.exr", p.aoExr);
   reserve(out, "summary.txt", p.summaryTxt);
+  if (o.settings.bent_normals) {
+    reserve(out, "bent_normal.exr", p.bentExr);
+    reserve(out, "bent_normal.png", p.bentPng);
+  }
   if (o.depthPath.empty()) {
     reserve(out, "lit.png", p.lit);
     reserve(out, "lit_no_ao.png", p.litNoAo);
@@ -379,6 +384,10 @@ int main(int argc, char** argv) {
   progress.begin("writing the outputs");
   if (Status s = writeAoPng(paths.aoPng, result.ao); !s) runError(s);
   if (Status s = writeFloatExr(paths.aoExr, result.ao, {"A"}); !s) runError(s);
+  if (settings.bent_normals) {
+    if (Status s = writeFloatExr(paths.bentExr, result.bentNormals, {"X", "Y", "Z"}); !s) runError(s);
+    if (Status s = samples::writeNormalPng(paths.bentPng, result.bentNormals); !s) runError(s);
+  }
   if (havePrimary) {
     const FloatImage lit = samples::shadeEnvironment(primary.normal, primary.position, &result.ao, camera.guardBand);
     const FloatImage unlit = samples::shadeEnvironment(primary.normal, primary.position, nullptr, camera.guardBand);

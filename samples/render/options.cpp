@@ -17,8 +17,9 @@ constexpr const char* kTool = "sao-render";
 constexpr const char* kDescription =
     R"(Renders a scene's depth, runs Scalable Ambient Obscurance and writes into the output folder:
 ao.png (8-bit), ao.exr (float), lit.png and lit_no_ao.png (environment light with and without
-AO; a scene only), reference.png (with --reference), summary.txt (per-pass times, the plan and
-its memory), summary.json (with --json) and sao-render-outputs.txt (the list of these files).)";
+AO; a scene only), reference.png (with --reference), bent_normal.exr (camera space, X Y Z) and
+bent_normal.png (0.5 + 0.5 b) with --set bent_normals=true, summary.txt (per-pass times, the plan
+and its memory), summary.json (with --json) and sao-render-outputs.txt (the list of these files).)";
 
 constexpr const char* kRules = R"(Any option but --set given twice: the last one counts. Options that would have no effect are
 refused (e.g. --fovy for a scene without --eye, --size with --depth, --reference-rays without

@@ -1,8 +1,9 @@
-// ao_exr_compare A.exr B.exr MAX_STEPS [MAX_PIXELS_OVER]: compares two AO EXRs (sao-render's ao.exr,
-// binary16 values in float) pixel for pixel in binary16 steps (the distance between their half-float
-// bit patterns; AO is in [0, 1], where the patterns are ordered). Prints the largest distance, the
-// pixel, the number of differing pixels and of those over MAX_STEPS; exits 0 when at most
-// MAX_PIXELS_OVER (default 0) pixels are over MAX_STEPS, 1 otherwise, 2 on bad input.
+// ao_exr_compare A.exr B.exr MAX_STEPS [MAX_PIXELS_OVER]: compares two EXRs of sao-render (ao.exr, or
+// the 3-channel bent_normal.exr; binary16 values in float) value for value in binary16 steps (the
+// distance between their half-float bit patterns, ordered across the sign: -0 and +0 are 0 apart).
+// Prints the largest distance, the value's pixel, the number of differing values and of those over
+// MAX_STEPS; exits 0 when at most MAX_PIXELS_OVER (default 0) values are over MAX_STEPS, 1
+// otherwise, 2 on bad input (NaN, or images of other sizes or channel counts).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -24,27 +25,32 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "ao_exr_compare: %s\n", s.message.c_str());
       return 2;
     }
-  if (a.extent != b.extent || a.channels != 1 || b.channels != 1) {
-    std::fprintf(stderr, "ao_exr_compare: %s and %s differ in size or are not one channel\n", argv[1], argv[2]);
+  if (a.extent != b.extent || a.channels != b.channels) {
+    std::fprintf(stderr, "ao_exr_compare: %s and %s differ in size or in channels\n", argv[1], argv[2]);
     return 2;
   }
+  auto ordered = [](float v) {  // binary16 patterns in the order of their values
+    const long bits = long(sao::halfBits(v));
+    return (bits & 0x8000) ? -(bits & 0x7FFF) : bits;
+  };
   const long limit = std::strtol(argv[3], nullptr, 10);
   const long allowed = argc == 5 ? std::strtol(argv[4], nullptr, 10) : 0;
   long worst = 0;
   std::size_t worstAt = 0, differing = 0, over = 0;
   for (std::size_t i = 0; i < a.data.size(); ++i) {
-    if (!(a.data[i] >= 0 && b.data[i] >= 0)) {
-      std::fprintf(stderr, "ao_exr_compare: pixel %zu is negative or NaN\n", i);
+    if (std::isnan(a.data[i]) || std::isnan(b.data[i])) {
+      std::fprintf(stderr, "ao_exr_compare: value %zu is NaN\n", i);
       return 2;
     }
-    const long d = std::labs(long(sao::halfBits(a.data[i])) - long(sao::halfBits(b.data[i])));
+    const long d = std::labs(ordered(a.data[i]) - ordered(b.data[i]));
     differing += d != 0;
     over += d > limit;
     if (d > worst) worst = d, worstAt = i;
   }
-  std::printf("max %ld binary16 steps (pixel %zu,%zu: %.6g vs %.6g); %zu of %zu pixels differ, %zu by more than %ld "
-              "(allowed %ld)\n",
-              worst, worstAt % a.extent.width, worstAt / a.extent.width, a.data[worstAt], b.data[worstAt], differing,
-              a.data.size(), over, limit, allowed);
+  const std::size_t pixel = worstAt / a.channels;
+  std::printf("max %ld binary16 steps (pixel %zu,%zu channel %zu: %.6g vs %.6g); %zu of %zu values differ, %zu by more "
+              "than %ld (allowed %ld)\n",
+              worst, pixel % a.extent.width, pixel / a.extent.width, worstAt % a.channels, a.data[worstAt],
+              b.data[worstAt], differing, a.data.size(), over, limit, allowed);
   return long(over) <= allowed ? 0 : 1;
 }

@@ -143,11 +143,10 @@ check 2 "--set fade_start has no effect while fade_end = 0 (no distance fade" --
 check 2 "also set fade_end > 0, or drop fade_start" --scene crease --set fade_end=4 --set fade_start=2 --set fade_end=0
 check 2 "--set temporal_depth_tolerance has no effect while temporal = false" --scene crease --set temporal_depth_tolerance=0.1
 check 2 "--set blur_stride has no effect while blur_radius = 0 (no bilateral blur" --scene crease --preset low --set blur_radius=0 --set blur_stride=2
-# bent_normals: refused by the effect's rules (exit 2, before any work), and on the direct path by
-# its r16f output, which has no room for the bent normal (exit 1, from plan()).
+# bent_normals: refused by the effect's rules (exit 2, before any work); on the direct path sao-render
+# writes it (an rgba16f output: render_bent_normals.sh).
 check 2 "setting 'bent_normals' = true is refused while estimator = 0 (the alchemy estimator (eq. 1) has no slices of unoccluded rays to average): also set estimator > 0, or drop bent_normals" --scene crease --set bent_normals=true
 check 2 "also set blur_radius = 0, resolution_divisor = 1 and temporal = false, or drop bent_normals" --scene crease --set bent_normals=true --set estimator=1
-check 1 "bent normals need an rgba output (rgba8 or rgba16f)" --scene crease --set bent_normals=true --set estimator=1 --set blur_radius=0 --resolution-divisor 1
 check 2 "--set blur_edge_sharpness has no effect while blur_radius = 0" --scene crease --set blur_edge_sharpness=5 --set blur_radius=0
 check 2 "--set mip_switch_log2 has no effect while use_z_hierarchy = false" --scene crease --set use_z_hierarchy=false --set mip_switch_log2=2
 check 2 "--set half_intermediates has no effect while blur_radius = 0, resolution_divisor = 1 and temporal = false" --scene crease --set blur_radius=0 --set half_intermediates=false --resolution-divisor 1

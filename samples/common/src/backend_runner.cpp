@@ -4,6 +4,25 @@
 
 namespace sao::samples {
 
+gen::Format runnerOutputFormat(const Settings& settings) {
+  return settings.bent_normals ? gen::Format::RGBA16F : gen::Format::R16F;
+}
+
+void splitOutput(FloatImage output, RunOutputs& out) {
+  if (output.channels != 4) {
+    out.ao = std::move(output);
+    out.bentNormals = {};
+    return;
+  }
+  out.ao = FloatImage(output.extent, 1);
+  out.bentNormals = FloatImage(output.extent, 3);
+  for (std::uint32_t y = 0; y < output.extent.height; ++y)
+    for (std::uint32_t x = 0; x < output.extent.width; ++x) {
+      for (std::uint32_t c = 0; c < 3; ++c) out.bentNormals.at(x, y, c) = output.at(x, y, c);
+      out.ao.at(x, y) = output.at(x, y, 3);
+    }
+}
+
 Status createBackend(std::string_view name, std::unique_ptr<BackendRunner>& out) {
   if (name == "cpu" || name == "cpu-double") {
     out = makeCpuRunner(name == "cpu-double");

@@ -16,8 +16,12 @@ class CpuRunner final : public BackendRunner {
   }
   Status run(const Settings& settings, const Camera& camera, const RunInputs& in, bool measureTime, bool dumpPasses,
              RunOutputs& out) override {
-    cpu::Inputs inputs{in.depth, in.depth2, in.normals};
+    cpu::Inputs inputs;
+    inputs.depth = in.depth;
+    inputs.depth2 = in.depth2;
+    inputs.normals = in.normals;
     inputs.frameIndex = in.frameIndex;
+    inputs.outputFormat = runnerOutputFormat(settings);
     // Temporal accumulation: the previous run's history, as a GPU effect keeps it (same settings,
     // a camera of the same size; sao/temporal.h).
     const bool reuse = settings.temporal && !in.resetHistory && haveHistory_ && settings == historySettings_ &&
@@ -39,7 +43,7 @@ class CpuRunner final : public BackendRunner {
       historySettings_ = settings;
     }
     out.plan = r.plan;
-    out.ao = std::move(r.ao);
+    splitOutput(std::move(r.ao), out);
     out.timings = r.timings;
     if (dumpPasses) {
       for (std::size_t m = 0; m < r.csz.size(); ++m) out.intermediates.push_back({"csz_level" + std::to_string(m), r.csz[m]});

@@ -54,6 +54,7 @@ class GlRunner final : public BackendRunner {
     depth_.release();
     depth2_.release();
     normals_.release();
+    gl::deleteTexture(output_.texture);
   }
   std::string_view name() const override { return "gl"; }
   std::string description() const override { return "OpenGL: " + context_->description(); }
@@ -61,11 +62,11 @@ class GlRunner final : public BackendRunner {
   Status run(const Settings& settings, const Camera& camera, const RunInputs& in, bool measureTime, bool dumpPasses,
              RunOutputs& out) override {
     gl::Inputs inputs;
-    if (Status s = bind(in, inputs); !s) return s;
+    if (Status s = bind(settings, camera, in, inputs); !s) return s;
     if (Status s = effect_->render(camera, settings, inputs, {measureTime}); !s) return s;
     out.plan = effect_->plan();
     out.timings = effect_->timings();
-    out.ao = gl::readTexture(effect_->aoTexture(), 1);
+    splitOutput(gl::readTexture(effect_->aoTexture(), output_.texture ? 4 : 1), out);
     if (out.plan.image(gen::ResourceId::ao_raw))  // not planned when ao_sample_output writes the output
       out.aoRaw = gl::readTexture(effect_->texture(gen::ResourceId::ao_raw), 2);
     if (dumpPasses) {
@@ -82,7 +83,7 @@ class GlRunner final : public BackendRunner {
 
   Status keepBusy(const Settings& settings, const Camera& camera, const RunInputs& in, double milliseconds) override {
     gl::Inputs inputs;
-    if (Status s = bind(in, inputs); !s) return s;
+    if (Status s = bind(settings, camera, in, inputs); !s) return s;
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double, std::milli>(milliseconds);
     do {  // a few frames queued between waits: the GPU never idles long
       for (int i = 0; i < 4; ++i)
@@ -94,8 +95,9 @@ class GlRunner final : public BackendRunner {
 
  private:
   // The context made current and the effect's inputs: the kept textures, uploaded again where the
-  // images changed.
-  Status bind(const RunInputs& in, gl::Inputs& inputs) {
+  // images changed, and for an RGBA16F output (runnerOutputFormat) a texture of the viewport's size
+  // kept while the size stays (the effect's own r16f output otherwise).
+  Status bind(const Settings& settings, const Camera& camera, const RunInputs& in, gl::Inputs& inputs) {
     if (!in.depth) return Status::error(StatusCode::InvalidInput, "no depth image");
     if (Status s = context_->makeCurrent(); !s) return s;
     const gl::GlDepth format = glFormat(in.depth->format);
@@ -112,6 +114,14 @@ class GlRunner final : public BackendRunner {
     inputs.normals = in.normals ? normals_.texture : 0;
     inputs.frameIndex = in.frameIndex;
     inputs.resetHistory = in.resetHistory;
+    const Extent viewport{camera.width, camera.height};
+    const bool rgba = runnerOutputFormat(settings) == gen::Format::RGBA16F;
+    if (!rgba || output_.extent != viewport) {
+      gl::deleteTexture(output_.texture);
+      output_ = {};
+    }
+    if (rgba && !output_.texture) output_ = {gl::makeTexture(gl::kRGBA16F, viewport), viewport};
+    inputs.output = output_.texture;
     return Status::success();
   }
 
@@ -134,6 +144,10 @@ class GlRunner final : public BackendRunner {
   std::unique_ptr<gl::Effect> effect_;
   KeptInput<DepthImage> depth_, depth2_;
   KeptInput<FloatImage> normals_;
+  struct {
+    std::uint32_t texture = 0;
+    Extent extent;
+  } output_;  // the RGBA16F output of bent normals (0: the effect's own)
 };
 
 }  // namespace

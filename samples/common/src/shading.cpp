@@ -27,19 +27,36 @@ FloatImage shadeEnvironment(const FloatImage& normals, const FloatImage& positio
   return out;
 }
 
-Status writeRgbPng(const std::string& path, const FloatImage& rgb) {
-  const Extent e = rgb.extent;
+namespace {
+
+// 8-bit RGB PNG of the first three channels, each through `encode` (a value in [0, 1] out), row
+// height-1 first.
+template <class Encode>
+Status writePng(const std::string& path, const FloatImage& image, Encode encode) {
+  const Extent e = image.extent;
   std::vector<unsigned char> px(std::size_t(e.width) * e.height * 3);
   for (std::uint32_t y = 0; y < e.height; ++y)
     for (std::uint32_t x = 0; x < e.width; ++x)
       for (int c = 0; c < 3; ++c) {
-        const float v = std::clamp(rgb.at(x, e.height - 1 - y, c), 0.0f, 1.0f);
-        const float s = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+        const float s = std::clamp(encode(image.at(x, e.height - 1 - y, c)), 0.0f, 1.0f);
         px[(std::size_t(y) * e.width + x) * 3 + c] = static_cast<unsigned char>(std::lround(s * 255.0f));
       }
   if (!stbi_write_png(path.c_str(), int(e.width), int(e.height), 3, px.data(), int(e.width) * 3))
     return Status::error(StatusCode::IoError, "cannot write '" + path + "'");
   return Status::success();
+}
+
+}  // namespace
+
+Status writeRgbPng(const std::string& path, const FloatImage& rgb) {
+  return writePng(path, rgb, [](float linear) {
+    const float v = std::clamp(linear, 0.0f, 1.0f);
+    return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+  });
+}
+
+Status writeNormalPng(const std::string& path, const FloatImage& normals) {
+  return writePng(path, normals, [](float v) { return 0.5f + 0.5f * v; });
 }
 
 }  // namespace sao::samples

@@ -22,7 +22,7 @@ class VulkanRunner final : public BackendRunner {
              RunOutputs& out) override {
     auto& ctx = *context_;
     Prepared p{ctx};
-    if (Status s = prepare(in, measureTime, p); !s) return s;
+    if (Status s = prepare(settings, in, measureTime, p); !s) return s;
     if (measureTime) {
       if (Status s = effect_->measure(ctx.queue(), camera, settings, p.inputs, nullptr, out.timings); !s) return s;
     } else if (Status s = recordOnce(camera, settings, p.inputs); !s) {
@@ -31,10 +31,12 @@ class VulkanRunner final : public BackendRunner {
     const vk::Config& config = effect_->config();
     out.plan = effect_->plan();
     const vk::OutputImage o = effect_->output();
+    FloatImage output;
     if (Status s = ctx.readback(o.image, o.format, o.extent, 0, o.layout, config.outputDstStages, config.outputDstAccess,
-                                out.ao);
+                                output);
         !s)
       return s;
+    splitOutput(std::move(output), out);
     auto readOwned = [&](gen::ResourceId id, std::uint32_t level, FloatImage& image) {
       const auto info = effect_->ownedImage(id);
       return ctx.readback(info.image, info.format, info.extent, level, info.layout, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
@@ -63,7 +65,7 @@ class VulkanRunner final : public BackendRunner {
     Prepared p{*context_};
     // The effect of the runs around it, timestamps included: no new effect in between.
     const bool timestamps = effect_ && effect_->config().timestamps;
-    if (Status s = prepare(in, timestamps, p); !s) return s;
+    if (Status s = prepare(settings, in, timestamps, p); !s) return s;
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double, std::milli>(milliseconds);
     do {
       if (Status s = recordOnce(camera, settings, p.inputs); !s) return s;
@@ -84,10 +86,11 @@ class VulkanRunner final : public BackendRunner {
   };
 
   // Uploads the inputs (each with its format) and makes sure of an effect whose Config matches the
-  // run: one with timestamps to measure, one without otherwise. Settings and camera go to each
+  // run: one with timestamps to measure, one without otherwise, and with the run's output format.
+  // Settings and camera go to each
   // record() (or measure()), which plans again only when they (or the inputs) change the plan: a
   // camera path's frames that plan alike keep the effect's plan and its temporal history.
-  Status prepare(const RunInputs& in, bool measureTime, Prepared& p) {
+  Status prepare(const Settings& settings, const RunInputs& in, bool measureTime, Prepared& p) {
     if (!in.depth) return Status::error(StatusCode::InvalidInput, "no depth image");
     auto& ctx = *context_;
     const VkImageLayout readLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
@@ -107,12 +110,17 @@ class VulkanRunner final : public BackendRunner {
     }
     inputs.frameIndex = in.frameIndex;
     inputs.resetHistory = in.resetHistory;
-    // Timestamps are the one thing of the Config a run changes (a new effect: its plan and
-    // history start again, as a change of timing choice did before).
-    if (effect_ && effect_->config().timestamps == measureTime) return Status::success();
+    // Timestamps and the output format (RGBA16F for bent normals, runnerOutputFormat) are what of
+    // the Config a run changes (a new effect: its plan and history start again, as a change of
+    // timing choice did before).
+    const VkFormat outputFormat = runnerOutputFormat(settings) == gen::Format::RGBA16F ? VK_FORMAT_R16G16B16A16_SFLOAT
+                                                                                        : vk::Config{}.outputFormat;
+    if (effect_ && effect_->config().timestamps == measureTime && effect_->config().outputFormat == outputFormat)
+      return Status::success();
     effect_.reset();
     vk::Config config;
     config.timestamps = measureTime;
+    config.outputFormat = outputFormat;
     return vk::Effect::create(ctx.deviceContext(), config, effect_);
   }
 

@@ -26,7 +26,11 @@ struct RunInputs {
 
 struct RunOutputs {
   Plan plan;
-  FloatImage ao;      // 1 channel
+  FloatImage ao;      // 1 channel: A
+  // With settings.bent_normals: the bent normal (3 channels, camera space, unit length; 0 for sky),
+  // from an RGBA16F output the runner chooses then (an r16f output cannot hold it: plan() refuses
+  // it); empty otherwise.
+  FloatImage bentNormals;
   FloatImage aoRaw;   // 2 channels (A, key z), when the backend can read it back
   Timings timings;
   std::vector<std::pair<std::string, FloatImage>> intermediates;  // with dumpPasses
@@ -49,6 +53,13 @@ class BackendRunner {
     return Status::success();
   }
 };
+
+// The output format a runner asks of its backend: RGBA16F with settings.bent_normals (the bent
+// normal in R, G, B and A in A), else the effect's default R16F.
+gen::Format runnerOutputFormat(const Settings& settings);
+// Splits a runner's read-back output into RunOutputs::ao (A) and, for a 4-channel output,
+// RunOutputs::bentNormals (R, G, B); a 1-channel output is moved into ao as it is.
+void splitOutput(FloatImage output, RunOutputs& out);
 
 // "cpu" (float, as a GPU computes), "cpu-double", "gl", "vulkan" or "auto" (the first of gl, vulkan, cpu that starts). Backends not built
 // into this program give a clear error.

@@ -13,4 +13,8 @@ FloatImage shadeEnvironment(const FloatImage& normals, const FloatImage& positio
 // Linear -> sRGB 8-bit PNG, row height-1 first (the top of the screen).
 Status writeRgbPng(const std::string& path, const FloatImage& rgb);
 
+// Unit vectors (3 channels, e.g. camera-space bent normals) as an 8-bit normal map: 0.5 + 0.5 v per
+// channel, no sRGB curve (as the effect's rgba8 output stores a bent normal), row height-1 first.
+Status writeNormalPng(const std::string& path, const FloatImage& normals);
+
 }  // namespace sao::samples
