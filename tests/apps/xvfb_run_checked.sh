@@ -9,14 +9,21 @@
 set -u
 real=$(command -v xvfb-run) || { echo "xvfb_run_checked.sh: xvfb-run is not installed" >&2; exit 2; }
 opts=()
+# The server without its reset when the last client disconnects (-noreset): the readiness probe
+# below is such a client, and a command connecting while the server resets after it was refused
+# under load ("GLFW error 65544: X11: Failed to open display :553" 0.2 s into a run, once in 12
+# runs of apps_viewer_gl_short_key_presses beside a CPU render). xvfb-run's own default, else.
+server_args="-screen 0 1280x1024x24"
 while [ $# -gt 0 ]; do
   case $1 in
     -a | -l) opts+=("$1"); shift ;;
-    -s | -n | -e | -f | -p | -w) opts+=("$1" "$2"); shift 2 ;;
+    -s) server_args=$2; shift 2 ;;
+    -n | -e | -f | -p | -w) opts+=("$1" "$2"); shift 2 ;;
     --) shift; break ;;
     *) break ;;
   esac
 done
+opts+=(-s "$server_args -noreset")
 # A display number of this run's own, past any lock file or socket still there: the server of the
 # test before (:99, xvfb-run's first choice) may still answer while it goes away.
 n=$((100 + $$ % 800))
