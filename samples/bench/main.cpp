@@ -97,6 +97,7 @@ struct Options {
     return out;
   }();
   std::uint32_t runs = 5, rays = 256, convergedTaps = 4096, warmupMs = 0;
+  std::uint32_t framesAveraged = 1;  // --frames-averaged: the presets section's AO, the mean of this many frames
   Extent size{1280, 720};
   bool sizeGiven = false;  // --size given (the per_tap section's default is 1920x1080)
   bool quick = false;
@@ -210,6 +211,12 @@ Options parse(int argc, char** argv) {
              if (Status s = setFromAssignment(probe, v); !s) cli::reject("--set: " + s.message);
              o.sets.push_back(v);
            });
+  cl.value("--frames-averaged", "N",
+           "with --sections presets: each row's errors are those of the mean of N frames (Inputs::frameIndex 0 to "
+           "N-1, untimed, after the timed runs), 1..1024 (default 1): the preset's own converged value without its "
+           "sampling noise, what a static camera's frames converge to; the rows' variant column says so. Not with "
+           "--time-only, nor with the setting temporal (which blends frames itself)",
+           [&o](const std::string& v) { o.framesAveraged = cli::parseWhole("--frames-averaged", v, 1, 1024); });
   cl.choice("--objective", o.objective,
             [](const std::string& v) { return v == "c" || v == "a" ? std::optional(v) : std::nullopt; }, "c or a", "R",
             "with --tune: the reference whose error the front and the presets minimise: c (default), the converged "
@@ -252,6 +259,8 @@ Options parse(int argc, char** argv) {
         given.push_back(*findSetting(a.substr(0, a.find('='))));
       }
       if (Status st = validate(s); !st) cl.fail("--set: preset " + std::string(p.name) + ": " + st.message);
+      if (s.temporal && cl.given("--frames-averaged"))
+        cl.fail("--frames-averaged averages independent frames: the setting temporal blends frames itself; drop one");
       for (SettingId id : given)
         if (const gen::InertRule* rule = inertRule(s, id))
           cl.fail("--set " + describeInert(*rule) + " (preset " + std::string(p.name) + ")");
@@ -260,6 +269,8 @@ Options parse(int argc, char** argv) {
   if (cl.given("--screen-thickness") && (o.tune || o.timeOnly || o.sections != std::set<std::string>{"presets"}))
     cl.fail("--screen-thickness sets reference (d) of the presets section: add --sections presets (and no --tune or "
             "--time-only)");
+  if (cl.given("--frames-averaged") && (o.tune || o.timeOnly || o.sections != std::set<std::string>{"presets"}))
+    cl.fail("--frames-averaged sets the presets section's errors: add --sections presets (and no --tune or --time-only)");
   if (cl.given("--objective") && !o.tune) cl.fail("--objective chooses what --tune minimises: add --tune, or drop it");
   if (o.timeOnly) {
     if (cl.given("--rays") || cl.given("--converged-taps") || cl.given("--converged-noise") || cl.given("--ao-noise"))
@@ -445,10 +456,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "\r\033[K[%d] %s", ++step, what.c_str());
     std::fflush(stderr);
   };
-  // withError: compare with both references (a) and (b).
+  // withError: compare with both references (a) and (b). averagedFrames: bench::measure's.
   auto run = [&](const std::string& section, const std::string& scene, samples::BackendRunner& b,
                  const std::string& preset, const std::string& variant, const Settings& s, Extent size,
-                 bool withError, Extra extra = Extra::None) {
+                 bool withError, std::uint32_t averagedFrames = 1, Extra extra = Extra::None) {
     progress(section + ": " + scene + " " + std::string(b.name()) + " " + preset + " " + variant + " " +
              std::to_string(size.width) + "x" + std::to_string(size.height));
     Prepared& p = cache.prepare(scene, size.width, size.height);
@@ -496,7 +507,8 @@ int main(int argc, char** argv) {
       refs.silhouette = &p.silhouette;
     }
     bench::Row r{section, scene, std::string(b.name()), preset, variant, what, size, s, {}, NAN, NAN, {}};
-    if (Status st = bench::measure(b, s, p.camera, inputs, int(o.runs), refs, r.m, double(o.warmupMs)); !st)
+    if (Status st = bench::measure(b, s, p.camera, inputs, int(o.runs), refs, r.m, double(o.warmupMs), averagedFrames);
+        !st)
       fail(section + " " + scene + " " + variant + ": " + st.message);
     if (converged) {
       if (fs::create_directories(fs::path(out) / "maps", ec); ec)
@@ -534,7 +546,9 @@ int main(int argc, char** argv) {
             setFromAssignment(s, a);  // checked by parse()
             variant += (variant.empty() ? "" : " ") + a;
           }
-          run("presets", scene, *b, std::string(p.name), variant, s, size, true);
+          if (o.framesAveraged > 1)
+            variant += (variant.empty() ? "" : " ") + std::string("frames_averaged=") + std::to_string(o.framesAveraged);
+          run("presets", scene, *b, std::string(p.name), variant, s, size, true, o.framesAveraged);
         }
 
   // samples, mip_blur: sweeps on the main scene and the first backend.
@@ -576,7 +590,7 @@ int main(int argc, char** argv) {
         t.use_z_hierarchy = c.hierarchy;
         t.estimator = c.estimator;
         t.thickness_model = c.thicknessModel;
-        run("radius", mainScene, first, "medium", c.label, t, radiusSize, false, c.extra);
+        run("radius", mainScene, first, "medium", c.label, t, radiusSize, false, 1, c.extra);
       }
   }
 
@@ -628,7 +642,7 @@ int main(int argc, char** argv) {
   if (want("two_layer"))
     for (auto& b : backends) {
       run("two_layer", mainScene, *b, "medium", "one layer", base, size, true);
-      run("two_layer", mainScene, *b, "medium", "two layers", base, size, true, Extra::SecondLayer);
+      run("two_layer", mainScene, *b, "medium", "two layers", base, size, true, 1, Extra::SecondLayer);
     }
 
   // precision (paper Figures 3 and 4): every prepass that starts, on the dedicated panel scene.

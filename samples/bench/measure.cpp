@@ -22,9 +22,12 @@ double median(std::vector<double> v) {
 
 Status measure(samples::BackendRunner& backend, const Settings& settings, const Camera& camera,
                const samples::RunInputs& inputs, int runs, const References& references, Measurement& out,
-               double warmupMs) {
+               double warmupMs, std::uint32_t averagedFrames) {
   out = Measurement{};
   if (!inputs.depth) return Status::error(StatusCode::InvalidInput, "bench::measure needs a depth image");
+  if (averagedFrames == 0 || (averagedFrames > 1 && settings.temporal))
+    return Status::error(StatusCode::InvalidInput,
+                         "bench::measure averages 1 or more independent frames, not frames of the temporal setting");
   std::vector<std::string> order;
   std::map<std::string, std::vector<double>> perPass;
   std::vector<double> totals;
@@ -54,6 +57,19 @@ Status measure(samples::BackendRunner& backend, const Settings& settings, const 
     if (r == runs - 1) out.ao = std::move(o.ao);
   }
   out.endedUnixSeconds = unixSeconds();
+  if (averagedFrames > 1) {
+    samples::RunInputs frame = inputs;
+    FloatImage sum;
+    for (std::uint32_t f = 0; f < averagedFrames; ++f) {
+      frame.frameIndex = inputs.frameIndex + f;
+      samples::RunOutputs o;
+      if (Status s = backend.run(settings, camera, frame, false, false, o); !s) return s;
+      if (f == 0) sum = FloatImage(o.ao.extent, o.ao.channels);
+      for (std::size_t i = 0; i < sum.data.size(); ++i) sum.data[i] += o.ao.data[i];
+    }
+    for (float& v : sum.data) v /= float(averagedFrames);
+    out.ao = std::move(sum);
+  }
   for (const auto& name : order) out.passes.push_back({name, median(perPass[name])});
   out.totalMs = median(totals);
   out.runs = runs;

@@ -47,8 +47,13 @@ struct Measurement {
 // warmupMs > 0: after the warm-up run, the backend renders back to back for that long
 // (BackendRunner::keepBusy: a GPU's clocks up) before the timed runs; not with the temporal setting,
 // whose history it would advance.
+// averagedFrames > 1: the AO compared with the references (and kept in `ao`) is the mean of that many
+// untimed runs at Inputs::frameIndex 0, 1, ... (each frame its own taps: what a static camera's
+// frames converge to, the estimator's own converged value, without its sampling noise); the times
+// are the timed runs' as before. Not with the temporal setting (InvalidInput), which blends frames
+// itself.
 Status measure(samples::BackendRunner& backend, const Settings& settings, const Camera& camera,
                const samples::RunInputs& inputs, int runs, const References& references, Measurement& out,
-               double warmupMs = 0);
+               double warmupMs = 0, std::uint32_t averagedFrames = 1);
 
 }  // namespace sao::bench

@@ -54,6 +54,11 @@ case $name in
     check "--backends: unknown backend 'metal' (expected gl, vulkan, cpu, cpu-double or auto)" --backends metal
     check "--backends: unknown backend 'metal' (expected gl, vulkan, cpu, cpu-double or auto)" --backends gl,metal
     check "--backends: an empty name in 'gl,'" --backends gl,
+    # --frames-averaged: the presets section's errors of averaged frames, never silently ignored.
+    check "--frames-averaged expects a whole number in [1, 1024], got '0'" --frames-averaged 0
+    check "--frames-averaged sets the presets section's errors: add --sections presets" --frames-averaged 4
+    check "--frames-averaged sets the presets section's errors: add --sections presets (and no --tune or --time-only)" --sections presets --time-only --frames-averaged 4
+    check "--frames-averaged averages independent frames: the setting temporal blends frames itself" --sections presets --set temporal=true --frames-averaged 4
     ;;
   sao-viewer)
     check "--z-level expects a whole number in [0, 15], got '16'" --z-level 16
