@@ -4,6 +4,7 @@
 // its least thickness, huge radius and cap, a tiny radius), temporal, and far depths (a
 // scene 1000x farther, reversed and standard depth).
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,78 @@ TEST(VisibilityEstimator, ExtremesStayInZeroOne) {
   report("visibility estimator at the extremes (radius, thickness, depth_tolerance, slices x samples, far depths; "
          "persp, ortho, reversed infinite)",
          "A finite and in [0,1]", fmt("%zu runs: A in [%.4f, %.4f]", runs, lo, hi));
+}
+
+// The bent normal (bent_normals, the direct path's rgba16f output through the runners) at the same
+// extremes: on every backend finite, unit length on geometry (to binary16's rounding) and 0 on sky,
+// GL = Vulkan within the bent normal's agreement bound (tests/executors/bent_normal_test.cpp: 4/255).
+TEST(VisibilityEstimator, BentNormalsAtTheExtremesAreUnitAndFinite) {
+  const Camera persp = camera(64, 48, 0.1, 1e4, ClipDepth::NegativeOneToOne, false, 8);
+  const Camera farRev = camera(64, 48, 0.1, kInf, ClipDepth::ZeroToOne, true, 8);
+  const Camera ortho = orthoCamera(64, 48, 0.1, 100.0, ClipDepth::ZeroToOne, true, 8, 3.0);
+  struct Tweak {
+    std::string name;
+    void (*apply)(Settings&);
+  };
+  const std::vector<Tweak> tweaks = {
+      {"defaults", [](Settings&) {}},
+      {"radius 0.01", [](Settings& s) { s.radius = 0.01f; }},
+      {"radius 100", [](Settings& s) { s.radius = 100.0f; }},
+      {"thickness 0.001", [](Settings& s) { s.thickness = 0.001f; }},
+      {"thickness 100", [](Settings& s) { s.thickness = 100.0f; }},
+      {"depth_tolerance 0.1 radius 100", [](Settings& s) { s.depth_tolerance = 0.1f, s.radius = 100.0f; }},
+      {"slices 8 samples 1", [](Settings& s) { s.slices = 8, s.samples = 1; }},
+      {"slices 8 samples 64", [](Settings& s) { s.slices = 8, s.samples = 64; }},
+      {"thickness_model 1 thickness 100 radius 100", [](Settings& s) { s.thickness_model = 1, s.thickness = 100.0f, s.radius = 100.0f; }},
+      {"thickness_model 1 radius 0.01 slices 8 samples 64", [](Settings& s) { s.thickness_model = 1, s.radius = 0.01f, s.slices = 8, s.samples = 64; }},
+  };
+  double worstLength = 0, worstGpu = 0;
+  std::size_t runs = 0;
+  auto check = [&](const std::string& label, const Settings& s, const Camera& cam, const test::Scene& scene,
+                   DepthFormat fm) {
+    const SceneRun r = runScene(label, s, cam, scene, fm);
+    for (const BackendRun& b : r.runs.runs) {
+      ++runs;
+      const FloatImage& bent = b.out.bentNormals;
+      ASSERT_EQ(bent.channels, 3u) << label << " on " << b.name;
+      ASSERT_EQ(bent.extent, b.out.ao.extent) << label << " on " << b.name;
+      EXPECT_TRUE(allFinite(bent)) << label << " on " << b.name;
+      for (std::uint32_t y = 0; y < bent.extent.height; ++y)
+        for (std::uint32_t x = 0; x < bent.extent.width; ++x) {
+          const double bx = bent.at(x, y, 0), by = bent.at(x, y, 1), bz = bent.at(x, y, 2);
+          const double length = std::sqrt(bx * bx + by * by + bz * bz);
+          if (r.sky[std::size_t(y) * bent.extent.width + x]) {
+            EXPECT_EQ(length, 0.0) << label << " on " << b.name << ": sky pixel " << x << "," << y;
+          } else {
+            worstLength = std::max(worstLength, std::abs(length - 1.0));
+            EXPECT_NEAR(length, 1.0, 2e-3) << label << " on " << b.name << ": pixel " << x << "," << y;
+          }
+        }
+    }
+    const BackendRun* gl = r.runs.find("gl");
+    const BackendRun* vk = r.runs.find("vulkan");
+    if (gl && vk) {
+      const double d = maxAbsDiff(gl->out.bentNormals, vk->out.bentNormals);
+      worstGpu = std::max(worstGpu, d);
+      EXPECT_LE(d, 4.0 / 255.0) << label << ": GL and Vulkan bent normals differ";
+    }
+  };
+  for (const Tweak& t : tweaks) {
+    Settings s = fullResolution();
+    s.estimator = 1;
+    s.bent_normals = true;
+    s.blur_radius = 0;
+    t.apply(s);
+    ASSERT_TRUE(validate(s).ok()) << t.name;
+    check(t.name + " persp", s, persp, test::sphereOnPlaneScene(), DepthFormat::D24);
+    check(t.name + " ortho", s, ortho, test::creaseScene(5.0), DepthFormat::D32F);
+    if (t.name == "defaults" || t.name.find("radius 100") != std::string::npos)  // far depths: the large radii
+      check(t.name + " far", s, farRev, test::stairsScene(), DepthFormat::D32F);
+  }
+  report("bent normal at the extremes (radius, thickness, depth_tolerance, slices x samples, width model; persp, "
+         "ortho, far)",
+         "finite, unit on geometry, 0 on sky, GL = Vulkan <= 4/255",
+         fmt("%zu runs: | |b| - 1 | <= %.2g, GL vs Vulkan <= %.3g", runs, worstLength, worstGpu));
 }
 
 }  // namespace
