@@ -87,9 +87,9 @@ class VulkanRunner final : public BackendRunner {
 
   // Uploads the inputs (each with its format) and makes sure of an effect whose Config matches the
   // run: one with timestamps to measure, one without otherwise, and with the run's output format.
-  // Settings and camera go to each
-  // record() (or measure()), which plans again only when they (or the inputs) change the plan: a
-  // camera path's frames that plan alike keep the effect's plan and its temporal history.
+  // Settings and camera go to each record() (or measure()), which plans again only when they (or
+  // the inputs) change the plan: a camera path's frames that plan alike keep the effect's plan and
+  // its temporal history.
   Status prepare(const Settings& settings, const RunInputs& in, bool measureTime, Prepared& p) {
     if (!in.depth) return Status::error(StatusCode::InvalidInput, "no depth image");
     auto& ctx = *context_;
