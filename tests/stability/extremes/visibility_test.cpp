@@ -13,15 +13,27 @@
 namespace sao::stability {
 namespace {
 
-TEST(VisibilityEstimator, ExtremesStayInZeroOne) {
-  const Camera persp = camera(64, 48, 0.1, 1e4, ClipDepth::NegativeOneToOne, false, 8);
-  const Camera farRev = camera(64, 48, 0.1, kInf, ClipDepth::ZeroToOne, true, 8);
-  const Camera ortho = orthoCamera(64, 48, 0.1, 100.0, ClipDepth::ZeroToOne, true, 8, 3.0);
-  struct Tweak {
-    std::string name;
-    void (*apply)(Settings&);
-  };
-  const std::vector<Tweak> tweaks = {
+// The three views of both tests: perspective (D24 here), orthographic, and reversed infinite (far depths).
+const Camera& perspCamera() {
+  static const Camera c = camera(64, 48, 0.1, 1e4, ClipDepth::NegativeOneToOne, false, 8);
+  return c;
+}
+const Camera& farCamera() {
+  static const Camera c = camera(64, 48, 0.1, kInf, ClipDepth::ZeroToOne, true, 8);
+  return c;
+}
+const Camera& orthographicCamera() {
+  static const Camera c = orthoCamera(64, 48, 0.1, 100.0, ClipDepth::ZeroToOne, true, 8, 3.0);
+  return c;
+}
+
+// The settings' extremes both tests run, each on top of estimator 1 at full resolution.
+struct Tweak {
+  std::string name;
+  void (*apply)(Settings&);
+};
+const std::vector<Tweak>& tweaks() {
+  static const std::vector<Tweak> list = {
       {"defaults", [](Settings&) {}},
       {"radius 0.01", [](Settings& s) { s.radius = 0.01f; }},
       {"radius 100", [](Settings& s) { s.radius = 100.0f; }},
@@ -36,11 +48,41 @@ TEST(VisibilityEstimator, ExtremesStayInZeroOne) {
       {"thickness_model 1 thickness 100 radius 100", [](Settings& s) { s.thickness_model = 1, s.thickness = 100.0f, s.radius = 100.0f; }},
       {"thickness_model 1 radius 0.01 slices 8 samples 64", [](Settings& s) { s.thickness_model = 1, s.radius = 0.01f, s.slices = 8, s.samples = 64; }},
   };
+  return list;
+}
+
+// Runs every tweak (estimator 1 at full resolution; with bentNormals the bent normal on the direct
+// path) on the three views, then a floor and a wall 1 and 5 km away at radius and thickness 100 m,
+// handing each scene's runs to `visit` with their label.
+template <class Visit>
+void runExtremes(bool bentNormals, Visit visit) {
+  auto run = [&](const std::string& label, const Settings& s, const Camera& cam, const test::Scene& scene,
+                 DepthFormat fm) { visit(label, runScene(label, s, cam, scene, fm)); };
+  Settings base = fullResolution();
+  base.estimator = 1;
+  if (bentNormals) base.bent_normals = true, base.blur_radius = 0;
+  for (const Tweak& t : tweaks()) {
+    Settings s = base;
+    t.apply(s);
+    ASSERT_TRUE(validate(s).ok()) << t.name;
+    run(t.name + " persp", s, perspCamera(), test::sphereOnPlaneScene(), DepthFormat::D24);
+    run(t.name + " ortho", s, orthographicCamera(), test::creaseScene(5.0), DepthFormat::D32F);
+    // Far depths: the stairs 1000x farther (a 3 km wide flight at 2 km and beyond), reversed infinite.
+    run(t.name + " far", s, farCamera(), test::stairsScene(), DepthFormat::D32F);
+  }
+  Settings far = base;
+  far.radius = 100.0f;
+  far.thickness = 100.0f;
+  test::Scene distant{"distant_planes", {}, {}, {}, {}};
+  distant.planes.push_back({{0, -1000, 0}, {0, 1, 0}, {}});
+  distant.planes.push_back({{0, 0, -5000}, {0, 0, 1}, {}});
+  run("far floor and wall (5 km)", far, farCamera(), distant, DepthFormat::D32F);
+}
+
+TEST(VisibilityEstimator, ExtremesStayInZeroOne) {
   double lo = 1, hi = 0;
   std::size_t runs = 0;
-  auto check = [&](const std::string& label, const Settings& s, const Camera& cam, const test::Scene& scene,
-                   DepthFormat fm) {
-    const SceneRun r = runScene(label, s, cam, scene, fm);
+  runExtremes(false, [&](const std::string& label, const SceneRun& r) {
     for (const BackendRun& b : r.runs.runs) {
       ++runs;
       const Range a = range(b.out.ao);
@@ -50,25 +92,7 @@ TEST(VisibilityEstimator, ExtremesStayInZeroOne) {
       lo = std::min(lo, a.min);
       hi = std::max(hi, a.max);
     }
-  };
-  for (const Tweak& t : tweaks) {
-    Settings s = fullResolution();
-    s.estimator = 1;
-    t.apply(s);
-    ASSERT_TRUE(validate(s).ok()) << t.name;
-    check(t.name + " persp", s, persp, test::sphereOnPlaneScene(), DepthFormat::D24);
-    check(t.name + " ortho", s, ortho, test::creaseScene(5.0), DepthFormat::D32F);
-    // Far depths: the stairs 1000x farther (a 3 km wide flight at 2 km and beyond), reversed infinite.
-    check(t.name + " far", s, farRev, test::stairsScene(), DepthFormat::D32F);
-  }
-  Settings far = fullResolution();
-  far.estimator = 1;
-  far.radius = 100.0f;
-  far.thickness = 100.0f;
-  test::Scene distant{"distant_planes", {}, {}, {}, {}};
-  distant.planes.push_back({{0, -1000, 0}, {0, 1, 0}, {}});
-  distant.planes.push_back({{0, 0, -5000}, {0, 0, 1}, {}});
-  check("far floor and wall (5 km)", far, farRev, distant, DepthFormat::D32F);
+  });
   report("visibility estimator at the extremes (radius, thickness, depth_tolerance, slices x samples, far depths; "
          "persp, ortho, reversed infinite)",
          "A finite and in [0,1]", fmt("%zu runs: A in [%.4f, %.4f]", runs, lo, hi));
@@ -78,30 +102,9 @@ TEST(VisibilityEstimator, ExtremesStayInZeroOne) {
 // extremes: on every backend finite, unit length on geometry (to binary16's rounding) and 0 on sky,
 // GL = Vulkan within the bent normal's agreement bound (tests/executors/bent_normal_test.cpp: 4/255).
 TEST(VisibilityEstimator, BentNormalsAtTheExtremesAreUnitAndFinite) {
-  const Camera persp = camera(64, 48, 0.1, 1e4, ClipDepth::NegativeOneToOne, false, 8);
-  const Camera farRev = camera(64, 48, 0.1, kInf, ClipDepth::ZeroToOne, true, 8);
-  const Camera ortho = orthoCamera(64, 48, 0.1, 100.0, ClipDepth::ZeroToOne, true, 8, 3.0);
-  struct Tweak {
-    std::string name;
-    void (*apply)(Settings&);
-  };
-  const std::vector<Tweak> tweaks = {
-      {"defaults", [](Settings&) {}},
-      {"radius 0.01", [](Settings& s) { s.radius = 0.01f; }},
-      {"radius 100", [](Settings& s) { s.radius = 100.0f; }},
-      {"thickness 0.001", [](Settings& s) { s.thickness = 0.001f; }},
-      {"thickness 100", [](Settings& s) { s.thickness = 100.0f; }},
-      {"depth_tolerance 0.1 radius 100", [](Settings& s) { s.depth_tolerance = 0.1f, s.radius = 100.0f; }},
-      {"slices 8 samples 1", [](Settings& s) { s.slices = 8, s.samples = 1; }},
-      {"slices 8 samples 64", [](Settings& s) { s.slices = 8, s.samples = 64; }},
-      {"thickness_model 1 thickness 100 radius 100", [](Settings& s) { s.thickness_model = 1, s.thickness = 100.0f, s.radius = 100.0f; }},
-      {"thickness_model 1 radius 0.01 slices 8 samples 64", [](Settings& s) { s.thickness_model = 1, s.radius = 0.01f, s.slices = 8, s.samples = 64; }},
-  };
   double worstLength = 0, worstGpu = 0;
   std::size_t runs = 0;
-  auto check = [&](const std::string& label, const Settings& s, const Camera& cam, const test::Scene& scene,
-                   DepthFormat fm) {
-    const SceneRun r = runScene(label, s, cam, scene, fm);
+  runExtremes(true, [&](const std::string& label, const SceneRun& r) {
     for (const BackendRun& b : r.runs.runs) {
       ++runs;
       const FloatImage& bent = b.out.bentNormals;
@@ -127,21 +130,9 @@ TEST(VisibilityEstimator, BentNormalsAtTheExtremesAreUnitAndFinite) {
       worstGpu = std::max(worstGpu, d);
       EXPECT_LE(d, 4.0 / 255.0) << label << ": GL and Vulkan bent normals differ";
     }
-  };
-  for (const Tweak& t : tweaks) {
-    Settings s = fullResolution();
-    s.estimator = 1;
-    s.bent_normals = true;
-    s.blur_radius = 0;
-    t.apply(s);
-    ASSERT_TRUE(validate(s).ok()) << t.name;
-    check(t.name + " persp", s, persp, test::sphereOnPlaneScene(), DepthFormat::D24);
-    check(t.name + " ortho", s, ortho, test::creaseScene(5.0), DepthFormat::D32F);
-    if (t.name == "defaults" || t.name.find("radius 100") != std::string::npos)  // far depths: the large radii
-      check(t.name + " far", s, farRev, test::stairsScene(), DepthFormat::D32F);
-  }
-  report("bent normal at the extremes (radius, thickness, depth_tolerance, slices x samples, width model; persp, "
-         "ortho, far)",
+  });
+  report("bent normal at the extremes (radius, thickness, depth_tolerance, slices x samples, width model, far "
+         "depths; persp, ortho, reversed infinite)",
          "finite, unit on geometry, 0 on sky, GL = Vulkan <= 4/255",
          fmt("%zu runs: | |b| - 1 | <= %.2g, GL vs Vulkan <= %.3g", runs, worstLength, worstGpu));
 }
