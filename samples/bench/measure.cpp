@@ -57,18 +57,15 @@ Status measure(samples::BackendRunner& backend, const Settings& settings, const 
     if (r == runs - 1) out.ao = std::move(o.ao);
   }
   out.endedUnixSeconds = unixSeconds();
-  if (averagedFrames > 1) {
+  if (averagedFrames > 1) {  // frame 0 is the last timed run's (same inputs): the others added to it
     samples::RunInputs frame = inputs;
-    FloatImage sum;
-    for (std::uint32_t f = 0; f < averagedFrames; ++f) {
+    for (std::uint32_t f = 1; f < averagedFrames; ++f) {
       frame.frameIndex = inputs.frameIndex + f;
       samples::RunOutputs o;
       if (Status s = backend.run(settings, camera, frame, false, false, o); !s) return s;
-      if (f == 0) sum = FloatImage(o.ao.extent, o.ao.channels);
-      for (std::size_t i = 0; i < sum.data.size(); ++i) sum.data[i] += o.ao.data[i];
+      for (std::size_t i = 0; i < out.ao.data.size(); ++i) out.ao.data[i] += o.ao.data[i];
     }
-    for (float& v : sum.data) v /= float(averagedFrames);
-    out.ao = std::move(sum);
+    for (float& v : out.ao.data) v /= float(averagedFrames);
   }
   for (const auto& name : order) out.passes.push_back({name, median(perPass[name])});
   out.totalMs = median(totals);

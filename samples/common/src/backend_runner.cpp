@@ -5,7 +5,7 @@
 namespace sao::samples {
 
 gen::Format runnerOutputFormat(const Settings& settings) {
-  return settings.bent_normals ? gen::Format::RGBA16F : gen::Format::R16F;
+  return settings.bent_normals ? gen::Format::RGBA16F : gen::kResources[std::size_t(gen::ResourceId::ao)].format;
 }
 
 void splitOutput(FloatImage output, RunOutputs& out) {

@@ -66,7 +66,7 @@ class GlRunner final : public BackendRunner {
     if (Status s = effect_->render(camera, settings, inputs, {measureTime}); !s) return s;
     out.plan = effect_->plan();
     out.timings = effect_->timings();
-    splitOutput(gl::readTexture(effect_->aoTexture(), output_.texture ? 4 : 1), out);
+    splitOutput(gl::readTexture(effect_->aoTexture(), gen::formatInfo(runnerOutputFormat(settings)).channels), out);
     if (out.plan.image(gen::ResourceId::ao_raw))  // not planned when ao_sample_output writes the output
       out.aoRaw = gl::readTexture(effect_->texture(gen::ResourceId::ao_raw), 2);
     if (dumpPasses) {
@@ -95,8 +95,8 @@ class GlRunner final : public BackendRunner {
 
  private:
   // The context made current and the effect's inputs: the kept textures, uploaded again where the
-  // images changed, and for an RGBA16F output (runnerOutputFormat) a texture of the viewport's size
-  // kept while the size stays (the effect's own r16f output otherwise).
+  // images changed, and for an output format other than the effect's own (runnerOutputFormat) a
+  // texture of the viewport's size in it, kept while format and size stay.
   Status bind(const Settings& settings, const Camera& camera, const RunInputs& in, gl::Inputs& inputs) {
     if (!in.depth) return Status::error(StatusCode::InvalidInput, "no depth image");
     if (Status s = context_->makeCurrent(); !s) return s;
@@ -115,12 +115,14 @@ class GlRunner final : public BackendRunner {
     inputs.frameIndex = in.frameIndex;
     inputs.resetHistory = in.resetHistory;
     const Extent viewport{camera.width, camera.height};
-    const bool rgba = runnerOutputFormat(settings) == gen::Format::RGBA16F;
-    if (!rgba || output_.extent != viewport) {
+    const gen::Format outputFormat = runnerOutputFormat(settings);
+    const bool own = outputFormat != gen::kResources[std::size_t(gen::ResourceId::ao)].format;
+    if (!own || output_.format != outputFormat || output_.extent != viewport) {
       gl::deleteTexture(output_.texture);
       output_ = {};
     }
-    if (rgba && !output_.texture) output_ = {gl::makeTexture(gl::kRGBA16F, viewport), viewport};
+    if (own && !output_.texture)
+      output_ = {gl::makeTexture(gen::formatInfo(outputFormat).glInternalFormat, viewport), outputFormat, viewport};
     inputs.output = output_.texture;
     return Status::success();
   }
@@ -146,8 +148,9 @@ class GlRunner final : public BackendRunner {
   KeptInput<FloatImage> normals_;
   struct {
     std::uint32_t texture = 0;
+    gen::Format format = gen::Format::R16F;
     Extent extent;
-  } output_;  // the RGBA16F output of bent normals (0: the effect's own)
+  } output_;  // the output in runnerOutputFormat's format (0: the effect's own)
 };
 
 }  // namespace

@@ -113,8 +113,7 @@ class VulkanRunner final : public BackendRunner {
     // Timestamps and the output format (RGBA16F for bent normals, runnerOutputFormat) are what of
     // the Config a run changes (a new effect: its plan and history start again, as a change of
     // timing choice did before).
-    const VkFormat outputFormat = runnerOutputFormat(settings) == gen::Format::RGBA16F ? VK_FORMAT_R16G16B16A16_SFLOAT
-                                                                                        : vk::Config{}.outputFormat;
+    const auto outputFormat = static_cast<VkFormat>(gen::formatInfo(runnerOutputFormat(settings)).vkFormat);
     if (effect_ && effect_->config().timestamps == measureTime && effect_->config().outputFormat == outputFormat)
       return Status::success();
     effect_.reset();

@@ -55,7 +55,7 @@ class BackendRunner {
 };
 
 // The output format a runner asks of its backend: RGBA16F with settings.bent_normals (the bent
-// normal in R, G, B and A in A), else the effect's default R16F.
+// normal in R, G, B and A in A), else the effect's own output format (R16F).
 gen::Format runnerOutputFormat(const Settings& settings);
 // Splits a runner's read-back output into RunOutputs::ao (A) and, for a 4-channel output,
 // RunOutputs::bentNormals (R, G, B); a 1-channel output is moved into ao as it is.
