@@ -68,7 +68,8 @@ void forEachVisibleRun(std::uint32_t bits, Run run) {
 }
 
 // The first moment of one slice's unoccluded rays (the bits not set in `bits`), in camera space,
-// times the slice's L (so that slices add as the estimator's weights do); zero when every bit is set.
+// times the slice's L and azimuth rate (weight over range: slices add as the estimator's weights do);
+// zero when every bit is set.
 template <typename T>
 Vec3<T> sliceBentMoment(const Slice<T>& sl, Vec3<T> V, std::uint32_t bits) {
   T me = T(0), mv = T(0);
@@ -79,8 +80,8 @@ Vec3<T> sliceBentMoment(const Slice<T>& sl, Vec3<T> V, std::uint32_t bits) {
     me += e1 - e0;
     mv += v1 - v0;
   });
-  const T L = sl.weight * sl.invRange;
-  return {(sl.e.x * me + V.x * mv) * L, (sl.e.y * me + V.y * mv) * L, (sl.e.z * me + V.z * mv) * L};
+  const T w = sl.weight * sl.invRange;
+  return {(sl.e.x * me + V.x * mv) * w, (sl.e.y * me + V.y * mv) * w, (sl.e.z * me + V.z * mv) * w};
 }
 
 // The bent normal from the slices' summed moments: their direction, or the normal n where nothing

@@ -57,13 +57,23 @@ T sliceG(T x, T c2, T cosGamma, T sinGamma) {
   return s * (((cosGamma - c2) + (T(2) * x) * sinGamma) * T(0.25));
 }
 
+// sao_slice_azimuth_rate.
+template <typename T>
+T sliceAzimuthRate(Vec3<T> f, Vec3<T> V, const Block<T>& P) {
+  const Vec3<T> f1 = Vec3<T>{P.proj_info.x, T(0), T(0)} - scale(V, V.x * P.proj_info.x);
+  const Vec3<T> f2 = Vec3<T>{T(0), P.proj_info.y, T(0)} - scale(V, V.y * P.proj_info.y);
+  const Vec3<T> c = cross(f1, f2);
+  return std::sqrt(dot(c, c)) / dot(f, f);
+}
+
 // sao_slice_setup.
 template <typename T>
 Slice<T> sliceSetup(T ux, T uy, Vec3<T> V, Vec3<T> n, const Block<T>& P) {
   Slice<T> sl;
   sl.n = n;
   const Vec3<T> D{ux * P.proj_info.x, uy * P.proj_info.y, T(0)};
-  sl.e = normalize(D - scale(V, dot(D, V)));
+  const Vec3<T> f = D - scale(V, dot(D, V));
+  sl.e = normalize(f);
   const Vec3<T> a = normalize(cross(sl.e, V));
   const T na = dot(n, a);
   const Vec3<T> np = n - scale(a, na);
@@ -80,7 +90,7 @@ Slice<T> sliceSetup(T ux, T uy, Vec3<T> V, Vec3<T> n, const Block<T>& P) {
   sl.gLo = sliceG(sl.lo, -sl.cosGamma, sl.cosGamma, sl.sinGamma);
   const T range = sliceG(sl.hi, -sl.cosGamma, sl.cosGamma, sl.sinGamma) - sl.gLo;
   sl.invRange = T(1) / range;
-  sl.weight = L * range;
+  sl.weight = L * range * sliceAzimuthRate(f, V, P);
   return sl;
 }
 

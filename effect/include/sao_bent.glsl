@@ -47,7 +47,8 @@ vec2 sao_arc_moment_from_zero(SaoSlice sl, float theta)
     return vec2(e, v);
 }
 
-// The first moment of a slice's unoccluded rays (bits not set), camera space, times its L.
+// The first moment of a slice's unoccluded rays (bits not set), camera space, times its L and azimuth
+// rate (weight over range: slices add as the estimator's weights do).
 vec3 sao_slice_bent_moment(SaoSlice sl, vec3 V, uint bits)
 {
     vec2 m = vec2(0.0);
@@ -60,8 +61,8 @@ vec3 sao_slice_bent_moment(SaoSlice sl, vec3 V, uint bits)
              sao_arc_moment_from_zero(sl, sao_slice_angle(sl, float(b0) * 0.03125));
         visible &= ~sao_bits_below(b1);
     }
-    float L = sl.weight * sl.inv_range;
-    return (sl.e * m.x + V * m.y) * L;
+    float w = sl.weight * sl.inv_range;
+    return (sl.e * m.x + V * m.y) * w;
 }
 
 // The bent normal from the slices' summed moments, or n where nothing is visible.

@@ -38,7 +38,7 @@ float sao_atan2(float y, float x)
 
 // One slice of a pixel: e (in the slice, perpendicular to V), the hemisphere [lo, hi] = gamma -+ pi/2
 // around the projected normal's angle gamma (from V, signed towards e), G(lo), 1/(G(hi) - G(lo)) and
-// the slice's weight L*(G(hi) - G(lo)) (L = length of the projected normal).
+// the slice's weight L*(G(hi) - G(lo)) times its azimuth rate (L = length of the projected normal).
 struct SaoSlice {
     vec3 n;      // the pixel's normal (sao_slab's below-the-tangent-plane test)
     vec3 e;
@@ -64,6 +64,19 @@ float sao_slice_g(float x, float c2, float cos_gamma, float sin_gamma)
     return g;
 }
 
+// How fast the slice's azimuth about V turns per radian of screen angle, d(psi)/d(phi) =
+// |f1 x f2| / |f|^2 (f = cos(phi) f1 + sin(phi) f2, the screen direction's 3D step projected off V):
+// uniform screen angles are not uniform azimuths off the image centre or with non-square pixels, and
+// weighting each slice by it makes the slices sample the hemisphere as reference (d) integrates it
+// (its mean over a half turn of phi is 1).
+float sao_slice_azimuth_rate(vec3 f, vec3 V, vec4 proj_info)
+{
+    precise vec3 f1 = vec3(proj_info.x, 0.0, 0.0) - V * (V.x * proj_info.x);
+    precise vec3 f2 = vec3(0.0, proj_info.y, 0.0) - V * (V.y * proj_info.y);
+    precise float rate = length(cross(f1, f2)) / dot(f, f);
+    return rate;
+}
+
 // The slice through the eye holding V and screen direction u (csz pixels), for the normal n.
 // gamma is clamped to [-pi/2, pi/2]: a normal facing away from the eye (n.V < 0: silhouettes, noisy
 // or supplied normals) keeps the hemisphere inside (-pi, pi], where the taps' angles lie.
@@ -71,7 +84,8 @@ SaoSlice sao_slice_setup(vec2 u, vec3 V, vec3 n, vec4 proj_info)
 {
     SaoSlice sl;
     precise vec3 D = vec3(u.x * proj_info.x, u.y * proj_info.y, 0.0);
-    precise vec3 e = normalize(D - V * dot(D, V));
+    precise vec3 f = D - V * dot(D, V);
+    precise vec3 e = normalize(f);
     precise vec3 a = normalize(cross(e, V));
     precise float na = dot(n, a);
     precise vec3 np = n - a * na;
@@ -94,7 +108,7 @@ SaoSlice sao_slice_setup(vec2 u, vec3 V, vec3 n, vec4 proj_info)
     sl.g_lo = sao_slice_g(sl.lo, -sl.cos_gamma, sl.cos_gamma, sl.sin_gamma);
     precise float range = sao_slice_g(sl.hi, -sl.cos_gamma, sl.cos_gamma, sl.sin_gamma) - sl.g_lo;
     sl.inv_range = 1.0 / range;
-    sl.weight = L * range;
+    sl.weight = L * range * sao_slice_azimuth_rate(f, V, proj_info);
     return sl;
 }
 

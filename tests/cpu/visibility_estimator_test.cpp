@@ -2,8 +2,8 @@
 // effect/cpu/sao_visibility.h) on the CPU reference: the setting selects the variant and fills the
 // block; an open plane is exactly 1 at every pixel in double (no sample of a plane lies in front of
 // it: the slab starts behind the stored depth); occluders occlude, and more with a thicker slab;
-// float mimics the GPU within the agreement bounds of double; the estimator does not change
-// estimator 0's block.
+// float mimics the GPU within the agreement bounds of double; the slices' weights integrate the
+// hemisphere; the estimator does not change estimator 0's block.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -162,6 +162,59 @@ TEST(VisibilityEstimator, FloatFollowsDouble) {
     }
     EXPECT_GE(double(within) / double(f.ao.data.size()), 0.999) << "max " << maxAbs * 255 << "/255";
     EXPECT_TRUE(allFinite(f.ao));
+  }
+}
+
+// The slices' weights integrate the cosine-weighted hemisphere as reference (d) does: over a half
+// turn of screen angles, the mean of L (G(hi) - G(lo)) times the azimuth rate d(psi)/d(phi) is 1
+// for any normal facing the eye, at the image's corners too and with non-square pixels. Without the
+// rate (uniform screen angles taken as uniform azimuths about V) the mean is off the image centre.
+TEST(VisibilityEstimator, SliceWeightsIntegrateTheHemisphere) {
+  using cpu::detail::Block;
+  using cpu::detail::Vec3;
+  struct Lens {
+    const char* name;
+    double ax, ay;  // proj_info.xy: 90 degrees across 1280 pixels; the second with 1.3:1 pixels
+  };
+  const Lens lenses[] = {{"square pixels", -1.0 / 640.0, -1.0 / 640.0}, {"1.3:1 pixels", -1.0 / 640.0, -1.3 / 640.0}};
+  const double pixels[][2] = {{640.5, 360.5}, {0.5, 0.5}, {1279.5, 200.5}, {900.5, 719.5}};
+  constexpr int kAngles = 4096;
+  for (const Lens& lens : lenses) {
+    gen::SaoParams p{};
+    p.proj_info = {float(lens.ax), float(lens.ay), float(-lens.ax * 640.0), float(-lens.ay * 360.0)};
+    const Block<double> P(p);
+    for (const auto& px : pixels) {
+      const Vec3<double> C = cpu::detail::position(px[0], px[1], -5.0, P);
+      const Vec3<double> V = cpu::detail::normalize(Vec3<double>{-C.x, -C.y, -C.z});
+      // The normal: V itself (every slice weighs 1, with or without the rate), and tilted from V by
+      // 60 and 80 degrees (t1, t2: unit, perpendicular to V).
+      const Vec3<double> t1 = cpu::detail::normalize(cross(V, Vec3<double>{0, 1, 0}));
+      const Vec3<double> t2 = cpu::detail::normalize(t1 - cpu::detail::scale(cross(V, t1), 1.5));
+      const double c80 = std::cos(80.0 * 3.14159265358979323846 / 180.0), s80 = std::sqrt(1.0 - c80 * c80);
+      const auto tilted = [&](const Vec3<double>& t, double c, double s) {
+        return Vec3<double>{c * V.x + s * t.x, c * V.y + s * t.y, c * V.z + s * t.z};
+      };
+      const Vec3<double> normals[] = {V, tilted(t1, 0.5, std::sqrt(0.75)), tilted(t2, c80, s80)};
+      for (const Vec3<double>& n : normals) {
+        double withRate = 0, withoutRate = 0;
+        for (int k = 0; k < kAngles; ++k) {
+          const double phi = 3.14159265358979323846 * (k + 0.5) / kAngles;
+          const auto sl = cpu::detail::sliceSetup(std::cos(phi), std::sin(phi), V, n, P);
+          const Vec3<double> D{std::cos(phi) * P.proj_info.x, std::sin(phi) * P.proj_info.y, 0.0};
+          const Vec3<double> f = D - cpu::detail::scale(V, cpu::detail::dot(D, V));
+          withRate += sl.weight;
+          withoutRate += sl.weight / cpu::detail::sliceAzimuthRate(f, V, P);
+        }
+        withRate /= kAngles;
+        withoutRate /= kAngles;
+        SCOPED_TRACE(std::string(lens.name) + " at (" + std::to_string(px[0]) + ", " + std::to_string(px[1]) + ")");
+        EXPECT_NEAR(withRate, 1.0, 1e-6);
+        const bool centre = px[0] == 640.5 && px[1] == 360.5 && lens.ax == lens.ay;
+        if (!centre && &n != &normals[0]) {
+          EXPECT_GT(std::fabs(withoutRate - 1.0), 1e-3) << "the rate should matter off the centre";
+        }
+      }
+    }
   }
 }
 
