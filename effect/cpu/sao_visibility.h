@@ -57,18 +57,18 @@ T sliceG(T x, T c2, T cosGamma, T sinGamma) {
   return s * (((cosGamma - c2) + (T(2) * x) * sinGamma) * T(0.25));
 }
 
-// sao_slice_azimuth_rate.
+// sao_azimuth_rate_scale: |f1 x f2|, once a pixel.
 template <typename T>
-T sliceAzimuthRate(Vec3<T> f, Vec3<T> V, const Block<T>& P) {
+T azimuthRateScale(Vec3<T> V, const Block<T>& P) {
   const Vec3<T> f1 = Vec3<T>{P.proj_info.x, T(0), T(0)} - scale(V, V.x * P.proj_info.x);
   const Vec3<T> f2 = Vec3<T>{T(0), P.proj_info.y, T(0)} - scale(V, V.y * P.proj_info.y);
   const Vec3<T> c = cross(f1, f2);
-  return std::sqrt(dot(c, c)) / dot(f, f);
+  return std::sqrt(dot(c, c));
 }
 
 // sao_slice_setup.
 template <typename T>
-Slice<T> sliceSetup(T ux, T uy, Vec3<T> V, Vec3<T> n, const Block<T>& P) {
+Slice<T> sliceSetup(T ux, T uy, Vec3<T> V, Vec3<T> n, const Block<T>& P, T azimuthRateScale) {
   Slice<T> sl;
   sl.n = n;
   const Vec3<T> D{ux * P.proj_info.x, uy * P.proj_info.y, T(0)};
@@ -90,7 +90,8 @@ Slice<T> sliceSetup(T ux, T uy, Vec3<T> V, Vec3<T> n, const Block<T>& P) {
   sl.gLo = sliceG(sl.lo, -sl.cosGamma, sl.cosGamma, sl.sinGamma);
   const T range = sliceG(sl.hi, -sl.cosGamma, sl.cosGamma, sl.sinGamma) - sl.gLo;
   sl.invRange = T(1) / range;
-  sl.weight = L * range * sliceAzimuthRate(f, V, P);
+  const T rate = azimuthRateScale / dot(f, f);
+  sl.weight = L * range * rate;
   return sl;
 }
 
@@ -298,12 +299,13 @@ T visibilityOcclusion(const std::vector<Image<T>>& csz, const std::vector<Image<
   std::uint32_t bits = 0u;
   Slab<T> prev;  // the side's previous tap's slab (first layer)
   T ux = T(1), uy = T(0);
+  const T rateScale = azimuthRateScale(V, P);
   for (int i = 0; i < used; ++i) {
     const int k = i / perSlice;
     const int r = i - k * perSlice;
     if (r == 0) {
       turnDirection<T>(phase + std::uint32_t(k) * P.slice_turn, ux, uy);
-      sl = sliceSetup(ux, uy, V, n, P);
+      sl = sliceSetup(ux, uy, V, n, P, rateScale);
       bits = 0u;
     }
     const bool negative = r >= m;

@@ -64,23 +64,24 @@ float sao_slice_g(float x, float c2, float cos_gamma, float sin_gamma)
     return g;
 }
 
-// How fast the slice's azimuth about V turns per radian of screen angle, d(psi)/d(phi) =
-// |f1 x f2| / |f|^2 (f = cos(phi) f1 + sin(phi) f2, the screen direction's 3D step projected off V):
+// The pixel's share of its slices' azimuth rates d(psi)/d(phi) = |f1 x f2| / |f|^2 (f = cos(phi) f1 +
+// sin(phi) f2, the screen direction's 3D step projected off V; sao_slice_setup divides by |f|^2):
 // uniform screen angles are not uniform azimuths off the image centre or with non-square pixels, and
-// weighting each slice by it makes the slices sample the hemisphere as reference (d) integrates it
-// (its mean over a half turn of phi is 1).
-float sao_slice_azimuth_rate(vec3 f, vec3 V, vec4 proj_info)
+// weighting each slice by its rate makes the slices sample the hemisphere as reference (d) integrates
+// it (the rate's mean over a half turn of phi is 1). |f1 x f2| depends on the pixel alone: once a pixel.
+float sao_azimuth_rate_scale(vec3 V, vec4 proj_info)
 {
     precise vec3 f1 = vec3(proj_info.x, 0.0, 0.0) - V * (V.x * proj_info.x);
     precise vec3 f2 = vec3(0.0, proj_info.y, 0.0) - V * (V.y * proj_info.y);
-    precise float rate = length(cross(f1, f2)) / dot(f, f);
-    return rate;
+    precise float scale = length(cross(f1, f2));
+    return scale;
 }
 
-// The slice through the eye holding V and screen direction u (csz pixels), for the normal n.
+// The slice through the eye holding V and screen direction u (csz pixels), for the normal n;
+// azimuth_rate_scale = sao_azimuth_rate_scale(V, proj_info).
 // gamma is clamped to [-pi/2, pi/2]: a normal facing away from the eye (n.V < 0: silhouettes, noisy
 // or supplied normals) keeps the hemisphere inside (-pi, pi], where the taps' angles lie.
-SaoSlice sao_slice_setup(vec2 u, vec3 V, vec3 n, vec4 proj_info)
+SaoSlice sao_slice_setup(vec2 u, vec3 V, vec3 n, vec4 proj_info, float azimuth_rate_scale)
 {
     SaoSlice sl;
     precise vec3 D = vec3(u.x * proj_info.x, u.y * proj_info.y, 0.0);
@@ -108,7 +109,8 @@ SaoSlice sao_slice_setup(vec2 u, vec3 V, vec3 n, vec4 proj_info)
     sl.g_lo = sao_slice_g(sl.lo, -sl.cos_gamma, sl.cos_gamma, sl.sin_gamma);
     precise float range = sao_slice_g(sl.hi, -sl.cos_gamma, sl.cos_gamma, sl.sin_gamma) - sl.g_lo;
     sl.inv_range = 1.0 / range;
-    sl.weight = L * range * sao_slice_azimuth_rate(f, V, proj_info);
+    precise float rate = azimuth_rate_scale / dot(f, f);
+    sl.weight = L * range * rate;
     return sl;
 }
 
@@ -338,9 +340,10 @@ float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, sampler2D width_sh
     float inv_m = 1.0 / float(m);
     precise float occluded = 0.0;
     precise float weights = 0.0;
+    float azimuth_rate_scale = sao_azimuth_rate_scale(V, proj_info);
     for (int k = 0; k < ns; ++k) {
         vec2 u = sao_turn_direction(phase + uint(k) * slice_turn);
-        SaoSlice sl = sao_slice_setup(u, V, n, proj_info);
+        SaoSlice sl = sao_slice_setup(u, V, n, proj_info, azimuth_rate_scale);
         uint bits = 0u;
         for (int side = 0; side < 2; ++side) {
             vec2 dir = (side == 0) ? u : -u;

@@ -15,6 +15,7 @@ namespace sao::test {
 namespace {
 
 using cpu::detail::arcMomentFromZero;
+using cpu::detail::azimuthRateScale;
 using cpu::detail::bentNormal;
 using cpu::detail::Block;
 using cpu::detail::dot;
@@ -45,7 +46,7 @@ Vec3<double> unit(double x, double y, double z) {
 
 // The slice with e = (cos phi, sin phi, 0) for the normal n.
 Slice<double> sliceAt(double phi, Vec3<double> n) {
-  return sliceSetup(std::cos(phi), std::sin(phi), kV, n, block());
+  return sliceSetup(std::cos(phi), std::sin(phi), kV, n, block(), azimuthRateScale(kV, block()));
 }
 
 double angleBetween(Vec3<double> a, Vec3<double> b) {
@@ -165,7 +166,8 @@ TEST(BentNormal, FloatFollowsDouble) {
   for (const std::uint32_t bits : {0u, 0x0000FFF0u, 0xF00F00F0u, 0x7FFFFFFEu}) {
     const double phi = 0.7;
     const Vec3<double> md = sliceBentMoment(sliceAt(phi, nd), kV, bits);
-    const Vec3<float> mf = sliceBentMoment(sliceSetup(float(std::cos(phi)), float(std::sin(phi)), Vec3<float>{0, 0, 1}, nf, bf),
+    const Vec3<float> mf = sliceBentMoment(sliceSetup(float(std::cos(phi)), float(std::sin(phi)), Vec3<float>{0, 0, 1}, nf, bf,
+                                                                      azimuthRateScale(Vec3<float>{0, 0, 1}, bf)),
                                            Vec3<float>{0, 0, 1}, bits);
     EXPECT_NEAR(mf.x, md.x, 2e-5) << std::hex << bits;
     EXPECT_NEAR(mf.y, md.y, 2e-5) << std::hex << bits;

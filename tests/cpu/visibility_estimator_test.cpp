@@ -195,15 +195,16 @@ TEST(VisibilityEstimator, SliceWeightsIntegrateTheHemisphere) {
         return Vec3<double>{c * V.x + s * t.x, c * V.y + s * t.y, c * V.z + s * t.z};
       };
       const Vec3<double> normals[] = {V, tilted(t1, 0.5, std::sqrt(0.75)), tilted(t2, c80, s80)};
+      const double rateScale = cpu::detail::azimuthRateScale(V, P);
       for (const Vec3<double>& n : normals) {
         double withRate = 0, withoutRate = 0;
         for (int k = 0; k < kAngles; ++k) {
           const double phi = 3.14159265358979323846 * (k + 0.5) / kAngles;
-          const auto sl = cpu::detail::sliceSetup(std::cos(phi), std::sin(phi), V, n, P);
+          const auto sl = cpu::detail::sliceSetup(std::cos(phi), std::sin(phi), V, n, P, rateScale);
           const Vec3<double> D{std::cos(phi) * P.proj_info.x, std::sin(phi) * P.proj_info.y, 0.0};
           const Vec3<double> f = D - cpu::detail::scale(V, cpu::detail::dot(D, V));
           withRate += sl.weight;
-          withoutRate += sl.weight / cpu::detail::sliceAzimuthRate(f, V, P);
+          withoutRate += sl.weight / (rateScale / cpu::detail::dot(f, f));
         }
         withRate /= kAngles;
         withoutRate /= kAngles;
