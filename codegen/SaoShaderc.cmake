@@ -2,7 +2,8 @@
 # Runs sao-shaderc at build time and makes <target>, a static library holding the generated
 # C++ glue and the embedded GLSL/SPIR-V blobs, and <target>_gles, the GLSL ES 3.10 blobs (for the
 # GLES backend only). Editing any included GLSL file rebuilds (depfile). SPIRV_FROM_HLSL embeds the
-# SPIR-V compiled back from that shader model's HLSL (the HLSL round trip's test).
+# SPIR-V compiled back from that shader model's HLSL (the HLSL round trip's test). The tool is
+# ${sao_shaderc_tool} (codegen/CMakeLists.txt: sao-shaderc, or SAO_HOST_SHADERC).
 # CPU_PASSES names the header with the effect's C++ passes (it defines sao::cpu::runEffectPass,
 # e.g. effect/cpu/passes.h): the target then carries SAO_CPU_PASSES_HEADER="<absolute path>" and
 # the header's folder, which the CPU reference compiled against the effect includes. Build tree
@@ -19,8 +20,8 @@ function(sao_generate_effect target)
   endif()
   add_custom_command(
     OUTPUT ${header} ${source} ${gles_source}
-    COMMAND sao-shaderc ${ARG_EFFECT} -o ${out_dir} --depfile ${out_dir}/${ARG_NAME}.d ${extra}
-    DEPENDS sao-shaderc ${ARG_EFFECT}
+    COMMAND ${sao_shaderc_tool} ${ARG_EFFECT} -o ${out_dir} --depfile ${out_dir}/${ARG_NAME}.d ${extra}
+    DEPENDS ${sao_shaderc_tool} ${ARG_EFFECT}
     DEPFILE ${out_dir}/${ARG_NAME}.d
     COMMENT "sao-shaderc: generating shaders and glue for ${ARG_EFFECT}"
     VERBATIM)
