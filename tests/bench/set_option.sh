@@ -23,16 +23,16 @@ expect_refusal "--set applies to the presets section only: add --sections preset
 expect_refusal "--set applies to the presets section only" --sections presets,samples --set estimator=1
 expect_refusal "--set: setting 'estimator' = 3 is not one of its allowed values {0, 1}" --sections presets --set estimator=3
 expect_refusal "--set thickness has no effect while estimator = 0" --sections presets --set thickness=0.2
-"$bench" --quick --sections presets --backends cpu --set estimator=1 --set thickness=0.2 --out "$out/ok" >/dev/null 2>"$out/ok.err" ||
+"$bench" --quick --scenes sphere-plane --sections presets --backends cpu --set estimator=1 --set thickness=0.2 --out "$out/ok" >/dev/null 2>"$out/ok.err" ||
   die "--set estimator=1 --set thickness=0.2 failed: $(tail -3 "$out/ok.err")"
 rows=$(awk -F, 'NR > 1 && $1 == "presets"' "$out/ok/results.csv" | wc -l)
-[ "$rows" -eq 10 ] || die "expected 10 preset rows (2 scenes x 5 presets), got $rows"
+[ "$rows" -eq 5 ] || die "expected 5 preset rows (1 scene x 5 presets), got $rows"
 bad=$(awk -F, 'NR > 1 && $1 == "presets" && ($5 != "estimator=1 thickness=0.2" || $7 !~ /ESTIMATOR=1/)' "$out/ok/results.csv" | wc -l)
 [ "$bad" -eq 0 ] || die "rows without the --set variant or ESTIMATOR=1: $(awk -F, 'NR > 1 { print $5 \" | \" $7 }' "$out/ok/results.csv" | head -3)"
 # --screen-thickness: reference (d)'s thickness model (presets section only); width changes (d).
 expect_refusal "--screen-thickness expects constant or width, got 'thick'" --sections presets --screen-thickness thick
 expect_refusal "--screen-thickness sets reference (d) of the presets section" --screen-thickness width
-"$bench" --quick --sections presets --backends cpu --set estimator=1 --set thickness=0.2 --screen-thickness width \
+"$bench" --quick --scenes sphere-plane --sections presets --backends cpu --set estimator=1 --set thickness=0.2 --screen-thickness width \
   --out "$out/width" >"$out/width.out" 2>"$out/width.err" ||
   die "--screen-thickness width failed: $(tail -3 "$out/width.err")"
 grep -q "thickness from width" "$out/width.out" "$out/width.err" || die "--screen-thickness width: the report does not name it"

@@ -1,6 +1,6 @@
 #!/bin/sh
 # sao-bench --frames-averaged (presets section): each row's errors are those of the mean of N frames,
-# the preset's own converged value. On the quick scenes with the CPU reference, one frame and the
+# the preset's own converged value. On crease (one of the quick scenes: the test's time halves) with the CPU reference, one frame and the
 # mean of 8: the rows say so in their variant column, keep their times, and the paper's estimator's
 # presets (low, medium, high) come nearer reference (c), the converged estimator of the same
 # settings, on every scene (their frames' taps differ, eq. 6's frame spiral, and (c) is what the
@@ -10,13 +10,13 @@
 set -eu
 bench=$1 work=$2
 rm -rf "$work" && mkdir -p "$work"
-"$bench" --quick --sections presets --backends cpu --out "$work/one" >/dev/null 2>&1
-"$bench" --quick --sections presets --backends cpu --frames-averaged 8 --out "$work/eight" >/dev/null 2>&1
+"$bench" --quick --scenes crease --sections presets --backends cpu --out "$work/one" >/dev/null 2>&1
+"$bench" --quick --scenes crease --sections presets --backends cpu --frames-averaged 8 --out "$work/eight" >/dev/null 2>&1
 /usr/bin/python3 - "$work/one/results.csv" "$work/eight/results.csv" <<'PY'
 import csv, sys
 one = {(r["scene"], r["preset"]): r for r in csv.DictReader(open(sys.argv[1]))}
 eight = {(r["scene"], r["preset"]): r for r in csv.DictReader(open(sys.argv[2]))}
-assert one.keys() == eight.keys() and len(one) >= 10, "the two runs' rows differ"
+assert one.keys() == eight.keys() and len(one) >= 5, "the two runs' rows differ"
 bad = []
 for key, r in sorted(eight.items()):
     o = one[key]
