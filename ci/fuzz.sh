@@ -40,10 +40,7 @@ if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
 
 # -fno-sanitize=vptr: glslang (Debian) is built without RTTI, the vptr check needs its typeinfo.
 flags="-O1 -g1 -fno-omit-frame-pointer -fsanitize=address,undefined,fuzzer-no-link -fno-sanitize=vptr -fno-sanitize-recover=all"
-# The effect's generation runs the release build's sao-shaderc (SAO_HOST_SHADERC, see
-# codegen/CMakeLists.txt; instrumented it took 140 s of the 2 cores here), built or brought up to date first.
-bash ci/build.sh --target sao-shaderc
-host_shaderc="$root/build/bin/sao-shaderc"
+source ci/host_shaderc.sh  # the effect's generation: 140 s of the 2 cores here with the instrumented tool
 if [ ! -f "$build/CMakeCache.txt" ]; then
   mkdir -p "$build"
   cmake -S . -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=None \
@@ -52,10 +49,8 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
     -DSAO_BUILD_FUZZERS=ON -DSAO_BUILD_TESTS=OFF -DSAO_BUILD_SAMPLES=OFF -DSAO_BUILD_GL=OFF -DSAO_BUILD_VULKAN=OFF \
     -DSAO_HOST_SHADERC="$host_shaderc" \
     >"$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
-elif ! grep -qxF "SAO_HOST_SHADERC:FILEPATH=$host_shaderc" "$build/CMakeCache.txt"; then
-  cmake -S . -B "$build" -DSAO_HOST_SHADERC="$host_shaderc" >"$build/configure.log" 2>&1 ||
-    { cat "$build/configure.log"; exit 1; }
 fi
+use_host_shaderc "$build"
 cmake --build "$build" --parallel "$(nproc)" --target "${targets[@]/#/fuzz_}"
 
 export ASAN_OPTIONS="abort_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1"

@@ -18,22 +18,17 @@ if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
 sanitizers="-fsanitize=address,undefined,float-cast-overflow -fno-sanitize=vptr -fno-sanitize-recover=all"
 # -g1: line tables only, all a sanitizer report needs (file:line per frame), and a faster build.
 flags="-O1 -g1 -fno-omit-frame-pointer $sanitizers"
-# The build's generation steps run the release build's sao-shaderc (SAO_HOST_SHADERC, see
-# codegen/CMakeLists.txt), built or brought up to date here first: instrumented, the tool spends
-# most of its time in the sanitizer's allocator. The instrumented tool still runs over the whole
-# effect, in Shaderc.OutputIsDeterministicAndHoldsNoAbsolutePaths.
-bash ci/build.sh --target sao-shaderc
-host_shaderc="$root/build/bin/sao-shaderc"
+# The instrumented sao-shaderc still runs over the whole effect, in
+# Shaderc.OutputIsDeterministicAndHoldsNoAbsolutePaths.
+source ci/host_shaderc.sh
 if [ ! -f "$build/CMakeCache.txt" ]; then
   mkdir -p "$build"
   cmake -S . -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="$flags" \
     -DCMAKE_EXE_LINKER_FLAGS="$sanitizers" -DCMAKE_SHARED_LINKER_FLAGS="$sanitizers" \
     -DSAO_BUILD_WALKTHROUGH=OFF -DSAO_HOST_SHADERC="$host_shaderc" \
     >"$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
-elif ! grep -qxF "SAO_HOST_SHADERC:FILEPATH=$host_shaderc" "$build/CMakeCache.txt"; then
-  cmake -S . -B "$build" -DSAO_HOST_SHADERC="$host_shaderc" >"$build/configure.log" 2>&1 ||
-    { cat "$build/configure.log"; exit 1; }
 fi
+use_host_shaderc "$build"
 
 # intercept_tls_get_addr=0: gcc 12's runtime takes a dynamic TLS block (of a dlopen()ed library: Mesa's
 # drivers, the Vulkan layers) for a pre-2.25 glibc one when its address happens to end in the old header's size,

@@ -1,10 +1,10 @@
 #!/bin/sh
 # sao-bench --frames-averaged (presets section): each row's errors are those of the mean of N frames,
-# the preset's own converged value. On crease (one of the quick scenes: the test's time halves) with the CPU reference, one frame and the
-# mean of 8: the rows say so in their variant column, keep their times, and the paper's estimator's
-# presets (low, medium, high) come nearer reference (c), the converged estimator of the same
-# settings, on every scene (their frames' taps differ, eq. 6's frame spiral, and (c) is what the
-# taps average to). The visibility presets' limit is their own, not (c) nor (d): printed, not
+# the preset's own converged value. On crease (one of the quick scenes: half the time of both) with
+# the CPU reference, one frame and the mean of 8: the rows say so in their variant column, keep their
+# times, and the paper's estimator's presets (low, medium, high) come nearer reference (c), the
+# converged estimator of the same settings (their frames' taps differ, eq. 6's frame spiral, and (c)
+# is what the taps average to). The visibility presets' limit is their own, not (c) nor (d): printed, not
 # asserted.
 #   bench_frames_averaged.sh SAO_BENCH WORK_DIR
 set -eu
