@@ -44,7 +44,7 @@
 #pragma sao setting float thickness           default=0.3   range=[0.001,100]      unit=m   "Visibility estimator: the thickness T of every stored surface; a ray is blocked where it passes through the slab from the surface (plus the tolerance) to T behind it"
 #pragma sao setting float depth_tolerance     default=0.003 range=[0,0.1]                   "Visibility estimator: relative depth tolerance; the slab behind a stored sample starts at its depth times (1 + tolerance)"
 #pragma sao setting int   slices              default=2     range=[1,8]                     "Visibility estimator: slices (screen directions, both sides each) per pixel; samples/(2*slices) steps on each side"
-#pragma sao setting int   thickness_model     default=0     values=[0,1]                    "Visibility estimator: 0 constant, every stored surface is thickness deep; 1 width, a surface is as deep as SAO_WIDTH_SCALE times its on-screen width along the slice (its run of continuous depth along x and y, measured by the width pass up to SAO_WIDTH_REACH texels each side), from SAO_WIDTH_MIN_M up to thickness: thin objects (grass, rods) stop few rays, wide ones many (docs/effect-math.md 5.9)"
+#pragma sao setting int   thickness_model     default=0     values=[0,1]                    "Visibility estimator: 0 constant, every stored surface is thickness deep; 1 width, a surface is as deep as SAO_WIDTH_SCALE times its on-screen width along the slice (its run of continuous depth along x and y, measured by the width pass on each csz level up to SAO_WIDTH_REACH of its texels each side, a run wide on one level measured on the next), from SAO_WIDTH_MIN_M up to thickness: thin objects (grass, rods) stop few rays, wide ones many (docs/effect-math.md 5.9)"
 #pragma sao setting bool  bent_normals        default=false                                 "Visibility estimator: also write the bent normal, the cosine-weighted mean direction of the unoccluded rays over the slices (camera space, unit length; the normal where no ray is clear, 0 for sky), into the output's R, G, B (rgba8: 0.5 + 0.5 b) and A into A; needs estimator 1, an rgba8 or rgba16f output, every channel, the replace blend and the direct path (blur_radius 0, resolution_divisor 1, temporal false). The 2x2 reconstruction averages A only: the bent normal is the pixel's own (docs/effect-math.md 5.10)"
 // Derived settings: bools plan() computes from the settings, for the passes' skip_when= rules.
 #pragma sao derived direct_output when=blur_radius==0&&resolution_divisor==1&&temporal==false "Nothing follows the AO (no blur, full resolution, no history to keep): ao_sample_output writes the output itself, and neither ao_raw nor a copy pass is planned"
@@ -110,7 +110,7 @@
 #pragma sao constant int  SAO_DEPTH_SAMPLE_0=0 "depth_sample_policy: a multisampled depth input's sample 0 stands for its texel (sao::DepthSamplePolicy::Sample0)"
 #pragma sao constant int  SAO_DEPTH_SAMPLE_NEAREST=1 "depth_sample_policy: the sample nearest to the camera (the largest geometry z; sky only when every sample is sky) stands for its texel (Nearest)"
 #pragma sao constant int  SAO_MAX_SLICES=8 "Upper bound of slices (its range's end)"
-#pragma sao constant int  SAO_WIDTH_REACH=16 "thickness_model 1: level-0 texels the width pass walks on each side of a texel along x and along y; a run of continuous depth that goes on through all of them on either side is taken as wide (thickness)"
+#pragma sao constant int  SAO_WIDTH_REACH=16 "thickness_model 1: texels of its own csz level the width pass walks on each side of a texel along x and along y; a run of continuous depth that goes on through all of them on either side is wide on that level, and takes its share from the level above (width_resolve); wide at every level up to max_mip, it is as deep as thickness"
 #pragma sao constant float SAO_WIDTH_SCALE=0.5 "thickness_model 1: a surface's thickness is this times its on-screen width along the slice (reference (d) measured 0.5 best of 0.5, 1, 2: docs/reference.md)"
 #pragma sao constant float SAO_WIDTH_JUMP=0.03 "thickness_model 1: neighbouring texels whose z differ by more than this times z per level-0 texel are a depth discontinuity (an edge of the run)"
 #pragma sao constant float SAO_WIDTH_MIN_M=0.02 "thickness_model 1: the least thickness, metres (uploaded in view units as thickness_min)"
@@ -129,7 +129,7 @@
 #pragma sao variant HALF_INTERMEDIATES values=[0,1] default=0 select=half_intermediates "1: the (A, key) intermediates are rg16f: the passes writing them round A and the key (z times key_scale = 1/metersToViewUnits: z in metres) to binary16 themselves"
 #pragma sao variant MOTION_VECTORS values=[0,1] default=0 select=input:motion "1: temporal accumulation finds each pixel's history where the motion input says the surface was (moving objects) instead of reprojecting through the cameras"
 #pragma sao variant ESTIMATOR values=[0,1] default=0 select=estimator "0: the AlchemyAO estimator (eq. 1) over the spiral taps; 1: the visibility estimator, cosine-weighted visibility with a finite thickness over slices with a visibility bitmask (sao_visibility.glsl)"
-#pragma sao variant THICKNESS_FROM_WIDTH values=[0,1] default=0 select=thickness_model "1: the width pass writes width_share, each texel's share of thickness from its run of continuous depth along x and y, and the visibility estimator's taps read it; a variant, not a branch, because llvmpipe runs a branch's body masked on every tap. With ESTIMATOR 0 the AO does not change (thickness_model is inert then), but the width pass still runs, writing 1s (thickness is 0): ao_sample's width_share binding needs a writer"
+#pragma sao variant THICKNESS_FROM_WIDTH values=[0,1] default=0 select=thickness_model "1: the width and width_resolve passes write width_share, each texel's share of thickness from its run of continuous depth along x and y, and the visibility estimator's taps read it; a variant, not a branch, because llvmpipe runs a branch's body masked on every tap. With ESTIMATOR 0 the AO does not change (thickness_model is inert then), but the width passes still run, writing 1s (thickness is 0): ao_sample's width_share binding needs a writer"
 #pragma sao variant BENT_NORMALS values=[0,1] default=0 select=bent_normals "1: ao_sample_output sums the slices' first moments of their unoccluded rays with the occlusion (sao_bent.glsl) and stores (bent normal, A) into the rgba output"
 #pragma sao exclude MOTION_VECTORS=1 TEMPORAL=0 "motion vectors serve temporal accumulation only: set the temporal setting, or give no motion input"
 #pragma sao exclude DEPTH_MULTISAMPLE=1 TWO_LAYER=1 "a multisampled depth input has no second layer: give depth peeling's layers single-sample, or resolve the depth first"
@@ -149,7 +149,8 @@
 #pragma sao resource motion    kind=input  format=rg16f formats=[rg16f,rg32f,rgba16f,rgba32f] when=MOTION_VECTORS "Motion vectors, same size and region as depth: .xy the offset in pixels from this frame's texel to where its surface was in the previous frame (previous = current + motion; rows in the depth's order)"
 #pragma sao resource csz       kind=image  format=r32f mips=auto extent=input "Camera-space z MIP chain (z < 0, +0.0 = sky), the depth input's size including the guard band"
 #pragma sao resource csz2      kind=image  format=r32f mips=auto extent=input when=TWO_LAYER "Camera-space z MIP chain of the second layer"
-#pragma sao resource width_share kind=image format=rg16f mips=auto extent=input when=THICKNESS_FROM_WIDTH "thickness_model 1: x, y each csz texel's thickness along that axis over thickness, in (0, 1] (1 = wide), binary16-rounded by the width pass; its chain copies csz's rotated grid, so a level's texel holds the share of the texel its z came from"
+#pragma sao resource width_run kind=image format=rg16f mips=auto extent=input when=THICKNESS_FROM_WIDTH "thickness_model 1: x, y each csz texel's thickness along that axis over thickness from its run on its own level (SAO_WIDTH_REACH of the level's texels each side), in (0, 1] (1 = wide), binary16-rounded by the width pass; width_resolve's input"
+#pragma sao resource width_share kind=image format=rg16f mips=auto extent=input when=THICKNESS_FROM_WIDTH "thickness_model 1: x, y each csz texel's thickness along that axis over thickness, in (0, 1] (1 = wide): along each axis the first narrow width_run share among the texel and the texels above it in the chain (level m + 1's (x/2, y/2), ...), so a run wide at one level takes its width from a coarser one"
 #pragma sao resource ao_raw    kind=image  format=rg32f format_when=HALF_INTERMEDIATES:rg16f divide_by=resolution_divisor "x: visibility A after the 2x2 reconstruction, y: key = camera-space z times key_scale (+0.0 = sky); the viewport over resolution_divisor"
 #pragma sao resource ao_low    kind=image  format=rg32f format_when=HALF_INTERMEDIATES:rg16f divide_by=resolution_divisor "(A, key) after the bilateral blur, the upsample's input (with blur_radius 0 the upsample reads ao_raw instead)"
 #pragma sao resource history  kind=image  format=rgba32f divide_by=resolution_divisor when=TEMPORAL history=true "Temporal: x the accumulated obscurance sum, y its key z (+0.0 = sky), z the frames it holds (0 = none), w its normal (octahedral, 12 bits a component, as the integer qx*4096 + qy); ao_raw's size, two images that trade places every frame"
@@ -264,7 +265,7 @@ layout(std140, binding = 0) uniform SaoParams {
 #endif
 #define SAO_CHAIN_UP(IMG, J, z) \
     if (sao_up && (J) <= max_mip) { sao_up = sao_rotated_grid_parent(sao_cur, sao_size); if (sao_up) imageStore(IMG[J], sao_cur, sao_texel4(z)); }
-// Invocation b (texels=2x2): Z_OF(p) (a TYPE: float, or vec2 for width_share) into the level-0
+// Invocation b (texels=2x2): Z_OF(p) (a TYPE: float, or vec2) into the level-0
 // texels 2b .. 2b + 1 that lie inside size0, then level-1 texel b, which copies one of them (the
 // rotated grid picks inside the block, clamp included), then up from there.
 #define SAO_CHAIN_FROM_BLOCK(IMG, b, size0, Z_OF, TYPE) { \
@@ -303,6 +304,35 @@ vec4 sao_texel4(vec2 v) { return vec4(v, 0.0, 0.0); }
     if (any(greaterThanEqual(2 * b, size0))) \
         return; \
     SAO_CHAIN_FROM_BLOCK(IMG, b, size0, Z_OF, TYPE); \
+}
+// A chain whose texels are each computed on their own level rather than copied: invocation b
+// stores TEXEL_AT(p, 0) into the level-0 texels 2b .. 2b + 1 inside size0, TEXEL_AT(b, 1) into
+// level-1 texel b, then TEXEL_AT(cur, j) into the texels above that SAO_CHAIN_FROM_BLOCK's walk
+// up gives it (so each texel of each level has exactly one writer), up to max_mip.
+#define SAO_LEVEL_UP(IMG, J, TEXEL_AT) \
+    if (sao_up && (J) <= max_mip) { sao_up = sao_rotated_grid_parent(sao_cur, sao_size); if (sao_up) imageStore(IMG[J], sao_cur, sao_texel4(TEXEL_AT(sao_cur, J))); }
+#define SAO_LEVELS_PASS(IMG, TEXEL_AT) { \
+    ivec2 b = ivec2(gl_GlobalInvocationID.xy); \
+    ivec2 size0 = imageSize(IMG[0]); \
+    if (any(greaterThanEqual(2 * b, size0))) \
+        return; \
+    for (int sao_k = 0; sao_k < 4; ++sao_k) { \
+        ivec2 sao_p = 2 * b + ivec2(sao_k & 1, sao_k >> 1); \
+        if (all(lessThan(sao_p, size0))) \
+            imageStore(IMG[0], sao_p, sao_texel4(TEXEL_AT(sao_p, 0))); \
+    } \
+    ivec2 sao_size = max(size0 >> 1, ivec2(1)); \
+    if (max_mip >= 1 && all(lessThan(b, sao_size))) { \
+        imageStore(IMG[1], b, sao_texel4(TEXEL_AT(b, 1))); \
+        ivec2 sao_cur = b; \
+        bool sao_up = true; \
+        SAO_LEVEL_UP(IMG, 2, TEXEL_AT) \
+        SAO_LEVEL_UP(IMG, 3, TEXEL_AT) \
+        SAO_LEVEL_UP(IMG, 4, TEXEL_AT) \
+        SAO_LEVEL_UP(IMG, 5, TEXEL_AT) \
+        SAO_LEVEL_UP(IMG, 6, TEXEL_AT) \
+        SAO_LEVEL_UP(IMG, 7, TEXEL_AT) \
+    } \
 }
 #endif
 
@@ -360,18 +390,18 @@ void sao_linear_z2_main()
 
 // ---------------------------------------------------------------------------------------------
 // Pass 2b (THICKNESS_FROM_WIDTH only): each csz texel's share of thickness along x and y from its
-// run of continuous depth (docs/effect-math.md 5.9), once per texel, so that a tap costs one fetch
-// of width_share instead of a walk of its own; the chain above level 0 as csz's (the rotated grid),
-// by the walk up of SAO_CHAIN_FROM_BLOCK. A work group's 16x16 texels find their runs in shared
-// memory: the 16 rows with SAO_WIDTH_REACH texels of halo left and right, the 16 columns with as
-// many above and below, fetched by textureGather (six 2x2 quads an invocation); each invocation
-// then takes 12 consecutive texels of a row and of a column (and the next one) and ors the links
-// between them into the band's 32-bit words (bit i: the walk from band texel i to its neighbour
-// continues); then each run's end is a bit scan (findLSB / findMSB over 16 links), the walk of the
-// CPU reference's runShare step for step. Without
-// the variant it writes nothing and the plan leaves it out.
+// run of continuous depth (docs/effect-math.md 5.9) on its own level, once per texel, so that a tap
+// costs one fetch of width_share instead of a walk of its own. Level 0: a work group's 16x16 texels
+// find their runs in shared memory: the 16 rows with SAO_WIDTH_REACH texels of halo left and right,
+// the 16 columns with as many above and below, fetched by textureGather (six 2x2 quads an
+// invocation); each invocation then takes 12 consecutive texels of a row and of a column (and the
+// next one) and ors the links between them into the band's 32-bit words (bit i: the walk from band
+// texel i to its neighbour continues); then each run's end is a bit scan (findLSB / findMSB over 16
+// links), the walk of the CPU reference's runShare step for step. A texel above level 0 is walked
+// by the invocation that writes it (SAO_LEVELS_PASS), texelFetches on its level: those levels hold
+// a third as many texels as level 0. Without the variant it writes nothing and the plan leaves it out.
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass width entry=sao_width_main local=8x8 texels=2x2 reads=csz writes=width_share variants=THICKNESS_FROM_WIDTH levels=0..7 "thickness_model 1 only: each csz texel's share of thickness along x and y from its run of continuous depth (up to SAO_WIDTH_REACH texels each side, found by bit scans in shared memory), into width_share level 0 and its chain (csz's rotated grid)"
+#pragma sao pass width entry=sao_width_main local=8x8 texels=2x2 reads=csz writes=width_run variants=THICKNESS_FROM_WIDTH levels=0..7 "thickness_model 1 only: each csz texel's share of thickness along x and y from its run of continuous depth on its own level (up to SAO_WIDTH_REACH of the level's texels each side; level 0's found by bit scans in shared memory), into width_run's chain"
 #if THICKNESS_FROM_WIDTH
 #if SAO_WIDTH_REACH != 16
 #error "the width pass's bands hold 16 texels of halo: one 16-bit scan per run end"
@@ -485,7 +515,7 @@ float sao_width_band_share(int kind, int band, int t, ivec2 first, ivec2 step, f
     int e_up = wide ? i0 : i0 + findLSB(stop_up);           // the last texel: the broken link's own
     int e_dn = wide ? i0 : i0 - 16 + findMSB(stop_dn) + 1;  // the texel after the broken link
     return sao_run_share_of(first + e_dn * step, sao_band_z[base + e_dn], first + e_up * step, sao_band_z[base + e_up],
-                            wide, z, kind == 0, proj_info, ortho, thickness, thickness_min);
+                            wide, z, kind == 0, proj_info, ortho, thickness, thickness_min, 1.0);
 }
 
 // Level-0 texel p of the work group's tile: its shares along x and y (1 for sky: never read, a sky
@@ -502,12 +532,63 @@ vec2 sao_width_texel(ivec2 p)
     float sy = sao_width_band_share(1, t.x, t.y, origin + ivec2(t.x, -16), ivec2(0, 1), z);
     return vec2(sao_round_to_half(sx), sao_round_to_half(sy));
 }
+
+// Texel p of csz level m >= 1 (size0: level 0's size): its share along x (x_axis) or y from its
+// run walked on level m itself, SAO_WIDTH_REACH of the level's texels each side (the CPU
+// reference's runShareAtLevel): continuity |dz| <= SAO_WIDTH_JUMP * 2^m * |z| (per level-0 texel, as
+// level 0's), the ends at the level-0 texels their z came from, a texel's footprint 2^m.
+float sao_width_level_share(ivec2 p, int m, float z, bool x_axis, ivec2 size0)
+{
+    ivec2 size = max(size0 >> m, ivec2(1));
+    ivec2 step = x_axis ? ivec2(1, 0) : ivec2(0, 1);
+    float span = float(1 << m);
+    bool wide = false;
+    ivec2 e[2];
+    float ez[2];
+    for (int side = 0; side < 2; ++side) {
+        ivec2 d = (side == 0) ? step : -step;
+        ivec2 last = p;
+        float zp = z;
+        bool walking = true;
+        for (int k = 1; k <= SAO_WIDTH_REACH && walking; ++k) {
+            ivec2 q = p + k * d;
+            bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
+            wide = wide || !inside;
+            float zq = texelFetch(in_csz, clamp(q, ivec2(0), size - 1), m).r;
+            precise float dz = abs(zq - zp);
+            walking = inside && !sao_is_sky(zq) && dz <= SAO_WIDTH_JUMP * span * abs(zq);
+            if (walking) {
+                last = q;
+                zp = zq;
+            }
+        }
+        wide = wide || walking;
+        e[side] = last;
+        ez[side] = zp;
+    }
+    return sao_run_share_of(sao_mip_source(e[0], m, size0), ez[0], sao_mip_source(e[1], m, size0), ez[1], wide, z,
+                            x_axis, proj_info, ortho, thickness, thickness_min, span);
+}
+
+// width_run's texel p of level m: level 0's from the bands, a level above from its own walk.
+vec2 sao_width_run_texel(ivec2 p, int m)
+{
+    if (m == 0)
+        return sao_width_texel(p);
+    float z = texelFetch(in_csz, p, m).r;
+    if (sao_is_sky(z) || !(thickness > 0.0))
+        return vec2(1.0);
+    ivec2 size0 = textureSize(in_csz, 0);
+    float sx = sao_width_level_share(p, m, z, true, size0);
+    float sy = sao_width_level_share(p, m, z, false, size0);
+    return vec2(sao_round_to_half(sx), sao_round_to_half(sy));
+}
 #endif
 
 void sao_width_main()
 {
 #if THICKNESS_FROM_WIDTH
-    ivec2 size0 = imageSize(out_width_share[0]);
+    ivec2 size0 = imageSize(out_width_run[0]);
     ivec2 origin = 16 * ivec2(gl_WorkGroupID.xy);
     int li = int(gl_LocalInvocationIndex);
     // Invocation li: quads li, li + 64 and li + 128 of each kind's bands (six gathers), and zeroes
@@ -529,7 +610,39 @@ void sao_width_main()
     }
     memoryBarrierShared();
     barrier();
-    SAO_CHAIN_PASS(out_width_share, sao_width_texel, vec2)
+    SAO_LEVELS_PASS(out_width_run, sao_width_run_texel)
+#endif
+}
+#pragma sao end
+
+// ---------------------------------------------------------------------------------------------
+// Pass 2c (THICKNESS_FROM_WIDTH only): width_share from width_run. A run that is wide on its own
+// level (it goes on through SAO_WIDTH_REACH texels) takes the share of the texel above it, level
+// by level, until one is narrow: a level-0 run is then wide only where it is wide at every level up
+// to max_mip (16 * 2^max_mip level-0 texels each side). Along x and y apart. Without the variant it
+// writes nothing and the plan leaves it out.
+// ---------------------------------------------------------------------------------------------
+#pragma sao pass width_resolve entry=sao_width_resolve_main local=8x8 texels=2x2 reads=width_run writes=width_share variants=THICKNESS_FROM_WIDTH levels=0..7 "thickness_model 1 only: each texel of each level of width_share, along x and y, the first narrow width_run share among the texel and the texels above it ((x/2, y/2) at the next level, and so on up to max_mip)"
+#if THICKNESS_FROM_WIDTH
+vec2 sao_width_resolved_texel(ivec2 p, int m)
+{
+    vec2 s = texelFetch(in_width_run, p, m).rg;
+    ivec2 q = p;
+    ivec2 size = max(textureSize(in_width_run, 0) >> m, ivec2(1));
+    for (int j = m + 1; j <= max_mip && (s.x >= 1.0 || s.y >= 1.0); ++j) {
+        size = max(size >> 1, ivec2(1));
+        q = min(q >> 1, size - 1);
+        vec2 a = texelFetch(in_width_run, q, j).rg;
+        s = vec2(s.x >= 1.0 ? a.x : s.x, s.y >= 1.0 ? a.y : s.y);
+    }
+    return s;
+}
+#endif
+
+void sao_width_resolve_main()
+{
+#if THICKNESS_FROM_WIDTH
+    SAO_LEVELS_PASS(out_width_share, sao_width_resolved_texel)
 #endif
 }
 #pragma sao end

@@ -117,34 +117,67 @@ Status linearZPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<co
   return Status::success();
 }
 
-// Pass width (THICKNESS_FROM_WIDTH): each csz level-0 texel's shares of thickness along x and y
-// (runShare; binary16-rounded in Float, as sao_width_texel stores them, kept in Double; 1 for sky),
-// then the levels above it by the rotated grid.
+// Pass width (THICKNESS_FROM_WIDTH): each csz texel's shares of thickness along x and y from its
+// run on its own level (runShare; binary16-rounded in Float, as sao_width_run_texel stores them,
+// kept in Double; 1 for sky), into width_run's levels.
 template <typename T>
 Status widthPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
   const ScheduledBinding* in = binding(d, bindings, gen::ResourceId::csz, false);
-  const ScheduledBinding* out = binding(d, bindings, gen::ResourceId::width_share, true);
+  const ScheduledBinding* out = binding(d, bindings, gen::ResourceId::width_run, true);
   if (in == nullptr) return missingBinding(d, gen::ResourceId::csz, false);
-  if (out == nullptr) return missingBinding(d, gen::ResourceId::width_share, true);
+  if (out == nullptr) return missingBinding(d, gen::ResourceId::width_run, true);
   const Image<T>& z0 = ctx.image(in->resource, 0);
-  Image<T>& share = ctx.image(*out);
-  if (share.w != z0.w || share.h != z0.h || share.ch < 2)
-    return passError(d, "width_share's level 0 is not csz's extent with two channels");
   const Block<T>& P = ctx.P;
-  parallelFor(share.h, ctx.threads, [&](int y) {
-    for (int x = 0; x < share.w; ++x) {
-      const T z = z0.at(x, y);
-      T sx = T(1), sy = T(1);
-      if (!isSky(z) && P.thickness > T(0)) {
-        sx = runShare(z0, x, y, z, 1, 0, P);
-        sy = runShare(z0, x, y, z, 0, 1, P);
-        if constexpr (std::is_same_v<T, float>) sx = roundToHalf(sx), sy = roundToHalf(sy);
+  for (std::uint32_t m = out->baseLevel; m < out->baseLevel + out->levelCount; ++m) {
+    const Image<T>& zm = ctx.image(in->resource, m);
+    Image<T>& share = ctx.image(out->resource, m);
+    if (share.w != zm.w || share.h != zm.h || share.ch < 2)
+      return passError(d, "width_run's level " + std::to_string(m) + " is not csz's extent with two channels");
+    parallelFor(share.h, ctx.threads, [&](int y) {
+      for (int x = 0; x < share.w; ++x) {
+        const T z = zm.at(x, y);
+        T sx = T(1), sy = T(1);
+        if (!isSky(z) && P.thickness > T(0)) {
+          sx = runShare(zm, int(m), z0.w, z0.h, x, y, z, 1, 0, P);
+          sy = runShare(zm, int(m), z0.w, z0.h, x, y, z, 0, 1, P);
+          if constexpr (std::is_same_v<T, float>) sx = roundToHalf(sx), sy = roundToHalf(sy);
+        }
+        share.at(x, y, 0) = sx;
+        share.at(x, y, 1) = sy;
       }
-      share.at(x, y, 0) = sx;
-      share.at(x, y, 1) = sy;
-    }
-  });
-  chainAbove(ctx, *out);
+    });
+  }
+  return Status::success();
+}
+
+// Pass width_resolve (THICKNESS_FROM_WIDTH): each width_share texel of each level, along x and y
+// apart, the first width_run share under 1 among the texel and the texels above it ((x/2, y/2) of
+// the next level, clamped to it, up to the last level); 1 where there is none.
+template <typename T>
+Status widthResolvePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
+  const ScheduledBinding* in = binding(d, bindings, gen::ResourceId::width_run, false);
+  const ScheduledBinding* out = binding(d, bindings, gen::ResourceId::width_share, true);
+  if (in == nullptr) return missingBinding(d, gen::ResourceId::width_run, false);
+  if (out == nullptr) return missingBinding(d, gen::ResourceId::width_share, true);
+  const std::uint32_t levels = out->baseLevel + out->levelCount;
+  for (std::uint32_t m = out->baseLevel; m < levels; ++m) {
+    Image<T>& share = ctx.image(out->resource, m);
+    if (share.w != ctx.image(in->resource, m).w || share.h != ctx.image(in->resource, m).h || share.ch < 2)
+      return passError(d, "width_share's level " + std::to_string(m) + " is not width_run's extent with two channels");
+    parallelFor(share.h, ctx.threads, [&](int y) {
+      for (int x = 0; x < share.w; ++x)
+        for (int c = 0; c < 2; ++c) {
+          T s = ctx.image(in->resource, m).at(x, y, c);
+          for (std::uint32_t j = m + 1, qx = x, qy = y; j < levels && s >= T(1); ++j) {
+            const Image<T>& run = ctx.image(in->resource, j);
+            qx = std::min<std::uint32_t>(qx >> 1, std::uint32_t(run.w - 1));
+            qy = std::min<std::uint32_t>(qy >> 1, std::uint32_t(run.h - 1));
+            s = run.at(int(qx), int(qy), c);
+          }
+          share.at(x, y, c) = s;
+        }
+    });
+  }
   return Status::success();
 }
 
@@ -499,6 +532,7 @@ Status runSaoPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<con
     case gen::PassId::linear_z: return detail::linearZPass(ctx, d, bindings, false);
     case gen::PassId::linear_z2: return detail::linearZPass(ctx, d, bindings, true);
     case gen::PassId::width: return detail::widthPass(ctx, d, bindings);
+    case gen::PassId::width_resolve: return detail::widthResolvePass(ctx, d, bindings);
     case gen::PassId::ao_sample:
     case gen::PassId::ao_sample_output: return detail::aoSamplePass(ctx, d, bindings);
     case gen::PassId::blur: return detail::blurPass(ctx, d, bindings);

@@ -212,10 +212,15 @@ inline void mipSource(int& x, int& y, int m, int w0, int h0) {
   y = std::min(int(sy), h0 - 1);
 }
 
-// sao_run_share (thickness_model 1, the width pass): the share of thickness of csz level-0 texel
-// (px, py) with z (not sky) along axis (ax, ay) = (1, 0) or (0, 1), from its run of continuous depth.
+// sao_run_share (thickness_model 1, the width pass): the share of thickness of texel (px, py) of csz
+// level m (zm; level 0 is w0 x h0) with z (not sky) along axis (ax, ay) = (1, 0) or (0, 1), from
+// its run of continuous depth walked on level m: SAO_WIDTH_REACH of the level's texels each side,
+// continuity |dz| <= SAO_WIDTH_JUMP * 2^m * |z| (per level-0 texel), the ends at the level-0 texels
+// their z came from (mipSource), a texel's footprint 2^m level-0 texels. Level 0 is the width pass's
+// bit scans (sao_width_band_share), a level above its walk (sao_width_level_share).
 template <typename T>
-T runShare(const Image<T>& z0, int px, int py, T z, int ax, int ay, const Block<T>& P) {
+T runShare(const Image<T>& zm, int m, int w0, int h0, int px, int py, T z, int ax, int ay, const Block<T>& P) {
+  const T span = T(1 << m);
   bool wide = false;
   int ex[2], ey[2];
   T ez[2];
@@ -226,24 +231,31 @@ T runShare(const Image<T>& z0, int px, int py, T z, int ax, int ay, const Block<
     bool walking = true;
     for (int k = 1; k <= gen::SAO_WIDTH_REACH && walking; ++k) {
       const int qx = px + k * dx, qy = py + k * dy;
-      const bool inside = qx >= 0 && qy >= 0 && qx < z0.w && qy < z0.h;
+      const bool inside = qx >= 0 && qy >= 0 && qx < zm.w && qy < zm.h;
       wide = wide || !inside;
-      const T zq = z0.at(std::clamp(qx, 0, z0.w - 1), std::clamp(qy, 0, z0.h - 1));
+      const T zq = zm.at(std::clamp(qx, 0, zm.w - 1), std::clamp(qy, 0, zm.h - 1));
       const T dz = std::abs(zq - zp);
-      walking = inside && !isSky(zq) && dz <= T(gen::SAO_WIDTH_JUMP) * std::abs(zq);
+      walking = inside && !isSky(zq) && dz <= T(gen::SAO_WIDTH_JUMP) * span * std::abs(zq);
       if (walking) lx = qx, ly = qy, zp = zq;
     }
     wide = wide || walking;
+    mipSource(lx, ly, m, w0, h0);
     ex[side] = lx, ey[side] = ly, ez[side] = zp;
   }
   const Vec3<T> a = position(T(ex[0]) + T(0.5), T(ey[0]) + T(0.5), ez[0], P);
   const Vec3<T> b = position(T(ex[1]) + T(0.5), T(ey[1]) + T(0.5), ez[1], P);
   const Vec3<T> d = a - b;
   const T scale = ax != 0 ? std::abs(P.proj_info.x) : std::abs(P.proj_info.y);
-  const T footprint = scale * ((P.ortho != 0) ? T(1) : std::abs(z));
+  const T footprint = scale * ((P.ortho != 0) ? T(1) : std::abs(z)) * span;
   const T width = std::sqrt(dot(d, d)) + footprint;
   const T t = glslMin(P.thickness, glslMax(P.thickness_min, T(gen::SAO_WIDTH_SCALE) * width));
   return wide ? T(1) : t / P.thickness;
+}
+
+// Level 0's run share (runShare with m = 0).
+template <typename T>
+T runShare(const Image<T>& z0, int px, int py, T z, int ax, int ay, const Block<T>& P) {
+  return runShare(z0, 0, z0.w, z0.h, px, py, z, ax, ay, P);
 }
 
 // sao_tap_thickness (thickness_model 1, a tap): the thickness of the surface a tap sees along

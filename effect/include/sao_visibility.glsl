@@ -276,16 +276,17 @@ ivec2 sao_mip_source(ivec2 t, int m, ivec2 size0)
 // thickness_model 1 (docs/effect-math.md 5.9, "Thickness from width"), the width pass's half: the
 // share of thickness of a texel (z) whose run of continuous depth along x (x_axis) or y ends at
 // level-0 texels e0 and e1 (z0, z1): SAO_WIDTH_SCALE times its width (the distance between the end
-// texels' points plus one texel's footprint along the axis), clamped to [thickness_min, thickness],
-// over thickness (> 0); 1 for a wide run (one that went on through SAO_WIDTH_REACH texels on either
-// side or reached the image's edge; the width pass finds the ends, sao.glsl).
+// texels' points plus one texel's footprint along the axis, `span` level-0 texels: 2^m for a
+// texel of level m), clamped to [thickness_min, thickness], over thickness (> 0); 1 for a wide run
+// (one that went on through SAO_WIDTH_REACH texels on either side or reached the image's edge; the
+// width pass finds the ends, sao.glsl).
 float sao_run_share_of(ivec2 e0, float z0, ivec2 e1, float z1, bool wide, float z, bool x_axis, vec4 proj_info,
-                       int ortho, float thickness, float thickness_min)
+                       int ortho, float thickness, float thickness_min, float span)
 {
     precise vec3 a = sao_position(vec2(e0) + 0.5, z0, proj_info, ortho);
     precise vec3 b = sao_position(vec2(e1) + 0.5, z1, proj_info, ortho);
     float scale = x_axis ? abs(proj_info.x) : abs(proj_info.y);
-    precise float footprint = scale * ((ortho != 0) ? 1.0 : abs(z));
+    precise float footprint = scale * ((ortho != 0) ? 1.0 : abs(z)) * span;
     precise float width = length(a - b) + footprint;
     precise float t = min(thickness, max(thickness_min, SAO_WIDTH_SCALE * width));
     return wide ? 1.0 : t / thickness;

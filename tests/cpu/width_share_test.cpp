@@ -3,9 +3,12 @@
 // pass's share of thickness of a texel from its run of continuous depth along x and y (runShare),
 // and a tap's thickness from the two shares along its slice (tapThickness). Hand-built z images,
 // in double: every expected value is worked out from the texel spacing.
+#include <bit>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
+#include "sao/cpu/reference.h"
 #include "sao_visibility.h"
 #include "test_support.h"
 
@@ -108,6 +111,70 @@ TEST(WidthShare, ATapTakesTheShareOfItsSlicesMajorCrossing) {
   // Never more than thickness, and a wide surface is thickness deep along every slice.
   EXPECT_NEAR(tapThickness(0.9, 0.9, c, c, kT), kT, 1e-15);
   EXPECT_NEAR(tapThickness(1.0, 1.0, 0.6, 0.8, kT), kT, 1e-15);
+}
+
+// Above level 0 (docs/effect-math.md 5.9): level m's texels are walked on their own level, and
+// their ends stand at the level-0 texels their z came from. A strip of w level-1 texels (w odd: its
+// end texels share their row's rotated-grid offset) is 2 (w - 1) level-0 texels between its ends
+// plus a footprint of 2: the share of a level-0 strip 2w texels wide. Its continuity bound doubles
+// with the level: a step of 5 % of z ends a run at level 0 (3 %) but not at level 1 (6 %). (A test
+// image of z at level 1 stands for level 0 as well: runShare reads only the level it is given.)
+TEST(WidthShare, ALevelAboveZeroMeasuresItsRunInItsOwnTexels) {
+  const auto P = block();
+  const Image<double> z1 = strip(20, 13, -6.0, -1.0);  // level 1 of a 128x96 level 0
+  for (int x = 20; x < 33; ++x)
+    EXPECT_NEAR(runShare(z1, 1, 128, 96, x, 24, -1.0, 1, 0, P), stripShare(26, -1.0), 1e-12) << x;
+  EXPECT_LT(stripShare(26, -1.0), 1.0);
+  // From 6 texels inside a 26-texel strip, 19 on its right: over the reach (16 of the level's texels).
+  EXPECT_EQ(runShare(strip(20, 26, -6.0, -1.0), 1, 128, 96, 26, 24, -1.0, 1, 0, P), 1.0);
+
+  Image<double> stepped = strip(20, 4, -6.0, -1.0);
+  for (int y = 0; y < stepped.h; ++y)
+    for (int x = 24; x < 28; ++x) stepped.at(x, y) = -1.05;
+  EXPECT_NEAR(runShare(stepped, 21, 24, -1.0, 1, 0, P), stripShare(4, -1.0), 1e-12) << "level 0: two runs";
+  // Level 1: one run of 8, ends at level-0 texels (41, 49) (z -1) and (55, 48) (z -1.05).
+  const double dx = 1.0 * (41.5 * -kSpacing + 1.5) - 1.05 * (55.5 * -kSpacing + 1.5);
+  const double dy = 1.0 * (49.5 * -kSpacing + 0.875) - 1.05 * (48.5 * -kSpacing + 0.875);
+  const double width = std::sqrt(dx * dx + dy * dy + 0.05 * 0.05) + 2.0 * kSpacing;
+  EXPECT_NEAR(runShare(stepped, 1, 128, 96, 21, 24, -1.0, 1, 0, P), 0.5 * width / kT, 1e-12) << "level 1: one run of 8";
+}
+
+// width_resolve (the CPU reference's whole run): a strip 40 texels wide at z = -2 before a far wall
+// is wide at its centre on level 0 (20 texels on each side, the reach 16) and 20 texels wide on
+// level 1, so its centre's width_share along x is level 1's measure of it, 40 texels' worth: half of
+// 40 pixels at |z| = 2 over a thickness of 1 m. Along y it meets the image's edge: wide at every
+// level, 1. A texel of a second strip, 10 texels wide, is narrow on level 0 and keeps its own share.
+TEST(WidthShare, AWideRunTakesItsShareFromTheFirstLevelWhereItIsNarrow) {
+  const Extent e{128, 96};
+  const Camera cam = perspectiveCamera(std::numbers::pi / 3.0, e.width, e.height, 0.1, 1000.0, ClipDepth::ZeroToOne, false);
+  DepthImage depth;
+  depth.extent = e;
+  depth.format = DepthFormat::LinearZ;
+  depth.texels.resize(std::size_t(e.width) * e.height);
+  for (std::uint32_t y = 0; y < e.height; ++y)
+    for (std::uint32_t x = 0; x < e.width; ++x)
+      depth.texels[std::size_t(y) * e.width + x] = std::bit_cast<std::uint32_t>((x >= 40 && x < 80) || (x >= 100 && x < 110) ? -2.0f : -20.0f);
+  Settings s;
+  s.estimator = 1;
+  s.thickness_model = 1;
+  s.thickness = 1.0f;
+  cpu::Inputs in;
+  in.depth = &depth;
+  cpu::Result r;
+  const Status st = cpu::run(s, cam, in, cpu::Options{cpu::Precision::Double, 2}, r);
+  ASSERT_TRUE(st.ok()) << st.message;
+  const std::vector<FloatImage>& run = r.images[std::size_t(gen::ResourceId::width_run)];
+  const std::vector<FloatImage>& share = r.images[std::size_t(gen::ResourceId::width_share)];
+  ASSERT_GE(run.size(), 2u);
+  ASSERT_EQ(share.size(), run.size());
+  EXPECT_EQ(run[0].at(60, 48, 0), 1.0f) << "wide on level 0";
+  EXPECT_LT(run[1].at(30, 24, 0), 1.0f) << "narrow on level 1";
+  EXPECT_EQ(share[0].at(60, 48, 0), run[1].at(30, 24, 0));
+  const double pixel = 2.0 * 2.0 * std::tan(std::numbers::pi / 6.0) / 96.0;  // at |z| = 2
+  EXPECT_NEAR(share[0].at(60, 48, 0), 0.5 * 40 * pixel, 1e-3);
+  EXPECT_EQ(share[0].at(60, 48, 1), 1.0f);
+  EXPECT_LT(run[0].at(105, 48, 0), 1.0f);
+  EXPECT_EQ(share[0].at(105, 48, 0), run[0].at(105, 48, 0));
 }
 
 }  // namespace

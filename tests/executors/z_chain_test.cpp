@@ -2,7 +2,7 @@
 // walking up the rotated grid from its 2x2 block; effect/sao.glsl, SAO_CHAIN_FROM_BLOCK) equals the
 // CPU reference's level-by-level chain bit for bit, on every level, for chains of 1 to 8 levels,
 // odd extents, 1-texel-wide levels, guard bands and the second depth layer (Vulkan: array slots past
-// the chain's end bound, never written); so does the width pass's width_share chain
+// the chain's end bound, never written); so do the width passes' width_run and width_share chains
 // (thickness_model 1). Each case under GL's and Vulkan's depth convention.
 #include "harness.h"
 #include "image_compare.h"
@@ -61,10 +61,11 @@ TEST_P(ZChain, EveryLevelEqualsTheCpuChainBitForBit) {
     }
 }
 
-// thickness_model 1: the width pass (shared-memory bit scans over 16x16 tiles, effect/sao.glsl)
-// finds the runs the CPU reference's walk finds, and its chain copies csz's rotated grid: every
-// level of width_share equals the CPU's bit for bit (blocks of 1 .. 40 texels, sky, runs across
-// block edges; the same extents, guard bands and 1-texel levels).
+// thickness_model 1: the width pass (level 0 by shared-memory bit scans over 16x16 tiles, the
+// levels above by a walk on each level, effect/sao.glsl) finds the runs the CPU reference's walk
+// finds, and width_resolve takes a wide run's share from the levels above as the CPU does: every
+// level of width_run and of width_share equals the CPU's bit for bit (blocks of 1 .. 40 texels, sky,
+// runs across block edges; the same extents, guard bands and 1-texel levels).
 TEST_P(ZChain, WidthShareEqualsTheCpuBitForBit) {
   const test::ZChainCase& c = param();
   auto e = make();
@@ -72,6 +73,7 @@ TEST_P(ZChain, WidthShareEqualsTheCpuBitForBit) {
     SCOPED_TRACE(convention);
     const test::ZChainReference z = test::widthShareReference(c, cam);
     ASSERT_TRUE(z.status.ok()) << z.status.message;
+    const std::vector<FloatImage>& run = z.cpu.images[std::size_t(gen::ResourceId::width_run)];
     const std::vector<FloatImage>& ref = z.cpu.images[std::size_t(gen::ResourceId::width_share)];
     Frame f;
     f.settings = z.settings;
@@ -80,11 +82,18 @@ TEST_P(ZChain, WidthShareEqualsTheCpuBitForBit) {
     const Status st = e->render(f);
     ASSERT_TRUE(st.ok()) << st.message;
     ASSERT_EQ(ref.size(), e->plan().cszLevels);
-    std::size_t narrow = 0;  // shares (x or y) under 1: runs the pass measured
-    for (float v : ref[0].data) narrow += v < 1.0f;
+    ASSERT_EQ(run.size(), e->plan().cszLevels);
+    std::size_t narrow = 0;    // level-0 shares (x or y) under 1: runs the pass measured
+    std::size_t resolved = 0;  // level-0 shares wide on level 0 and measured above it
+    for (std::size_t i = 0; i < ref[0].data.size(); ++i) {
+      narrow += run[0].data[i] < 1.0f;
+      resolved += run[0].data[i] >= 1.0f && ref[0].data[i] < 1.0f;
+    }
     if (c.width * c.height >= 1000) {  // the 1x1 and 37x23 images are mostly runs to their edges: wide
       EXPECT_GT(narrow, ref[0].data.size() / 8) << "the blocks must give measured runs, or the comparison says little";
+      EXPECT_GT(resolved, 0u) << "some runs must be wide at level 0 and narrow above, or width_resolve is untested";
     }
+    expectLevelsEqual(*e, gen::ResourceId::width_run, run, c.name + " width_run");
     expectLevelsEqual(*e, gen::ResourceId::width_share, ref, c.name + " width_share");
   }
 }
