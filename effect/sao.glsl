@@ -263,8 +263,22 @@ layout(std140, binding = 0) uniform SaoParams {
 #if SAO_PASS_FIRST_LEVEL != 0 || SAO_PASS_LEVEL_SLOTS != SAO_MAX_MIP_LEVELS
 #error "SAO_CHAIN_FROM_BLOCK writes a whole chain: levels=0..SAO_MAX_MIP_LEVELS-1"
 #endif
-#define SAO_CHAIN_UP(IMG, J, z) \
-    if (sao_up && (J) <= max_mip) { sao_up = sao_rotated_grid_parent(sao_cur, sao_size); if (sao_up) imageStore(IMG[J], sao_cur, sao_texel4(z)); }
+// From level-1 texel b (level 1 is sao_size), up the rotated grid while each level's pick is this
+// texel's copy, up to max_mip: level J's texel sao_cur gets TEXEL_AT(sao_cur, J).
+#define SAO_STORE_ABOVE(IMG, J, TEXEL_AT) \
+    if (sao_up && (J) <= max_mip) { sao_up = sao_rotated_grid_parent(sao_cur, sao_size); if (sao_up) imageStore(IMG[J], sao_cur, sao_texel4(TEXEL_AT(sao_cur, J))); }
+#define SAO_WALK_UP(IMG, b, TEXEL_AT) { \
+    ivec2 sao_cur = b; \
+    bool sao_up = true; \
+    SAO_STORE_ABOVE(IMG, 2, TEXEL_AT) \
+    SAO_STORE_ABOVE(IMG, 3, TEXEL_AT) \
+    SAO_STORE_ABOVE(IMG, 4, TEXEL_AT) \
+    SAO_STORE_ABOVE(IMG, 5, TEXEL_AT) \
+    SAO_STORE_ABOVE(IMG, 6, TEXEL_AT) \
+    SAO_STORE_ABOVE(IMG, 7, TEXEL_AT) \
+}
+// The chain's copies: every level holds level 1's value.
+#define SAO_CHAIN_COPY(p, J) sao_z
 // Invocation b (texels=2x2): Z_OF(p) (a TYPE: float, or vec2) into the level-0
 // texels 2b .. 2b + 1 that lie inside size0, then level-1 texel b, which copies one of them (the
 // rotated grid picks inside the block, clamp included), then up from there.
@@ -283,39 +297,29 @@ layout(std140, binding = 0) uniform SaoParams {
         ivec2 sao_s = sao_rotated_grid_source(b, size0) - 2 * (b); \
         TYPE sao_z = sao_zb[sao_s.y * 2 + sao_s.x]; \
         imageStore(IMG[1], b, sao_texel4(sao_z)); \
-        ivec2 sao_cur = b; \
-        bool sao_up = true; \
-        SAO_CHAIN_UP(IMG, 2, sao_z) \
-        SAO_CHAIN_UP(IMG, 3, sao_z) \
-        SAO_CHAIN_UP(IMG, 4, sao_z) \
-        SAO_CHAIN_UP(IMG, 5, sao_z) \
-        SAO_CHAIN_UP(IMG, 6, sao_z) \
-        SAO_CHAIN_UP(IMG, 7, sao_z) \
+        SAO_WALK_UP(IMG, b, SAO_CHAIN_COPY) \
     } \
 }
 // A chain texel as imageStore takes it.
 vec4 sao_texel4(float z) { return vec4(z, 0.0, 0.0, 0.0); }
 vec4 sao_texel4(vec2 v) { return vec4(v, 0.0, 0.0); }
-// A chain pass's main: invocation b = the global id stores its block and the walk up, if its
-// level-0 block starts inside IMG's level 0.
-#define SAO_CHAIN_PASS(IMG, Z_OF, TYPE) { \
+// Invocation b = the global id, if its level-0 block starts inside IMG's level 0 (else it returns).
+#define SAO_CHAIN_INVOCATION(IMG) \
     ivec2 b = ivec2(gl_GlobalInvocationID.xy); \
     ivec2 size0 = imageSize(IMG[0]); \
     if (any(greaterThanEqual(2 * b, size0))) \
-        return; \
+        return;
+// A chain pass's main: invocation b stores its block and the walk up.
+#define SAO_CHAIN_PASS(IMG, Z_OF, TYPE) { \
+    SAO_CHAIN_INVOCATION(IMG) \
     SAO_CHAIN_FROM_BLOCK(IMG, b, size0, Z_OF, TYPE); \
 }
 // A chain whose texels are each computed on their own level rather than copied: invocation b
 // stores TEXEL_AT(p, 0) into the level-0 texels 2b .. 2b + 1 inside size0, TEXEL_AT(b, 1) into
-// level-1 texel b, then TEXEL_AT(cur, j) into the texels above that SAO_CHAIN_FROM_BLOCK's walk
-// up gives it (so each texel of each level has exactly one writer), up to max_mip.
-#define SAO_LEVEL_UP(IMG, J, TEXEL_AT) \
-    if (sao_up && (J) <= max_mip) { sao_up = sao_rotated_grid_parent(sao_cur, sao_size); if (sao_up) imageStore(IMG[J], sao_cur, sao_texel4(TEXEL_AT(sao_cur, J))); }
+// level-1 texel b, then TEXEL_AT(cur, J) into the texels above that the walk up gives it (so each
+// texel of each level has exactly one writer), up to max_mip.
 #define SAO_LEVELS_PASS(IMG, TEXEL_AT) { \
-    ivec2 b = ivec2(gl_GlobalInvocationID.xy); \
-    ivec2 size0 = imageSize(IMG[0]); \
-    if (any(greaterThanEqual(2 * b, size0))) \
-        return; \
+    SAO_CHAIN_INVOCATION(IMG) \
     for (int sao_k = 0; sao_k < 4; ++sao_k) { \
         ivec2 sao_p = 2 * b + ivec2(sao_k & 1, sao_k >> 1); \
         if (all(lessThan(sao_p, size0))) \
@@ -324,14 +328,7 @@ vec4 sao_texel4(vec2 v) { return vec4(v, 0.0, 0.0); }
     ivec2 sao_size = max(size0 >> 1, ivec2(1)); \
     if (max_mip >= 1 && all(lessThan(b, sao_size))) { \
         imageStore(IMG[1], b, sao_texel4(TEXEL_AT(b, 1))); \
-        ivec2 sao_cur = b; \
-        bool sao_up = true; \
-        SAO_LEVEL_UP(IMG, 2, TEXEL_AT) \
-        SAO_LEVEL_UP(IMG, 3, TEXEL_AT) \
-        SAO_LEVEL_UP(IMG, 4, TEXEL_AT) \
-        SAO_LEVEL_UP(IMG, 5, TEXEL_AT) \
-        SAO_LEVEL_UP(IMG, 6, TEXEL_AT) \
-        SAO_LEVEL_UP(IMG, 7, TEXEL_AT) \
+        SAO_WALK_UP(IMG, b, TEXEL_AT) \
     } \
 }
 #endif
