@@ -310,8 +310,9 @@ vec4 sao_texel4(vec2 v) { return vec4(v, 0.0, 0.0); }
     if ((J) == 2) imageStore(IMG[2], p, v); else if ((J) == 3) imageStore(IMG[3], p, v); \
     else if ((J) == 4) imageStore(IMG[4], p, v); else if ((J) == 5) imageStore(IMG[5], p, v); \
     else if ((J) == 6) imageStore(IMG[6], p, v); else if ((J) == 7) imageStore(IMG[7], p, v);
-// A chain whose texels are each computed on their own level rather than copied (TEXEL_AT(p, m)):
-// invocation b stores its level-0 texels 2b .. 2b + 1 inside size0 and level-1 texel b; the texels
+// A chain whose texels are each computed on their own level rather than copied (LEVEL0_AT(p) on
+// level 0, TEXEL_AT(p, m) above: llvmpipe runs a branch's body whether or not a lane takes it, so
+// level 0's texels do not go through the levels' code): invocation b stores its level-0 texels 2b .. 2b + 1 inside size0 and level-1 texel b; the texels
 // of levels 2 .. max_mip go to whole work groups, level by level (rows in order): a list of slots
 // where each level takes a whole number of groups' worth (sao_level_slots), work group g taking
 // slots 64 g .. 64 g + 63, then as many again one dispatch on, and so on. So no invocation walks up
@@ -320,14 +321,14 @@ vec4 sao_texel4(vec2 v) { return vec4(v, 0.0, 0.0); }
 // makes goes to one level: Vulkan wants an image array's index uniform in the group (lanes storing
 // to two levels at once lost the stores of one of them on lavapipe).
 int sao_level_slots(ivec2 size, int lanes) { return (size.x * size.y + lanes - 1) / lanes * lanes; }
-#define SAO_LEVELS_PASS(IMG, TEXEL_AT) { \
+#define SAO_LEVELS_PASS(IMG, LEVEL0_AT, TEXEL_AT) { \
     ivec2 b = ivec2(gl_GlobalInvocationID.xy); \
     ivec2 size0 = imageSize(IMG[0]); \
     if (all(lessThan(2 * b, size0))) { \
         for (int sao_k = 0; sao_k < 4; ++sao_k) { \
             ivec2 sao_p = 2 * b + ivec2(sao_k & 1, sao_k >> 1); \
             if (all(lessThan(sao_p, size0))) \
-                imageStore(IMG[0], sao_p, sao_texel4(TEXEL_AT(sao_p, 0))); \
+                imageStore(IMG[0], sao_p, sao_texel4(LEVEL0_AT(sao_p))); \
         } \
         if (max_mip >= 1 && all(lessThan(b, max(size0 >> 1, ivec2(1))))) \
             imageStore(IMG[1], b, sao_texel4(TEXEL_AT(b, 1))); \
@@ -589,11 +590,9 @@ float sao_width_level_share(ivec2 p, int m, float z, bool x_axis, ivec2 size0)
                             x_axis, proj_info, ortho, thickness, thickness_min, span);
 }
 
-// width_run's texel p of level m: level 0's from the bands, a level above from its own walk.
-vec2 sao_width_run_texel(ivec2 p, int m)
+// width_run's texel p of level m >= 1, from its own walk (level 0's: sao_width_texel, the bands).
+vec2 sao_width_level_texel(ivec2 p, int m)
 {
-    if (m == 0)
-        return sao_width_texel(p);
     float z = texelFetch(in_csz, p, m).r;
     if (sao_is_sky(z) || !(thickness > 0.0))
         return vec2(1.0);
@@ -629,7 +628,7 @@ void sao_width_main()
     }
     memoryBarrierShared();
     barrier();
-    SAO_LEVELS_PASS(out_width_run, sao_width_run_texel)
+    SAO_LEVELS_PASS(out_width_run, sao_width_texel, sao_width_level_texel)
 #endif
 }
 #pragma sao end
@@ -656,12 +655,13 @@ vec2 sao_width_resolved_texel(ivec2 p, int m)
     }
     return s;
 }
+vec2 sao_width_resolved_level0(ivec2 p) { return sao_width_resolved_texel(p, 0); }
 #endif
 
 void sao_width_resolve_main()
 {
 #if THICKNESS_FROM_WIDTH
-    SAO_LEVELS_PASS(out_width_share, sao_width_resolved_texel)
+    SAO_LEVELS_PASS(out_width_share, sao_width_resolved_level0, sao_width_resolved_texel)
 #endif
 }
 #pragma sao end
