@@ -310,14 +310,14 @@ vec4 sao_texel4(vec2 v) { return vec4(v, 0.0, 0.0); }
     if ((J) == 2) imageStore(IMG[2], p, v); else if ((J) == 3) imageStore(IMG[3], p, v); \
     else if ((J) == 4) imageStore(IMG[4], p, v); else if ((J) == 5) imageStore(IMG[5], p, v); \
     else if ((J) == 6) imageStore(IMG[6], p, v); else if ((J) == 7) imageStore(IMG[7], p, v);
-// A chain whose texels are each computed on their own level rather than copied (LEVEL0_AT(p) on
-// level 0, TEXEL_AT(p, m) above: llvmpipe runs a branch's body whether or not a lane takes it, so
-// level 0's texels do not go through the levels' code): invocation b stores its level-0 texels 2b .. 2b + 1 inside size0 and level-1 texel b; the texels
-// of levels 2 .. max_mip go to whole work groups, level by level (rows in order): a list of slots
-// where each level takes a whole number of groups' worth (sao_level_slots), work group g taking
-// slots 64 g .. 64 g + 63, then as many again one dispatch on, and so on. So no invocation walks up
-// the levels (a walk up holds its group for every level's work: width 131 ms instead of 68 at
-// 1280x720 on llvmpipe), about one group in three has one texel a lane, and every store a group
+// A chain whose texels are each computed on their own level rather than copied: LEVEL0_AT(p) on
+// level 0, TEXEL_AT(p, m) above (apart, because llvmpipe runs a branch's body whether or not a lane
+// takes it). Invocation b stores its level-0 texels 2b .. 2b + 1 inside size0 and level-1 texel b.
+// The texels of levels 2 .. max_mip go to whole work groups, level by level (rows in order): a list
+// of slots where each level takes a whole number of groups' worth (sao_level_slots), work group g
+// taking slots 64 g .. 64 g + 63, then as many again one dispatch on, and so on. So no invocation
+// walks up the levels (a walk up holds its group for every level's work: width 131 ms instead of 81
+// at 1280x720 on llvmpipe), about one group in three has one texel a lane, and every store a group
 // makes goes to one level: Vulkan wants an image array's index uniform in the group (lanes storing
 // to two levels at once lost the stores of one of them on lavapipe).
 int sao_level_slots(ivec2 size, int lanes) { return (size.x * size.y + lanes - 1) / lanes * lanes; }
@@ -555,7 +555,7 @@ vec2 sao_width_texel(ivec2 p)
 
 // Texel p of csz level m >= 1 (size0: level 0's size): its share along x (x_axis) or y from its
 // run walked on level m itself, SAO_WIDTH_REACH of the level's texels each side (the CPU
-// reference's runShareAtLevel): continuity |dz| <= SAO_WIDTH_JUMP * 2^m * |z| (per level-0 texel, as
+// reference's runShare with m): continuity |dz| <= SAO_WIDTH_JUMP * 2^m * |z| (per level-0 texel, as
 // level 0's), the ends at the level-0 texels their z came from, a texel's footprint 2^m.
 float sao_width_level_share(ivec2 p, int m, float z, bool x_axis, ivec2 size0)
 {
