@@ -118,8 +118,8 @@ Status linearZPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<co
 }
 
 // Pass width (THICKNESS_FROM_WIDTH): each csz texel's shares of thickness along x and y from its
-// run on its own level (runShare; binary16-rounded in Float, as sao_width_run_texel stores them,
-// kept in Double; 1 for sky), into width_run's levels.
+// run on its own level (runShare; binary16-rounded in Float, as sao_width_texel and
+// sao_width_level_texel store them, kept in Double; 1 for sky), into width_run's levels.
 template <typename T>
 Status widthPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
   const ScheduledBinding* in = binding(d, bindings, gen::ResourceId::csz, false);
@@ -161,13 +161,14 @@ Status widthResolvePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::sp
   if (out == nullptr) return missingBinding(d, gen::ResourceId::width_share, true);
   const std::uint32_t levels = out->baseLevel + out->levelCount;
   for (std::uint32_t m = out->baseLevel; m < levels; ++m) {
+    const Image<T>& own = ctx.image(in->resource, m);
     Image<T>& share = ctx.image(out->resource, m);
-    if (share.w != ctx.image(in->resource, m).w || share.h != ctx.image(in->resource, m).h || share.ch < 2)
+    if (share.w != own.w || share.h != own.h || share.ch < 2)
       return passError(d, "width_share's level " + std::to_string(m) + " is not width_run's extent with two channels");
     parallelFor(share.h, ctx.threads, [&](int y) {
       for (int x = 0; x < share.w; ++x)
         for (int c = 0; c < 2; ++c) {
-          T s = ctx.image(in->resource, m).at(x, y, c);
+          T s = own.at(x, y, c);
           for (std::uint32_t j = m + 1, qx = x, qy = y; j < levels && s >= T(1); ++j) {
             const Image<T>& run = ctx.image(in->resource, j);
             qx = std::min<std::uint32_t>(qx >> 1, std::uint32_t(run.w - 1));
