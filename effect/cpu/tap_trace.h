@@ -7,7 +7,7 @@
 // normal (one normals fetch, or the four csz neighbours of eq. 4), then the s taps (with the
 // visibility estimator, ESTIMATOR 1: its 2*slices*m slice taps, those that leave the centre texel and
 // whose MIP texel does not hold the centre's own z, each with its width_share texel under
-// thickness_model 1). The width pass that writes width_share is not replayed.
+// thickness_model 1). The width passes that write width_share: width_trace.h.
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -18,7 +18,8 @@
 
 namespace sao::cpu::trace {
 
-enum class Surface : std::uint8_t { Csz, Normals, WidthShare };  // the textures ao_sample reads
+// The textures ao_sample reads, and width_run, which width_resolve reads (width_trace.h).
+enum class Surface : std::uint8_t { Csz, Normals, WidthShare, WidthRun };
 
 // A trace writes to a sink: `beginStep()` before each step's reads and once after the last,
 // `read(lane, surface, level, x, y)` per texel fetch (lane = gl_LocalInvocationIndex; level the

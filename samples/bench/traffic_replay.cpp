@@ -7,6 +7,7 @@
 #include "sao/plan.h"
 #include "sao/presets.h"
 #include "tap_trace.h"
+#include "width_trace.h"
 
 namespace sao::bench {
 
@@ -67,23 +68,42 @@ Status TrafficScene::replay(const Settings& settings, const TrafficVariant& vari
     return Status::error(StatusCode::InvalidInput, "traffic replay: the camera does not match the scene's depth");
 
   // Surface 0: csz (its levels), surface 1: the normals input at the depth's extent (rgba16f),
-  // surface 2: width_share (rg16f, csz's levels; read with thickness_model 1).
-  std::vector<SurfaceShape> surfaces(3);
+  // surfaces 2 and 3: width_share and width_run (rg16f, csz's levels; with thickness_model 1).
+  std::vector<SurfaceShape> surfaces(4);
   surfaces[0].texelBytes = variant.zTexelBytes;
   for (const auto& l : impl_->csz) surfaces[0].levels.push_back({std::uint32_t(l.w), std::uint32_t(l.h)});
   surfaces[1] = {8, {{impl_->depthExtent.width, impl_->depthExtent.height}}};
   surfaces[2] = {bytesPerTexel(gen::kResources[std::size_t(gen::ResourceId::width_share)].format), surfaces[0].levels};
+  surfaces[3] = {bytesPerTexel(gen::kResources[std::size_t(gen::ResourceId::width_run)].format), surfaces[0].levels};
   static_assert(int(cpu::trace::Surface::Csz) == 0 && int(cpu::trace::Surface::Normals) == 1 &&
-                int(cpu::trace::Surface::WidthShare) == 2);
+                int(cpu::trace::Surface::WidthShare) == 2 && int(cpu::trace::Surface::WidthRun) == 3);
 
   std::vector<TrafficModel> models;
   for (const Machine& m : machines) {
     if (Status st = validate(m); !st) return st;
     models.emplace_back(m, surfaces);
   }
+  GroupReads group;
+  // thickness_model 1: the width passes run first, one dispatch each, through the same caches.
+  out.widthTraffic.assign(models.size(), Traffic{});
+  if (s.thickness_model == 1) {
+    const cpu::trace::WidthTrace width(impl_->csz, params);
+    for (int pass = 0; pass < 2; ++pass) {
+      for (int gy = 0; gy < width.groupsY(); ++gy)
+        for (int gx = 0; gx < width.groupsX(); ++gx) {
+          group.clear();
+          if (pass == 0)
+            width.widthGroup(gx, gy, group);
+          else
+            width.resolveGroup(gx, gy, group);
+          for (TrafficModel& m : models) m.add(group);
+        }
+      for (TrafficModel& m : models) m.finish();
+    }
+    for (std::size_t i = 0; i < models.size(); ++i) out.widthTraffic[i] = models[i].traffic();
+  }
   const cpu::trace::AoSampleTrace trace(impl_->csz, params, variant.zHierarchy, variant.normalsSupplied, 8, 8,
                                         s.estimator == 1);
-  GroupReads group;
   for (int gy = 0; gy < trace.groupsY(); ++gy)
     for (int gx = 0; gx < trace.groupsX(); ++gx) {
       group.clear();

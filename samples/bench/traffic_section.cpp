@@ -45,20 +45,23 @@ Status writeCsv(const std::string& path, const std::string& scene, const std::ve
   std::ofstream f(path);
   if (!f) return Status::error(StatusCode::IoError, "cannot write '" + path + "'");
   f << "section,scene,machine,variant,width,height,radius_m,max_mip,reads_per_pixel,l1_hit_rate,l2_hit_rate,"
-       "l2_bytes_per_pixel,memory_bytes_per_pixel,l2_bytes_vs_sao,memory_bytes_vs_sao\n";
+       "l2_bytes_per_pixel,memory_bytes_per_pixel,l2_bytes_vs_sao,memory_bytes_vs_sao,width_l2_bytes_per_pixel,"
+       "width_memory_bytes_per_pixel\n";
   for (std::size_t m = 0; m < machines.size(); ++m)
     for (const Row& r : rows) {
       const Traffic& t = r.result.traffic[m];
       const Traffic& sao = saoRow(rows, r).result.traffic[m];
+      const Traffic& width = r.result.widthTraffic[m];
       char line[512];
-      std::snprintf(line, sizeof line, "%s,%s,%s,%s,%u,%u,%g,%d,%.4g,%.4f,%.4f,%.4g,%.4g,%s,%s\n", r.section.c_str(),
+      std::snprintf(line, sizeof line, "%s,%s,%s,%s,%u,%u,%g,%d,%.4g,%.4f,%.4f,%.4g,%.4g,%s,%s,%.4g,%.4g\n", r.section.c_str(),
                     scene.c_str(), machines[m].name.c_str(), variants[r.variant].label.c_str(), r.size.width,
                     r.size.height, r.radius, r.result.maxMip, perPixel(t.reads, r.result),
                     t.reads ? 1.0 - double(t.l1Misses) / double(t.reads) : 0.0,
                     t.l1Misses ? 1.0 - double(t.l2Misses) / double(t.l1Misses) : 0.0,
                     perPixel(t.l2Bytes(), r.result), perPixel(t.memoryBytes(), r.result),
                     ratio(double(t.l2Bytes()), double(sao.l2Bytes())).c_str(),
-                    ratio(double(t.memoryBytes()), double(sao.memoryBytes())).c_str());
+                    ratio(double(t.memoryBytes()), double(sao.memoryBytes())).c_str(),
+                    perPixel(width.l2Bytes(), r.result), perPixel(width.memoryBytes(), r.result));
       f << line;
     }
   f.close();
@@ -69,15 +72,20 @@ Status writeCsv(const std::string& path, const std::string& scene, const std::ve
 void printSummary(const std::vector<Machine>& machines, const std::vector<TrafficVariant>& variants,
                   const std::vector<Row>& rows) {
   for (std::size_t m = 0; m < machines.size(); ++m) {
-    std::printf("traffic, %s: %s\n  bytes per pixel from L2 / from memory, and ÷ SAO (z hierarchy):\n",
+    std::printf("traffic, %s: %s\n  bytes per AO pixel from L2 / from memory, and ÷ SAO (z hierarchy):\n",
                 machines[m].name.c_str(), describe(machines[m]).c_str());
     for (const Row& r : rows) {
       const Traffic& t = r.result.traffic[m];
       const Traffic& sao = saoRow(rows, r).result.traffic[m];
-      std::printf("  %-10s %4ux%-4u r %-4g %-30s %8.1f / %8.1f  (x%s / x%s)\n", r.section.c_str(), r.size.width,
+      const Traffic& width = r.result.widthTraffic[m];
+      std::printf("  %-10s %4ux%-4u r %-4g %-30s %8.1f / %8.1f  (x%s / x%s)", r.section.c_str(), r.size.width,
                   r.size.height, r.radius, variants[r.variant].label.c_str(), perPixel(t.l2Bytes(), r.result),
                   perPixel(t.memoryBytes(), r.result), ratio(double(t.l2Bytes()), double(sao.l2Bytes())).c_str(),
                   ratio(double(t.memoryBytes()), double(sao.memoryBytes())).c_str());
+      if (width.reads > 0)
+        std::printf("  of which the width passes %.1f / %.1f", perPixel(width.l2Bytes(), r.result),
+                    perPixel(width.memoryBytes(), r.result));
+      std::printf("\n");
     }
   }
 }
@@ -89,10 +97,15 @@ Status trafficSection(const std::string& outDir, const std::string& sceneName, b
   std::string cpuSource;
   const std::vector<Machine> machines = {paperLikeMachine(), paperLikeMachine(48 * 1024),
                                          thisCpuMachine(cpuSource)};
+  // The curves: the medium preset's sampling read four ways, and the ultra preset (the visibility
+  // estimator with thickness from width: the width passes and each tap's width_share read too).
   const std::vector<TrafficVariant> variants = {{"SAO (z hierarchy)", true, false, 4},
                                                 {"SAO (no hierarchy)", false, false, 4},
                                                 {"AlchemyAO-style", false, true, 4},
-                                                {"AlchemyAO float4 positions", false, true, 16}};
+                                                {"AlchemyAO float4 positions", false, true, 16},
+                                                {"ultra: visibility from width", true, false, 4}};
+  const std::vector<Preset> curvePresets = {Preset::Medium, Preset::Medium, Preset::Medium, Preset::Medium,
+                                            Preset::Ultra};
   const std::vector<double> radii = quick ? std::vector<double>{0.1, 1.5}
                                           : std::vector<double>{0.1, 0.25, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0};
   const Extent radiusSize = quick ? Extent{160, 90} : Extent{1920, 1080};
@@ -109,9 +122,9 @@ Status trafficSection(const std::string& outDir, const std::string& sceneName, b
       if (in.depth == nullptr) return Status::error(StatusCode::InvalidInput, "traffic: no depth for the scene");
       if (Status s = TrafficScene::create(*in.depth, in.camera, scene); !s) return s;
     }
-    Settings s = base;
-    s.radius = float(radius);
     for (std::size_t v = 0; v < variants.size(); ++v) {
+      Settings s = presetSettings(curvePresets[v]);
+      s.radius = float(radius);
       std::fprintf(stderr, "\r\033[Ktraffic: %s %ux%u r %g %s", section.c_str(), size.width, size.height, radius,
                    variants[v].label.c_str());
       std::fflush(stderr);

@@ -14,11 +14,14 @@
 namespace sao::bench {
 namespace {
 
-// A camera-facing plane 2 m away, 256x256, as linear z: every pixel has geometry.
+// A camera-facing plane 2 m away, n x n, as linear z: every pixel has geometry, every run of
+// continuous depth goes on to the image's edges.
 struct Plane {
-  Camera camera = perspectiveCamera(std::numbers::pi / 3, 256, 256, 0.1, 100.0, ClipDepth::NegativeOneToOne, false);
-  DepthImage depth{{256, 256}, DepthFormat::LinearZ,
-                   std::vector<std::uint32_t>(256 * 256, std::bit_cast<std::uint32_t>(-2.0f))};
+  explicit Plane(std::uint32_t n = 256)
+      : camera(perspectiveCamera(std::numbers::pi / 3, n, n, 0.1, 100.0, ClipDepth::NegativeOneToOne, false)),
+        depth{{n, n}, DepthFormat::LinearZ, std::vector<std::uint32_t>(n * n, std::bit_cast<std::uint32_t>(-2.0f))} {}
+  Camera camera;
+  DepthImage depth;
 };
 
 Machine smallGpu() {
@@ -84,9 +87,10 @@ TEST(VisibilityTraffic, CountsTheSliceTapsAndStaysFlatInTheRadius) {
   EXPECT_GT(b4Flat, 4.0 * b4) << "without the hierarchy far taps miss";
 }
 
-// thickness_model 1 adds one read per tap, its width_share texel (same level and texel as its z):
-// the reads double, and the L2 bytes per pixel do not grow with r (at most 10 % above r = 1 m's
-// over r = 1 .. 16 m; like SAO's they fall as the taps move up the hierarchy).
+// thickness_model 1 adds one read per tap, its width_share texel (same level and texel as its z),
+// and the width passes before ao_sample: the L2 bytes per pixel of all three do not grow with r (at
+// most 10 % above r = 1 m's over r = 1 .. 16 m; like SAO's they fall as the taps move up the
+// hierarchy).
 TEST(VisibilityTraffic, WidthShareStaysFlatInTheRadius) {
   const Plane plane;
   std::unique_ptr<TrafficScene> scene;
@@ -100,17 +104,53 @@ TEST(VisibilityTraffic, WidthShareStaysFlatInTheRadius) {
     ReplayResult r;
     ASSERT_TRUE(scene->replay(s, {"visibility", true, false, 4}, machines, r));
     const double b = double(r.traffic[0].l2Misses) * r.traffic[0].lineBytes / double(r.pixels);
-    std::printf("[traffic] plane 256x256, 16 taps, thickness_model 1, r %5.1f m: L2 bytes/pixel %.1f, reads/pixel %.1f\n",
-                radius, b, double(r.traffic[0].reads) / double(r.pixels));
+    const double bw = double(r.widthTraffic[0].l2Misses) * r.widthTraffic[0].lineBytes / double(r.pixels);
+    std::printf("[traffic] plane 256x256, 16 taps, thickness_model 1, r %5.1f m: L2 bytes/pixel %.1f (the width passes "
+                "%.1f), reads/pixel %.1f\n",
+                radius, b, bw, double(r.traffic[0].reads) / double(r.pixels));
+    EXPECT_GT(r.widthTraffic[0].reads, 0u);
+    EXPECT_LT(r.widthTraffic[0].l2Misses, r.traffic[0].l2Misses);
     if (radius == 4.0f) {  // as the test above: all 16 taps leave the centre texel but for a small xi
-      const std::uint64_t perTap = 2;
-      EXPECT_LE(r.traffic[0].reads, (1u + 4u + 16u * perTap) * 256 * 256);
-      EXPECT_GT(r.traffic[0].reads, (1u + 4u + 15u * perTap) * 256 * 256);
+      const std::uint64_t perTap = 2, aoSampleReads = r.traffic[0].reads - r.widthTraffic[0].reads;
+      EXPECT_LE(aoSampleReads, (1u + 4u + 16u * perTap) * 256 * 256);
+      EXPECT_GT(aoSampleReads, (1u + 4u + 15u * perTap) * 256 * 256);
     }
     if (radius == 1.0f) first = b;
     hi = std::max(hi, b);
   }
   EXPECT_LE(hi, 1.1 * first) << "no growth in r with the hierarchy";
+}
+
+// The width passes' reads on a 32x32 plane, counted by hand: no run breaks, so every walk of a
+// texel of level m (n x n texels) reads until it leaves the level or has read SAO_WIDTH_REACH texels,
+// and every share is 1 (wide), so width_resolve reads each texel's ancestors up to max_mip.
+TEST(VisibilityTraffic, TheWidthPassesReadTheirWalksAndTheResolveItsAncestors) {
+  const Plane plane(32);
+  std::unique_ptr<TrafficScene> scene;
+  ASSERT_TRUE(TrafficScene::create(plane.depth, plane.camera, scene));
+  const std::vector<Machine> machines = {smallGpu()};
+  Settings s = visibility16();
+  s.thickness_model = 1;
+  s.radius = 4.0f;
+  ReplayResult r;
+  ASSERT_TRUE(scene->replay(s, {"visibility", true, false, 4}, machines, r));
+  ASSERT_GE(r.maxMip, 2) << "levels 2+ go to whole work groups: the test needs one";
+  const std::uint64_t reach = 16;  // SAO_WIDTH_REACH
+  // width: 2x2 groups of 64 invocations, six 2x2 gathers each; then each texel of levels 1 ..
+  // max_mip: its centre and, along x and y, min(reach, n - p) reads on the + side (the last one
+  // outside the level, clamped) and min(reach, p + 1) on the - side.
+  std::uint64_t width = 2 * 2 * 64 * 6 * 4;
+  std::uint64_t resolve = 32 * 32 * std::uint64_t(1 + r.maxMip);  // level 0: itself and max_mip ancestors
+  for (int m = 1; m <= r.maxMip; ++m) {
+    const std::uint64_t n = std::max(32u >> m, 1u);
+    std::uint64_t axis = 0;
+    for (std::uint64_t p = 0; p < n; ++p) axis += std::min(reach, n - p) + std::min(reach, p + 1);
+    width += n * n + 2 * n * axis;  // each texel its centre, every row its x walks, every column its y walks
+    resolve += n * n * std::uint64_t(1 + r.maxMip - m);
+  }
+  EXPECT_EQ(r.widthTraffic[0].reads, width + resolve);
+  // ao_sample's reads come after them: centre, four neighbours, up to 16 taps with their shares.
+  EXPECT_LE(r.traffic[0].reads - r.widthTraffic[0].reads, (1u + 4u + 32u) * 32 * 32);
 }
 
 }  // namespace
