@@ -217,9 +217,15 @@ inline void mipSource(int& x, int& y, int m, int w0, int h0) {
 // its run of continuous depth walked on level m: SAO_WIDTH_REACH of the level's texels each side,
 // continuity |dz| <= SAO_WIDTH_JUMP * 2^m * |z| (per level-0 texel), the ends at the level-0 texels
 // their z came from (mipSource), a texel's footprint 2^m level-0 texels. Level 0 is the width pass's
-// bit scans (sao_width_band_share), a level above its walk (sao_width_level_share).
-template <typename T>
-T runShare(const Image<T>& zm, int m, int w0, int h0, int px, int py, T z, int ax, int ay, const Block<T>& P) {
+// bit scans (sao_width_band_share), a level above its walk (sao_width_level_share). onRead(side, k,
+// x, y) sees each texel the walk fetches (side 0 towards +axis; k = 1 .. SAO_WIDTH_REACH; x, y
+// clamped to the level): the traffic model's trace of the walk (width_trace.h).
+struct NoWalkReads {
+  void operator()(int, int, int, int) const {}
+};
+template <typename T, typename OnRead = NoWalkReads>
+T runShare(const Image<T>& zm, int m, int w0, int h0, int px, int py, T z, int ax, int ay, const Block<T>& P,
+           OnRead&& onRead = {}) {
   const T span = T(1 << m);
   bool wide = false;
   int ex[2], ey[2];
@@ -233,7 +239,9 @@ T runShare(const Image<T>& zm, int m, int w0, int h0, int px, int py, T z, int a
       const int qx = px + k * dx, qy = py + k * dy;
       const bool inside = qx >= 0 && qy >= 0 && qx < zm.w && qy < zm.h;
       wide = wide || !inside;
-      const T zq = zm.at(std::clamp(qx, 0, zm.w - 1), std::clamp(qy, 0, zm.h - 1));
+      const int cx = std::clamp(qx, 0, zm.w - 1), cy = std::clamp(qy, 0, zm.h - 1);
+      onRead(side, k, cx, cy);
+      const T zq = zm.at(cx, cy);
       const T dz = std::abs(zq - zp);
       walking = inside && !isSky(zq) && dz <= T(gen::SAO_WIDTH_JUMP) * span * std::abs(zq);
       if (walking) lx = qx, ly = qy, zp = zq;

@@ -64,8 +64,8 @@ class WidthTrace {
   // at most one read a step.
   using Steps = std::vector<std::vector<Read>>;
 
-  // SAO_LEVELS_PASS's texels of levels >= 2 for group (gx, gy): per slot chunk, the level and
-  // each lane's texel index (or -1).
+  // SAO_LEVELS_PASS's texels of levels >= 2 for group (gx, gy): per chunk of 64 slots, its level
+  // and the texel index of its lane 0 (lane l takes first + l, if inside the level).
   struct Chunk {
     int level;
     int first;  // the chunk's first texel index on that level
@@ -112,23 +112,12 @@ inline void WidthTrace::walkReads(int m, int x, int y, Steps& steps) const {
   steps[0].push_back({m, x, y});
   const float z = zm.at(x, y);
   if (detail::isSky(z) || !(P_.thickness > 0.0f)) return;
-  const float span = float(1 << m);
-  for (int axis = 0; axis < 2; ++axis)
-    for (int side = 0; side < 2; ++side) {
-      const int d = side == 0 ? 1 : -1;
-      const int dx = axis == 0 ? d : 0, dy = axis == 0 ? 0 : d;
-      float zp = z;
-      bool walking = true;
-      for (int k = 1; k <= gen::SAO_WIDTH_REACH && walking; ++k) {
-        const int qx = x + k * dx, qy = y + k * dy;
-        const bool inside = qx >= 0 && qy >= 0 && qx < zm.w && qy < zm.h;
-        const int cx = std::clamp(qx, 0, zm.w - 1), cy = std::clamp(qy, 0, zm.h - 1);
-        steps[std::size_t(1 + (axis * 2 + side) * gen::SAO_WIDTH_REACH + k - 1)].push_back({m, cx, cy});
-        const float zq = zm.at(cx, cy);
-        walking = inside && !detail::isSky(zq) && std::abs(zq - zp) <= float(gen::SAO_WIDTH_JUMP) * span * std::abs(zq);
-        if (walking) zp = zq;
-      }
-    }
+  for (int axis = 0; axis < 2; ++axis) {  // the reference's own walk, its fetches recorded
+    auto record = [&](int side, int k, int cx, int cy) {
+      steps[std::size_t(1 + (axis * 2 + side) * gen::SAO_WIDTH_REACH + k - 1)].push_back({m, cx, cy});
+    };
+    detail::runShare(zm, m, csz_[0].w, csz_[0].h, x, y, z, int(axis == 0), int(axis == 1), P_, record);
+  }
 }
 
 inline void WidthTrace::resolveReads(int m, int x, int y, Steps& steps) const {

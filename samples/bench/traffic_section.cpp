@@ -1,5 +1,6 @@
 #include "traffic_section.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -52,7 +53,7 @@ Status writeCsv(const std::string& path, const std::string& scene, const std::ve
   for (std::size_t m = 0; m < machines.size(); ++m)
     for (const Row& r : rows) {
       const Traffic& t = r.result.traffic[m];
-      const Traffic& sao = baseRow(rows, r).result.traffic[m];
+      const Traffic& denom = baseRow(rows, r).result.traffic[m];
       const Traffic& width = r.result.widthTraffic[m];
       char line[512];
       std::snprintf(line, sizeof line, "%s,%s,%s,%s,%u,%u,%g,%d,%.4g,%.4f,%.4f,%.4g,%.4g,%s,%s,%.4g,%.4g,%llu\n",
@@ -62,8 +63,8 @@ Status writeCsv(const std::string& path, const std::string& scene, const std::ve
                     t.reads ? 1.0 - double(t.l1Misses) / double(t.reads) : 0.0,
                     t.l1Misses ? 1.0 - double(t.l2Misses) / double(t.l1Misses) : 0.0,
                     perPixel(t.l2Bytes(), r.result), perPixel(t.memoryBytes(), r.result),
-                    ratio(double(t.l2Bytes()), double(sao.l2Bytes())).c_str(),
-                    ratio(double(t.memoryBytes()), double(sao.memoryBytes())).c_str(),
+                    ratio(double(t.l2Bytes()), double(denom.l2Bytes())).c_str(),
+                    ratio(double(t.memoryBytes()), double(denom.memoryBytes())).c_str(),
                     perPixel(width.l2Bytes(), r.result), perPixel(width.memoryBytes(), r.result),
                     static_cast<unsigned long long>(r.result.pixels));
       f << line;
@@ -80,12 +81,12 @@ void printSummary(const std::vector<Machine>& machines, const std::vector<Traffi
                 machines[m].name.c_str(), describe(machines[m]).c_str());
     for (const Row& r : rows) {
       const Traffic& t = r.result.traffic[m];
-      const Traffic& sao = baseRow(rows, r).result.traffic[m];
+      const Traffic& denom = baseRow(rows, r).result.traffic[m];
       const Traffic& width = r.result.widthTraffic[m];
       std::printf("  %-10s %4ux%-4u r %-4g %-30s %8.1f / %8.1f  (x%s / x%s)", r.section.c_str(), r.size.width,
                   r.size.height, r.radius, variants[r.variant].label.c_str(), perPixel(t.l2Bytes(), r.result),
-                  perPixel(t.memoryBytes(), r.result), ratio(double(t.l2Bytes()), double(sao.l2Bytes())).c_str(),
-                  ratio(double(t.memoryBytes()), double(sao.memoryBytes())).c_str());
+                  perPixel(t.memoryBytes(), r.result), ratio(double(t.l2Bytes()), double(denom.l2Bytes())).c_str(),
+                  ratio(double(t.memoryBytes()), double(denom.memoryBytes())).c_str());
       if (width.reads > 0)
         std::printf("  of which the width passes %.1f / %.1f", perPixel(width.l2Bytes(), r.result),
                     perPixel(width.memoryBytes(), r.result));
@@ -128,8 +129,18 @@ Status trafficSection(const std::string& outDir, const std::string& sceneName, b
 
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::unique_ptr<TrafficScene>> scenes;
   std::vector<Row> rows;
+  // Replays done, so that a point met again is copied, not replayed (the radius section's 1 m rows
+  // are the resolution section's at its size; the presets' medium and ultra the curves' at 1 m).
+  struct Replayed {
+    Extent size;
+    Settings settings;  // as replay() takes them: use_z_hierarchy from the variant
+    bool normalsSupplied;
+    std::uint32_t zTexelBytes;
+    std::size_t row;
+  };
+  std::vector<Replayed> replayed;
   auto point = [&](const std::string& section, Extent size, double radius, std::size_t first, std::size_t end,
-                   std::size_t base) -> Status {
+                   std::size_t ratioBase) -> Status {
     std::unique_ptr<TrafficScene>& scene = scenes[{size.width, size.height}];
     if (!scene) {
       const TrafficInput in = sceneAt(size);
@@ -139,11 +150,21 @@ Status trafficSection(const std::string& outDir, const std::string& sceneName, b
     for (std::size_t v = first; v < end; ++v) {
       Settings s = presetSettings(curvePresets[v]);
       s.radius = float(radius);
+      s.use_z_hierarchy = variants[v].zHierarchy;
+      const auto same = std::find_if(replayed.begin(), replayed.end(), [&](const Replayed& p) {
+        return p.size == size && p.settings == s && p.normalsSupplied == variants[v].normalsSupplied &&
+               p.zTexelBytes == variants[v].zTexelBytes;
+      });
+      Row& r = rows.emplace_back(Row{section, v, ratioBase, size, radius, {}});
+      if (same != replayed.end()) {
+        r.result = rows[same->row].result;
+        continue;
+      }
       std::fprintf(stderr, "\r\033[Ktraffic: %s %ux%u r %g %s", section.c_str(), size.width, size.height, radius,
                    variants[v].label.c_str());
       std::fflush(stderr);
-      Row& r = rows.emplace_back(Row{section, v, base, size, radius, {}});
       if (Status st = scene->replay(s, variants[v], machines, r.result); !st) return st;
+      replayed.push_back({size, s, variants[v].normalsSupplied, variants[v].zTexelBytes, rows.size() - 1});
     }
     return Status::success();
   };
