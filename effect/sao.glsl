@@ -129,7 +129,7 @@
 #pragma sao variant HALF_INTERMEDIATES values=[0,1] default=0 select=half_intermediates "1: the (A, key) intermediates are rg16f: the passes writing them round A and the key (z times key_scale = 1/metersToViewUnits: z in metres) to binary16 themselves"
 #pragma sao variant MOTION_VECTORS values=[0,1] default=0 select=input:motion "1: temporal accumulation finds each pixel's history where the motion input says the surface was (moving objects) instead of reprojecting through the cameras"
 #pragma sao variant ESTIMATOR values=[0,1] default=0 select=estimator "0: the AlchemyAO estimator (eq. 1) over the spiral taps; 1: the visibility estimator, cosine-weighted visibility with a finite thickness over slices with a visibility bitmask (sao_visibility.glsl)"
-#pragma sao variant THICKNESS_FROM_WIDTH values=[0,1] default=0 select=thickness_model "1: the width and width_resolve passes write width_share, each texel's share of thickness from its run of continuous depth along x and y, and the visibility estimator's taps read it; a variant, not a branch, because llvmpipe runs a branch's body masked on every tap. With ESTIMATOR 0 the AO does not change (thickness_model is inert then), but the width passes still run, writing 1s (thickness is 0): ao_sample's width_share binding needs a writer"
+#pragma sao variant THICKNESS_FROM_WIDTH values=[0,1] default=0 select=thickness_model "1: the width and width_resolve passes write csz_share, each csz texel's z beside its shares of thickness from its run of continuous depth along x and y, and the visibility estimator's taps read it instead of csz (one fetch a tap); a variant, not a branch, because llvmpipe runs a branch's body masked on every tap. With ESTIMATOR 0 the AO does not change (thickness_model is inert then), but the width passes still run, writing 1s (thickness is 0): ao_sample's csz_share binding needs a writer"
 #pragma sao variant BENT_NORMALS values=[0,1] default=0 select=bent_normals "1: ao_sample_output sums the slices' first moments of their unoccluded rays with the occlusion (sao_bent.glsl) and stores (bent normal, A) into the rgba output"
 #pragma sao exclude MOTION_VECTORS=1 TEMPORAL=0 "motion vectors serve temporal accumulation only: set the temporal setting, or give no motion input"
 #pragma sao exclude DEPTH_MULTISAMPLE=1 TWO_LAYER=1 "a multisampled depth input has no second layer: give depth peeling's layers single-sample, or resolve the depth first"
@@ -150,14 +150,14 @@
 #pragma sao resource csz       kind=image  format=r32f mips=auto extent=input "Camera-space z MIP chain (z < 0, +0.0 = sky), the depth input's size including the guard band"
 #pragma sao resource csz2      kind=image  format=r32f mips=auto extent=input when=TWO_LAYER "Camera-space z MIP chain of the second layer"
 #pragma sao resource width_run kind=image format=rg16f mips=auto extent=input when=THICKNESS_FROM_WIDTH "thickness_model 1: x, y each csz texel's thickness along that axis over thickness from its run on its own level (SAO_WIDTH_REACH of the level's texels each side), in (0, 1] (1 = wide), binary16-rounded by the width pass; width_resolve's input"
-#pragma sao resource width_share kind=image format=rg16f mips=auto extent=input when=THICKNESS_FROM_WIDTH "thickness_model 1: x, y each csz texel's thickness along that axis over thickness, in (0, 1] (1 = wide): along each axis the first narrow width_run share among the texel and the texels above it in the chain (level m + 1's (x/2, y/2), ...), so a run wide at one level takes its width from a coarser one"
+#pragma sao resource csz_share kind=image format=rg32f mips=auto extent=input when=THICKNESS_FROM_WIDTH "thickness_model 1: x each csz texel's z (csz's own bits), y its shares of thickness along x and y packed as binary16 (sao_pack_shares: packHalf2x16's bits read as a float, always a normal positive one), each that axis' thickness over thickness in (0, 1] (1 = wide), the first narrow width_run share among the texel and the texels above it in the chain (level m + 1's (x/2, y/2), ...), so a run wide at one level takes its width from a coarser one. A visibility tap reads its z and its thickness in one fetch"
 #pragma sao resource ao_raw    kind=image  format=rg32f format_when=HALF_INTERMEDIATES:rg16f divide_by=resolution_divisor "x: visibility A after the 2x2 reconstruction, y: key = camera-space z times key_scale (+0.0 = sky); the viewport over resolution_divisor"
 #pragma sao resource ao_low    kind=image  format=rg32f format_when=HALF_INTERMEDIATES:rg16f divide_by=resolution_divisor "(A, key) after the bilateral blur, the upsample's input (with blur_radius 0 the upsample reads ao_raw instead)"
 #pragma sao resource history  kind=image  format=rgba32f divide_by=resolution_divisor when=TEMPORAL history=true "Temporal: x the accumulated obscurance sum, y its key z (+0.0 = sky), z the frames it holds (0 = none), w its normal (octahedral, 12 bits a component, as the integer qx*4096 + qy); ao_raw's size, two images that trade places every frame"
 #pragma sao resource ao        kind=output format=r16f formats=[r16f,r8,rgba8,rgba16f] "Final ambient visibility A in [0,1] (1 = unoccluded), linear; r16f unless the caller's output image has another of formats= (OUTPUT_FORMAT); with output_blend multiply, the caller's texels times A"
 // OpenGL ES 3.1 stores r32f, rgba16f, rgba32f and rgba8 but not r16f, rg16f, rg32f or r8 (GLSL ES
 // 3.10, 4.4.7): on GLES each image of those formats takes the wider format below (the values do
-// not change: the passes round A, the keys and width_share to binary16 themselves, so an r16f output
+// not change: the passes round A, the keys and the shares of thickness to binary16 themselves, so an r16f output
 // stored as r32f holds the same values), and a caller's r8 output has no GLES form. Costs: docs/BENCHMARKS.md.
 #pragma sao target gles storage=[r16f:r32f,rg16f:rgba16f,rg32f:rgba32f] refuse=[r8] "OpenGL ES 3.1 has no r16f, rg16f, rg32f or r8 storage images"
 
@@ -410,7 +410,7 @@ void sao_linear_z2_main()
 // ---------------------------------------------------------------------------------------------
 // Pass 2b (THICKNESS_FROM_WIDTH only): each csz texel's share of thickness along x and y from its
 // run of continuous depth (docs/effect-math.md 5.9) on its own level, once per texel, so that a tap
-// costs one fetch of width_share instead of a walk of its own. Level 0: a work group's 16x16 texels
+// costs no walk of its own (its z's texel of csz_share holds its shares). Level 0: a work group's 16x16 texels
 // find their runs in shared memory: the 16 rows with SAO_WIDTH_REACH texels of halo left and right,
 // the 16 columns with as many above and below, fetched by textureGather (six 2x2 quads an
 // invocation); each invocation then takes 12 consecutive texels of a row and of a column (and the
@@ -634,16 +634,19 @@ void sao_width_main()
 #pragma sao end
 
 // ---------------------------------------------------------------------------------------------
-// Pass 2c (THICKNESS_FROM_WIDTH only): width_share from width_run. A run that is wide on its own
+// Pass 2c (THICKNESS_FROM_WIDTH only): csz_share from csz and width_run. A run that is wide on its own
 // level (it goes on through SAO_WIDTH_REACH texels) takes the share of the texel above it, level
 // by level, until one is narrow: a level-0 run is then wide only where it is wide at every level up
 // to max_mip (16 * 2^max_mip level-0 texels each side). Along x and y apart. Without the variant it
-// writes nothing and the plan leaves it out.
+// writes nothing and the plan leaves it out. Each texel's z goes beside its shares, so that a
+// visibility tap fetches one texel (rg32f) instead of csz's and a shares texel's: two surfaces
+// read at the same texels double the cache lines in flight (docs/BENCHMARKS.md, the traffic model).
 // ---------------------------------------------------------------------------------------------
-#pragma sao pass width_resolve entry=sao_width_resolve_main local=8x8 texels=2x2 reads=width_run writes=width_share variants=THICKNESS_FROM_WIDTH levels=0..7 "thickness_model 1 only: each texel of each level of width_share, along x and y, the first narrow width_run share among the texel and the texels above it ((x/2, y/2) at the next level, and so on up to max_mip)"
+#pragma sao pass width_resolve entry=sao_width_resolve_main local=8x8 texels=2x2 reads=csz,width_run writes=csz_share variants=THICKNESS_FROM_WIDTH levels=0..7 "thickness_model 1 only: each texel of each level of csz_share, its csz z and, along x and y, the first narrow width_run share among the texel and the texels above it ((x/2, y/2) at the next level, and so on up to max_mip), packed"
 #if THICKNESS_FROM_WIDTH
 vec2 sao_width_resolved_texel(ivec2 p, int m)
 {
+    float z = texelFetch(in_csz, p, m).r;
     vec2 s = texelFetch(in_width_run, p, m).rg;
     ivec2 q = p;
     ivec2 size = max(textureSize(in_width_run, 0) >> m, ivec2(1));
@@ -653,7 +656,7 @@ vec2 sao_width_resolved_texel(ivec2 p, int m)
         vec2 a = texelFetch(in_width_run, q, j).rg;
         s = vec2(s.x >= 1.0 ? a.x : s.x, s.y >= 1.0 ? a.y : s.y);
     }
-    return s;
+    return vec2(z, sao_pack_shares(s));
 }
 vec2 sao_width_resolved_level0(ivec2 p) { return sao_width_resolved_texel(p, 0); }
 #endif
@@ -661,7 +664,7 @@ vec2 sao_width_resolved_level0(ivec2 p) { return sao_width_resolved_texel(p, 0);
 void sao_width_resolve_main()
 {
 #if THICKNESS_FROM_WIDTH
-    SAO_LEVELS_PASS(out_width_share, sao_width_resolved_level0, sao_width_resolved_texel)
+    SAO_LEVELS_PASS(out_csz_share, sao_width_resolved_level0, sao_width_resolved_texel)
 #endif
 }
 #pragma sao end
@@ -701,9 +704,9 @@ layout(push_constant) uniform SaoLoopCounts { int samples; int slices; } sao_loo
 #define SAO_CSZ2 in_csz  // not read (two_layer false): a bound sampler of the right type
 #endif
 #if THICKNESS_FROM_WIDTH
-#define SAO_WIDTH_SHARE in_width_share
+#define SAO_CSZ_SHARE in_csz_share
 #else
-#define SAO_WIDTH_SHARE in_csz  // not read (no THICKNESS_FROM_WIDTH): a bound sampler of the right type
+#define SAO_CSZ_SHARE in_csz  // not read (no THICKNESS_FROM_WIDTH): a bound sampler of the right type
 #endif
 shared float sao_quad_a[gl_WorkGroupSize.x * gl_WorkGroupSize.y];  // A per invocation
 shared float sao_quad_h[gl_WorkGroupSize.x * gl_WorkGroupSize.y];  // A after the horizontal step
@@ -746,7 +749,7 @@ float sao_ao_sample(ivec2 p, bool inside, out float key_z, out vec3 bent)
         // jitter: the frame's offset plus the pixel's hash, mod 1.
         float xi = fract(frame_alpha_offset + sao_pixel_jitter(uvec2(p)));
         vec3 moment;
-        float sum = sao_visibility_occlusion(in_csz, SAO_CSZ2, SAO_WIDTH_SHARE, TWO_LAYER != 0, Z_HIERARCHY != 0, c, C,
+        float sum = sao_visibility_occlusion(in_csz, SAO_CSZ2, SAO_CSZ_SHARE, TWO_LAYER != 0, Z_HIERARCHY != 0, c, C,
                                              n, r_px, phase, xi, s, SAO_SLICE_COUNT, slice_turn, proj_info, ortho,
                                              radius2, depth_tolerance, thickness, log_q, max_mip,
                                              BENT_NORMALS != 0, moment);
@@ -821,7 +824,7 @@ float sao_ao_sample(ivec2 p, bool inside, out float key_z, out vec3 bent)
 }
 #endif
 
-#pragma sao pass ao_sample entry=sao_ao_main local=8x8 reads=csz,csz2,width_share,normals,history,motion writes=ao_raw,history variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,TEMPORAL,MOTION_VECTORS,HALF_INTERMEDIATES,ESTIMATOR,THICKNESS_FROM_WIDTH skip_when=direct_output==true "Obscurance from s spiral taps over the z hierarchy (eq. 1, 3-10), with TEMPORAL blended with the reprojected history (and this frame's history written), 2x2 bilateral reconstruction; writes (A, key z)"
+#pragma sao pass ao_sample entry=sao_ao_main local=8x8 reads=csz,csz2,csz_share,normals,history,motion writes=ao_raw,history variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,TEMPORAL,MOTION_VECTORS,HALF_INTERMEDIATES,ESTIMATOR,THICKNESS_FROM_WIDTH skip_when=direct_output==true "Obscurance from s spiral taps over the z hierarchy (eq. 1, 3-10), with TEMPORAL blended with the reprojected history (and this frame's history written), 2x2 bilateral reconstruction; writes (A, key z)"
 void sao_ao_main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -839,7 +842,7 @@ void sao_ao_main()
 }
 #pragma sao end
 
-#pragma sao pass ao_sample_output entry=sao_ao_output_main local=8x8 reads=csz,csz2,width_share,normals writes=ao variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,OUTPUT_FORMAT,ESTIMATOR,THICKNESS_FROM_WIDTH,BENT_NORMALS skip_when=direct_output==false "No blur at full resolution without temporal only: ao_sample's obscurance and 2x2 reconstruction, A stored straight into the output's format (no ao_raw, no output pass)"
+#pragma sao pass ao_sample_output entry=sao_ao_output_main local=8x8 reads=csz,csz2,csz_share,normals writes=ao variants=NORMALS_SUPPLIED,TWO_LAYER,Z_HIERARCHY,OUTPUT_FORMAT,ESTIMATOR,THICKNESS_FROM_WIDTH,BENT_NORMALS skip_when=direct_output==false "No blur at full resolution without temporal only: ao_sample's obscurance and 2x2 reconstruction, A stored straight into the output's format (no ao_raw, no output pass)"
 void sao_ao_output_main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);

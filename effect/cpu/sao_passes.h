@@ -61,7 +61,7 @@ inline bool holdsRegion(const DepthImage& d, int ox, int oy, int w, int h) {
          std::int64_t(oy) + h <= std::int64_t(d.extent.height);
 }
 
-// Level m of a z chain (or width_share's, every channel) from level m - 1 by the rotated grid
+// Level m of a z chain (every channel) from level m - 1 by the rotated grid
 // (Table 1), level by level: the oracle the GPU's walk up the chain (SAO_CHAIN_FROM_BLOCK in
 // effect/sao.glsl) must equal.
 template <typename T>
@@ -150,23 +150,29 @@ Status widthPass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<cons
   return Status::success();
 }
 
-// Pass width_resolve (THICKNESS_FROM_WIDTH): each width_share texel of each level, along x and y
-// apart, the first width_run share under 1 among the texel and the texels above it ((x/2, y/2) of
-// the next level, clamped to it, up to the last level); 1 where there is none.
+// Pass width_resolve (THICKNESS_FROM_WIDTH): each csz_share texel of each level, its csz z and,
+// along x and y apart, the first width_run share under 1 among the texel and the texels above it
+// ((x/2, y/2) of the next level, clamped to it, up to the last level; 1 where there is none),
+// packed as sao_pack_shares packs them (binary16: in Double too, the storage's own rounding).
 template <typename T>
 Status widthResolvePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<const ScheduledBinding> bindings) {
+  const ScheduledBinding* inZ = binding(d, bindings, gen::ResourceId::csz, false);
   const ScheduledBinding* in = binding(d, bindings, gen::ResourceId::width_run, false);
-  const ScheduledBinding* out = binding(d, bindings, gen::ResourceId::width_share, true);
+  const ScheduledBinding* out = binding(d, bindings, gen::ResourceId::csz_share, true);
+  if (inZ == nullptr) return missingBinding(d, gen::ResourceId::csz, false);
   if (in == nullptr) return missingBinding(d, gen::ResourceId::width_run, false);
-  if (out == nullptr) return missingBinding(d, gen::ResourceId::width_share, true);
+  if (out == nullptr) return missingBinding(d, gen::ResourceId::csz_share, true);
   const std::uint32_t levels = out->baseLevel + out->levelCount;
   for (std::uint32_t m = out->baseLevel; m < levels; ++m) {
+    const Image<T>& zm = ctx.image(inZ->resource, m);
     const Image<T>& own = ctx.image(in->resource, m);
-    Image<T>& share = ctx.image(out->resource, m);
-    if (share.w != own.w || share.h != own.h || share.ch < 2)
-      return passError(d, "width_share's level " + std::to_string(m) + " is not width_run's extent with two channels");
-    parallelFor(share.h, ctx.threads, [&](int y) {
-      for (int x = 0; x < share.w; ++x)
+    Image<T>& packed = ctx.image(out->resource, m);
+    if (packed.w != own.w || packed.h != own.h || packed.ch < 2 || zm.w != own.w || zm.h != own.h)
+      return passError(d, "csz_share's level " + std::to_string(m) +
+                              " is not width_run's and csz's extent with two channels");
+    parallelFor(packed.h, ctx.threads, [&](int y) {
+      for (int x = 0; x < packed.w; ++x) {
+        T share[2];
         for (int c = 0; c < 2; ++c) {
           T s = own.at(x, y, c);
           for (std::uint32_t j = m + 1, qx = x, qy = y; j < levels && s >= T(1); ++j) {
@@ -175,8 +181,11 @@ Status widthResolvePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::sp
             qy = std::min<std::uint32_t>(qy >> 1, std::uint32_t(run.h - 1));
             s = run.at(int(qx), int(qy), c);
           }
-          share.at(x, y, c) = s;
+          share[c] = s;
         }
+        packed.at(x, y, 0) = zm.at(x, y);
+        packed.at(x, y, 1) = T(packShares(float(share[0]), float(share[1])));
+      }
     });
   }
   return Status::success();
@@ -187,8 +196,8 @@ template <typename T>
 class AoSampleInvocation {
  public:
   AoSampleInvocation(const PassContext<T>& ctx, const std::vector<Image<T>>& csz, const std::vector<Image<T>>& csz2,
-                     const std::vector<Image<T>>* widthShare, const Image<T>& aoRaw, const Image<T>* history)
-      : in_(ctx.in), P_(ctx.P), csz_(csz), csz2_(csz2), widthShare_(widthShare), aoRaw_(aoRaw), history_(history),
+                     const std::vector<Image<T>>* cszShare, const Image<T>& aoRaw, const Image<T>* history)
+      : in_(ctx.in), P_(ctx.P), csz_(csz), csz2_(csz2), cszShare_(cszShare), aoRaw_(aoRaw), history_(history),
         normalsSupplied_(ctx.variant(gen::VariantId::NORMALS_SUPPLIED)),
         twoLayer_(ctx.variant(gen::VariantId::TWO_LAYER)),
         zHierarchy_(ctx.variant(gen::VariantId::Z_HIERARCHY)),
@@ -235,7 +244,7 @@ class AoSampleInvocation {
     // ESTIMATOR 1: the occlusion 1 - V of the visibility estimator (sao_visibility.h) is the sum.
     if (visibilityEstimator_) {
       Vec3<T> moment{};
-      sum = visibilityOcclusion(csz_, csz2_, widthShare_, twoLayer_, zHierarchy_, cx, cy, C, n, r_px, phase,
+      sum = visibilityOcclusion(csz_, csz2_, cszShare_, twoLayer_, zHierarchy_, cx, cy, C, n, r_px, phase,
                                 radialJitter(std::uint32_t(px), std::uint32_t(py), P_), s, P_,
                                 bentNormals_ ? &moment : nullptr);
       if (bentNormals_) bent = bentNormal(moment, n);
@@ -276,7 +285,7 @@ class AoSampleInvocation {
   const Block<T>& P_;
   const std::vector<Image<T>>& csz_;
   const std::vector<Image<T>>& csz2_;
-  const std::vector<Image<T>>* widthShare_;  // THICKNESS_FROM_WIDTH's chain, else null
+  const std::vector<Image<T>>* cszShare_;  // THICKNESS_FROM_WIDTH: csz_share (z, packed shares), else null
   const Image<T>& aoRaw_;
   const Image<T>* history_;  // the previous frame's (TEMPORAL), else null
   const bool normalsSupplied_, twoLayer_, zHierarchy_, motionVectors_, visibilityEstimator_, bentNormals_;
@@ -362,15 +371,15 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
   if (out == nullptr) return missingBinding(d, target, true);
   // THICKNESS_FROM_WIDTH: the width pass's chain, read by the visibility estimator's taps.
   const bool fromWidth = ctx.variant(gen::VariantId::THICKNESS_FROM_WIDTH) && ctx.variant(gen::VariantId::ESTIMATOR);
-  const ScheduledBinding* inWidth = fromWidth ? binding(d, bindings, gen::ResourceId::width_share, false) : nullptr;
-  if (fromWidth && inWidth == nullptr) return missingBinding(d, gen::ResourceId::width_share, false);
+  const ScheduledBinding* inWidth = fromWidth ? binding(d, bindings, gen::ResourceId::csz_share, false) : nullptr;
+  if (fromWidth && inWidth == nullptr) return missingBinding(d, gen::ResourceId::csz_share, false);
   if (ctx.variant(gen::VariantId::NORMALS_SUPPLIED) && ctx.in.normals == nullptr)
     return passError(d, "reads normals, but none were supplied");
   if (ctx.variant(gen::VariantId::MOTION_VECTORS) && ctx.in.motion == nullptr)
     return passError(d, "reads motion vectors, but none were supplied");
   const std::vector<Image<T>>& csz = ctx.levels(in->resource);  // the whole chain
   const std::vector<Image<T>>& csz2 = ctx.levels(twoLayer ? in2->resource : gen::ResourceId::csz2);
-  const std::vector<Image<T>>* widthShare = fromWidth ? &ctx.levels(inWidth->resource) : nullptr;
+  const std::vector<Image<T>>* cszShare = fromWidth ? &ctx.levels(inWidth->resource) : nullptr;
   Image<T>& dst = ctx.image(*out);
   const auto& P = ctx.P;
 
@@ -381,7 +390,7 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
                          "ao_sample's local size " + std::to_string(LX) + "x" + std::to_string(LY) +
                              " is not even; the 2x2 reconstruction needs whole quads in a work group");
   if (P.max_mip < 0 || std::size_t(P.max_mip) >= csz.size() || (twoLayer && csz2.size() != csz.size()) ||
-      (widthShare && widthShare->size() != csz.size()))
+      (cszShare && cszShare->size() != csz.size()))
     return Status::error(StatusCode::InvalidInput, "max_mip " + std::to_string(P.max_mip) + " does not match the " +
                                                        std::to_string(csz.size()) + " csz levels computed");
   if (!direct && dst.ch != 2) return passError(d, "needs a 2-channel ao_raw");
@@ -401,7 +410,7 @@ Status aoSamplePass(PassContext<T>& ctx, const ScheduledDispatch& d, std::span<c
   const int W = dst.w, H = dst.h;
   const int groupsX = int(d.groupsX), groupsY = int(d.groupsY);
   const T threshold = P.quad_edge_threshold;
-  const AoSampleInvocation<T> sampleInvocation(ctx, csz, csz2, widthShare, dst, previous);
+  const AoSampleInvocation<T> sampleInvocation(ctx, csz, csz2, cszShare, dst, previous);
   parallelFor(groupsY, ctx.threads, [&](int gy) {
     std::vector<T> quadA(std::size_t(LX) * LY), quadH(quadA.size()), quadZ(quadA.size()), kept(quadA.size()),
         frames(quadA.size()), normalCode(quadA.size());

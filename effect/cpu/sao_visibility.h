@@ -267,7 +267,7 @@ T runShare(const Image<T>& z0, int px, int py, T z, int ax, int ay, const Block<
 }
 
 // sao_tap_thickness (thickness_model 1, a tap): the thickness of the surface a tap sees along
-// (dx, dy) (unit) from its width_share texel's shares along x and y.
+// (dx, dy) (unit) from its csz_share texel's shares along x and y.
 template <typename T>
 T tapThickness(T shareX, T shareY, T dx, T dy, T thickness) {
   const T fx = shareX / glslMax(std::abs(dx), T(1.0e-6f));
@@ -297,12 +297,12 @@ template <typename T>
 Vec3<T> sliceBentMoment(const Slice<T>& sl, Vec3<T> V, std::uint32_t bits);
 
 // sao_visibility_occlusion: the occlusion 1 - V of the pixel at csz texel (cx, cy). csz2 is read
-// only with twoLayer, widthShare (the width pass's chain, 2 channels) only when not null
-// (THICKNESS_FROM_WIDTH); `tapCount` is the block's samples (the shader's SAO_TAP_COUNT). With
+// only with twoLayer; with cszShare (THICKNESS_FROM_WIDTH: width_resolve's chain, z and the packed
+// shares) the taps read their z and shares from it instead of csz; `tapCount` is the block's samples (the shader's SAO_TAP_COUNT). With
 // `moment` (BENT_NORMALS) the slices' first moments of their unoccluded rays are summed into it.
 template <typename T>
 T visibilityOcclusion(const std::vector<Image<T>>& csz, const std::vector<Image<T>>& csz2,
-                      const std::vector<Image<T>>* widthShare, bool twoLayer, bool hierarchy, int cx, int cy,
+                      const std::vector<Image<T>>* cszShare, bool twoLayer, bool hierarchy, int cx, int cy,
                       Vec3<T> C, Vec3<T> n, T r_px, std::uint32_t phase, T xi, int tapCount, const Block<T>& P,
                       Vec3<T>* moment = nullptr) {
   if (moment) *moment = Vec3<T>{T(0), T(0), T(0)};
@@ -343,9 +343,15 @@ T visibilityOcclusion(const std::vector<Image<T>>& csz, const std::vector<Image<
       mipSource(sx, sy, lvl, z0.w, z0.h);
       if (sx != cx || sy != cy) {  // a coarse texel may hold the centre's own z
         const T qx = T(sx) + T(0.5), qy = T(sy) + T(0.5);
-        const T z = csz[std::size_t(lvl)].at(mx, my);
-        const Image<T>* share = widthShare ? &(*widthShare)[std::size_t(lvl)] : nullptr;
-        const T t = share ? tapThickness(share->at(mx, my, 0), share->at(mx, my, 1), dx, dy, P.thickness) : P.thickness;
+        T z = csz[std::size_t(lvl)].at(mx, my);
+        T t = P.thickness;
+        if (cszShare) {
+          const Image<T>& zs = (*cszShare)[std::size_t(lvl)];
+          float shareX = 1.0f, shareY = 1.0f;
+          unpackShares(float(zs.at(mx, my, 1)), shareX, shareY);
+          z = zs.at(mx, my, 0);
+          t = tapThickness(T(shareX), T(shareY), dx, dy, P.thickness);
+        }
         const Slab<T> s = slab(sl, C, V, qx, qy, z, t, P);
         bits |= joinedBits(s, prev);
         prev = s;  // sky or a sample beyond r breaks the chain

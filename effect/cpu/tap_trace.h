@@ -6,8 +6,8 @@
 // centre z of every invocation (inside or not), then, for the invocations with geometry, the
 // normal (one normals fetch, or the four csz neighbours of eq. 4), then the s taps (with the
 // visibility estimator, ESTIMATOR 1: its 2*slices*m slice taps, those that leave the centre texel and
-// whose MIP texel does not hold the centre's own z, each with its width_share texel under
-// thickness_model 1). The width passes that write width_share: width_trace.h.
+// whose MIP texel does not hold the centre's own z, each its csz texel or, under thickness_model 1,
+// its csz_share texel: z and shares in one fetch). The width passes that write csz_share: width_trace.h.
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -19,7 +19,7 @@
 namespace sao::cpu::trace {
 
 // The textures ao_sample reads, and width_run, which width_resolve reads (width_trace.h).
-enum class Surface : std::uint8_t { Csz, Normals, WidthShare, WidthRun };
+enum class Surface : std::uint8_t { Csz, Normals, CszShare, WidthRun };
 
 // A trace writes to a sink: `beginStep()` before each step's reads and once after the last,
 // `read(lane, surface, level, x, y)` per texel fetch (lane = gl_LocalInvocationIndex; level the
@@ -139,9 +139,8 @@ void AoSampleTrace::group(int gx, int gy, Sink& out) const {
         int sx = mx, sy = my;
         mipSource(sx, sy, lvl, z0.w, z0.h);
         if (sx == l.cx && sy == l.cy) continue;  // a coarse texel holding the centre's z: not read
-        out.read(li, Surface::Csz, lvl, mx, my);
-        // thickness_model 1: the tap's width_share texel, same level and texel as its z.
-        if (P.thickness_min > 0.0f) out.read(li, Surface::WidthShare, lvl, mx, my);
+        // thickness_model 1: the tap's csz_share texel, its z beside its shares.
+        out.read(li, P.thickness_min > 0.0f ? Surface::CszShare : Surface::Csz, lvl, mx, my);
       }
     }
     out.beginStep();  // closes the last step

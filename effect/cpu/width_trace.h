@@ -5,8 +5,8 @@
 //    columns, four texels each, clamped), then SAO_LEVELS_PASS's texels above level 0, each its
 //    centre and its walks (runShare's: a read per step until the run breaks, leaves the level or
 //    reaches SAO_WIDTH_REACH), x then y, the + side then the - side;
-//  - width_resolve: SAO_LEVELS_PASS's texels of every level, each its width_run texel and its
-//    ancestors' while a share is still 1.
+//  - width_resolve: SAO_LEVELS_PASS's texels of every level, each its csz texel, its width_run
+//    texel and its ancestors' while a share is still 1.
 // Whether a walk goes on and whether a share is 1 depend on the data: the trace evaluates them with
 // the CPU reference's own functions in float (runShare, roundToHalf), so the reads are the shader's.
 #pragma once
@@ -56,6 +56,7 @@ class WidthTrace {
  private:
   struct Read {
     int level, x, y;
+    Surface surface;
   };
   struct Size {
     int w, h;
@@ -76,15 +77,16 @@ class WidthTrace {
   // sao_width_level_texel's reads of texel (x, y) of level m >= 1: step 0 its centre, then 4
   // walks of SAO_WIDTH_REACH steps (x +, x -, y +, y -).
   void walkReads(int m, int x, int y, Steps& steps) const;
-  // sao_width_resolved_texel's reads: step 0 its own texel, step j its ancestor j levels up.
+  // sao_width_resolved_texel's reads: step 0 its csz texel, step 1 its own width_run texel, step
+  // 1 + j its ancestor j levels up.
   void resolveReads(int m, int x, int y, Steps& steps) const;
 
   template <typename Sink>
-  static void emit(const std::vector<Steps>& perLane, Surface surface, Sink& out);
+  static void emit(const std::vector<Steps>& perLane, Sink& out);
   // SAO_LEVELS_PASS's texels above level 0 in group (gx, gy), their reads by readsOf.
   using ReadsOf = void (WidthTrace::*)(int m, int x, int y, Steps& steps) const;
   template <typename Sink>
-  void levelsAbove0(int gx, int gy, ReadsOf readsOf, Surface surface, Sink& out) const;
+  void levelsAbove0(int gx, int gy, ReadsOf readsOf, Sink& out) const;
 
   const std::vector<detail::Image<float>>& csz_;
   const detail::Block<float> P_;
@@ -109,39 +111,40 @@ inline std::vector<WidthTrace::Chunk> WidthTrace::upperChunks(int gx, int gy) co
 inline void WidthTrace::walkReads(int m, int x, int y, Steps& steps) const {
   const detail::Image<float>& zm = csz_[std::size_t(m)];
   steps.assign(1 + 4 * gen::SAO_WIDTH_REACH, {});
-  steps[0].push_back({m, x, y});
+  steps[0].push_back({m, x, y, Surface::Csz});
   const float z = zm.at(x, y);
   if (detail::isSky(z) || !(P_.thickness > 0.0f)) return;
   for (int axis = 0; axis < 2; ++axis) {  // the reference's own walk, its fetches recorded
     auto record = [&](int side, int k, int cx, int cy) {
-      steps[std::size_t(1 + (axis * 2 + side) * gen::SAO_WIDTH_REACH + k - 1)].push_back({m, cx, cy});
+      steps[std::size_t(1 + (axis * 2 + side) * gen::SAO_WIDTH_REACH + k - 1)].push_back({m, cx, cy, Surface::Csz});
     };
     detail::runShare(zm, m, csz_[0].w, csz_[0].h, x, y, z, int(axis == 0), int(axis == 1), P_, record);
   }
 }
 
 inline void WidthTrace::resolveReads(int m, int x, int y, Steps& steps) const {
-  steps.assign(std::size_t(1 + P_.max_mip - m), {});
-  steps[0].push_back({m, x, y});
+  steps.assign(std::size_t(2 + P_.max_mip - m), {});
+  steps[0].push_back({m, x, y, Surface::Csz});
+  steps[1].push_back({m, x, y, Surface::WidthRun});
   float sx = runs_[std::size_t(m)].at(x, y, 0), sy = runs_[std::size_t(m)].at(x, y, 1);
   for (int j = m + 1, qx = x, qy = y; j <= P_.max_mip && (sx >= 1.0f || sy >= 1.0f); ++j) {
     const detail::Image<float>& run = runs_[std::size_t(j)];
     qx = std::min(qx >> 1, run.w - 1), qy = std::min(qy >> 1, run.h - 1);
-    steps[std::size_t(j - m)].push_back({j, qx, qy});
+    steps[std::size_t(1 + j - m)].push_back({j, qx, qy, Surface::WidthRun});
     sx = sx >= 1.0f ? run.at(qx, qy, 0) : sx;
     sy = sy >= 1.0f ? run.at(qx, qy, 1) : sy;
   }
 }
 
 template <typename Sink>
-void WidthTrace::emit(const std::vector<Steps>& perLane, Surface surface, Sink& out) {
+void WidthTrace::emit(const std::vector<Steps>& perLane, Sink& out) {
   std::size_t steps = 0;
   for (const Steps& s : perLane) steps = std::max(steps, s.size());
   for (std::size_t k = 0; k < steps; ++k) {
     out.beginStep();
     for (std::size_t li = 0; li < perLane.size(); ++li)
       if (k < perLane[li].size())
-        for (const Read& r : perLane[li][k]) out.read(int(li), surface, r.level, r.x, r.y);
+        for (const Read& r : perLane[li][k]) out.read(int(li), r.surface, r.level, r.x, r.y);
   }
 }
 
@@ -164,7 +167,7 @@ void WidthTrace::widthGroup(int gx, int gy, Sink& out) const {
       }
     }
   // Level 0 is written from shared memory.
-  levelsAbove0(gx, gy, &WidthTrace::walkReads, Surface::Csz, out);
+  levelsAbove0(gx, gy, &WidthTrace::walkReads, out);
   out.beginStep();  // closes the last step
 }
 
@@ -179,14 +182,14 @@ void WidthTrace::resolveGroup(int gx, int gy, Sink& out) const {
       const int x = 2 * (8 * gx + li % 8) + (k & 1), y = 2 * (8 * gy + li / 8) + (k >> 1);
       if (x < z0.w && y < z0.h) resolveReads(0, x, y, perLane[std::size_t(li)]);
     }
-    emit(perLane, Surface::WidthRun, out);
+    emit(perLane, out);
   }
-  levelsAbove0(gx, gy, &WidthTrace::resolveReads, Surface::WidthRun, out);
+  levelsAbove0(gx, gy, &WidthTrace::resolveReads, out);
   out.beginStep();  // closes the last step
 }
 
 template <typename Sink>
-void WidthTrace::levelsAbove0(int gx, int gy, ReadsOf readsOf, Surface surface, Sink& out) const {
+void WidthTrace::levelsAbove0(int gx, int gy, ReadsOf readsOf, Sink& out) const {
   const detail::Image<float>& z0 = csz_[0];
   std::vector<Steps> perLane(kLanes);
   if (P_.max_mip >= 1) {  // level 1: invocation b's texel b
@@ -195,7 +198,7 @@ void WidthTrace::levelsAbove0(int gx, int gy, ReadsOf readsOf, Surface surface, 
       const int bx = 8 * gx + li % 8, by = 8 * gy + li / 8;
       if (2 * bx < z0.w && 2 * by < z0.h && bx < s1.w && by < s1.h) (this->*readsOf)(1, bx, by, perLane[std::size_t(li)]);
     }
-    emit(perLane, surface, out);
+    emit(perLane, out);
   }
   for (const Chunk& c : upperChunks(gx, gy)) {  // levels 2+: a level a chunk of 64 slots
     const Size sz = levelSize(c.level);
@@ -204,7 +207,7 @@ void WidthTrace::levelsAbove0(int gx, int gy, ReadsOf readsOf, Surface surface, 
       const int i = c.first + li;
       if (i < sz.w * sz.h) (this->*readsOf)(c.level, i % sz.w, i / sz.w, perLane[std::size_t(li)]);
     }
-    emit(perLane, surface, out);
+    emit(perLane, out);
   }
 }
 

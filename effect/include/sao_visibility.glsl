@@ -3,7 +3,8 @@
 // holds V and a screen direction u: marching the screen line c + h u tests every ray of the slice)
 // with a 32-bit visibility bitmask per slice (Therrien et al. 2023) over the cosine-weighted measure.
 // Library code: depends on sao_depth.glsl, sao_position.glsl, sao_zmip.glsl and sao_spiral.glsl; the
-// taps read width_share (the width pass's shares of thickness) where the variant THICKNESS_FROM_WIDTH is 1.
+// taps read csz_share (each texel's z and the width passes' shares of thickness) instead of csz where the
+// variant THICKNESS_FROM_WIDTH is 1.
 // Math: docs/effect-math.md, "The visibility estimator"; the definition it samples is reference (d)'s.
 #ifndef SAO_VISIBILITY_GLSL
 #define SAO_VISIBILITY_GLSL
@@ -292,9 +293,17 @@ float sao_run_share_of(ivec2 e0, float z0, ivec2 e1, float z1, bool wide, float 
     return wide ? 1.0 : t / thickness;
 }
 
+// A texel's shares along x and y (binary16 values, as the width pass rounds them) as one float of
+// csz_share: packHalf2x16's bits, x in the low half. Each share is at least SAO_WIDTH_MIN_M over
+// thickness's largest value (2e-4, a normal binary16) and at most 1, so y's bits 7..14, the float's
+// exponent, lie in 8 .. 120: a normal positive float, which storage and texelFetch keep bit for bit
+// (a denormal could be flushed, a NaN canonicalised).
+float sao_pack_shares(vec2 share) { return uintBitsToFloat(packHalf2x16(share)); }
+vec2 sao_unpack_shares(float code) { return unpackHalf2x16(floatBitsToUint(code)); }
+
 // thickness_model 1, the tap's half: the thickness of the surface a tap sees along its slice's
 // screen direction dir (unit), from the width pass's shares of thickness along x and y (its texel
-// of width_share at the tap's level: the same level-0 texel as its z). A slice crossing an axis'
+// of csz_share at the tap's level, beside its z). A slice crossing an axis'
 // run at an angle crosses 1/|cos| as much of it: thickness times the smaller of share.x/|dir.x|
 // and share.y/|dir.y|, at most thickness (the max() keeps an axis the slice runs along out of it).
 float sao_tap_thickness(vec2 share, vec2 dir, float thickness)
@@ -320,7 +329,7 @@ float sao_pixel_jitter(uvec2 p)
 // r_px): `slices` slices at angles phase + k*slice_turn (2^-32 turns; slice_turn = half a turn over
 // slices), m = max(1, tap_count/(2*slices)) steps on each side at h_j = r_px*((j + xi)/m)^2, each
 // tap read from the z MIP level for its distance (hierarchy), with THICKNESS_FROM_WIDTH its
-// thickness from width_share's texel of the same level, and with two_layer the second layer's slab
+// z and thickness from csz_share's texel instead, and with two_layer the second layer's slab
 // too (thickness deep). V = sum_k w_k (1 - bits_k/32) / sum_k w_k; 0 when every weight is 0. Nested
 // loops, so that a slice's setup runs once per slice (llvmpipe runs a branch's body masked on every
 // trip: in one flat loop it ran per tap); the trip counts come from tap_count and slices alone (the
@@ -328,7 +337,7 @@ float sao_pixel_jitter(uvec2 p)
 // `bent` (a constant: BENT_NORMALS) `moment` sums the slices' first moments of their unoccluded
 // rays (sao_bent.glsl, included after this file: declared here); otherwise it is left 0.
 vec3 sao_slice_bent_moment(SaoSlice sl, vec3 V, uint bits);
-float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, sampler2D width_share, bool two_layer, bool hierarchy,
+float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, sampler2D csz_share, bool two_layer, bool hierarchy,
                                ivec2 c, vec3 C, vec3 n, float r_px, uint phase, float xi, int tap_count, int slices,
                                uint slice_turn, vec4 proj_info, int ortho, float radius2, float tolerance,
                                float thickness, int log_q, int max_mip, bool bent, out vec3 moment)
@@ -359,10 +368,12 @@ float sao_visibility_occlusion(sampler2D csz, sampler2D csz2, sampler2D width_sh
                     ivec2 src = sao_mip_source(tt, lvl, size0);
                     if (src != c) {  // a coarse texel may hold the centre's own z
                         vec2 q = vec2(src) + 0.5;
-                        float z = texelFetch(csz, tt, lvl).r;
 #if THICKNESS_FROM_WIDTH
-                        float t = sao_tap_thickness(texelFetch(width_share, tt, lvl).rg, dir, thickness);
+                        vec2 zs = texelFetch(csz_share, tt, lvl).rg;
+                        float z = zs.x;
+                        float t = sao_tap_thickness(sao_unpack_shares(zs.y), dir, thickness);
 #else
+                        float z = texelFetch(csz, tt, lvl).r;
                         float t = thickness;
 #endif
                         SaoSlab s = sao_slab(sl, C, V, q, z, proj_info, ortho, radius2, tolerance, t);

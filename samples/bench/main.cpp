@@ -361,7 +361,7 @@ std::vector<std::pair<std::string, std::string>> notes(const std::string& depthS
       {"radius: visibility (z hierarchy)", "the visibility estimator (estimator=1, docs/effect-math.md 5.9) with the z "
                                            "MIP hierarchy, normals rebuilt from depth: its cost against the radius."},
       {"radius: visibility from width (z hierarchy)", "the same with thickness_model=1 (thickness from width): the width pass "
-                                                  "and the tap's width_share fetch against the radius."},
+                                                  "and the tap's csz_share fetch (z and shares) against the radius."},
       {"two_layer", std::string("medium settings with and without TWO_LAYER; depth2 is the nearest surface at least ") +
                         separation +
                         " m behind the first layer in camera-space z, D32F like depth: with the raster depth source "

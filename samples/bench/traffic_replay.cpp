@@ -68,15 +68,16 @@ Status TrafficScene::replay(const Settings& settings, const TrafficVariant& vari
     return Status::error(StatusCode::InvalidInput, "traffic replay: the camera does not match the scene's depth");
 
   // Surface 0: csz (its levels), surface 1: the normals input at the depth's extent (rgba16f),
-  // surfaces 2 and 3: width_share and width_run (rg16f, csz's levels; with thickness_model 1).
+  // surfaces 2 and 3: csz_share (rg32f: z and the packed shares) and width_run (rg16f), csz's
+  // levels, with thickness_model 1.
   std::vector<SurfaceShape> surfaces(4);
   surfaces[0].texelBytes = variant.zTexelBytes;
   for (const auto& l : impl_->csz) surfaces[0].levels.push_back({std::uint32_t(l.w), std::uint32_t(l.h)});
   surfaces[1] = {8, {{impl_->depthExtent.width, impl_->depthExtent.height}}};
-  surfaces[2] = {bytesPerTexel(gen::kResources[std::size_t(gen::ResourceId::width_share)].format), surfaces[0].levels};
+  surfaces[2] = {bytesPerTexel(gen::kResources[std::size_t(gen::ResourceId::csz_share)].format), surfaces[0].levels};
   surfaces[3] = {bytesPerTexel(gen::kResources[std::size_t(gen::ResourceId::width_run)].format), surfaces[0].levels};
   static_assert(int(cpu::trace::Surface::Csz) == 0 && int(cpu::trace::Surface::Normals) == 1 &&
-                int(cpu::trace::Surface::WidthShare) == 2 && int(cpu::trace::Surface::WidthRun) == 3);
+                int(cpu::trace::Surface::CszShare) == 2 && int(cpu::trace::Surface::WidthRun) == 3);
 
   std::vector<TrafficModel> models;
   for (const Machine& m : machines) {

@@ -105,7 +105,7 @@ Status trafficSection(const std::string& outDir, const std::string& sceneName, b
   const std::vector<Machine> machines = {paperLikeMachine(), paperLikeMachine(48 * 1024),
                                          thisCpuMachine(cpuSource)};
   // The curves: the medium preset's sampling read four ways, and the ultra preset (the visibility
-  // estimator with thickness from width: the width passes and each tap's width_share read too).
+  // estimator with thickness from width: the width passes, and each tap reads csz_share instead of csz).
   // Then every preset as it is, for the presets section.
   std::vector<TrafficVariant> variants = {{"SAO (z hierarchy)", true, false, 4},
                                           {"SAO (no hierarchy)", false, false, 4},

@@ -87,8 +87,8 @@ TEST(VisibilityTraffic, CountsTheSliceTapsAndStaysFlatInTheRadius) {
   EXPECT_GT(b4Flat, 4.0 * b4) << "without the hierarchy far taps miss";
 }
 
-// thickness_model 1 adds one read per tap, its width_share texel (same level and texel as its z),
-// and the width passes before ao_sample: the L2 bytes per pixel of all three do not grow with r (at
+// thickness_model 1 reads each tap's csz_share texel (its z and shares, 8 bytes) instead of its csz
+// texel, after the width passes: the L2 bytes per pixel of the three do not grow with r (at
 // most 10 % above r = 1 m's over r = 1 .. 16 m; like SAO's they fall as the taps move up the
 // hierarchy).
 TEST(VisibilityTraffic, WidthShareStaysFlatInTheRadius) {
@@ -111,7 +111,7 @@ TEST(VisibilityTraffic, WidthShareStaysFlatInTheRadius) {
     EXPECT_GT(r.widthTraffic[0].reads, 0u);
     EXPECT_LT(r.widthTraffic[0].l2Misses, r.traffic[0].l2Misses);
     if (radius == 4.0f) {  // as the test above: all 16 taps leave the centre texel but for a small xi
-      const std::uint64_t perTap = 2, aoSampleReads = r.traffic[0].reads - r.widthTraffic[0].reads;
+      const std::uint64_t perTap = 1, aoSampleReads = r.traffic[0].reads - r.widthTraffic[0].reads;
       EXPECT_LE(aoSampleReads, (1u + 4u + 16u * perTap) * 256 * 256);
       EXPECT_GT(aoSampleReads, (1u + 4u + 15u * perTap) * 256 * 256);
     }
@@ -140,17 +140,18 @@ TEST(VisibilityTraffic, TheWidthPassesReadTheirWalksAndTheResolveItsAncestors) {
   // max_mip: its centre and, along x and y, min(reach, n - p) reads on the + side (the last one
   // outside the level, clamped) and min(reach, p + 1) on the - side.
   std::uint64_t width = 2 * 2 * 64 * 6 * 4;
-  std::uint64_t resolve = 32 * 32 * std::uint64_t(1 + r.maxMip);  // level 0: itself and max_mip ancestors
+  // Each texel of width_resolve reads its csz z, then its width_run texel and its ancestors.
+  std::uint64_t resolve = 32 * 32 * std::uint64_t(2 + r.maxMip);  // level 0: z, itself, max_mip ancestors
   for (int m = 1; m <= r.maxMip; ++m) {
     const std::uint64_t n = std::max(32u >> m, 1u);
     std::uint64_t axis = 0;
     for (std::uint64_t p = 0; p < n; ++p) axis += std::min(reach, n - p) + std::min(reach, p + 1);
     width += n * n + 2 * n * axis;  // each texel its centre, every row its x walks, every column its y walks
-    resolve += n * n * std::uint64_t(1 + r.maxMip - m);
+    resolve += n * n * std::uint64_t(2 + r.maxMip - m);
   }
   EXPECT_EQ(r.widthTraffic[0].reads, width + resolve);
-  // ao_sample's reads come after them: centre, four neighbours, up to 16 taps with their shares.
-  EXPECT_LE(r.traffic[0].reads - r.widthTraffic[0].reads, (1u + 4u + 32u) * 32 * 32);
+  // ao_sample's reads come after them: centre, four neighbours, up to 16 taps (z and shares in one).
+  EXPECT_LE(r.traffic[0].reads - r.widthTraffic[0].reads, (1u + 4u + 16u) * 32 * 32);
 }
 
 }  // namespace

@@ -64,7 +64,7 @@ inline ZChainReference zChainReference(const ZChainCase& c, const Camera& camera
   return r;
 }
 
-// thickness_model 1's width_run and width_share chains (the width passes): depth of rectangular
+// thickness_model 1's width_run and csz_share chains (the width passes): depth of rectangular
 // blocks of constant z whose widths and heights cycle through 1 .. 40 texels (runs that end inside a
 // 16x16 work-group tile, across its edges and beyond the pass's reach of 16), every 11th block sky,
 // and every 5th block along x at its left neighbour's depth (a run that goes on across a block's edge).
@@ -96,7 +96,7 @@ inline DepthImage blockDepth(Extent e) {
 }
 
 // The CPU reference's run of the visibility estimator with thickness_model 1 on blockDepth: its
-// width_run and width_share chains (cpu::Result::images) are what a backend's width passes must
+// width_run and csz_share chains (cpu::Result::images) are what a backend's width passes must
 // equal bit for bit.
 inline ZChainReference widthShareReference(const ZChainCase& c, const Camera& camera) {
   ZChainReference r;

@@ -3,9 +3,11 @@
 // pass's share of thickness of a texel from its run of continuous depth along x and y (runShare),
 // and a tap's thickness from the two shares along its slice (tapThickness). Hand-built z images,
 // in double: every expected value is worked out from the texel spacing.
+#include <array>
 #include <bit>
 #include <cmath>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "sao/cpu/reference.h"
@@ -141,9 +143,10 @@ TEST(WidthShare, ALevelAboveZeroMeasuresItsRunInItsOwnTexels) {
 
 // width_resolve (the CPU reference's whole run): a strip 40 texels wide at z = -2 before a far wall
 // is wide at its centre on level 0 (20 texels on each side, the reach 16) and 20 texels wide on
-// level 1, so its centre's width_share along x is level 1's measure of it, 40 texels' worth: half of
-// 40 pixels at |z| = 2 over a thickness of 1 m. Along y it meets the image's edge: wide at every
-// level, 1. A texel of a second strip, 10 texels wide, is narrow on level 0 and keeps its own share.
+// level 1, so its centre's share along x in csz_share is level 1's measure of it, 40 texels' worth:
+// half of 40 pixels at |z| = 2 over a thickness of 1 m. Along y it meets the image's edge: wide at
+// every level, 1. A texel of a second strip, 10 texels wide, is narrow on level 0 and keeps its own
+// share. csz_share holds each texel's z beside its shares, binary16 (in Double too: its storage's).
 TEST(WidthShare, AWideRunTakesItsShareFromTheFirstLevelWhereItIsNarrow) {
   const Extent e{128, 96};
   const Camera cam = perspectiveCamera(std::numbers::pi / 3.0, e.width, e.height, 0.1, 1000.0, ClipDepth::ZeroToOne, false);
@@ -164,17 +167,47 @@ TEST(WidthShare, AWideRunTakesItsShareFromTheFirstLevelWhereItIsNarrow) {
   const Status st = cpu::run(s, cam, in, cpu::Options{cpu::Precision::Double, 2}, r);
   ASSERT_TRUE(st.ok()) << st.message;
   const std::vector<FloatImage>& run = r.images[std::size_t(gen::ResourceId::width_run)];
-  const std::vector<FloatImage>& share = r.images[std::size_t(gen::ResourceId::width_share)];
+  const std::vector<FloatImage>& packed = r.images[std::size_t(gen::ResourceId::csz_share)];
   ASSERT_GE(run.size(), 2u);
-  ASSERT_EQ(share.size(), run.size());
+  ASSERT_EQ(packed.size(), run.size());
+  auto shares = [&](int x, int y) {
+    std::array<float, 2> s{};
+    cpu::detail::unpackShares(packed[0].at(x, y, 1), s[0], s[1]);
+    return s;
+  };
+  EXPECT_EQ(packed[0].at(60, 48, 0), r.csz[0].at(60, 48, 0)) << "the texel's own z beside its shares";
+  EXPECT_EQ(packed[0].at(105, 48, 0), r.csz[0].at(105, 48, 0));
   EXPECT_EQ(run[0].at(60, 48, 0), 1.0f) << "wide on level 0";
   EXPECT_LT(run[1].at(30, 24, 0), 1.0f) << "narrow on level 1";
-  EXPECT_EQ(share[0].at(60, 48, 0), run[1].at(30, 24, 0));
+  EXPECT_EQ(shares(60, 48)[0], cpu::detail::roundToHalf(run[1].at(30, 24, 0)));
   const double pixel = 2.0 * 2.0 * std::tan(std::numbers::pi / 6.0) / 96.0;  // at |z| = 2
-  EXPECT_NEAR(share[0].at(60, 48, 0), 0.5 * 40 * pixel, 1e-3);
-  EXPECT_EQ(share[0].at(60, 48, 1), 1.0f);
+  EXPECT_NEAR(shares(60, 48)[0], 0.5 * 40 * pixel, 1e-3);
+  EXPECT_EQ(shares(60, 48)[1], 1.0f);
   EXPECT_LT(run[0].at(105, 48, 0), 1.0f);
-  EXPECT_EQ(share[0].at(105, 48, 0), run[0].at(105, 48, 0));
+  EXPECT_EQ(shares(105, 48)[0], cpu::detail::roundToHalf(run[0].at(105, 48, 0)));
+}
+
+// csz_share's packing (sao_pack_shares): every binary16 share from the least one a setting allows
+// (SAO_WIDTH_MIN_M over thickness's largest value, 100 m) to 1, along x and along y, comes back
+// exactly and packs into a normal positive float, which storage and texelFetch keep bit for bit.
+TEST(WidthShare, EveryShareASettingAllowsPacksIntoANormalFloatAndBack) {
+  const float least = cpu::detail::roundToHalf(float(gen::SAO_WIDTH_MIN_M) / 100.0f);
+  ASSERT_GE(least, std::ldexp(1.0f, -14)) << "the least share must be a normal binary16";
+  std::size_t values = 0;
+  for (std::uint32_t bits = cpu::detail::halfBits(least); bits <= 0x3C00u; ++bits, ++values) {
+    const float h = cpu::detail::halfValue(bits);
+    ASSERT_EQ(cpu::detail::halfBits(h), bits);
+    for (const auto& [sx, sy] : {std::pair{h, 1.0f}, std::pair{1.0f, h}, std::pair{h, h}, std::pair{least, h}}) {
+      const float p = cpu::detail::packShares(sx, sy);
+      ASSERT_EQ(std::fpclassify(p), FP_NORMAL) << sx << ", " << sy;
+      ASSERT_GT(p, 0.0f);
+      float ux = 0.0f, uy = 0.0f;
+      cpu::detail::unpackShares(p, ux, uy);
+      ASSERT_EQ(ux, sx);
+      ASSERT_EQ(uy, sy);
+    }
+  }
+  EXPECT_GT(values, 5000u) << "binary16 values from 2e-4 to 1: about 13 exponents of 1024";
 }
 
 }  // namespace

@@ -2,12 +2,13 @@
 // walking up the rotated grid from its 2x2 block; effect/sao.glsl, SAO_CHAIN_FROM_BLOCK) equals the
 // CPU reference's level-by-level chain bit for bit, on every level, for chains of 1 to 8 levels,
 // odd extents, 1-texel-wide levels, guard bands and the second depth layer (Vulkan: array slots past
-// the chain's end bound, never written); so do the width passes' width_run and width_share chains
+// the chain's end bound, never written); so do the width passes' width_run and csz_share chains
 // (thickness_model 1). Each case under GL's and Vulkan's depth convention.
 #include "harness.h"
 #include "image_compare.h"
 #include "sao/schedule.h"
 #include "z_chain_cases.h"
+#include "../../effect/cpu/sao_math.h"
 
 namespace sao::exectest {
 namespace {
@@ -64,8 +65,8 @@ TEST_P(ZChain, EveryLevelEqualsTheCpuChainBitForBit) {
 // thickness_model 1: the width pass (level 0 by shared-memory bit scans over 16x16 tiles, the
 // levels above by a walk on each level, effect/sao.glsl) finds the runs the CPU reference's walk
 // finds, and width_resolve takes a wide run's share from the levels above as the CPU does: every
-// level of width_run and of width_share equals the CPU's bit for bit (blocks of 1 .. 40 texels, sky,
-// runs across block edges; the same extents, guard bands and 1-texel levels).
+// level of width_run and of csz_share (z and the packed shares) equals the CPU's bit for bit (blocks
+// of 1 .. 40 texels, sky, runs across block edges; the same extents, guard bands and 1-texel levels).
 TEST_P(ZChain, WidthShareEqualsTheCpuBitForBit) {
   const test::ZChainCase& c = param();
   auto e = make();
@@ -74,7 +75,7 @@ TEST_P(ZChain, WidthShareEqualsTheCpuBitForBit) {
     const test::ZChainReference z = test::widthShareReference(c, cam);
     ASSERT_TRUE(z.status.ok()) << z.status.message;
     const std::vector<FloatImage>& run = z.cpu.images[std::size_t(gen::ResourceId::width_run)];
-    const std::vector<FloatImage>& ref = z.cpu.images[std::size_t(gen::ResourceId::width_share)];
+    const std::vector<FloatImage>& ref = z.cpu.images[std::size_t(gen::ResourceId::csz_share)];
     Frame f;
     f.settings = z.settings;
     f.camera = cam;
@@ -85,16 +86,20 @@ TEST_P(ZChain, WidthShareEqualsTheCpuBitForBit) {
     ASSERT_EQ(run.size(), e->plan().cszLevels);
     std::size_t narrow = 0;    // level-0 shares (x or y) under 1: runs the pass measured
     std::size_t resolved = 0;  // level-0 shares wide on level 0 and measured above it
-    for (std::size_t i = 0; i < ref[0].data.size(); ++i) {
-      narrow += run[0].data[i] < 1.0f;
-      resolved += run[0].data[i] >= 1.0f && ref[0].data[i] < 1.0f;
+    for (std::size_t t = 0; 2 * t + 1 < ref[0].data.size(); ++t) {
+      float share[2];
+      cpu::detail::unpackShares(ref[0].data[2 * t + 1], share[0], share[1]);
+      for (std::size_t a = 0; a < 2; ++a) {
+        narrow += run[0].data[2 * t + a] < 1.0f;
+        resolved += run[0].data[2 * t + a] >= 1.0f && share[a] < 1.0f;
+      }
     }
     if (c.width * c.height >= 1000) {  // the 1x1 and 37x23 images are mostly runs to their edges: wide
       EXPECT_GT(narrow, ref[0].data.size() / 8) << "the blocks must give measured runs, or the comparison says little";
       EXPECT_GT(resolved, 0u) << "some runs must be wide at level 0 and narrow above, or width_resolve is untested";
     }
     expectLevelsEqual(*e, gen::ResourceId::width_run, run, c.name + " width_run");
-    expectLevelsEqual(*e, gen::ResourceId::width_share, ref, c.name + " width_share");
+    expectLevelsEqual(*e, gen::ResourceId::csz_share, ref, c.name + " csz_share");
   }
 }
 

@@ -137,9 +137,9 @@ Status runEffect(const Settings& settings, const Camera& camera, const DepthImag
   out.aoRawFormat = effect->ownedImage(gen::ResourceId::ao_raw).format;
   if (Status st = read(gen::ResourceId::ao_raw, 0, out.aoRaw); !st) return st;
   if (Status st = read(gen::ResourceId::csz, 0, out.csz0); !st) return st;
-  for (const gen::ResourceId id : {gen::ResourceId::csz, gen::ResourceId::csz2, gen::ResourceId::width_share}) {
+  for (const gen::ResourceId id : {gen::ResourceId::csz, gen::ResourceId::csz2, gen::ResourceId::csz_share}) {
     if (!options.readChain || out.plan.image(id) == nullptr) continue;
-    auto& levels = id == gen::ResourceId::csz ? out.csz : id == gen::ResourceId::csz2 ? out.csz2 : out.widthShare;
+    auto& levels = id == gen::ResourceId::csz ? out.csz : id == gen::ResourceId::csz2 ? out.csz2 : out.cszShare;
     levels.resize(out.plan.cszLevels);
     for (std::uint32_t m = 0; m < out.plan.cszLevels; ++m)
       if (Status st = read(id, m, levels[m]); !st) return st;

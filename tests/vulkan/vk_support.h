@@ -46,7 +46,7 @@ struct RunOptions {
   VkFormat normalsFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
   const DepthImage* depth2 = nullptr;
   bool readIntermediates = true;        // ao_raw (and csz level 0)
-  bool readChain = false;               // every level of csz (and csz2 with depth2, width_share with thickness_model 1)
+  bool readChain = false;               // every level of csz (and csz2 with depth2, csz_share with thickness_model 1)
   std::optional<Offset> region;                              // vk::Inputs::region: the region inside larger inputs
   // A depth image the test made itself (e.g. multisampled), bound instead of uploading `depth`
   // (runEffect then does not read `depth`; its InputImage::format, when UNDEFINED, is the run's
@@ -64,7 +64,7 @@ struct RunResult {
   FloatImage csz0;    // csz level 0
   FloatImage aoLow;   // 2 channels (A, key z) when the plan has ao_low (resolution_divisor > 1)
   std::vector<FloatImage> csz, csz2;  // every level, with RunOptions::readChain
-  std::vector<FloatImage> widthShare;  // every level (2 channels), with readChain where the plan has it
+  std::vector<FloatImage> cszShare;  // every level (2 channels: z, the packed shares), with readChain where the plan has it
 };
 
 // Uploads `depth` in `format`, creates an effect (the default Config), records it once with

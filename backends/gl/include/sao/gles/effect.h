@@ -9,7 +9,7 @@
 // Where it differs from sao::gl (everything else, the state it restores included, is the same):
 //  - ES 3.1 stores no r16f, rg16f, rg32f or r8 images. The effect declares what its images take
 //    instead (`#pragma sao target gles` in effect/sao.glsl): the owned output is GL_R32F (holding the same binary16-rounded A as GL's GL_R16F),
-//    the (A, key) intermediates GL_RGBA16F or GL_RGBA32F, width_run and width_share GL_RGBA16F. Your own output may be
+//    the (A, key) intermediates GL_RGBA16F or GL_RGBA32F, width_run GL_RGBA16F and csz_share GL_RGBA32F. Your own output may be
 //    GL_R32F (it takes r16f's place: one channel), GL_RGBA8 or GL_RGBA16F; GL_R16F and GL_R8 are
 //    refused (UnsupportedFormat naming the rule). An RGBA output whose texels the final pass keeps
 //    (Inputs::outputChannels, OutputBlend::Multiply) is read through a texture of itself, since ES
