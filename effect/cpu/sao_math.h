@@ -439,29 +439,18 @@ inline float roundHalfMagnitude(float m) {
 // sao_round_to_half (float only: the shader's own rounding): x clamped to [0, 1], then rounded.
 inline float roundToHalf(float x) { return roundHalfMagnitude(std::clamp(x, 0.0f, 1.0f)); }
 
-// The binary16 bits of h, a binary16 value in [0, 1] (roundToHalf's), and back: exact both ways.
-inline std::uint32_t halfBits(float h) {
-  if (h == 0.0f) return 0u;
-  int e = 0;
-  const float f = std::frexp(h, &e);  // h = f * 2^e, f in [0.5, 1)
-  if (e - 1 < -14) return std::uint32_t(std::ldexp(h, 24));  // subnormal: h / 2^-24
-  return (std::uint32_t(e - 1 + 15) << 10) | std::uint32_t(std::ldexp(f, 11) - 1024.0f);
-}
-inline float halfValue(std::uint32_t bits) {
-  const std::uint32_t e = (bits >> 10) & 0x1Fu, m = bits & 0x3FFu;
-  return e == 0u ? std::ldexp(float(m), -24) : std::ldexp(float(m + 1024u), int(e) - 25);
-}
-
 // sao_pack_shares / sao_unpack_shares (sao_visibility.glsl): a texel's shares of thickness along
 // x and y, each rounded to binary16 (in Float already so), as csz_share's y: packHalf2x16's bits,
 // x in the low half, read as a float (a normal positive one for shares in [2^-14, 1]).
+// (sao::halfBits and sao::halfToFloat are exact for binary16 values.)
 inline float packShares(float sx, float sy) {
-  return std::bit_cast<float>(halfBits(roundToHalf(sx)) | (halfBits(roundToHalf(sy)) << 16));
+  const std::uint32_t x = sao::halfBits(roundToHalf(sx)), y = sao::halfBits(roundToHalf(sy));
+  return std::bit_cast<float>(x | (y << 16));
 }
 inline void unpackShares(float packed, float& sx, float& sy) {
   const std::uint32_t b = std::bit_cast<std::uint32_t>(packed);
-  sx = halfValue(b & 0xFFFFu);
-  sy = halfValue(b >> 16);
+  sx = sao::halfToFloat(std::uint16_t(b & 0xFFFFu));
+  sy = sao::halfToFloat(std::uint16_t(b >> 16));
 }
 
 // sao_round_to_half_signed of sao_blur.glsl: |x| rounded, sign kept (±0 too), not clamped.

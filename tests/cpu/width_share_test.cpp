@@ -194,9 +194,9 @@ TEST(WidthShare, EveryShareASettingAllowsPacksIntoANormalFloatAndBack) {
   const float least = cpu::detail::roundToHalf(float(gen::SAO_WIDTH_MIN_M) / 100.0f);
   ASSERT_GE(least, std::ldexp(1.0f, -14)) << "the least share must be a normal binary16";
   std::size_t values = 0;
-  for (std::uint32_t bits = cpu::detail::halfBits(least); bits <= 0x3C00u; ++bits, ++values) {
-    const float h = cpu::detail::halfValue(bits);
-    ASSERT_EQ(cpu::detail::halfBits(h), bits);
+  for (std::uint32_t bits = sao::halfBits(least); bits <= 0x3C00u; ++bits, ++values) {
+    const float h = sao::halfToFloat(std::uint16_t(bits));
+    ASSERT_EQ(sao::halfBits(h), bits);
     for (const auto& [sx, sy] : {std::pair{h, 1.0f}, std::pair{1.0f, h}, std::pair{h, h}, std::pair{least, h}}) {
       const float p = cpu::detail::packShares(sx, sy);
       ASSERT_EQ(std::fpclassify(p), FP_NORMAL) << sx << ", " << sy;
