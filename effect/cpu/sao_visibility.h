@@ -298,7 +298,8 @@ Vec3<T> sliceBentMoment(const Slice<T>& sl, Vec3<T> V, std::uint32_t bits);
 
 // sao_visibility_occlusion: the occlusion 1 - V of the pixel at csz texel (cx, cy). csz2 is read
 // only with twoLayer; with cszShare (THICKNESS_FROM_WIDTH: width_resolve's chain, z and the packed
-// shares) the taps read their z and shares from it instead of csz; `tapCount` is the block's samples (the shader's SAO_TAP_COUNT). With
+// shares) the taps read their z and shares from it instead of csz; `tapCount` is the block's
+// samples (the shader's SAO_TAP_COUNT). With
 // `moment` (BENT_NORMALS) the slices' first moments of their unoccluded rays are summed into it.
 template <typename T>
 T visibilityOcclusion(const std::vector<Image<T>>& csz, const std::vector<Image<T>>& csz2,
@@ -343,13 +344,13 @@ T visibilityOcclusion(const std::vector<Image<T>>& csz, const std::vector<Image<
       mipSource(sx, sy, lvl, z0.w, z0.h);
       if (sx != cx || sy != cy) {  // a coarse texel may hold the centre's own z
         const T qx = T(sx) + T(0.5), qy = T(sy) + T(0.5);
-        T z = csz[std::size_t(lvl)].at(mx, my);
+        // One fetch: the tap's z from csz, or from csz_share beside its shares.
+        const Image<T>& zImage = cszShare ? (*cszShare)[std::size_t(lvl)] : csz[std::size_t(lvl)];
+        const T z = zImage.at(mx, my, 0);
         T t = P.thickness;
         if (cszShare) {
-          const Image<T>& zs = (*cszShare)[std::size_t(lvl)];
-          float shareX = 1.0f, shareY = 1.0f;
-          unpackShares(float(zs.at(mx, my, 1)), shareX, shareY);
-          z = zs.at(mx, my, 0);
+          float shareX = 0.0f, shareY = 0.0f;
+          unpackShares(float(zImage.at(mx, my, 1)), shareX, shareY);
           t = tapThickness(T(shareX), T(shareY), dx, dy, P.thickness);
         }
         const Slab<T> s = slab(sl, C, V, qx, qy, z, t, P);
