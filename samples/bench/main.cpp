@@ -108,6 +108,7 @@ struct Options {
   bool ortho = false;           // --ortho: every scene's view made orthographic
   bool timeOnly = false;        // --time-only: no references, so no error columns
   std::string objective = "c";  // --objective: the reference --tune minimises the error against
+  std::string mapsAgainst = "c";  // --maps-against: the reference each row's error map is drawn against
   std::string screenThickness;  // --screen-thickness: reference (d)'s thickness model ("": the setting thickness_model)
   std::vector<std::string> sets;  // --set NAME=VALUE, in order: applied to every preset of the presets section
   std::optional<scenes::LengthUnit> units;  // --units
@@ -229,6 +230,12 @@ Options parse(int argc, char** argv) {
             "follows by default, as the visibility estimator does): constant (the setting thickness for every slab) or "
             "width (each run of continuous depth along a slice taken as deep as half its width, from 0.02 m up to "
             "thickness: raytrace::ScreenVisibilityOptions::thicknessFromWidth, docs/reference.md)");
+  cl.choice("--maps-against", o.mapsAgainst,
+            [](const std::string& v) { return v == "c" || v == "a" || v == "d" ? std::optional(v) : std::nullopt; },
+            "c, a or d", "R",
+            "the reference each row's error map (maps/) is drawn against: c (default), the "
+            "converged alchemy estimator; a, ray-traced near-field AO; d, converged screen-space visibility (then "
+            "maps/NNN_screen_<scene>_<inputs>_<constant|width>.png, (d) - (a), once per reference (d))");
   cl.flag(samples::kOverwriteOption, o.overwrite, samples::kOverwriteHelp);
   cl.parse(argc, argv);
   o.sizeGiven = cl.given("--size");
@@ -269,6 +276,8 @@ Options parse(int argc, char** argv) {
   if (cl.given("--screen-thickness") && (o.tune || o.timeOnly || o.sections != std::set<std::string>{"presets"}))
     cl.fail("--screen-thickness sets reference (d) of the presets section: add --sections presets (and no --tune or "
             "--time-only)");
+  if (cl.given("--maps-against") && (o.tune || o.timeOnly))
+    cl.fail("--maps-against chooses the reference of the sections' error maps: --tune and --time-only draw none");
   if (cl.given("--frames-averaged") && (o.tune || o.timeOnly || o.sections != std::set<std::string>{"presets"}))
     cl.fail("--frames-averaged sets the presets section's errors: add --sections presets (and no --tune or --time-only)");
   if (cl.given("--objective") && !o.tune) cl.fail("--objective chooses what --tune minimises: add --tune, or drop it");
@@ -340,9 +349,11 @@ std::vector<std::pair<std::string, std::string>> notes(const std::string& depthS
                                                       "inputs: RMSE of (c) against (a) and against (b). The share of the "
                                                       "error vs (a) that no preset can fix (the heightfield and the "
                                                       "estimator's definition)."},
-      {"error_map", "maps/NNN_<row>.png: the signed error of the row's output against (c), white at 0, blue where the "
-                    "output is darker (more occluded), red where lighter, full colour at +-0.1 and beyond (fixed "
-                    "scale), grey without geometry; maps/NNN_model_<scene>_<inputs>.png: (c) - (a) on the same scale."},
+      {"error_map", "maps/NNN_<row>.png: the signed error of the row's output against (c) (--maps-against: a or d), white "
+                    "at 0, blue where the output is darker (more occluded), red where lighter, full colour at +-0.1 "
+                    "and beyond (fixed scale), grey without geometry; maps/NNN_model_<scene>_<inputs>.png: (c) - (a) on "
+                    "the same scale; with --maps-against d maps/NNN_screen_<scene>_<inputs>_<constant|width>.png: (d) - (a) for "
+                    "each reference (d) (its thickness model)."},
       {"*_flip_raw / *_flip_fitted", "mean FLIP (Andersson et al., HPG 2020, LDR; samples/flip.h) over the pixels with "
                                      "geometry: the difference a viewer flipping between output and reference would "
                                      "notice, 0 none to 1, at 67 pixels per degree, AO values read as the sRGB greys "
@@ -468,6 +479,8 @@ int main(int argc, char** argv) {
     bench::References refs;
     Converged* converged = nullptr;
     std::pair<double, double> screenModel{NAN, NAN};  // (d) vs (a), (c) vs (d)
+    Screen* screenUsed = nullptr;
+    bool screenFromWidth = false;  // its thickness model
     if (withError && !o.timeOnly) {
       refs.nearFieldAo = &nearFieldReference(p, s.radius, o.rays);
       if (o.aoNoise && !p.referenceNoise.count(s.radius)) {
@@ -491,15 +504,18 @@ int main(int argc, char** argv) {
       refs.converged = &converged->ao;
       ScreenOptions screenOptions;  // 64 slices, every pixel
       if (!o.screenThickness.empty()) screenOptions.thicknessFromWidth = o.screenThickness == "width";
-      const bool freshScreen = !p.screen.count(screenKey(s, extra, screenOptions.thicknessFromWidth));
+      const ScreenKey key = screenKey(s, extra, screenOptions.thicknessFromWidth);
+      const bool freshScreen = !p.screen.count(key);
+      screenFromWidth = std::get<4>(key);
       screenOptions.nearFieldAo = refs.nearFieldAo;
       screenOptions.converged = &converged->ao;
       Screen& screen = screenReference(p, s, extra, screenOptions);
       if (freshScreen) {
         char t[96];
         std::snprintf(t, sizeof t, ": %.1f s (%.1f s CPU)", screen.seconds, screen.cpuSeconds);
-        screenTimes.push_back(scene + " (" + what + (std::get<4>(screenKey(s, extra, screenOptions.thicknessFromWidth)) ? ", thickness from width" : "") + ")" + t);
+        screenTimes.push_back(scene + " (" + what + (screenFromWidth ? ", thickness from width" : "") + ")" + t);
       }
+      screenUsed = &screen;
       refs.screen = &screen.ao;
       refs.screenMask = &screen.mask;
       screenModel = {screen.rmseVsAo, screen.rmseConvergedVsScreen};
@@ -517,9 +533,18 @@ int main(int argc, char** argv) {
       r.modelRmseVsObscurance = converged->rmseVsObscurance;
       std::tie(r.screenRmseVsAo, r.convergedRmseVsScreen) = screenModel;
       r.errorMap = "maps/" + mapName(rows.size(), {section, scene, r.backend, preset, variant});
-      if (Status st = samples::writeErrorMapPng((fs::path(out) / r.errorMap).string(), r.m.ao, converged->ao, p.mask);
-          !st)
+      const bool againstScreen = o.mapsAgainst == "d";
+      const FloatImage& mapReference = againstScreen ? screenUsed->ao : o.mapsAgainst == "a" ? *refs.nearFieldAo : converged->ao;
+      const std::vector<unsigned char>& mapMask = againstScreen ? screenUsed->mask : p.mask;
+      if (Status st = samples::writeErrorMapPng((fs::path(out) / r.errorMap).string(), r.m.ao, mapReference, mapMask); !st)
         fail(st.message);
+      if (againstScreen && screenUsed->map.empty()) {  // once per reference (d): (d) - (a)
+        screenUsed->map = "maps/" + mapName(rows.size(), {"screen", scene, what, screenFromWidth ? "width" : "constant"});
+        if (Status st = samples::writeErrorMapPng((fs::path(out) / screenUsed->map).string(), screenUsed->ao,
+                                                  *refs.nearFieldAo, screenUsed->mask);
+            !st)
+          fail(st.message);
+      }
       if (converged->modelMap.empty()) {  // once per scene, settings and inputs: (c) - (a)
         converged->modelMap = "maps/" + mapName(rows.size(), {"model", scene, what});
         if (Status st = samples::writeErrorMapPng((fs::path(out) / converged->modelMap).string(), converged->ao,

@@ -60,6 +60,7 @@ struct Screen {
   std::vector<unsigned char> mask;  // Prepared::mask on the pixels evaluated
   double seconds = 0, cpuSeconds = 0;
   double rmseVsAo = NAN, rmseConvergedVsScreen = NAN;
+  std::string map;  // maps/ PNG of (d) - (a) (--maps-against d), relative to the output folder
 };
 
 // A scene at one size: its ray caster, primary rays, second layer and references.

@@ -41,4 +41,18 @@ col=$(head -1 "$out/ok/results.csv" | tr ',' '\n' | grep -nx screen_rmse_raw | c
 a=$(awk -F, -v c="$col" 'NR > 1 && $1 == "presets" { print $c }' "$out/ok/results.csv" | sort -u | tr '\n' ' ')
 b=$(awk -F, -v c="$col" 'NR > 1 && $1 == "presets" { print $c }' "$out/width/results.csv" | sort -u | tr '\n' ' ')
 [ -n "$b" ] && [ "$a" != "$b" ] || die "--screen-thickness width: reference (d)'s error columns unchanged ($a)"
+# --maps-against: each row's error map against (a) or (d) instead of (c); d adds (d) - (a) once.
+expect_refusal "--maps-against expects c, a or d, got 'b'" --sections presets --maps-against b
+expect_refusal "--maps-against chooses the reference of the sections' error maps" --tune --maps-against d
+"$bench" --quick --scenes sphere-plane --sections presets --backends cpu --set estimator=1 --set thickness=0.2 --maps-against d \
+  --out "$out/maps_d" >/dev/null 2>"$out/maps_d.err" || die "--maps-against d failed: $(tail -3 "$out/maps_d.err")"
+# Two references (d): low to high take thickness 0.2 m for every slab, ultra and reference from width.
+for model in constant width; do
+  n=$(ls "$out/maps_d/maps" | grep -c "_screen_sphere-plane_depth_$model\.png\$" || true)
+  [ "$n" -eq 1 ] || die "--maps-against d: expected one (d) - (a) map with $model thickness, got $n: $(ls "$out/maps_d/maps")"
+done
+for m in $(ls "$out/ok/maps" | grep _presets_); do
+  [ -f "$out/maps_d/maps/$m" ] || die "--maps-against d: no $m"
+  ! cmp -s "$out/ok/maps/$m" "$out/maps_d/maps/$m" || die "--maps-against d: $m is the map against (c)"
+done
 echo "set option: ok"
