@@ -15,6 +15,7 @@
 #include "tune_grid.h"
 #include "tune_report.h"
 #include "tune_select.h"
+#include "tune_time.h"
 #include "visibility_converged.h"
 #include "sao/prepass/prepass.h"
 
@@ -39,6 +40,22 @@ std::string duration(double seconds) {
 std::string label(const Candidate& c) {
   if (c.kind == "grid") return settingsWords(c.settings);
   return c.kind + " " + c.name;
+}
+
+// The candidates measured in this session: those with no row, and the time anchors just before and
+// after each of them (in candidate order), since a row is timed against its own session's anchors
+// only (tune_time.h). The untuned medium, the unit's reference row, is measured if it has no row.
+std::vector<bool> toMeasure(const std::vector<std::vector<const TuneRow*>>& recorded, const std::vector<std::size_t>& anchors) {
+  std::vector<bool> measure(recorded.size(), false);
+  for (std::size_t i = 0; i < recorded.size(); ++i) {
+    if (!recorded[i].empty() || std::binary_search(anchors.begin(), anchors.end(), i)) continue;
+    measure[i] = true;
+    const auto after = std::upper_bound(anchors.begin(), anchors.end(), i);  // anchors[0] = 0 < i
+    measure[*(after - 1)] = true;
+    if (after != anchors.end()) measure[*after] = true;
+  }
+  if (recorded[0].empty()) measure[0] = true;
+  return measure;
 }
 
 // The chain: five presets, one per budget; where no chain of five steps up on every scene, the
@@ -105,15 +122,39 @@ int runTune(const TuneOptions& o) {
     r.kind = c.kind, r.name = c.name, r.backend = backendName, r.depth = o.depthSource, r.inputs = inputsName(c.extra);
     r.size = o.size, r.convergedTaps = o.convergedTaps, r.objectiveRays = o.objectiveRays, r.settings = c.settings;
     r.ownConvergedFrames = c.settings.estimator == 1 ? visibilityFrames : 0;
-    r.runs = o.runs;
+    r.runs = o.runs, r.session = csv.session();
     return r;
   };
-  std::vector<const Candidate*> todo;
-  for (const Candidate& c : candidates)
-    if (!csv.find(templateRow(c).key())) todo.push_back(&c);
+  auto isAnchor = [&](std::size_t i) { return std::binary_search(anchors.begin(), anchors.end(), i); };
+  // tune.csv's rows by candidate: at most one for most, one per session for the time anchors (rows
+  // of candidates not in today's list, such as presets since changed, are left out).
+  std::map<std::string, std::size_t> candidateAt;  // TuneRow::columns() -> candidate index
+  for (std::size_t i = 0; i < candidates.size(); ++i) candidateAt.emplace(templateRow(candidates[i]).columns(), i);
+  auto recordedRows = [&] {
+    std::vector<std::vector<const TuneRow*>> recorded(candidates.size());
+    for (const TuneRow& row : csv.rows()) {
+      const auto at = candidateAt.find(row.columns());
+      if (at != candidateAt.end() && csv.find(row.key()) == &row) recorded[at->second].push_back(&row);
+    }
+    return recorded;
+  };
+  std::size_t inRecord = 0, anchorsNow = 0;
+  std::vector<const Candidate*> todo;  // in candidate order, so that the anchors bracket what they time
+  {
+    const auto recorded = recordedRows();
+    const std::vector<bool> measure = toMeasure(recorded, anchors);
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      inRecord += !recorded[i].empty();
+      if (measure[i]) todo.push_back(&candidates[i]), anchorsNow += isAnchor(i);
+    }
+  }
   std::fprintf(stderr, "sao-bench: --tune on %s, %ux%u, %zu scenes: %zu candidates, %zu in %s, %zu to evaluate\n",
-               backend->description().c_str(), o.size.width, o.size.height, sceneNames.size(), candidates.size(),
-               candidates.size() - todo.size(), csvPath.c_str(), todo.size());
+               backend->description().c_str(), o.size.width, o.size.height, sceneNames.size(), candidates.size(), inRecord,
+               csvPath.c_str(), todo.size());
+  if (!todo.empty() && csv.session() > 1)
+    std::fprintf(stderr, "sao-bench: --tune: session %u of tune.csv: %zu of those are measurements of the untuned medium "
+                 "(time anchors) around the %zu others, which are timed against this session's anchors only\n",
+                 csv.session(), anchorsNow, todo.size() - anchorsNow);
 
   SceneCache cache(depthPrepass.get(), o.units);
   const Settings appearance{};  // (c) depends on radius, intensity, bias, epsilon, contrast only: the defaults
@@ -187,42 +228,47 @@ int runTune(const TuneOptions& o) {
   TuneResult r;
   r.scenes = sceneNames, r.backend = backendName, r.depth = o.depthSource, r.size = o.size;
   r.objective = o.objectiveRays ? "a" : "c";
-  std::vector<const TuneRow*> rows;
-  for (const Candidate& c : candidates) rows.push_back(csv.find(templateRow(c).key()));
-  r.medium = rows[anchors.front()];
-  r.driftMin = r.driftMax = 1;
-  for (std::size_t a : anchors) {
-    for (const SceneFigures& s : rows[a]->scenes)
-      if (!(s.ms > 0)) fail("--tune: no time for " + label(candidates[a]) + " in " + csvPath);
-    r.driftMin = std::min(r.driftMin, rows[a]->totalMs() / r.medium->totalMs());
-    r.driftMax = std::max(r.driftMax, rows[a]->totalMs() / r.medium->totalMs());
-  }
-  r.anchors = anchors.size();
-  // Medium's time on scene s at candidate i: linear in the candidate index between the anchors
-  // around it (the order the candidates are evaluated in).
-  auto mediumAt = [&](std::size_t i, std::size_t s) {
-    const auto after = std::lower_bound(anchors.begin(), anchors.end(), i);
-    if (after == anchors.end()) return rows[anchors.back()]->scenes[s].ms;
-    if (*after == i || after == anchors.begin()) return rows[*after]->scenes[s].ms;
-    const std::size_t a = *(after - 1), b = *after;
-    const double w = double(i - a) / double(b - a);
-    return (1 - w) * rows[a]->scenes[s].ms + w * rows[b]->scenes[s].ms;
-  };
+  const auto recorded = recordedRows();  // again: rows_ has grown, and its earlier pointers are stale
+  std::vector<TimedRow> timed;
+  std::vector<const TuneRow*> timedRows;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
-    if (candidates[i].kind == "anchor") continue;
-    TunePoint p{rows[i], 0, rows[i]->meanRmse(), {}};
+    if (recorded[i].empty() && !isAnchor(i)) fail("--tune: no row for " + label(candidates[i]) + " in " + csvPath);
+    for (const TuneRow* row : recorded[i]) {
+      TimedRow t{label(candidates[i]), i, row->session, isAnchor(i), {}};
+      for (const SceneFigures& s : row->scenes) t.ms.push_back(s.ms);
+      timed.push_back(std::move(t));
+      timedRows.push_back(row);
+    }
+  }
+  std::vector<std::vector<double>> unitMs;  // per timed row and scene: medium's time from its session's anchors
+  if (Status s = timeUnits(timed, unitMs); !s) fail("--tune: " + s.message + " (" + csvPath + ")");
+  r.drift = anchorDrift(timed);
+  // The untuned medium's reference row: its first session's (with more than one, each session's
+  // copy is that session's anchor 0, 1x by definition).
+  std::vector<const TuneRow*> firstRow(candidates.size(), nullptr);
+  std::vector<TunePoint> points(candidates.size());
+  for (std::size_t t = 0; t < timed.size(); ++t) {
+    const std::size_t i = timed[t].candidate;
+    const TuneRow* row = timedRows[t];
+    if (candidates[i].kind == "anchor" || (firstRow[i] && firstRow[i]->session <= row->session)) continue;
+    TunePoint p{row, 0, row->meanRmse(), {}};
     double unit = 0;
     for (std::size_t s = 0; s < sceneNames.size(); ++s) {
-      unit += mediumAt(i, s);
-      p.sceneX.push_back(rows[i]->scenes[s].ms / mediumAt(i, s));
+      unit += unitMs[t][s];
+      p.sceneX.push_back(row->scenes[s].ms / unitMs[t][s]);
     }
-    p.timeX = rows[i]->totalMs() / unit;
+    p.timeX = row->totalMs() / unit;
     if (!(p.timeX > 0 && p.meanRmse > 0 && std::isfinite(p.meanRmse)))
-      fail("--tune: " + label(candidates[i]) + " has no usable time or error in " + csvPath);
-    (i < referenceCount ? r.references : r.grid).push_back(p);
+      fail("--tune: " + timed[t].label + " (session " + std::to_string(row->session) + ") has no usable time or error in " +
+           csvPath);
+    firstRow[i] = row;
+    points[i] = std::move(p);
   }
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    if (firstRow[i]) (i < referenceCount ? r.references : r.grid).push_back(points[i]);
+  r.medium = firstRow[0];
   r.front = paretoFront(r.grid);
-  r.blotchLimit = kDefaultBlotchShare * rows[1]->meanBlotch();  // rows[1]: the untuned defaults
+  r.blotchLimit = kDefaultBlotchShare * firstRow[1]->meanBlotch();  // candidate 1: the untuned defaults
   choose(r);
   const std::vector<std::string> files = writeTuneOutputs(o.out, r);
 
@@ -232,8 +278,9 @@ int runTune(const TuneOptions& o) {
               duration(wall).c_str(), o.convergedTaps,
               o.objectiveRays ? (", the error vs reference (a) with " + std::to_string(o.objectiveRays) + " rays").c_str() : "");
   for (const TunePoint& p : r.grid)
-    if (p.row->settings == r.medium->settings)  // the grid's copy of medium, timed against the anchors around it
-      std::printf("the grid's copy of the untuned medium: %.3gx (1 but for noise)\n", p.timeX);
+    if (p.row->settings == r.medium->settings)  // the grid's copy of medium, timed against its session's anchors around it
+      std::printf("the grid's copy of the untuned medium: %.3gx (1 but for noise)%s\n", p.timeX,
+                  r.drift.size() > 1 ? (" (session " + std::to_string(p.row->session) + ")").c_str() : "");
   printTuneSummary(r);
   std::string names;
   for (const std::string& f : files) names += (names.empty() ? "" : ",") + f;

@@ -91,6 +91,10 @@ Candidate timeAnchor(std::size_t index) {
   return {"anchor", "medium-" + std::to_string(index), untunedMedium(), Extra::None};
 }
 
+bool isTimeAnchor(const std::string& kind, const std::string& name) {
+  return kind == "anchor" || (kind == "unit" && name == "untuned-medium");
+}
+
 std::vector<Candidate> tuneReferences() {
   std::vector<Candidate> out{{"unit", "untuned-medium", untunedMedium(), Extra::None},
                              {"unit", "untuned-defaults", untunedDefaults(), Extra::None}};

@@ -45,6 +45,9 @@ Settings untunedDefaults();  // 11 taps, 2x2 + 9-tap blur (stride 2), q' = 8 px,
 // untunedMedium() measured again between grid points (kind "anchor", name "medium-<index>"): the
 // time unit is interpolated between anchors, so that the machine's drift over a long run cancels.
 Candidate timeAnchor(std::size_t index);
+// A measurement of the time unit: a time anchor, or the untuned medium's own row (candidate 0, the
+// first anchor). tune.csv keeps one such row per session (tune_csv.h).
+bool isTimeAnchor(const std::string& kind, const std::string& name);
 
 // The two untuned rows (kind "unit": "untuned-medium", the first anchor, and "untuned-defaults"),
 // today's presets (effect/sao.glsl, declaration order), then the AlchemyAO-style baseline: the

@@ -36,7 +36,7 @@ void writeFile(const std::string& path, const std::string& text) {
 std::string frontCsv(const TuneResult& r) {
   const std::string rmse = "rmse_vs_" + r.objective;
   std::string o = "role,name,time_x_medium,total_ms,mean_" + rmse;
-  for (const std::string what : {rmse, std::string("blotch"), std::string("silhouette"), std::string("ms"), std::string("x_medium")})
+  for (const std::string& what : {rmse, std::string("blotch"), std::string("silhouette"), std::string("ms"), std::string("x_medium")})
     for (const std::string& s : r.scenes) o += "," + s + "_" + what;
   o += ",inputs";
   for (const std::string& s : kTunedSettings) o += "," + s;
@@ -145,8 +145,8 @@ void printTuneSummary(const TuneResult& r) {
   for (std::size_t k = 0; k < r.chain.size(); ++k) tuned.emplace_back(r.chainNames[k], &r.grid[r.chain[k]]);
   for (const TunePoint& p : r.references) today.emplace_back(p.row->kind == "baseline" ? "AlchemyAO-style" : p.row->name, &p);
   std::printf("\nRMSE vs (%s) per scene; blotch (low-passed error) and silhouette (within 3 px of a depth edge) RMSE "
-              "vs (c) are means over the scenes; time is x the untuned medium preset (%.3g ms summed over the scenes).",
-              r.objective.c_str(), r.medium->totalMs());
+              "vs (c) are means over the scenes; time is x the untuned medium preset (%.3g ms summed over the scenes%s).",
+              r.objective.c_str(), r.medium->totalMs(), r.drift.size() > 1 ? " in the first session" : "");
   printTable(r, "tuned presets (the chain; " + std::to_string(r.front.size()) + " of " + std::to_string(r.grid.size()) +
                     " candidates on the front)", tuned);
   printTable(r, "the untuned medium and defaults, today's presets and the AlchemyAO-style baseline (the untuned medium "
@@ -178,13 +178,25 @@ void printTuneSummary(const TuneResult& r) {
   } else {
     std::printf("\ntargets: NOT met: no chain of two or more presets steps up on every scene\n");
   }
+  std::size_t anchors = 0;
+  double driftMin = 1, driftMax = 1;
+  std::string perSession;
+  for (const SessionDrift& d : r.drift) {
+    anchors += d.anchors, driftMin = std::min(driftMin, d.min), driftMax = std::max(driftMax, d.max);
+    perSession += (perSession.empty() ? "" : "; ") + std::string("session ") + std::to_string(d.session) + ": " +
+                  std::to_string(d.anchors) + " anchors, " + number(d.min, "%.2f") + "x to " + number(d.max, "%.2f") + "x";
+  }
   std::printf("\nErrors are deterministic on a backend (a rerun gives the same figures); times are medians of the runs "
               "measured when each row was evaluated (a resumed run keeps the times in tune.csv), on a shared machine. "
-              "Each time is divided by medium's, interpolated between the %zu measurements of medium around it (the "
-              "anchors; their totals ranged over %.2fx to %.2fx the first one's: the machine's drift over the run). The "
-              "front and the chain follow those times: points within ~10%% in time can swap places between runs, and a "
-              "step must be slower on every scene.\n",
-              r.anchors, r.driftMin, r.driftMax);
+              "Each time is divided by medium's, interpolated between the measurements of medium around it in the same "
+              "session (the %zu anchors; their totals ranged over %.2fx to %.2fx their session's first one's: the "
+              "machine's drift over a run). The front and the chain follow those times: points within ~10%% in time can "
+              "swap places between runs, and a step must be slower on every scene.\n",
+              anchors, driftMin, driftMax);
+  if (r.drift.size() > 1)
+    std::printf("tune.csv holds %zu sessions (the runs that added rows, its session column); each row is timed against "
+                "its own session's anchors only (%s).\n",
+                r.drift.size(), perSession.c_str());
 }
 
 }  // namespace sao::bench

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "tune_select.h"
+#include "tune_time.h"
 
 namespace sao::bench {
 
@@ -15,7 +16,7 @@ struct TuneResult {
   std::string backend, depth;
   Extent size{0, 0};
   std::string objective = "c";           // the reference the error is measured against: "c" or "a" (TuneOptions)
-  const TuneRow* medium = nullptr;       // the untuned medium (tune_grid.h), the time unit
+  const TuneRow* medium = nullptr;       // the untuned medium (tune_grid.h), the time unit: its first session's row
   std::vector<TunePoint> grid;           // every grid candidate
   std::vector<std::size_t> front;        // paretoFront(grid)
   std::vector<std::size_t> chain;        // chooseChain(grid, ...): the tuned presets, cheapest first
@@ -23,8 +24,9 @@ struct TuneResult {
   std::vector<double> chainBudgets;      // the budget each was chosen for (x medium)
   std::vector<TunePoint> references;     // the untuned rows, today's presets, the AlchemyAO-style baseline
   double blotchLimit = INFINITY;         // the default preset's: kDefaultBlotchShare x the untuned defaults' mean
-  std::size_t anchors = 0;               // measurements of medium (the first is today's preset row)
-  double driftMin = 1, driftMax = 1;     // their totals over the first's: the machine's drift
+  // Per session of tune.csv, its measurements of medium (the anchors) and their totals over that
+  // session's first in candidate order: the machine's drift over each run.
+  std::vector<SessionDrift> drift;
 };
 
 // The preset names by budget, x the untuned medium: low 0.2x (issue 16 asks for <= 0.25x; 0.2 leaves

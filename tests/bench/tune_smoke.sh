@@ -4,7 +4,10 @@
 # backend): it writes tune.csv (one row per candidate, a header with the scenes), tune_front.csv/.svg and tune_presets.txt with pasteable preset
 # lines; the chosen chain steps up on every scene (slower, lower RMSE vs (c)); a second run into
 # the same folder evaluates nothing, leaves tune.csv as it was and writes the same tune_presets.txt;
-# a run after losing rows evaluates exactly the lost ones; a tune.csv with another header is refused.
+# a run after losing rows evaluates exactly the lost ones and, in its own session (tune.csv's last
+# column), the time anchors around them, leaving the earlier rows as they were; a tune.csv written
+# before the session column is read as session 1 and gains the column when appended to; a tune.csv
+# with another header is refused.
 # usage: tune_smoke.sh SAO_BENCH OUT_DIR
 set -eu
 bench=$1
@@ -21,6 +24,8 @@ grep -q '\[37/37\] ' "$out/stderr" || die "no progress line [37/37]"
 [ "$(awk 'END { print NR }' "$out/t/tune.csv")" -eq 38 ] || die "tune.csv: expected a header and 37 rows"
 [ "$(grep -c '^anchor,medium-' "$out/t/tune.csv")" -eq 3 ] || die "tune.csv: expected 3 anchor rows"
 head -1 "$out/t/tune.csv" | grep -q ',crease_rmse_vs_c,.*,sphere-plane_rmse_vs_c,' || die "tune.csv: no per-scene columns"
+head -1 "$out/t/tune.csv" | grep -q ',sphere-plane_silhouette,session$' || die "tune.csv: no session column last"
+[ "$(awk -F, 'NR > 1 && $NF != 1' "$out/t/tune.csv")" = "" ] || die "first run: a row not of session 1"
 for label in "Pareto front" "tuned presets" "today's presets" "AlchemyAO-style baseline"; do
   grep -qF ">$label<" "$out/t/tune_front.svg" || die "tune_front.svg has no series '$label'"
 done
@@ -61,13 +66,54 @@ grep -q ', 37 in .*, 0 to evaluate$' "$out/stderr" || die "second run evaluated 
 cmp -s "$out/t/tune.csv" "$out/tune.csv.first" || die "the second run changed tune.csv"
 cmp -s "$out/t/tune_presets.txt" "$out/presets.first" || die "the second run wrote another tune_presets.txt: $(diff "$out/presets.first" "$out/t/tune_presets.txt")"
 
-# Interrupted after 20 rows: the rerun evaluates the other 17 only.
+# A row's candidate columns (all before runs): what a resumed run looks a grid or preset row up by.
+candidate() { awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "runs") n = i - 1; next }
+  { line = $1; for (i = 2; i <= n; i++) line = line "," $i; print line }' "$@"; }
+
+# Interrupted after 20 rows (candidates 0-19, anchor 0 (the untuned medium) and anchor medium-18
+# among them): the rerun, session 2, evaluates the other 15 candidates and the anchors around them,
+# medium-18, medium-29 and medium-36, measured again in this session (18 rows); the 20 rows stay
+# session 1, their anchors untouched.
 mkdir -p "$out/cut"
 cp "$out/t/sao-bench-outputs.txt" "$out/cut/"  # written before the first row: the folder is the tune's
-head -21 "$out/tune.csv.first" >"$out/cut/tune.csv"
+head -21 "$out/tune.csv.first" >"$out/cut.csv"
+cp "$out/cut.csv" "$out/cut/tune.csv"
 tune "$out/cut"
-grep -q ', 20 in .*, 17 to evaluate$' "$out/stderr" || die "resume after 20 rows: $(grep 'to evaluate' "$out/stderr")"
-[ "$(awk 'END { print NR }' "$out/cut/tune.csv")" -eq 38 ] || die "resumed tune.csv: expected 37 rows"
+grep -q ', 20 in .*, 18 to evaluate$' "$out/stderr" || die "resume after 20 rows: $(grep 'to evaluate' "$out/stderr")"
+grep -q 'session 2 of tune.csv: 3 of those are measurements of the untuned medium' "$out/stderr" ||
+  die "resume after 20 rows: no session line: $(grep 'session' "$out/stderr")"
+[ "$(awk 'END { print NR }' "$out/cut/tune.csv")" -eq 39 ] || die "resumed tune.csv: expected 38 rows"
+head -21 "$out/cut/tune.csv" | cmp -s - "$out/cut.csv" || die "the resumed run changed the earlier rows"
+[ "$(tail -n +22 "$out/cut/tune.csv" | awk -F, '$NF != 2')" = "" ] || die "a row added by the resumed run is not of session 2"
+[ "$(tail -n +22 "$out/cut/tune.csv" | grep '^anchor,' | cut -d, -f2 | tr '\n' ' ')" = "medium-18 medium-29 medium-36 " ] ||
+  die "session 2's anchors: $(tail -n +22 "$out/cut/tune.csv" | grep '^anchor,' | cut -d, -f2,1 | tr '\n' ' ')"
+[ "$(grep -c '^anchor,medium-18,' "$out/cut/tune.csv")" -eq 2 ] || die "medium-18 of session 1 was not kept beside session 2's"
+{ head -1 "$out/tune.csv.first"; tail -n +22 "$out/tune.csv.first" | grep -v '^anchor,'; } | candidate | sort >"$out/lost"
+{ head -1 "$out/cut/tune.csv"; tail -n +22 "$out/cut/tune.csv" | grep -v '^anchor,'; } | candidate | sort >"$out/again"
+[ "$(wc -l <"$out/lost")" -eq 15 ] && cmp -s "$out/lost" "$out/again" ||
+  die "session 2 evaluated other candidates than the 15 lost: $(diff "$out/lost" "$out/again")"
+grep -q '^tune.csv holds 2 sessions' "$out/stdout" || die "the report does not say the record holds 2 sessions: $(tail -3 "$out/stdout")"
+
+# A tune.csv of the format before the session column (no such column): its rows are session 1. Whole,
+# it is resumed as it is (nothing evaluated, the file not rewritten, the same presets); without a
+# preset's row, that row and the anchors around it (the untuned medium, candidate 0, and medium-18)
+# are measured in session 2, and the file is rewritten with the column first, its rows session 1.
+mkdir -p "$out/old"
+cp "$out/t/sao-bench-outputs.txt" "$out/old/"
+sed 's/,[^,]*$//' "$out/tune.csv.first" >"$out/old.csv"
+cp "$out/old.csv" "$out/old/tune.csv"
+tune "$out/old"
+grep -q ', 37 in .*, 0 to evaluate$' "$out/stderr" || die "old format, whole: $(grep 'to evaluate' "$out/stderr")"
+cmp -s "$out/old/tune.csv" "$out/old.csv" || die "old format, whole: tune.csv was rewritten"
+cmp -s "$out/old/tune_presets.txt" "$out/presets.first" || die "old format, whole: other presets: $(diff "$out/presets.first" "$out/old/tune_presets.txt")"
+[ "$(sed -n 4p "$out/old.csv" | cut -d, -f1)" = preset ] || die "expected a preset on tune.csv's line 4: $(sed -n 4p "$out/old.csv")"
+sed 4d "$out/old.csv" >"$out/old/tune.csv"
+tune "$out/old"
+grep -q ', 36 in .*, 3 to evaluate$' "$out/stderr" || die "old format without a preset: $(grep 'to evaluate' "$out/stderr")"
+{ head -1 "$out/tune.csv.first"; sed '1d;4d;s/$/,1/' "$out/old.csv"; } >"$out/old.expected"
+head -37 "$out/old/tune.csv" | cmp -s - "$out/old.expected" || die "old format: not rewritten with session 1: $(head -37 "$out/old/tune.csv" | diff "$out/old.expected" - | head -5)"
+[ "$(tail -n +38 "$out/old/tune.csv" | awk -F, '{ print $1 "," $2 "," $NF }' | tr '\n' ' ')" = "unit,untuned-medium,2 $(sed -n 4p "$out/old.csv" | cut -d, -f1,2),2 anchor,medium-18,2 " ] ||
+  die "old format: session 2's rows: $(tail -n +38 "$out/old/tune.csv" | cut -c1-40)"
 
 # Another header (another scene set) is refused, naming the file.
 mkdir -p "$out/bad"
