@@ -568,7 +568,7 @@ int main(int argc, char** argv) {
           Settings s = presetSettings(p.preset);
           std::string variant;
           for (const std::string& a : o.sets) {
-            setFromAssignment(s, a);  // checked by parse()
+            if (Status st = setFromAssignment(s, a); !st) fail("--set " + a + ": " + st.message);  // parse() checked it
             variant += (variant.empty() ? "" : " ") + a;
           }
           if (o.framesAveraged > 1)

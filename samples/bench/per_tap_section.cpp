@@ -27,8 +27,8 @@ struct Point {
 
 struct Series {
   std::string variant, label;
-  std::map<int, Point> at;              // by sample count
-  std::map<int, Point> atGpu;           // the ladder's GL_TIME_ELAPSED times, where the query saw the work
+  std::map<int, Point> at{};            // by sample count
+  std::map<int, Point> atGpu{};         // the ladder's GL_TIME_ELAPSED times, where the query saw the work
   double slope = NAN, intercept = NAN;  // ms per tap, ms
   TimingMethod method = TimingMethod::None;  // how its times were taken
 };

@@ -90,7 +90,7 @@ TEST(PassesJson, TargetsFollowTheRegisterRuleAndTheGlesRule) {
       EXPECT_TRUE(fs::exists(folder / jv["hlsl_sm50"].get<std::string>()));
       EXPECT_TRUE(fs::exists(folder / jv["hlsl_sm60"].get<std::string>()));
       EXPECT_EQ(jv["essl"].is_null(), info.esslBlob < 0);
-      if (!jv["essl"].is_null()) EXPECT_TRUE(fs::exists(folder / jv["essl"].get<std::string>()));
+      if (!jv["essl"].is_null()) { EXPECT_TRUE(fs::exists(folder / jv["essl"].get<std::string>())); }
       onGles += info.esslBlob >= 0;
       int t = 0, u = 0;
       bool refused = false;
@@ -114,8 +114,8 @@ TEST(PassesJson, TargetsFollowTheRegisterRuleAndTheGlesRule) {
         // Only r32f is read back through its image on GLES; other loaded writes through a texture unit
         // after the pass's reads.
         EXPECT_EQ(bi.esKeptUnit >= 0, bi.readWrite && esFormat != "r32f");
-        if (bi.esKeptUnit >= 0) EXPECT_EQ(jb["gles"]["kept_texture_unit"], bi.esKeptUnit);
-        if (bi.esKeptUnit >= 0) EXPECT_EQ(bi.esKeptUnit, t);
+        if (bi.esKeptUnit >= 0) { EXPECT_EQ(jb["gles"]["kept_texture_unit"], bi.esKeptUnit); }
+        if (bi.esKeptUnit >= 0) { EXPECT_EQ(bi.esKeptUnit, t); }
       }
       EXPECT_EQ(info.esslBlob < 0, refused);
     }

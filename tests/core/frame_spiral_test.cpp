@@ -49,7 +49,7 @@ TEST(FrameSpiral, AnyConsecutiveFramesCoverRotationAndRadiusEvenly) {
       // for a power of two.
       EXPECT_LT(largestGap(rotation), 1.9 / n) << "frames " << first << " + " << n;
       EXPECT_LT(largestGap(offset), 3.0 / n) << "frames " << first << " + " << n;
-      if (first == 0) EXPECT_NEAR(largestGap(offset), 1.0 / n, 1e-6) << "frames 0 + " << n;
+      if (first == 0) { EXPECT_NEAR(largestGap(offset), 1.0 / n, 1e-6) << "frames 0 + " << n; }
     }
 }
 

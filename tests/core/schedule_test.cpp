@@ -109,7 +109,7 @@ TEST(Schedule, NoBlurReadsTheAliasedImage) {
   const auto& last = s.dispatches.back();
   EXPECT_EQ(last.pass, PassId::upsample);
   for (const auto& b : s.bindingsOf(last))
-    if (b.resource != ResourceId::csz) EXPECT_EQ(b.resource, b.write ? ResourceId::ao : ResourceId::ao_raw);
+    if (b.resource != ResourceId::csz) { EXPECT_EQ(b.resource, b.write ? ResourceId::ao : ResourceId::ao_raw); }
   ASSERT_EQ(last.hazardCount, 1u);
   EXPECT_EQ(s.hazardsBefore(last)[0].resource, ResourceId::ao_raw);
   for (const auto& d : s.dispatches) EXPECT_NE(d.pass, PassId::blur);

@@ -56,7 +56,7 @@ double angleBetween(Vec3<double> a, Vec3<double> b) {
 TEST(BentNormal, ArcMomentIsTheIntegral) {
   for (const Vec3<double> n : {unit(0, 0, 1), unit(0.6, 0.1, 0.8), unit(-0.9, 0.3, 0.2), unit(0.2, -0.5, 0.6)}) {
     const Slice<double> sl = sliceAt(0.3, n);
-    for (const auto [t0, t1] : {std::pair{sl.lo, sl.hi}, std::pair{sl.lo, 0.0}, std::pair{0.2, sl.hi},
+    for (const auto& [t0, t1] : {std::pair{sl.lo, sl.hi}, std::pair{sl.lo, 0.0}, std::pair{0.2, sl.hi},
                                 std::pair{sl.lo + 0.3, sl.hi - 0.4}, std::pair{-0.05, 0.07}}) {
       // Midpoint rule over the slice's measure cos(theta - gamma) |sin(theta)| (cos and sin of
       // gamma as the slice holds them: gamma itself is the polynomial atan's, 1e-7 rad off).

@@ -76,7 +76,7 @@ TEST(MultiBounce, NeverDarkensAndKeepsOneWithinTheFitsRounding) {
     const double one = cpu::detail::multiBounce(1.0, d);
     EXPECT_GE(one, 1.0);
     EXPECT_LE(one, 1.0001 + 1e-6) << "rho " << rho;
-    if (rho <= 0.75f) EXPECT_EQ(one, 1.0) << "rho " << rho;
+    if (rho <= 0.75f) { EXPECT_EQ(one, 1.0) << "rho " << rho; }
     EXPECT_NEAR(one, std::max(1.0, 0.9996 + 0.0005 * double(rho)), 1e-6) << "rho " << rho;
     highest = std::max(highest, one);
   }

@@ -135,8 +135,9 @@ TEST_P(MsaaDepthRefusal, ASecondLayerIsRefused) {
   EXPECT_EQ(st.code, StatusCode::InvalidInput) << st.message;
   EXPECT_NE(st.message.find("second layer"), std::string::npos) << st.message;
   EXPECT_NE(st.message.find("multisampled depth input has no second layer"), std::string::npos) << st.message;
-  if (api() == Api::Vulkan)  // names the member that says it: the depth's InputImage::samples
+  if (api() == Api::Vulkan) {  // names the member that says it: the depth's InputImage::samples
     EXPECT_NE(st.message.find("depth.samples is 4"), std::string::npos) << st.message;
+  }
   EXPECT_EQ(e->imageAllocations(), 0u) << "nothing made for the refused frame";
 }
 SAO_INSTANTIATE_APIS(MsaaDepthRefusal);

@@ -126,7 +126,7 @@ TEST_F(ExrRobustness, AttributeLargerThanTheFile) {
   const std::string good = file("good.exr"), bad = file("bad.exr");
   ASSERT_TRUE(writeDepthExr(good, d, cam).ok());
   std::vector<char> bytes = readBytes(good);
-  const std::string key = std::string("sao.clipDepth") + '\0' + "string" + '\0';
+  const std::string key("sao.clipDepth\0string\0", 21);  // the attribute's name and type, each NUL-terminated
   const auto at = std::search(bytes.begin(), bytes.end(), key.begin(), key.end());
   ASSERT_NE(at, bytes.end());
   const std::size_t size = std::size_t(at - bytes.begin()) + key.size();

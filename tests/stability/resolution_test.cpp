@@ -343,7 +343,7 @@ TEST(Backends, KeepBusyLeavesTheNextRunAlike) {
         ASSERT_TRUE(busy.ok()) << name << ": " << busy.message;
         ASSERT_TRUE(runner->run(fullResolution(), cam, in, timed, false, after).ok()) << name;
         EXPECT_EQ(maxAbsDiff(before.ao, after.ao), 0.0) << name << (in.normals ? " with normals" : "") << (timed ? ", timed" : "");
-        if (name == "gl" || name == "vulkan") EXPECT_GE(ms, 30.0) << name << ": keepBusy returned before its time";
+        if (name == "gl" || name == "vulkan") { EXPECT_GE(ms, 30.0) << name << ": keepBusy returned before its time"; }
         if (!in.normals && !timed) measured += fmt("%s%.*s: %.0f ms", measured.empty() ? "" : "; ", int(name.size()), name.data(), ms);
       }
   }

@@ -44,7 +44,7 @@ struct CheckedInputs {
   LayerViews views;                            // per-render views of array layers (Inputs::layer)
   gen::InputSet<TextureInfo> inputs;  // texture 0 where absent; a layer's view for an array
   TextureInfo output;
-  std::optional<Offset> region;  // Inputs::region: where the region starts in every input
+  std::optional<Offset> region{};  // Inputs::region: where the region starts in every input
   PlanInputs planInputs;
 };
 

@@ -45,7 +45,7 @@ struct EngineFrame {
   // By resource id, the kind=input resources only: the depth always, the others when supplied
   // (their variants read them: normals, a second depth layer, motion vectors).
   std::array<InputImage, gen::kResources.size()> inputs{};
-  std::optional<Offset> region;  // the inputs are larger images holding the region from here
+  std::optional<Offset> region{};  // the inputs are larger images holding the region from here
   gen::Format outputFormat = gen::Format::R16F;
   bool engineOutput = true;                    // false: the effect's own output image
   std::uint32_t frameIndex = 0;                // the frame's spiral (sao/spiral.h)

@@ -94,7 +94,7 @@ struct SuppliedImage {
   // Inputs: Inputs::region, the texel of the supplied image that holds the region's first texel
   // (the guard band's corner); the region, plan.inputExtent texels from here, must lie inside
   // `extent`. Unset: `extent` must be plan.inputExtent.
-  std::optional<Offset> region;
+  std::optional<Offset> region{};
 };
 using SuppliedImages = std::array<SuppliedImage, gen::kResources.size()>;
 

@@ -75,7 +75,7 @@ struct Inputs {
   // Optional: where the region starts in depth, depth2 and normals (shared; row 0 first, as the
   // GPU backends' Inputs::region). Unset, every input must be exactly the region's size; a region
   // outside an image is refused, never clamped.
-  std::optional<Offset> region;
+  std::optional<Offset> region{};
   // The output as the engine wants it (sao/output.h): its format (R16F, R8, RGBA8 or RGBA16F) and
   // the channels that receive A. Result::ao then has the format's channel count, and in Float
   // precision holds what the GPU backends store (binary16 values or multiples of 1/255).

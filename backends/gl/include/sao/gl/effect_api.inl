@@ -63,7 +63,7 @@ struct Inputs : gen::InputSet<InputTexture> {
   // input must be exactly the region's size. A region that does not lie inside every texture given
   // is refused (InvalidInput naming the offset, the extent and the texture's size), never clamped.
   // Changing it does not plan again.
-  std::optional<Offset> region;
+  std::optional<Offset> region{};
   // Optional output: your texture of the viewport size whose level 0 receives A, in GL_R16F,
   // GL_R8, GL_RGBA8 or GL_RGBA16F (sao/output.h says how each rounds A; another format is
   // refused with UnsupportedFormat naming it and this list). 0: the effect writes into a GL_R16F

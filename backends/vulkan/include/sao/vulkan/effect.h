@@ -176,7 +176,7 @@ struct Inputs : gen::InputSet<InputImage> {
   // plan().inputExtent. Changing it does not plan again. A region that does not lie
   // inside every image given is refused (InvalidInput naming the offset, the extent and the
   // image's size), never clamped.
-  std::optional<Offset> region;
+  std::optional<Offset> region{};
   // The frame's number, for an engine that accumulates frames (TAA or its own temporal filter):
   // frame k turns and shifts every pixel's spiral (sao::frameSpiral, sao/spiral.h), so N
   // consecutive frames sample the disk evenly; frame 0 (the default) is the paper's spiral. Count

@@ -38,10 +38,10 @@ struct Scene {
   std::vector<View> views;  // at least one
   // The unit the scene states: built-in scenes and glTF files metres, a scene file its `units`
   // line; none for OBJ and PLY (scenes::chooseUnits decides, units.h).
-  std::optional<DeclaredUnits> units;
+  std::optional<DeclaredUnits> units{};
   // What loadScene changed without refusing the file, one line each ("PATH: 3 of 12 triangles
   // are degenerate ... left out"), for the programs to print.
-  std::vector<std::string> warnings;
+  std::vector<std::string> warnings{};
 };
 
 // "sponza-like" (the default), "sphere-plane", "crease", "thin", "gears".
