@@ -76,7 +76,7 @@ std::vector<char> handMadeExr(int channels, int w, int h, std::uint8_t compressi
                               bool tiled = false, std::uint32_t tile = 0) {
   Bytes chlist;
   for (int c = 0; c < channels; ++c) {
-    char name[8];
+    char name[16];  // room for any int: -Wformat-truncation cannot bound c
     std::snprintf(name, sizeof name, "c%03d", c);
     chlist.str(name).i32(2).u8(0).u8(0).u8(0).u8(0).i32(1).i32(1);  // FLOAT, linear 0, sampling 1x1
   }

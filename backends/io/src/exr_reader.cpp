@@ -348,7 +348,7 @@ Status Input::readChannels(const std::vector<std::string>& names, std::vector<fl
     fileIndex.push_back(int(it - list.begin()));
   }
 
-  exr_decode_pipeline_t decoder = EXR_DECODE_PIPELINE_INITIALIZER;
+  exr_decode_pipeline_t decoder{};  // EXR_DECODE_PIPELINE_INITIALIZER's all-zero state; its {0} warns under clang's -Wextra
   bool decoderReady = false;
   struct Cleanup {
     exr_context_t ctxt;
