@@ -30,7 +30,8 @@
 #pragma sao setting bool  use_z_hierarchy     default=true                                  "Read taps from the z MIP hierarchy (false: always level 0, the no-MIP baseline)"
 #pragma sao setting int   blur_radius         default=1     range=[0,8]                     "Bilateral blur taps on each side of the centre (0: no blur)"
 #pragma sao setting int   blur_stride         default=1     range=[1,4]            unit=px  "Pixels between bilateral blur taps"
-#pragma sao setting float blur_edge_sharpness default=10.0  range=[0,1000]         unit=1/m "Bilateral blur depth weight max(0, 1 - sharpness*|dz|): taps 1/sharpness apart in z get weight 0"
+#pragma sao setting float blur_edge_sharpness default=10.0  range=[0,1000]         unit=1/m "Bilateral blur depth weight max(0, 1 - (sharpness + blur_edge_relative/|z|)*|dz|): with blur_edge_relative 0, taps 1/sharpness apart in z get weight 0"
+#pragma sao setting float blur_edge_relative  default=0.0   range=[0,10000]                 "Bilateral blur depth weight, the part relative to the centre's distance: taps |dz|/|z| = 1/blur_edge_relative apart get weight 0 (with blur_edge_sharpness 0). Scale-free: a scene in millimetres blurs as the same scene in metres; blur_edge_sharpness's 1/m does not"
 #pragma sao setting float quad_edge_threshold default=0.02  range=[0,10]           unit=m   "2x2 reconstruction: quad neighbours average only when their z differ by less than this"
 #pragma sao setting int   resolution_divisor  default=2     values=[1,2,4]                  "AO resolution per axis: 1 full, 2 half, 4 quarter. ao_sample, the 2x2 reconstruction and the blurs run at the viewport over it (rounded up) and a depth-aware upsample writes the full-resolution output"
 #pragma sao setting float fade_start          default=0.0   range=[0,100000]       unit=m   "Distance fade: camera distance -z where the AO starts to fade towards 1 (unoccluded); used only when fade_end > 0, and must then be below fade_end"
@@ -58,6 +59,7 @@
 #pragma sao inert temporal_depth_tolerance when=temporal==false          "no temporal accumulation: there is no history texel for it to reject"
 #pragma sao inert blur_stride              when=blur_radius==0           "no bilateral blur: the blur pass does not run"
 #pragma sao inert blur_edge_sharpness      when=blur_radius==0           "no bilateral blur: the blur pass does not run"
+#pragma sao inert blur_edge_relative       when=blur_radius==0           "no bilateral blur: the blur pass does not run"
 #pragma sao inert mip_switch_log2          when=use_z_hierarchy==false   "no z MIP hierarchy: every tap reads level 0, there is no level to switch to"
 #pragma sao inert half_intermediates       when=direct_output==true      "ao_sample_output writes the output itself: there are no (A, key) intermediate images"
 #pragma sao inert bias                     when=estimator==1             "the visibility estimator has no eq. 1 term for a bias to offset"
@@ -246,6 +248,7 @@ layout(std140, binding = 0) uniform SaoParams {
     int   slices;               // [384] visibility estimator: slices per pixel, 1..SAO_MAX_SLICES (0 with estimator 0)
     uint  slice_turn;           // [388] visibility estimator: the angle between slices, 2^-32 turns (half a turn over slices)
     float thickness_min;        // [392] visibility estimator, thickness_model 1: SAO_WIDTH_MIN_M in view units; 0: thickness_model 0 (every slab thickness deep)
+    float blur_edge_relative;   // [396] bilateral depth weight's part per |dz|/|z| (unitless: the same for any key unit)
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -881,14 +884,14 @@ shared vec2 sao_blur_tile[SAO_BLUR_COLS * (SAO_BLUR_ROWS + 2 * SAO_BLUR_HALO)]; 
 vec2 sao_blur_tile_column(int col, int row, int R, int stride)
 {
     vec2 centre = sao_blur_tile[row * SAO_BLUR_COLS + col];
+    float k = sao_blur_sharpness(centre.y, blur_edge_sharpness, blur_edge_relative);
     float sum = 0.0;
     float wsum = 0.0;
     int t = -R;
     do {
         vec2 tap = sao_blur_tile[(row + t * stride) * SAO_BLUR_COLS + col];
         float w = sao_is_sky(tap.y) ? 0.0
-                                    : sao_blur_weight(t, tap.y, centre.y, blur_edge_sharpness, blur_weights_1_4,
-                                                      blur_weights_5_8);
+                                    : sao_blur_weight(t, tap.y, centre.y, k, blur_weights_1_4, blur_weights_5_8);
         sum += w * tap.x;
         wsum += w;
     } while (++t <= R);
@@ -909,8 +912,8 @@ void sao_blur_main()
         ivec2 q = origin + ivec2(i % SAO_BLUR_COLS, i / SAO_BLUR_COLS - halo);
         vec2 h = vec2(1.0, 0.0);  // rows off the image: sky, which the vertical taps skip
         if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size)))
-            h = sao_bilateral_blur(in_ao_raw, q, ivec2(1, 0), R, stride, blur_edge_sharpness, blur_weights_1_4,
-                                   blur_weights_5_8);
+            h = sao_bilateral_blur(in_ao_raw, q, ivec2(1, 0), R, stride, blur_edge_sharpness, blur_edge_relative,
+                                   blur_weights_1_4, blur_weights_5_8);
         sao_blur_tile[i] = h;
         i += n;
     } while (i < count);

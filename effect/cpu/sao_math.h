@@ -341,6 +341,8 @@ void bilateralBlur(const Image<T>& src, int x, int y, int dx, int dy, const Bloc
     return;
   }
   const int R = std::clamp(P.blur_radius, 0, gen::SAO_MAX_BLUR_RADIUS);
+  // sao_blur_sharpness
+  const T sharpness = P.blur_edge_sharpness + P.blur_edge_relative / glslMax(std::abs(centreZ), T(1.0e-20f));
   T sum = T(0);
   T wsum = T(0);
   for (int t = -R; t <= R; ++t) {
@@ -353,7 +355,7 @@ void bilateralBlur(const Image<T>& src, int x, int y, int dx, int dy, const Bloc
       k = src.at(qx, qy, 1);
       if (isSky(k)) continue;
     }
-    const T w = blurGauss(t, P) * glslMax(T(0), T(1) - P.blur_edge_sharpness * std::abs(k - centreZ));
+    const T w = blurGauss(t, P) * glslMax(T(0), T(1) - sharpness * std::abs(k - centreZ));
     sum += w * a;
     wsum += w;
   }

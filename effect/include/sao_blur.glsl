@@ -13,22 +13,34 @@ float sao_blur_gauss(int t, vec4 w_1_4, vec4 w_5_8)
     return (a <= 4) ? w_1_4[clamp(a - 1, 0, 3)] : w_5_8[clamp(a - 5, 0, 3)];
 }
 
-// A tap's weight: gauss(t) * max(0, 1 - sharpness * |key - centre key|) (blur's one formula).
+// The depth weight's slope at a centre key: sharpness (per key unit) plus relative / |centre key|, the
+// part that scales with distance (a scene in millimetres has edges where the same scene in metres
+// does). The guard keeps 0 / 0 out for a sky centre (key 0), whose result is (1, 0) anyway; with
+// relative = 0 the sum is sharpness exactly.
+float sao_blur_sharpness(float centre_key, float sharpness, float relative)
+{
+    return sharpness + relative / max(abs(centre_key), 1.0e-20);
+}
+
+// A tap's weight: gauss(t) * max(0, 1 - sharpness * |key - centre key|) (blur's one formula), with
+// sharpness from sao_blur_sharpness.
 float sao_blur_weight(int t, float key, float centre_key, float sharpness, vec4 w_1_4, vec4 w_5_8)
 {
     return sao_blur_gauss(t, w_1_4, w_5_8) * max(0.0, 1.0 - sharpness * abs(key - centre_key));
 }
 
 // Bilateral 1D blur of src (.x = A, .y = key z) at texel p along dir ((1,0) or (0,1)):
-// taps t = -R..R (ascending) at p + dir*t*stride, weight gauss(t) * max(0, 1 - sharpness*|dz|).
+// taps t = -R..R (ascending) at p + dir*t*stride, weight gauss(t) * max(0, 1 - k*|dz|), k =
+// sao_blur_sharpness(centre key, sharpness, relative).
 // Taps off the texture or on sky weigh 0; a sky centre gives (1, 0). Returns (A, key).
 // Branch-free and a do-while loop (t = 0 always runs): a software rasteriser (llvmpipe) runs every
 // branch for every pixel and a for loop's body once more than its largest trip count; a tap
 // weighing 0 adds +0.0, so the sums are those of skipping it.
 vec2 sao_bilateral_blur(sampler2D src, ivec2 p, ivec2 dir, int radius_taps, int stride,
-                        float sharpness, vec4 w_1_4, vec4 w_5_8)
+                        float sharpness, float relative, vec4 w_1_4, vec4 w_5_8)
 {
     vec2 centre = texelFetch(src, p, 0).xy;
+    float k = sao_blur_sharpness(centre.y, sharpness, relative);
     ivec2 size = textureSize(src, 0);
     int R = clamp(radius_taps, 0, SAO_MAX_BLUR_RADIUS);
     float sum = 0.0;
@@ -38,7 +50,7 @@ vec2 sao_bilateral_blur(sampler2D src, ivec2 p, ivec2 dir, int radius_taps, int 
         ivec2 q = p + dir * (t * stride);
         bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
         vec2 tap = texelFetch(src, clamp(q, ivec2(0), size - 1), 0).xy;
-        float w = (inside && !sao_is_sky(tap.y)) ? sao_blur_weight(t, tap.y, centre.y, sharpness, w_1_4, w_5_8) : 0.0;
+        float w = (inside && !sao_is_sky(tap.y)) ? sao_blur_weight(t, tap.y, centre.y, k, w_1_4, w_5_8) : 0.0;
         sum += w * tap.x;
         wsum += w;
     } while (++t <= R);

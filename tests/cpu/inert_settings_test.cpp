@@ -31,6 +31,7 @@ TEST(InertRules, DeclaredRelations) {
                        "temporal_depth_tolerance while temporal = false",
                        "blur_stride while blur_radius = 0",
                        "blur_edge_sharpness while blur_radius = 0",
+                       "blur_edge_relative while blur_radius = 0",
                        "mip_switch_log2 while use_z_hierarchy = false",
                        "half_intermediates while blur_radius = 0, resolution_divisor = 1 and temporal = false",
                        "bias while estimator = 1",
@@ -48,7 +49,8 @@ TEST(InertRules, RuleFunctionFollowsTheFinalSettings) {
   EXPECT_EQ(inertWhen(s, SettingId::fade_start), "fade_end = 0");
   EXPECT_EQ(inertWhen(s, SettingId::temporal_hysteresis), "temporal = false");
   EXPECT_EQ(inertWhen(s, SettingId::temporal_depth_tolerance), "temporal = false");
-  for (SettingId id : {SettingId::blur_stride, SettingId::blur_edge_sharpness, SettingId::mip_switch_log2,
+  for (SettingId id : {SettingId::blur_stride, SettingId::blur_edge_sharpness, SettingId::blur_edge_relative,
+                       SettingId::mip_switch_log2,
                        SettingId::half_intermediates, SettingId::radius, SettingId::fade_end, SettingId::temporal,
                        SettingId::blur_radius, SettingId::quad_edge_threshold, SettingId::samples})
     EXPECT_EQ(inertRule(s, id), nullptr) << nameOf(id);
@@ -62,6 +64,7 @@ TEST(InertRules, RuleFunctionFollowsTheFinalSettings) {
   s.blur_radius = 0;
   EXPECT_EQ(inertWhen(s, SettingId::blur_stride), "blur_radius = 0");
   EXPECT_EQ(inertWhen(s, SettingId::blur_edge_sharpness), "blur_radius = 0");
+  EXPECT_EQ(inertWhen(s, SettingId::blur_edge_relative), "blur_radius = 0");
   s.resolution_divisor = 1;  // with temporal: ao_sample still writes (A, key) for the history
   EXPECT_EQ(inertRule(s, SettingId::half_intermediates), nullptr);
   s.temporal = false;  // nothing follows the AO: ao_sample_output writes the output itself
@@ -151,7 +154,8 @@ TEST(InertRules, WhereNoRuleHoldsTheSettingChangesTheOutput) {
   const Settings alchemy;  // the defaults: the alchemy estimator's bias, epsilon and spiral
   const std::vector<std::pair<SettingId, Settings>> cases = {
       {SettingId::fade_start, fade},         {SettingId::blur_stride, blur},
-      {SettingId::blur_edge_sharpness, blur}, {SettingId::mip_switch_log2, mips},
+      {SettingId::blur_edge_sharpness, blur}, {SettingId::blur_edge_relative, blur},
+      {SettingId::mip_switch_log2, mips},
       {SettingId::half_intermediates, direct}, {SettingId::thickness, visibility},
       {SettingId::depth_tolerance, visibility}, {SettingId::slices, visibility},
       {SettingId::thickness_model, visibility},

@@ -245,6 +245,7 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
     p.key_to_view = 1.0f;
     p.blur_edge_sharpness = f(s.blur_edge_sharpness / u);
   }
+  p.blur_edge_relative = s.blur_edge_relative;  // per |dz|/|z|: the same in any key unit
   p.blur_radius = s.blur_radius;
   p.blur_stride = s.blur_stride;
 

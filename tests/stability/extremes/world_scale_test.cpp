@@ -175,6 +175,63 @@ TEST(WorldScale, PhysicalScaleWithTheRadiusLeavesAUnchanged) {
          "A unchanged within 1/255 with sigma fixed (sigma is unitless: the sum is scaled by r)", measured);
 }
 
+TEST(WorldScale, ARelativeBlurEdgeNeedsNoRescaling) {
+  // blur_edge_relative weighs a blur tap by |dz| / |z|, which no unit and no physical scale
+  // changes: it is uploaded as it is for any metersToViewUnits (either key), and the scene k
+  // times larger in metres (radius, epsilon and the quad threshold scaled, as above) keeps A with
+  // blur_edge_sharpness 0 and blur_edge_relative fixed. With the sharpness fixed at its 10/m
+  // instead, A must change: the test tells the two apart. rg32f keys: binary16 keys round z to
+  // 2^-11 of itself, a change of |dz| / |z| that is not the same at both scales (measured with
+  // rg16f keys: up to 2/255 apart).
+  Settings rel = fullResolution();
+  rel.half_intermediates = false;
+  rel.blur_radius = 2;
+  rel.blur_edge_sharpness = 0.0f;
+  rel.blur_edge_relative = 200.0f;
+  for (bool halfKeys : {false, true})
+    for (double u : {1.0, 1e3, 1e-3}) {
+      Settings s = rel;
+      s.half_intermediates = halfKeys;
+      Camera c = camera(16, 16, 0.1 * u, kInf, ClipDepth::ZeroToOne, true);
+      c.metersToViewUnits = u;
+      ParamBlock p;
+      ASSERT_TRUE(computeConstants(s, c, DepthEncoding::Hardware, p).ok());
+      EXPECT_EQ(p.blur_edge_relative, rel.blur_edge_relative) << "u = " << u << ", half keys " << halfKeys;
+      EXPECT_EQ(p.blur_edge_sharpness, 0.0f) << "u = " << u;
+    }
+  const test::Scene scene = test::sphereOnPlaneScene();
+  const Camera cam = camera(64, 48, 0.1, kInf, ClipDepth::ZeroToOne, true, 8);
+  Settings absolute = rel;
+  absolute.blur_edge_sharpness = 10.0f;
+  absolute.blur_edge_relative = 0.0f;
+  const SceneRun r1 = runScene("relative blur edge, scale 1", rel, cam, scene, DepthFormat::D32F);
+  const SceneRun a1 = runScene("absolute blur edge, scale 1", absolute, cam, scene, DepthFormat::D32F);
+  std::string measured;
+  for (double k : {0.1, 10.0}) {
+    auto scaled = [k](Settings s) {
+      s.radius = float(1.0 * k);
+      s.epsilon = float(1e-4 * k * k);
+      s.quad_edge_threshold = float(0.02 * k);
+      return s;
+    };
+    const Camera ck = camera(64, 48, 0.1 * k, kInf, ClipDepth::ZeroToOne, true, 8);
+    const test::Scene sk = scaledScene(scene, k);
+    const SceneRun r = runScene(fmt("relative blur edge, scale %g", k), scaled(rel), ck, sk, DepthFormat::D32F);
+    const SceneRun a = runScene(fmt("absolute blur edge, scale %g", k), scaled(absolute), ck, sk, DepthFormat::D32F);
+    for (const BackendRun& b : r.runs.runs)
+      if (const BackendRun* b1 = r1.runs.find(b.name)) {
+        const double d = maxAbsDiff(b.out.ao, b1->out.ao);
+        EXPECT_LE(d, k255) << "k = " << k << " on " << b.name << ": the relative edge at another scale";
+        const double da = maxAbsDiff(a.runs.find(b.name)->out.ao, a1.runs.find(b.name)->out.ao);
+        EXPECT_GT(da, k255) << "k = " << k << " on " << b.name << ": a sharpness in 1/m should change A";
+        if (b.name == "cpu") measured += fmt("%sk=%g: relative %.2g, absolute %.2g", measured.empty() ? "" : "; ", k, d, da);
+      }
+  }
+  report("scene scaled x0.1 / x10 in metres, blur radius 2, rg32f keys: blur_edge_relative 200 fixed against "
+         "blur_edge_sharpness 10/m fixed",
+         "A unchanged within 1/255 with the relative edge; the absolute one changes it", measured);
+}
+
 TEST(WorldScale, UnitsSweepFindsTheRangeThatHolds) {
   // metersToViewUnits = 10^k, k = -20 .. 20, on the float and double references, compared with
   // u = 1 (default settings: the block converts them, finding F2). The supported range is
