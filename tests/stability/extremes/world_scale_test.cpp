@@ -141,6 +141,16 @@ TEST(WorldScale, HalfIntermediatesKeepTheirKeysInAnyUnit) {
          "max |A(rg16f) - A(rg32f)| <= 2/255, |A(u) - A(1)| <= 1/255 on every backend; keys finite, in metres", measured);
 }
 
+// The same geometry k times larger in metres: the settings with a length (radius, epsilon in m²,
+// the quad threshold) scaled alike, and the camera's near plane with them.
+Settings scaledLengths(Settings s, double k) {
+  s.radius = float(1.0 * k);
+  s.epsilon = float(1e-4 * k * k);
+  s.quad_edge_threshold = float(0.02 * k);
+  return s;
+}
+Camera physicalScaleCamera(double k) { return camera(64, 48, 0.1 * k, kInf, ClipDepth::ZeroToOne, true, 8); }
+
 TEST(WorldScale, PhysicalScaleWithTheRadiusLeavesAUnchanged) {
   // The same geometry made k times larger in metres (u = 1), with radius, ε, the quad threshold
   // and the blur sharpness scaled alike. Eq. 1's sum has the unit 1/length; σ is unitless because
@@ -148,16 +158,12 @@ TEST(WorldScale, PhysicalScaleWithTheRadiusLeavesAUnchanged) {
   // with σ fixed. The run with σ·k (what a σ in metres needed) must differ: it shows the test can
   // tell the two apart.
   const test::Scene scene = test::sphereOnPlaneScene();
-  const Camera cam = camera(64, 48, 0.1, kInf, ClipDepth::ZeroToOne, true, 8);
-  const SceneRun r1 = runScene("physical scale 1", fullResolution(), cam, scene, DepthFormat::D32F);
+  const SceneRun r1 = runScene("physical scale 1", fullResolution(), physicalScaleCamera(1.0), scene, DepthFormat::D32F);
   std::string measured;
   for (double k : {0.1, 10.0}) {
-    Settings s = fullResolution();
-    s.radius = float(1.0 * k);
-    s.epsilon = float(1e-4 * k * k);
-    s.quad_edge_threshold = float(0.02 * k);
+    Settings s = scaledLengths(fullResolution(), k);
     s.blur_edge_sharpness = float(10.0 / k);
-    Camera ck = camera(64, 48, 0.1 * k, kInf, ClipDepth::ZeroToOne, true, 8);
+    const Camera ck = physicalScaleCamera(k);
     const test::Scene sk = scaledScene(scene, k);
     const SceneRun plain = runScene(fmt("physical scale %g, sigma 1", k), s, ck, sk, DepthFormat::D32F);
     s.intensity = float(k);
@@ -200,7 +206,7 @@ TEST(WorldScale, ARelativeBlurEdgeNeedsNoRescaling) {
       EXPECT_EQ(p.blur_edge_sharpness, 0.0f) << "u = " << u;
     }
   const test::Scene scene = test::sphereOnPlaneScene();
-  const Camera cam = camera(64, 48, 0.1, kInf, ClipDepth::ZeroToOne, true, 8);
+  const Camera cam = physicalScaleCamera(1.0);
   Settings absolute = rel;
   absolute.blur_edge_sharpness = 10.0f;
   absolute.blur_edge_relative = 0.0f;
@@ -208,16 +214,10 @@ TEST(WorldScale, ARelativeBlurEdgeNeedsNoRescaling) {
   const SceneRun a1 = runScene("absolute blur edge, scale 1", absolute, cam, scene, DepthFormat::D32F);
   std::string measured;
   for (double k : {0.1, 10.0}) {
-    auto scaled = [k](Settings s) {
-      s.radius = float(1.0 * k);
-      s.epsilon = float(1e-4 * k * k);
-      s.quad_edge_threshold = float(0.02 * k);
-      return s;
-    };
-    const Camera ck = camera(64, 48, 0.1 * k, kInf, ClipDepth::ZeroToOne, true, 8);
+    const Camera ck = physicalScaleCamera(k);
     const test::Scene sk = scaledScene(scene, k);
-    const SceneRun r = runScene(fmt("relative blur edge, scale %g", k), scaled(rel), ck, sk, DepthFormat::D32F);
-    const SceneRun a = runScene(fmt("absolute blur edge, scale %g", k), scaled(absolute), ck, sk, DepthFormat::D32F);
+    const SceneRun r = runScene(fmt("relative blur edge, scale %g", k), scaledLengths(rel, k), ck, sk, DepthFormat::D32F);
+    const SceneRun a = runScene(fmt("absolute blur edge, scale %g", k), scaledLengths(absolute, k), ck, sk, DepthFormat::D32F);
     for (const BackendRun& b : r.runs.runs)
       if (const BackendRun* b1 = r1.runs.find(b.name)) {
         const double d = maxAbsDiff(b.out.ao, b1->out.ao);
