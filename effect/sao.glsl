@@ -31,6 +31,7 @@
 #pragma sao setting int   blur_radius         default=1     range=[0,8]                     "Bilateral blur taps on each side of the centre (0: no blur)"
 #pragma sao setting int   blur_stride         default=1     range=[1,4]            unit=px  "Pixels between bilateral blur taps"
 #pragma sao setting float blur_edge_sharpness default=10.0  range=[0,1000]         unit=1/m "Bilateral blur depth weight max(0, 1 - (sharpness + blur_edge_relative/|z|)*|dz|): with blur_edge_relative 0, taps 1/sharpness apart in z get weight 0"
+#pragma sao setting bool  blur_edge_slope     default=true                                  "Bilateral blur: a tap's z is compared with the centre's plane along the blur direction (the flatter of the centre's two one-sided slopes to its neighbours blur_stride away; none at a ridge or a valley) instead of with the centre's z, so that a slanted floor blurs as a flat one does while a step still cuts"
 #pragma sao setting float blur_edge_relative  default=0.0   range=[0,10000]                 "Bilateral blur depth weight, the part relative to the centre's distance: taps |dz|/|z| = 1/blur_edge_relative apart get weight 0 (with blur_edge_sharpness 0). Scale-free: a scene in millimetres blurs as the same scene in metres; blur_edge_sharpness's 1/m does not"
 #pragma sao setting float quad_edge_threshold default=0.02  range=[0,10]           unit=m   "2x2 reconstruction: quad neighbours average only when their z differ by less than this"
 #pragma sao setting int   resolution_divisor  default=2     values=[1,2,4]                  "AO resolution per axis: 1 full, 2 half, 4 quarter. ao_sample, the 2x2 reconstruction and the blurs run at the viewport over it (rounded up) and a depth-aware upsample writes the full-resolution output"
@@ -60,6 +61,7 @@
 #pragma sao inert blur_stride              when=blur_radius==0           "no bilateral blur: the blur pass does not run"
 #pragma sao inert blur_edge_sharpness      when=blur_radius==0           "no bilateral blur: the blur pass does not run"
 #pragma sao inert blur_edge_relative       when=blur_radius==0           "no bilateral blur: the blur pass does not run"
+#pragma sao inert blur_edge_slope          when=blur_radius==0           "no bilateral blur: the blur pass does not run"
 #pragma sao inert mip_switch_log2          when=use_z_hierarchy==false   "no z MIP hierarchy: every tap reads level 0, there is no level to switch to"
 #pragma sao inert half_intermediates       when=direct_output==true      "ao_sample_output writes the output itself: there are no (A, key) intermediate images"
 #pragma sao inert bias                     when=estimator==1             "the visibility estimator has no eq. 1 term for a bias to offset"
@@ -82,13 +84,16 @@
 // cost flat in the radius on a GPU). low to high keep the paper's estimator; ultra and reference
 // are the visibility estimator with thickness from width up to 1 m. The settings' defaults above
 // are the high preset (no visibility point met the default's blotch limit at its time). Unlisted
-// settings keep their defaults.
+// settings keep their defaults. Since 2026-12-08 every preset blurs along the slope
+// (blur_edge_slope's default: each one nearer (a) on every scene, 640x360) and ultra and reference
+// weigh the blur's depth edge relative to z (1/200; the hold-out engine's fins), BENCHMARKS "The
+// blur's depth edge along a slope".
 // ---------------------------------------------------------------------------------------------
 #pragma sao preset low       samples=4 blur_radius=1 blur_stride=1 use_z_hierarchy=true mip_switch_log2=3 resolution_divisor=4 "4 taps, 2x2 + 3-tap blur (stride 1), z hierarchy (q' = 8 px), 1/4 resolution"
 #pragma sao preset medium    samples=24 blur_radius=1 blur_stride=1 use_z_hierarchy=true mip_switch_log2=4 resolution_divisor=2 "24 taps, 2x2 + 3-tap blur (stride 1), z hierarchy (q' = 16 px), 1/2 resolution"
 #pragma sao preset high      samples=48 blur_radius=1 blur_stride=1 use_z_hierarchy=true mip_switch_log2=4 resolution_divisor=2 "48 taps, 2x2 + 3-tap blur (stride 1), z hierarchy (q' = 16 px), 1/2 resolution: the settings' defaults"
-#pragma sao preset ultra     samples=32 blur_radius=2 blur_stride=1 use_z_hierarchy=true mip_switch_log2=4 resolution_divisor=2 estimator=1 slices=2 thickness=1 thickness_model=1 "visibility (2 slices, thickness from width up to 1 m), 32 taps, 2x2 + 5-tap blur (stride 1), z hierarchy (q' = 16 px), 1/2 resolution"
-#pragma sao preset reference samples=32 blur_radius=3 blur_stride=2 use_z_hierarchy=true mip_switch_log2=4 resolution_divisor=1 estimator=1 slices=2 thickness=1 thickness_model=1 "visibility (2 slices, thickness from width up to 1 m), 32 taps, 2x2 + 7-tap blur (stride 2), z hierarchy (q' = 16 px), full resolution"
+#pragma sao preset ultra     samples=32 blur_radius=2 blur_stride=1 use_z_hierarchy=true mip_switch_log2=4 resolution_divisor=2 blur_edge_sharpness=0 estimator=1 slices=2 thickness=1 thickness_model=1 blur_edge_relative=200 "visibility (2 slices, thickness from width up to 1 m), 32 taps, 2x2 + 5-tap blur (stride 1, edge 1/200 of z), z hierarchy (q' = 16 px), 1/2 resolution"
+#pragma sao preset reference samples=32 blur_radius=3 blur_stride=2 use_z_hierarchy=true mip_switch_log2=4 resolution_divisor=1 blur_edge_sharpness=0 estimator=1 slices=2 thickness=1 thickness_model=1 blur_edge_relative=200 "visibility (2 slices, thickness from width up to 1 m), 32 taps, 2x2 + 7-tap blur (stride 2, edge 1/200 of z), z hierarchy (q' = 16 px), full resolution"
 
 // ---------------------------------------------------------------------------------------------
 // Constants
@@ -249,6 +254,7 @@ layout(std140, binding = 0) uniform SaoParams {
     uint  slice_turn;           // [388] visibility estimator: the angle between slices, 2^-32 turns (half a turn over slices)
     float thickness_min;        // [392] visibility estimator, thickness_model 1: SAO_WIDTH_MIN_M in view units; 0: thickness_model 0 (every slab thickness deep)
     float blur_edge_relative;   // [396] bilateral depth weight's part per |dz|/|z| (unitless: the same for any key unit)
+    int   blur_edge_slope;      // [400] 1: a blur tap's key is compared with the centre's plane (sao_blur_slope); 0: with the centre's key
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -885,13 +891,18 @@ vec2 sao_blur_tile_column(int col, int row, int R, int stride)
 {
     vec2 centre = sao_blur_tile[row * SAO_BLUR_COLS + col];
     float k = sao_blur_sharpness(centre.y, blur_edge_sharpness, blur_edge_relative);
+    // Rows off the image hold sky: no slope there.
+    float g = blur_edge_slope != 0 ? sao_blur_slope(sao_blur_tile[(row - stride) * SAO_BLUR_COLS + col].y, centre.y,
+                                                    sao_blur_tile[(row + stride) * SAO_BLUR_COLS + col].y)
+                                   : 0.0;
     float sum = 0.0;
     float wsum = 0.0;
     int t = -R;
     do {
         vec2 tap = sao_blur_tile[(row + t * stride) * SAO_BLUR_COLS + col];
         float w = sao_is_sky(tap.y) ? 0.0
-                                    : sao_blur_weight(t, tap.y, centre.y, k, blur_weights_1_4, blur_weights_5_8);
+                                    : sao_blur_weight(t, tap.y, centre.y + float(t) * g, k, blur_weights_1_4,
+                                                      blur_weights_5_8);
         sum += w * tap.x;
         wsum += w;
     } while (++t <= R);
@@ -913,7 +924,7 @@ void sao_blur_main()
         vec2 h = vec2(1.0, 0.0);  // rows off the image: sky, which the vertical taps skip
         if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size)))
             h = sao_bilateral_blur(in_ao_raw, q, ivec2(1, 0), R, stride, blur_edge_sharpness, blur_edge_relative,
-                                   blur_weights_1_4, blur_weights_5_8);
+                                   blur_edge_slope != 0, blur_weights_1_4, blur_weights_5_8);
         sao_blur_tile[i] = h;
         i += n;
     } while (i < count);

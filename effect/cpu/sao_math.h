@@ -331,6 +331,14 @@ T blurGauss(int t, const Block<T>& P) {
   return (a <= 4) ? P.blur_weights_1_4[std::clamp(a - 1, 0, 3)] : P.blur_weights_5_8[std::clamp(a - 5, 0, 3)];
 }
 
+// sao_blur_slope: the flatter one-sided slope (minmod), 0 at a ridge, a valley or next to sky.
+template <typename T>
+T blurSlope(T km, T k0, T kp) {
+  const T gm = k0 - km, gp = kp - k0;
+  const bool none = isSky(km) || isSky(kp) || ((gp > T(0)) != (gm > T(0)));
+  return none ? T(0) : (std::abs(gp) < std::abs(gm) ? gp : gm);
+}
+
 // Bilateral 1D blur of the 2-channel image src at (x, y) along (dx, dy); writes (A, key).
 template <typename T>
 void bilateralBlur(const Image<T>& src, int x, int y, int dx, int dy, const Block<T>& P, T& outA, T& outKey) {
@@ -343,6 +351,13 @@ void bilateralBlur(const Image<T>& src, int x, int y, int dx, int dy, const Bloc
   const int R = std::clamp(P.blur_radius, 0, gen::SAO_MAX_BLUR_RADIUS);
   // sao_blur_sharpness
   const T sharpness = P.blur_edge_sharpness + P.blur_edge_relative / glslMax(std::abs(centreZ), T(1.0e-20f));
+  // The centre's plane (blur_edge_slope): its neighbours a stride away, both inside the image. The
+  // vertical pass reads the horizontal pass's keys (each the centre's own), as the shader's tile.
+  T g = T(0);
+  const int mx = x - dx * P.blur_stride, my = y - dy * P.blur_stride;
+  const int px = x + dx * P.blur_stride, py = y + dy * P.blur_stride;
+  if (P.blur_edge_slope != 0 && mx >= 0 && my >= 0 && px < src.w && py < src.h)
+    g = blurSlope(src.at(mx, my, 1), centreZ, src.at(px, py, 1));
   T sum = T(0);
   T wsum = T(0);
   for (int t = -R; t <= R; ++t) {
@@ -355,7 +370,7 @@ void bilateralBlur(const Image<T>& src, int x, int y, int dx, int dy, const Bloc
       k = src.at(qx, qy, 1);
       if (isSky(k)) continue;
     }
-    const T w = blurGauss(t, P) * glslMax(T(0), T(1) - sharpness * std::abs(k - centreZ));
+    const T w = blurGauss(t, P) * glslMax(T(0), T(1) - sharpness * std::abs(k - (centreZ + T(t) * g)));
     sum += w * a;
     wsum += w;
   }

@@ -22,6 +22,16 @@ float sao_blur_sharpness(float centre_key, float sharpness, float relative)
     return sharpness + relative / max(abs(centre_key), 1.0e-20);
 }
 
+// The centre's slope along the blur direction, key units per tap, from its neighbours' keys km and
+// kp a stride before and after it: the flatter of the two one-sided differences (minmod), 0 at a
+// ridge or a valley (they differ in sign) and where either neighbour is sky (or off the image).
+float sao_blur_slope(float km, float k0, float kp)
+{
+    float gm = k0 - km, gp = kp - k0;
+    bool none = sao_is_sky(km) || sao_is_sky(kp) || ((gp > 0.0) != (gm > 0.0));
+    return none ? 0.0 : (abs(gp) < abs(gm) ? gp : gm);
+}
+
 // A tap's weight: gauss(t) * max(0, 1 - sharpness * |key - centre key|) (blur's one formula), with
 // sharpness from sao_blur_sharpness.
 float sao_blur_weight(int t, float key, float centre_key, float sharpness, vec4 w_1_4, vec4 w_5_8)
@@ -31,17 +41,21 @@ float sao_blur_weight(int t, float key, float centre_key, float sharpness, vec4 
 
 // Bilateral 1D blur of src (.x = A, .y = key z) at texel p along dir ((1,0) or (0,1)):
 // taps t = -R..R (ascending) at p + dir*t*stride, weight gauss(t) * max(0, 1 - k*|dz|), k =
-// sao_blur_sharpness(centre key, sharpness, relative).
+// sao_blur_sharpness(centre key, sharpness, relative); with `slope` |dz| is measured from the
+// centre's plane, k0 + t * sao_blur_slope (its neighbours a stride away, off the texture: none).
 // Taps off the texture or on sky weigh 0; a sky centre gives (1, 0). Returns (A, key).
 // Branch-free and a do-while loop (t = 0 always runs): a software rasteriser (llvmpipe) runs every
 // branch for every pixel and a for loop's body once more than its largest trip count; a tap
 // weighing 0 adds +0.0, so the sums are those of skipping it.
 vec2 sao_bilateral_blur(sampler2D src, ivec2 p, ivec2 dir, int radius_taps, int stride,
-                        float sharpness, float relative, vec4 w_1_4, vec4 w_5_8)
+                        float sharpness, float relative, bool slope, vec4 w_1_4, vec4 w_5_8)
 {
     vec2 centre = texelFetch(src, p, 0).xy;
-    float k = sao_blur_sharpness(centre.y, sharpness, relative);
     ivec2 size = textureSize(src, 0);
+    float k = sao_blur_sharpness(centre.y, sharpness, relative);
+    ivec2 pm = p - dir * stride, pp = p + dir * stride;
+    bool both = all(greaterThanEqual(pm, ivec2(0))) && all(lessThan(pp, size));
+    float g = (slope && both) ? sao_blur_slope(texelFetch(src, pm, 0).y, centre.y, texelFetch(src, pp, 0).y) : 0.0;
     int R = clamp(radius_taps, 0, SAO_MAX_BLUR_RADIUS);
     float sum = 0.0;
     float wsum = 0.0;
@@ -50,7 +64,8 @@ vec2 sao_bilateral_blur(sampler2D src, ivec2 p, ivec2 dir, int radius_taps, int 
         ivec2 q = p + dir * (t * stride);
         bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
         vec2 tap = texelFetch(src, clamp(q, ivec2(0), size - 1), 0).xy;
-        float w = (inside && !sao_is_sky(tap.y)) ? sao_blur_weight(t, tap.y, centre.y, k, w_1_4, w_5_8) : 0.0;
+        float w = (inside && !sao_is_sky(tap.y)) ? sao_blur_weight(t, tap.y, centre.y + float(t) * g, k, w_1_4, w_5_8)
+                                                   : 0.0;
         sum += w * tap.x;
         wsum += w;
     } while (++t <= R);

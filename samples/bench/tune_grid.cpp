@@ -10,7 +10,8 @@ namespace sao::bench {
 const std::vector<std::string> kTunedSettings = {"samples",           "blur_radius",        "blur_stride",
                                                  "use_z_hierarchy",   "mip_switch_log2",    "resolution_divisor",
                                                  "blur_edge_sharpness", "estimator",        "slices",
-                                                 "thickness",         "thickness_model"};
+                                                 "thickness",         "thickness_model",  "blur_edge_slope",
+                                                 "blur_edge_relative"};
 
 std::vector<Candidate> tuneGrid(bool quick) {
   struct Blur {
@@ -78,6 +79,7 @@ Settings untunedMedium() {
   Settings s;
   s.samples = 11, s.blur_radius = 3, s.blur_stride = 2, s.use_z_hierarchy = true, s.mip_switch_log2 = 3;
   s.resolution_divisor = 1;
+  s.blur_edge_slope = false;  // the blur as it was: the time unit and the blotch baseline stay put
   return s;
 }
 
@@ -124,20 +126,25 @@ std::string tunedSettingValue(const Settings& s, const std::string& name) {
     std::snprintf(b, sizeof b, "%g", double(s.blur_edge_sharpness));
     return b;
   }
+  if (name == "blur_edge_slope") return s.blur_edge_slope ? "true" : "false";
+  if (name == "blur_edge_relative") {
+    std::snprintf(b, sizeof b, "%g", double(s.blur_edge_relative));
+    return b;
+  }
   return "";
 }
 
 bool setTunedSetting(Settings& s, const std::string& name, const std::string& value) {
-  if (name == "use_z_hierarchy") {
+  if (name == "use_z_hierarchy" || name == "blur_edge_slope") {
     if (value != "true" && value != "false") return false;
-    s.use_z_hierarchy = value == "true";
+    (name == "use_z_hierarchy" ? s.use_z_hierarchy : s.blur_edge_slope) = value == "true";
     return true;
   }
   char* end = nullptr;
   const double v = std::strtod(value.c_str(), &end);
   if (value.empty() || *end) return false;
-  if (name == "blur_edge_sharpness") {
-    s.blur_edge_sharpness = float(v);
+  if (name == "blur_edge_sharpness" || name == "blur_edge_relative") {
+    (name == "blur_edge_sharpness" ? s.blur_edge_sharpness : s.blur_edge_relative) = float(v);
     return true;
   }
   if (name == "thickness") {
@@ -165,7 +172,10 @@ std::string settingsWords(const Settings& s) {
     if ((name == "slices" || name == "thickness" || name == "thickness_model") && s.estimator == 0)
       continue;  // inert (effect/sao.glsl)
     if (name == "estimator" && s.estimator == 0) continue;  // the default: preset lines as before
-    if (name == "blur_edge_sharpness" && s.blur_edge_sharpness == Settings{}.blur_edge_sharpness) continue;
+    const Settings defaults;
+    if (name == "blur_edge_sharpness" && s.blur_edge_sharpness == defaults.blur_edge_sharpness) continue;
+    if (name == "blur_edge_slope" && s.blur_edge_slope == defaults.blur_edge_slope) continue;
+    if (name == "blur_edge_relative" && s.blur_edge_relative == defaults.blur_edge_relative) continue;
     out += (out.empty() ? "" : " ") + name + "=" + tunedSettingValue(s, name);
   }
   return out;
@@ -183,7 +193,15 @@ std::string describeSettings(const Settings& s) {
     d = "visibility (" + std::to_string(s.slices) + " slices, " + describeThickness(s) + "), " + d;
   }
   if (s.blur_radius == 0) d += ", no blur";
-  else d += " + " + std::to_string(2 * s.blur_radius + 1) + "-tap blur (stride " + std::to_string(s.blur_stride) + ")";
+  else {
+    d += " + " + std::to_string(2 * s.blur_radius + 1) + "-tap blur (stride " + std::to_string(s.blur_stride);
+    if (s.blur_edge_relative > 0.0f) {
+      char e[48];
+      std::snprintf(e, sizeof e, ", edge 1/%g of z", double(s.blur_edge_relative));
+      d += e;
+    }
+    d += ")";
+  }
   if (s.use_z_hierarchy) d += ", z hierarchy (q' = " + std::to_string(1 << s.mip_switch_log2) + " px)";
   else d += ", no z hierarchy";
   if (s.resolution_divisor == 1) d += ", full resolution";

@@ -20,11 +20,11 @@ struct Candidate {
 // The grid in its documented order, outermost first: resolution_divisor {1, 2, 4}, then the z
 // hierarchy q' = 2^3, 2^4 px (and 2^5 at divisor 1), then blur (radius, stride) {(0,1), (1,1), (2,1),
 // (2,2), (3,2), (4,1)}, then samples {3, 4, 6, 8, 11, 16, 24, 32, 48, 64}: 420 points. Every other
-// setting keeps its default (blur_edge_sharpness included). Every point keeps the z hierarchy: on
-// llvmpipe scattered level-0 taps are cheap (the CPU's caches hold the whole z buffer), but on a GPU
-// the hierarchy is what keeps SAO's cost flat in the radius (the paper's 7x, the traffic model's
-// 4x from L2), so presets tuned without it on this machine's clock would be slow where users run
-// them. The first grid (2026-12-02: q' {8, 16, off} x blur {(0,1), (2,2), (3,2), (4,1)}, itself
+// setting keeps its default (the blur's depth edge too: along the slope since 2026-12-08, 10/m).
+// Every point keeps the z hierarchy: on llvmpipe scattered level-0 taps are cheap (the CPU's caches
+// hold the whole z buffer), but on a GPU the hierarchy is what keeps SAO's cost flat in the radius
+// (the paper's 7x, the traffic model's 4x from L2), so presets tuned without it on this machine's
+// clock would be slow where users run them. The first grid (2026-12-02: q' {8, 16, off} x blur {(0,1), (2,2), (3,2), (4,1)}, itself
 // pruned from 840 points) lacked the light blurs (1,1) and (2,1) that the accurate end needs.
 // `quick`: samples {4, 16, 64} x blur {(0,1), (3,2)} x q' {8, 16} x divisor {1, 2}.
 // Then the visibility estimator (estimator 1): divisor {1, 2, 4} x thickness {constant 0.1 m, from
@@ -36,9 +36,9 @@ struct Candidate {
 std::vector<Candidate> tuneGrid(bool quick);
 
 // The time unit and the blotch baseline, fixed: the medium preset and the settings' defaults as they
-// were before the first tuning (2026-12-02; the appearance settings are today's defaults). Presets
-// tuned against them do not move the unit they were tuned in, so a rerun after adopting them finds
-// the same chain.
+// were before the first tuning (2026-12-02; the appearance settings are today's defaults; the blur
+// compares a tap with the centre's z, blur_edge_slope false). Presets tuned against them do not move
+// the unit they were tuned in, so a rerun after adopting them finds the same chain.
 Settings untunedMedium();    // 11 taps, 2x2 + 7-tap blur (stride 2), q' = 8 px, full resolution
 Settings untunedDefaults();  // 11 taps, 2x2 + 9-tap blur (stride 2), q' = 8 px, full resolution
 
@@ -55,8 +55,8 @@ bool isTimeAnchor(const std::string& kind, const std::string& name);
 std::vector<Candidate> tuneReferences();
 
 // The tuned settings as `k=v` words, in kTunedSettings order ("samples=11 blur_radius=3 ..."), as a
-// `#pragma sao preset` line lists them: mip_switch_log2 only with the hierarchy, blur_edge_sharpness
-// only when not the default.
+// `#pragma sao preset` line lists them: mip_switch_log2 only with the hierarchy, blur_edge_sharpness,
+// blur_edge_slope and blur_edge_relative only when not the default.
 std::string settingsWords(const Settings& s);
 // The tuned settings' names, the columns of tune.csv that describe a candidate.
 extern const std::vector<std::string> kTunedSettings;

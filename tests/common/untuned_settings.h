@@ -1,7 +1,8 @@
 // The settings' defaults before the presets were tuned (issue 16, 2026-12-03): full resolution, 11
-// taps, a 9-tap blur (radius 4, stride 2), q' = 8 px, rg32f (A, key) images. Tests whose figures were derived by hand for a
-// full-resolution plan with a blur (plan bytes, dispatch lists, MIP counts, reconstruction keys, seam
-// bounds) use these instead of Settings{}, whose defaults are now the high preset (half resolution).
+// taps, a 9-tap blur (radius 4, stride 2) whose depth edge is against the centre's z, q' = 8 px,
+// rg32f (A, key) images. Tests whose figures were derived by hand for a full-resolution plan with a
+// blur (plan bytes, dispatch lists, MIP counts, reconstruction keys, seam bounds) use these instead
+// of Settings{}, whose defaults are now the high preset (half resolution).
 #pragma once
 #include <string>
 #include <vector>
@@ -19,6 +20,7 @@ inline Settings untunedDefaults() {
   s.blur_stride = 2;
   s.resolution_divisor = 1;
   s.half_intermediates = false;  // rg32f (A, key) images, as before half_intermediates became the default
+  s.blur_edge_slope = false;      // the blur's depth edge against the centre's z, as before 2026-12-08
   return s;
 }
 

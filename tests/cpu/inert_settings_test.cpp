@@ -32,6 +32,7 @@ TEST(InertRules, DeclaredRelations) {
                        "blur_stride while blur_radius = 0",
                        "blur_edge_sharpness while blur_radius = 0",
                        "blur_edge_relative while blur_radius = 0",
+                       "blur_edge_slope while blur_radius = 0",
                        "mip_switch_log2 while use_z_hierarchy = false",
                        "half_intermediates while blur_radius = 0, resolution_divisor = 1 and temporal = false",
                        "bias while estimator = 1",
@@ -50,7 +51,7 @@ TEST(InertRules, RuleFunctionFollowsTheFinalSettings) {
   EXPECT_EQ(inertWhen(s, SettingId::temporal_hysteresis), "temporal = false");
   EXPECT_EQ(inertWhen(s, SettingId::temporal_depth_tolerance), "temporal = false");
   for (SettingId id : {SettingId::blur_stride, SettingId::blur_edge_sharpness, SettingId::blur_edge_relative,
-                       SettingId::mip_switch_log2,
+                       SettingId::blur_edge_slope, SettingId::mip_switch_log2,
                        SettingId::half_intermediates, SettingId::radius, SettingId::fade_end, SettingId::temporal,
                        SettingId::blur_radius, SettingId::quad_edge_threshold, SettingId::samples})
     EXPECT_EQ(inertRule(s, id), nullptr) << nameOf(id);
@@ -65,6 +66,7 @@ TEST(InertRules, RuleFunctionFollowsTheFinalSettings) {
   EXPECT_EQ(inertWhen(s, SettingId::blur_stride), "blur_radius = 0");
   EXPECT_EQ(inertWhen(s, SettingId::blur_edge_sharpness), "blur_radius = 0");
   EXPECT_EQ(inertWhen(s, SettingId::blur_edge_relative), "blur_radius = 0");
+  EXPECT_EQ(inertWhen(s, SettingId::blur_edge_slope), "blur_radius = 0");
   s.resolution_divisor = 1;  // with temporal: ao_sample still writes (A, key) for the history
   EXPECT_EQ(inertRule(s, SettingId::half_intermediates), nullptr);
   s.temporal = false;  // nothing follows the AO: ao_sample_output writes the output itself
@@ -143,6 +145,8 @@ TEST(InertRules, WhereNoRuleHoldsTheSettingChangesTheOutput) {
   fade.fade_end = 1000.0f;  // the scene lies within 10 m: fading from 0 or from 500 m differs there
   Settings blur;            // the defaults: a 3-tap blur at half resolution
   blur.blur_edge_sharpness = 1.0f;
+  Settings slanted = blur;  // an edge sharp enough to cut the scenario's slanted surfaces
+  slanted.blur_edge_sharpness = 100.0f;
   Settings mips;
   mips.radius = 3.0f;  // wide enough for taps to reach past level 0 at every mip_switch_log2
   Settings direct;
@@ -155,6 +159,7 @@ TEST(InertRules, WhereNoRuleHoldsTheSettingChangesTheOutput) {
   const std::vector<std::pair<SettingId, Settings>> cases = {
       {SettingId::fade_start, fade},         {SettingId::blur_stride, blur},
       {SettingId::blur_edge_sharpness, blur}, {SettingId::blur_edge_relative, blur},
+      {SettingId::blur_edge_slope, slanted},
       {SettingId::mip_switch_log2, mips},
       {SettingId::half_intermediates, direct}, {SettingId::thickness, visibility},
       {SettingId::depth_tolerance, visibility}, {SettingId::slices, visibility},

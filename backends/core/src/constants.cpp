@@ -246,6 +246,7 @@ Status computeConstants(const Settings& s, const Camera& c, DepthEncoding encodi
     p.blur_edge_sharpness = f(s.blur_edge_sharpness / u);
   }
   p.blur_edge_relative = s.blur_edge_relative;  // per |dz|/|z|: the same in any key unit
+  p.blur_edge_slope = s.blur_edge_slope ? 1 : 0;
   p.blur_radius = s.blur_radius;
   p.blur_stride = s.blur_stride;
 
