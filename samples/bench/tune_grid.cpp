@@ -172,10 +172,8 @@ std::string settingsWords(const Settings& s) {
     if ((name == "slices" || name == "thickness" || name == "thickness_model") && s.estimator == 0)
       continue;  // inert (effect/sao.glsl)
     if (name == "estimator" && s.estimator == 0) continue;  // the default: preset lines as before
-    const Settings defaults;
-    if (name == "blur_edge_sharpness" && s.blur_edge_sharpness == defaults.blur_edge_sharpness) continue;
-    if (name == "blur_edge_slope" && s.blur_edge_slope == defaults.blur_edge_slope) continue;
-    if (name == "blur_edge_relative" && s.blur_edge_relative == defaults.blur_edge_relative) continue;
+    const bool blurEdge = name == "blur_edge_sharpness" || name == "blur_edge_slope" || name == "blur_edge_relative";
+    if (blurEdge && tunedSettingValue(s, name) == tunedSettingValue(Settings{}, name)) continue;  // the default
     out += (out.empty() ? "" : " ") + name + "=" + tunedSettingValue(s, name);
   }
   return out;

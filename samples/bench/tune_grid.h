@@ -24,8 +24,9 @@ struct Candidate {
 // Every point keeps the z hierarchy: on llvmpipe scattered level-0 taps are cheap (the CPU's caches
 // hold the whole z buffer), but on a GPU the hierarchy is what keeps SAO's cost flat in the radius
 // (the paper's 7x, the traffic model's 4x from L2), so presets tuned without it on this machine's
-// clock would be slow where users run them. The first grid (2026-12-02: q' {8, 16, off} x blur {(0,1), (2,2), (3,2), (4,1)}, itself
-// pruned from 840 points) lacked the light blurs (1,1) and (2,1) that the accurate end needs.
+// clock would be slow where users run them. The first grid (2026-12-02: q' {8, 16, off} x blur
+// {(0,1), (2,2), (3,2), (4,1)}, itself pruned from 840 points) lacked the light blurs (1,1) and
+// (2,1) that the accurate end needs.
 // `quick`: samples {4, 16, 64} x blur {(0,1), (3,2)} x q' {8, 16} x divisor {1, 2}.
 // Then the visibility estimator (estimator 1): divisor {1, 2, 4} x thickness {constant 0.1 m, from
 // width (thickness_model 1) up to 0.3 m, up to 1 m} x slices {2, 4} x blur {(1,1), (2,1), (3,2)} x
